@@ -1,0 +1,52 @@
+/* model.h - the one interface between the Transformation Method and any model.
+ *
+ * A model maps a crisp parameter vector x[0..n_inputs-1] to outputs
+ * y[0..n_outputs-1].  The TM never knows what it calls (GSL's gsl_function
+ * idea): built-in impact models, a typed formula and an external program all
+ * sit behind this struct.
+ *
+ * Binding by name: a model is created for an ordered list of parameter names
+ * (the study's fuzzy/crisp parameters); x[i] is the value of names[i].  The
+ * constructor rejects a name it does not know.
+ *
+ * Thread safety: eval may be called concurrently from several threads with
+ * the same ctx; each model guarantees this itself (per-thread work areas).
+ * eval returns RF_OK or a status with a message in err; it never exits. */
+#ifndef ROCKFUZZ_MODEL_H
+#define ROCKFUZZ_MODEL_H
+
+#include "rockfuzz/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef rf_status (*rf_model_eval_fn)(void *ctx, const double *x, double *y, rf_error *err);
+
+typedef struct rf_model {
+    size_t n_inputs;
+    size_t n_outputs;
+    char **output_names;        /* n_outputs names, owned by the model */
+    char **output_units;        /* n_outputs unit strings ("" if dimensionless), owned */
+    rf_model_eval_fn eval;
+    void *ctx;
+    void (*destroy)(void *ctx); /* frees ctx; may be NULL */
+    char *identity;             /* canonical description of model + settings (for result stores), owned */
+    int threads_per_eval;       /* threads one evaluation uses itself (FE solver), >= 1 */
+} rf_model;
+
+/* Evaluate (convenience wrapper checking for NULL and non-finite outputs). */
+rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_error *err);
+
+/* Free everything the model owns (calls destroy); safe on a zeroed struct. */
+void rf_model_free(rf_model *model);
+
+/* Helpers for model implementations: allocate names/units/identity. */
+rf_status rf_model_init_outputs(rf_model *model, size_t n_outputs, const char *const *names,
+                                const char *const *units, rf_error *err);
+rf_status rf_model_set_identity(rf_model *model, const char *identity, rf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

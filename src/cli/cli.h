@@ -1,0 +1,10 @@
+/* cli.h - one function per subcommand of the rockfuzz program.
+ * Each takes the arguments after the subcommand name (argv[0] is the
+ * subcommand) and returns the process exit status. */
+#ifndef ROCKFUZZ_CLI_H
+#define ROCKFUZZ_CLI_H
+
+int rf_cli_run(int argc, char **argv);     /* cmd_run.c: run a study file */
+int rf_cli_impact(int argc, char **argv);  /* cmd_impact.c: one impact */
+
+#endif

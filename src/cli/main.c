@@ -1,0 +1,48 @@
+/* main.c - the rockfuzz program: dispatches to one file per subcommand. */
+#include "cli/cli.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+        "rockfuzz %s - epistemic uncertainty analysis of rockfall impacts\n"
+        "(fuzzy numbers propagated by the Transformation Method)\n"
+        "\n"
+        "Usage: rockfuzz COMMAND [OPTIONS]\n"
+        "\n"
+        "Commands:\n"
+        "  run STUDY.yaml --out DIR   run a fuzzy study; see `rockfuzz run --help`\n"
+        "  impact [OPTIONS]           simulate one boulder impact; see `rockfuzz impact --help`\n"
+        "\n"
+        "Options:\n"
+        "  -h, --help                 show this help\n"
+        "  --version                  print the version\n"
+        "\n"
+        "Units are SI (m, kg, s, Pa) unless an option says otherwise.\n",
+        ROCKFUZZ_VERSION);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "-h") || !strcmp(cmd, "--help") || !strcmp(cmd, "help")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(cmd, "--version")) {
+        printf("rockfuzz %s\n", ROCKFUZZ_VERSION);
+        return 0;
+    }
+    if (!strcmp(cmd, "run"))
+        return rf_cli_run(argc - 1, argv + 1);
+    if (!strcmp(cmd, "impact"))
+        return rf_cli_impact(argc - 1, argv + 1);
+    fprintf(stderr, "rockfuzz: unknown command '%s' (try `rockfuzz --help`)\n", cmd);
+    return 2;
+}

@@ -1,0 +1,47 @@
+/* status.c - formatting of rf_error messages (see status.h). */
+#include "rockfuzz/status.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+rf_status rf_fail(rf_error *err, rf_status code, const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+        va_end(ap);
+        err->code = code;
+    }
+    return code;
+}
+
+rf_status rf_error_prefix(rf_error *err, const char *fmt, ...)
+{
+    if (!err)
+        return RF_EINTERNAL;
+    char head[RF_ERROR_MAX], old[RF_ERROR_MAX];
+    memcpy(old, err->msg, sizeof old);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(head, sizeof head, fmt, ap);
+    va_end(ap);
+    snprintf(err->msg, sizeof err->msg, "%s: %s", head, old);
+    return err->code;
+}
+
+const char *rf_status_name(rf_status s)
+{
+    switch (s) {
+    case RF_OK: return "ok";
+    case RF_EINVAL: return "invalid input";
+    case RF_ENOMEM: return "out of memory";
+    case RF_EIO: return "I/O error";
+    case RF_EMODEL: return "model evaluation failed";
+    case RF_ECAP: return "limit exceeded";
+    case RF_EPARSE: return "parse error";
+    case RF_EINTERNAL: return "internal error";
+    }
+    return "unknown status";
+}

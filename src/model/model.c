@@ -1,0 +1,73 @@
+/* model.c - shared helpers behind the rf_model interface (see model.h). */
+#include "rockfuzz/model.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char *dup_str(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d)
+        memcpy(d, s, n);
+    return d;
+}
+
+rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_error *err)
+{
+    if (!model || !model->eval)
+        return rf_fail(err, RF_EINTERNAL, "model has no evaluation function");
+    rf_status st = model->eval(model->ctx, x, y, err);
+    if (st != RF_OK)
+        return st;
+    for (size_t k = 0; k < model->n_outputs; k++) {
+        if (!isfinite(y[k]) && !isnan(y[k]))
+            return rf_fail(err, RF_EMODEL, "output '%s' is infinite", model->output_names[k]);
+    }
+    return RF_OK;
+}
+
+void rf_model_free(rf_model *model)
+{
+    if (!model)
+        return;
+    if (model->destroy)
+        model->destroy(model->ctx);
+    for (size_t k = 0; k < model->n_outputs; k++) {
+        if (model->output_names)
+            free(model->output_names[k]);
+        if (model->output_units)
+            free(model->output_units[k]);
+    }
+    free(model->output_names);
+    free(model->output_units);
+    free(model->identity);
+    memset(model, 0, sizeof *model);
+}
+
+rf_status rf_model_init_outputs(rf_model *model, size_t n_outputs, const char *const *names,
+                                const char *const *units, rf_error *err)
+{
+    model->n_outputs = n_outputs;
+    model->output_names = calloc(n_outputs ? n_outputs : 1, sizeof(char *));
+    model->output_units = calloc(n_outputs ? n_outputs : 1, sizeof(char *));
+    if (!model->output_names || !model->output_units)
+        return rf_fail(err, RF_ENOMEM, "out of memory for model outputs");
+    for (size_t k = 0; k < n_outputs; k++) {
+        model->output_names[k] = dup_str(names[k]);
+        model->output_units[k] = dup_str(units && units[k] ? units[k] : "");
+        if (!model->output_names[k] || !model->output_units[k])
+            return rf_fail(err, RF_ENOMEM, "out of memory for model outputs");
+    }
+    if (model->threads_per_eval < 1)
+        model->threads_per_eval = 1;
+    return RF_OK;
+}
+
+rf_status rf_model_set_identity(rf_model *model, const char *identity, rf_error *err)
+{
+    free(model->identity);
+    model->identity = dup_str(identity);
+    return model->identity ? RF_OK : rf_fail(err, RF_ENOMEM, "out of memory for model identity");
+}
