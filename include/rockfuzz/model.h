@@ -46,6 +46,45 @@ rf_status rf_model_init_outputs(rf_model *model, size_t n_outputs, const char *c
                                 const char *const *units, rf_error *err);
 rf_status rf_model_set_identity(rf_model *model, const char *identity, rf_error *err);
 
+
+/* ---- Formula model (src/model/formula.c): expressions typed by the user,
+ * parsed once by muParser; one parser per thread.  Every identifier must be a
+ * parameter name (the message names output, identifier and position). */
+rf_status rf_formula_model_create(size_t n_params, const char *const *param_names, size_t n_outputs,
+                                  const char *const *output_names, const char *const *expressions,
+                                  rf_model *model, rf_error *err);
+
+/* ---- External-program model (src/model/external.c).  No shell is involved:
+ * argv is executed directly after replacing {name} placeholders by the
+ * parameter values (%.17g).  Each evaluation runs in a fresh working
+ * directory under workdir_root into which the templates (with the same
+ * placeholders) are written.  Each output is read from the program's stdout
+ * or from a file in the working directory, either as the number following
+ * "NAME =" / "NAME:" on a line, or with a POSIX extended regex whose first
+ * capture group is the number. */
+typedef struct {
+    char *name;        /* output name */
+    char *file;        /* NULL = stdout, else a file name relative to the working directory */
+    char *pattern;     /* NULL = "NAME = value" lookup; else ERE with one capture group */
+    char *unit;        /* may be NULL */
+} rf_external_output;
+
+typedef struct {
+    size_t argc;
+    char **argv;                  /* argv[0] is the program (PATH is searched) */
+    size_t n_templates;
+    char **template_src;          /* template file paths (already resolved) */
+    char **template_dst;          /* file names inside the working directory */
+    size_t n_outputs;
+    rf_external_output *outputs;
+    double timeout;               /* seconds per evaluation, 0 = none */
+    char *workdir_root;           /* parent of the per-evaluation directories */
+    int keep_workdirs;            /* keep them (else removed after success) */
+} rf_external_spec;
+
+rf_status rf_external_model_create(const rf_external_spec *spec, size_t n_params,
+                                   const char *const *param_names, rf_model *model, rf_error *err);
+
 #ifdef __cplusplus
 }
 #endif

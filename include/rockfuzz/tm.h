@@ -1,0 +1,94 @@
+/* tm.h - the Transformation Method of fuzzy arithmetic (tm_spec.md s.2-4).
+ *
+ * rf_tm_run decomposes the fuzzy inputs, builds the grid of the chosen form
+ * (general, reduced or extended), evaluates every DISTINCT point once through
+ * an evaluator (a cache keyed on exact grid-value indices: values closer than
+ * cache_rtol are merged before any evaluation), and retransforms recursively
+ * so that the output cuts always nest.  Several outputs share one set of
+ * evaluations.  For every output bound the input vector that produced it is
+ * kept.  The TM never knows what model it calls. */
+#ifndef ROCKFUZZ_TM_H
+#define ROCKFUZZ_TM_H
+
+#include "rockfuzz/fuzzy.h"
+#include "rockfuzz/model.h"
+#include "rockfuzz/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum { RF_TM_GENERAL, RF_TM_REDUCED, RF_TM_EXTENDED } rf_tm_scheme;
+
+/* Monotonicity class of an input (extended form), or a diagnostic verdict. */
+typedef enum {
+    RF_MONO_AUTO = 0,        /* let the probe decide (option) / not checked (verdict) */
+    RF_MONO_MONOTONIC,
+    RF_MONO_NONMONOTONIC
+} rf_monotonicity;
+
+/* Evaluates count points x[c*n_inputs + i] into y[c*n_outputs + k].  The
+ * default (evaluator == NULL) is a serial loop over rf_model_eval.  A failed
+ * point returns its status with a message; the TM adds the parameter vector. */
+typedef struct {
+    rf_status (*evaluate)(void *user, const rf_model *model, size_t count, const double *x, double *y,
+                          size_t *failed_index, rf_error *err);
+    void *user;
+} rf_evaluator;
+
+typedef struct {
+    rf_tm_scheme scheme;
+    size_t levels;                       /* m >= 1: membership intervals (m+1 levels) */
+    size_t max_evaluations;              /* cap on distinct evaluations, 0 = none */
+    int left_right;                      /* evaluate the three-point grid for s.5.4 and the monotonicity check */
+    const rf_monotonicity *force_class;  /* per input, extended form only; NULL = all auto */
+    double cache_rtol;                   /* grid values closer than this (relative) are one value; default 1e-12 */
+    double probe_rtol;                   /* extended-form probe: ignore differences below this x output range; 1e-9 */
+    const rf_evaluator *evaluator;       /* NULL = serial */
+    /* Called once with the counts before any evaluation; return non-zero to abort. */
+    int (*on_plan)(void *user, size_t requested, size_t distinct);
+    void *on_plan_user;
+} rf_tm_options;
+
+void rf_tm_options_default(rf_tm_options *opt);
+const char *rf_tm_scheme_name(rf_tm_scheme s);
+rf_status rf_tm_scheme_parse(const char *name, rf_tm_scheme *s);
+
+struct rf_tm_data; /* grids and evaluated values, used by the analysis */
+
+typedef struct {
+    size_t n_inputs, n_outputs, levels;  /* levels = m; arrays have m+1 entries per curve */
+    rf_tm_scheme scheme;
+    double *in_lo, *in_hi;               /* [i*(m+1) + j] input cuts */
+    double *in_nominal;                  /* [i] */
+    double *lo, *hi;                     /* [k*(m+1) + j] output cuts (nested) */
+    double *x_lo, *x_hi;                 /* [(k*(m+1) + j)*n_inputs + i] inputs giving lo / hi */
+    double *nominal;                     /* [k] output at the nominal inputs */
+    rf_monotonicity *input_class;        /* [i] extended form: class used (else RF_MONO_AUTO) */
+    rf_monotonicity *monotonicity;       /* [k*n_inputs + i] diagnostic verdict (AUTO = not checked) */
+    size_t requested;                    /* grid points requested (all grids, before the cache) */
+    size_t distinct;                     /* model evaluations actually made */
+    size_t probe_evaluations;            /* of which the extended-form probe */
+    size_t lr_evaluations;               /* of which only needed by the three-point grid */
+    struct rf_tm_data *data;
+} rf_tm_result;
+
+/* Count requested and distinct evaluations without evaluating anything
+ * (extended form with auto classes: the probe is counted, the main grid
+ * bounded above by the general form). */
+rf_status rf_tm_count(const rf_fuzzy *inputs, size_t n_inputs, const rf_tm_options *opt,
+                      size_t *requested, size_t *distinct, rf_error *err);
+
+rf_status rf_tm_run(const rf_fuzzy *inputs, size_t n_inputs, const rf_model *model,
+                    const rf_tm_options *opt, rf_tm_result *res, rf_error *err);
+
+void rf_tm_result_free(rf_tm_result *res);
+
+/* Closed-form evaluation counts without a cache (tm_spec s.2.3, 3.2). */
+size_t rf_tm_count_general(size_t n, size_t m);
+size_t rf_tm_count_reduced(size_t n, size_t m);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
