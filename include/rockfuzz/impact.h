@@ -68,6 +68,90 @@ rf_status rf_impact_hunter(const rf_impact_input *in, rf_impact_output *out, rf_
 /* Rigid-body oblique impact with Coulomb friction, normal COR e_n given. */
 rf_status rf_impact_rigid(const rf_impact_input *in, double e_n, rf_impact_output *out, rf_error *err);
 
+
+/* --- additions (impact module) --- */
+
+/* Vertical semi-axis d [m] actually used: radius for a sphere, vertical_axis
+ * if set, else radius^3/c^2 (constant volume). */
+double rf_impact_vertical_semi_axis(const rf_impact_input *in);
+/* Moment of inertia of the boulder about a horizontal axis through its
+ * centre [kg m^2]: 2/5 m r0^2 (sphere), m (c^2 + d^2)/5 (spheroid). */
+double rf_impact_moment_of_inertia(const rf_impact_input *in);
+/* Name of the first field that rf_impact_input_validate rejects, or NULL. */
+const char *rf_impact_input_first_invalid(const rf_impact_input *in);
+
+/* Hunter (1957) wave-loss coefficients A in lambda = A (v_n/c0)^(3/5):
+ * the value quoted in Johnson 1985 sec. 11.4, and the band re-derived in
+ * impact_refs.md sec. 2.2 for nu = 0.25 (exact Hertz pulse, half-sine pulse). */
+#define RF_HUNTER_A_JOHNSON 1.04
+#define RF_HUNTER_A_EXACT_PULSE 1.112
+#define RF_HUNTER_A_HALF_SINE 1.171
+/* Fraction lambda of the normal kinetic energy radiated into the slope,
+ * A (v_n / c0)^(3/5) with c0 = sqrt(E_slope/rho_slope); v_n = V cos(angle). */
+double rf_hunter_loss(const rf_impact_input *in, double A);
+/* Hunter with an explicit coefficient A (rf_impact_hunter uses RF_HUNTER_A_JOHNSON). */
+rf_status rf_impact_hunter_A(const rf_impact_input *in, double A, rf_impact_output *out,
+                             rf_error *err);
+
+/* --- the impact model behind the rf_model interface --- */
+
+typedef enum {
+    RF_IMPACT_FEM = 0,  /* explicit finite elements (rockfuzz/fem.h) */
+    RF_IMPACT_HERTZ,    /* elastic Hertz: R_n = 1 */
+    RF_IMPACT_HUNTER,   /* Hertz + Hunter wave loss */
+    RF_IMPACT_RIGID     /* rigid-body oblique impact with Coulomb friction, e_n given */
+} rf_impact_solver;
+
+typedef enum {
+    RF_IMPACT_BOUNDARY_FIXED = 0,    /* fixed outer surface of the slope domain */
+    RF_IMPACT_BOUNDARY_ABSORBING     /* viscous (Lysmer-Kuhlemeyer) dashpots */
+} rf_impact_boundary;
+
+/* "fem" | "hertz" | "hunter" | "rigid" <-> enum; "fixed" | "absorbing". */
+const char *rf_impact_solver_name(rf_impact_solver s);
+rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err);
+const char *rf_impact_boundary_name(rf_impact_boundary b);
+rf_status rf_impact_boundary_parse(const char *name, rf_impact_boundary *b, rf_error *err);
+
+typedef struct {
+    rf_impact_solver solver;
+    rf_impact_input base;          /* crisp values of the inputs not bound to parameters (SI, angle in rad) */
+    double e_n;                    /* rigid solver: normal COR; NaN = Hunter's e_n from the current inputs */
+    double hunter_coefficient;     /* A of Hunter's loss (hunter solver, and rigid with e_n = NaN) */
+    /* FE settings (mirrors of rf_fem_options, kept plain so this header does not need fem.h) */
+    double fem_refinement;         /* a/h in the fine zone, default 10 */
+    double fem_domain_factor;      /* slope domain radius / r0, default 10 */
+    rf_impact_boundary fem_boundary; /* default fixed */
+    int fem_threads;               /* threads of one FE evaluation, default 1 */
+    const char *fem_vtk_dir;       /* VTK output directory or NULL; ignored by the model (CLI only) */
+} rf_impact_model_spec;
+
+/* Defaults: FEM solver, nominal granite, e_n = NaN (Hunter), A = 1.04,
+ * refinement 10, domain factor 10, fixed boundary, 1 thread, no VTK. */
+void rf_impact_model_spec_default(rf_impact_model_spec *spec);
+
+/* Run one impact with the spec's solver and settings on the input `in`
+ * (validated here). */
+rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
+                          rf_impact_output *out, rf_error *err);
+
+/* Parameter names a study may bind (slope_angle in DEGREES here), and the
+ * model outputs in order, with their units. */
+#define RF_IMPACT_N_PARAMS 11
+#define RF_IMPACT_N_OUTPUTS 7
+extern const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS];
+extern const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS];
+extern const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS];
+
+/* Create the impact model: x[i] is the value of param_names[i] (one of
+ * rf_impact_param_names; an unknown or repeated name is RF_EINVAL).  Outputs:
+ * contact_force_max [N], compression_max [m], contact_duration [s],
+ * contact_radius [m], R_n, R_t, R_ke [-].  eval copies spec->base, overwrites
+ * the bound inputs, validates them and runs the solver; thread-safe.  Free
+ * with rf_model_free. */
+rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *const *param_names,
+                                 size_t n_params, rf_model *model, rf_error *err);
+
 #ifdef __cplusplus
 }
 #endif

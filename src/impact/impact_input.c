@@ -1,0 +1,157 @@
+/* impact_input.c - the impact input: nominal values, validation, and the
+ * geometry every impact model shares (mass, inertia, contact curvature,
+ * effective modulus).  Geometry follows impact_refs.md sec. 1.1. */
+#include "rockfuzz/impact.h"
+
+#include <math.h>
+#include <stddef.h>
+
+#define RF_PI 3.14159265358979323846
+
+void rf_impact_input_default(rf_impact_input *in)
+{
+    in->radius = 1.0;
+    in->horizontal_axis = 0.0;
+    in->vertical_axis = 0.0;
+    in->boulder_density = 2600.0;
+    in->slope_density = 2600.0;
+    in->boulder_E = 68.2e9;
+    in->slope_E = 68.2e9;
+    in->boulder_poisson = 0.25;
+    in->slope_poisson = 0.25;
+    in->velocity = 10.0;
+    in->slope_angle = 0.0;
+    in->friction = 0.0;
+}
+
+static int positive(double x) { return isfinite(x) && x > 0.0; }
+static int poisson_ok(double x) { return isfinite(x) && x > -1.0 && x < 0.5; }
+
+/* One table drives both rf_impact_input_first_invalid and the messages. */
+enum { CHECK_POSITIVE, CHECK_POISSON, CHECK_AXIS, CHECK_FRICTION, CHECK_ANGLE };
+static const struct {
+    const char *name;
+    size_t offset;
+    int check;
+    const char *rule;
+} fields[] = {
+    {"radius", offsetof(rf_impact_input, radius), CHECK_POSITIVE, "must be finite and > 0 [m]"},
+    {"horizontal_axis", offsetof(rf_impact_input, horizontal_axis), CHECK_AXIS,
+     "must be finite and >= 0 [m] (0 = sphere)"},
+    {"vertical_axis", offsetof(rf_impact_input, vertical_axis), CHECK_AXIS,
+     "must be finite and >= 0 [m] (0 = derived from constant volume)"},
+    {"boulder_density", offsetof(rf_impact_input, boulder_density), CHECK_POSITIVE,
+     "must be finite and > 0 [kg/m^3]"},
+    {"slope_density", offsetof(rf_impact_input, slope_density), CHECK_POSITIVE,
+     "must be finite and > 0 [kg/m^3]"},
+    {"boulder_E", offsetof(rf_impact_input, boulder_E), CHECK_POSITIVE, "must be finite and > 0 [Pa]"},
+    {"slope_E", offsetof(rf_impact_input, slope_E), CHECK_POSITIVE, "must be finite and > 0 [Pa]"},
+    {"boulder_poisson", offsetof(rf_impact_input, boulder_poisson), CHECK_POISSON,
+     "Poisson's ratio must lie in (-1, 0.5)"},
+    {"slope_poisson", offsetof(rf_impact_input, slope_poisson), CHECK_POISSON,
+     "Poisson's ratio must lie in (-1, 0.5)"},
+    {"velocity", offsetof(rf_impact_input, velocity), CHECK_POSITIVE, "must be finite and > 0 [m/s]"},
+    {"slope_angle", offsetof(rf_impact_input, slope_angle), CHECK_ANGLE,
+     "must lie in [0, 90) degrees"},
+    {"friction", offsetof(rf_impact_input, friction), CHECK_FRICTION, "must be finite and >= 0"},
+};
+#define N_FIELDS (sizeof fields / sizeof fields[0])
+
+static double field_value(const rf_impact_input *in, size_t k)
+{
+    return *(const double *)((const char *)in + fields[k].offset);
+}
+
+static int field_ok(double x, int check)
+{
+    switch (check) {
+    case CHECK_POSITIVE: return positive(x);
+    case CHECK_POISSON: return poisson_ok(x);
+    case CHECK_AXIS: return isfinite(x) && x >= 0.0;
+    case CHECK_FRICTION: return isfinite(x) && x >= 0.0;
+    case CHECK_ANGLE: return isfinite(x) && x >= 0.0 && x < 0.5 * RF_PI;
+    }
+    return 0;
+}
+
+/* Index of the first invalid field, N_FIELDS if all are valid.  A vertical
+ * axis without a horizontal one is reported on vertical_axis. */
+static size_t first_invalid(const rf_impact_input *in)
+{
+    for (size_t k = 0; k < N_FIELDS; k++) {
+        if (!field_ok(field_value(in, k), fields[k].check))
+            return k;
+        if (fields[k].offset == offsetof(rf_impact_input, vertical_axis) && in->vertical_axis > 0.0
+            && !(in->horizontal_axis > 0.0))
+            return k;
+    }
+    return N_FIELDS;
+}
+
+const char *rf_impact_input_first_invalid(const rf_impact_input *in)
+{
+    size_t k = first_invalid(in);
+    return k < N_FIELDS ? fields[k].name : NULL;
+}
+
+rf_status rf_impact_input_validate(const rf_impact_input *in, rf_error *err)
+{
+    if (!in)
+        return rf_fail(err, RF_EINTERNAL, "impact input is NULL");
+    size_t k = first_invalid(in);
+    if (k == N_FIELDS)
+        return RF_OK;
+    double x = field_value(in, k);
+    if (fields[k].check == CHECK_ANGLE)
+        return rf_fail(err, RF_EINVAL, "slope_angle = %g rad (%g deg): %s", x, x * 180.0 / RF_PI,
+                       fields[k].rule);
+    if (fields[k].offset == offsetof(rf_impact_input, vertical_axis) && field_ok(x, CHECK_AXIS))
+        return rf_fail(err, RF_EINVAL,
+                       "vertical_axis = %g: a spheroid needs horizontal_axis > 0 as well "
+                       "(horizontal_axis = %g)", x, in->horizontal_axis);
+    return rf_fail(err, RF_EINVAL, "%s = %g: %s", fields[k].name, x, fields[k].rule);
+}
+
+double rf_impact_effective_modulus(const rf_impact_input *in)
+{
+    double xb = (1.0 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E;
+    double xs = (1.0 - in->slope_poisson * in->slope_poisson) / in->slope_E;
+    return 1.0 / (xb + xs);
+}
+
+static int is_spheroid(const rf_impact_input *in) { return in->horizontal_axis > 0.0; }
+
+double rf_impact_vertical_semi_axis(const rf_impact_input *in)
+{
+    if (!is_spheroid(in))
+        return in->radius;
+    if (in->vertical_axis > 0.0)
+        return in->vertical_axis;
+    return in->radius * in->radius * in->radius / (in->horizontal_axis * in->horizontal_axis);
+}
+
+double rf_impact_mass(const rf_impact_input *in)
+{
+    if (!is_spheroid(in))
+        return 4.0 / 3.0 * RF_PI * in->radius * in->radius * in->radius * in->boulder_density;
+    double c = in->horizontal_axis, d = rf_impact_vertical_semi_axis(in);
+    return 4.0 / 3.0 * RF_PI * c * c * d * in->boulder_density;
+}
+
+double rf_impact_moment_of_inertia(const rf_impact_input *in)
+{
+    double m = rf_impact_mass(in);
+    if (!is_spheroid(in))
+        return 0.4 * m * in->radius * in->radius;
+    double c = in->horizontal_axis, d = rf_impact_vertical_semi_axis(in);
+    return 0.2 * m * (c * c + d * d);
+}
+
+double rf_impact_contact_curvature_radius(const rf_impact_input *in)
+{
+    if (!is_spheroid(in))
+        return in->radius;
+    /* both principal radii at the lower pole of a spheroid (c, c, d) */
+    double c = in->horizontal_axis;
+    return c * c / rf_impact_vertical_semi_axis(in);
+}

@@ -1,0 +1,336 @@
+/* impact_model.c - the impact model behind the rf_model interface: a spec
+ * (solver + crisp base input + FE settings), the binding of study parameter
+ * names to the physical inputs, and rf_impact_solve, the one dispatch to the
+ * analytic models or the FE solver.  The model's ctx is read-only after
+ * creation, so eval is thread-safe (each FE evaluation owns its state). */
+#include "impact/impact_internal.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#if defined(__has_include)
+#if __has_include("rockfuzz/fem.h")
+#include "rockfuzz/fem.h"
+#define RF_HAVE_FEM 1
+#endif
+#endif
+
+const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS] = {
+    "radius", "horizontal_axis", "boulder_density", "slope_density", "boulder_E", "slope_E",
+    "boulder_poisson", "slope_poisson", "velocity", "slope_angle", "friction"};
+
+const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
+    "contact_force_max", "compression_max", "contact_duration", "contact_radius",
+    "R_n", "R_t", "R_ke"};
+
+const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS] = {"N", "m", "s", "m", "", "", ""};
+
+static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid"};
+static const char *const boundary_names[] = {"fixed", "absorbing"};
+
+const char *rf_impact_solver_name(rf_impact_solver s)
+{
+    return (unsigned)s < 4 ? solver_names[s] : "unknown";
+}
+
+rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err)
+{
+    for (int k = 0; k < 4; k++)
+        if (name && !strcmp(name, solver_names[k])) {
+            *s = (rf_impact_solver)k;
+            return RF_OK;
+        }
+    return rf_fail(err, RF_EINVAL, "solver '%s' is unknown (accepted: fem, hertz, hunter, rigid)",
+                   name ? name : "(null)");
+}
+
+const char *rf_impact_boundary_name(rf_impact_boundary b)
+{
+    return (unsigned)b < 2 ? boundary_names[b] : "unknown";
+}
+
+rf_status rf_impact_boundary_parse(const char *name, rf_impact_boundary *b, rf_error *err)
+{
+    for (int k = 0; k < 2; k++)
+        if (name && !strcmp(name, boundary_names[k])) {
+            *b = (rf_impact_boundary)k;
+            return RF_OK;
+        }
+    return rf_fail(err, RF_EINVAL, "boundary '%s' is unknown (accepted: fixed, absorbing)",
+                   name ? name : "(null)");
+}
+
+void rf_impact_model_spec_default(rf_impact_model_spec *spec)
+{
+    memset(spec, 0, sizeof *spec);
+    spec->solver = RF_IMPACT_FEM;
+    rf_impact_input_default(&spec->base);
+    spec->e_n = NAN;
+    spec->hunter_coefficient = RF_HUNTER_A_JOHNSON;
+    spec->fem_refinement = 10.0;
+    spec->fem_domain_factor = 10.0;
+    spec->fem_boundary = RF_IMPACT_BOUNDARY_FIXED;
+    spec->fem_threads = 1;
+    spec->fem_vtk_dir = NULL;
+}
+
+static rf_status solve_fem(const rf_impact_model_spec *spec, const rf_impact_input *in,
+                           rf_impact_output *out, rf_error *err)
+{
+#ifdef RF_HAVE_FEM
+    rf_fem_options opt;
+    rf_fem_options_default(&opt);
+    opt.refinement = spec->fem_refinement;
+    opt.domain_factor = spec->fem_domain_factor;
+    opt.boundary = spec->fem_boundary == RF_IMPACT_BOUNDARY_ABSORBING ? RF_FEM_BOUNDARY_ABSORBING
+                                                                      : RF_FEM_BOUNDARY_FIXED;
+    opt.threads = spec->fem_threads;
+    opt.vtk_dir = spec->fem_vtk_dir;
+    return rf_fem_impact(in, &opt, out, NULL, err);
+#else
+    (void)spec;
+    (void)in;
+    rf_impact_output_clear_(out);
+    return rf_fail(err, RF_EINVAL, "FE solver not built (rockfuzz/fem.h is missing); "
+                                   "use solver hertz, hunter or rigid");
+#endif
+}
+
+static rf_status check_spec(const rf_impact_model_spec *spec, rf_error *err)
+{
+    if ((unsigned)spec->solver > RF_IMPACT_RIGID)
+        return rf_fail(err, RF_EINVAL, "impact solver %d is unknown", (int)spec->solver);
+    if (!isnan(spec->e_n) && !(spec->e_n >= 0.0 && spec->e_n <= 1.0))
+        return rf_fail(err, RF_EINVAL, "e_n = %g: the normal COR must lie in [0, 1] "
+                                       "(or be unset to take Hunter's)", spec->e_n);
+    if (!(isfinite(spec->hunter_coefficient) && spec->hunter_coefficient >= 0.0))
+        return rf_fail(err, RF_EINVAL, "hunter_coefficient = %g: must be finite and >= 0",
+                       spec->hunter_coefficient);
+    if (spec->solver == RF_IMPACT_FEM) {
+        if (!(isfinite(spec->fem_refinement) && spec->fem_refinement > 0.0))
+            return rf_fail(err, RF_EINVAL, "refinement = %g: must be finite and > 0 (a/h)",
+                           spec->fem_refinement);
+        if (!(isfinite(spec->fem_domain_factor) && spec->fem_domain_factor > 1.0))
+            return rf_fail(err, RF_EINVAL, "domain_factor = %g: must be finite and > 1",
+                           spec->fem_domain_factor);
+        if ((unsigned)spec->fem_boundary > RF_IMPACT_BOUNDARY_ABSORBING)
+            return rf_fail(err, RF_EINVAL, "FE boundary %d is unknown", (int)spec->fem_boundary);
+        if (spec->fem_threads < 1)
+            return rf_fail(err, RF_EINVAL, "threads = %d: must be >= 1", spec->fem_threads);
+    }
+    return RF_OK;
+}
+
+rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
+                          rf_impact_output *out, rf_error *err)
+{
+    rf_status st = check_spec(spec, err);
+    if (st == RF_OK)
+        st = rf_impact_input_validate(in, err);
+    if (st != RF_OK) {
+        rf_impact_output_clear_(out);
+        return st;
+    }
+    switch (spec->solver) {
+    case RF_IMPACT_HERTZ: return rf_impact_hertz(in, out, err);
+    case RF_IMPACT_HUNTER: return rf_impact_hunter_A(in, spec->hunter_coefficient, out, err);
+    case RF_IMPACT_RIGID: {
+        double e_n = spec->e_n;
+        if (isnan(e_n)) {
+            rf_impact_output h;
+            st = rf_impact_hunter_A(in, spec->hunter_coefficient, &h, err);
+            if (st != RF_OK) {
+                rf_impact_output_clear_(out);
+                return st;
+            }
+            e_n = h.R_n;
+        }
+        return rf_impact_rigid(in, e_n, out, err);
+    }
+    case RF_IMPACT_FEM: return solve_fem(spec, in, out, err);
+    }
+    return rf_fail(err, RF_EINTERNAL, "unreachable impact solver");
+}
+
+/* --- the rf_model --- */
+
+typedef struct {
+    rf_impact_model_spec spec;  /* fem_vtk_dir cleared: evaluations must not share a directory */
+    size_t n_params;
+    int field[RF_IMPACT_N_PARAMS]; /* index into rf_impact_param_names for each x[i] */
+} impact_ctx;
+
+static void ctx_destroy(void *p) { free(p); }
+
+enum { P_RADIUS, P_C, P_RHO_B, P_RHO_S, P_E_B, P_E_S, P_NU_B, P_NU_S, P_V, P_ANGLE, P_MU };
+
+static void bind(rf_impact_input *in, int field, double x)
+{
+    switch (field) {
+    case P_RADIUS: in->radius = x; break;
+    case P_C:
+        in->horizontal_axis = x;
+        in->vertical_axis = 0.0; /* d = radius^3 / c^2: constant volume */
+        break;
+    case P_RHO_B: in->boulder_density = x; break;
+    case P_RHO_S: in->slope_density = x; break;
+    case P_E_B: in->boulder_E = x; break;
+    case P_E_S: in->slope_E = x; break;
+    case P_NU_B: in->boulder_poisson = x; break;
+    case P_NU_S: in->slope_poisson = x; break;
+    case P_V: in->velocity = x; break;
+    case P_ANGLE: in->slope_angle = x * RF_PI / 180.0; break;
+    case P_MU: in->friction = x; break;
+    }
+}
+
+static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
+{
+    const impact_ctx *c = p;
+    rf_impact_input in = c->spec.base;
+    for (size_t i = 0; i < c->n_params; i++)
+        bind(&in, c->field[i], x[i]);
+    rf_error local;
+    rf_status st = rf_impact_input_validate(&in, &local);
+    if (st != RF_OK)
+        return rf_fail(err, RF_EMODEL, "impact model: %s", local.msg);
+    rf_impact_output out;
+    st = rf_impact_solve(&c->spec, &in, &out, &local);
+    if (st != RF_OK)
+        return rf_fail(err, st == RF_EINVAL ? RF_EMODEL : st, "impact model (%s): %s",
+                       rf_impact_solver_name(c->spec.solver), local.msg);
+    y[0] = out.contact_force_max;
+    y[1] = out.compression_max;
+    y[2] = out.contact_duration;
+    y[3] = out.contact_radius;
+    y[4] = out.R_n;
+    y[5] = out.R_t;
+    y[6] = out.R_ke;
+    return RF_OK;
+}
+
+static void append(char *buf, size_t cap, size_t *len, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static void append(char *buf, size_t cap, size_t *len, const char *fmt, ...)
+{
+    if (*len >= cap)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(buf + *len, cap - *len, fmt, ap);
+    va_end(ap);
+    if (n > 0)
+        *len += (size_t)n;
+}
+
+static void make_identity(const impact_ctx *c, char *buf, size_t cap)
+{
+    const rf_impact_model_spec *s = &c->spec;
+    const rf_impact_input *b = &s->base;
+    size_t len = 0;
+    append(buf, cap, &len, "impact v1 solver=%s", rf_impact_solver_name(s->solver));
+    if (s->solver == RF_IMPACT_HUNTER || (s->solver == RF_IMPACT_RIGID && isnan(s->e_n)))
+        append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
+    if (s->solver == RF_IMPACT_RIGID)
+        append(buf, cap, &len, isnan(s->e_n) ? " e_n=hunter" : " e_n=%.17g", s->e_n);
+    if (s->solver == RF_IMPACT_FEM)
+        append(buf, cap, &len, " refinement=%.17g domain_factor=%.17g boundary=%s threads=%d",
+               s->fem_refinement, s->fem_domain_factor, rf_impact_boundary_name(s->fem_boundary),
+               s->fem_threads);
+    append(buf, cap, &len,
+           " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
+           " slope_density=%.17g boulder_E=%.17g slope_E=%.17g boulder_poisson=%.17g"
+           " slope_poisson=%.17g velocity=%.17g slope_angle_rad=%.17g friction=%.17g params:",
+           b->radius, b->horizontal_axis, b->vertical_axis, b->boulder_density, b->slope_density,
+           b->boulder_E, b->slope_E, b->boulder_poisson, b->slope_poisson, b->velocity,
+           b->slope_angle, b->friction);
+    for (size_t i = 0; i < c->n_params; i++)
+        append(buf, cap, &len, "%s%s", i ? "," : "", rf_impact_param_names[c->field[i]]);
+}
+
+rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *const *param_names,
+                                 size_t n_params, rf_model *model, rf_error *err)
+{
+    if (!spec || !model || (n_params && !param_names))
+        return rf_fail(err, RF_EINTERNAL, "rf_impact_model_create: NULL argument");
+    memset(model, 0, sizeof *model);
+    rf_status st = check_spec(spec, err);
+    if (st != RF_OK)
+        return st;
+#ifndef RF_HAVE_FEM
+    if (spec->solver == RF_IMPACT_FEM)
+        return rf_fail(err, RF_EINVAL, "impact model: FE solver not built (rockfuzz/fem.h is "
+                                       "missing); use solver hertz, hunter or rigid");
+#endif
+    if (n_params > RF_IMPACT_N_PARAMS)
+        return rf_fail(err, RF_EINVAL, "impact model: %zu parameters given, at most %d distinct "
+                                       "ones exist", n_params, RF_IMPACT_N_PARAMS);
+    impact_ctx *c = calloc(1, sizeof *c);
+    if (!c)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the impact model");
+    c->spec = *spec;
+    c->spec.fem_vtk_dir = NULL;
+    for (size_t i = 0; i < n_params; i++) {
+        int found = -1;
+        for (int k = 0; k < RF_IMPACT_N_PARAMS; k++)
+            if (param_names[i] && !strcmp(param_names[i], rf_impact_param_names[k]))
+                found = k;
+        if (found < 0) {
+            ctx_destroy(c);
+            return rf_fail(err, RF_EINVAL,
+                           "impact model: parameter '%s' is unknown (accepted: radius, "
+                           "horizontal_axis, boulder_density, slope_density, boulder_E, slope_E, "
+                           "boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction)",
+                           param_names[i] ? param_names[i] : "(null)");
+        }
+        for (size_t j = 0; j < i; j++)
+            if (c->field[j] == found) {
+                ctx_destroy(c);
+                return rf_fail(err, RF_EINVAL, "impact model: parameter '%s' is bound twice",
+                               param_names[i]);
+            }
+        c->field[i] = found;
+    }
+    c->n_params = n_params;
+    /* base must be valid except for the bound fields: checked at eval time,
+     * but a base that is invalid in an unbound field is an error now. */
+    rf_impact_input probe = c->spec.base;
+    rf_impact_input nominal;
+    rf_impact_input_default(&nominal);
+    for (size_t i = 0; i < n_params; i++) {
+        const double nominal_x[RF_IMPACT_N_PARAMS] = {
+            nominal.radius, 1.0, nominal.boulder_density, nominal.slope_density,
+            nominal.boulder_E, nominal.slope_E, nominal.boulder_poisson, nominal.slope_poisson,
+            nominal.velocity, 0.0, 0.0};
+        int f = c->field[i];
+        if (f == P_C)
+            bind(&probe, f, 0.0); /* a sphere probe: c = 0 is valid */
+        else
+            bind(&probe, f, nominal_x[f]);
+    }
+    rf_error local;
+    if (rf_impact_input_validate(&probe, &local) != RF_OK) {
+        ctx_destroy(c);
+        return rf_fail(err, RF_EINVAL, "impact model base input: %s", local.msg);
+    }
+
+    model->n_inputs = n_params;
+    model->eval = impact_eval;
+    model->ctx = c;
+    model->destroy = ctx_destroy;
+    model->threads_per_eval = spec->solver == RF_IMPACT_FEM ? spec->fem_threads : 1;
+    st = rf_model_init_outputs(model, RF_IMPACT_N_OUTPUTS, rf_impact_output_names,
+                               rf_impact_output_units, err);
+    if (st == RF_OK) {
+        char buf[2048];
+        make_identity(c, buf, sizeof buf);
+        st = rf_model_set_identity(model, buf, err);
+    }
+    if (st != RF_OK)
+        rf_model_free(model);
+    return st;
+}
