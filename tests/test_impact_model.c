@@ -1,0 +1,284 @@
+/* test_impact_model.c - the impact model behind rf_model: binding by name,
+ * agreement with direct calls, degrees for slope_angle, constant-volume
+ * spheroid, error paths, identity, and concurrent evaluation. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <pthread.h>
+#include <string.h>
+
+#include "rockfuzz/impact.h"
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+static rf_impact_model_spec spec_for(rf_impact_solver solver)
+{
+    rf_impact_model_spec spec;
+    rf_impact_model_spec_default(&spec);
+    spec.solver = solver;
+    return spec;
+}
+
+static void outputs_of(const rf_impact_output *o, double y[7])
+{
+    y[0] = o->contact_force_max;
+    y[1] = o->compression_max;
+    y[2] = o->contact_duration;
+    y[3] = o->contact_radius;
+    y[4] = o->R_n;
+    y[5] = o->R_t;
+    y[6] = o->R_ke;
+}
+
+static void assert_same(const double *a, const double *b, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        if (isnan(a[k]) && isnan(b[k]))
+            continue;
+        if (!(a[k] == b[k]))
+            fail_msg("output %s: %.17g != %.17g", rf_impact_output_names[k], a[k], b[k]);
+    }
+}
+
+static void test_spec_default(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec;
+    rf_impact_model_spec_default(&spec);
+    assert_int_equal(spec.solver, RF_IMPACT_FEM);
+    assert_true(isnan(spec.e_n));
+    assert_true(spec.hunter_coefficient == 1.04);
+    assert_true(spec.fem_refinement == 10.0 && spec.fem_domain_factor == 10.0);
+    assert_int_equal(spec.fem_boundary, RF_IMPACT_BOUNDARY_FIXED);
+    assert_int_equal(spec.fem_threads, 1);
+    assert_true(spec.base.boulder_E == 68.2e9 && spec.base.radius == 1.0);
+    rf_impact_solver s;
+    rf_impact_boundary b;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_solver_parse("hunter", &s, &err), RF_OK);
+    assert_int_equal(s, RF_IMPACT_HUNTER);
+    assert_string_equal(rf_impact_solver_name(RF_IMPACT_RIGID), "rigid");
+    assert_int_equal(rf_impact_solver_parse("abaqus", &s, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "'abaqus'"));
+    assert_int_equal(rf_impact_boundary_parse("absorbing", &b, &err), RF_OK);
+    assert_int_equal(b, RF_IMPACT_BOUNDARY_ABSORBING);
+    assert_int_equal(rf_impact_boundary_parse("open", &b, &err), RF_EINVAL);
+}
+
+/* All eleven names, in a shuffled order, against direct calls. */
+static void test_eval_matches_direct(void **state)
+{
+    (void)state;
+    const char *names[] = {"velocity", "boulder_E", "slope_E", "radius", "boulder_density",
+                           "slope_density", "boulder_poisson", "slope_poisson", "slope_angle",
+                           "friction"};
+    const double x[] = {12.0, 60e9, 70e9, 0.8, 2500.0, 2700.0, 0.22, 0.27, 40.0, 0.3};
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.velocity = 12.0;
+    in.boulder_E = 60e9;
+    in.slope_E = 70e9;
+    in.radius = 0.8;
+    in.boulder_density = 2500.0;
+    in.slope_density = 2700.0;
+    in.boulder_poisson = 0.22;
+    in.slope_poisson = 0.27;
+    in.slope_angle = 40.0 * DEG;
+    in.friction = 0.3;
+    const rf_impact_solver solvers[] = {RF_IMPACT_HERTZ, RF_IMPACT_HUNTER, RF_IMPACT_RIGID};
+    for (int s = 0; s < 3; s++) {
+        rf_impact_model_spec spec = spec_for(solvers[s]);
+        rf_model model;
+        rf_error err = {0};
+        assert_int_equal(rf_impact_model_create(&spec, names, 10, &model, &err), RF_OK);
+        assert_int_equal(model.n_inputs, 10);
+        assert_int_equal(model.n_outputs, 7);
+        assert_int_equal(model.threads_per_eval, 1);
+        assert_string_equal(model.output_names[0], "contact_force_max");
+        assert_string_equal(model.output_units[0], "N");
+        assert_string_equal(model.output_names[6], "R_ke");
+        assert_string_equal(model.output_units[6], "");
+        double y[7], want[7];
+        assert_int_equal(rf_model_eval(&model, x, y, &err), RF_OK);
+        rf_impact_output o;
+        if (solvers[s] == RF_IMPACT_HERTZ) {
+            assert_int_equal(rf_impact_hertz(&in, &o, &err), RF_OK);
+        } else if (solvers[s] == RF_IMPACT_HUNTER) {
+            assert_int_equal(rf_impact_hunter(&in, &o, &err), RF_OK);
+        } else {
+            /* rigid with e_n unset takes Hunter's e_n of the current inputs */
+            rf_impact_output h;
+            assert_int_equal(rf_impact_hunter(&in, &h, &err), RF_OK);
+            assert_int_equal(rf_impact_rigid(&in, h.R_n, &o, &err), RF_OK);
+            assert_true(isnan(y[0]) && isnan(y[3]));
+        }
+        outputs_of(&o, want);
+        assert_same(y, want, 7);
+        assert_non_null(strstr(model.identity, rf_impact_solver_name(solvers[s])));
+        rf_model_free(&model);
+    }
+}
+
+static void test_rigid_fixed_en_and_identity(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_RIGID);
+    spec.e_n = 0.98;
+    spec.base.velocity = 10.0;
+    spec.base.slope_angle = 60 * DEG; /* base in radians */
+    const char *names[] = {"friction"};
+    rf_model model;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
+    double x = 0.2, y[7];
+    assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_OK);
+    assert_true(fabs(y[5] - 0.771) < 6e-4); /* impact_refs 4.1, sliding row */
+    assert_true(fabs(y[6] - 0.784) < 6e-4);
+    assert_true(y[4] == 0.98);
+    assert_non_null(strstr(model.identity, "solver=rigid"));
+    assert_non_null(strstr(model.identity, "e_n=0.97999999999999998"));
+    assert_non_null(strstr(model.identity, "params:friction"));
+    /* a different setting gives a different identity */
+    rf_model other;
+    spec.e_n = 0.9;
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &other, &err), RF_OK);
+    assert_string_not_equal(model.identity, other.identity);
+    rf_model_free(&other);
+    rf_model_free(&model);
+}
+
+static void test_angle_in_degrees_and_spheroid(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_HERTZ);
+    const char *names[] = {"slope_angle"};
+    rf_model model;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
+    double x = 60.0, y[7];
+    assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_OK);
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.velocity = 5.0; /* 10 cos 60 */
+    rf_impact_output o;
+    assert_int_equal(rf_impact_hertz(&in, &o, &err), RF_OK);
+    assert_true(fabs(y[0] / o.contact_force_max - 1) < 1e-12);
+    x = 90.0;
+    assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_EMODEL);
+    assert_non_null(strstr(err.msg, "(90 deg)"));
+    rf_model_free(&model);
+
+    /* horizontal_axis binds c; d follows from constant volume */
+    const char *cn[] = {"horizontal_axis"};
+    assert_int_equal(rf_impact_model_create(&spec, cn, 1, &model, &err), RF_OK);
+    x = 1.1;
+    assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_OK);
+    rf_impact_input_default(&in);
+    in.horizontal_axis = 1.1;
+    in.vertical_axis = 1.0 / (1.1 * 1.1);
+    assert_int_equal(rf_impact_hertz(&in, &o, &err), RF_OK);
+    assert_true(fabs(y[1] / o.compression_max - 1) < 1e-14);
+    rf_model_free(&model);
+}
+
+static void test_errors(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_HUNTER);
+    rf_model model;
+    rf_error err = {0};
+    const char *bad[] = {"radius", "youngs_modulus"};
+    assert_int_equal(rf_impact_model_create(&spec, bad, 2, &model, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "'youngs_modulus'"));
+    assert_non_null(strstr(err.msg, "boulder_poisson"));
+    assert_null(model.ctx);
+    const char *twice[] = {"radius", "radius"};
+    assert_int_equal(rf_impact_model_create(&spec, twice, 2, &model, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "twice"));
+
+    /* a fuzzy Poisson's cut reaching 0.5 is a clear model error */
+    const char *nu[] = {"boulder_poisson"};
+    assert_int_equal(rf_impact_model_create(&spec, nu, 1, &model, &err), RF_OK);
+    double x = 0.5, y[7];
+    assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_EMODEL);
+    assert_non_null(strstr(err.msg, "boulder_poisson = 0.5"));
+    x = 0.49;
+    assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_OK);
+    rf_model_free(&model);
+
+    /* invalid base (unbound field) is caught at creation */
+    spec.base.slope_E = -1.0;
+    assert_int_equal(rf_impact_model_create(&spec, nu, 1, &model, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "slope_E = -1"));
+    /* ... unless it is bound */
+    const char *se[] = {"slope_E"};
+    assert_int_equal(rf_impact_model_create(&spec, se, 1, &model, &err), RF_OK);
+    rf_model_free(&model);
+
+    spec = spec_for(RF_IMPACT_RIGID);
+    spec.e_n = 1.2;
+    assert_int_equal(rf_impact_model_create(&spec, nu, 1, &model, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "e_n = 1.2"));
+
+#if !__has_include("rockfuzz/fem.h")
+    spec = spec_for(RF_IMPACT_FEM);
+    assert_int_equal(rf_impact_model_create(&spec, nu, 1, &model, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "FE solver not built"));
+#endif
+}
+
+typedef struct {
+    const rf_model *model;
+    int fails;
+} worker_arg;
+
+static void *worker(void *p)
+{
+    worker_arg *a = p;
+    for (int i = 0; i < 2000; i++) {
+        double x[2] = {1.0 + (i % 30), 0.1 * (i % 11)}, y[7];
+        rf_error err = {0};
+        if (rf_model_eval(a->model, x, y, &err) != RF_OK || !(y[4] > 0.9 && y[4] < 1.0))
+            a->fails++;
+    }
+    return NULL;
+}
+
+static void test_concurrent(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_RIGID);
+    spec.base.slope_angle = 45 * DEG;
+    const char *names[] = {"velocity", "friction"};
+    rf_model model;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_model_create(&spec, names, 2, &model, &err), RF_OK);
+    pthread_t t[4];
+    worker_arg a[4];
+    for (int k = 0; k < 4; k++) {
+        a[k] = (worker_arg){&model, 0};
+        pthread_create(&t[k], NULL, worker, &a[k]);
+    }
+    for (int k = 0; k < 4; k++) {
+        pthread_join(t[k], NULL);
+        assert_int_equal(a[k].fails, 0);
+    }
+    rf_model_free(&model);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_spec_default),
+        cmocka_unit_test(test_eval_matches_direct),
+        cmocka_unit_test(test_rigid_fixed_en_and_identity),
+        cmocka_unit_test(test_angle_in_degrees_and_spheroid),
+        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_concurrent),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
