@@ -1,4 +1,390 @@
-/* cmd_impact.c - `rockfuzz impact` (placeholder until the impact module lands). */
+/* cmd_impact.c - `rockfuzz impact`: one boulder-on-slope impact.
+ *
+ * Options are read by a table-driven loop (--name VALUE or --name=VALUE,
+ * exact names only, no abbreviations) into an rf_impact_model_spec, which
+ * rf_impact_solve runs.  Errors in the command line exit with 2, solver
+ * failures with 1; both print one message on stderr naming the option and
+ * value.  Output: a readable summary with units, or one JSON object. */
 #include "cli/cli.h"
+#include "rockfuzz/impact.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
 #include <stdio.h>
-int rf_cli_impact(int argc, char **argv) { (void)argc; (void)argv; fprintf(stderr, "rockfuzz impact: not built yet\n"); return 1; }
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+#define EXIT_USAGE 2
+#define EXIT_FAILED 1
+
+typedef enum {
+    O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
+    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_DOMAIN, O_THREADS, O_VTK, O_JSON,
+    O_HELP, O_COUNT
+} opt_id;
+
+static const struct {
+    opt_id id;
+    const char *name;   /* without the leading dashes */
+    const char *field;  /* rf_impact_input field it sets, for validation messages */
+} options[] = {
+    {O_RADIUS, "radius", "radius"},
+    {O_C, "c", "horizontal_axis"},
+    {O_C, "horizontal-axis", "horizontal_axis"},
+    {O_D, "d", "vertical_axis"},
+    {O_D, "vertical-axis", "vertical_axis"},
+    {O_RHO_B, "boulder-density", "boulder_density"},
+    {O_RHO_S, "slope-density", "slope_density"},
+    {O_E_B, "boulder-E", "boulder_E"},
+    {O_E_S, "slope-E", "slope_E"},
+    {O_NU_B, "boulder-poisson", "boulder_poisson"},
+    {O_NU_S, "slope-poisson", "slope_poisson"},
+    {O_V, "velocity", "velocity"},
+    {O_ANGLE, "slope-angle", "slope_angle"},
+    {O_MU, "friction", "friction"},
+    {O_SOLVER, "solver", NULL},
+    {O_EN, "e-n", NULL},
+    {O_HUNTER_A, "hunter-A", NULL},
+    {O_REFINEMENT, "refinement", NULL},
+    {O_BOUNDARY, "boundary", NULL},
+    {O_DOMAIN, "domain-factor", NULL},
+    {O_THREADS, "threads", NULL},
+    {O_VTK, "vtk", NULL},
+    {O_JSON, "json", NULL},
+    {O_HELP, "help", NULL},
+};
+#define N_OPTIONS (sizeof options / sizeof options[0])
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+        "Usage: rockfuzz impact [OPTIONS]\n"
+        "\n"
+        "Simulate one impact of a boulder (sphere, or spheroid with horizontal semi-axis c\n"
+        "and vertical semi-axis d) falling vertically onto an elastic slope (half-space).\n"
+        "Units are SI except --slope-angle (degrees).  Defaults: nominal granite.\n"
+        "\n"
+        "Boulder and slope:\n"
+        "  --radius M               sphere radius r0 [m] (default 1)\n"
+        "  --c, --horizontal-axis M spheroid horizontal semi-axis c [m] (default 0 = sphere)\n"
+        "  --d, --vertical-axis M   spheroid vertical semi-axis d [m] (default r0^3/c^2,\n"
+        "                           same volume and mass as the sphere of radius r0)\n"
+        "  --boulder-density KGM3   [kg/m^3] (default 2600)\n"
+        "  --slope-density KGM3     [kg/m^3] (default 2600)\n"
+        "  --boulder-E PA           Young's modulus [Pa] (default 68.2e9)\n"
+        "  --slope-E PA             Young's modulus [Pa] (default 68.2e9)\n"
+        "  --boulder-poisson NU     Poisson's ratio in (-1, 0.5) (default 0.25)\n"
+        "  --slope-poisson NU       Poisson's ratio in (-1, 0.5) (default 0.25)\n"
+        "  --velocity MS            vertical impact speed [m/s] (default 10)\n"
+        "  --slope-angle DEG        slope inclination [degrees] in [0, 90) (default 0)\n"
+        "  --friction MU            Coulomb coefficient >= 0, static = kinetic (default 0)\n"
+        "\n"
+        "Model:\n"
+        "  --solver NAME            fem | hertz | hunter | rigid (default fem)\n"
+        "                           hertz:  elastic Hertz, R_n = 1\n"
+        "                           hunter: Hertz + Hunter (1957) wave loss\n"
+        "                           rigid:  rigid-body impact with Coulomb friction\n"
+        "  --e-n EN                 rigid: normal COR in [0, 1] (default: Hunter's e_n)\n"
+        "  --hunter-A A             Hunter coefficient A (default 1.04; band 1.112-1.171)\n"
+        "  --refinement A_OVER_H    fem: elements across the Hertz contact radius (default 10)\n"
+        "  --boundary KIND          fem: fixed | absorbing outer boundary (default fixed)\n"
+        "  --domain-factor F        fem: slope domain radius / r0 (default 10)\n"
+        "  --threads N              fem: threads of the solver (default 1)\n"
+        "  --vtk DIR                fem: write VTK snapshots into DIR\n"
+        "\n"
+        "Output:\n"
+        "  --json                   print one JSON object: contact_force_max [N],\n"
+        "                           compression_max [m], contact_duration [s],\n"
+        "                           contact_radius [m], R_n, R_t, R_ke, energy_error [-],\n"
+        "                           nodes, elements, steps, wall_seconds [s]; NaN -> null\n"
+        "  -h, --help               show this help\n"
+        "\n"
+        "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
+}
+
+static int parse_double(const char *opt, const char *s, double *x)
+{
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) {
+        fprintf(stderr, "rockfuzz impact: --%s '%s': not a finite number\n", opt, s);
+        return 0;
+    }
+    *x = v;
+    return 1;
+}
+
+static int parse_int(const char *opt, const char *s, int *x)
+{
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE || v < 1 || v > INT_MAX) {
+        fprintf(stderr, "rockfuzz impact: --%s '%s': not a positive integer\n", opt, s);
+        return 0;
+    }
+    *x = (int)v;
+    return 1;
+}
+
+static void json_number(const char *key, double x, int last)
+{
+    if (isfinite(x))
+        printf("\"%s\": %.17g%s", key, x, last ? "" : ", ");
+    else
+        printf("\"%s\": null%s", key, last ? "" : ", ");
+}
+
+static void print_json(const rf_impact_output *o)
+{
+    printf("{");
+    json_number("contact_force_max", o->contact_force_max, 0);
+    json_number("compression_max", o->compression_max, 0);
+    json_number("contact_duration", o->contact_duration, 0);
+    json_number("contact_radius", o->contact_radius, 0);
+    json_number("R_n", o->R_n, 0);
+    json_number("R_t", o->R_t, 0);
+    json_number("R_ke", o->R_ke, 0);
+    json_number("energy_error", o->energy_error, 0);
+    json_number("nodes", o->nodes, 0);
+    json_number("elements", o->elements, 0);
+    json_number("steps", o->steps, 0);
+    json_number("wall_seconds", o->wall_seconds, 1);
+    printf("}\n");
+}
+
+/* Round trip of a P wave to the fixed outer boundary and back, against the
+ * Hertz contact duration (SYSTEM.md "known subtleties"). */
+static void reflection_note(FILE *f, const rf_impact_model_spec *spec, const rf_impact_input *in)
+{
+    if (spec->solver != RF_IMPACT_FEM || spec->fem_boundary != RF_IMPACT_BOUNDARY_FIXED)
+        return;
+    double nu = in->slope_poisson;
+    double cp = sqrt(in->slope_E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * in->slope_density));
+    double t_back = 2.0 * spec->fem_domain_factor * in->radius / cp;
+    rf_impact_output h;
+    if (rf_impact_hertz(in, &h, NULL) != RF_OK)
+        return;
+    if (t_back < h.contact_duration)
+        fprintf(f,
+                "note: P waves reflected by the fixed outer boundary return after 2L/c_p = "
+                "%.3f ms, before the Hertz contact ends (t_c = %.3f ms); they can affect R_n "
+                "(try --boundary absorbing)\n",
+                t_back * 1e3, h.contact_duration * 1e3);
+}
+
+static void print_value(const char *what, double x, const char *unit)
+{
+    if (isnan(x))
+        printf("  %-21s undefined by this model\n", what);
+    else
+        printf("  %-21s %.6g %s\n", what, x, unit);
+}
+
+static void print_summary(const rf_impact_model_spec *spec, const rf_impact_input *in,
+                          const rf_impact_output *o)
+{
+    double d = rf_impact_vertical_semi_axis(in);
+    printf("rockfuzz impact (solver %s)\n\n", rf_impact_solver_name(spec->solver));
+    printf("Inputs\n");
+    if (in->horizontal_axis > 0.0)
+        printf("  boulder           spheroid c = %g m, d = %g m (r0 = %g m)\n", in->horizontal_axis,
+               d, in->radius);
+    else
+        printf("  boulder           sphere r0 = %g m\n", in->radius);
+    printf("  boulder material  rho = %g kg/m^3, E = %g Pa, nu = %g\n", in->boulder_density,
+           in->boulder_E, in->boulder_poisson);
+    printf("  slope material    rho = %g kg/m^3, E = %g Pa, nu = %g\n", in->slope_density,
+           in->slope_E, in->slope_poisson);
+    printf("  impact            V = %g m/s vertical, slope angle = %g deg, friction = %g\n",
+           in->velocity, in->slope_angle * 180.0 / PI, in->friction);
+    printf("  mass              %.6g kg\n", rf_impact_mass(in));
+    if (spec->solver == RF_IMPACT_FEM)
+        printf("  FE settings       refinement a/h = %g, domain = %g r0, boundary %s, threads %d\n",
+               spec->fem_refinement, spec->fem_domain_factor,
+               rf_impact_boundary_name(spec->fem_boundary), spec->fem_threads);
+    printf("\nResults\n");
+    print_value("max contact force", o->contact_force_max, "N");
+    print_value("max compression", o->compression_max, "m");
+    print_value("contact duration", o->contact_duration, "s");
+    print_value("contact radius", o->contact_radius, "m");
+    printf("  R_n                   %.6g\n", o->R_n);
+    if (isnan(o->R_t))
+        printf("  R_t                   undefined (no tangential velocity)\n");
+    else
+        printf("  R_t                   %.6g\n", o->R_t);
+    printf("  R_ke                  %.6g (rotation included)\n", o->R_ke);
+    printf("  velocity after        v_n = %.6g m/s, v_t = %.6g m/s, omega = %.6g rad/s\n",
+           o->v_n_after, o->v_t_after, o->omega_after);
+    if (spec->solver == RF_IMPACT_FEM)
+        printf("  FE                    energy error %.3g, %g nodes, %g elements, %g steps, "
+               "%.3g s\n", o->energy_error, o->nodes, o->elements, o->steps, o->wall_seconds);
+    rf_impact_output ref;
+    if (spec->solver != RF_IMPACT_HERTZ && rf_impact_hertz(in, &ref, NULL) == RF_OK)
+        printf("\nHertz reference       F = %.6g N, delta = %.6g m, t_c = %.6g s, a = %.6g m\n",
+               ref.contact_force_max, ref.compression_max, ref.contact_duration,
+               ref.contact_radius);
+    double lo = rf_hunter_loss(in, RF_HUNTER_A_JOHNSON), hi = rf_hunter_loss(in, RF_HUNTER_A_HALF_SINE);
+    if (hi < 1.0)
+        printf("Hunter e_n band       %.5f (A = 1.04, Johnson 1985) .. %.5f (A = 1.171)\n",
+               sqrt(1 - lo), sqrt(1 - hi));
+    reflection_note(stdout, spec, in);
+}
+
+int rf_cli_impact(int argc, char **argv)
+{
+    rf_impact_model_spec spec;
+    rf_impact_model_spec_default(&spec);
+    rf_impact_input *in = &spec.base;
+    int json = 0;
+    const char *given[O_COUNT] = {0}; /* the text the user gave, for messages */
+    const char *given_name[O_COUNT] = {0};
+
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (!strcmp(arg, "-h")) {
+            usage(stdout);
+            return 0;
+        }
+        if (strncmp(arg, "--", 2) != 0 || arg[2] == '\0') {
+            fprintf(stderr, "rockfuzz impact: unexpected argument '%s' (try --help)\n", arg);
+            return EXIT_USAGE;
+        }
+        const char *name = arg + 2, *eq = strchr(name, '=');
+        size_t len = eq ? (size_t)(eq - name) : strlen(name);
+        size_t k = 0;
+        while (k < N_OPTIONS && !(strlen(options[k].name) == len && !strncmp(options[k].name, name, len)))
+            k++;
+        if (k == N_OPTIONS) {
+            fprintf(stderr, "rockfuzz impact: unknown option '--%.*s' (try --help)\n", (int)len, name);
+            return EXIT_USAGE;
+        }
+        opt_id id = options[k].id;
+        const char *oname = options[k].name;
+        if (id == O_HELP || id == O_JSON) {
+            if (eq) {
+                fprintf(stderr, "rockfuzz impact: option '--%s' takes no value\n", oname);
+                return EXIT_USAGE;
+            }
+            if (id == O_HELP) {
+                usage(stdout);
+                return 0;
+            }
+            json = 1;
+            continue;
+        }
+        const char *val = eq ? eq + 1 : NULL;
+        if (!val) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "rockfuzz impact: option '--%s' needs a value\n", oname);
+                return EXIT_USAGE;
+            }
+            val = argv[++i];
+        }
+        given[id] = val;
+        given_name[id] = oname;
+        double x = 0.0;
+        rf_error err = {0};
+        switch (id) {
+        case O_SOLVER:
+            if (rf_impact_solver_parse(val, &spec.solver, &err) != RF_OK) {
+                fprintf(stderr, "rockfuzz impact: --solver: %s\n", err.msg);
+                return EXIT_USAGE;
+            }
+            break;
+        case O_BOUNDARY:
+            if (rf_impact_boundary_parse(val, &spec.fem_boundary, &err) != RF_OK) {
+                fprintf(stderr, "rockfuzz impact: --boundary: %s\n", err.msg);
+                return EXIT_USAGE;
+            }
+            break;
+        case O_THREADS:
+            if (!parse_int(oname, val, &spec.fem_threads))
+                return EXIT_USAGE;
+            break;
+        case O_VTK:
+            spec.fem_vtk_dir = val;
+            break;
+        default:
+            if (!parse_double(oname, val, &x))
+                return EXIT_USAGE;
+            switch (id) {
+            case O_RADIUS: in->radius = x; break;
+            case O_C: in->horizontal_axis = x; break;
+            case O_D: in->vertical_axis = x; break;
+            case O_RHO_B: in->boulder_density = x; break;
+            case O_RHO_S: in->slope_density = x; break;
+            case O_E_B: in->boulder_E = x; break;
+            case O_E_S: in->slope_E = x; break;
+            case O_NU_B: in->boulder_poisson = x; break;
+            case O_NU_S: in->slope_poisson = x; break;
+            case O_V: in->velocity = x; break;
+            case O_ANGLE: in->slope_angle = x * PI / 180.0; break;
+            case O_MU: in->friction = x; break;
+            case O_EN:
+                if (!(x >= 0.0 && x <= 1.0)) {
+                    fprintf(stderr, "rockfuzz impact: --e-n %s: the normal COR must lie in [0, 1]\n", val);
+                    return EXIT_USAGE;
+                }
+                spec.e_n = x;
+                break;
+            case O_HUNTER_A:
+                if (!(x >= 0.0)) {
+                    fprintf(stderr, "rockfuzz impact: --hunter-A %s: must be >= 0\n", val);
+                    return EXIT_USAGE;
+                }
+                spec.hunter_coefficient = x;
+                break;
+            case O_REFINEMENT:
+                if (!(x > 0.0)) {
+                    fprintf(stderr, "rockfuzz impact: --refinement %s: must be > 0 (elements "
+                                    "across the contact radius)\n", val);
+                    return EXIT_USAGE;
+                }
+                spec.fem_refinement = x;
+                break;
+            case O_DOMAIN:
+                if (!(x > 1.0)) {
+                    fprintf(stderr, "rockfuzz impact: --domain-factor %s: must be > 1\n", val);
+                    return EXIT_USAGE;
+                }
+                spec.fem_domain_factor = x;
+                break;
+            default: break;
+            }
+        }
+    }
+
+    rf_error err = {0};
+    if (rf_impact_input_validate(in, &err) != RF_OK) {
+        const char *field = rf_impact_input_first_invalid(in);
+        for (size_t k = 0; field && k < N_OPTIONS; k++)
+            if (options[k].field && !strcmp(options[k].field, field)) {
+                opt_id id = options[k].id;
+                if (given[id]) {
+                    fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", given_name[id], given[id], err.msg);
+                    return EXIT_USAGE;
+                }
+                break;
+            }
+        fprintf(stderr, "rockfuzz impact: invalid input: %s\n", err.msg);
+        return EXIT_USAGE;
+    }
+
+    rf_impact_output out;
+    if (rf_impact_solve(&spec, in, &out, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz impact: %s solver failed: %s\n",
+                rf_impact_solver_name(spec.solver), err.msg);
+        return EXIT_FAILED;
+    }
+    if (json) {
+        print_json(&out);
+        reflection_note(stderr, &spec, in);
+    } else {
+        print_summary(&spec, in, &out);
+    }
+    return 0;
+}

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# cli_impact.sh - `rockfuzz impact` from the shell: JSON output against the
+# Hertz numbers of impact_refs.md sec. 1.2, and bad input rejected with a
+# message naming the option.  Usage: bash cli_impact.sh ROCKFUZZ SOURCE_DIR
+set -u
+bin=$1
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+
+# --- JSON output parses and matches Hertz at 1, 10, 30 m/s ---
+check_hertz() { # velocity F delta t_c a
+    local out
+    out=$("$bin" impact --solver hertz --velocity "$1" --json) || { fail "hertz $1 m/s exit $?"; return; }
+    if command -v python3 >/dev/null; then
+        python3 - "$out" "$@" <<'PY' || fail "hertz $1 m/s: $out"
+import json, sys
+o = json.loads(sys.argv[1])
+want = dict(zip(["contact_force_max", "compression_max", "contact_duration", "contact_radius"],
+                map(float, sys.argv[3:7])))
+keys = ["contact_force_max", "compression_max", "contact_duration", "contact_radius", "R_n", "R_t",
+        "R_ke", "energy_error", "nodes", "elements", "steps", "wall_seconds"]
+assert list(o) == keys, list(o)
+for k, w in want.items():
+    assert abs(o[k] / w - 1) < 1e-3, (k, o[k], w)
+assert o["R_n"] == 1 and o["R_ke"] == 1 and o["R_t"] is None, o
+PY
+    else
+        echo "$out" | grep -q '"R_t": null' || fail "hertz JSON: $out"
+    fi
+}
+check_hertz 1 5.6842e6 2.3950e-3 7.0491e-3 0.04894
+check_hertz 10 9.0089e7 1.51112e-2 4.4477e-3 0.12293
+check_hertz 30 3.3668e8 3.63913e-2 3.5703e-3 0.19077
+
+# --- rigid sliding row of impact_refs.md sec. 4.1 ---
+out=$("$bin" impact --solver rigid --e-n 0.98 --slope-angle 60 --friction=0.2 --json) || fail "rigid exit"
+echo "$out" | grep -q '"R_t": 0.7713' || fail "rigid R_t: $out"
+echo "$out" | grep -q '"contact_force_max": null' || fail "rigid force should be null: $out"
+
+# --- human summary has units ---
+out=$("$bin" impact --solver hunter) || fail "hunter summary exit"
+echo "$out" | grep -q 'max contact force .* N' || fail "summary lacks units: $out"
+"$bin" impact --help | grep -q -- '--slope-angle DEG' || fail "help lacks --slope-angle"
+
+# --- bad input: non-zero exit, message names the option and value ---
+expect_error() { # expected-status expected-text args...
+    local want=$1 text=$2 err status
+    shift 2
+    err=$("$bin" impact "$@" 2>&1 >/dev/null)
+    status=$?
+    [ "$status" -eq "$want" ] || fail "'$*' exited $status, want $want"
+    case "$err" in *"$text"*) ;; *) fail "'$*' message '$err' lacks '$text'" ;; esac
+}
+expect_error 2 "--radius 'abc'" --solver hertz --radius abc
+expect_error 2 "--velocity '10x'" --solver hertz --velocity 10x
+expect_error 2 "--boulder-poisson 0.5" --solver hertz --boulder-poisson 0.5
+expect_error 2 "Poisson's ratio" --solver hertz --slope-poisson 0.7
+expect_error 2 "--slope-E -68e9" --solver hertz --slope-E -68e9
+expect_error 2 "--boulder-E 'inf'" --solver hertz --boulder-E inf
+expect_error 2 "unknown option '--frobnicate'" --frobnicate 3
+expect_error 2 "solver 'abaqus'" --solver abaqus
+expect_error 2 "--slope-angle 90" --solver rigid --slope-angle 90
+expect_error 2 "--friction -0.2" --solver rigid --friction -0.2
+expect_error 2 "'--velocity' needs a value" --solver hertz --velocity
+expect_error 2 "--threads '0'" --threads 0
+expect_error 1 "horizontal_axis" --solver hertz --c 1.2 --slope-angle 30
+
+[ "$fails" -eq 0 ] && echo "cli_impact: all checks passed"
+exit $((fails > 0))
