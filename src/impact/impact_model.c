@@ -3,6 +3,7 @@
  * names to the physical inputs, and rf_impact_solve, the one dispatch to the
  * analytic models or the FE solver.  The model's ctx is read-only after
  * creation, so eval is thread-safe (each FE evaluation owns its state). */
+#include "impact/impact_fem.h"
 #include "impact/impact_internal.h"
 
 #include <math.h>
@@ -10,13 +11,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#if defined(__has_include)
-#if __has_include("rockfuzz/fem.h")
-#include "rockfuzz/fem.h"
-#define RF_HAVE_FEM 1
-#endif
-#endif
 
 const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS] = {
     "radius", "horizontal_axis", "boulder_density", "slope_density", "boulder_E", "slope_E",
@@ -82,13 +76,7 @@ static rf_status solve_fem(const rf_impact_model_spec *spec, const rf_impact_inp
 {
 #ifdef RF_HAVE_FEM
     rf_fem_options opt;
-    rf_fem_options_default(&opt);
-    opt.refinement = spec->fem_refinement;
-    opt.domain_factor = spec->fem_domain_factor;
-    opt.boundary = spec->fem_boundary == RF_IMPACT_BOUNDARY_ABSORBING ? RF_FEM_BOUNDARY_ABSORBING
-                                                                      : RF_FEM_BOUNDARY_FIXED;
-    opt.threads = spec->fem_threads;
-    opt.vtk_dir = spec->fem_vtk_dir;
+    rf_impact_fem_options_(spec, &opt);
     return rf_fem_impact(in, &opt, out, NULL, err);
 #else
     (void)spec;
