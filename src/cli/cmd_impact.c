@@ -6,6 +6,7 @@
  * failures with 1; both print one message on stderr naming the option and
  * value.  Output: a readable summary with units, or one JSON object. */
 #include "cli/cli.h"
+#include "impact/impact_fem.h"
 #include "rockfuzz/impact.h"
 
 #include <errno.h>
@@ -234,6 +235,40 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     reflection_note(stdout, spec, in);
 }
 
+#ifdef RF_HAVE_FEM
+/* The FE run with its history, for the diagnostics the summary shows. */
+static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int json)
+{
+    rf_fem_options opt;
+    rf_fem_history hist = {0};
+    rf_error err = {0};
+    rf_impact_fem_options_(spec, &opt);
+    if (rf_fem_impact(&spec->base, &opt, out, &hist, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz impact: fem solver failed: %s\n", err.msg);
+        rf_fem_history_free(&hist);
+        return EXIT_FAILED;
+    }
+    if (json) {
+        print_json(out);
+        reflection_note(stderr, spec, &spec->base);
+    } else {
+        print_summary(spec, &spec->base, out);
+        printf("FE mesh               boulder %ld nodes / %ld elements, slope %ld / %ld; "
+               "h = %.3g m at the contact (Hertz a = %.3g m)\n",
+               hist.boulder_nodes, hist.boulder_elements, hist.slope_nodes, hist.slope_elements,
+               hist.h_contact, hist.hertz_radius);
+        printf("FE time step          %.3g s (eigenvalue bound %.3g s)\n", hist.dt, hist.dt_bound);
+        if (hist.ke0 > 0.0)
+            printf("FE energy at the end  boulder vibration %.3g, slope %.3g of the initial KE\n",
+                   hist.vibration_energy / hist.ke0, hist.slope_energy / hist.ke0);
+    }
+    if (hist.warning[0])
+        fprintf(stderr, "warning: %s\n", hist.warning);
+    rf_fem_history_free(&hist);
+    return 0;
+}
+#endif
+
 int rf_cli_impact(int argc, char **argv)
 {
     rf_impact_model_spec spec;
@@ -375,6 +410,10 @@ int rf_cli_impact(int argc, char **argv)
     }
 
     rf_impact_output out;
+#ifdef RF_HAVE_FEM
+    if (spec.solver == RF_IMPACT_FEM)
+        return run_fem(&spec, &out, json);
+#endif
     if (rf_impact_solve(&spec, in, &out, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz impact: %s solver failed: %s\n",
                 rf_impact_solver_name(spec.solver), err.msg);
