@@ -27,7 +27,12 @@ rf_status rf_error_prefix(rf_error *err, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(head, sizeof head, fmt, ap);
     va_end(ap);
-    snprintf(err->msg, sizeof err->msg, "%s: %s", head, old);
+    /* head + ": " + old, truncated to the buffer (no format: -Wformat-truncation) */
+    size_t hl = strnlen(head, RF_ERROR_MAX - 3), ol = strnlen(old, RF_ERROR_MAX - 3 - hl);
+    memcpy(err->msg, head, hl);
+    memcpy(err->msg + hl, ": ", 2);
+    memcpy(err->msg + hl + 2, old, ol);
+    err->msg[hl + 2 + ol] = '\0';
     return err->code;
 }
 

@@ -63,7 +63,7 @@ rf_status rf_fuzzy_trapezoid(rf_fuzzy *f, double x1, double x2, double x3, doubl
     reset(f, RF_FUZZY_TRAPEZOID);
     const double x[4] = {x1, x2, x3, x4};
     for (int k = 0; k < 4; k++) {
-        char what[8];
+        char what[16];
         snprintf(what, sizeof what, "x%d", k + 1);
         if (finite_or_fail(x[k], what, err))
             return RF_EINVAL;
