@@ -1,0 +1,1039 @@
+/* external.c - a model that is another program (e.g. an FE code) run once
+ * per evaluation, driven through input templates and output parsing.
+ *
+ * Creation checks everything that can be checked without running: the
+ * program is looked up (PATH or path), every {placeholder} in argv and in the
+ * templates names a parameter, template files are read once (their contents
+ * enter the identity hash), output files are relative names, and regexes
+ * compile with a capture group.
+ *
+ * One evaluation:
+ *   1. a fresh directory workdir_root/eval-XXXXXX (mkdtemp) - the only state;
+ *      no chdir in this process, so evaluations run concurrently;
+ *   2. templates are written there with placeholders replaced by %.17g of
+ *      the parameter values;
+ *   3. fork + execve of the resolved program (never a shell, so a value or an
+ *      argument cannot be interpreted as shell syntax), in its own process
+ *      group, cwd = that directory, stdin /dev/null, stdout/stderr to
+ *      stdout.txt/stderr.txt there;
+ *   4. wait, polling, with a time limit; on timeout the whole process group
+ *      is killed with SIGKILL;
+ *   5. outputs are parsed from stdout.txt or files; the directory is removed
+ *      on success (unless keep_workdirs) and kept and named on failure.
+ *
+ * Every file descriptor is opened close-on-exec so that a child forked by a
+ * concurrent evaluation does not inherit another evaluation's files. */
+#undef _POSIX_C_SOURCE
+#define _GNU_SOURCE
+#include "rockfuzz/model.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <ftw.h>
+#include <limits.h>
+#include <math.h>
+#include <regex.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#define OUTPUT_FILE_MAX (256u << 20) /* refuse to parse larger output files */
+#define TAIL_BYTES 400               /* stderr/stdout excerpt in error messages */
+
+typedef struct {
+    char *name;
+    char *file;     /* NULL = stdout */
+    char *pattern;  /* NULL = "NAME = value" lookup */
+    char *unit;
+    regex_t regex;  /* compiled pattern (regexec is thread-safe in glibc) */
+    int has_regex;
+} ext_output;
+
+typedef struct {
+    char *src;      /* path it was read from (for messages) */
+    char *dst;      /* file name in the working directory */
+    char *text;     /* contents, NUL-terminated */
+    size_t len;
+} ext_template;
+
+typedef struct {
+    size_t n_params;
+    char **param_names;
+    size_t argc;
+    char **argv;        /* as given; argv[0] is used in messages */
+    char *program_path; /* argv[0] resolved at creation (absolute or with '/') */
+    size_t n_templates;
+    ext_template *templates;
+    size_t n_outputs;
+    ext_output *outputs;
+    double timeout;
+    char *workdir_root;
+    int keep_workdirs;
+} ext_ctx;
+
+/* ---- small helpers ---------------------------------------------------- */
+
+typedef struct {
+    char *data;
+    size_t len, cap;
+    int oom;
+} strbuf;
+
+static void sb_append(strbuf *b, const char *s, size_t n)
+{
+    if (b->oom)
+        return;
+    if (b->len + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 64;
+        while (cap < b->len + n + 1)
+            cap *= 2;
+        char *d = realloc(b->data, cap);
+        if (!d) {
+            b->oom = 1;
+            return;
+        }
+        b->data = d;
+        b->cap = cap;
+    }
+    memcpy(b->data + b->len, s, n);
+    b->len += n;
+    b->data[b->len] = '\0';
+}
+
+static void sb_puts(strbuf *b, const char *s) { sb_append(b, s, strlen(s)); }
+
+static void sb_printf(strbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void sb_printf(strbuf *b, const char *fmt, ...)
+{
+    char tmp[512];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n < 0) {
+        b->oom = 1;
+        return;
+    }
+    if ((size_t)n < sizeof tmp) {
+        sb_append(b, tmp, (size_t)n);
+        return;
+    }
+    char *big = malloc((size_t)n + 1);
+    if (!big) {
+        b->oom = 1;
+        return;
+    }
+    va_start(ap, fmt);
+    vsnprintf(big, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    sb_append(b, big, (size_t)n);
+    free(big);
+}
+
+static char *dup_str(const char *s)
+{
+    if (!s)
+        return NULL;
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d)
+        memcpy(d, s, n);
+    return d;
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Read a whole file (binary-safe, NUL-terminated).  Returns 0 or errno. */
+static int read_file(const char *path, size_t max, char **text, size_t *len)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return errno;
+    strbuf b = {0};
+    char chunk[65536];
+    int e = 0;
+    for (;;) {
+        ssize_t n = read(fd, chunk, sizeof chunk);
+        if (n < 0) {
+            if (errno == EINTR)
+                continue;
+            e = errno;
+            break;
+        }
+        if (n == 0)
+            break;
+        if (b.len + (size_t)n > max) {
+            e = EFBIG;
+            break;
+        }
+        sb_append(&b, chunk, (size_t)n);
+        if (b.oom) {
+            e = ENOMEM;
+            break;
+        }
+    }
+    close(fd);
+    if (!e && !b.data) {
+        b.data = calloc(1, 1);
+        if (!b.data)
+            e = ENOMEM;
+    }
+    if (e) {
+        free(b.data);
+        return e;
+    }
+    *text = b.data;
+    *len = b.len;
+    return 0;
+}
+
+static int write_file(const char *path, const char *data, size_t len)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return errno;
+    while (len > 0) {
+        ssize_t n = write(fd, data, len);
+        if (n < 0) {
+            if (errno == EINTR)
+                continue;
+            int e = errno;
+            close(fd);
+            return e;
+        }
+        data += n;
+        len -= (size_t)n;
+    }
+    return close(fd) == 0 ? 0 : errno;
+}
+
+static uint64_t fnv1a64(const char *data, size_t len)
+{
+    uint64_t h = 14695981039346656037ull;
+    for (size_t i = 0; i < len; i++) {
+        h ^= (unsigned char)data[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+/* "(E=2.1e+11, F=1000)" for messages. */
+static void format_point(const ext_ctx *c, const double *x, char *buf, size_t size)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    used += (size_t)snprintf(buf, size, "(");
+    for (size_t i = 0; i < c->n_params && used + 1 < size; i++)
+        used += (size_t)snprintf(buf + used, size - used, "%s%s=%.10g", i ? ", " : "", c->param_names[i], x[i]);
+    if (used + 1 < size)
+        snprintf(buf + used, size - used, ")");
+}
+
+/* ---- placeholders ----------------------------------------------------- */
+
+static int is_placeholder_char(char ch)
+{
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_' ||
+           ch == '.' || ch == '-';
+}
+
+/* Expand {name} placeholders of text[0..len) into out.  "{{" is a literal
+ * "{"; a "{" not followed by name characters and "}" is literal too, so
+ * that awk programs or JSON survive.  With x == NULL nothing is written and
+ * only unknown names are reported (where names the text, e.g. "argv[2]"). */
+static rf_status expand(const ext_ctx *c, const char *text, size_t len, const double *x, const char *where,
+                        strbuf *out, rf_error *err)
+{
+    size_t i = 0, lit = 0;
+    while (i < len) {
+        if (text[i] != '{') {
+            i++;
+            continue;
+        }
+        if (i + 1 < len && text[i + 1] == '{') {
+            if (out) {
+                sb_append(out, text + lit, i - lit);
+                sb_append(out, "{", 1);
+            }
+            i += 2;
+            lit = i;
+            continue;
+        }
+        size_t j = i + 1;
+        while (j < len && is_placeholder_char(text[j]))
+            j++;
+        if (j == i + 1 || j >= len || text[j] != '}') {
+            i++;
+            continue;
+        }
+        size_t name_len = j - i - 1;
+        size_t p = 0;
+        while (p < c->n_params &&
+               !(strlen(c->param_names[p]) == name_len && memcmp(c->param_names[p], text + i + 1, name_len) == 0))
+            p++;
+        if (p == c->n_params) {
+            size_t line = 1;
+            for (size_t k = 0; k < i; k++)
+                line += text[k] == '\n';
+            strbuf known = {0};
+            for (size_t k = 0; k < c->n_params; k++)
+                sb_printf(&known, "%s%s", k ? ", " : "", c->param_names[k]);
+            rf_status st = rf_fail(err, RF_EINVAL,
+                                   "%s, line %zu: unknown placeholder '{%.*s}' (parameters: %s; write '{{' for a literal '{')",
+                                   where, line, (int)name_len, text + i + 1, known.data ? known.data : "none");
+            free(known.data);
+            return st;
+        }
+        if (out) {
+            sb_append(out, text + lit, i - lit);
+            sb_printf(out, "%.17g", x[p]);
+        }
+        i = j + 1;
+        lit = i;
+    }
+    if (out) {
+        sb_append(out, text + lit, len - lit);
+        if (!out->data)
+            sb_append(out, "", 0);
+        if (out->oom)
+            return rf_fail(err, RF_ENOMEM, "out of memory expanding %s", where);
+    }
+    return RF_OK;
+}
+
+/* ---- program lookup --------------------------------------------------- */
+
+static int is_executable_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && access(path, X_OK) == 0;
+}
+
+static rf_status resolve_program(const char *name, char **out, rf_error *err)
+{
+    if (!name[0])
+        return rf_fail(err, RF_EINVAL, "external model: argv[0] (the program) is empty");
+    if (strchr(name, '/')) {
+        /* Relative paths are resolved now, against this process's working
+         * directory: the child runs in another directory. */
+        char *real = realpath(name, NULL);
+        if (!real)
+            return rf_fail(err, RF_EINVAL, "external model: program '%s' not found: %s", name, strerror(errno));
+        if (!is_executable_file(real)) {
+            rf_status st = rf_fail(err, RF_EINVAL, "external model: program '%s' is not an executable file", name);
+            free(real);
+            return st;
+        }
+        *out = real;
+        return RF_OK;
+    }
+    const char *path = getenv("PATH");
+    if (!path || !path[0])
+        path = "/usr/local/bin:/usr/bin:/bin";
+    const char *p = path;
+    for (;;) {
+        size_t n = strcspn(p, ":");
+        strbuf cand = {0};
+        if (n == 0)
+            sb_puts(&cand, ".");
+        else
+            sb_append(&cand, p, n);
+        sb_printf(&cand, "/%s", name);
+        if (cand.oom) {
+            free(cand.data);
+            return rf_fail(err, RF_ENOMEM, "out of memory looking up program '%s'", name);
+        }
+        if (is_executable_file(cand.data)) {
+            char *real = n == 0 ? realpath(cand.data, NULL) : NULL;
+            if (real) {
+                free(cand.data);
+                cand.data = real;
+            }
+            *out = cand.data;
+            return RF_OK;
+        }
+        free(cand.data);
+        if (!p[n])
+            break;
+        p += n + 1;
+    }
+    return rf_fail(err, RF_EINVAL, "external model: program '%s' not found on PATH (%s)", name, path);
+}
+
+/* ---- output parsing --------------------------------------------------- */
+
+/* Parse a number from s[0..len) (whitespace around allowed, nothing else).
+ * Fortran's "1.5D-03" is accepted. */
+static int parse_number(const char *s, size_t len, double *v)
+{
+    while (len && (*s == ' ' || *s == '\t'))
+        s++, len--;
+    while (len && (s[len - 1] == ' ' || s[len - 1] == '\t' || s[len - 1] == '\r' || s[len - 1] == '\n'))
+        len--;
+    char buf[128];
+    if (len == 0 || len >= sizeof buf)
+        return 0;
+    memcpy(buf, s, len);
+    buf[len] = '\0';
+    for (size_t i = 1; i + 1 < len; i++) {
+        if ((buf[i] == 'D' || buf[i] == 'd') && (buf[i - 1] == '.' || (buf[i - 1] >= '0' && buf[i - 1] <= '9')))
+            buf[i] = 'e';
+    }
+    char *end = NULL;
+    errno = 0;
+    double d = strtod(buf, &end);
+    if (end == buf || *end != '\0')
+        return 0;
+    *v = d;
+    return 1;
+}
+
+static void copy_excerpt(const char *s, size_t len, char *buf, size_t size)
+{
+    if (len > size - 4) {
+        len = size - 4;
+        snprintf(buf, size, "%.*s...", (int)len, s);
+    } else {
+        snprintf(buf, size, "%.*s", (int)len, s);
+    }
+}
+
+/* The first line whose first word is the output name: "NAME = v", "NAME: v"
+ * or "NAME v"; text after the number (e.g. a unit) is ignored. */
+static rf_status parse_named(const ext_output *o, const char *text, const char *source, double *v, rf_error *err)
+{
+    size_t name_len = strlen(o->name);
+    size_t line_no = 0;
+    for (const char *line = text; *line;) {
+        line_no++;
+        size_t line_len = strcspn(line, "\n");
+        const char *p = line;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        if (strncmp(p, o->name, name_len) == 0 && strchr(" \t=:", p[name_len]) && p[name_len]) {
+            p += name_len;
+            while (*p == ' ' || *p == '\t')
+                p++;
+            if (*p == '=' || *p == ':')
+                p++;
+            while (*p == ' ' || *p == '\t')
+                p++;
+            size_t num_len = strcspn(p, " \t\r\n");
+            char excerpt[160];
+            copy_excerpt(line, line_len, excerpt, sizeof excerpt);
+            if (!parse_number(p, num_len, v))
+                return rf_fail(err, RF_EMODEL, "output '%s': line %zu of %s has no number after '%s': \"%s\"", o->name,
+                               line_no, source, o->name, excerpt);
+            if (!isfinite(*v))
+                return rf_fail(err, RF_EMODEL, "output '%s': line %zu of %s gives a non-finite value: \"%s\"",
+                               o->name, line_no, source, excerpt);
+            return RF_OK;
+        }
+        line += line_len;
+        if (*line == '\n')
+            line++;
+    }
+    return rf_fail(err, RF_EMODEL, "output '%s': no line starting with '%s =', '%s:' or '%s ' in %s", o->name,
+                   o->name, o->name, o->name, source);
+}
+
+static rf_status parse_regex(const ext_output *o, const char *text, const char *source, double *v, rf_error *err)
+{
+    regmatch_t m[2];
+    if (regexec(&o->regex, text, 2, m, 0) != 0)
+        return rf_fail(err, RF_EMODEL, "output '%s': pattern \"%s\" does not match %s", o->name, o->pattern, source);
+    if (m[1].rm_so < 0)
+        return rf_fail(err, RF_EMODEL, "output '%s': pattern \"%s\" matched %s but its capture group did not",
+                       o->name, o->pattern, source);
+    const char *s = text + m[1].rm_so;
+    size_t len = (size_t)(m[1].rm_eo - m[1].rm_so);
+    char excerpt[160];
+    copy_excerpt(s, len, excerpt, sizeof excerpt);
+    if (!parse_number(s, len, v))
+        return rf_fail(err, RF_EMODEL, "output '%s': pattern \"%s\" captured \"%s\" in %s, which is not a number",
+                       o->name, o->pattern, excerpt, source);
+    if (!isfinite(*v))
+        return rf_fail(err, RF_EMODEL, "output '%s': pattern \"%s\" captured a non-finite value \"%s\" in %s",
+                       o->name, o->pattern, excerpt, source);
+    return RF_OK;
+}
+
+/* Last TAIL_BYTES of a file, lines joined with " | " (empty if none). */
+static void file_tail(const char *path, char *buf, size_t size)
+{
+    buf[0] = '\0';
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return;
+    char raw[TAIL_BYTES + 1];
+    off_t end = lseek(fd, 0, SEEK_END);
+    off_t start = end > TAIL_BYTES ? end - TAIL_BYTES : 0;
+    ssize_t n = pread(fd, raw, TAIL_BYTES, start);
+    close(fd);
+    if (n <= 0)
+        return;
+    size_t a = 0, b = (size_t)n;
+    if (start > 0) { /* start at a line boundary if one is near */
+        const char *nl = memchr(raw, '\n', b);
+        if (nl && (size_t)(nl - raw) < b / 2)
+            a = (size_t)(nl - raw) + 1;
+    }
+    while (b > a && strchr(" \t\r\n", raw[b - 1]))
+        b--;
+    size_t used = 0;
+    if (start > 0 && a == 0 && used + 4 < size)
+        used += (size_t)snprintf(buf, size, "...");
+    for (size_t i = a; i < b && used + 4 < size; i++) {
+        char ch = raw[i];
+        if (ch == '\n') {
+            used += (size_t)snprintf(buf + used, size - used, " | ");
+        } else if (ch != '\r' && ch != '\0') {
+            buf[used++] = (ch == '\t') ? ' ' : ch;
+            buf[used] = '\0';
+        }
+    }
+}
+
+/* ---- the child process ------------------------------------------------ */
+
+/* Only async-signal-safe calls between fork and exec: the parent may have
+ * other threads holding locks (malloc, stdio). */
+static void child_exec(const char *dir, const char *path, char *const argv[], int fd_in, int fd_out, int fd_err,
+                       int report_fd)
+{
+    setpgid(0, 0);
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, NULL);
+    struct sigaction dfl;
+    memset(&dfl, 0, sizeof dfl);
+    dfl.sa_handler = SIG_DFL;
+    for (int s = 1; s < 32; s++) {
+        if (s != SIGKILL && s != SIGSTOP)
+            sigaction(s, &dfl, NULL);
+    }
+    int report[2] = {0, 0};
+    if (chdir(dir) != 0) {
+        report[0] = 1;
+    } else if (dup2(fd_in, 0) < 0 || dup2(fd_out, 1) < 0 || dup2(fd_err, 2) < 0) {
+        report[0] = 2;
+    } else {
+        execve(path, argv, environ);
+        report[0] = 3;
+    }
+    report[1] = errno;
+    ssize_t ignored = write(report_fd, report, sizeof report);
+    (void)ignored;
+    _exit(127);
+}
+
+/* ---- evaluation ------------------------------------------------------- */
+
+static int remove_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
+{
+    (void)sb;
+    (void)flag;
+    (void)ftw;
+    remove(path);
+    return 0;
+}
+
+static int make_dirs(const char *path)
+{
+    char *p = dup_str(path);
+    if (!p)
+        return ENOMEM;
+    int e = 0;
+    for (char *s = p + 1; !e; s++) {
+        if (*s == '/' || *s == '\0') {
+            char saved = *s;
+            *s = '\0';
+            if (mkdir(p, 0755) != 0 && errno != EEXIST)
+                e = errno;
+            *s = saved;
+            if (!saved)
+                break;
+        }
+    }
+    free(p);
+    return e;
+}
+
+typedef struct {
+    char *file;  /* NULL = stdout */
+    char *text;
+    size_t len;
+} read_cache;
+
+static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, double *y, rf_error *err)
+{
+    char point[512];
+    format_point(c, x, point, sizeof point);
+    const char *prog = c->argv[0];
+
+    /* Templates and argv with the values in place. */
+    for (size_t t = 0; t < c->n_templates; t++) {
+        strbuf text = {0};
+        rf_status st = expand(c, c->templates[t].text, c->templates[t].len, x, c->templates[t].src, &text, err);
+        if (st != RF_OK)
+            return st;
+        strbuf path = {0};
+        sb_printf(&path, "%s/%s", dir, c->templates[t].dst);
+        int e = path.oom ? ENOMEM : write_file(path.data, text.data, text.len);
+        free(text.data);
+        free(path.data);
+        if (e)
+            return rf_fail(err, RF_EIO, "cannot write template '%s' into %s: %s", c->templates[t].dst, dir, strerror(e));
+    }
+    char **argv = calloc(c->argc + 1, sizeof *argv);
+    if (!argv)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the argument list");
+    rf_status st = RF_OK;
+    for (size_t a = 0; a < c->argc && st == RF_OK; a++) {
+        strbuf arg = {0};
+        st = expand(c, c->argv[a], strlen(c->argv[a]), x, "argv", &arg, err);
+        argv[a] = arg.data;
+    }
+
+    strbuf out_path = {0}, err_path = {0};
+    sb_printf(&out_path, "%s/stdout.txt", dir);
+    sb_printf(&err_path, "%s/stderr.txt", dir);
+    int fd_in = -1, fd_out = -1, fd_err = -1, report[2] = {-1, -1};
+    if (st == RF_OK && (out_path.oom || err_path.oom))
+        st = rf_fail(err, RF_ENOMEM, "out of memory for output paths");
+    if (st == RF_OK) {
+        fd_in = open("/dev/null", O_RDONLY | O_CLOEXEC);
+        fd_out = open(out_path.data, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        fd_err = open(err_path.data, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        if (fd_in < 0 || fd_out < 0 || fd_err < 0 || pipe2(report, O_CLOEXEC) != 0)
+            st = rf_fail(err, RF_EIO, "cannot set up the standard streams of program '%s' in %s: %s", prog, dir,
+                         strerror(errno));
+    }
+
+    pid_t pid = -1;
+    if (st == RF_OK) {
+        pid = fork();
+        if (pid == 0)
+            child_exec(dir, c->program_path, argv, fd_in, fd_out, fd_err, report[1]);
+        if (pid < 0)
+            st = rf_fail(err, RF_EIO, "cannot start program '%s' at %s: fork: %s", prog, point, strerror(errno));
+        else
+            setpgid(pid, pid); /* also here: kill(-pid) must work even before the child ran */
+    }
+    if (report[1] >= 0)
+        close(report[1]);
+    if (fd_in >= 0)
+        close(fd_in);
+    if (fd_out >= 0)
+        close(fd_out);
+    if (fd_err >= 0)
+        close(fd_err);
+    for (size_t a = 0; a < c->argc; a++)
+        free(argv[a]);
+    free(argv);
+
+    int status = 0, timed_out = 0;
+    if (pid > 0) {
+        /* EOF on the report pipe means exec succeeded (close-on-exec). */
+        int rep[2];
+        ssize_t n;
+        do
+            n = read(report[0], rep, sizeof rep);
+        while (n < 0 && errno == EINTR);
+        if (n == (ssize_t)sizeof rep) {
+            waitpid(pid, &status, 0);
+            const char *stage = rep[0] == 1 ? "cannot enter the working directory" :
+                                rep[0] == 2 ? "cannot redirect its standard streams" :
+                                              "exec failed";
+            st = rf_fail(err, RF_EMODEL, "cannot run program '%s' (%s) at %s: %s: %s", prog, c->program_path, point,
+                         stage, strerror(rep[1]));
+            pid = -1;
+        }
+    }
+    if (report[0] >= 0)
+        close(report[0]);
+
+    if (pid > 0) {
+        double start = now_seconds();
+        long nap_ns = 1000000;
+        for (;;) {
+            siginfo_t si;
+            memset(&si, 0, sizeof si);
+            /* WNOWAIT: the zombie keeps its pid (= process group id)
+             * reserved until the group has been killed below. */
+            if (waitid(P_PID, (id_t)pid, &si, WEXITED | WNOHANG | WNOWAIT) != 0) {
+                if (errno == EINTR)
+                    continue;
+                st = rf_fail(err, RF_EIO, "cannot wait for program '%s': %s", prog, strerror(errno));
+                break;
+            }
+            if (si.si_pid == pid)
+                break;
+            if (c->timeout > 0 && now_seconds() - start >= c->timeout) {
+                timed_out = 1;
+                break;
+            }
+            struct timespec nap = {0, nap_ns};
+            nanosleep(&nap, NULL);
+            if (nap_ns < 10000000)
+                nap_ns *= 2;
+        }
+        /* Also ends anything the program left running in its group. */
+        kill(-pid, SIGKILL);
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
+            ;
+    }
+
+    if (st == RF_OK) {
+        char tail[TAIL_BYTES + 64];
+        const char *which = "stderr";
+        file_tail(err_path.data, tail, sizeof tail);
+        if (!tail[0]) {
+            which = "stdout";
+            file_tail(out_path.data, tail, sizeof tail);
+        }
+        char tail_msg[sizeof tail + 32];
+        if (tail[0])
+            snprintf(tail_msg, sizeof tail_msg, "; %s tail: %s", which, tail);
+        else
+            snprintf(tail_msg, sizeof tail_msg, "; no output on stdout or stderr");
+        if (timed_out) {
+            st = rf_fail(err, RF_EMODEL, "program '%s' timed out after %g s at %s%s", prog, c->timeout, point,
+                         tail_msg);
+        } else if (WIFSIGNALED(status)) {
+            const char *sig = sigabbrev_np(WTERMSIG(status));
+            st = rf_fail(err, RF_EMODEL, "program '%s' was killed by signal %d (SIG%s) at %s%s", prog,
+                         WTERMSIG(status), sig ? sig : "?", point, tail_msg);
+        } else if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+            st = rf_fail(err, RF_EMODEL, "program '%s' exited with status %d at %s%s", prog, WEXITSTATUS(status),
+                         point, tail_msg);
+        }
+
+        /* Outputs; each file is read once. */
+        read_cache *cache = st == RF_OK ? calloc(c->n_outputs, sizeof *cache) : NULL;
+        size_t n_cache = 0;
+        if (st == RF_OK && !cache)
+            st = rf_fail(err, RF_ENOMEM, "out of memory reading outputs");
+        for (size_t k = 0; k < c->n_outputs && st == RF_OK; k++) {
+            const ext_output *o = &c->outputs[k];
+            const char *file = o->file ? o->file : "stdout.txt";
+            size_t hit = 0;
+            while (hit < n_cache && strcmp(cache[hit].file, file) != 0)
+                hit++;
+            if (hit == n_cache) {
+                strbuf path = {0};
+                sb_printf(&path, "%s/%s", dir, file);
+                int e = path.oom ? ENOMEM : read_file(path.data, OUTPUT_FILE_MAX, &cache[hit].text, &cache[hit].len);
+                free(path.data);
+                if (e) {
+                    st = rf_fail(err, RF_EMODEL, "program '%s' at %s: output '%s': cannot read %s: %s%s", prog,
+                                 point, o->name, file, strerror(e), tail_msg);
+                    break;
+                }
+                cache[hit].file = (char *)file;
+                n_cache++;
+            }
+            const char *source = o->file ? o->file : "stdout";
+            st = o->has_regex ? parse_regex(o, cache[hit].text, source, &y[k], err) :
+                                parse_named(o, cache[hit].text, source, &y[k], err);
+            if (st != RF_OK)
+                rf_error_prefix(err, "program '%s' at %s", prog, point);
+        }
+        for (size_t i = 0; i < n_cache; i++)
+            free(cache[i].text);
+        free(cache);
+    }
+    free(out_path.data);
+    free(err_path.data);
+    return st;
+}
+
+static rf_status external_eval(void *ctx, const double *x, double *y, rf_error *err)
+{
+    const ext_ctx *c = ctx;
+    int e = make_dirs(c->workdir_root);
+    if (e)
+        return rf_fail(err, RF_EIO, "cannot create the working-directory root %s: %s", c->workdir_root, strerror(e));
+    strbuf dir = {0};
+    sb_printf(&dir, "%s/eval-XXXXXX", c->workdir_root);
+    if (dir.oom)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the working directory name");
+    if (!mkdtemp(dir.data)) {
+        rf_status st = rf_fail(err, RF_EIO, "cannot create a working directory in %s: %s", c->workdir_root,
+                               strerror(errno));
+        free(dir.data);
+        return st;
+    }
+    rf_error local = {0};
+    if (!err)
+        err = &local;
+    rf_status st = run_once(c, x, dir.data, y, err);
+    if (st != RF_OK) {
+        char msg[RF_ERROR_MAX];
+        memcpy(msg, err->msg, sizeof msg);
+        /* The directory is the evidence; make sure its name survives a long message. */
+        size_t room = sizeof msg - strlen(dir.data) - 40;
+        if (strlen(msg) > room)
+            snprintf(msg + room - 3, 4, "...");
+        rf_fail(err, st, "%s; working directory kept: %s", msg, dir.data);
+    } else if (!c->keep_workdirs) {
+        nftw(dir.data, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    }
+    free(dir.data);
+    return st;
+}
+
+/* ---- creation --------------------------------------------------------- */
+
+static void external_destroy(void *ctx)
+{
+    ext_ctx *c = ctx;
+    if (!c)
+        return;
+    for (size_t i = 0; i < c->n_params; i++)
+        free(c->param_names[i]);
+    free(c->param_names);
+    for (size_t a = 0; a < c->argc; a++)
+        free(c->argv[a]);
+    free(c->argv);
+    free(c->program_path);
+    for (size_t t = 0; t < c->n_templates; t++) {
+        free(c->templates[t].src);
+        free(c->templates[t].dst);
+        free(c->templates[t].text);
+    }
+    free(c->templates);
+    for (size_t k = 0; k < c->n_outputs; k++) {
+        ext_output *o = &c->outputs[k];
+        free(o->name);
+        free(o->file);
+        free(o->pattern);
+        free(o->unit);
+        if (o->has_regex)
+            regfree(&o->regex);
+    }
+    free(c->outputs);
+    free(c->workdir_root);
+    free(c);
+}
+
+/* A relative path inside the working directory: no "..", not absolute. */
+static int is_safe_relative(const char *path)
+{
+    if (!path[0] || path[0] == '/')
+        return 0;
+    for (const char *p = path; *p;) {
+        size_t n = strcspn(p, "/");
+        if ((n == 2 && p[0] == '.' && p[1] == '.') || n == 0)
+            return 0;
+        p += n;
+        if (*p == '/')
+            p++;
+    }
+    return 1;
+}
+
+static char *build_identity(const ext_ctx *c)
+{
+    strbuf b = {0};
+    sb_puts(&b, "external(params=[");
+    for (size_t i = 0; i < c->n_params; i++)
+        sb_printf(&b, "%s%s", i ? "," : "", c->param_names[i]);
+    sb_puts(&b, "];argv=[");
+    for (size_t a = 0; a < c->argc; a++)
+        sb_printf(&b, "%s\"%s\"", a ? "," : "", c->argv[a]);
+    sb_puts(&b, "];templates=[");
+    for (size_t t = 0; t < c->n_templates; t++)
+        sb_printf(&b, "%s%s:fnv1a64=%016llx", t ? "," : "", c->templates[t].dst,
+                  (unsigned long long)fnv1a64(c->templates[t].text, c->templates[t].len));
+    sb_puts(&b, "];outputs=[");
+    for (size_t k = 0; k < c->n_outputs; k++) {
+        const ext_output *o = &c->outputs[k];
+        sb_printf(&b, "%s%s(file=%s,pattern=\"%s\",unit=%s)", k ? "," : "", o->name, o->file ? o->file : "stdout",
+                  o->pattern ? o->pattern : "", o->unit ? o->unit : "");
+    }
+    sb_puts(&b, "])");
+    if (b.oom) {
+        free(b.data);
+        return NULL;
+    }
+    return b.data;
+}
+
+static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const char *const *param_names, ext_ctx *c,
+                           rf_error *err)
+{
+    if (spec->argc == 0 || !spec->argv || !spec->argv[0])
+        return rf_fail(err, RF_EINVAL, "external model: argv is empty (the first element is the program)");
+    if (spec->n_outputs == 0 || !spec->outputs)
+        return rf_fail(err, RF_EINVAL, "external model: no outputs");
+    if (!(spec->timeout >= 0) || !isfinite(spec->timeout))
+        return rf_fail(err, RF_EINVAL, "external model: timeout %g s is not a non-negative number of seconds",
+                       spec->timeout);
+
+    c->param_names = calloc(n_params ? n_params : 1, sizeof(char *));
+    c->argv = calloc(spec->argc, sizeof(char *));
+    c->templates = calloc(spec->n_templates ? spec->n_templates : 1, sizeof *c->templates);
+    c->outputs = calloc(spec->n_outputs, sizeof *c->outputs);
+    if (!c->param_names || !c->argv || !c->templates || !c->outputs)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
+    for (; c->n_params < n_params; c->n_params++) {
+        if (!(c->param_names[c->n_params] = dup_str(param_names[c->n_params])))
+            return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
+    }
+    for (; c->argc < spec->argc; c->argc++) {
+        if (!spec->argv[c->argc])
+            return rf_fail(err, RF_EINVAL, "external model: argv[%zu] is NULL", c->argc);
+        if (!(c->argv[c->argc] = dup_str(spec->argv[c->argc])))
+            return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
+        char where[32];
+        snprintf(where, sizeof where, "argv[%zu]", c->argc);
+        rf_status st = expand(c, c->argv[c->argc], strlen(c->argv[c->argc]), NULL, where, NULL, err);
+        if (st != RF_OK)
+            return rf_error_prefix(err, "external model");
+    }
+    if (strchr(c->argv[0], '{'))
+        return rf_fail(err, RF_EINVAL, "external model: the program name '%s' cannot contain placeholders",
+                       c->argv[0]);
+    rf_status st = resolve_program(c->argv[0], &c->program_path, err);
+    if (st != RF_OK)
+        return st;
+
+    for (; c->n_templates < spec->n_templates; c->n_templates++) {
+        size_t t = c->n_templates;
+        ext_template *tp = &c->templates[t];
+        const char *src = spec->template_src ? spec->template_src[t] : NULL;
+        const char *dst = spec->template_dst ? spec->template_dst[t] : NULL;
+        if (!src || !dst)
+            return rf_fail(err, RF_EINVAL, "external model: template %zu has no source or destination", t + 1);
+        tp->src = dup_str(src);
+        tp->dst = dup_str(dst);
+        if (!tp->src || !tp->dst)
+            return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
+        if (!is_safe_relative(dst) || strchr(dst, '/') || strcmp(dst, "stdout.txt") == 0 ||
+            strcmp(dst, "stderr.txt") == 0)
+            return rf_fail(err, RF_EINVAL,
+                           "external model: template destination '%s' must be a plain file name (no '/', not "
+                           "stdout.txt or stderr.txt)",
+                           dst);
+        for (size_t u = 0; u < t; u++) {
+            if (strcmp(c->templates[u].dst, dst) == 0)
+                return rf_fail(err, RF_EINVAL, "external model: template destination '%s' is given twice", dst);
+        }
+        int e = read_file(src, OUTPUT_FILE_MAX, &tp->text, &tp->len);
+        if (e)
+            return rf_fail(err, RF_EINVAL, "external model: cannot read template '%s': %s", src, strerror(e));
+        char where[PATH_MAX + 32];
+        snprintf(where, sizeof where, "template '%s'", src);
+        st = expand(c, tp->text, tp->len, NULL, where, NULL, err);
+        if (st != RF_OK)
+            return rf_error_prefix(err, "external model");
+    }
+
+    for (; c->n_outputs < spec->n_outputs; c->n_outputs++) {
+        size_t k = c->n_outputs;
+        const rf_external_output *in = &spec->outputs[k];
+        ext_output *o = &c->outputs[k];
+        if (!in->name || !in->name[0])
+            return rf_fail(err, RF_EINVAL, "external model: output %zu has no name", k + 1);
+        for (size_t j = 0; j < k; j++) {
+            if (strcmp(c->outputs[j].name, in->name) == 0)
+                return rf_fail(err, RF_EINVAL, "external model: output '%s' is defined twice", in->name);
+        }
+        o->name = dup_str(in->name);
+        o->file = dup_str(in->file);
+        o->pattern = dup_str(in->pattern);
+        o->unit = dup_str(in->unit ? in->unit : "");
+        if (!o->name || !o->unit || (in->file && !o->file) || (in->pattern && !o->pattern))
+            return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
+        if (o->file && !is_safe_relative(o->file))
+            return rf_fail(err, RF_EINVAL,
+                           "output '%s': file '%s' must be a relative path inside the working directory (no '..')",
+                           o->name, o->file);
+        if (o->pattern) {
+            int rc = regcomp(&o->regex, o->pattern, REG_EXTENDED | REG_NEWLINE);
+            if (rc != 0) {
+                char msg[256];
+                regerror(rc, &o->regex, msg, sizeof msg);
+                return rf_fail(err, RF_EINVAL, "output '%s': invalid pattern \"%s\": %s", o->name, o->pattern, msg);
+            }
+            o->has_regex = 1;
+            if (o->regex.re_nsub < 1)
+                return rf_fail(err, RF_EINVAL,
+                               "output '%s': pattern \"%s\" has no capture group; put the number in ( )", o->name,
+                               o->pattern);
+        }
+    }
+
+    c->timeout = spec->timeout;
+    c->keep_workdirs = spec->keep_workdirs;
+    if (spec->workdir_root && spec->workdir_root[0]) {
+        c->workdir_root = dup_str(spec->workdir_root);
+    } else {
+        const char *tmp = getenv("TMPDIR");
+        strbuf b = {0};
+        sb_printf(&b, "%s/rockfuzz-eval", tmp && tmp[0] ? tmp : "/tmp");
+        c->workdir_root = b.data;
+    }
+    if (!c->workdir_root)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
+    return RF_OK;
+}
+
+rf_status rf_external_model_create(const rf_external_spec *spec, size_t n_params, const char *const *param_names,
+                                   rf_model *model, rf_error *err)
+{
+    if (!model)
+        return rf_fail(err, RF_EINTERNAL, "rf_external_model_create: model is NULL");
+    memset(model, 0, sizeof *model);
+    if (!spec || (n_params && !param_names))
+        return rf_fail(err, RF_EINTERNAL, "rf_external_model_create: NULL spec or parameter names");
+    ext_ctx *c = calloc(1, sizeof *c);
+    if (!c)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
+    rf_status st = build_ctx(spec, n_params, param_names, c, err);
+    if (st != RF_OK) {
+        external_destroy(c);
+        return st;
+    }
+
+    model->n_inputs = n_params;
+    model->eval = external_eval;
+    model->ctx = c;
+    model->destroy = external_destroy;
+    model->threads_per_eval = 1;
+    const char **names = calloc(c->n_outputs, sizeof *names);
+    const char **units = calloc(c->n_outputs, sizeof *units);
+    if (!names || !units) {
+        st = rf_fail(err, RF_ENOMEM, "out of memory for the external model");
+    } else {
+        for (size_t k = 0; k < c->n_outputs; k++) {
+            names[k] = c->outputs[k].name;
+            units[k] = c->outputs[k].unit;
+        }
+        st = rf_model_init_outputs(model, c->n_outputs, names, units, err);
+    }
+    free(names);
+    free(units);
+    if (st == RF_OK) {
+        char *id = build_identity(c);
+        st = id ? rf_model_set_identity(model, id, err) : rf_fail(err, RF_ENOMEM, "out of memory for model identity");
+        free(id);
+    }
+    if (st != RF_OK)
+        rf_model_free(model);
+    return st;
+}
