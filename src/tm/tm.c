@@ -156,31 +156,38 @@ static uint64_t tuple_key(const struct rf_tm_data *d, const uint32_t *t)
     return key;
 }
 
-static int table_grow(struct rf_tm_data *d)
+/* Make room for `extra` more points without rehashing or reallocating
+ * inside the enumeration loop. */
+static int table_reserve(struct rf_tm_data *d, size_t extra)
 {
-    size_t ns = d->nslots ? 2 * d->nslots : 1024;
-    uint64_t *keys = malloc(ns * sizeof *keys);
-    uint32_t *ids = malloc(ns * sizeof *ids);
-    if (!keys || !ids) {
-        free(keys);
-        free(ids);
+    size_t need = d->npoints + extra;
+    if (need > d->cappoints) {
+        uint32_t *nt = realloc(d->tuples, need * d->n * sizeof *nt);
+        if (!nt)
+            return -1;
+        d->tuples = nt;
+        d->cappoints = need;
+    }
+    if (2 * need <= d->nslots)
+        return 0;
+    size_t ns = d->nslots ? d->nslots : 1024;
+    while (ns < 2 * need)
+        ns *= 2;
+    struct rf_tm_slot *slots = malloc(ns * sizeof *slots);
+    if (!slots)
         return -1;
-    }
     for (size_t s = 0; s < ns; s++)
-        ids[s] = EMPTY_SLOT;
+        slots[s].id = EMPTY_SLOT;
     for (size_t s = 0; s < d->nslots; s++) {
-        if (d->slot_id[s] == EMPTY_SLOT)
+        if (d->slots[s].id == EMPTY_SLOT)
             continue;
-        size_t h = mix64(d->slot_key[s]) & (ns - 1);
-        while (ids[h] != EMPTY_SLOT)
+        size_t h = mix64(d->slots[s].key) & (ns - 1);
+        while (slots[h].id != EMPTY_SLOT)
             h = (h + 1) & (ns - 1);
-        keys[h] = d->slot_key[s];
-        ids[h] = d->slot_id[s];
+        slots[h] = d->slots[s];
     }
-    free(d->slot_key);
-    free(d->slot_id);
-    d->slot_key = keys;
-    d->slot_id = ids;
+    free(d->slots);
+    d->slots = slots;
     d->nslots = ns;
     return 0;
 }
@@ -188,13 +195,13 @@ static int table_grow(struct rf_tm_data *d)
 /* Id of the point with tuple t (key precomputed), adding it if new. */
 static int point_id(struct rf_tm_data *d, const uint32_t *t, uint64_t key, uint32_t *out)
 {
-    if (2 * (d->npoints + 1) > d->nslots && table_grow(d))
+    if ((d->npoints + 1 > d->cappoints || 2 * (d->npoints + 1) > d->nslots) && table_reserve(d, 1 + d->npoints))
         return -1;
     size_t mask = d->nslots - 1;
     size_t h = mix64(key) & mask;
-    while (d->slot_id[h] != EMPTY_SLOT) {
-        if (d->slot_key[h] == key) {
-            uint32_t id = d->slot_id[h];
+    while (d->slots[h].id != EMPTY_SLOT) {
+        if (d->slots[h].key == key) {
+            uint32_t id = d->slots[h].id;
             if (d->stride64 || !memcmp(d->tuples + (size_t)id * d->n, t, d->n * sizeof *t)) {
                 *out = id;
                 return 0;
@@ -202,17 +209,9 @@ static int point_id(struct rf_tm_data *d, const uint32_t *t, uint64_t key, uint3
         }
         h = (h + 1) & mask;
     }
-    if (d->npoints == d->cappoints) {
-        size_t cap = d->cappoints ? 2 * d->cappoints : 1024;
-        uint32_t *nt = realloc(d->tuples, cap * d->n * sizeof *nt);
-        if (!nt)
-            return -1;
-        d->tuples = nt;
-        d->cappoints = cap;
-    }
     memcpy(d->tuples + d->npoints * d->n, t, d->n * sizeof *t);
-    d->slot_key[h] = key;
-    d->slot_id[h] = (uint32_t)d->npoints;
+    d->slots[h].key = key;
+    d->slots[h].id = (uint32_t)d->npoints;
     *out = (uint32_t)d->npoints++;
     return 0;
 }
@@ -267,6 +266,11 @@ static rf_status grid_build(struct rf_tm_data *d, rf_grid *g, double *const *val
     if (count > UINT32_MAX - 1)
         return rf_fail(err, RF_ECAP, "the TM grid has %zu points, more than this build can index", count);
     g->ids = malloc(count * sizeof(uint32_t));
+    if (table_reserve(d, count)) {
+        free(g->ids);
+        g->ids = NULL;
+        return rf_fail(err, RF_ENOMEM, "out of memory for the TM point table");
+    }
     uint32_t *t = malloc(n * sizeof(uint32_t));
     size_t *digit = calloc(n, sizeof(size_t));
     if (!g->ids || !t || !digit) {
@@ -350,8 +354,7 @@ static void data_free(struct rf_tm_data *d)
     free(d->scale);
     free(d->tuples);
     free(d->stride64);
-    free(d->slot_key);
-    free(d->slot_id);
+    free(d->slots);
     free(d->y);
     if (d->main)
         for (size_t j = 0; j <= d->m; j++)
@@ -473,6 +476,19 @@ static rf_status build_main(tm_ctx *c, int with_ids, rf_error *err)
     rf_status st = RF_OK;
     if (!buf || !vals || !cnt)
         st = rf_fail(err, RF_ENOMEM, "out of memory");
+    /* reserve the point table once for all levels (no rehash while enumerating) */
+    size_t total = 0;
+    for (size_t j = 0; st == RF_OK && j <= c->m; j++) {
+        size_t count = 1;
+        for (size_t i = 0; i < n; i++) {
+            const double *v;
+            size_t k = main_values(c, i, j, buf + 2 * i, &v);
+            count = k && count > SIZE_MAX / k ? SIZE_MAX : count * k;
+        }
+        total = total > SIZE_MAX - count ? SIZE_MAX : total + count;
+    }
+    if (st == RF_OK && with_ids && total < UINT32_MAX && table_reserve(c->d, total))
+        st = rf_fail(err, RF_ENOMEM, "out of memory for the TM point table");
     for (size_t j = 0; st == RF_OK && j <= c->m; j++) {
         for (size_t i = 0; i < n; i++) {
             const double *v;
@@ -500,6 +516,11 @@ static rf_status build_lr(tm_ctx *c, int with_ids, rf_error *err)
     rf_status st = RF_OK;
     if (!c->d->lr || !buf || !vals || !cnt)
         st = rf_fail(err, RF_ENOMEM, "out of memory");
+    size_t bound = m + 1; /* (m + 1) 3^n points at most: reserve once */
+    for (size_t i = 0; i < n && bound < UINT32_MAX; i++)
+        bound *= 3;
+    if (st == RF_OK && with_ids && bound < UINT32_MAX && table_reserve(c->d, bound))
+        st = rf_fail(err, RF_ENOMEM, "out of memory for the TM point table");
     for (size_t j = 0; st == RF_OK && j <= m; j++) {
         for (size_t i = 0; i < n; i++) {
             double *b = buf + 3 * i;

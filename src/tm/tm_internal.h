@@ -33,8 +33,10 @@ struct rf_tm_data {
     uint32_t *tuples;    /* [npoints * n] */
     size_t npoints, cappoints;
     uint64_t *stride64;  /* [n] perfect-hash strides, or NULL if the product overflows */
-    uint64_t *slot_key;  /* open-addressing table of keys ... */
-    uint32_t *slot_id;   /* ... and point ids (UINT32_MAX = empty) */
+    struct rf_tm_slot {
+        uint64_t key;
+        uint32_t id;     /* UINT32_MAX = empty */
+    } *slots;            /* open addressing, linear probing, load <= 1/2 */
     size_t nslots;
 
     double *y;           /* [npoints * n_out] outputs */
