@@ -890,18 +890,22 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
     c->outputs = calloc(spec->n_outputs, sizeof *c->outputs);
     if (!c->param_names || !c->argv || !c->templates || !c->outputs)
         return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
-    for (; c->n_params < n_params; c->n_params++) {
-        if (!(c->param_names[c->n_params] = dup_str(param_names[c->n_params])))
+    /* Counters are raised before each element is filled, so that
+     * external_destroy frees a half-built element after an error. */
+    while (c->n_params < n_params) {
+        size_t i = c->n_params++;
+        if (!(c->param_names[i] = dup_str(param_names[i])))
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
     }
-    for (; c->argc < spec->argc; c->argc++) {
-        if (!spec->argv[c->argc])
-            return rf_fail(err, RF_EINVAL, "external model: argv[%zu] is NULL", c->argc);
-        if (!(c->argv[c->argc] = dup_str(spec->argv[c->argc])))
+    while (c->argc < spec->argc) {
+        size_t a = c->argc++;
+        if (!spec->argv[a])
+            return rf_fail(err, RF_EINVAL, "external model: argv[%zu] is NULL", a);
+        if (!(c->argv[a] = dup_str(spec->argv[a])))
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
         char where[32];
-        snprintf(where, sizeof where, "argv[%zu]", c->argc);
-        rf_status st = expand(c, c->argv[c->argc], strlen(c->argv[c->argc]), NULL, where, NULL, err);
+        snprintf(where, sizeof where, "argv[%zu]", a);
+        rf_status st = expand(c, c->argv[a], strlen(c->argv[a]), NULL, where, NULL, err);
         if (st != RF_OK)
             return rf_error_prefix(err, "external model");
     }
@@ -912,8 +916,8 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
     if (st != RF_OK)
         return st;
 
-    for (; c->n_templates < spec->n_templates; c->n_templates++) {
-        size_t t = c->n_templates;
+    while (c->n_templates < spec->n_templates) {
+        size_t t = c->n_templates++;
         ext_template *tp = &c->templates[t];
         const char *src = spec->template_src ? spec->template_src[t] : NULL;
         const char *dst = spec->template_dst ? spec->template_dst[t] : NULL;
@@ -943,8 +947,8 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
             return rf_error_prefix(err, "external model");
     }
 
-    for (; c->n_outputs < spec->n_outputs; c->n_outputs++) {
-        size_t k = c->n_outputs;
+    while (c->n_outputs < spec->n_outputs) {
+        size_t k = c->n_outputs++;
         const rf_external_output *in = &spec->outputs[k];
         ext_output *o = &c->outputs[k];
         if (!in->name || !in->name[0])
