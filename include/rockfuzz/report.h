@@ -1,0 +1,49 @@
+/* report.h - what a finished study run leaves behind: a readable summary,
+ * result.json, CSV tables and membership/influence plots (PNG and SVG).
+ *
+ * result.json is written last and atomically (result.json.tmp, then
+ * rename), so its presence means every other file was written too. */
+#ifndef ROCKFUZZ_REPORT_H
+#define ROCKFUZZ_REPORT_H
+
+#include <stdio.h>
+
+#include "rockfuzz/analysis.h"
+#include "rockfuzz/study.h"
+#include "rockfuzz/tm.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    int plots;             /* write PNG and SVG plots (default 1) */
+    double wall_seconds;   /* wall time of the run, stored in result.json */
+    int jobs;              /* worker threads used, stored in result.json */
+    size_t cap;            /* evaluation cap used (0 = none) */
+} rf_report_options;
+
+void rf_report_options_default(rf_report_options *opt);
+
+/* Human-readable summary: per output the cut table (mu | lower | upper), the
+ * nominal value, the inputs giving the level-0 bounds, the influence table
+ * and the degree of uncertainty; monotonicity warnings and the extended-form
+ * classification. */
+void rf_report_print_summary(FILE *f, const rf_study *study, const rf_tm_result *res, const rf_analysis *an);
+
+/* Write every output file into dir (created if missing); result.json last. */
+rf_status rf_report_write(const char *dir, const rf_study *study, const rf_tm_result *res, const rf_analysis *an,
+                          const rf_report_options *opt, rf_error *err);
+
+/* The pieces, for tests and other front ends. */
+rf_status rf_report_write_json(const char *path, const rf_study *study, const rf_tm_result *res,
+                               const rf_analysis *an, const rf_report_options *opt, rf_error *err);
+rf_status rf_report_write_csv(const char *dir, const rf_study *study, const rf_tm_result *res,
+                              const rf_analysis *an, rf_error *err);
+rf_status rf_report_write_plots(const char *dir, const rf_study *study, const rf_tm_result *res,
+                                const rf_analysis *an, rf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,425 @@
+/* report.c - the summary printed after a run, result.json and the CSV
+ * tables (see report.h).  Plots are in report_plot.c.  Undefined values are
+ * printed "n/a (reason)" and written as JSON null / CSV "nan". */
+#include "rockfuzz/report.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "study/report_internal.h"
+
+void rf_report_options_default(rf_report_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->plots = 1;
+}
+
+void rp_safe_name(const char *name, char *buf, size_t size)
+{
+    size_t k = 0;
+    for (; name[k] && k + 1 < size && k < 80; k++) {
+        char ch = name[k];
+        int ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_' ||
+                 ch == '-' || (ch == '.' && k > 0);
+        buf[k] = ok ? ch : '_';
+    }
+    buf[k] = '\0';
+    if (k == 0)
+        snprintf(buf, size, "_");
+}
+
+static const char *mono_text(rf_monotonicity m)
+{
+    switch (m) {
+    case RF_MONO_MONOTONIC: return "monotonic";
+    case RF_MONO_NONMONOTONIC: return "nonmonotonic";
+    default: return "not checked";
+    }
+}
+
+/* ---------------------------------------------------------------- summary */
+
+static void print_value(FILE *f, double v, rf_na_reason why)
+{
+    if (isnan(v))
+        fprintf(f, " %-12s", why != RF_NA_NONE ? "n/a" : "nan");
+    else
+        fprintf(f, " %12.6g", v);
+}
+
+void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_analysis *an)
+{
+    size_t n = res->n_inputs, m = res->levels;
+    fprintf(f, "\nStudy '%s': %s form, m = %zu levels, %zu input%s, model %s\n", s->name,
+            rf_tm_scheme_name(res->scheme), m, n, n == 1 ? "" : "s", s->model_description);
+    fprintf(f, "Evaluations: %zu requested, %zu distinct (probe %zu, left/right grid %zu)\n", res->requested,
+            res->distinct, res->probe_evaluations, res->lr_evaluations);
+    fprintf(f, "\nInputs:\n");
+    for (size_t i = 0; i < n; i++) {
+        fprintf(f, "  %-16s %s%s%s%s", s->param_names[i], s->param_shapes[i], s->param_units[i][0] ? " [" : "",
+                s->param_units[i], s->param_units[i][0] ? "]" : "");
+        if (res->scheme == RF_TM_EXTENDED && res->input_class)
+            fprintf(f, "  class: %s%s", mono_text(res->input_class[i]),
+                    s->param_class[i] != RF_MONO_AUTO ? " (forced)" : " (probe)");
+        fputc('\n', f);
+    }
+    int warned_header = 0;
+    for (size_t k = 0; k < res->n_outputs; k++) {
+        const char *unit = s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "";
+        fprintf(f, "\nOutput %s%s%s%s\n", s->model.output_names[k], unit[0] ? " [" : "", unit, unit[0] ? "]" : "");
+        fprintf(f, "  %8s %16s %16s\n", "mu", "lower", "upper");
+        for (size_t j = 0; j <= m; j++)
+            fprintf(f, "  %8.4f %16.10g %16.10g\n", (double)j / (double)m, res->lo[k * (m + 1) + j],
+                    res->hi[k * (m + 1) + j]);
+        fprintf(f, "  nominal: %.10g\n", res->nominal[k]);
+        for (int side = 0; side < 2; side++) {
+            const double *xs = side ? res->x_hi : res->x_lo;
+            fprintf(f, "  level-0 %s bound %.10g at:", side ? "upper" : "lower",
+                    side ? res->hi[k * (m + 1)] : res->lo[k * (m + 1)]);
+            for (size_t i = 0; i < n; i++)
+                fprintf(f, " %s=%.10g", s->param_names[i], xs[(k * (m + 1) + 0) * n + i]);
+            fputc('\n', f);
+        }
+        fprintf(f, "  influence:  %-12s %12s %12s %12s %12s\n", "input", "rho", "kappa", "rho_left", "rho_right");
+        for (size_t i = 0; i < n; i++) {
+            size_t q = k * n + i;
+            fprintf(f, "              %-12s", s->param_names[i]);
+            print_value(f, an->rho[q], an->reason_hanss[q]);
+            print_value(f, an->kappa[q], an->reason_hanss[q]);
+            print_value(f, an->rho_left[q], an->reason_lr[q]);
+            print_value(f, an->rho_right[q], an->reason_lr[q]);
+            if (isnan(an->rho[q]) && an->reason_hanss[q] != RF_NA_NONE)
+                fprintf(f, "  rho: n/a (%s)", rf_na_reason_text(an->reason_hanss[q]));
+            if (isnan(an->rho_left[q]) && an->reason_lr[q] != RF_NA_NONE)
+                fprintf(f, "  left/right: n/a (%s)", rf_na_reason_text(an->reason_lr[q]));
+            fputc('\n', f);
+        }
+        if (isnan(an->degree_of_uncertainty[k]))
+            fprintf(f, "  degree of uncertainty: n/a (%s)\n", rf_na_reason_text(an->reason_nu[k]));
+        else
+            fprintf(f, "  degree of uncertainty: %.6g (interaction part %.6g)\n", an->degree_of_uncertainty[k],
+                    an->interaction[k]);
+        /* Monotonicity: a warning for the reduced form, information otherwise. */
+        int checked = 0;
+        for (size_t i = 0; i < n; i++) {
+            rf_monotonicity v = res->monotonicity[k * n + i];
+            if (v != RF_MONO_AUTO)
+                checked = 1;
+            if (v == RF_MONO_NONMONOTONIC) {
+                if (res->scheme == RF_TM_REDUCED) {
+                    fprintf(f, "  WARNING: %s is not monotonic in %s on the three-point grid: the reduced form can "
+                               "under-estimate this output; rerun with scheme: extended or general\n",
+                            s->model.output_names[k], s->param_names[i]);
+                    warned_header = 1;
+                } else {
+                    fprintf(f, "  note: %s is not monotonic in %s (the %s form handles this on its grid)\n",
+                            s->model.output_names[k], s->param_names[i], rf_tm_scheme_name(res->scheme));
+                }
+            }
+        }
+        if (!checked)
+            fprintf(f, "  monotonicity: not checked (options.left_right is off)\n");
+    }
+    if (warned_header)
+        fprintf(f, "\nSee the warnings above: the reduced form is exact only for models monotonic in every input.\n");
+    fputc('\n', f);
+}
+
+/* ------------------------------------------------------------------- JSON */
+
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            fprintf(f, "\\%c", *p);
+        else if (*p == '\n')
+            fputs("\\n", f);
+        else if (*p == '\t')
+            fputs("\\t", f);
+        else if (*p < 0x20)
+            fprintf(f, "\\u%04x", *p);
+        else
+            fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+static void json_number(FILE *f, double v)
+{
+    if (isfinite(v))
+        fprintf(f, "%.17g", v);
+    else
+        fputs("null", f);
+}
+
+static void json_array(FILE *f, const double *v, size_t count, size_t stride)
+{
+    fputc('[', f);
+    for (size_t j = 0; j < count; j++) {
+        if (j)
+            fputs(", ", f);
+        json_number(f, v[j * stride]);
+    }
+    fputc(']', f);
+}
+
+static void json_levels(FILE *f, size_t m)
+{
+    fputc('[', f);
+    for (size_t j = 0; j <= m; j++)
+        fprintf(f, "%s%.17g", j ? ", " : "", (double)j / (double)m);
+    fputc(']', f);
+}
+
+static void json_point(FILE *f, const rf_study *s, const double *x, size_t n)
+{
+    fputc('{', f);
+    for (size_t i = 0; i < n; i++) {
+        if (i)
+            fputs(", ", f);
+        json_string(f, s->param_names[i]);
+        fputs(": ", f);
+        json_number(f, x[i]);
+    }
+    fputc('}', f);
+}
+
+static void json_reason(FILE *f, const char *key, double v, rf_na_reason r)
+{
+    if (isnan(v) && r != RF_NA_NONE) {
+        fprintf(f, ", \"%s\": ", key);
+        json_string(f, rf_na_reason_text(r));
+    }
+}
+
+rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
+                               const rf_report_options *opt, rf_error *err)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return rf_fail(err, RF_EIO, "%s: cannot write: %s", path, strerror(errno));
+    size_t n = res->n_inputs, m = res->levels;
+    fputs("{\n  \"version\": ", f);
+    json_string(f, ROCKFUZZ_VERSION);
+    fputs(",\n  \"name\": ", f);
+    json_string(f, s->name);
+    fputs(",\n  \"study_file\": ", f);
+    json_string(f, s->path);
+    fprintf(f, ",\n  \"scheme\": \"%s\",\n  \"levels\": %zu,\n  \"left_right\": %s,\n  \"model\": ",
+            rf_tm_scheme_name(res->scheme), m, s->left_right ? "true" : "false");
+    json_string(f, s->model_description);
+    fputs(",\n  \"model_kind\": ", f);
+    json_string(f, rf_study_model_kind_name(s->model_kind));
+    fputs(",\n  \"model_identity\": ", f);
+    json_string(f, s->model.identity ? s->model.identity : "");
+    fputs(",\n  \"mu\": ", f);
+    json_levels(f, m);
+    fputs(",\n  \"inputs\": {", f);
+    for (size_t i = 0; i < n; i++) {
+        fputs(i ? ",\n    " : "\n    ", f);
+        json_string(f, s->param_names[i]);
+        fputs(": {\"shape\": ", f);
+        json_string(f, s->param_shapes[i]);
+        fputs(", \"unit\": ", f);
+        json_string(f, s->param_units[i]);
+        fputs(", \"nominal\": ", f);
+        json_number(f, res->in_nominal[i]);
+        fputs(", \"mu\": ", f);
+        json_levels(f, m);
+        fputs(", \"lower\": ", f);
+        json_array(f, res->in_lo + i * (m + 1), m + 1, 1);
+        fputs(", \"upper\": ", f);
+        json_array(f, res->in_hi + i * (m + 1), m + 1, 1);
+        if (res->scheme == RF_TM_EXTENDED && res->input_class)
+            fprintf(f, ", \"class\": \"%s\", \"class_forced\": %s", mono_text(res->input_class[i]),
+                    s->param_class[i] != RF_MONO_AUTO ? "true" : "false");
+        fputc('}', f);
+    }
+    fputs("\n  },\n  \"outputs\": {", f);
+    for (size_t k = 0; k < res->n_outputs; k++) {
+        fputs(k ? ",\n    " : "\n    ", f);
+        json_string(f, s->model.output_names[k]);
+        fputs(": {\n      \"unit\": ", f);
+        json_string(f, s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "");
+        fputs(",\n      \"mu\": ", f);
+        json_levels(f, m);
+        fputs(",\n      \"lower\": ", f);
+        json_array(f, res->lo + k * (m + 1), m + 1, 1);
+        fputs(",\n      \"upper\": ", f);
+        json_array(f, res->hi + k * (m + 1), m + 1, 1);
+        fputs(",\n      \"nominal\": ", f);
+        json_number(f, res->nominal[k]);
+        fputs(",\n      \"x_lower\": [", f);
+        for (size_t j = 0; j <= m; j++) {
+            fputs(j ? ", " : "", f);
+            json_point(f, s, res->x_lo + (k * (m + 1) + j) * n, n);
+        }
+        fputs("],\n      \"x_upper\": [", f);
+        for (size_t j = 0; j <= m; j++) {
+            fputs(j ? ", " : "", f);
+            json_point(f, s, res->x_hi + (k * (m + 1) + j) * n, n);
+        }
+        fputs("],\n      \"influence\": {", f);
+        for (size_t i = 0; i < n; i++) {
+            size_t q = k * n + i;
+            fputs(i ? ",\n        " : "\n        ", f);
+            json_string(f, s->param_names[i]);
+            fputs(": {\"rho\": ", f);
+            json_number(f, an->rho[q]);
+            fputs(", \"kappa\": ", f);
+            json_number(f, an->kappa[q]);
+            fputs(", \"rho_left\": ", f);
+            json_number(f, an->rho_left[q]);
+            fputs(", \"rho_right\": ", f);
+            json_number(f, an->rho_right[q]);
+            fputs(", \"kappa_left\": ", f);
+            json_number(f, an->kappa_left[q]);
+            fputs(", \"kappa_right\": ", f);
+            json_number(f, an->kappa_right[q]);
+            fputs(", \"mean_gain\": ", f);
+            json_number(f, an->mean_gain[q]);
+            fputs(", \"std_gain\": ", f);
+            json_number(f, an->std_gain[q]);
+            fputs(", \"gain\": ", f);
+            json_array(f, an->gain + q * an->levels, an->levels, 1);
+            fprintf(f, ", \"monotonicity\": \"%s\"", mono_text(res->monotonicity[q]));
+            json_reason(f, "na_reason", an->rho[q], an->reason_hanss[q]);
+            json_reason(f, "na_reason_std", an->std_gain[q], an->reason_std[q]);
+            json_reason(f, "na_reason_lr", an->rho_left[q], an->reason_lr[q]);
+            fputc('}', f);
+        }
+        fputs("\n      },\n      \"degree_of_uncertainty\": ", f);
+        json_number(f, an->degree_of_uncertainty[k]);
+        fputs(",\n      \"interaction\": ", f);
+        json_number(f, an->interaction[k]);
+        if (isnan(an->degree_of_uncertainty[k]) && an->reason_nu[k] != RF_NA_NONE) {
+            fputs(",\n      \"na_reason_degree_of_uncertainty\": ", f);
+            json_string(f, rf_na_reason_text(an->reason_nu[k]));
+        }
+        fputs("\n    }", f);
+    }
+    fprintf(f, "\n  },\n  \"evaluations\": {\"requested\": %zu, \"distinct\": %zu, \"probe\": %zu, \"left_right\": "
+               "%zu, \"cap\": %zu},\n",
+            res->requested, res->distinct, res->probe_evaluations, res->lr_evaluations, opt ? opt->cap : 0);
+    fputs("  \"wall_seconds\": ", f);
+    json_number(f, opt ? opt->wall_seconds : NAN);
+    fprintf(f, ",\n  \"jobs\": %d,\n  \"measures\": \"rho, kappa: Hanss 2002/2005 (tm_spec 5.3); rho_left, "
+               "rho_right, degree_of_uncertainty: LR analysis (project definition after Gauger et al. 2008, "
+               "tm_spec 5.4)\"\n}\n",
+            opt ? opt->jobs : 0);
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad)
+        return rf_fail(err, RF_EIO, "%s: write failed: %s", path, strerror(errno));
+    return RF_OK;
+}
+
+/* -------------------------------------------------------------------- CSV */
+
+static void csv_number(FILE *f, double v)
+{
+    if (isnan(v))
+        fputs("nan", f);
+    else
+        fprintf(f, "%.17g", v);
+}
+
+static rf_status close_checked(FILE *f, const char *path, rf_error *err)
+{
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad)
+        return rf_fail(err, RF_EIO, "%s: write failed: %s", path, strerror(errno));
+    return RF_OK;
+}
+
+rf_status rf_report_write_csv(const char *dir, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
+                              rf_error *err)
+{
+    size_t n = res->n_inputs, m = res->levels;
+    char path[4096], safe[128];
+    snprintf(path, sizeof path, "%s/inputs.csv", dir);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return rf_fail(err, RF_EIO, "%s: cannot write: %s", path, strerror(errno));
+    fputs("input,mu,lower,upper\n", f);
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = 0; j <= m; j++) {
+            fprintf(f, "%s,%.17g,", s->param_names[i], (double)j / (double)m);
+            csv_number(f, res->in_lo[i * (m + 1) + j]);
+            fputc(',', f);
+            csv_number(f, res->in_hi[i * (m + 1) + j]);
+            fputc('\n', f);
+        }
+    rf_status st = close_checked(f, path, err);
+    if (st != RF_OK)
+        return st;
+    for (size_t k = 0; k < res->n_outputs; k++) {
+        rp_safe_name(s->model.output_names[k], safe, sizeof safe);
+        snprintf(path, sizeof path, "%s/cuts_%s.csv", dir, safe);
+        if (!(f = fopen(path, "w")))
+            return rf_fail(err, RF_EIO, "%s: cannot write: %s", path, strerror(errno));
+        fputs("mu,lower,upper\n", f);
+        for (size_t j = 0; j <= m; j++) {
+            fprintf(f, "%.17g,", (double)j / (double)m);
+            csv_number(f, res->lo[k * (m + 1) + j]);
+            fputc(',', f);
+            csv_number(f, res->hi[k * (m + 1) + j]);
+            fputc('\n', f);
+        }
+        if ((st = close_checked(f, path, err)) != RF_OK)
+            return st;
+        snprintf(path, sizeof path, "%s/influence_%s.csv", dir, safe);
+        if (!(f = fopen(path, "w")))
+            return rf_fail(err, RF_EIO, "%s: cannot write: %s", path, strerror(errno));
+        fputs("input,rho,kappa,rho_left,rho_right,kappa_left,kappa_right,mean_gain,std_gain,monotonicity\n", f);
+        for (size_t i = 0; i < n; i++) {
+            size_t q = k * n + i;
+            const double v[8] = {an->rho[q],        an->kappa[q],       an->rho_left[q],  an->rho_right[q],
+                                 an->kappa_left[q], an->kappa_right[q], an->mean_gain[q], an->std_gain[q]};
+            fputs(s->param_names[i], f);
+            for (int c = 0; c < 8; c++) {
+                fputc(',', f);
+                csv_number(f, v[c]);
+            }
+            fprintf(f, ",%s\n", mono_text(res->monotonicity[q]));
+        }
+        if ((st = close_checked(f, path, err)) != RF_OK)
+            return st;
+    }
+    return RF_OK;
+}
+
+/* ------------------------------------------------------------- everything */
+
+rf_status rf_report_write(const char *dir, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
+                          const rf_report_options *opt, rf_error *err)
+{
+    rf_report_options def;
+    if (!opt) {
+        rf_report_options_default(&def);
+        opt = &def;
+    }
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+        return rf_fail(err, RF_EIO, "%s: cannot create the output directory: %s", dir, strerror(errno));
+    char final_path[4096], tmp_path[4096];
+    snprintf(final_path, sizeof final_path, "%s/result.json", dir);
+    snprintf(tmp_path, sizeof tmp_path, "%s/result.json.tmp", dir);
+    /* A result.json from an earlier run must not survive a failed rerun. */
+    if (unlink(final_path) != 0 && errno != ENOENT)
+        return rf_fail(err, RF_EIO, "%s: cannot remove the old result: %s", final_path, strerror(errno));
+    rf_status st = rf_report_write_csv(dir, s, res, an, err);
+    if (st == RF_OK && opt->plots)
+        st = rf_report_write_plots(dir, s, res, an, err);
+    if (st == RF_OK)
+        st = rf_report_write_json(tmp_path, s, res, an, opt, err);
+    if (st == RF_OK && rename(tmp_path, final_path) != 0)
+        st = rf_fail(err, RF_EIO, "%s: cannot rename to result.json: %s", tmp_path, strerror(errno));
+    if (st != RF_OK)
+        unlink(tmp_path);
+    return st;
+}

@@ -1,0 +1,556 @@
+/* study_model.c - the `model:` block of a study file: a formula, an external
+ * program, or the built-in impact model.  The model is constructed here, so
+ * a formula naming an unknown parameter or an impact input bound to an
+ * unknown name fails at load time with the constructor's message, located. */
+#include "study/study_internal.h"
+
+#include "rockfuzz/impact.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define MAX_OUTPUTS 256
+
+static rf_status set_description(rf_study *s, rf_error *err, const char *fmt, const char *a)
+{
+    size_t n = strlen(fmt) + strlen(a) + 1;
+    s->model_description = malloc(n);
+    if (!s->model_description)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    snprintf(s->model_description, n, fmt, a);
+    return RF_OK;
+}
+
+/* ---- formula ---- */
+
+static rf_status parse_formula(sp_ctx *c, struct fy_node *n, rf_study *s)
+{
+    const char *path = "model.formula";
+    rf_status st;
+    size_t no = 0;
+    char **names = NULL, **exprs = NULL;
+    struct fy_node **nodes = NULL;
+    if (n && fy_node_get_type(n) == FYNT_SCALAR) { /* formula: "x1*x2" -> one output named y */
+        no = 1;
+        names = calloc(1, sizeof *names);
+        exprs = calloc(1, sizeof *exprs);
+        nodes = calloc(1, sizeof *nodes);
+        if (!names || !exprs || !nodes) {
+            st = rf_fail(c->err, RF_ENOMEM, "out of memory");
+            goto done;
+        }
+        names[0] = sp_strdup("y");
+        nodes[0] = n;
+        if ((st = sp_string_dup(c, n, path, &exprs[0])) != RF_OK)
+            goto done;
+    } else {
+        if ((st = sp_mapping(c, n, path)) != RF_OK)
+            return st;
+        int cnt = fy_node_mapping_item_count(n);
+        if (cnt < 1 || cnt > MAX_OUTPUTS)
+            return sp_fail(c, n, path, "expected 1 to %d outputs (name: \"expression\")", MAX_OUTPUTS);
+        names = calloc((size_t)cnt, sizeof *names);
+        exprs = calloc((size_t)cnt, sizeof *exprs);
+        nodes = calloc((size_t)cnt, sizeof *nodes);
+        if (!names || !exprs || !nodes) {
+            st = rf_fail(c->err, RF_ENOMEM, "out of memory");
+            goto done;
+        }
+        sp_iter it = {n, NULL, 0, {0}};
+        const char *key;
+        struct fy_node *k, *v;
+        for (;;) {
+            if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
+                goto done;
+            if (!key)
+                break;
+            char p[300];
+            sp_pathf(p, sizeof p, "%s.%s", path, key);
+            names[no] = sp_strdup(key);
+            nodes[no] = v;
+            no++;
+            if (!names[no - 1]) {
+                st = rf_fail(c->err, RF_ENOMEM, "out of memory");
+                goto done;
+            }
+            if ((st = sp_string_dup(c, v, p, &exprs[no - 1])) != RF_OK)
+                goto done;
+            if (exprs[no - 1][0] == '\0') {
+                st = sp_fail(c, v, p, "the expression is empty");
+                goto done;
+            }
+        }
+    }
+    st = rf_formula_model_create(s->n_params, (const char *const *)s->param_names, no,
+                                 (const char *const *)names, (const char *const *)exprs, &s->model, c->err);
+    if (st != RF_OK) {
+        rf_model_free(&s->model);
+        /* Locate the failing expression by building the outputs one at a time. */
+        rf_error first = *c->err, one;
+        size_t bad = no;
+        for (size_t k = 0; k < no && bad == no; k++) {
+            rf_model m;
+            memset(&m, 0, sizeof m);
+            if (rf_formula_model_create(s->n_params, (const char *const *)s->param_names, 1,
+                                        (const char *const *)&names[k], (const char *const *)&exprs[k], &m,
+                                        &one) != RF_OK) {
+                bad = k;
+                *c->err = one;
+            }
+            rf_model_free(&m);
+        }
+        char p[300];
+        sp_pathf(p, sizeof p, "%s.%s", path, bad < no ? names[bad] : "");
+        if (bad == no) {
+            *c->err = first;
+            st = sp_prefix(c, n, path);
+        } else {
+            st = sp_prefix(c, nodes[bad], p);
+        }
+        goto done;
+    }
+    s->model_kind = RF_STUDY_MODEL_FORMULA;
+    {
+        char desc[512] = "";
+        size_t len = 0;
+        for (size_t k = 0; k < no && len < sizeof desc; k++)
+            len += (size_t)snprintf(desc + len, sizeof desc - len, "%s%s = %s", k ? "; " : "", names[k], exprs[k]);
+        st = set_description(s, c->err, "formula: %s", desc);
+    }
+done:
+    for (size_t k = 0; k < no; k++) {
+        free(names[k]);
+        free(exprs[k]);
+    }
+    free(names);
+    free(exprs);
+    free(nodes);
+    return st;
+}
+
+/* ---- external program ---- */
+
+static void free_external_spec(rf_external_spec *e)
+{
+    for (size_t k = 0; k < e->argc; k++)
+        free(e->argv[k]);
+    free(e->argv);
+    for (size_t k = 0; k < e->n_templates; k++) {
+        free(e->template_src[k]);
+        free(e->template_dst[k]);
+    }
+    free(e->template_src);
+    free(e->template_dst);
+    for (size_t k = 0; k < e->n_outputs; k++) {
+        free(e->outputs[k].name);
+        free(e->outputs[k].file);
+        free(e->outputs[k].pattern);
+        free(e->outputs[k].unit);
+    }
+    free(e->outputs);
+    free(e->workdir_root);
+}
+
+static char *resolve(const char *dir, const char *p)
+{
+    if (p[0] == '/' || !strcmp(dir, "."))
+        return sp_strdup(p);
+    size_t n = strlen(dir) + strlen(p) + 2;
+    char *r = malloc(n);
+    if (r)
+        snprintf(r, n, "%s/%s", dir, p);
+    return r;
+}
+
+static rf_status parse_program_outputs(sp_ctx *c, struct fy_node *n, rf_external_spec *e)
+{
+    const char *path = "model.program.outputs";
+    rf_status st = sp_mapping(c, n, path);
+    if (st != RF_OK)
+        return st;
+    int cnt = fy_node_mapping_item_count(n);
+    if (cnt < 1 || cnt > MAX_OUTPUTS)
+        return sp_fail(c, n, path, "expected 1 to %d outputs", MAX_OUTPUTS);
+    e->outputs = calloc((size_t)cnt, sizeof *e->outputs);
+    if (!e->outputs)
+        return rf_fail(c->err, RF_ENOMEM, "out of memory");
+    sp_iter it = {n, NULL, 0, {0}};
+    const char *key;
+    struct fy_node *k, *v;
+    for (;;) {
+        if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
+            return st;
+        if (!key)
+            return RF_OK;
+        rf_external_output *o = &e->outputs[e->n_outputs++];
+        o->name = sp_strdup(key);
+        if (!o->name)
+            return rf_fail(c->err, RF_ENOMEM, "out of memory");
+        char p[300], q[400];
+        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        if (v && fy_node_get_type(v) == FYNT_SCALAR) {
+            size_t len;
+            const char *str;
+            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+                return st;
+            if (len == 0 || (len == 4 && !strncmp(str, "null", 4)) || (len == 1 && str[0] == '~'))
+                continue; /* name: {} / name: ~ -> "NAME = value" on stdout */
+            return sp_fail(c, v, p, "expected a mapping with file, pattern and unit (all optional)");
+        }
+        if ((st = sp_mapping(c, v, p)) != RF_OK)
+            return st;
+        sp_iter jt = {v, NULL, 0, {0}};
+        const char *ok;
+        struct fy_node *okn, *ov;
+        for (;;) {
+            if ((st = sp_next(c, &jt, p, &ok, &okn, &ov)) != RF_OK)
+                return st;
+            if (!ok)
+                break;
+            sp_pathf(q, sizeof q, "%s.%s", p, ok);
+            char **dst = !strcmp(ok, "file") ? &o->file : !strcmp(ok, "pattern") ? &o->pattern
+                       : !strcmp(ok, "unit")  ? &o->unit
+                                              : NULL;
+            if (!dst)
+                return sp_fail(c, okn, q, "unknown key; an output takes file, pattern and unit");
+            free(*dst);
+            *dst = NULL;
+            if ((st = sp_string_dup(c, ov, q, dst)) != RF_OK)
+                return st;
+            if (dst == &o->file && ((*dst)[0] == '\0' || (*dst)[0] == '/' || strstr(*dst, "..")))
+                return sp_fail(c, ov, q, "the file must be a relative path inside the working directory");
+        }
+    }
+}
+
+static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
+{
+    const char *path = "model.program";
+    rf_status st = sp_mapping(c, n, path);
+    if (st != RF_OK)
+        return st;
+    rf_external_spec e;
+    memset(&e, 0, sizeof e);
+    sp_iter it = {n, NULL, 0, {0}};
+    const char *key;
+    struct fy_node *k, *v, *outputs = NULL, *argv_node = NULL;
+    char p[300], q[400];
+    for (;;) {
+        if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
+            goto done;
+        if (!key)
+            break;
+        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        if (!strcmp(key, "argv")) {
+            size_t cnt;
+            if ((st = sp_sequence(c, v, p, 1, 1000, &cnt)) != RF_OK)
+                goto done;
+            argv_node = v;
+            e.argv = calloc(cnt, sizeof(char *));
+            if (!e.argv) {
+                st = rf_fail(c->err, RF_ENOMEM, "out of memory");
+                goto done;
+            }
+            for (size_t a = 0; a < cnt; a++) {
+                sp_pathf(q, sizeof q, "%s[%zu]", p, a);
+                if ((st = sp_string_dup(c, fy_node_sequence_get_by_index(v, (int)a), q, &e.argv[a])) != RF_OK)
+                    goto done;
+                e.argc = a + 1;
+            }
+            if (e.argv[0][0] == '\0') {
+                st = sp_fail(c, fy_node_sequence_get_by_index(v, 0), p, "the program name is empty");
+                goto done;
+            }
+        } else if (!strcmp(key, "templates")) {
+            if ((st = sp_mapping(c, v, p)) != RF_OK)
+                goto done;
+            int cnt = fy_node_mapping_item_count(v);
+            e.template_src = calloc(cnt > 0 ? (size_t)cnt : 1, sizeof(char *));
+            e.template_dst = calloc(cnt > 0 ? (size_t)cnt : 1, sizeof(char *));
+            if (!e.template_src || !e.template_dst) {
+                st = rf_fail(c->err, RF_ENOMEM, "out of memory");
+                goto done;
+            }
+            sp_iter jt = {v, NULL, 0, {0}};
+            const char *dst;
+            struct fy_node *dn, *sn;
+            for (;;) {
+                if ((st = sp_next(c, &jt, p, &dst, &dn, &sn)) != RF_OK)
+                    goto done;
+                if (!dst)
+                    break;
+                sp_pathf(q, sizeof q, "%s.%s", p, dst);
+                if (strchr(dst, '/') || !strcmp(dst, ".") || !strcmp(dst, "..")) {
+                    st = sp_fail(c, dn, q, "the destination must be a plain file name in the working directory");
+                    goto done;
+                }
+                char *src = NULL;
+                if ((st = sp_string_dup(c, sn, q, &src)) != RF_OK)
+                    goto done;
+                size_t t = e.n_templates++;
+                e.template_dst[t] = sp_strdup(dst);
+                e.template_src[t] = src[0] ? resolve(c->dir, src) : NULL;
+                free(src);
+                if (!e.template_dst[t] || !e.template_src[t]) {
+                    st = e.template_dst[t] && !e.template_src[t] && sn
+                             ? sp_fail(c, sn, q, "the template path is empty")
+                             : rf_fail(c->err, RF_ENOMEM, "out of memory");
+                    goto done;
+                }
+                if (access(e.template_src[t], R_OK) != 0) {
+                    st = sp_fail(c, sn, q, "cannot read the template '%s' (paths are relative to the study file)",
+                                 e.template_src[t]);
+                    goto done;
+                }
+            }
+        } else if (!strcmp(key, "outputs")) {
+            outputs = v;
+            if ((st = parse_program_outputs(c, v, &e)) != RF_OK)
+                goto done;
+        } else if (!strcmp(key, "timeout")) {
+            if ((st = sp_number(c, v, p, &e.timeout)) != RF_OK)
+                goto done;
+            if (e.timeout < 0) {
+                st = sp_fail(c, v, p, "the timeout must be >= 0 seconds (0 = none)");
+                goto done;
+            }
+        } else if (!strcmp(key, "keep_workdirs")) {
+            if ((st = sp_bool(c, v, p, &e.keep_workdirs)) != RF_OK)
+                goto done;
+        } else if (!strcmp(key, "workdir")) {
+            char *w = NULL;
+            if ((st = sp_string_dup(c, v, p, &w)) != RF_OK)
+                goto done;
+            free(e.workdir_root);
+            e.workdir_root = w[0] ? resolve(c->dir, w) : NULL;
+            free(w);
+        } else {
+            st = sp_fail(c, k, p, "unknown key; a program takes argv, templates, outputs, timeout, keep_workdirs, "
+                                  "workdir");
+            goto done;
+        }
+    }
+    if (!argv_node) {
+        st = sp_fail(c, n, path, "missing argv (the program and its arguments)");
+        goto done;
+    }
+    if (!outputs) {
+        st = sp_fail(c, n, path, "missing outputs (name: {file:, pattern:, unit:})");
+        goto done;
+    }
+    if (!e.workdir_root) {
+        const char *tmp = getenv("TMPDIR");
+        e.workdir_root = sp_strdup(tmp && tmp[0] ? tmp : "/tmp");
+        if (!e.workdir_root) {
+            st = rf_fail(c->err, RF_ENOMEM, "out of memory");
+            goto done;
+        }
+    }
+    st = rf_external_model_create(&e, s->n_params, (const char *const *)s->param_names, &s->model, c->err);
+    if (st != RF_OK) {
+        rf_model_free(&s->model);
+        st = sp_prefix(c, n, path);
+        goto done;
+    }
+    s->model_kind = RF_STUDY_MODEL_PROGRAM;
+    st = set_description(s, c->err, "program: %s", e.argv[0]);
+done:
+    free_external_spec(&e);
+    return st;
+}
+
+/* ---- impact ---- */
+
+/* Crisp inputs of the impact block: name -> field of rf_impact_input. */
+static double *impact_field(rf_impact_input *in, const char *name)
+{
+    struct { const char *name; double *field; } f[] = {
+        {"radius", &in->radius},
+        {"horizontal_axis", &in->horizontal_axis},
+        {"vertical_axis", &in->vertical_axis},
+        {"boulder_density", &in->boulder_density},
+        {"slope_density", &in->slope_density},
+        {"boulder_E", &in->boulder_E},
+        {"slope_E", &in->slope_E},
+        {"boulder_poisson", &in->boulder_poisson},
+        {"slope_poisson", &in->slope_poisson},
+        {"velocity", &in->velocity},
+        {"slope_angle", &in->slope_angle},
+        {"friction", &in->friction},
+    };
+    for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
+        if (!strcmp(name, f[k].name))
+            return f[k].field;
+    return NULL;
+}
+
+static const double deg = 3.14159265358979323846 / 180.0;
+
+static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
+{
+    const char *path = "model.impact";
+    rf_status st = sp_mapping(c, n, path);
+    if (st != RF_OK)
+        return st;
+    rf_impact_model_spec spec;
+    rf_impact_model_spec_default(&spec);
+    sp_iter it = {n, NULL, 0, {0}};
+    const char *key;
+    struct fy_node *k, *v;
+    char p[300];
+    for (;;) {
+        if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
+            return st;
+        if (!key)
+            break;
+        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        double *field = impact_field(&spec.base, key);
+        const char *str;
+        size_t len;
+        char buf[32];
+        if (field) {
+            for (size_t i = 0; i < s->n_params; i++)
+                if (!strcmp(s->param_names[i], key))
+                    return sp_fail(c, v, p, "'%s' is already a fuzzy parameter (line %d); give it in one place",
+                                   key, s->param_line[i]);
+            if ((st = sp_number(c, v, p, field)) != RF_OK)
+                return st;
+            if (field == &spec.base.slope_angle)
+                *field *= deg;
+        } else if (!strcmp(key, "solver") || !strcmp(key, "boundary")) {
+            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+                return st;
+            snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
+            rf_error tmp;
+            if (len >= 31 || (key[0] == 's' ? rf_impact_solver_parse(buf, &spec.solver, &tmp)
+                                            : rf_impact_boundary_parse(buf, &spec.fem_boundary, &tmp)) != RF_OK)
+                return sp_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter or rigid"
+                                                      : "unknown boundary; expected fixed or absorbing");
+        } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor")) {
+            double *d = key[0] == 'r' ? &spec.fem_refinement : &spec.fem_domain_factor;
+            if ((st = sp_number(c, v, p, d)) != RF_OK)
+                return st;
+            if (!(*d > 0))
+                return sp_fail(c, v, p, "must be > 0");
+        } else if (!strcmp(key, "threads")) {
+            long long t;
+            if ((st = sp_integer(c, v, p, 1, 1024, &t)) != RF_OK)
+                return st;
+            spec.fem_threads = (int)t;
+        } else if (!strcmp(key, "e_n")) {
+            if ((st = sp_number(c, v, p, &spec.e_n)) != RF_OK)
+                return st;
+            if (spec.e_n < 0 || spec.e_n > 1)
+                return sp_fail(c, v, p, "a coefficient of restitution must lie in [0, 1]");
+        } else if (!strcmp(key, "hunter_coefficient")) {
+            if ((st = sp_number(c, v, p, &spec.hunter_coefficient)) != RF_OK)
+                return st;
+            if (!(spec.hunter_coefficient >= 0))
+                return sp_fail(c, v, p, "must be >= 0");
+        } else {
+            return sp_fail(c, k, p,
+                           "unknown key; the impact model takes solver, boundary, refinement, domain_factor, "
+                           "threads, e_n, hunter_coefficient and crisp inputs (radius, horizontal_axis, "
+                           "vertical_axis, boulder_density, slope_density, boulder_E, slope_E, boulder_poisson, "
+                           "slope_poisson, velocity, slope_angle [deg], friction)");
+        }
+    }
+    /* Every parameter must name an impact input. */
+    for (size_t i = 0; i < s->n_params; i++) {
+        int found = 0;
+        for (size_t q = 0; q < RF_IMPACT_N_PARAMS; q++)
+            if (!strcmp(s->param_names[i], rf_impact_param_names[q]))
+                found = 1;
+        if (!found) {
+            char list[512] = "";
+            size_t len = 0;
+            for (size_t q = 0; q < RF_IMPACT_N_PARAMS && len < sizeof list; q++)
+                len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", q ? ", " : "", rf_impact_param_names[q]);
+            return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: '%s' is not an input of the impact model "
+                           "(inputs: %s)", c->file, s->param_line[i], s->param_names[i], s->param_names[i], list);
+        }
+    }
+    /* Check the crisp inputs with the fuzzy ones at their nominal values, then each support end. */
+    rf_impact_input probe = spec.base;
+    for (size_t i = 0; i < s->n_params; i++) {
+        double *f = impact_field(&probe, s->param_names[i]);
+        *f = rf_fuzzy_nominal(&s->inputs[i]) * (f == &probe.slope_angle ? deg : 1);
+    }
+    const char *bad = rf_impact_input_first_invalid(&probe);
+    if (bad) {
+        for (size_t i = 0; i < s->n_params; i++)
+            if (!strcmp(bad, s->param_names[i]))
+                return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: the nominal value %.17g is not admissible "
+                               "for the impact model", c->file, s->param_line[i], bad,
+                               rf_fuzzy_nominal(&s->inputs[i]));
+        /* A crisp value in the block: find its line. */
+        sp_iter jt = {n, NULL, 0, {0}};
+        for (;;) {
+            if (sp_next(c, &jt, path, &key, &k, &v) != RF_OK || !key)
+                break;
+            if (!strcmp(key, bad)) {
+                sp_pathf(p, sizeof p, "%s.%s", path, key);
+                rf_error tmp;
+                rf_impact_input_validate(&probe, &tmp);
+                return sp_fail(c, v, p, "not admissible: %s", tmp.msg);
+            }
+        }
+        rf_error tmp;
+        rf_impact_input_validate(&probe, &tmp);
+        return rf_fail(c->err, RF_EINVAL, "%s:%d: model.impact: the default value of '%s' is not admissible with "
+                       "these inputs: %s", c->file, sp_line(n), bad, tmp.msg);
+    }
+    for (size_t i = 0; i < s->n_params; i++) {
+        double lo, hi;
+        rf_fuzzy_cut(&s->inputs[i], 0.0, &lo, &hi);
+        double ends[2] = {lo, hi};
+        for (int e = 0; e < 2; e++) {
+            rf_impact_input q = probe;
+            double *f = impact_field(&q, s->param_names[i]);
+            *f = ends[e] * (f == &q.slope_angle ? deg : 1);
+            const char *b = rf_impact_input_first_invalid(&q);
+            if (b && !strcmp(b, s->param_names[i])) {
+                rf_error tmp;
+                rf_impact_input_validate(&q, &tmp);
+                return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: the support [%.17g, %.17g] reaches an "
+                               "inadmissible value %.17g: %s", c->file, s->param_line[i], s->param_names[i], lo, hi,
+                               ends[e], tmp.msg);
+            }
+        }
+    }
+    st = rf_impact_model_create(&spec, (const char *const *)s->param_names, s->n_params, &s->model, c->err);
+    if (st != RF_OK) {
+        rf_model_free(&s->model);
+        return sp_prefix(c, n, path);
+    }
+    s->model_kind = RF_STUDY_MODEL_IMPACT;
+    return set_description(s, c->err, "impact: %s solver", rf_impact_solver_name(spec.solver));
+}
+
+rf_status sp_parse_model(sp_ctx *c, struct fy_node *n, rf_study *s)
+{
+    rf_status st = sp_mapping(c, n, "model");
+    if (st != RF_OK)
+        return st;
+    if (fy_node_mapping_item_count(n) != 1)
+        return sp_fail(c, n, "model", "expected exactly one of formula, program, impact");
+    sp_iter it = {n, NULL, 0, {0}};
+    const char *key;
+    struct fy_node *k, *v;
+    if ((st = sp_next(c, &it, "model", &key, &k, &v)) != RF_OK)
+        return st;
+    if (!key)
+        return sp_fail(c, n, "model", "expected exactly one of formula, program, impact");
+    if (!strcmp(key, "formula"))
+        return parse_formula(c, v, s);
+    if (!strcmp(key, "program"))
+        return parse_program(c, v, s);
+    if (!strcmp(key, "impact"))
+        return parse_impact(c, v, s);
+    char p[300];
+    sp_pathf(p, sizeof p, "model.%s", key);
+    return sp_fail(c, k, p, "unknown model; expected formula, program or impact");
+}

@@ -1,0 +1,326 @@
+/* study_yaml.c - typed, located access to a libfyaml document for the study
+ * parser: every failure becomes "file:line: field = value: reason".
+ * Numbers must be plain finite scalars; quoted scalars are strings. */
+#include "study/study_internal.h"
+
+#include <ctype.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+char *sp_strndup(const char *s, size_t len)
+{
+    char *d = malloc(len + 1);
+    if (d) {
+        memcpy(d, s, len);
+        d[len] = '\0';
+    }
+    return d;
+}
+
+char *sp_strdup(const char *s) { return sp_strndup(s, strlen(s)); }
+
+void sp_pathf(char *buf, size_t size, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, size, fmt, ap);
+    va_end(ap);
+}
+
+/* libfyaml 0.7 has no public start mark for collections: use the scalar
+ * token, or the first entry of a collection, or the key naming an empty one. */
+static int scalar_line(struct fy_node *n)
+{
+    struct fy_token *t = fy_node_get_scalar_token(n);
+    const struct fy_mark *m = t ? fy_token_start_mark(t) : NULL;
+    return m ? m->line + 1 : 0;
+}
+
+int sp_line(struct fy_node *n)
+{
+    struct fy_node *start = n;
+    for (int depth = 0; n && depth < 64; depth++) {
+        void *it = NULL;
+        if (fy_node_get_type(n) == FYNT_SCALAR) {
+            int line = scalar_line(n);
+            if (line)
+                return line;
+            break;
+        } else if (fy_node_get_type(n) == FYNT_MAPPING) {
+            struct fy_node_pair *p = fy_node_mapping_iterate(n, &it);
+            if (!p)
+                break;
+            n = fy_node_pair_key(p) ? fy_node_pair_key(p) : fy_node_pair_value(p);
+        } else {
+            n = fy_node_sequence_iterate(n, &it);
+        }
+    }
+    struct fy_node *parent = start ? fy_node_get_parent(start) : NULL;
+    if (parent && fy_node_get_type(parent) == FYNT_MAPPING) {
+        void *it = NULL;
+        struct fy_node_pair *p;
+        while ((p = fy_node_mapping_iterate(parent, &it)))
+            if (fy_node_pair_value(p) == start && fy_node_pair_key(p) && fy_node_get_type(fy_node_pair_key(p)) == FYNT_SCALAR)
+                return scalar_line(fy_node_pair_key(p));
+    }
+    return 0;
+}
+
+/* The node's text for a message, shortened; "(empty)" for a missing node. */
+static void node_text(struct fy_node *n, char *buf, size_t size)
+{
+    if (!n) {
+        snprintf(buf, size, "(empty)");
+        return;
+    }
+    if (fy_node_get_type(n) == FYNT_SCALAR) {
+        size_t len = 0;
+        const char *s = fy_node_get_scalar(n, &len);
+        if (!s)
+            s = "", len = 0;
+        int quoted = fy_node_get_style(n) == FYNS_SINGLE_QUOTED || fy_node_get_style(n) == FYNS_DOUBLE_QUOTED;
+        if (len > 60)
+            snprintf(buf, size, "%s%.57s...%s", quoted ? "\"" : "", s, quoted ? "\"" : "");
+        else
+            snprintf(buf, size, "%s%.*s%s", quoted ? "\"" : "", (int)len, s, quoted ? "\"" : "");
+        return;
+    }
+    char *e = fy_emit_node_to_string(n, FYECF_MODE_FLOW_ONELINE);
+    if (!e) {
+        snprintf(buf, size, fy_node_get_type(n) == FYNT_MAPPING ? "{...}" : "[...]");
+        return;
+    }
+    size_t len = strlen(e);
+    while (len && isspace((unsigned char)e[len - 1]))
+        len--;
+    if (len > 60)
+        snprintf(buf, size, "%.57s...", e);
+    else
+        snprintf(buf, size, "%.*s", (int)len, e);
+    free(e);
+}
+
+rf_status sp_fail(sp_ctx *c, struct fy_node *n, const char *path, const char *fmt, ...)
+{
+    char reason[RF_ERROR_MAX / 2], value[128];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(reason, sizeof reason, fmt, ap);
+    va_end(ap);
+    node_text(n, value, sizeof value);
+    int line = sp_line(n ? n : c->last_key);
+    if (path && *path)
+        return rf_fail(c->err, RF_EINVAL, "%s:%d: %s = %s: %s", c->file, line, path, value, reason);
+    return rf_fail(c->err, RF_EINVAL, "%s:%d: %s", c->file, line, reason);
+}
+
+rf_status sp_prefix(sp_ctx *c, struct fy_node *n, const char *path)
+{
+    char old[RF_ERROR_MAX / 2];
+    sp_pathf(old, sizeof old, "%s", c->err ? c->err->msg : "invalid");
+    rf_status code = c->err ? c->err->code : RF_EINVAL;
+    if (code == RF_OK)
+        code = RF_EINVAL;
+    sp_fail(c, n, path, "%s", old);
+    if (c->err)
+        c->err->code = code;
+    return code;
+}
+
+static const char *type_name(struct fy_node *n)
+{
+    if (!n)
+        return "nothing";
+    switch (fy_node_get_type(n)) {
+    case FYNT_MAPPING: return "a mapping";
+    case FYNT_SEQUENCE: return "a list";
+    default:
+        if (fy_node_get_style(n) == FYNS_ALIAS)
+            return "an alias (aliases are not supported)";
+        if (fy_node_get_style(n) == FYNS_SINGLE_QUOTED || fy_node_get_style(n) == FYNS_DOUBLE_QUOTED)
+            return "a string";
+        return "a scalar";
+    }
+}
+
+rf_status sp_mapping(sp_ctx *c, struct fy_node *n, const char *path)
+{
+    if (!n || fy_node_get_type(n) != FYNT_MAPPING)
+        return sp_fail(c, n, path, "expected a mapping ({key: value, ...}), got %s", type_name(n));
+    return RF_OK;
+}
+
+rf_status sp_sequence(sp_ctx *c, struct fy_node *n, const char *path, size_t min, size_t max, size_t *count)
+{
+    if (!n || fy_node_get_type(n) != FYNT_SEQUENCE)
+        return sp_fail(c, n, path, "expected a list ([a, b, ...]), got %s", type_name(n));
+    int k = fy_node_sequence_item_count(n);
+    size_t cnt = k < 0 ? 0 : (size_t)k;
+    if (cnt < min || cnt > max) {
+        if (min == max)
+            return sp_fail(c, n, path, "expected a list of %zu items, got %zu", min, cnt);
+        return sp_fail(c, n, path, "expected a list of %zu to %zu items, got %zu", min, max, cnt);
+    }
+    if (count)
+        *count = cnt;
+    return RF_OK;
+}
+
+static int is_scalar(struct fy_node *n)
+{
+    return n && fy_node_get_type(n) == FYNT_SCALAR && fy_node_get_style(n) != FYNS_ALIAS;
+}
+
+static int is_quoted(struct fy_node *n)
+{
+    enum fy_node_style st = fy_node_get_style(n);
+    return st == FYNS_SINGLE_QUOTED || st == FYNS_DOUBLE_QUOTED;
+}
+
+rf_status sp_number(sp_ctx *c, struct fy_node *n, const char *path, double *v)
+{
+    if (!is_scalar(n) || is_quoted(n))
+        return sp_fail(c, n, path, "expected a number, got %s", type_name(n));
+    size_t len = 0;
+    const char *s = fy_node_get_scalar(n, &len);
+    char buf[64];
+    if (!s || len == 0 || len >= sizeof buf)
+        return sp_fail(c, n, path, "expected a number");
+    memcpy(buf, s, len);
+    buf[len] = '\0';
+    if (isspace((unsigned char)buf[0]))
+        return sp_fail(c, n, path, "expected a number");
+    char *end = NULL;
+    double d = strtod(buf, &end);
+    if (end == buf || *end != '\0')
+        return sp_fail(c, n, path, "expected a number");
+    if (!isfinite(d))
+        return sp_fail(c, n, path, "the number must be finite");
+    *v = d;
+    return RF_OK;
+}
+
+rf_status sp_integer(sp_ctx *c, struct fy_node *n, const char *path, long long min, long long max, long long *v)
+{
+    double d;
+    rf_status st = sp_number(c, n, path, &d);
+    if (st != RF_OK) {
+        if (is_scalar(n) && !is_quoted(n))
+            return sp_fail(c, n, path, "expected an integer");
+        return st;
+    }
+    if (d != floor(d))
+        return sp_fail(c, n, path, "expected an integer");
+    if (d < (double)min || d > (double)max)
+        return sp_fail(c, n, path, "must lie in [%lld, %lld]", min, max);
+    *v = (long long)d;
+    return RF_OK;
+}
+
+rf_status sp_bool(sp_ctx *c, struct fy_node *n, const char *path, int *v)
+{
+    if (!is_scalar(n) || is_quoted(n))
+        return sp_fail(c, n, path, "expected true or false, got %s", type_name(n));
+    size_t len = 0;
+    const char *s = fy_node_get_scalar(n, &len);
+    static const char *const yes[] = {"true", "yes", "on"}, *const no[] = {"false", "no", "off"};
+    for (size_t k = 0; k < 3; k++) {
+        if (s && len == strlen(yes[k]) && !strncasecmp(s, yes[k], len)) {
+            *v = 1;
+            return RF_OK;
+        }
+        if (s && len == strlen(no[k]) && !strncasecmp(s, no[k], len)) {
+            *v = 0;
+            return RF_OK;
+        }
+    }
+    return sp_fail(c, n, path, "expected true or false");
+}
+
+rf_status sp_string(sp_ctx *c, struct fy_node *n, const char *path, const char **s, size_t *len)
+{
+    if (!is_scalar(n))
+        return sp_fail(c, n, path, "expected a string, got %s", type_name(n));
+    size_t l = 0;
+    const char *p = fy_node_get_scalar(n, &l);
+    if (!p)
+        p = "", l = 0;
+    if (memchr(p, '\0', l))
+        return sp_fail(c, n, path, "the string contains a NUL character");
+    *s = p;
+    *len = l;
+    return RF_OK;
+}
+
+rf_status sp_string_dup(sp_ctx *c, struct fy_node *n, const char *path, char **out)
+{
+    const char *s;
+    size_t len;
+    rf_status st = sp_string(c, n, path, &s, &len);
+    if (st != RF_OK)
+        return st;
+    *out = sp_strndup(s, len);
+    if (!*out)
+        return rf_fail(c->err, RF_ENOMEM, "out of memory");
+    return RF_OK;
+}
+
+rf_status sp_numbers(sp_ctx *c, struct fy_node *n, const char *path, size_t min, size_t max, double *v,
+                     size_t *count)
+{
+    size_t cnt;
+    rf_status st = sp_sequence(c, n, path, min, max, &cnt);
+    if (st != RF_OK)
+        return st;
+    for (size_t k = 0; k < cnt; k++) {
+        char p[256];
+        sp_pathf(p, sizeof p, "%s[%zu]", path, k);
+        st = sp_number(c, fy_node_sequence_get_by_index(n, (int)k), p, &v[k]);
+        if (st != RF_OK)
+            return st;
+    }
+    if (count)
+        *count = cnt;
+    return RF_OK;
+}
+
+rf_status sp_next(sp_ctx *c, sp_iter *it, const char *path, const char **key, struct fy_node **keynode,
+                  struct fy_node **val)
+{
+    *key = NULL;
+    struct fy_node_pair *p = fy_node_mapping_iterate(it->map, &it->it);
+    if (!p)
+        return RF_OK;
+    struct fy_node *k = fy_node_pair_key(p);
+    struct fy_node *v = fy_node_pair_value(p);
+    if (!is_scalar(k))
+        return sp_fail(c, k ? k : it->map, path, "keys must be plain names, got %s", type_name(k));
+    size_t len = 0;
+    const char *s = fy_node_get_scalar(k, &len);
+    if (!s || len == 0 || len > 200 || memchr(s, '\0', len))
+        return sp_fail(c, k, path, "keys must be non-empty names of at most 200 characters");
+    /* Duplicate keys are allowed by the YAML parser so that we can name them here. */
+    void *jt = NULL;
+    for (size_t j = 0; j < it->index; j++) {
+        struct fy_node_pair *q = fy_node_mapping_iterate(it->map, &jt);
+        size_t ql = 0;
+        const char *qs = fy_node_get_scalar(fy_node_pair_key(q), &ql);
+        if (qs && ql == len && !memcmp(qs, s, len)) {
+            char full[300];
+            sp_pathf(full, sizeof full, "%s%s%.*s", path, *path ? "." : "", (int)len, s);
+            return sp_fail(c, k, "", "%s: duplicate key '%.*s' (first given at line %d)", full, (int)len, s,
+                           sp_line(fy_node_pair_key(q)));
+        }
+    }
+    it->index++;
+    c->last_key = k;
+    snprintf(it->key, sizeof it->key, "%.*s", (int)len, s);
+    *key = it->key;
+    *keynode = k;
+    *val = v;
+    return RF_OK;
+}
