@@ -138,6 +138,14 @@ static void test_nan_is_an_error(void **state)
     assert_int_equal(rf_model_eval(&m, &x, &y, &err), RF_OK);
     assert_true(y == 4.0);
     rf_model_free(&m);
+
+    const char *inv[] = {"1/(x1 - 2)"};
+    assert_int_equal(rf_formula_model_create(1, params3, 1, out, inv, &m, &err), RF_OK);
+    x = 2;
+    assert_int_equal(rf_model_eval(&m, &x, &y, &err), RF_EMODEL);
+    print_message("message: %s\n", err.msg);
+    assert_string_equal(err.msg, "output 'root': \"1/(x1 - 2)\" is infinite at (x1=2)");
+    rf_model_free(&m);
 }
 
 /* Many outputs, many parameters: y_k = sum_i (k+1) * p_i^(1 + (i+k)%3). */

@@ -259,7 +259,7 @@ static rf_status formula_eval(void *ctx, const double *x, double *y, rf_error *e
         if (mupError(w->handles[k])) {
             st = rf_fail(err, RF_EMODEL, "output '%s': evaluation of \"%s\" failed: %s", c->output_names[k],
                          c->expressions[k], mupGetErrorMsg(w->handles[k]));
-        } else if (isnan(y[k])) {
+        } else if (!isfinite(y[k])) {
             char at[RF_ERROR_MAX / 2];
             size_t used = 0;
             at[0] = '\0';
@@ -269,8 +269,8 @@ static rf_status formula_eval(void *ctx, const double *x, double *y, rf_error *e
                     break;
                 used += (size_t)n;
             }
-            st = rf_fail(err, RF_EMODEL, "output '%s': \"%s\" is not a number (NaN) at (%s)", c->output_names[k],
-                         c->expressions[k], at);
+            st = rf_fail(err, RF_EMODEL, "output '%s': \"%s\" is %s at (%s)", c->output_names[k], c->expressions[k],
+                         isnan(y[k]) ? "not a number (NaN)" : "infinite", at);
         }
     }
 
