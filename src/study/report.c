@@ -47,7 +47,7 @@ static const char *mono_text(rf_monotonicity m)
 static void print_value(FILE *f, double v, rf_na_reason why)
 {
     if (isnan(v))
-        fprintf(f, " %-12s", why != RF_NA_NONE ? "n/a" : "nan");
+        fprintf(f, " %12s", why != RF_NA_NONE ? "n/a" : "nan");
     else
         fprintf(f, " %12.6g", v);
 }
@@ -55,13 +55,17 @@ static void print_value(FILE *f, double v, rf_na_reason why)
 void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_analysis *an)
 {
     size_t n = res->n_inputs, m = res->levels;
+    int w = 12; /* width of the input-name column */
+    for (size_t i = 0; i < n; i++)
+        if ((int)strlen(s->param_names[i]) > w)
+            w = (int)strlen(s->param_names[i]);
     fprintf(f, "\nStudy '%s': %s form, m = %zu levels, %zu input%s, model %s\n", s->name,
             rf_tm_scheme_name(res->scheme), m, n, n == 1 ? "" : "s", s->model_description);
     fprintf(f, "Evaluations: %zu requested, %zu distinct (probe %zu, left/right grid %zu)\n", res->requested,
             res->distinct, res->probe_evaluations, res->lr_evaluations);
     fprintf(f, "\nInputs:\n");
     for (size_t i = 0; i < n; i++) {
-        fprintf(f, "  %-16s %s%s%s%s", s->param_names[i], s->param_shapes[i], s->param_units[i][0] ? " [" : "",
+        fprintf(f, "  %-*s  %s%s%s%s", w, s->param_names[i], s->param_shapes[i], s->param_units[i][0] ? " [" : "",
                 s->param_units[i], s->param_units[i][0] ? "]" : "");
         if (res->scheme == RF_TM_EXTENDED && res->input_class)
             fprintf(f, "  class: %s%s", mono_text(res->input_class[i]),
@@ -85,10 +89,12 @@ void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res
                 fprintf(f, " %s=%.10g", s->param_names[i], xs[(k * (m + 1) + 0) * n + i]);
             fputc('\n', f);
         }
-        fprintf(f, "  influence:  %-12s %12s %12s %12s %12s\n", "input", "rho", "kappa", "rho_left", "rho_right");
+        if (isnan(res->nominal[k]))
+            fprintf(f, "  note: the model returns NaN for this output at the nominal point (undefined here)\n");
+        fprintf(f, "  influence:\n    %-*s %12s %12s %12s %12s\n", w, "input", "rho", "kappa", "rho_left", "rho_right");
         for (size_t i = 0; i < n; i++) {
             size_t q = k * n + i;
-            fprintf(f, "              %-12s", s->param_names[i]);
+            fprintf(f, "    %-*s", w, s->param_names[i]);
             print_value(f, an->rho[q], an->reason_hanss[q]);
             print_value(f, an->kappa[q], an->reason_hanss[q]);
             print_value(f, an->rho_left[q], an->reason_lr[q]);
@@ -100,7 +106,8 @@ void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res
             fputc('\n', f);
         }
         if (isnan(an->degree_of_uncertainty[k]))
-            fprintf(f, "  degree of uncertainty: n/a (%s)\n", rf_na_reason_text(an->reason_nu[k]));
+            fprintf(f, "  degree of uncertainty: n/a (%s)\n",
+                    an->reason_nu[k] != RF_NA_NONE ? rf_na_reason_text(an->reason_nu[k]) : "undefined");
         else
             fprintf(f, "  degree of uncertainty: %.6g (interaction part %.6g)\n", an->degree_of_uncertainty[k],
                     an->interaction[k]);

@@ -551,7 +551,54 @@ static rf_status split_path(const char *path, char **dir, char **stem, rf_error 
     return RF_OK;
 }
 
-static rf_status load(const char *name, const char *path, const char *buf, size_t len, rf_study *s, rf_error *err)
+/* YAML text must be UTF-8 without NUL bytes.  Checked before libfyaml sees
+ * the text: libfyaml 0.7.12 loops forever on some invalid bytes after '%'
+ * (found by fuzz_study: "%\xff\xff\xff\xf8"). */
+static rf_status check_text(const char *name, const char *buf, size_t len, rf_error *err)
+{
+    const unsigned char *p = (const unsigned char *)buf;
+    int line = 1;
+    size_t col = 1;
+    for (size_t k = 0; k < len;) {
+        unsigned char ch = p[k];
+        size_t extra = 0;
+        unsigned cp = 0;
+        if (ch == 0)
+            return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: the file contains a NUL byte (not a text file?)", name,
+                           line, col);
+        if (ch < 0x80)
+            extra = 0, cp = ch;
+        else if (ch >= 0xc2 && ch <= 0xdf)
+            extra = 1, cp = ch & 0x1f;
+        else if (ch >= 0xe0 && ch <= 0xef)
+            extra = 2, cp = ch & 0x0f;
+        else if (ch >= 0xf0 && ch <= 0xf4)
+            extra = 3, cp = ch & 0x07;
+        else
+            goto bad;
+        for (size_t e = 1; e <= extra; e++) {
+            if (k + e >= len || (p[k + e] & 0xc0) != 0x80)
+                goto bad;
+            cp = (cp << 6) | (p[k + e] & 0x3f);
+        }
+        if ((extra == 2 && (cp < 0x800 || (cp >= 0xd800 && cp <= 0xdfff))) || (extra == 3 && (cp < 0x10000 || cp > 0x10ffff)))
+            goto bad;
+        if (ch == '\n')
+            line++, col = 1;
+        else
+            col++;
+        k += extra + 1;
+        continue;
+    bad:
+        return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: byte 0x%02x is not valid UTF-8 (study files are UTF-8 text)",
+                       name, line, col, ch);
+    }
+    return RF_OK;
+}
+
+#define MAX_STUDY_BYTES (16u << 20)
+
+static rf_status load(const char *name, const char *buf, size_t len, rf_study *s, rf_error *err)
 {
     memset(s, 0, sizeof *s);
     s->scheme = RF_TM_REDUCED;
@@ -571,6 +618,10 @@ static rf_status load(const char *name, const char *path, const char *buf, size_
     }
     s->name = stem;
 
+    if ((st = check_text(name, buf, len, err)) != RF_OK) {
+        rf_study_free(s);
+        return st;
+    }
     struct fy_diag_cfg dc;
     fy_diag_cfg_default(&dc);
     dc.fp = NULL;
@@ -586,15 +637,12 @@ static rf_status load(const char *name, const char *path, const char *buf, size_
     /* Duplicate keys are accepted by the parser and reported by us with both lines. */
     pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
     pc.diag = diag;
-    struct fy_document *doc = path ? fy_document_build_from_file(&pc, path)
-                                   : fy_document_build_from_string(&pc, buf, len);
+    struct fy_document *doc = fy_document_build_from_string(&pc, len ? buf : "", len);
     if (!doc) {
         void *it = NULL;
         struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
         if (e)
             st = rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg, e->column);
-        else if (path)
-            st = rf_fail(err, RF_EIO, "%s: cannot read the study file: %s", name, strerror(errno));
         else
             st = rf_fail(err, RF_EPARSE, "%s:1: not valid YAML", name);
         fy_diag_destroy(diag);
@@ -614,13 +662,27 @@ rf_status rf_study_load(const char *path, rf_study *study, rf_error *err)
 {
     if (!path || !study)
         return rf_fail(err, RF_EINTERNAL, "rf_study_load: NULL argument");
+    memset(study, 0, sizeof *study);
     FILE *f = fopen(path, "rb");
-    if (!f) {
-        memset(study, 0, sizeof *study);
+    if (!f)
         return rf_fail(err, RF_EIO, "%s: cannot open the study file: %s", path, strerror(errno));
+    char *buf = malloc(MAX_STUDY_BYTES + 1);
+    if (!buf) {
+        fclose(f);
+        return rf_fail(err, RF_ENOMEM, "out of memory");
     }
+    size_t len = fread(buf, 1, MAX_STUDY_BYTES + 1, f);
+    int bad = ferror(f);
     fclose(f);
-    return load(path, path, NULL, 0, study, err);
+    rf_status st;
+    if (bad)
+        st = rf_fail(err, RF_EIO, "%s: cannot read the study file", path);
+    else if (len > MAX_STUDY_BYTES)
+        st = rf_fail(err, RF_EINVAL, "%s: the study file is larger than %u bytes", path, MAX_STUDY_BYTES);
+    else
+        st = load(path, buf, len, study, err);
+    free(buf);
+    return st;
 }
 
 rf_status rf_study_load_buffer(const char *name, const char *buf, size_t len, rf_study *study, rf_error *err)
@@ -629,5 +691,5 @@ rf_status rf_study_load_buffer(const char *name, const char *buf, size_t len, rf
         return rf_fail(err, RF_EINTERNAL, "rf_study_load_buffer: NULL argument");
     if (!buf)
         buf = "";
-    return load(name ? name : "<buffer>", NULL, buf, len, study, err);
+    return load(name ? name : "<buffer>", buf, len, study, err);
 }

@@ -1,0 +1,207 @@
+/* test_runner.c - the parallel evaluator: the same outputs bit for bit with
+ * 1, 2 and 4 threads (directly and through rf_tm_run), and failure
+ * propagation (the lowest failing index, its message, and the TM's
+ * parameter vector in the final message). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "rockfuzz/runner.h"
+#include "rockfuzz/tm.h"
+#include "test_util.h"
+
+/* Thread-safe model: y0 = x0*x1 + sin(x0), y1 = exp(-x1); fails when x0 >= fail_at. */
+typedef struct {
+    double fail_at;
+} runner_ctx;
+
+static rf_status runner_eval(void *ctx, const double *x, double *y, rf_error *err)
+{
+    const runner_ctx *c = ctx;
+    if (x[0] >= c->fail_at)
+        return rf_fail(err, RF_EMODEL, "x0 = %g is past the failure threshold", x[0]);
+    y[0] = x[0] * x[1] + sin(x[0]);
+    y[1] = exp(-x[1]);
+    return RF_OK;
+}
+
+static rf_model runner_model(runner_ctx *ctx)
+{
+    rf_model m;
+    memset(&m, 0, sizeof m);
+    const char *names[2] = {"y0", "y1"};
+    rf_model_init_outputs(&m, 2, names, NULL, NULL);
+    m.n_inputs = 2;
+    m.eval = runner_eval;
+    m.ctx = ctx;
+    m.threads_per_eval = 1;
+    return m;
+}
+
+#define NPOINTS 2000
+
+static void test_same_outputs_any_thread_count(void **state)
+{
+    (void)state;
+    runner_ctx ctx = {INFINITY};
+    rf_model m = runner_model(&ctx);
+    double *x = malloc(2 * NPOINTS * sizeof *x);
+    double *y[3];
+    for (size_t k = 0; k < NPOINTS; k++) {
+        x[2 * k] = 0.001 * (double)k;
+        x[2 * k + 1] = 1.0 - 0.0005 * (double)k;
+    }
+    const int jobs[3] = {1, 2, 4};
+    for (int t = 0; t < 3; t++) {
+        y[t] = calloc(2 * NPOINTS, sizeof(double));
+        rf_runner r;
+        rf_runner_init(&r);
+        r.jobs = jobs[t];
+        size_t failed = 12345;
+        rf_error err;
+        assert_int_equal(rf_runner_evaluate(&r, &m, NPOINTS, x, y[t], &failed, &err), RF_OK);
+        assert_int_equal(failed, 12345); /* untouched on success */
+        assert_int_equal(r.evaluated, NPOINTS);
+        assert_int_equal(r.failed, 0);
+        assert_int_equal(r.jobs_used, jobs[t]);
+    }
+    assert_memory_equal(y[0], y[1], 2 * NPOINTS * sizeof(double));
+    assert_memory_equal(y[0], y[2], 2 * NPOINTS * sizeof(double));
+    for (int t = 0; t < 3; t++)
+        free(y[t]);
+    free(x);
+    rf_model_free(&m);
+}
+
+static void test_failure_reports_lowest_index(void **state)
+{
+    (void)state;
+    runner_ctx ctx = {1.0}; /* x0 = 0.001 k fails from k = 1000 on */
+    rf_model m = runner_model(&ctx);
+    double *x = malloc(2 * NPOINTS * sizeof *x), *y = calloc(2 * NPOINTS, sizeof(double));
+    for (size_t k = 0; k < NPOINTS; k++) {
+        x[2 * k] = 0.001 * (double)k;
+        x[2 * k + 1] = 0.5;
+    }
+    for (int jobs = 1; jobs <= 4; jobs *= 2) {
+        rf_runner r;
+        rf_runner_init(&r);
+        r.jobs = jobs;
+        size_t failed = 0;
+        rf_error err;
+        memset(&err, 0, sizeof err);
+        assert_int_equal(rf_runner_evaluate(&r, &m, NPOINTS, x, y, &failed, &err), RF_EMODEL);
+        assert_int_equal(failed, 1000);
+        assert_non_null(strstr(err.msg, "x0 = 1 is past"));
+        assert_true(r.failed >= 1);
+        /* work stops being handed out: far fewer than all points ran */
+        assert_true(r.evaluated + r.failed < NPOINTS);
+    }
+    free(x);
+    free(y);
+    rf_model_free(&m);
+}
+
+static void test_tm_through_runner(void **state)
+{
+    (void)state; /* tm_spec 6.1 through the threaded evaluator, 1 and 2 threads */
+    runner_ctx ctx = {INFINITY};
+    rf_model m = runner_model(&ctx);
+    rf_fuzzy in[2];
+    rf_fuzzy_tfn(&in[0], 2, 1, 1, NULL);
+    rf_fuzzy_tfn(&in[1], 3, 1, 2, NULL);
+    rf_tm_result res[2];
+    for (int t = 0; t < 2; t++) {
+        rf_runner r;
+        rf_runner_init(&r);
+        r.jobs = t + 1;
+        rf_evaluator ev = rf_runner_evaluator(&r);
+        rf_tm_options opt;
+        rf_tm_options_default(&opt);
+        opt.scheme = RF_TM_GENERAL;
+        opt.levels = 4;
+        opt.evaluator = &ev;
+        rf_error err;
+        assert_int_equal(rf_tm_run(in, 2, &m, &opt, &res[t], &err), RF_OK);
+        assert_int_equal(r.evaluated, res[t].distinct);
+    }
+    size_t cnt = 2 * 5;
+    assert_memory_equal(res[0].lo, res[1].lo, cnt * sizeof(double));
+    assert_memory_equal(res[0].hi, res[1].hi, cnt * sizeof(double));
+    assert_memory_equal(res[0].x_lo, res[1].x_lo, cnt * 2 * sizeof(double));
+
+    /* failure through the TM: the message carries the failing parameter vector */
+    ctx.fail_at = 2.5;
+    rf_runner r;
+    rf_runner_init(&r);
+    r.jobs = 2;
+    rf_evaluator ev = rf_runner_evaluator(&r);
+    rf_tm_options opt;
+    rf_tm_options_default(&opt);
+    opt.levels = 4;
+    opt.evaluator = &ev;
+    rf_tm_result bad;
+    rf_error err;
+    memset(&err, 0, sizeof err);
+    assert_int_not_equal(rf_tm_run(in, 2, &m, &opt, &bad, &err), RF_OK);
+    assert_non_null(strstr(err.msg, "past the failure threshold"));
+    rf_tm_result_free(&bad);
+    for (int t = 0; t < 2; t++)
+        rf_tm_result_free(&res[t]);
+    rf_fuzzy_free(&in[0]);
+    rf_fuzzy_free(&in[1]);
+    rf_model_free(&m);
+}
+
+static void test_default_jobs(void **state)
+{
+    (void)state;
+    rf_model m;
+    memset(&m, 0, sizeof m);
+    m.threads_per_eval = 1;
+    int one = rf_runner_default_jobs(&m);
+    assert_true(one >= 1);
+    m.threads_per_eval = 1000;
+    assert_int_equal(rf_runner_default_jobs(&m), 1);
+    m.threads_per_eval = 2;
+    assert_int_equal(rf_runner_default_jobs(&m), one / 2 > 0 ? one / 2 : 1);
+}
+
+static void test_progress_line(void **state)
+{
+    (void)state;
+    runner_ctx ctx = {INFINITY};
+    rf_model m = runner_model(&ctx);
+    double x[8] = {0, 1, 1, 1, 2, 1, 3, 1}, y[8];
+    char *buf = NULL;
+    size_t size = 0;
+    FILE *f = open_memstream(&buf, &size);
+    rf_runner r;
+    rf_runner_init(&r);
+    r.jobs = 2;
+    r.progress = 1;
+    r.stream = f;
+    r.planned_total = 4;
+    rf_error err;
+    assert_int_equal(rf_runner_evaluate(&r, &m, 4, x, y, NULL, &err), RF_OK);
+    fclose(f);
+    assert_non_null(strstr(buf, "evaluations 4/4"));
+    assert_non_null(strstr(buf, "failed 0"));
+    free(buf);
+    rf_model_free(&m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_same_outputs_any_thread_count),
+        cmocka_unit_test(test_failure_reports_lowest_index),
+        cmocka_unit_test(test_tm_through_runner),
+        cmocka_unit_test(test_default_jobs),
+        cmocka_unit_test(test_progress_line),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
