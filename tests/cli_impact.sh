@@ -65,5 +65,24 @@ expect_error 2 "'--velocity' needs a value" --solver hertz --velocity
 expect_error 2 "--threads '0'" --threads 0
 expect_error 1 "horizontal_axis" --solver hertz --c 1.2 --slope-angle 30
 
+# --- FE on the coarsest mesh, when the solver is built ---
+out=$("$bin" impact --solver fem --refinement 2 --boundary absorbing --json 2>/dev/null)
+status=$?
+if [ $status -eq 0 ]; then
+    if command -v python3 >/dev/null; then
+        python3 - "$out" <<'PY' || fail "fem JSON: $out"
+import json, sys
+o = json.loads(sys.argv[1])
+assert abs(o["contact_force_max"] / 9.0089e7 - 1) < 0.1, o
+assert 0.95 < o["R_n"] < 1.0 and o["nodes"] > 0 and o["steps"] > 0, o
+assert abs(o["energy_error"]) < 1e-2, o
+PY
+    fi
+else
+    err=$("$bin" impact --solver fem --refinement 2 2>&1 >/dev/null)
+    case "$err" in *"not built"*) echo "cli_impact: FE solver not built, FE check skipped" ;;
+        *) fail "fem run exited $status: $err" ;; esac
+fi
+
 [ "$fails" -eq 0 ] && echo "cli_impact: all checks passed"
 exit $((fails > 0))

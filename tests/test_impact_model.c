@@ -231,6 +231,49 @@ static void test_errors(void **state)
 #endif
 }
 
+#if __has_include("rockfuzz/fem.h")
+#include "rockfuzz/fem.h"
+/* The FE model on the coarsest mesh (a/h = 2): same numbers as a direct
+ * rf_fem_impact call with the same options, and near Hertz. */
+static void test_fem_model(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
+    spec.fem_refinement = 2.0;
+    spec.fem_boundary = RF_IMPACT_BOUNDARY_ABSORBING;
+    const char *names[] = {"velocity", "slope_angle"};
+    rf_model model;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_model_create(&spec, names, 2, &model, &err), RF_OK);
+    assert_non_null(strstr(model.identity, "refinement=2 "));
+    assert_non_null(strstr(model.identity, "boundary=absorbing"));
+    double x[2] = {10.0, 0.0}, y[7], want[7];
+    if (rf_model_eval(&model, x, y, &err) != RF_OK)
+        fail_msg("FE eval: %s", err.msg);
+    rf_fem_options opt;
+    rf_fem_options_default(&opt);
+    opt.refinement = 2.0;
+    opt.boundary = RF_FEM_BOUNDARY_ABSORBING;
+    rf_impact_input in = spec.base;
+    rf_impact_output o;
+    assert_int_equal(rf_fem_impact(&in, &opt, &o, NULL, &err), RF_OK);
+    outputs_of(&o, want);
+    assert_same(y, want, 7);
+    rf_impact_output h;
+    assert_int_equal(rf_impact_hertz(&in, &h, &err), RF_OK);
+    assert_true(fabs(y[0] / h.contact_force_max - 1) < 0.1);
+    assert_true(fabs(y[2] / h.contact_duration - 1) < 0.1);
+    assert_true(y[4] > 0.95 && y[4] < 1.0);
+    /* the FE solver's own refusal (inclined slope) is a model error */
+    x[1] = 30.0;
+    assert_int_equal(rf_model_eval(&model, x, y, &err), RF_EMODEL);
+    assert_non_null(strstr(err.msg, "fem"));
+    rf_model_free(&model);
+}
+#else
+static void test_fem_model(void **state) { skip(); (void)state; }
+#endif
+
 typedef struct {
     const rf_model *model;
     int fails;
@@ -279,6 +322,7 @@ int main(void)
         cmocka_unit_test(test_angle_in_degrees_and_spheroid),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_concurrent),
+        cmocka_unit_test(test_fem_model),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -157,26 +157,6 @@ static void print_json(const rf_impact_output *o)
     printf("}\n");
 }
 
-/* Round trip of a P wave to the fixed outer boundary and back, against the
- * Hertz contact duration (SYSTEM.md "known subtleties"). */
-static void reflection_note(FILE *f, const rf_impact_model_spec *spec, const rf_impact_input *in)
-{
-    if (spec->solver != RF_IMPACT_FEM || spec->fem_boundary != RF_IMPACT_BOUNDARY_FIXED)
-        return;
-    double nu = in->slope_poisson;
-    double cp = sqrt(in->slope_E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * in->slope_density));
-    double t_back = 2.0 * spec->fem_domain_factor * in->radius / cp;
-    rf_impact_output h;
-    if (rf_impact_hertz(in, &h, NULL) != RF_OK)
-        return;
-    if (t_back < h.contact_duration)
-        fprintf(f,
-                "note: P waves reflected by the fixed outer boundary return after 2L/c_p = "
-                "%.3f ms, before the Hertz contact ends (t_c = %.3f ms); they can affect R_n "
-                "(try --boundary absorbing)\n",
-                t_back * 1e3, h.contact_duration * 1e3);
-}
-
 static void print_value(const char *what, double x, const char *unit)
 {
     if (isnan(x))
@@ -223,6 +203,11 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     if (spec->solver == RF_IMPACT_FEM)
         printf("  FE                    energy error %.3g, %g nodes, %g elements, %g steps, "
                "%.3g s\n", o->energy_error, o->nodes, o->elements, o->steps, o->wall_seconds);
+}
+
+/* Analytic references for comparison with any solver. */
+static void print_references(const rf_impact_model_spec *spec, const rf_impact_input *in)
+{
     rf_impact_output ref;
     if (spec->solver != RF_IMPACT_HERTZ && rf_impact_hertz(in, &ref, NULL) == RF_OK)
         printf("\nHertz reference       F = %.6g N, delta = %.6g m, t_c = %.6g s, a = %.6g m\n",
@@ -232,7 +217,6 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     if (hi < 1.0)
         printf("Hunter e_n band       %.5f (A = 1.04, Johnson 1985) .. %.5f (A = 1.171)\n",
                sqrt(1 - lo), sqrt(1 - hi));
-    reflection_note(stdout, spec, in);
 }
 
 #ifdef RF_HAVE_FEM
@@ -250,17 +234,17 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
     }
     if (json) {
         print_json(out);
-        reflection_note(stderr, spec, &spec->base);
     } else {
         print_summary(spec, &spec->base, out);
-        printf("FE mesh               boulder %ld nodes / %ld elements, slope %ld / %ld; "
+        printf("  FE mesh               boulder %ld nodes / %ld elements, slope %ld / %ld; "
                "h = %.3g m at the contact (Hertz a = %.3g m)\n",
                hist.boulder_nodes, hist.boulder_elements, hist.slope_nodes, hist.slope_elements,
                hist.h_contact, hist.hertz_radius);
-        printf("FE time step          %.3g s (eigenvalue bound %.3g s)\n", hist.dt, hist.dt_bound);
+        printf("  FE time step          %.3g s (eigenvalue bound %.3g s)\n", hist.dt, hist.dt_bound);
         if (hist.ke0 > 0.0)
-            printf("FE energy at the end  boulder vibration %.3g, slope %.3g of the initial KE\n",
+            printf("  FE energy at the end  boulder vibration %.3g, slope %.3g of the initial KE\n",
                    hist.vibration_energy / hist.ke0, hist.slope_energy / hist.ke0);
+        print_references(spec, &spec->base);
     }
     if (hist.warning[0])
         fprintf(stderr, "warning: %s\n", hist.warning);
@@ -421,9 +405,9 @@ int rf_cli_impact(int argc, char **argv)
     }
     if (json) {
         print_json(&out);
-        reflection_note(stderr, &spec, in);
     } else {
         print_summary(&spec, in, &out);
+        print_references(&spec, in);
     }
     return 0;
 }
