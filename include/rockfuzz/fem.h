@@ -1,0 +1,94 @@
+/* fem.h - axisymmetric explicit finite-element model of the normal impact of
+ * an elastic boulder (sphere or spheroid) on an elastic half-space.
+ *
+ * The half-space is a hemisphere of radius domain_factor * r0 centred on the
+ * first-contact point; its curved surface is fixed or absorbing
+ * (Lysmer-Kuhlemeyer dashpots).  Both bodies are meshed with 4-node
+ * axisymmetric quads (full 2x2 integration, lumped mass) by a structured
+ * mesher that puts a node exactly at the first-contact point and sizes the
+ * fine zone from the Hertz contact radius.  Time integration: central
+ * differences at the element eigenvalue bound; contact: forward-increment
+ * Lagrange multipliers (Carpenter, Taylor & Katona 1991), node-to-segment
+ * with small sliding, frictionless.  No artificial damping of any kind.
+ * See docs/validation.md for the measured accuracy.
+ *
+ * Units: SI.  Thread safety: rf_fem_impact keeps all state in its own
+ * allocations and may be called from several threads at once. */
+#ifndef ROCKFUZZ_FEM_H
+#define ROCKFUZZ_FEM_H
+
+#include "rockfuzz/impact.h"
+#include "rockfuzz/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum { RF_FEM_BOUNDARY_FIXED, RF_FEM_BOUNDARY_ABSORBING } rf_fem_boundary;
+
+typedef struct {
+    double refinement;         /* elements across the Hertz contact radius a (a/h), default 10, >= 2 */
+    double domain_factor;      /* hemisphere radius / r0, default 10 */
+    rf_fem_boundary boundary;  /* outer curved surface of the half-space, default fixed */
+    double end_time;           /* [s]; 0 = automatic: >= 1.3 Hertz durations and until
+                                  the contact has stayed open for a while */
+    int threads;               /* OpenMP threads for one impact, default 1 */
+    const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (existing dir) */
+    double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 */
+    /* --- expert settings (defaults are the validated ones) --- */
+    double core_factor;        /* uniform fine zone extends core_factor * a, default 2.5 */
+    double grading;            /* element-size growth per element outside the fine zone, default 1.15 */
+    double dt_safety;          /* time step = dt_safety * element eigenvalue bound, default 0.9 */
+    int vtk_frames;            /* approximate number of VTK frames, default 60 */
+    int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
+    long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */
+} rf_fem_options;
+
+void rf_fem_options_default(rf_fem_options *opt);
+
+/* Time series and diagnostics of one impact.  Energies in J. */
+typedef struct {
+    size_t n;                     /* samples */
+    double *t;                    /* [s] */
+    double *contact_force;        /* sum of contact multipliers [N] */
+    double *compression;          /* approach of the boulder CM [m] */
+    double *contact_radius;       /* outermost contact, interpolated [m] */
+    double *kinetic_boulder, *strain_boulder;
+    double *kinetic_slope, *strain_slope;
+    double *contact_work;         /* work of the contact forces (ideally 0) */
+    double *absorbed;             /* energy taken out by the dashpots */
+    double *closure;              /* total + absorbed - KE0 (energy error) */
+    double *boulder_velocity;     /* rigid (CM) vertical velocity [m/s] */
+
+    /* diagnostics */
+    double dt;                    /* time step used [s] */
+    double dt_bound;              /* element eigenvalue bound 2/sqrt(max lambda) [s] */
+    double dt_edge;               /* smallest edge / c_p, for comparison only [s] */
+    double h_contact;             /* slope element size in the fine zone [m] */
+    double hertz_radius;          /* Hertz contact radius a used to size the mesh [m] */
+    double hertz_duration;        /* Hertz contact duration [s] */
+    double boulder_mass;          /* exact (analytic) boulder mass [kg] */
+    double boulder_mesh_mass;     /* mass of the boulder mesh before the density correction [kg] */
+    double penetration_max;       /* largest penetration of any contact pair [m] */
+    double slip_max;              /* largest radial slip of a contact pair while in contact [m] */
+    double reflection_time;       /* 2 L / c_p of the slope [s] */
+    double vibration_energy;      /* boulder KE + strain energy - rigid KE at the end [J] */
+    double slope_energy;          /* slope KE + strain energy at the end [J] */
+    double ke0;                   /* initial kinetic energy [J] */
+    long boulder_nodes, boulder_elements, slope_nodes, slope_elements;
+    char warning[512];            /* "" or a human-readable warning */
+} rf_fem_history;
+
+void rf_fem_history_free(rf_fem_history *hist);
+
+/* Run one normal impact.  out is filled on success; hist (may be NULL) gets
+ * time series and diagnostics and must be released with rf_fem_history_free.
+ * Returns RF_EINVAL for an inclined slope (slope_angle != 0), bad inputs, or
+ * a mesh too coarse for the contact radius. */
+rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt,
+                        rf_impact_output *out, rf_fem_history *hist, rf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

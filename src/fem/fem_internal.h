@@ -1,0 +1,71 @@
+/* fem_internal.h - data shared by the parts of the axisymmetric impact solver:
+ * the mesh (fem_mesh.c), the element routines (fem_element.c), VTK output
+ * (fem_vtk.c) and the time loop with contact (fem_solver.c). */
+#ifndef ROCKFUZZ_FEM_INTERNAL_H
+#define ROCKFUZZ_FEM_INTERNAL_H
+
+#include <stddef.h>
+
+#include "rockfuzz/status.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+#ifndef M_SQRT2
+#define M_SQRT2 1.41421356237309504880
+#endif
+
+enum { FEM_BOULDER = 0, FEM_SLOPE = 1 };
+
+/* Node flags */
+enum { FEM_AXIS = 1, FEM_OUTER = 2, FEM_SURFACE = 4 };
+
+typedef struct {
+    long n_nodes, n_elems;
+    double *r, *z;        /* node coordinates [m] */
+    unsigned char *flags; /* FEM_AXIS / FEM_OUTER / FEM_SURFACE */
+    int *conn;            /* 4 per element, counter-clockwise in (r, z) */
+    unsigned char *ebody; /* FEM_BOULDER / FEM_SLOPE per element */
+    /* Nodes [0, boulder_nodes) and elements [0, boulder_elems) are the boulder. */
+    long boulder_nodes, boulder_elems;
+    /* Surface nodes ordered by increasing r from the first-contact point. */
+    long n_bsurf, n_ssurf;
+    int *bsurf, *ssurf;
+} fem_mesh;
+
+/* Parameters of the structured graded quarter-disc mesher of one body. */
+typedef struct {
+    double h;       /* element size in the fine core [m] */
+    int n;          /* core divisions (core is n x n squares of size h) */
+    double grading; /* size growth per element outside the core */
+    double h_far;   /* largest element size [m] */
+    double extent;  /* slope: hemisphere radius; boulder: horizontal semi-axis c */
+    double height;  /* boulder: vertical semi-axis d (unused for the slope) */
+} fem_body_spec;
+
+rf_status fem_mesh_build(const fem_body_spec *boulder, const fem_body_spec *slope, fem_mesh *mesh,
+                         long max_elements, rf_error *err);
+void fem_mesh_free(fem_mesh *mesh);
+
+/* Isotropic elastic material. */
+typedef struct {
+    double rho, E, nu;
+} fem_material;
+
+/* Element stiffness (8x8, row-major, dof order r0 z0 r1 z1 ...), lumped
+ * nodal masses (area-weighted share of the 2*pi*r element mass) and area. */
+void fem_element_matrices(const double r[4], const double z[4], const fem_material *mat,
+                          double K[64], double m[4], double *mass, double *area);
+/* Largest eigenvalue of M_e^-1 K_e over the unconstrained dofs (free[i] != 0). */
+double fem_element_lambda_max(const double K[64], const double m[4], const int free_dof[8]);
+/* Stress at the element centre: sigma_rr, sigma_zz, sigma_tt, sigma_rz. */
+void fem_element_stress(const double r[4], const double z[4], const fem_material *mat,
+                        const double u[8], double s[4]);
+
+/* VTK output of one frame; appends the frame to the .pvd index text. */
+rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *mesh,
+                        const double *u, const double *v, const fem_material mat[2],
+                        rf_error *err);
+rf_status fem_vtk_index(const char *dir, int frames, const double *times, rf_error *err);
+
+#endif
