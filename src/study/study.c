@@ -644,7 +644,7 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
         if (e)
             st = rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg, e->column);
         else
-            st = rf_fail(err, RF_EPARSE, "%s:1: not valid YAML", name);
+            st = rf_fail(err, RF_EPARSE, "%s:1: the study file holds no YAML document (empty?)", name);
         fy_diag_destroy(diag);
         rf_study_free(s);
         return st;

@@ -236,7 +236,7 @@ static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
     memset(&e, 0, sizeof e);
     sp_iter it = {n, NULL, 0, {0}};
     const char *key;
-    struct fy_node *k, *v, *outputs = NULL, *argv_node = NULL;
+    struct fy_node *k, *v, *outputs = NULL, *argv_node = NULL, *templates = NULL;
     char p[300], q[400];
     for (;;) {
         if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
@@ -267,6 +267,7 @@ static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
         } else if (!strcmp(key, "templates")) {
             if ((st = sp_mapping(c, v, p)) != RF_OK)
                 goto done;
+            templates = v;
             int cnt = fy_node_mapping_item_count(v);
             e.template_src = calloc(cnt > 0 ? (size_t)cnt : 1, sizeof(char *));
             e.template_dst = calloc(cnt > 0 ? (size_t)cnt : 1, sizeof(char *));
@@ -341,18 +342,21 @@ static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
         st = sp_fail(c, n, path, "missing outputs (name: {file:, pattern:, unit:})");
         goto done;
     }
-    if (!e.workdir_root) {
-        const char *tmp = getenv("TMPDIR");
-        e.workdir_root = sp_strdup(tmp && tmp[0] ? tmp : "/tmp");
-        if (!e.workdir_root) {
-            st = rf_fail(c->err, RF_ENOMEM, "out of memory");
-            goto done;
-        }
-    }
+    /* workdir_root NULL: the external model's default, $TMPDIR/rockfuzz-eval. */
     st = rf_external_model_create(&e, s->n_params, (const char *const *)s->param_names, &s->model, c->err);
     if (st != RF_OK) {
         rf_model_free(&s->model);
-        st = sp_prefix(c, n, path);
+        /* Point at the part of the block the constructor's message is about. */
+        const char *msg = c->err->msg;
+        struct fy_node *at = n;
+        const char *where = path;
+        if (strstr(msg, "template") && templates)
+            at = templates, where = "model.program.templates";
+        else if ((strstr(msg, "argv") || strstr(msg, "program '")) && argv_node)
+            at = argv_node, where = "model.program.argv";
+        else if (strstr(msg, "output") && outputs)
+            at = outputs, where = "model.program.outputs";
+        st = sp_prefix(c, at, where);
         goto done;
     }
     s->model_kind = RF_STUDY_MODEL_PROGRAM;

@@ -82,6 +82,10 @@ static void node_text(struct fy_node *n, char *buf, size_t size)
         const char *s = fy_node_get_scalar(n, &len);
         if (!s)
             s = "", len = 0;
+        if (len == 0 && fy_node_get_style(n) == FYNS_PLAIN) {
+            snprintf(buf, size, "(empty)");
+            return;
+        }
         int quoted = fy_node_get_style(n) == FYNS_SINGLE_QUOTED || fy_node_get_style(n) == FYNS_DOUBLE_QUOTED;
         if (len > 60)
             snprintf(buf, size, "%s%.57s...%s", quoted ? "\"" : "", s, quoted ? "\"" : "");
@@ -113,6 +117,11 @@ rf_status sp_fail(sp_ctx *c, struct fy_node *n, const char *path, const char *fm
     va_end(ap);
     node_text(n, value, sizeof value);
     int line = sp_line(n ? n : c->last_key);
+    /* An unknown key is its own value: "x.colour: reason", not "x.colour = colour: reason". */
+    const char *last = path ? strrchr(path, '.') : NULL;
+    last = last ? last + 1 : path;
+    if (path && *path && !strcmp(last, value))
+        return rf_fail(c->err, RF_EINVAL, "%s:%d: %s: %s", c->file, line, path, reason);
     if (path && *path)
         return rf_fail(c->err, RF_EINVAL, "%s:%d: %s = %s: %s", c->file, line, path, value, reason);
     return rf_fail(c->err, RF_EINVAL, "%s:%d: %s", c->file, line, reason);
