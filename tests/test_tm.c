@@ -543,6 +543,51 @@ static void test_shapes_and_crisp(void **state)
     rf_fuzzy_free(&in[5]);
 }
 
+/* ---- NaN outputs: undefined everywhere is reported, partly NaN is an error */
+static void f_nan(const double *x, double *y)
+{
+    y[0] = x[0];
+    y[1] = NAN;                      /* e.g. R_t of a normal impact */
+    y[2] = x[0] > 2.9 ? NAN : x[0];  /* breaks down at one corner */
+}
+
+static void f_nan_first_two(const double *x, double *y)
+{
+    double z[3];
+    f_nan(x, z);
+    y[0] = z[0];
+    y[1] = z[1];
+}
+
+static void test_nan_outputs(void **state)
+{
+    (void)state;
+    rf_fuzzy in;
+    rf_fuzzy_tfn(&in, 2, 1, 1, NULL);
+    rf_model model = test_model(1, 3, f_nan);
+    rf_tm_options opt;
+    rf_tm_options_default(&opt);
+    rf_tm_result r;
+    rf_error err;
+    assert_int_equal(rf_tm_run(&in, 1, &model, &opt, &r, &err), RF_EMODEL);
+    assert_non_null(strstr(err.msg, "output 'y2' is NaN at parameters (3)"));
+    rf_model_free(&model);
+    model = test_model(1, 2, f_nan_first_two);
+    assert_int_equal(rf_tm_run(&in, 1, &model, &opt, &r, &err), RF_OK);
+    assert_int_equal(r.output_undefined[0], 0);
+    assert_int_equal(r.output_undefined[1], 1);
+    assert_true(isnan(r.lo[5]) && isnan(r.hi[9]));
+    assert_close(r.lo[0], 1, 0);
+    rf_analysis an;
+    assert_int_equal(rf_analysis_compute(&r, &an, NULL), RF_OK);
+    assert_int_equal(an.reason_hanss[1], RF_NA_UNDEFINED);
+    assert_true(isnan(an.rho[1]));
+    assert_close(an.rho[0], 1, 1e-15);
+    rf_analysis_free(&an);
+    rf_tm_result_free(&r);
+    rf_model_free(&model);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -552,6 +597,7 @@ int main(void)
         cmocka_unit_test(test_counts),          cmocka_unit_test(test_general_points),
         cmocka_unit_test(test_interval_arithmetic), cmocka_unit_test(test_never_overestimates),
         cmocka_unit_test(test_cap_and_failure), cmocka_unit_test(test_shapes_and_crisp),
+        cmocka_unit_test(test_nan_outputs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

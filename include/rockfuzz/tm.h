@@ -6,7 +6,11 @@
  * cache_rtol are merged before any evaluation), and retransforms recursively
  * so that the output cuts always nest.  Several outputs share one set of
  * evaluations.  For every output bound the input vector that produced it is
- * kept.  The TM never knows what model it calls. */
+ * kept.  The TM never knows what model it calls.
+ *
+ * NaN outputs: an output that is NaN at every point is undefined for this
+ * study (cuts NaN, output_undefined set); one that is NaN at some points only
+ * stops the run with the parameter vector, since its bounds would be wrong. */
 #ifndef ROCKFUZZ_TM_H
 #define ROCKFUZZ_TM_H
 
@@ -70,6 +74,8 @@ typedef struct {
     size_t distinct;                     /* model evaluations actually made */
     size_t probe_evaluations;            /* of which the extended-form probe */
     size_t lr_evaluations;               /* of which only needed by the three-point grid */
+    unsigned char *output_undefined;     /* [k] 1 if the model returned NaN for output k at every
+                                          * point (e.g. R_t of a normal impact): its cuts are NaN */
     struct rf_tm_data *data;
 } rf_tm_result;
 

@@ -25,6 +25,7 @@ const char *rf_na_reason_text(rf_na_reason r)
     case RF_NA_NO_LR: return "left/right grid not evaluated";
     case RF_NA_ALL_ZERO: return "no input has any influence";
     case RF_NA_FEW_LEVELS: return "needs levels >= 2";
+    case RF_NA_UNDEFINED: return "output undefined for this study";
     }
     return "?";
 }
@@ -115,6 +116,19 @@ rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error
 
     for (size_t k = 0; k < no; k++) {
         double zbar = res->nominal[k];
+        if (res->output_undefined && res->output_undefined[k]) {
+            for (size_t i = 0; i < n; i++) {
+                size_t at = k * n + i;
+                for (size_t j = 0; j < m; j++)
+                    an->gain[at * m + j] = NAN;
+                an->mean_gain[at] = an->std_gain[at] = an->kappa[at] = an->rho[at] = NAN;
+                an->kappa_left[at] = an->kappa_right[at] = an->rho_left[at] = an->rho_right[at] = NAN;
+                an->reason_hanss[at] = an->reason_std[at] = an->reason_lr[at] = RF_NA_UNDEFINED;
+            }
+            an->degree_of_uncertainty[k] = an->interaction[k] = NAN;
+            an->reason_nu[k] = RF_NA_UNDEFINED;
+            continue;
+        }
         /* ---- gain factors and Hanss measures (s.5.1-5.3) */
         double ksum = 0;
         int any_kappa = 0;

@@ -779,11 +779,43 @@ static void diagnose_grid(const struct rf_tm_data *d, const rf_grid *g, const do
 
 /* ------------------------------------------------------- retransformation */
 
+/* Outputs NaN everywhere are undefined; NaN somewhere is an error. */
+static rf_status check_nan_outputs(const tm_ctx *c, const rf_model *model, rf_tm_result *res, rf_error *err)
+{
+    const struct rf_tm_data *d = c->d;
+    size_t no = d->n_out;
+    for (size_t k = 0; k < no; k++) {
+        size_t nan = 0, first_nan = 0;
+        for (size_t p = 0; p < d->npoints; p++)
+            if (isnan(d->y[p * no + k]) && !nan++)
+                first_nan = p;
+        if (nan == d->npoints) {
+            res->output_undefined[k] = 1;
+        } else if (nan > 0) {
+            char pt[512];
+            format_point(d, (uint32_t)first_nan, pt, sizeof pt);
+            return rf_fail(err, RF_EMODEL,
+                           "output '%s' is NaN at parameters %s (and %zu other points) but defined at others: "
+                           "its bounds would be wrong",
+                           model->output_names[k], pt, nan - 1);
+        }
+    }
+    return RF_OK;
+}
+
 static void retransform(const tm_ctx *c, rf_tm_result *res)
 {
     const struct rf_tm_data *d = c->d;
     size_t n = d->n, m = d->m, no = d->n_out;
     for (size_t k = 0; k < no; k++) {
+        if (res->output_undefined[k]) {
+            for (size_t at = k * (m + 1); at < (k + 1) * (m + 1); at++) {
+                res->lo[at] = res->hi[at] = NAN;
+                for (size_t i = 0; i < n; i++)
+                    res->x_lo[at * n + i] = res->x_hi[at * n + i] = NAN;
+            }
+            continue;
+        }
         uint32_t amin = 0, amax = 0;
         double zmin = INFINITY, zmax = -INFINITY;
         for (size_t jj = m + 1; jj-- > 0;) {
@@ -892,6 +924,7 @@ void rf_tm_result_free(rf_tm_result *res)
     free(res->nominal);
     free(res->input_class);
     free(res->monotonicity);
+    free(res->output_undefined);
     data_free(res->data);
     memset(res, 0, sizeof *res);
 }
@@ -912,7 +945,8 @@ static rf_status result_alloc(rf_tm_result *res, size_t n, size_t no, size_t m, 
     res->nominal = malloc(no * sizeof(double));
     res->input_class = calloc(n, sizeof *res->input_class);
     res->monotonicity = calloc(no * n, sizeof *res->monotonicity);
-    if (!res->in_lo || !res->in_hi || !res->in_nominal || !res->lo || !res->hi || !res->x_lo || !res->x_hi ||
+    res->output_undefined = calloc(no, 1);
+    if (!res->output_undefined ||!res->in_lo || !res->in_hi || !res->in_nominal || !res->lo || !res->hi || !res->x_lo || !res->x_hi ||
         !res->nominal || !res->input_class || !res->monotonicity)
         return rf_fail(err, RF_ENOMEM, "out of memory for the TM result");
     return RF_OK;
@@ -962,6 +996,8 @@ rf_status rf_tm_run(const rf_fuzzy *inputs, size_t n_inputs, const rf_model *mod
             st = evaluate_pending(&c, model, &evaluated, err);
     }
     (void)before_main;
+    if (!st)
+        st = check_nan_outputs(&c, model, res, err);
     if (!st) {
         struct rf_tm_data *d = c.d;
         res->scheme = opt->scheme;
