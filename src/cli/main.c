@@ -20,6 +20,10 @@ static void usage(FILE *f)
         "  -h, --help                 show this help\n"
         "  --version                  print the version\n"
         "\n"
+        "Example:\n"
+        "  rockfuzz run examples/product.yaml --out out/product\n"
+        "  (study file format, outputs and errors: `rockfuzz run --help`, docs/user-guide.md)\n"
+        "\n"
         "Units are SI (m, kg, s, Pa) unless an option says otherwise.\n",
         ROCKFUZZ_VERSION);
 }
