@@ -260,6 +260,14 @@ static const bad_case bad_cases[] = {
      "levels: 4\nparameters:\n  x1: {tfn: [2, 1, 1]}\nmodel:\n  program:\n    argv: [cat, in.txt]\n"
      "    templates: {in.txt: no_such_template.tpl}\n    outputs: {y: {}}\n",
      7, "model.program.templates.in.txt", "no_such_template.tpl"},
+    {"regex that makes regcomp explode",
+     "levels: 4\nparameters:\n  x1: {tfn: [2, 1, 1]}\nmodel:\n  program:\n    argv: [cat]\n"
+     "    outputs: {y: {pattern: \"z=(.*++++++++)\"}}\n",
+     7, "model.program.outputs.y.pattern", "adjacent repetition"},
+    {"regex with nested repetitions",
+     "levels: 4\nparameters:\n  x1: {tfn: [2, 1, 1]}\nmodel:\n  program:\n    argv: [cat]\n"
+     "    outputs: {y: {pattern: \"((((((((((((((a+)+)+)+)+)+)+)+)+)+)+)+)+)+)\"}}\n",
+     7, "model.program.outputs.y.pattern", "too many repetitions"},
     {"impact input bound to an unknown name",
      "levels: 4\nparameters:\n  velocity: {tfn: [10, 1, 1]}\n  colour: {tfn: [1, 0.1, 0.1]}\nmodel:\n"
      "  impact: {solver: hunter}\n",

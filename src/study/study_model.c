@@ -165,6 +165,68 @@ static char *resolve(const char *dir, const char *p)
     return r;
 }
 
+/* glibc's regcomp expands repetitions by copying the tree, so stacked
+ * duplication symbols ("(.*+++...)", undefined in POSIX ERE anyway) or large
+ * nested intervals make it allocate without bound (found by fuzz_study:
+ * over 1 GB for one pattern).  Reject them here; NULL = acceptable. */
+static const char *pattern_problem(const char *re)
+{
+    int prev_dup = 0;
+    double product = 1;
+    for (const char *p = re; *p; p++) {
+        int dup = 0;
+        if (*p == '\\') {
+            if (p[1])
+                p++;
+        } else if (*p == '[') { /* bracket expression: skip to its closing ']' */
+            const char *q = p + 1;
+            if (*q == '^')
+                q++;
+            if (*q == ']')
+                q++;
+            while (*q && *q != ']') {
+                if (*q == '[' && (q[1] == ':' || q[1] == '.' || q[1] == '=')) {
+                    char close = q[1];
+                    q += 2;
+                    while (*q && !(*q == close && q[1] == ']'))
+                        q++;
+                    if (*q)
+                        q++;
+                }
+                if (*q)
+                    q++;
+            }
+            if (!*q)
+                return "an unterminated bracket expression '['";
+            p = q;
+        } else if (*p == '*' || *p == '+' || *p == '?') {
+            dup = 1;
+            if (*p == '+') /* x+ is compiled as x x*: a copy, and nested copies multiply */
+                product *= 2;
+            if (product > 10000)
+                return "too many repetitions ('+' counts twice, {n,m} m times; at most 10000 in product)";
+        } else if (*p == '{') {
+            char *end = NULL;
+            long lo = strtol(p + 1, &end, 10), hi = lo;
+            if (end && *end == ',')
+                hi = end[1] == '}' ? lo : strtol(end + 1, &end, 10);
+            if (end && *end == '}') {
+                dup = 1;
+                if (lo > 100 || hi > 100)
+                    return "a repetition count above 100";
+                product *= (double)(hi > 1 ? hi : 1);
+                if (product > 10000)
+                    return "too many repetitions ('+' counts twice, {n,m} m times; at most 10000 in product)";
+                p = end;
+            }
+        }
+        if (dup && prev_dup)
+            return "two adjacent repetition operators (undefined in POSIX regular expressions)";
+        prev_dup = dup;
+    }
+    return NULL;
+}
+
 static rf_status parse_program_outputs(sp_ctx *c, struct fy_node *n, rf_external_spec *e)
 {
     const char *path = "model.program.outputs";
@@ -222,6 +284,9 @@ static rf_status parse_program_outputs(sp_ctx *c, struct fy_node *n, rf_external
                 return st;
             if (dst == &o->file && ((*dst)[0] == '\0' || (*dst)[0] == '/' || strstr(*dst, "..")))
                 return sp_fail(c, ov, q, "the file must be a relative path inside the working directory");
+            const char *why = dst == &o->pattern ? pattern_problem(*dst) : NULL;
+            if (why)
+                return sp_fail(c, ov, q, "the pattern has %s; simplify it", why);
         }
     }
 }
