@@ -42,6 +42,7 @@ typedef struct {
     int vtk_frames;            /* approximate number of VTK frames, default 60 */
     int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */
+    double duration_threshold; /* contact counts while force > this * F_max, default 1e-6 */
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);

@@ -91,6 +91,7 @@ typedef struct {
     double grading, h_far;
     int transitions;   /* allow 3:1 transition layers */
     int boulder;       /* sizing rules of the boulder main block */
+    int corner_linear; /* blending rule of the cap (see ring_pos) */
     map_fn map;
     const void *mctx;
     const int *outer_ids; /* if set: ids of the outer ring nodes (already created) */
@@ -108,10 +109,13 @@ static double blend_weight(const pattern *p, double rho)
     return t * t * (3 - 2 * t);
 }
 
-/* Reference position on ring rho at angular fraction t in [0, 1]: a
- * superellipse |x|^p + |y|^p = rho^p whose exponent falls from infinity (the
- * core square) to 2 (a circle), so that the rings grow monotonically in every
- * direction. */
+/* Reference position on ring rho at angular fraction t in [0, 1].  Near the
+ * core the ring is the core square offset outward: each core boundary node
+ * moves along a straight line, normal to its side away from the corner and
+ * fanning to the diagonal at the corner (so the first layers continue the
+ * core's grid lines without shear); with weight w the ring blends into the
+ * circle of radius rho with uniform angles.  The cap (corner_linear) blends
+ * over a short distance and uses the superellipse rule instead. */
 static void ring_pos(const pattern *p, double rho, double t, double *x, double *y)
 {
     if (t <= 0) {
@@ -122,16 +126,24 @@ static void ring_pos(const pattern *p, double rho, double t, double *x, double *
         *x = 0, *y = rho;
         return;
     }
-    double w = blend_weight(p, rho), bx, by;
+    double w = blend_weight(p, rho);
+    double th = t * M_PI / 2, cx = rho * cos(th), cy = rho * sin(th);
+    if (!p->corner_linear) {
+        double u = t <= 0.5 ? 2 * t : 2 - 2 * t, phi = u * u * u, a = p->s * u + (rho - p->s) * phi;
+        double ox = t <= 0.5 ? rho : a, oy = t <= 0.5 ? a : rho;
+        *x = (1 - w) * ox + w * cx;
+        *y = (1 - w) * oy + w * cy;
+        return;
+    }
+    double bx, by;
     if (t <= 0.5)
         bx = 1, by = 2 * t;
     else
         bx = 2 - 2 * t, by = 1;
-    double th = t * M_PI / 2;
     double ex = (1 - w) * bx + w * cos(th), ey = (1 - w) * by + w * sin(th);
     double m = fmax(ex, ey), norm;
-    /* exponent chosen so that the ring's diagonal point moves linearly from
-       the square's corner (sqrt 2 s) to the circle (blend_end) */
+    /* superellipse exponent 1/q: the diagonal point moves linearly from the
+       square's corner to the circle */
     double q = 0.5;
     if (rho < p->blend_end) {
         double f = M_SQRT2 * p->s + (p->blend_end - M_SQRT2 * p->s) * (rho - p->s) / (p->blend_end - p->s);
@@ -380,7 +392,7 @@ rf_status fem_mesh_build(const fem_body_spec *boulder, const fem_body_spec *slop
     if (st == RF_OK) {
         /* cap: an O-grid whose outer ring is the main block's outer ring */
         int nc = nouter / 2;
-        pattern pc = {.s = 0.45 * bc.P, .n = nc, .grading = 1, .transitions = 0, .boulder = 1, .map = cap_map,
+        pattern pc = {.s = 0.45 * bc.P, .n = nc, .grading = 1, .transitions = 0, .boulder = 1, .corner_linear = 1, .map = cap_map,
                       .mctx = &bc, .outer_ids = outer, .P = bc.P};
         pc.blend_end = bc.P;
         pc.h = ring_length(&pc, bc.P) / nouter;

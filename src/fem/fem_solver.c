@@ -45,6 +45,7 @@ void rf_fem_options_default(rf_fem_options *opt)
     opt->vtk_frames = 60;
     opt->history_stride = 0;
     opt->max_elements = 2000000;
+    opt->duration_threshold = 1e-6;
 }
 
 void rf_fem_history_free(rf_fem_history *h)
@@ -327,6 +328,8 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(o->end_time >= 0) || !isfinite(o->end_time), "fem: end_time must be >= 0 s, got %g", o->end_time);
     BAD(o->boundary != RF_FEM_BOUNDARY_FIXED && o->boundary != RF_FEM_BOUNDARY_ABSORBING,
         "fem: unknown boundary kind %d", (int)o->boundary);
+    BAD(!(o->duration_threshold >= 0 && o->duration_threshold < 0.5), "fem: duration_threshold must be in [0, 0.5), got %g",
+        o->duration_threshold);
     BAD(o->threads < 0, "fem: threads must be >= 0, got %d", o->threads);
     if (in->horizontal_axis > 0) {
         double c = in->horizontal_axis;
@@ -788,18 +791,20 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
     }
     long nsteps = n + 1;
 
-    /* outputs */
-    double thr = 1e-3 * F_max, t0 = -1, t1 = -1;
+    /* outputs.  Contact duration: first to last nonzero multiplier (exact
+       zeros off contact; the threshold only guards round-off), the end
+       extrapolated linearly to zero within the last step. */
+    double thr = o.duration_threshold * F_max, t0 = -1, t1 = -1;
     for (long k = 0; k < nsteps; k++)
         if (Fstep[k] > thr) {
             if (t0 < 0) {
                 t0 = k * dt;
-                if (k > 0) /* interpolate the crossing */
-                    t0 -= dt * (Fstep[k] - thr) / (Fstep[k] - Fstep[k - 1]);
+                if (k > 0)
+                    t0 -= dt * fmin(1, (Fstep[k] - thr) / (Fstep[k] - Fstep[k - 1]));
             }
             t1 = k * dt;
-            if (k + 1 < nsteps)
-                t1 += dt * (Fstep[k] - thr) / (Fstep[k] - Fstep[k + 1]);
+            if (k + 1 < nsteps && k > 0 && Fstep[k - 1] > Fstep[k])
+                t1 += dt * fmin(1, (Fstep[k] - thr) / (Fstep[k - 1] - Fstep[k]));
         }
     if (t0 < 0)
         t0 = 0;

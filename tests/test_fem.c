@@ -1,0 +1,409 @@
+/* test_fem.c - the axisymmetric FE impact solver against independent
+ * references: Hertz (formulas of impact_refs.md section 1, recomputed here),
+ * energy and momentum conservation, exact scale invariance, the spheroid
+ * c = d == sphere identity, the time-step bound against a measured
+ * instability, thread safety, and refusal of bad input.  Coarse meshes
+ * (a/h = 3..5) so that the whole file runs in seconds, also under ASan. */
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "rockfuzz/fem.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static rf_impact_input granite(double v)
+{
+    rf_impact_input in = {0};
+    in.radius = 1;
+    in.boulder_density = in.slope_density = 2600;
+    in.boulder_E = in.slope_E = 68.2e9;
+    in.boulder_poisson = in.slope_poisson = 0.25;
+    in.velocity = v;
+    return in;
+}
+
+typedef struct {
+    double delta, force, radius, duration;
+} hertz;
+
+/* Hertz sphere (radius R, mass m) on a half-space: impact_refs.md 1.1. */
+static hertz hertz_of(const rf_impact_input *in, double R, double m)
+{
+    double Es = 1 / ((1 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E +
+                     (1 - in->slope_poisson * in->slope_poisson) / in->slope_E);
+    double V = in->velocity;
+    hertz h;
+    h.delta = pow(15 * m * V * V / (16 * Es * sqrt(R)), 0.4);
+    h.force = 1.25 * m * V * V / h.delta;
+    h.radius = sqrt(R * h.delta);
+    h.duration = 2.94328 * h.delta / V;
+    return h;
+}
+
+static double sphere_mass(const rf_impact_input *in)
+{
+    return 4.0 / 3.0 * M_PI * pow(in->radius, 3) * in->boulder_density;
+}
+
+static void run(const rf_impact_input *in, const rf_fem_options *o, rf_impact_output *out, rf_fem_history *h)
+{
+    rf_error err = {0};
+    rf_status st = rf_fem_impact(in, o, out, h, &err);
+    if (st != RF_OK)
+        fail_msg("rf_fem_impact: %s", err.msg);
+}
+
+/* Granite table of impact_refs.md 1.2 reproduced by the local formulas. */
+static void test_hertz_reference_numbers(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    hertz h = hertz_of(&in, 1, sphere_mass(&in));
+    assert_true(fabs(h.delta / 1.51112e-2 - 1) < 1e-4);
+    assert_true(fabs(h.force / 9.0089e7 - 1) < 1e-4);
+    assert_true(fabs(h.radius / 0.12293 - 1) < 1e-4);
+    assert_true(fabs(h.duration / 4.4477e-3 - 1) < 1e-4);
+}
+
+/* Low speed (a/R = 0.049): force, compression and duration near Hertz, with
+ * the signs of finite-body stiffening (fem_notes.md); local contact radius
+ * within 2 %. */
+static void test_low_speed_hertz(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(1);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 4;
+    o.boundary = RF_FEM_BOUNDARY_ABSORBING;
+    rf_impact_output out;
+    rf_fem_history h;
+    run(&in, &o, &out, &h);
+    hertz ref = hertz_of(&in, 1, sphere_mass(&in));
+    double dF = out.contact_force_max / ref.force - 1, dd = out.compression_max / ref.delta - 1;
+    double dt = out.contact_duration / ref.duration - 1, da = out.contact_radius / ref.radius - 1;
+    printf("1 m/s a/h=4: dF %+.4f dd %+.4f dt %+.4f da %+.4f\n", dF, dd, dt, da);
+    assert_true(dF > 0 && dF < 0.02);
+    assert_true(dd < 0 && dd > -0.015);
+    assert_true(dt < 0 && dt > -0.015);
+    assert_true(fabs(da) < 0.02);
+    /* exact multipliers: no penetration */
+    assert_true(h.penetration_max < 1e-3 * out.compression_max);
+    assert_true(h.warning[0] == 0);
+    rf_fem_history_free(&h);
+}
+
+/* 10 m/s: contact radius Hertzian, energy closes, energy lost by the boulder
+ * = energy left in the half-space + boulder vibration, momentum constant
+ * after separation, R_n inside the physical range. */
+static void test_energy_and_momentum(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 4;
+    rf_impact_output out;
+    rf_fem_history h;
+    run(&in, &o, &out, &h);
+    hertz ref = hertz_of(&in, 1, sphere_mass(&in));
+    assert_true(fabs(out.contact_radius / ref.radius - 1) < 0.02);
+    assert_true(out.energy_error < 1e-3);
+    double ke0 = 0.5 * sphere_mass(&in) * 100;
+    assert_true(fabs(h.ke0 / ke0 - 1) < 1e-12); /* exact boulder mass */
+    /* closure of the account at every sample */
+    for (size_t i = 0; i < h.n; i++) {
+        double tot = h.kinetic_boulder[i] + h.strain_boulder[i] + h.kinetic_slope[i] + h.strain_slope[i] +
+                     h.absorbed[i] - ke0;
+        assert_true(fabs(tot - h.closure[i]) < 1e-9 * ke0);
+        assert_true(fabs(h.closure[i]) < 1e-3 * ke0);
+    }
+    double lost = ke0 - 0.5 * h.boulder_mass * out.v_n_after * out.v_n_after;
+    assert_true(fabs(lost - (h.slope_energy + h.vibration_energy)) < 1e-3 * ke0);
+    assert_true(h.vibration_energy >= 0 && h.vibration_energy < 0.1 * lost);
+    /* rigid velocity constant after separation */
+    size_t n = h.n;
+    assert_true(n > 10);
+    assert_true(fabs(h.boulder_velocity[n - 1] - h.boulder_velocity[n - 5]) < 1e-9);
+    assert_true(fabs(h.boulder_velocity[n - 1] - out.v_n_after) < 1e-9);
+    assert_true(out.R_n > 0.97 && out.R_n < 1);
+    assert_true(fabs(out.R_ke - out.R_n * out.R_n) < 1e-12);
+    assert_true(isnan(out.R_t));
+    assert_true(out.v_n_before == -10);
+    /* 2L/c_p = 3.6 ms < 4.4 ms: the fixed boundary warning */
+    assert_non_null(strstr(h.warning, "reflected"));
+    rf_fem_history_free(&h);
+}
+
+/* Absorbing boundary: the dashpots take energy out, R_n within the
+ * Hunter-type band widened for the coarse mesh, no reflection warning. */
+static void test_absorbing(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 4;
+    o.boundary = RF_FEM_BOUNDARY_ABSORBING;
+    rf_impact_output out;
+    rf_fem_history h;
+    run(&in, &o, &out, &h);
+    double c0 = sqrt(in.boulder_E / in.boulder_density);
+    double lam_lo = 1.04 * pow(10 / c0, 0.6), lam_hi = 1.171 * pow(10 / c0, 0.6);
+    printf("absorbing R_n %.5f, Hunter band %.5f..%.5f, absorbed %.3g KE0\n", out.R_n, sqrt(1 - lam_hi),
+           sqrt(1 - lam_lo), h.absorbed[h.n - 1] / h.ke0);
+    assert_true(out.R_n > sqrt(1 - lam_hi) - 0.002 && out.R_n < sqrt(1 - lam_lo) + 0.002);
+    assert_true(h.absorbed[h.n - 1] > 0);
+    assert_true(h.warning[0] == 0);
+    assert_true(out.energy_error < 1e-3);
+    rf_fem_history_free(&h);
+}
+
+/* Without gravity the problem is scale free: doubling every length leaves
+ * R_n unchanged and doubles the duration (the mesh scales exactly). */
+static void test_scale_invariance(void **state)
+{
+    (void)state;
+    rf_impact_input a = granite(10), b = granite(10);
+    b.radius = 2;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3;
+    rf_impact_output oa, ob;
+    run(&a, &o, &oa, NULL);
+    run(&b, &o, &ob, NULL);
+    assert_true(fabs(oa.R_n - ob.R_n) < 1e-7);
+    assert_true(fabs(ob.contact_duration / oa.contact_duration - 2) < 1e-6);
+    assert_true(fabs(ob.compression_max / oa.compression_max - 2) < 1e-6);
+    assert_true(fabs(ob.contact_force_max / oa.contact_force_max - 4) < 4e-6);
+    assert_true(oa.elements == ob.elements);
+}
+
+/* A spheroid with c = d is the sphere; c != d agrees locally with Hertz at
+ * the pole curvature radius c^2/d. */
+static void test_spheroid(void **state)
+{
+    (void)state;
+    rf_impact_input s = granite(10), e = granite(10);
+    e.horizontal_axis = 1;
+    e.vertical_axis = 1;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3;
+    rf_impact_output os, oe;
+    run(&s, &o, &os, NULL);
+    run(&e, &o, &oe, NULL);
+    assert_true(os.R_n == oe.R_n && os.contact_force_max == oe.contact_force_max);
+
+    e.horizontal_axis = 1.1;
+    e.vertical_axis = 0; /* volume preserving: d = r0^3 / c^2 */
+    o.refinement = 4;
+    run(&e, &o, &oe, NULL);
+    double c = 1.1, d = 1 / (c * c), m = 4.0 / 3.0 * M_PI * c * c * d * e.boulder_density;
+    hertz ref = hertz_of(&e, c * c / d, m);
+    printf("spheroid c=1.1: da %+.4f dF %+.4f\n", oe.contact_radius / ref.radius - 1,
+           oe.contact_force_max / ref.force - 1);
+    assert_true(fabs(oe.contact_radius / ref.radius - 1) < 0.02);
+    assert_true(fabs(oe.contact_force_max / ref.force - 1) < 0.05);
+}
+
+/* The element eigenvalue bound is rigorous: the step it gives is stable,
+ * while 1.5 times it (measured unstable) diverges and is reported. */
+static void test_time_step_bound(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3;
+    o.dt_safety = 1.0;
+    rf_impact_output out;
+    rf_fem_history h;
+    run(&in, &o, &out, &h);
+    assert_true(out.energy_error < 1e-3);
+    assert_true(h.dt == h.dt_bound);
+    rf_fem_history_free(&h);
+    o.dt_safety = 1.5;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EMODEL);
+    assert_non_null(strstr(err.msg, "unstable"));
+}
+
+/* Non-matching boulder/slope meshes give the same answer as matching ones. */
+static void test_non_matching(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 4;
+    rf_impact_output a, b;
+    run(&in, &o, &a, NULL);
+    o.boulder_mesh_ratio = 0.7;
+    rf_fem_history h;
+    run(&in, &o, &b, &h);
+    assert_true(fabs(b.contact_force_max / a.contact_force_max - 1) < 0.01);
+    assert_true(fabs(b.compression_max / a.compression_max - 1) < 0.005);
+    assert_true(fabs(b.R_n - a.R_n) < 1e-3);
+    assert_true(h.penetration_max < 1e-3 * b.compression_max);
+    assert_true(h.slip_max < 0.05 * h.h_contact); /* small sliding holds */
+    rf_fem_history_free(&h);
+}
+
+typedef struct {
+    rf_impact_input in;
+    rf_fem_options o;
+    rf_impact_output out;
+    rf_status st;
+} job;
+
+static void *worker(void *p)
+{
+    job *j = p;
+    rf_error err = {0};
+    j->st = rf_fem_impact(&j->in, &j->o, &j->out, NULL, &err);
+    return NULL;
+}
+
+/* Concurrent calls share nothing: same results as serial ones. */
+static void test_thread_safety(void **state)
+{
+    (void)state;
+    job jobs[3];
+    double v[3] = {5, 10, 20};
+    for (int i = 0; i < 3; i++) {
+        jobs[i].in = granite(v[i]);
+        rf_fem_options_default(&jobs[i].o);
+        jobs[i].o.refinement = 3;
+    }
+    pthread_t th[3];
+    for (int i = 0; i < 3; i++)
+        assert_int_equal(pthread_create(&th[i], NULL, worker, &jobs[i]), 0);
+    for (int i = 0; i < 3; i++)
+        pthread_join(th[i], NULL);
+    for (int i = 0; i < 3; i++) {
+        assert_int_equal(jobs[i].st, RF_OK);
+        rf_impact_output serial;
+        run(&jobs[i].in, &jobs[i].o, &serial, NULL);
+        assert_true(serial.R_n == jobs[i].out.R_n);
+        assert_true(serial.contact_force_max == jobs[i].out.contact_force_max);
+    }
+    /* two OpenMP threads inside one impact: same physics to round-off */
+    rf_impact_output one, two;
+    rf_fem_options o = jobs[1].o;
+    run(&jobs[1].in, &o, &one, NULL);
+    o.threads = 2;
+    run(&jobs[1].in, &o, &two, NULL);
+    assert_true(fabs(one.R_n - two.R_n) < 1e-9);
+    assert_true(fabs(one.contact_force_max / two.contact_force_max - 1) < 1e-9);
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    rf_impact_output out;
+    rf_error err = {0};
+    in.slope_angle = 0.5;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "normal impact"));
+    in = granite(10);
+    o.refinement = 1.5;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "too coarse"));
+    rf_fem_options_default(&o);
+    in.velocity = 0;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    in = granite(10);
+    in.boulder_poisson = 0.5;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    in = granite(10);
+    in.slope_E = NAN;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    in = granite(10);
+    o.domain_factor = 1;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    rf_fem_options_default(&o);
+    o.max_elements = 100;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_ECAP);
+    rf_fem_options_default(&o);
+    in.velocity = 2000; /* contact zone larger than the boulder */
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    in = granite(10);
+    assert_int_equal(rf_fem_impact(&in, &o, NULL, NULL, &err), RF_EINVAL);
+}
+
+/* VTK output: a .pvd index and readable .vtu frames. */
+static void test_vtk(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/rockfuzz_fem_vtkXXXXXX";
+    assert_non_null(mkdtemp(dir));
+    rf_impact_input in = granite(10);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 2;
+    o.vtk_dir = dir;
+    o.vtk_frames = 3;
+    rf_impact_output out;
+    run(&in, &o, &out, NULL);
+    char path[512], line[512];
+    snprintf(path, sizeof path, "%s/fem.pvd", dir);
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    int frames = 0;
+    while (fgets(line, sizeof line, fp))
+        frames += strstr(line, "<DataSet") != NULL;
+    fclose(fp);
+    assert_true(frames >= 3);
+    for (int i = 0; i < frames; i++) {
+        snprintf(path, sizeof path, "%s/fem_%04d.vtu", dir, i);
+        fp = fopen(path, "r");
+        assert_non_null(fp);
+        int has_stress = 0;
+        while (fgets(line, sizeof line, fp))
+            has_stress |= strstr(line, "sigma_zz") != NULL;
+        fclose(fp);
+        assert_true(has_stress);
+        unlink(path);
+    }
+    snprintf(path, sizeof path, "%s/fem.pvd", dir);
+    unlink(path);
+    rmdir(dir);
+    /* an unwritable directory is an I/O error, not a crash */
+    o.vtk_dir = "/nonexistent/rockfuzz";
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EIO);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hertz_reference_numbers),
+        cmocka_unit_test(test_low_speed_hertz),
+        cmocka_unit_test(test_energy_and_momentum),
+        cmocka_unit_test(test_absorbing),
+        cmocka_unit_test(test_scale_invariance),
+        cmocka_unit_test(test_spheroid),
+        cmocka_unit_test(test_time_step_bound),
+        cmocka_unit_test(test_non_matching),
+        cmocka_unit_test(test_thread_safety),
+        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_vtk),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
