@@ -666,13 +666,17 @@ rf_status rf_study_load(const char *path, rf_study *study, rf_error *err)
     FILE *f = fopen(path, "rb");
     if (!f)
         return rf_fail(err, RF_EIO, "%s: cannot open the study file: %s", path, strerror(errno));
-    char *buf = malloc(MAX_STUDY_BYTES + 1);
+    long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    if (size < 0 || fseek(f, 0, SEEK_SET) != 0)
+        size = MAX_STUDY_BYTES; /* not seekable (a pipe): read up to the limit */
+    size_t cap = (size_t)size < MAX_STUDY_BYTES ? (size_t)size + 1 : MAX_STUDY_BYTES + 1;
+    char *buf = malloc(cap);
     if (!buf) {
         fclose(f);
         return rf_fail(err, RF_ENOMEM, "out of memory");
     }
-    size_t len = fread(buf, 1, MAX_STUDY_BYTES + 1, f);
-    int bad = ferror(f);
+    size_t len = fread(buf, 1, cap, f);
+    int bad = ferror(f) || (len == cap && cap <= MAX_STUDY_BYTES); /* or it grew while we read it */
     fclose(f);
     rf_status st;
     if (bad)
