@@ -52,6 +52,7 @@ typedef struct {
     size_t m;
     const char *title, *xlabel;
     double nominal;
+    const rf_fuzzy *shape;   /* inputs: the exact membership, drawn finely; NULL for outputs */
 } membership_plot;
 
 static void draw_membership(const void *p)
@@ -83,7 +84,26 @@ static void draw_membership(const void *p)
     pllab(mp->xlabel, "membership #gm", mp->title);
     plcol0(2);
     plwidth(2);
-    plline((PLINT)np, x, y);
+    if (mp->shape) {
+        /* The exact shape at 201 levels, and the m+1 cuts the TM used as markers. */
+        enum { FINE = 201 };
+        PLFLT fx[2 * FINE], fy[2 * FINE];
+        for (int j = 0; j < FINE; j++) {
+            double mu = (double)j / (FINE - 1), lo, hi;
+            rf_fuzzy_cut(mp->shape, mu, &lo, &hi);
+            fx[j] = lo;
+            fy[j] = mu;
+            fx[2 * FINE - 1 - j] = hi;
+            fy[2 * FINE - 1 - j] = mu;
+        }
+        plline(2 * FINE, fx, fy);
+        plcol0(3);
+        plpoin((PLINT)np, x, y, 17);
+        plmtex("t", 0.5, 0.98, 1.0, "dots: cuts used by the TM");
+    } else {
+        plline((PLINT)np, x, y);
+    }
+    plcol0(2);
     /* Close the level-0 cut so a crisp-looking output still shows. */
     PLFLT bx[2] = {mp->lo[0], mp->hi[0]}, by[2] = {0, 0};
     plline(2, bx, by);
@@ -162,7 +182,7 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
         snprintf(xlabel, sizeof xlabel, "%s%s%s%s", s->param_names[i], s->param_units[i][0] ? " [" : "",
                  s->param_units[i], s->param_units[i][0] ? "]" : "");
         membership_plot mp = {res->in_lo + i * (m + 1), res->in_hi + i * (m + 1), m, title, xlabel,
-                              res->in_nominal[i]};
+                              res->in_nominal[i], &s->inputs[i]};
         if ((st = figure(dir, stem, draw_membership, &mp, err)) != RF_OK)
             return st;
     }
@@ -177,7 +197,8 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
         snprintf(stem, sizeof stem, "output_%s", safe);
         snprintf(title, sizeof title, "output %.100s (%s form, m = %zu)", name, rf_tm_scheme_name(res->scheme), m);
         snprintf(xlabel, sizeof xlabel, "%.100s%s%.50s%s", name, unit[0] ? " [" : "", unit, unit[0] ? "]" : "");
-        membership_plot mp = {res->lo + k * (m + 1), res->hi + k * (m + 1), m, title, xlabel, res->nominal[k]};
+        membership_plot mp = {res->lo + k * (m + 1), res->hi + k * (m + 1), m, title, xlabel, res->nominal[k],
+                              NULL};
         if ((st = figure(dir, stem, draw_membership, &mp, err)) != RF_OK)
             break;
         for (size_t i = 0; i < n; i++) {
