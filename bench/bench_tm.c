@@ -13,6 +13,7 @@
 #include <time.h>
 
 #include "rockfuzz/analysis.h"
+#include "rockfuzz/runner.h"
 #include "rockfuzz/tm.h"
 
 static double now(void)
@@ -99,6 +100,64 @@ static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t 
     rf_model_free(&model);
 }
 
+/* A model that costs about a microsecond: the speed-up with a second worker. */
+static rf_status busy_eval(void *ctx, const double *x, double *y, rf_error *err)
+{
+    (void)ctx;
+    (void)err;
+    double s = x[0];
+    for (int k = 0; k < 400; k++)
+        s = s * 0.999 + x[k % 4] * 1e-3;
+    y[0] = s;
+    y[1] = x[1];
+    return RF_OK;
+}
+
+static void bench_threads(int repeats)
+{
+    rf_fuzzy in[4];
+    for (size_t i = 0; i < 4; i++)
+        rf_fuzzy_tfn(&in[i], 1.0 + (double)i, 0.1, 0.2, NULL);
+    rf_model model = {0};
+    const char *names[] = {"a", "b"};
+    rf_model_init_outputs(&model, 2, names, NULL, NULL);
+    model.n_inputs = 4;
+    model.eval = busy_eval;
+    double t1 = 0;
+    for (int jobs = 1; jobs <= 2; jobs++) {
+        rf_runner runner;
+        rf_runner_init(&runner);
+        runner.jobs = jobs;
+        rf_evaluator ev = rf_runner_evaluator(&runner);
+        rf_tm_options opt;
+        rf_tm_options_default(&opt);
+        opt.scheme = RF_TM_GENERAL;
+        opt.levels = 10;
+        opt.left_right = 0;
+        opt.evaluator = &ev;
+        double best = 1e30;
+        size_t distinct = 0;
+        for (int r = 0; r < repeats; r++) {
+            rf_tm_result res;
+            rf_error err;
+            double t0 = now();
+            if (rf_tm_run(in, 4, &model, &opt, &res, &err)) {
+                fprintf(stderr, "%s\n", err.msg);
+                exit(1);
+            }
+            double t = now() - t0;
+            best = t < best ? t : best;
+            distinct = res.distinct;
+            rf_tm_result_free(&res);
+        }
+        if (jobs == 1)
+            t1 = best;
+        printf("general n=4 m=10, ~1 us model  jobs %d: %7.2f ms for %zu evaluations (%.2f us each), speed-up %.2f\n",
+               jobs, best * 1e3, distinct, best / (double)distinct * 1e6, t1 / best);
+    }
+    rf_model_free(&model);
+}
+
 int main(int argc, char **argv)
 {
     int repeats = argc > 1 ? atoi(argv[1]) : 5;
@@ -106,6 +165,7 @@ int main(int argc, char **argv)
     bench_case("reduced n=10 m=10", RF_TM_REDUCED, 10, 10, 0, repeats);
     bench_case("extended n=4 m=10 (probe)", RF_TM_EXTENDED, 4, 10, 0, repeats);
     bench_case("reduced n=6 m=10 + LR grid", RF_TM_REDUCED, 6, 10, 1, repeats);
+    bench_threads(repeats);
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
     printf("peak RSS %.1f MiB\n", (double)ru.ru_maxrss / 1024.0);
