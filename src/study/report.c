@@ -19,6 +19,14 @@ void rf_report_options_default(rf_report_options *opt)
     opt->plots = 1;
 }
 
+int rp_output_undefined(const rf_tm_result *res, size_t k)
+{
+    for (size_t j = 0; j <= res->levels; j++)
+        if (!isnan(res->lo[k * (res->levels + 1) + j]) || !isnan(res->hi[k * (res->levels + 1) + j]))
+            return 0;
+    return isnan(res->nominal[k]);
+}
+
 void rp_safe_name(const char *name, char *buf, size_t size)
 {
     size_t k = 0;
@@ -76,6 +84,11 @@ void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res
     for (size_t k = 0; k < res->n_outputs; k++) {
         const char *unit = s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "";
         fprintf(f, "\nOutput %s%s%s%s\n", s->model.output_names[k], unit[0] ? " [" : "", unit, unit[0] ? "]" : "");
+        if (rp_output_undefined(res, k)) {
+            fprintf(f, "  undefined for this study: the model returns NaN at every point (no table, measures or "
+                       "plots)\n");
+            continue;
+        }
         fprintf(f, "  %8s %16s %16s\n", "mu", "lower", "upper");
         for (size_t j = 0; j <= m; j++)
             fprintf(f, "  %8.4f %16.10g %16.10g\n", (double)j / (double)m, res->lo[k * (m + 1) + j],

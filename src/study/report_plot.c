@@ -191,6 +191,8 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
         return rf_fail(err, RF_ENOMEM, "out of memory");
     st = RF_OK;
     for (size_t k = 0; k < res->n_outputs && st == RF_OK; k++) {
+        if (rp_output_undefined(res, k))
+            continue; /* nothing to draw; the summary says why */
         const char *name = s->model.output_names[k];
         const char *unit = s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "";
         rp_safe_name(name, safe, sizeof safe);
