@@ -1,0 +1,258 @@
+/* fem3d_contact.c - forward-increment Lagrange-multiplier contact with
+ * Coulomb friction (Carpenter, Taylor & Katona 1991, IJNME 32:103; friction
+ * as in impact_refs.md 5.4, Lagrange version).
+ *
+ * After the contact-free predictor u*, the multipliers lambda (normal
+ * lambda_n >= 0, tangential lambda_t) act at step n so that
+ *   gap(u_{n+1}) >= 0, lambda_n >= 0, lambda_n gap = 0, and
+ *   either the relative tangential displacement of the step is zero (stick)
+ *   or |lambda_t| = f lambda_n opposing it (slip),
+ * with u_{n+1} = u* + dt^2 M^-1 G^T lambda.  The pairs couple only through
+ * shared master nodes; the system is solved by projected Gauss-Seidel in
+ * slave order: the normal update is a projection on lambda_n >= 0, the
+ * tangential one computes the multiplier that stops the slip of the step and
+ * caps it at f lambda_n (return map).  No penalty, no tangential spring: the
+ * constraints hold to the solver tolerance (1e-9 h).
+ * Pairing: the master material point currently under the slave (current
+ * tangential positions of both surfaces) picks the master quad of the
+ * slope's uniform fine-box face and the bilinear weights.  Unlike the axisymmetric solver the
+ * pairing is not frozen at the reference configuration: the boulder slides
+ * v_t t_c ~ 3 cm, a quarter of the contact radius, which a fixed pairing
+ * would turn into a wrong gap (the master's indentation is measured at the
+ * wrong place). */
+#include "fem3d_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, const double *v, int threads, int repair)
+{
+    (void)threads;
+    const double h = mesh->h_s;
+    const int nx = mesh->nxt_s, ny = mesh->nyt_s;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads)
+#endif
+    for (long k = 0; k < C->nslave; k++) {
+        int s = C->slave[k];
+        int *m = C->mnode + 4 * k;
+        double *N = C->N + 4 * k;
+        if (repair) {
+            /* master material point currently under the slave: X_m + u_m(X_m) = x_s + u_s
+               (fixed point; the master's tangential displacement gradient is small) */
+            const double X = mesh->x[3 * s] + u[3 * s], Y = mesh->x[3 * s + 1] + u[3 * s + 1];
+            double Xm = X, Ym = Y;
+            int out = 0;
+            for (int it = 0; it < 4; it++) {
+                double fx = (Xm - mesh->x0_s) / h, fy = (Ym - mesh->y0_s) / h;
+                int i = (int)floor(fx), j = (int)floor(fy);
+                out = 0;
+                if (i < 0)
+                    i = 0, out = 1;
+                if (i > nx - 2)
+                    i = nx - 2, out = 1;
+                if (j < 0)
+                    j = 0, out = fy < -1e-9;
+                if (j > ny - 2)
+                    j = ny - 2, out = 1;
+                double xi = fx - i, eta = fy - j;
+                xi = xi < 0 ? 0 : xi > 1 ? 1 : xi;
+                eta = eta < 0 ? 0 : eta > 1 ? 1 : eta;
+                m[0] = mesh->top_s[i * ny + j], m[1] = mesh->top_s[(i + 1) * ny + j];
+                m[2] = mesh->top_s[(i + 1) * ny + j + 1], m[3] = mesh->top_s[i * ny + j + 1];
+                N[0] = (1 - xi) * (1 - eta), N[1] = xi * (1 - eta), N[2] = xi * eta, N[3] = (1 - xi) * eta;
+                double umx = 0, umy = 0;
+                for (int a = 0; a < 4; a++)
+                    umx += N[a] * u[3 * m[a]], umy += N[a] * u[3 * m[a] + 1];
+                Xm = X - umx, Ym = Y - umy;
+                if (it == 3) { /* slope of the deformed master face at the point */
+                    double uz[4];
+                    for (int a = 0; a < 4; a++)
+                        uz[a] = u[3 * m[a] + 2];
+                    C->S[2 * k] = ((1 - eta) * (uz[1] - uz[0]) + eta * (uz[2] - uz[3])) / h;
+                    C->S[2 * k + 1] = ((1 - xi) * (uz[3] - uz[0]) + xi * (uz[2] - uz[1])) / h;
+                }
+            }
+            C->outside[k] = (unsigned char)out;
+        }
+        for (int d = 0; d < 2; d++) {
+            double gu = u[3 * s + d];
+            for (int a = 0; a < 4; a++)
+                gu -= N[a] * u[3 * m[a] + d];
+            C->s0[2 * k + d] = gu;
+        }
+        f3_contact_gv(C, k, v, C->gvo + 3 * k);
+    }
+}
+
+void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3])
+{
+    const int s = C->slave[k];
+    const int *m = C->mnode + 4 * k;
+    const double *N = C->N + 4 * k, *S = C->S + 2 * k;
+    double r[3];
+    for (int d = 0; d < 3; d++) {
+        r[d] = v[3 * s + d];
+        for (int a = 0; a < 4; a++)
+            r[d] -= N[a] * v[3 * m[a] + d];
+    }
+    g[0] = r[2] - S[0] * r[0] - S[1] * r[1];
+    g[1] = r[0];
+    g[2] = r[1];
+}
+
+void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, const double *invm, double dt,
+                        int threads)
+{
+    (void)threads;
+    const double dt2 = dt * dt;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads)
+#endif
+    for (long k = 0; k < C->nslave; k++) {
+        int s = C->slave[k];
+        const int *m = C->mnode + 4 * k;
+        const double *N = C->N + 4 * k;
+        double g = mesh->x[3 * s + 2] + u[3 * s + 2]; /* the master face is z = 0 in the reference */
+        for (int a = 0; a < 4; a++)
+            g -= N[a] * (mesh->x[3 * m[a] + 2] + u[3 * m[a] + 2]);
+        for (int d = 0; d < 2; d++) {
+            double su = u[3 * s + d];
+            for (int a = 0; a < 4; a++)
+                su -= N[a] * u[3 * m[a] + d];
+            C->ds[2 * k + d] = su - C->s0[2 * k + d];
+        }
+        /* the master point moved with the slip of the step: first order in the face slope */
+        C->gap[k] = g - C->S[2 * k] * C->ds[2 * k] - C->S[2 * k + 1] * C->ds[2 * k + 1];
+        /* diagonal of dt^2 G M^-1 G^T: (normal, x, y) */
+        const double Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
+        double an = invm[3 * s + 2] + Sx * Sx * invm[3 * s] + Sy * Sy * invm[3 * s + 1];
+        double ax = invm[3 * s], ay = invm[3 * s + 1];
+        for (int q = 0; q < 4; q++) {
+            const double *im = invm + 3 * m[q];
+            an += N[q] * N[q] * (im[2] + Sx * Sx * im[0] + Sy * Sy * im[1]);
+            ax += N[q] * N[q] * im[0];
+            ay += N[q] * N[q] * im[1];
+        }
+        C->A[3 * k] = dt2 * an, C->A[3 * k + 1] = dt2 * ax, C->A[3 * k + 2] = dt2 * ay;
+    }
+}
+
+/* Add dt^2 M^-1 G_c^T delta of pair k (component c: 0 normal, 1 x, 2 y) to du.  The normal row
+   is the gradient of the gap including the slope S of the deformed master face, so that the
+   normal multipliers do no work when the boulder slides over an indented face. */
+static inline void spread(f3_contact *C, long k, int c, double delta, const double *invm, double dt2)
+{
+    const int s = C->slave[k];
+    const int *m = C->mnode + 4 * k;
+    const double *N = C->N + 4 * k;
+    if (c == 0) {
+        const double w[3] = {-C->S[2 * k], -C->S[2 * k + 1], 1};
+        for (int d = 0; d < 3; d++) {
+            C->du[3 * s + d] += dt2 * invm[3 * s + d] * w[d] * delta;
+            for (int a = 0; a < 4; a++)
+                C->du[3 * m[a] + d] -= dt2 * invm[3 * m[a] + d] * N[a] * w[d] * delta;
+        }
+        return;
+    }
+    const int d = c - 1;
+    C->du[3 * s + d] += dt2 * invm[3 * s + d] * delta;
+    for (int a = 0; a < 4; a++)
+        C->du[3 * m[a] + d] -= dt2 * invm[3 * m[a] + d] * N[a] * delta;
+}
+
+static inline double gdu(const f3_contact *C, long k, int c)
+{
+    double g[3];
+    f3_contact_gv(C, k, C->du, g);
+    return g[c];
+}
+
+rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double *u, double *v, rf_error *err)
+{
+    (void)err;
+    const double dt2 = dt * dt, f = C->friction;
+    C->ncand = 0;
+    for (long k = 0; k < C->nslave; k++) {
+        if (C->gap[k] < C->band) {
+            C->cand[C->ncand++] = (int)k;
+        } else {
+            C->lam[3 * k] = C->lam[3 * k + 1] = C->lam[3 * k + 2] = 0;
+        }
+    }
+    C->sweeps = 0;
+    C->residual = 0;
+    if (C->ncand == 0)
+        return RF_OK;
+    /* warm start from the previous step's multipliers */
+    for (long q = 0; q < C->ncand; q++) {
+        long k = C->cand[q];
+        for (int c = 0; c < 3; c++)
+            if (C->lam[3 * k + c] != 0)
+                spread(C, k, c, C->lam[3 * k + c], invm, dt2);
+    }
+    double change = 0;
+    int sweep;
+    for (sweep = 0; sweep < C->max_sweeps; sweep++) {
+        change = 0;
+        for (long q = 0; q < C->ncand; q++) {
+            long k = C->cand[q];
+            double *lam = C->lam + 3 * k;
+            const double *A = C->A + 3 * k;
+            /* normal: projection on lambda_n >= 0 */
+            double g = C->gap[k] + gdu(C, k, 0);
+            double ln = lam[0] - g / A[0];
+            if (ln < 0)
+                ln = 0;
+            double dn = ln - lam[0];
+            if (dn != 0) {
+                spread(C, k, 0, dn, invm, dt2);
+                lam[0] = ln;
+                if (fabs(dn) * A[0] > change)
+                    change = fabs(dn) * A[0];
+            }
+            /* tangential: stop the slip of the step, cap at f lambda_n */
+            double lt[2];
+            for (int c = 1; c < 3; c++) {
+                if (A[c] > 0) {
+                    double s = C->ds[2 * k + c - 1] + gdu(C, k, c);
+                    lt[c - 1] = lam[c] - s / A[c];
+                } else
+                    lt[c - 1] = 0;
+            }
+            double cap = f * ln, mag = sqrt(lt[0] * lt[0] + lt[1] * lt[1]);
+            if (mag > cap) {
+                double sc = mag > 0 ? cap / mag : 0;
+                lt[0] *= sc, lt[1] *= sc;
+            }
+            for (int c = 1; c < 3; c++) {
+                double dl = lt[c - 1] - lam[c];
+                if (dl != 0) {
+                    spread(C, k, c, dl, invm, dt2);
+                    lam[c] = lt[c - 1];
+                    if (fabs(dl) * A[c] > change)
+                        change = fabs(dl) * A[c];
+                }
+            }
+        }
+        if (change <= C->tol)
+            break;
+    }
+    C->sweeps = sweep + 1;
+    C->residual = change;
+    /* apply the corrections, clear the scratch */
+    for (long q = 0; q < C->ncand; q++) {
+        long k = C->cand[q];
+        int nodes[5] = {C->slave[k], C->mnode[4 * k], C->mnode[4 * k + 1], C->mnode[4 * k + 2], C->mnode[4 * k + 3]};
+        for (int a = 0; a < 5; a++)
+            for (int d = 0; d < 3; d++) {
+                double x = C->du[3 * nodes[a] + d];
+                if (x != 0) {
+                    u[3 * nodes[a] + d] += x;
+                    v[3 * nodes[a] + d] += x / dt;
+                    C->du[3 * nodes[a] + d] = 0;
+                }
+            }
+    }
+    return RF_OK;
+}

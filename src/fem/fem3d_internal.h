@@ -1,0 +1,112 @@
+/* fem3d_internal.h - data shared by the parts of the 3D impact solver: the
+ * mesh (fem3d_mesh.c), the hexahedron routines (fem3d_element.c), the
+ * contact with friction (fem3d_contact.c) and the time loop
+ * (fem3d_solver.c). */
+#ifndef ROCKFUZZ_FEM3D_INTERNAL_H
+#define ROCKFUZZ_FEM3D_INTERNAL_H
+
+#include <stddef.h>
+
+#include "rockfuzz/status.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+enum { F3_BOULDER = 0, F3_SLOPE = 1 };
+
+/* Node flags */
+enum { F3_SYM = 1, F3_OUTER = 2, F3_SURFACE = 4 };
+
+/* Structured fine box at the contact point of one body: uniform cubes of size
+ * h, x in [-nxm h, nxp h], y in [-ny h, ny h] (or [0, ny h] for the half
+ * model), z in [-nz h, 0] in the body's half-space coordinates. */
+typedef struct {
+    int nxm, nxp, ny, nz;
+    double h;
+} f3_box;
+
+typedef struct {
+    long n_nodes, n_elems;
+    double *x;             /* 3 per node [m] */
+    unsigned char *flags;  /* F3_SYM / F3_OUTER / F3_SURFACE */
+    int *conn;             /* 8 per element, positive Jacobian */
+    long boulder_nodes, boulder_elems; /* nodes/elements [0, boulder_*) are the boulder */
+    /* contact faces: the fine boxes' top faces as node grids, index
+       [i * nyt + j] for i along x and j along y */
+    int nxt_b, nyt_b, nxt_s, nyt_s;
+    int *top_b, *top_s;
+    double x0_s, y0_s, h_s; /* slope top grid: node (i, j) at (x0 + i h, y0 + j h, 0) */
+    /* outer surface quads of the slope (dashpots) */
+    long n_outer_quads;
+    int *outer_quads;      /* 4 per quad */
+} f3_mesh;
+
+typedef struct {
+    f3_box boulder, slope;
+    int full;              /* full model (else y >= 0) */
+    double radius;         /* boulder sphere radius before the affine map [m] */
+    double scale_xy, scale_z; /* affine spheroid map x,y *= scale_xy, z *= scale_z about the pole */
+    double boulder_inner;  /* radius of the boulder's half-space image / radius */
+    double domain;         /* slope hemisphere radius [m] */
+    double layer_aspect;   /* radial/tangential size ratio of the layers */
+} f3_mesh_spec;
+
+rf_status f3_mesh_build(const f3_mesh_spec *spec, f3_mesh *mesh, long max_elements, rf_error *err);
+void f3_mesh_free(f3_mesh *mesh);
+
+typedef struct {
+    double rho, E, nu;
+} f3_material;
+
+/* Element stiffness (24 x 24, row-major, dofs x0 y0 z0 x1 ...), lumped nodal
+ * masses (row sums of the consistent mass) and volume; 2x2x2 Gauss. */
+void f3_hex_matrices(const double x[24], const f3_material *mat, double K[576], double m[8], double *volume);
+/* Jacobian determinant at the element centre (orientation check). */
+double f3_hex_center_jacobian(const double x[24]);
+/* Largest eigenvalue of M_e^-1 K_e over the free dofs (Householder + Sturm
+ * bisection: exact for a 24 x 24 matrix up to round-off). */
+double f3_hex_lambda_max(const double K[576], const double m[8], const unsigned char free_dof[24]);
+
+/* Contact of the boulder's fine-box face nodes (slaves) on the slope's
+ * fine-box face (a uniform grid of master quads in the plane z = 0): each
+ * step, every slave is paired with the master quad under its current
+ * tangential position (bilinear weights), the normal is the slope's
+ * undeformed normal +z, and the forward-increment multipliers are found by
+ * projected Gauss-Seidel in slave order (deterministic). */
+typedef struct {
+    long nslave;
+    int *slave;          /* boulder node ids */
+    double *lam;         /* 3 per slave: normal, tangential x, y [N]; the next step's start */
+    int *mnode;          /* 4 master node ids per slave (this step) */
+    double *N;           /* 4 bilinear weights per slave */
+    double *S;           /* 2 per slave: slope d u_z / d(x, y) of the deformed master face */
+    double *gap;         /* predicted normal gap [m] */
+    double *ds;          /* 2 per slave: predicted slip increment of the step [m] */
+    double *s0;          /* 2 per slave: relative tangential displacement at step n [m] */
+    double *A;           /* 3 per slave: diagonal of dt^2 G M^-1 G^T */
+    double *gvo;         /* 3 per slave: G v_{n-1/2} */
+    unsigned char *outside; /* slave beyond the master grid (clamped) */
+    int *cand;
+    long ncand;
+    double *du;          /* 3 per node scratch, zero between calls */
+    double friction, tol, band;
+    int max_sweeps;
+    int sweeps;          /* statistics of the last solve */
+    double residual;
+} f3_contact;
+
+/* Pair every slave with the master quad under its position x + u (u at step
+ * n) if repair (else keep the pairing); store G u_n (tangential) and
+ * G v_{n-1/2}. */
+void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, const double *v, int threads,
+                       int repair);
+/* G v of pair k: (normal, x, y) relative velocity (or any per-dof field). */
+void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3]);
+/* Predicted gaps and slip increments from the predicted displacements. */
+void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, const double *invm, double dt,
+                        int threads);
+/* Multipliers for the predicted state; adds the corrections to u and v. */
+rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double *u, double *v, rf_error *err);
+
+#endif
