@@ -215,7 +215,7 @@ rf_status sp_number(sp_ctx *c, struct fy_node *n, const char *path, double *v)
 
 rf_status sp_integer(sp_ctx *c, struct fy_node *n, const char *path, long long min, long long max, long long *v)
 {
-    double d;
+    double d = 0;
     rf_status st = sp_number(c, n, path, &d);
     if (st != RF_OK) {
         if (is_scalar(n) && !is_quoted(n))
@@ -267,8 +267,8 @@ rf_status sp_string(sp_ctx *c, struct fy_node *n, const char *path, const char *
 
 rf_status sp_string_dup(sp_ctx *c, struct fy_node *n, const char *path, char **out)
 {
-    const char *s;
-    size_t len;
+    const char *s = NULL;
+    size_t len = 0;
     rf_status st = sp_string(c, n, path, &s, &len);
     if (st != RF_OK)
         return st;
