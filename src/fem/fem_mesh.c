@@ -2,22 +2,23 @@
  *
  * Both bodies are generated from one reference pattern: a quarter disc in
  * (x, y), x along the contact surface and y into the body, with the first
- * contact point at the origin.
+ * contact point at the origin (so a node sits exactly there).
  *   - core: n x n uniform squares of size h (the fine zone, ~2.5 a wide);
- *   - rings: layers from the square's boundary to circles of growing radius
- *     rho, blending from square to circle over the first layers; the radial
- *     size grows geometrically (ratio `grading`) up to h_far, and the number of
+ *   - rings: the core square offset outward (grid lines continued, fanning at
+ *     the corner), blending into circles of growing radius; the radial size
+ *     grows geometrically (ratio `grading`) up to h_far, and the number of
  *     angular divisions is cut by three with a 4-quad 3:1 transition layer
  *     whenever the coarser divisions still fit the desired size.
- * The slope is this pattern mirrored (z = -y), out to the hemisphere radius.
- * The boulder (sphere of radius c, then scaled vertically by d/c) maps the
- * pattern with "arcs around the contact point": reference radius rho is the
- * chord distance from the south pole, and the quarter circle of radius rho is
- * laid along the arc of the sphere at that distance, from the surface point
- * (theta = 0) to the axis (theta = 90 deg).  Near the contact the map is the
- * identity to second order, so the fine zones of both bodies have the same
- * square elements; rho = 2c collapses onto the north pole (a fan of
- * degenerate quads, far from the contact). */
+ * Sizes are measured in physical space through the body's map.
+ * Slope: the pattern mirrored (z = -y) out to the hemisphere radius L.
+ * Boulder (sphere of radius c, scaled vertically by d/c for a spheroid): the
+ * quarter plane is mapped onto the half disc by the Moebius map
+ * w = 2ic z / (z + 2ic) (conformal: the surface line goes onto the sphere,
+ * the axis onto the axis, infinity onto the north pole), preceded by a mild
+ * stretch that undoes its (1 - y/c) compression near the contact.  The
+ * pattern stops at reference radius 8c; the remaining cap around the north
+ * pole is a second, small O-grid whose outer ring is the first one's
+ * (reflection z = P^2 / conj(z')).  No degenerate elements anywhere. */
 #include "fem_internal.h"
 
 #include <math.h>
