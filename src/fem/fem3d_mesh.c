@@ -219,13 +219,11 @@ rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, r
     memset(&g1, 0, sizeof g1), memset(&g2, 0, sizeof g2), memset(&gs, 0, sizeof gs);
     rf_status st;
     int K1 = ogrid_layers(&sp->boulder, Rb, sp->layer_aspect);
-    /* the cap copy: same box counts, box at half the radius of its hemisphere */
+    /* the cap copy: same box counts, the box's farthest corner at 0.6 of its hemisphere's radius */
     f3_box b2 = sp->boulder;
-    int nmin = b2.nxm < b2.ny ? b2.nxm : b2.ny;
-    if (b2.nz < nmin)
-        nmin = b2.nz;
+    int nxx = b2.nxm > b2.nxp ? b2.nxm : b2.nxp;
     const double rho_h = 1.0;
-    b2.h = 0.5 * rho_h / nmin;
+    b2.h = 0.6 * rho_h / sqrt((double)nxx * nxx + (double)b2.ny * b2.ny + (double)b2.nz * b2.nz);
     int K2 = ogrid_layers(&b2, rho_h, sp->layer_aspect);
     int Ks = ogrid_layers(&sp->slope, sp->domain, sp->layer_aspect);
     if ((st = ogrid_init(&g1, &sp->boulder, sp->full, Rb, K1, err)) != RF_OK ||
