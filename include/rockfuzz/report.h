@@ -2,7 +2,10 @@
  * result.json, CSV tables and membership/influence plots (PNG and SVG).
  *
  * result.json is written last and atomically (result.json.tmp, then
- * rename), so its presence means every other file was written too. */
+ * rename), so its presence means every other file was written too.
+ * result.json also carries "warnings": every message a reader must see
+ * (failed evaluations left out of the bounds, non-monotonic outputs under the
+ * reduced form, FE notes), which report.html shows at the top. */
 #ifndef ROCKFUZZ_REPORT_H
 #define ROCKFUZZ_REPORT_H
 
@@ -21,6 +24,11 @@ typedef struct {
     double wall_seconds;   /* wall time of the run, stored in result.json */
     int jobs;              /* worker threads used, stored in result.json */
     size_t cap;            /* evaluation cap used (0 = none) */
+    size_t evaluated;      /* evaluated in this run (successfully) */
+    size_t failed;         /* failed in this run (tolerate_failures) */
+    size_t resumed;        /* found in the result store */
+    int mpi_ranks;         /* MPI ranks (1 = none) */
+    double eval_seconds;   /* time spent in the model in this run [s] */
 } rf_report_options;
 
 void rf_report_options_default(rf_report_options *opt);
@@ -34,6 +42,11 @@ void rf_report_print_summary(FILE *f, const rf_study *study, const rf_tm_result 
 /* Write every output file into dir (created if missing); result.json last. */
 rf_status rf_report_write(const char *dir, const rf_study *study, const rf_tm_result *res, const rf_analysis *an,
                           const rf_report_options *opt, rf_error *err);
+
+/* DIR/report.html from DIR/result.json and the SVG figures written next to it
+ * (embedded inline, so the page is self-contained); nothing is re-run.  The
+ * page is written to report.html.tmp and renamed. */
+rf_status rf_report_write_html(const char *dir, rf_error *err);
 
 /* The pieces, for tests and other front ends. */
 rf_status rf_report_write_json(const char *path, const rf_study *study, const rf_tm_result *res,

@@ -7,31 +7,53 @@
  * handed out, and the failing point with the LOWEST index is reported (all
  * lower indices were handed out before it, so this is deterministic).
  *
- * The runner optionally prints one progress line to a stream (done/total,
- * failures, elapsed, estimated time left from the measured evaluation times). */
+ * With a result store (store.h) every point is first looked up by its exact
+ * parameter vector; only missing points are evaluated, and each finished
+ * evaluation (or failure) is committed at once by the thread that finished
+ * it, under the store's mutex.  A store write error stops the batch (RF_EIO).
+ *
+ * Under MPI (mpi.h) the calling thread of rank 0 also hands points to the
+ * worker ranks and commits what they send back; the local threads go on
+ * evaluating from the same queue.
+ *
+ * Progress: one line (done/total including points found in the store,
+ * failures, elapsed, time left estimated from the fresh evaluations only), or
+ * one JSON object per finished evaluation (RF_PROGRESS_JSONL) for batch systems.
+ *
+ * tolerate_failures: a failed point gets NaN outputs and the batch goes on
+ * (the TM must then run with rf_tm_options.tolerate_failures, see tm.h). */
 #ifndef ROCKFUZZ_RUNNER_H
 #define ROCKFUZZ_RUNNER_H
 
 #include <stdio.h>
 
 #include "rockfuzz/model.h"
+#include "rockfuzz/store.h"
 #include "rockfuzz/tm.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+typedef enum { RF_PROGRESS_NONE = 0, RF_PROGRESS_LINE = 1, RF_PROGRESS_JSONL = 2 } rf_progress_mode;
+
 typedef struct {
     int jobs;              /* worker threads; 0 = rf_runner_default_jobs(model) */
-    int progress;          /* print a progress line (caller decides: TTY or --progress) */
+    int progress;          /* rf_progress_mode (caller decides: TTY, --progress, --progress=jsonl) */
     FILE *stream;          /* progress stream, NULL = stderr */
     size_t planned_total;  /* total points expected over all batches (for the progress line), 0 = per batch */
+    rf_store *store;       /* result store, NULL = none */
+    int tolerate_failures; /* failed points get NaN outputs instead of stopping the batch */
+    int mpi_workers;       /* worker ranks served by this (rank 0) process, 0 = no MPI */
 
     /* Statistics, accumulated over batches (read them after rf_tm_run). */
     size_t evaluated;      /* points evaluated successfully */
     size_t failed;         /* points that failed */
-    double eval_seconds;   /* sum of the single evaluation times [s] */
+    size_t resumed;        /* points found in the store (not evaluated again) */
+    double eval_seconds;   /* sum of the single evaluation times [s] (fresh evaluations) */
     double wall_seconds;   /* wall time spent inside batches [s] */
+    double fresh_wall;     /* wall time of the batches' evaluation phases (for the estimate) [s] */
+    size_t remote;         /* of the evaluated/failed points, how many ran on other MPI ranks */
     int jobs_used;         /* threads used by the last batch */
 } rf_runner;
 

@@ -10,7 +10,13 @@
  *
  * NaN outputs: an output that is NaN at every point is undefined for this
  * study (cuts NaN, output_undefined set); one that is NaN at some points only
- * stops the run with the parameter vector, since its bounds would be wrong. */
+ * stops the run with the parameter vector, since its bounds would be wrong.
+ *
+ * tolerate_failures (off by default): a failed evaluation no longer stops the
+ * run; the evaluator gives its point NaN outputs, NaN values are left out of
+ * the min/max of every cut, and the count is reported (failed_points, the
+ * points whose outputs are all NaN; nan_points[k] per output) so that the
+ * caller can warn loudly: such bounds may be too narrow. */
 #ifndef ROCKFUZZ_TM_H
 #define ROCKFUZZ_TM_H
 
@@ -49,6 +55,7 @@ typedef struct {
     double cache_rtol;                   /* grid values closer than this (relative) are one value; default 1e-12 */
     double probe_rtol;                   /* extended-form probe: ignore differences below this x output range; 1e-9 */
     const rf_evaluator *evaluator;       /* NULL = serial */
+    int tolerate_failures;               /* NaN/failed points are skipped in the bounds (see above) */
     /* Called once with the counts before any evaluation; return non-zero to abort. */
     int (*on_plan)(void *user, size_t requested, size_t distinct);
     void *on_plan_user;
@@ -74,6 +81,8 @@ typedef struct {
     size_t distinct;                     /* model evaluations actually made */
     size_t probe_evaluations;            /* of which the extended-form probe */
     size_t lr_evaluations;               /* of which only needed by the three-point grid */
+    size_t failed_points;                /* tolerate_failures: points with every output NaN (failed) */
+    size_t *nan_points;                  /* [k] tolerate_failures: points skipped for output k */
     unsigned char *output_undefined;     /* [k] 1 if the model returned NaN for output k at every
                                           * point (e.g. R_t of a normal impact): its cuts are NaN */
     struct rf_tm_data *data;

@@ -1,6 +1,8 @@
 /* cmd_run.c - `rockfuzz run STUDY.yaml --out DIR`: load and validate the
- * study, show the evaluation count, run the TM through the parallel runner,
- * analyse, print the summary and write the report (result.json last). */
+ * study, open the result store DIR/store.sqlite (resume), show the evaluation
+ * count, run the TM through the parallel runner (threads, and MPI ranks when
+ * started by mpirun), analyse, print the summary and write the report
+ * (result.json last, then report.html). */
 #include "cli/cli.h"
 
 #include <errno.h>
@@ -13,8 +15,10 @@
 #include <unistd.h>
 
 #include "rockfuzz/analysis.h"
+#include "rockfuzz/mpi.h"
 #include "rockfuzz/report.h"
 #include "rockfuzz/runner.h"
+#include "rockfuzz/store.h"
 #include "rockfuzz/study.h"
 #include "rockfuzz/tm.h"
 
@@ -33,9 +37,15 @@ static void usage(FILE *f)
         "  --max-evaluations N    cap on distinct model evaluations; the run stops before\n"
         "                         evaluating anything if the plan exceeds it (default:\n"
         "                         options.max_evaluations, else 100000; 0 = no cap)\n"
-        "  --progress             show the progress line even when stderr is not a terminal\n"
-        "  --quiet                no progress line and no plan line on stderr\n"
-        "  --no-plots             skip the PNG/SVG plots\n"
+        "  --progress[=MODE]      MODE line (default): the progress line even when stderr\n"
+        "                         is not a terminal; jsonl: one JSON object per finished\n"
+        "                         evaluation on stderr (done, total, failed, left, x, ...)\n"
+        "  --quiet                no progress output on stderr\n"
+        "  --fresh                discard the results stored in DIR/store.sqlite (also\n"
+        "                         those of another model or version) and start over\n"
+        "  --tolerate-failures    a failed evaluation (error or NaN) does not stop the run:\n"
+        "                         it is stored, left out of the bounds, and warned about\n"
+        "  --no-plots             skip the PNG/SVG plots (report.html then has no figures)\n"
         "  -h, --help             show this help\n"
         "\n"
         "Study file (YAML; full reference in docs/user-guide.md):\n"
@@ -63,7 +73,18 @@ static void usage(FILE *f)
         "(m, kg, s, Pa, N) except slope_angle in degrees.  Template paths are relative to\n"
         "the study file.\n"
         "\n"
+        "Resuming: every evaluation is committed to DIR/store.sqlite when it finishes;\n"
+        "rerunning the same study into DIR evaluates only the points not stored yet.\n"
+        "A store of another model, setting or rockfuzz version is refused (see --fresh).\n"
+        "`rockfuzz status DIR` shows the progress of a running or stopped run.\n"
+        "\n"
+        "MPI: `mpirun -np K rockfuzz run STUDY.yaml --out DIR` (if built with MPI): rank 0\n"
+        "owns the store and hands out points, ranks 1..K-1 evaluate; rank 0 evaluates\n"
+        "with --jobs threads as well (default 1 under MPI).  Same results bit for bit.\n"
+        "\n"
         "Outputs in DIR:\n"
+        "  store.sqlite                every evaluation (parameters, outputs or error, time)\n"
+        "  report.html                 self-contained report (figures embedded)\n"
         "  result.json                 everything below plus metadata; written last and\n"
         "                              atomically, so it exists only after a complete run\n"
         "  cuts_OUTPUT.csv             mu,lower,upper of each output\n"
@@ -97,11 +118,23 @@ static double now_seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+typedef struct {
+    rf_runner *runner;
+    rf_store *store;
+    const char *study_name;
+    rf_error err;
+    int store_failed;
+} plan_ctx;
+
 static int on_plan(void *user, size_t requested, size_t distinct)
 {
     (void)requested;
-    rf_runner *r = user;
-    r->planned_total = distinct;
+    plan_ctx *p = user;
+    p->runner->planned_total = distinct;
+    if (p->store && rf_store_begin_run(p->store, distinct, p->study_name, &p->err) != RF_OK) {
+        p->store_failed = 1;
+        return 1;
+    }
     return 0;
 }
 
@@ -109,7 +142,7 @@ int rf_cli_run(int argc, char **argv)
 {
     const char *study_path = NULL, *out_dir = NULL;
     long long jobs = -1, cap = -1;
-    int quiet = 0, plots = 1, progress = 0;
+    int quiet = 0, plots = 1, progress = 0, fresh = 0, tolerate = 0;
     for (int a = 1; a < argc; a++) {
         const char *arg = argv[a];
         if (!strcmp(arg, "-h") || !strcmp(arg, "--help")) {
@@ -128,8 +161,17 @@ int rf_cli_run(int argc, char **argv)
                 return 2;
         } else if (!strcmp(arg, "--quiet")) {
             quiet = 1;
-        } else if (!strcmp(arg, "--progress")) {
-            progress = 1;
+        } else if (!strcmp(arg, "--progress") || !strcmp(arg, "--progress=line")) {
+            progress = RF_PROGRESS_LINE;
+        } else if (!strcmp(arg, "--progress=jsonl")) {
+            progress = RF_PROGRESS_JSONL;
+        } else if (!strncmp(arg, "--progress=", 11)) {
+            fprintf(stderr, "rockfuzz run: %s: the progress mode is line or jsonl\n", arg);
+            return 2;
+        } else if (!strcmp(arg, "--fresh")) {
+            fresh = 1;
+        } else if (!strcmp(arg, "--tolerate-failures")) {
+            tolerate = 1;
         } else if (!strcmp(arg, "--no-plots")) {
             plots = 0;
         } else if (arg[0] == '-' && arg[1]) {
@@ -150,20 +192,58 @@ int rf_cli_run(int argc, char **argv)
 
     rf_error err;
     memset(&err, 0, sizeof err);
-    rf_study study;
-    if (rf_study_load(study_path, &study, &err) != RF_OK) {
+    int rank = 0, ranks = 1;
+    if (rf_mpi_start(&argc, &argv, &rank, &ranks, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz run: %s\n", err.msg);
+        rf_mpi_stop();
+        return 1;
+    }
+    rf_study study;
+    rf_status loaded = rf_study_load(study_path, &study, &err);
+    if (rank > 0) {
+        /* A worker rank: evaluate what rank 0 sends; rank 0 prints every message. */
+        int wrc = rf_mpi_worker(loaded == RF_OK ? &study.model : NULL, err.msg);
+        if (loaded == RF_OK)
+            rf_study_free(&study);
+        rf_mpi_stop();
+        return wrc;
+    }
+    if (ranks > 1) {
+        rf_error herr;
+        memset(&herr, 0, sizeof herr);
+        if (rf_mpi_gather_hello(loaded == RF_OK ? &study.model : NULL, &herr) != RF_OK && loaded == RF_OK) {
+            fprintf(stderr, "rockfuzz run: %s\n", herr.msg);
+            rf_study_free(&study);
+            rf_mpi_release_workers();
+            rf_mpi_stop();
+            return 1;
+        }
+    }
+    if (loaded != RF_OK) {
+        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
+        rf_mpi_release_workers();
+        rf_mpi_stop();
         return 1;
     }
     int rc = 1;
     rf_tm_result res;
     rf_analysis an;
+    rf_store *store = NULL;
     memset(&res, 0, sizeof res);
     memset(&an, 0, sizeof an);
+    char store_path[PATH_MAX];
+    snprintf(store_path, sizeof store_path, "%s/%s", out_dir, RF_STORE_FILE);
 
     /* An old result must not survive a failed rerun into the same directory. */
     if (mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
         fprintf(stderr, "rockfuzz run: %s: cannot create the output directory: %s\n", out_dir, strerror(errno));
+        goto done;
+    }
+    rf_store_key key = {study.model.identity ? study.model.identity : "", ROCKFUZZ_VERSION, study.n_params,
+                        study.model.n_outputs, (const char *const *)study.param_names,
+                        (const char *const *)study.model.output_names};
+    if (rf_store_open(store_path, &key, fresh, &store, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
         goto done;
     }
     {
@@ -179,14 +259,29 @@ int rf_cli_run(int argc, char **argv)
     rf_study_tm_options(&study, &opt);
     if (cap >= 0)
         opt.max_evaluations = (size_t)cap;
+    opt.tolerate_failures = tolerate;
     rf_runner runner;
     rf_runner_init(&runner);
-    runner.jobs = jobs > 0 ? (int)jobs : study.jobs > 0 ? study.jobs : rf_runner_default_jobs(&study.model);
-    runner.progress = !quiet && (progress || isatty(STDERR_FILENO));
+    runner.jobs = jobs > 0    ? (int)jobs
+                  : ranks > 1 ? 1
+                  : study.jobs > 0 ? study.jobs
+                                   : rf_runner_default_jobs(&study.model);
+    runner.progress = quiet ? RF_PROGRESS_NONE
+                      : progress ? progress
+                      : isatty(STDERR_FILENO) ? RF_PROGRESS_LINE
+                                              : RF_PROGRESS_NONE;
+    runner.store = store;
+    runner.tolerate_failures = tolerate;
+    runner.mpi_workers = ranks - 1;
     rf_evaluator ev = rf_runner_evaluator(&runner);
     opt.evaluator = &ev;
+    plan_ctx pc;
+    memset(&pc, 0, sizeof pc);
+    pc.runner = &runner;
+    pc.store = store;
+    pc.study_name = study.name;
     opt.on_plan = on_plan;
-    opt.on_plan_user = &runner;
+    opt.on_plan_user = &pc;
 
     size_t requested = 0, distinct = 0;
     if (rf_tm_count(study.inputs, study.n_params, &opt, &requested, &distinct, &err) != RF_OK) {
@@ -196,10 +291,13 @@ int rf_cli_run(int argc, char **argv)
     printf("Study '%s': %s form, m = %zu, %zu parameter%s; model %s\n", study.name,
            rf_tm_scheme_name(study.scheme), study.levels, study.n_params, study.n_params == 1 ? "" : "s",
            study.model_description);
-    printf("Evaluations: %zu requested, %zu distinct%s%s; %d job%s\n", requested, distinct,
+    printf("Evaluations: %zu requested, %zu distinct%s%s; %d job%s", requested, distinct,
            study.scheme == RF_TM_EXTENDED ? " (at most; the probe decides)" : "",
            study.left_right ? ", including the left/right three-point grid" : "", runner.jobs,
            runner.jobs == 1 ? "" : "s");
+    if (ranks > 1)
+        printf(" on rank 0 + %d MPI worker rank%s", ranks - 1, ranks == 2 ? "" : "s");
+    printf("\n");
     fflush(stdout);
     if (opt.max_evaluations > 0 && distinct > opt.max_evaluations && study.scheme != RF_TM_EXTENDED) {
         fprintf(stderr,
@@ -211,7 +309,11 @@ int rf_cli_run(int argc, char **argv)
 
     double t0 = now_seconds();
     if (rf_tm_run(study.inputs, study.n_params, &study.model, &opt, &res, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s: %s\n", study_path, err.msg);
+        fprintf(stderr, "rockfuzz run: %s: %s\n", study_path, pc.store_failed ? pc.err.msg : err.msg);
+        fprintf(stderr, "rockfuzz run: %zu evaluation%s of this run committed to %s (%zu found there before); "
+                        "rerun to resume\n",
+                runner.evaluated + runner.failed, runner.evaluated + runner.failed == 1 ? "" : "s", store_path,
+                runner.resumed);
         goto done;
     }
     if (rf_analysis_compute(&res, &an, &err) != RF_OK) {
@@ -221,6 +323,13 @@ int rf_cli_run(int argc, char **argv)
     double wall = now_seconds() - t0;
     rf_report_print_summary(stdout, &study, &res, &an);
     fflush(stdout);
+    if (res.failed_points > 0 || runner.failed > 0)
+        fprintf(stderr,
+                "rockfuzz run: WARNING: %zu evaluation%s failed and %s left out of the bounds: the fuzzy outputs "
+                "may be too narrow. The failures (parameters, message) are in %s; `rockfuzz status %s` lists "
+                "them.\n",
+                runner.failed, runner.failed == 1 ? "" : "s", runner.failed == 1 ? "was" : "were", store_path,
+                out_dir);
 
     rf_report_options ropt;
     rf_report_options_default(&ropt);
@@ -228,16 +337,29 @@ int rf_cli_run(int argc, char **argv)
     ropt.wall_seconds = wall;
     ropt.jobs = runner.jobs;
     ropt.cap = opt.max_evaluations;
+    ropt.evaluated = runner.evaluated;
+    ropt.failed = runner.failed;
+    ropt.resumed = runner.resumed;
+    ropt.mpi_ranks = ranks;
+    ropt.eval_seconds = runner.eval_seconds;
     if (rf_report_write(out_dir, &study, &res, &an, &ropt, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz run: %s\n", err.msg);
         goto done;
     }
-    printf("Wall time %.3f s (%zu evaluations, %.3f s in the model). Results: %s/result.json\n", wall,
-           runner.evaluated, runner.eval_seconds, out_dir);
+    if (rf_report_write_html(out_dir, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
+        goto done;
+    }
+    printf("Wall time %.3f s (%zu evaluated, %zu failed, %zu from the store; %.3f s in the model). Results: "
+           "%s/result.json, %s/report.html\n",
+           wall, runner.evaluated, runner.failed, runner.resumed, runner.eval_seconds, out_dir, out_dir);
     rc = 0;
 done:
+    rf_store_close(store);
     rf_analysis_free(&an);
     rf_tm_result_free(&res);
     rf_study_free(&study);
+    rf_mpi_release_workers();
+    rf_mpi_stop();
     return rc;
 }

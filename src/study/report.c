@@ -218,6 +218,57 @@ static void json_reason(FILE *f, const char *key, double v, rf_na_reason r)
     }
 }
 
+/* Every message a reader of result.json / report.html must see, as JSON strings. */
+static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res)
+{
+    char msg[1024];
+    int any = 0;
+#define WARN()                                                                                                    \
+    do {                                                                                                        \
+        fputs(any++ ? ",\n    " : "\n    ", f);                                                               \
+        json_string(f, msg);                                                                                    \
+    } while (0)
+    size_t n = res->n_inputs;
+    if (res->failed_points > 0) {
+        snprintf(msg, sizeof msg,
+                 "%zu of %zu evaluations failed (error or NaN) and were LEFT OUT of the bounds "
+                 "(--tolerate-failures): the fuzzy outputs may be too narrow; the failures are listed by "
+                 "`rockfuzz status DIR`",
+                 res->failed_points, res->distinct);
+        WARN();
+    }
+    for (size_t k = 0; k < res->n_outputs; k++) {
+        if (res->nan_points && res->nan_points[k] > res->failed_points) {
+            snprintf(msg, sizeof msg, "output %s: NaN at %zu points, left out of its bounds", s->model.output_names[k],
+                     res->nan_points[k]);
+            WARN();
+        }
+        for (size_t i = 0; i < n; i++)
+            if (res->monotonicity[k * n + i] == RF_MONO_NONMONOTONIC && res->scheme == RF_TM_REDUCED) {
+                snprintf(msg, sizeof msg,
+                         "%s is not monotonic in %s on the three-point grid: the reduced form can under-estimate "
+                         "this output; rerun with scheme: extended or general",
+                         s->model.output_names[k], s->param_names[i]);
+                WARN();
+            }
+    }
+    if (!s->left_right) {
+        snprintf(msg, sizeof msg, "monotonicity not checked (options.left_right is off)");
+        WARN();
+    }
+    if (s->model_kind == RF_STUDY_MODEL_IMPACT && s->model.identity && strstr(s->model.identity, "solver=fem")) {
+        snprintf(msg, sizeof msg,
+                 "FE solver: the warnings of single evaluations (e.g. stress waves reflected by the fixed outer "
+                 "boundary returning during contact, rf_fem_history.warning) are printed on stderr while the "
+                 "study runs; the impact model does not pass them through the model interface yet, so they are "
+                 "not listed here");
+        WARN();
+    }
+#undef WARN
+    if (any)
+        fputs("\n  ", f);
+}
+
 rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
                                const rf_report_options *opt, rf_error *err)
 {
@@ -325,8 +376,14 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
         fputs("\n    }", f);
     }
     fprintf(f, "\n  },\n  \"evaluations\": {\"requested\": %zu, \"distinct\": %zu, \"probe\": %zu, \"left_right\": "
-               "%zu, \"cap\": %zu},\n",
-            res->requested, res->distinct, res->probe_evaluations, res->lr_evaluations, opt ? opt->cap : 0);
+               "%zu, \"cap\": %zu, \"evaluated\": %zu, \"failed\": %zu, \"from_store\": %zu, "
+               "\"failed_points\": %zu, \"model_seconds\": ",
+            res->requested, res->distinct, res->probe_evaluations, res->lr_evaluations, opt ? opt->cap : 0,
+            opt ? opt->evaluated : 0, opt ? opt->failed : 0, opt ? opt->resumed : 0, res->failed_points);
+    json_number(f, opt ? opt->eval_seconds : NAN);
+    fprintf(f, "},\n  \"mpi_ranks\": %d,\n  \"warnings\": [", opt && opt->mpi_ranks > 0 ? opt->mpi_ranks : 1);
+    write_warnings(f, s, res);
+    fputs("],\n", f);
     fputs("  \"wall_seconds\": ", f);
     json_number(f, opt ? opt->wall_seconds : NAN);
     fprintf(f, ",\n  \"jobs\": %d,\n  \"measures\": \"rho, kappa: Hanss 2002/2005 (tm_spec 5.3); rho_left, "

@@ -1,21 +1,26 @@
 /* runner.c - the parallel rf_evaluator (see runner.h).
  *
- * Workers pull point indices from an atomic counter (dynamic distribution);
- * each writes only its own y rows, so the result does not depend on the
- * thread count or the order of completion.  The first failure raises a stop
- * flag; the lowest failing index and its message are kept under a mutex.
- * The calling thread only draws the progress line while the workers run. */
+ * A batch first looks every point up in the result store (if any); the
+ * missing ones form a queue that workers drain through an atomic counter
+ * (dynamic distribution).  Each worker writes only its own y rows, so the
+ * result does not depend on the thread count, the MPI ranks or the order of
+ * completion.  Whoever finishes a point commits it to the store under the
+ * batch mutex (one writer at a time).  The first failure raises a stop flag
+ * (unless failures are tolerated); the lowest failing index and its message
+ * are kept.  The calling thread draws the progress line, or serves the MPI
+ * worker ranks (mpi.c) while the local threads evaluate. */
 #include "rockfuzz/runner.h"
 
 #include <errno.h>
-#include <pthread.h>
-#include <stdatomic.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
 
-static double now_seconds(void)
+#include "study/runner_internal.h"
+
+double rf_runner_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -37,59 +42,15 @@ int rf_runner_default_jobs(const rf_model *model)
     return jobs < 1 ? 1 : (int)jobs;
 }
 
-typedef struct {
-    const rf_model *model;
-    size_t count;
-    const double *x;
-    double *y;
-    atomic_size_t next;      /* next index to hand out */
-    atomic_size_t done;      /* finished (ok or failed) */
-    atomic_size_t nfailed;
-    atomic_int stop;
-    atomic_int workers_left; /* started workers that have not returned */
-    pthread_mutex_t lock;    /* guards the fields below */
-    size_t first_failed;     /* lowest failing index, count if none */
-    rf_error first_err;
-    double eval_seconds;
-} batch;
-
-static void *worker(void *arg)
+int rf_batch_take(rf_batch *b, size_t *pos)
 {
-    batch *b = arg;
-    size_t nin = b->model->n_inputs, nout = b->model->n_outputs;
-    double busy = 0;
-    rf_error err;
-    for (;;) {
-        if (atomic_load(&b->stop))
-            break;
-        size_t k = atomic_fetch_add(&b->next, 1);
-        if (k >= b->count)
-            break;
-        double t0 = now_seconds();
-        memset(&err, 0, sizeof err);
-        rf_status st = rf_model_eval(b->model, b->x + k * nin, b->y + k * nout, &err);
-        busy += now_seconds() - t0;
-        if (st != RF_OK) {
-            if (err.code == RF_OK)
-                err.code = st;
-            pthread_mutex_lock(&b->lock);
-            if (k < b->first_failed) {
-                b->first_failed = k;
-                b->first_err = err;
-                if (b->first_err.msg[0] == '\0')
-                    rf_fail(&b->first_err, st, "model evaluation failed (%s)", rf_status_name(st));
-            }
-            pthread_mutex_unlock(&b->lock);
-            atomic_fetch_add(&b->nfailed, 1);
-            atomic_store(&b->stop, 1);
-        }
-        atomic_fetch_add(&b->done, 1);
-    }
-    pthread_mutex_lock(&b->lock);
-    b->eval_seconds += busy;
-    pthread_mutex_unlock(&b->lock);
-    atomic_fetch_sub(&b->workers_left, 1);
-    return NULL;
+    if (atomic_load(&b->stop))
+        return 0;
+    size_t k = atomic_fetch_add(&b->next, 1);
+    if (k >= b->ntodo)
+        return 0;
+    *pos = k;
+    return 1;
 }
 
 static void format_duration(double s, char *buf, size_t size)
@@ -104,25 +65,142 @@ static void format_duration(double s, char *buf, size_t size)
         snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
 }
 
-static void progress_line(rf_runner *r, batch *b, double t_start, int final)
+/* Counts over the whole run so far: done (incl. resumed), total, failed, time left. */
+static void run_counts(rf_batch *b, size_t *done, size_t *total, size_t *failed, double *left, double *elapsed)
 {
+    rf_runner *r = b->runner;
+    size_t fresh_batch = atomic_load(&b->done);
+    size_t fresh = r->evaluated + r->failed + fresh_batch;
+    *done = r->resumed + b->resumed + fresh;
+    size_t t = r->planned_total > *done ? r->planned_total : r->resumed + r->evaluated + r->failed + b->count;
+    *total = t < *done ? *done : t;
+    *failed = r->failed + atomic_load(&b->nfailed);
+    double phase = rf_runner_now() - b->t_start;
+    *elapsed = r->wall_seconds + phase;
+    /* Only fresh evaluations measure the speed: points found in the store took no time. */
+    double fresh_wall = r->fresh_wall + phase;
+    *left = fresh > 0 ? fresh_wall / (double)fresh * (double)(*total - *done) : (*total == *done ? 0 : -1);
+}
+
+void rf_batch_progress(rf_batch *b, int final)
+{
+    rf_runner *r = b->runner;
+    if (r->progress != RF_PROGRESS_LINE)
+        return;
     FILE *f = r->stream ? r->stream : stderr;
-    size_t done_batch = atomic_load(&b->done);
-    size_t done = r->evaluated + r->failed + done_batch;
-    size_t total = r->planned_total > done ? r->planned_total : r->evaluated + r->failed + b->count;
-    if (total < done)
-        total = done;
-    double elapsed = r->wall_seconds + (now_seconds() - t_start);
-    /* Time left from the measured throughput of this run (evaluations per wall second). */
-    double left = done > 0 ? elapsed / (double)done * (double)(total - done) : -1;
+    size_t done, total, failed;
+    double left, elapsed;
+    run_counts(b, &done, &total, &failed, &left, &elapsed);
     char e[32], l[32];
     format_duration(elapsed, e, sizeof e);
     format_duration(left, l, sizeof l);
-    fprintf(f, "\r  evaluations %zu/%zu  failed %zu  elapsed %s  left %s   ", done, total,
-            r->failed + atomic_load(&b->nfailed), e, final ? "0.0s" : l);
+    fprintf(f, "\r  evaluations %zu/%zu  failed %zu  elapsed %s  left %s   ", done, total, failed, e,
+            final ? "0.0s" : l);
     if (final)
         fputc('\n', f);
     fflush(f);
+}
+
+static void json_text(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p == '"' || *p == '\\')
+            fprintf(f, "\\%c", *p);
+        else if (*p < 0x20)
+            fprintf(f, "\\u%04x", *p);
+        else
+            fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+/* Called with b->lock held. */
+static void jsonl_line(rf_batch *b, size_t k, int ok, const rf_error *err, double seconds)
+{
+    rf_runner *r = b->runner;
+    FILE *f = r->stream ? r->stream : stderr;
+    size_t done, total, failed;
+    double left, elapsed;
+    run_counts(b, &done, &total, &failed, &left, &elapsed);
+    fprintf(f, "{\"event\": \"evaluation\", \"done\": %zu, \"total\": %zu, \"failed\": %zu, \"ok\": %s, "
+               "\"seconds\": %.6g, \"elapsed\": %.6g, \"left\": ",
+            done, total, failed, ok ? "true" : "false", seconds, elapsed);
+    if (left >= 0)
+        fprintf(f, "%.6g", left);
+    else
+        fputs("null", f);
+    fputs(", \"x\": [", f);
+    const double *x = b->x + k * b->model->n_inputs;
+    for (size_t i = 0; i < b->model->n_inputs; i++)
+        fprintf(f, i ? ", %.17g" : "%.17g", x[i]);
+    fputc(']', f);
+    if (!ok) {
+        fputs(", \"error\": ", f);
+        json_text(f, err && err->msg[0] ? err->msg : "failed");
+    }
+    fputs("}\n", f);
+    fflush(f);
+}
+
+void rf_batch_finish(rf_batch *b, size_t pos, rf_status st, const rf_error *err, double seconds)
+{
+    rf_runner *r = b->runner;
+    size_t k = b->todo[pos];
+    size_t nin = b->model->n_inputs, nout = b->model->n_outputs;
+    rf_error local;
+    memset(&local, 0, sizeof local);
+    if (st != RF_OK) {
+        local = *err;
+        if (local.code == RF_OK)
+            local.code = st;
+        if (local.msg[0] == '\0')
+            rf_fail(&local, st, "model evaluation failed (%s)", rf_status_name(st));
+        for (size_t o = 0; o < nout; o++)
+            b->y[k * nout + o] = NAN;
+    }
+    pthread_mutex_lock(&b->lock);
+    b->eval_seconds += seconds;
+    if (r->store && !b->store_failed) {
+        rf_error serr;
+        memset(&serr, 0, sizeof serr);
+        if (rf_store_put(r->store, b->x + k * nin, st == RF_OK, b->y + k * nout, local.msg, seconds, &serr) !=
+            RF_OK) {
+            b->store_failed = 1;
+            b->store_err = serr;
+            atomic_store(&b->stop, 1);
+        }
+    }
+    if (st != RF_OK) {
+        if (k < b->first_failed) {
+            b->first_failed = k;
+            b->first_err = local;
+        }
+        atomic_fetch_add(&b->nfailed, 1);
+        if (!r->tolerate_failures)
+            atomic_store(&b->stop, 1);
+    }
+    atomic_fetch_add(&b->done, 1);
+    if (r->progress == RF_PROGRESS_JSONL)
+        jsonl_line(b, k, st == RF_OK, &local, seconds);
+    pthread_mutex_unlock(&b->lock);
+}
+
+static void *worker(void *arg)
+{
+    rf_batch *b = arg;
+    size_t nin = b->model->n_inputs, nout = b->model->n_outputs;
+    rf_error err;
+    size_t pos;
+    while (rf_batch_take(b, &pos)) {
+        size_t k = b->todo[pos];
+        double t0 = rf_runner_now();
+        memset(&err, 0, sizeof err);
+        rf_status st = rf_model_eval(b->model, b->x + k * nin, b->y + k * nout, &err);
+        rf_batch_finish(b, pos, st, &err, rf_runner_now() - t0);
+    }
+    atomic_fetch_sub(&b->workers_left, 1);
+    return NULL;
 }
 
 rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, const double *x, double *y,
@@ -132,63 +210,101 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
         return rf_fail(err, RF_EINTERNAL, "rf_runner_evaluate: NULL argument");
     if (count == 0)
         return RF_OK;
-    int jobs = r->jobs > 0 ? r->jobs : rf_runner_default_jobs(model);
-    if ((size_t)jobs > count)
-        jobs = (int)count;
-    r->jobs_used = jobs;
-
-    batch b;
+    double t_batch = rf_runner_now();
+    rf_batch b;
     memset(&b, 0, sizeof b);
+    b.runner = r;
     b.model = model;
     b.count = count;
     b.x = x;
     b.y = y;
+    b.first_failed = count;
+    if (!(b.todo = malloc(count * sizeof *b.todo)))
+        return rf_fail(err, RF_ENOMEM, "out of memory for the runner");
+    for (size_t k = 0; k < count; k++) {
+        int found = 0;
+        if (r->store) {
+            found = rf_store_lookup(r->store, x + k * model->n_inputs, y + k * model->n_outputs, err);
+            if (found < 0) {
+                free(b.todo);
+                return RF_EIO;
+            }
+        }
+        if (found)
+            b.resumed++;
+        else
+            b.todo[b.ntodo++] = k;
+    }
+
+    int jobs = r->jobs > 0 ? r->jobs : rf_runner_default_jobs(model);
+    if ((size_t)jobs > b.ntodo)
+        jobs = b.ntodo > 0 ? (int)b.ntodo : 1;
+    r->jobs_used = jobs;
     atomic_init(&b.next, 0);
     atomic_init(&b.done, 0);
     atomic_init(&b.nfailed, 0);
     atomic_init(&b.stop, 0);
     atomic_init(&b.workers_left, jobs);
-    b.first_failed = count;
-    if (pthread_mutex_init(&b.lock, NULL) != 0)
+    if (pthread_mutex_init(&b.lock, NULL) != 0) {
+        free(b.todo);
         return rf_fail(err, RF_EINTERNAL, "cannot create a mutex");
+    }
 
-    double t0 = now_seconds();
-    pthread_t *threads = calloc((size_t)jobs, sizeof *threads);
+    b.t_start = rf_runner_now();
     int started = 0;
-    if (threads) {
-        for (; started < jobs; started++)
-            if (pthread_create(&threads[started], NULL, worker, &b) != 0)
-                break;
-    }
-    atomic_fetch_sub(&b.workers_left, jobs - started);
-    if (started == 0) {
-        worker(&b); /* no thread could be created: evaluate here */
-    } else if (r->progress) {
-        /* The calling thread only draws, so the line moves even with one job. */
-        double last = 0;
-        while (atomic_load(&b.workers_left) > 0) {
-            double t = now_seconds();
-            if (t - last >= 0.5) {
-                progress_line(r, &b, t0, 0);
-                last = t;
-            }
-            struct timespec ts = {0, 20 * 1000 * 1000};
-            nanosleep(&ts, NULL);
+    pthread_t *threads = NULL;
+    if (b.ntodo > 0) {
+        threads = calloc((size_t)jobs, sizeof *threads);
+        if (threads) {
+            for (; started < jobs; started++)
+                if (pthread_create(&threads[started], NULL, worker, &b) != 0)
+                    break;
         }
+        atomic_fetch_sub(&b.workers_left, jobs - started);
+        if (r->mpi_workers > 0) {
+            rf_mpi_serve_batch(&b); /* returns when the queue is drained and the ranks are idle */
+        } else if (started == 0) {
+            atomic_fetch_add(&b.workers_left, 1);
+            worker(&b); /* no thread could be created: evaluate here */
+        } else if (r->progress == RF_PROGRESS_LINE) {
+            /* The calling thread only draws, so the line moves even with one job. */
+            double last = 0;
+            while (atomic_load(&b.workers_left) > 0) {
+                double t = rf_runner_now();
+                if (t - last >= 0.5) {
+                    rf_batch_progress(&b, 0);
+                    last = t;
+                }
+                struct timespec ts = {0, 20 * 1000 * 1000};
+                nanosleep(&ts, NULL);
+            }
+        }
+        for (int k = 0; k < started; k++)
+            pthread_join(threads[k], NULL);
+        free(threads);
     }
-    for (int k = 0; k < started; k++)
-        pthread_join(threads[k], NULL);
-    free(threads);
-    if (r->progress)
-        progress_line(r, &b, t0, 1);
+    rf_batch_progress(&b, 1);
 
-    r->wall_seconds += now_seconds() - t0;
+    double t_end = rf_runner_now();
+    if (b.ntodo > 0)
+        r->fresh_wall += t_end - b.t_start;
+    r->wall_seconds += t_end - t_batch;
     r->eval_seconds += b.eval_seconds;
+    r->resumed += b.resumed;
+    r->remote += b.remote;
     size_t nfailed = atomic_load(&b.nfailed);
     r->failed += nfailed;
     r->evaluated += atomic_load(&b.done) - nfailed;
     pthread_mutex_destroy(&b.lock);
-    if (b.first_failed < count) {
+    free(b.todo);
+    if (b.store_failed) {
+        if (err)
+            *err = b.store_err;
+        if (failed_index)
+            *failed_index = count; /* not a model failure */
+        return RF_EIO;
+    }
+    if (b.first_failed < count && !r->tolerate_failures) {
         if (failed_index)
             *failed_index = b.first_failed;
         if (err)

@@ -628,13 +628,17 @@ static void format_point(const struct rf_tm_data *d, uint32_t id, char *buf, siz
         snprintf(buf + used, size - used, ")");
 }
 
+/* user: the rf_tm_options (tolerate_failures: a failed point gets NaN outputs). */
 static rf_status serial_evaluate(void *user, const rf_model *model, size_t count, const double *x, double *y,
                                  size_t *failed, rf_error *err)
 {
-    (void)user;
+    const rf_tm_options *opt = user;
     for (size_t p = 0; p < count; p++) {
         rf_status st = rf_model_eval(model, x + p * model->n_inputs, y + p * model->n_outputs, err);
-        if (st) {
+        if (st && opt->tolerate_failures) {
+            for (size_t k = 0; k < model->n_outputs; k++)
+                y[p * model->n_outputs + k] = NAN;
+        } else if (st) {
             *failed = p;
             return st;
         }
@@ -662,8 +666,10 @@ static rf_status evaluate_pending(tm_ctx *c, const rf_model *model, size_t *alre
     const rf_evaluator *ev = c->opt->evaluator;
     size_t failed = 0;
     rf_status st = ev ? ev->evaluate(ev->user, model, count, x, d->y + first * no, &failed, err)
-                      : serial_evaluate(NULL, model, count, x, d->y + first * no, &failed, err);
+                      : serial_evaluate((void *)c->opt, model, count, x, d->y + first * no, &failed, err);
     free(x);
+    if (st && failed >= count)
+        return st; /* not a model failure (e.g. the result store could not be written) */
     if (st) {
         char pt[512];
         format_point(d, (uint32_t)(first + failed), pt, sizeof pt);
@@ -791,6 +797,8 @@ static rf_status check_nan_outputs(const tm_ctx *c, const rf_model *model, rf_tm
                 first_nan = p;
         if (nan == d->npoints) {
             res->output_undefined[k] = 1;
+        } else if (nan > 0 && c->opt->tolerate_failures) {
+            res->nan_points[k] = nan; /* left out of the bounds; the caller warns */
         } else if (nan > 0) {
             char pt[512];
             format_point(d, (uint32_t)first_nan, pt, sizeof pt);
@@ -834,11 +842,12 @@ static void retransform(const tm_ctx *c, rf_tm_result *res)
                 }
             }
             size_t at = k * (m + 1) + jj;
-            res->lo[at] = zmin;
-            res->hi[at] = zmax;
+            int none = zmin > zmax; /* tolerate_failures: every point of the cut was NaN so far */
+            res->lo[at] = none ? NAN : zmin;
+            res->hi[at] = none ? NAN : zmax;
             for (size_t i = 0; i < n; i++) {
-                res->x_lo[at * n + i] = d->values[i][d->tuples[(size_t)amin * n + i]];
-                res->x_hi[at * n + i] = d->values[i][d->tuples[(size_t)amax * n + i]];
+                res->x_lo[at * n + i] = none ? NAN : d->values[i][d->tuples[(size_t)amin * n + i]];
+                res->x_hi[at * n + i] = none ? NAN : d->values[i][d->tuples[(size_t)amax * n + i]];
             }
         }
     }
@@ -925,6 +934,7 @@ void rf_tm_result_free(rf_tm_result *res)
     free(res->input_class);
     free(res->monotonicity);
     free(res->output_undefined);
+    free(res->nan_points);
     data_free(res->data);
     memset(res, 0, sizeof *res);
 }
@@ -946,7 +956,8 @@ static rf_status result_alloc(rf_tm_result *res, size_t n, size_t no, size_t m, 
     res->input_class = calloc(n, sizeof *res->input_class);
     res->monotonicity = calloc(no * n, sizeof *res->monotonicity);
     res->output_undefined = calloc(no, 1);
-    if (!res->output_undefined ||!res->in_lo || !res->in_hi || !res->in_nominal || !res->lo || !res->hi || !res->x_lo || !res->x_hi ||
+    res->nan_points = calloc(no, sizeof *res->nan_points);
+    if (!res->output_undefined || !res->nan_points ||!res->in_lo || !res->in_hi || !res->in_nominal || !res->lo || !res->hi || !res->x_lo || !res->x_hi ||
         !res->nominal || !res->input_class || !res->monotonicity)
         return rf_fail(err, RF_ENOMEM, "out of memory for the TM result");
     return RF_OK;
@@ -998,6 +1009,15 @@ rf_status rf_tm_run(const rf_fuzzy *inputs, size_t n_inputs, const rf_model *mod
     (void)before_main;
     if (!st)
         st = check_nan_outputs(&c, model, res, err);
+    if (!st && opt->tolerate_failures) {
+        const struct rf_tm_data *d = c.d;
+        for (size_t p = 0; p < d->npoints; p++) {
+            size_t k = 0;
+            while (k < no && isnan(d->y[p * no + k]))
+                k++;
+            res->failed_points += k == no;
+        }
+    }
     if (!st) {
         struct rf_tm_data *d = c.d;
         res->scheme = opt->scheme;

@@ -1,0 +1,118 @@
+/* cmd_status.c - `rockfuzz status DIR`: progress of a study run read from
+ * its result store DIR/store.sqlite (read-only, safe while the run goes on):
+ * planned, done, failed, rate, time left, last update, running or stopped. */
+#include "cli/cli.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "rockfuzz/store.h"
+
+static void duration(double s, char *buf, size_t size)
+{
+    if (!(s >= 0) || s > 1e9)
+        snprintf(buf, size, "unknown");
+    else if (s < 60)
+        snprintf(buf, size, "%.1f s", s);
+    else if (s < 3600)
+        snprintf(buf, size, "%d min %02d s", (int)(s / 60), (int)s % 60);
+    else
+        snprintf(buf, size, "%d h %02d min", (int)(s / 3600), ((int)s % 3600) / 60);
+}
+
+static void when(double t, char *buf, size_t size)
+{
+    if (t <= 0) {
+        snprintf(buf, size, "never");
+        return;
+    }
+    time_t tt = (time_t)t;
+    struct tm tmv;
+    localtime_r(&tt, &tmv);
+    strftime(buf, size, "%Y-%m-%d %H:%M:%S", &tmv);
+}
+
+int rf_cli_status(int argc, char **argv)
+{
+    const char *dir = NULL;
+    for (int a = 1; a < argc; a++) {
+        if (!strcmp(argv[a], "-h") || !strcmp(argv[a], "--help")) {
+            printf("Usage: rockfuzz status DIR\n\n"
+                   "Progress of the study run whose output directory is DIR, read from\n"
+                   "DIR/store.sqlite without changing it (safe while the run goes on): points\n"
+                   "planned, done, failed, rate, estimated time left, last update, and whether\n"
+                   "the run is running, stopped or finished; the failed evaluations are listed.\n"
+                   "Exit status: 0 on success, 1 if DIR holds no readable rockfuzz store.\n");
+            return 0;
+        }
+        if (argv[a][0] == '-' || dir) {
+            fprintf(stderr, "rockfuzz status: unexpected argument '%s' (see `rockfuzz status --help`)\n", argv[a]);
+            return 2;
+        }
+        dir = argv[a];
+    }
+    if (!dir) {
+        fprintf(stderr, "rockfuzz status: missing the run directory (see `rockfuzz status --help`)\n");
+        return 2;
+    }
+    char path[PATH_MAX], result[PATH_MAX];
+    snprintf(path, sizeof path, "%s/%s", dir, RF_STORE_FILE);
+    snprintf(result, sizeof result, "%s/result.json", dir);
+    rf_error err;
+    memset(&err, 0, sizeof err);
+    rf_store_info info;
+    if (rf_store_read_info(path, &info, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz status: %s\n", err.msg);
+        return 1;
+    }
+    char host[256] = "";
+    gethostname(host, sizeof host - 1);
+    struct stat sb;
+    int finished = stat(result, &sb) == 0 && sb.st_mtime + 1 >= (time_t)info.run_started;
+    int alive = info.pid > 0 && !strcmp(host, info.host) && (kill((pid_t)info.pid, 0) == 0 || errno == EPERM);
+    const char *state = finished ? "finished (result.json written)"
+                        : alive  ? "running"
+                                 : "stopped (not running; rerun the same command to resume)";
+    size_t total = info.planned_total, done = info.done;
+    double now = (double)time(NULL);
+    double span = (alive ? now : info.last_update) - info.run_started;
+    double rate = info.done_this_run > 0 && span > 0 ? (double)info.done_this_run / span : 0;
+    size_t left_pts = total > done ? total - done : 0;
+    char left[64], last[64], started[64];
+    duration(rate > 0 ? (double)left_pts / rate : (left_pts == 0 ? 0 : -1), left, sizeof left);
+    when(info.last_update, last, sizeof last);
+    when(info.run_started, started, sizeof started);
+    printf("Run directory   %s\n", dir);
+    printf("Study           %s\n", info.study[0] ? info.study : "(unknown)");
+    printf("State           %s", state);
+    if (alive && !finished)
+        printf(" (pid %ld on %s)", info.pid, info.host);
+    printf("\nPlanned points  %zu distinct evaluations\n", total);
+    printf("Done            %zu (%.1f %%)\n", done, total ? 100.0 * (double)done / (double)total : 0.0);
+    printf("Failed          %zu\n", info.failed);
+    printf("This run        %zu results since %s\n", info.done_this_run, started);
+    if (rate > 0)
+        printf("Rate            %.3g evaluations/s (this run)\n", rate);
+    else
+        printf("Rate            unknown (no result in this run yet)\n");
+    printf("Time left       %s%s\n", left, alive || finished ? "" : " at the last rate, once resumed");
+    printf("Last update     %s\n", last);
+    printf("Model time      %.1f s in total (all stored evaluations)\n", info.eval_seconds);
+    printf("Model           %.200s%s\n", info.identity, strlen(info.identity) > 200 ? "..." : "");
+    printf("rockfuzz        %s\n", info.version);
+    if (info.failed > 0) {
+        enum { MAXF = 10 };
+        char xs[MAXF][512], msgs[MAXF][512];
+        size_t nf = rf_store_failures(path, MAXF, xs, msgs, &err);
+        printf("Failed evaluations%s:\n", info.failed > nf ? " (first ones)" : "");
+        for (size_t k = 0; k < nf; k++)
+            printf("  x = (%s): %s\n", xs[k], msgs[k]);
+    }
+    return 0;
+}

@@ -1,0 +1,446 @@
+/* store.c - the SQLite result store (see store.h).
+ *
+ * Opening never writes to a file before it is known to be a rockfuzz store
+ * (or absent/empty): a foreign or corrupt database is reported and left as it
+ * is.  Every result is one autocommitted INSERT in WAL mode, so a process
+ * killed at any moment leaves every committed result readable and nothing
+ * half-written.  A mutex serialises the callers (one writer at a time). */
+#include "rockfuzz/store.h"
+
+#include <errno.h>
+#include <pthread.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define STORE_FORMAT "rockfuzz-store"
+#define STORE_FORMAT_VERSION "1"
+
+struct rf_store {
+    sqlite3 *db;
+    char *path;
+    size_t n_inputs, n_outputs;
+    sqlite3_stmt *lookup;
+    sqlite3_stmt *put;
+    pthread_mutex_t lock;
+};
+
+static double unix_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static rf_status db_fail(rf_error *err, sqlite3 *db, const char *path, const char *what)
+{
+    int code = db ? sqlite3_extended_errcode(db) : SQLITE_ERROR;
+    const char *msg = db ? sqlite3_errmsg(db) : "unknown error";
+    const char *hint = "";
+    if ((code & 0xff) == SQLITE_FULL)
+        hint = " (the disk or the file-size limit is full; results committed so far are kept)";
+    else if ((code & 0xff) == SQLITE_IOERR)
+        hint = " (I/O error; results committed so far are kept)";
+    return rf_fail(err, RF_EIO, "result store %s: %s: %s%s", path, what, msg, hint);
+}
+
+static char *join_names(size_t n, const char *const *names)
+{
+    size_t len = 1;
+    for (size_t i = 0; i < n; i++)
+        len += strlen(names[i]) + 1;
+    char *s = malloc(len), *p = s;
+    if (!s)
+        return NULL;
+    for (size_t i = 0; i < n; i++) {
+        size_t l = strlen(names[i]);
+        if (i)
+            *p++ = ',';
+        memcpy(p, names[i], l);
+        p += l;
+    }
+    *p = '\0';
+    return s;
+}
+
+/* meta value for key into buf ("" if absent); -1 on a database error. */
+static int meta_get(sqlite3 *db, const char *key, char *buf, size_t size)
+{
+    sqlite3_stmt *st = NULL;
+    buf[0] = '\0';
+    if (sqlite3_prepare_v2(db, "SELECT value FROM meta WHERE key = ?1", -1, &st, NULL) != SQLITE_OK)
+        return -1;
+    sqlite3_bind_text(st, 1, key, -1, SQLITE_STATIC);
+    int rc = sqlite3_step(st);
+    if (rc == SQLITE_ROW) {
+        const unsigned char *v = sqlite3_column_text(st, 0);
+        snprintf(buf, size, "%s", v ? (const char *)v : "");
+    }
+    sqlite3_finalize(st);
+    return rc == SQLITE_ROW || rc == SQLITE_DONE ? 0 : -1;
+}
+
+static int meta_set(sqlite3 *db, const char *key, const char *value)
+{
+    sqlite3_stmt *st = NULL;
+    if (sqlite3_prepare_v2(db, "INSERT OR REPLACE INTO meta(key, value) VALUES(?1, ?2)", -1, &st, NULL) !=
+        SQLITE_OK)
+        return -1;
+    sqlite3_bind_text(st, 1, key, -1, SQLITE_STATIC);
+    sqlite3_bind_text(st, 2, value, -1, SQLITE_STATIC);
+    int rc = sqlite3_step(st);
+    sqlite3_finalize(st);
+    return rc == SQLITE_DONE ? 0 : -1;
+}
+
+/* Is db a rockfuzz store?  Reads only. */
+static rf_status check_format(sqlite3 *db, const char *path, rf_error *err)
+{
+    char fmt[64], ver[16];
+    sqlite3_stmt *st = NULL;
+    int rc = sqlite3_prepare_v2(db, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name IN "
+                                    "('meta', 'results')", -1, &st, NULL);
+    if (rc != SQLITE_OK)
+        return rf_fail(err, RF_EIO, "%s is not a rockfuzz result store (%s); it was left untouched: move it "
+                                    "away or choose another --out directory",
+                       path, sqlite3_errmsg(db));
+    rc = sqlite3_step(st);
+    int tables = rc == SQLITE_ROW ? sqlite3_column_int(st, 0) : -1;
+    sqlite3_finalize(st);
+    if (rc != SQLITE_ROW)
+        return rf_fail(err, RF_EIO, "%s is not a rockfuzz result store (%s); it was left untouched", path,
+                       sqlite3_errmsg(db));
+    if (tables != 2 || meta_get(db, "format", fmt, sizeof fmt) != 0 || strcmp(fmt, STORE_FORMAT) != 0)
+        return rf_fail(err, RF_EIO, "%s is an SQLite database but not a rockfuzz result store; it was left "
+                                    "untouched: move it away or choose another --out directory",
+                       path);
+    if (meta_get(db, "format_version", ver, sizeof ver) != 0 || strcmp(ver, STORE_FORMAT_VERSION) != 0)
+        return rf_fail(err, RF_EIO, "%s: rockfuzz store format version '%s', this program reads version %s; it "
+                                    "was left untouched",
+                       path, ver, STORE_FORMAT_VERSION);
+    return RF_OK;
+}
+
+/* The first whitespace-separated token where a and b differ, for messages. */
+static void first_difference(const char *a, const char *b, char *buf, size_t size)
+{
+    size_t i = 0, start = 0;
+    while (a[i] && a[i] == b[i]) {
+        if (a[i] == ' ')
+            start = i + 1;
+        i++;
+    }
+    size_t ea = start, eb = start;
+    while (a[ea] && a[ea] != ' ')
+        ea++;
+    while (b[eb] && b[eb] != ' ')
+        eb++;
+    snprintf(buf, size, "stored '%.*s', now '%.*s'", (int)(ea - start > 200 ? 200 : ea - start), a + start,
+             (int)(eb - start > 200 ? 200 : eb - start), b + start);
+}
+
+static const char *SCHEMA =
+    "CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+    "CREATE TABLE results(x BLOB PRIMARY KEY, ok INTEGER NOT NULL, y BLOB, error TEXT, seconds REAL,"
+    " finished REAL NOT NULL, x_text TEXT);";
+
+rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf_store **out, rf_error *err)
+{
+    *out = NULL;
+    if (!path || !key || !key->identity || !key->version)
+        return rf_fail(err, RF_EINTERNAL, "rf_store_open: NULL argument");
+    struct stat sb;
+    int exists = stat(path, &sb) == 0 && sb.st_size > 0;
+    rf_store *s = calloc(1, sizeof *s);
+    char *inputs = join_names(key->n_inputs, key->input_names);
+    char *outputs = join_names(key->n_outputs, key->output_names);
+    if (!s || !inputs || !outputs || !(s->path = strdup(path))) {
+        free(s);
+        free(inputs);
+        free(outputs);
+        return rf_fail(err, RF_ENOMEM, "out of memory for the result store");
+    }
+    pthread_mutex_init(&s->lock, NULL);
+    s->n_inputs = key->n_inputs;
+    s->n_outputs = key->n_outputs;
+    rf_status st = RF_OK;
+    int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | (exists ? 0 : SQLITE_OPEN_CREATE);
+    if (sqlite3_open_v2(path, &s->db, flags, NULL) != SQLITE_OK) {
+        st = rf_fail(err, RF_EIO, "result store %s: cannot open: %s", path,
+                     s->db ? sqlite3_errmsg(s->db) : "out of memory");
+        goto done;
+    }
+    sqlite3_busy_timeout(s->db, 10000);
+    sqlite3_extended_result_codes(s->db, 1);
+    if (exists) {
+        if ((st = check_format(s->db, path, err)) != RF_OK)
+            goto done;
+        /* Same model, settings, version and names?  Checked before anything is written. */
+        static const char *const keys[4] = {"identity", "rockfuzz_version", "inputs", "outputs"};
+        static const char *const what[4] = {"model or its settings", "rockfuzz version", "input names",
+                                            "output names"};
+        const char *now[4] = {key->identity, key->version, inputs, outputs};
+        for (int k = 0; k < 4; k++) {
+            char *stored = malloc(65536);
+            if (!stored) {
+                st = rf_fail(err, RF_ENOMEM, "out of memory");
+                goto done;
+            }
+            if (meta_get(s->db, keys[k], stored, 65536) != 0) {
+                free(stored);
+                st = db_fail(err, s->db, path, "cannot read its meta table");
+                goto done;
+            }
+            if (strcmp(stored, now[k]) != 0 && !fresh) {
+                char diff[512];
+                first_difference(stored, now[k], diff, sizeof diff);
+                st = rf_fail(err, RF_EINVAL,
+                             "%s holds results of a different %s (%s); they are not mixed with this run: "
+                             "rerun with --fresh to discard them, or choose another --out directory",
+                             path, what[k], diff);
+                free(stored);
+                goto done;
+            }
+            free(stored);
+        }
+    }
+    if (sqlite3_exec(s->db, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", NULL, NULL, NULL) != SQLITE_OK) {
+        st = db_fail(err, s->db, path, "cannot switch to WAL mode");
+        goto done;
+    }
+    if (!exists && sqlite3_exec(s->db, SCHEMA, NULL, NULL, NULL) != SQLITE_OK) {
+        st = db_fail(err, s->db, path, "cannot create the tables");
+        goto done;
+    }
+    if (sqlite3_exec(s->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK) {
+        st = db_fail(err, s->db, path, "cannot start a transaction");
+        goto done;
+    }
+    if ((exists && fresh && sqlite3_exec(s->db, "DELETE FROM results", NULL, NULL, NULL) != SQLITE_OK) ||
+        meta_set(s->db, "format", STORE_FORMAT) || meta_set(s->db, "format_version", STORE_FORMAT_VERSION) ||
+        meta_set(s->db, "identity", key->identity) || meta_set(s->db, "rockfuzz_version", key->version) ||
+        meta_set(s->db, "inputs", inputs) || meta_set(s->db, "outputs", outputs)) {
+        st = db_fail(err, s->db, path, "cannot write its meta table");
+        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+        goto done;
+    }
+    if (sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK) {
+        st = db_fail(err, s->db, path, "cannot commit its meta table");
+        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+        goto done;
+    }
+    if (sqlite3_prepare_v2(s->db, "SELECT ok, y FROM results WHERE x = ?1", -1, &s->lookup, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(s->db,
+                           "INSERT OR REPLACE INTO results(x, ok, y, error, seconds, finished, x_text) "
+                           "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7)",
+                           -1, &s->put, NULL) != SQLITE_OK) {
+        st = db_fail(err, s->db, path, "cannot prepare its statements");
+        goto done;
+    }
+done:
+    free(inputs);
+    free(outputs);
+    if (st != RF_OK) {
+        rf_store_close(s);
+        return st;
+    }
+    *out = s;
+    return RF_OK;
+}
+
+void rf_store_close(rf_store *s)
+{
+    if (!s)
+        return;
+    sqlite3_finalize(s->lookup);
+    sqlite3_finalize(s->put);
+    sqlite3_close(s->db);
+    pthread_mutex_destroy(&s->lock);
+    free(s->path);
+    free(s);
+}
+
+rf_status rf_store_begin_run(rf_store *s, size_t planned_total, const char *study_name, rf_error *err)
+{
+    char total[32], started[64], pid[32], host[256] = "";
+    snprintf(total, sizeof total, "%zu", planned_total);
+    snprintf(started, sizeof started, "%.6f", unix_now());
+    snprintf(pid, sizeof pid, "%ld", (long)getpid());
+    gethostname(host, sizeof host - 1);
+    pthread_mutex_lock(&s->lock);
+    rf_status st = RF_OK;
+    if (sqlite3_exec(s->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK ||
+        meta_set(s->db, "planned_total", total) || meta_set(s->db, "run_started", started) ||
+        meta_set(s->db, "run_pid", pid) || meta_set(s->db, "run_host", host) ||
+        meta_set(s->db, "study", study_name ? study_name : "") ||
+        sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK) {
+        st = db_fail(err, s->db, s->path, "cannot record the plan");
+        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
+    }
+    pthread_mutex_unlock(&s->lock);
+    return st;
+}
+
+int rf_store_lookup(rf_store *s, const double *x, double *y, rf_error *err)
+{
+    pthread_mutex_lock(&s->lock);
+    int found = 0;
+    sqlite3_reset(s->lookup);
+    sqlite3_bind_blob(s->lookup, 1, x, (int)(s->n_inputs * sizeof(double)), SQLITE_STATIC);
+    int rc = sqlite3_step(s->lookup);
+    if (rc == SQLITE_ROW) {
+        int ok = sqlite3_column_int(s->lookup, 0);
+        const void *blob = sqlite3_column_blob(s->lookup, 1);
+        int bytes = sqlite3_column_bytes(s->lookup, 1);
+        if (ok && blob && (size_t)bytes == s->n_outputs * sizeof(double)) {
+            memcpy(y, blob, (size_t)bytes);
+            found = 1;
+        }
+    } else if (rc != SQLITE_DONE) {
+        db_fail(err, s->db, s->path, "cannot look up a result");
+        found = -1;
+    }
+    sqlite3_reset(s->lookup);
+    sqlite3_clear_bindings(s->lookup);
+    pthread_mutex_unlock(&s->lock);
+    return found;
+}
+
+rf_status rf_store_put(rf_store *s, const double *x, int ok, const double *y, const char *error, double seconds,
+                       rf_error *err)
+{
+    char text[512];
+    size_t used = 0;
+    for (size_t i = 0; i < s->n_inputs && used < sizeof text; i++)
+        used += (size_t)snprintf(text + used, sizeof text - used, "%s%.17g", i ? ", " : "", x[i]);
+    pthread_mutex_lock(&s->lock);
+    sqlite3_reset(s->put);
+    sqlite3_bind_blob(s->put, 1, x, (int)(s->n_inputs * sizeof(double)), SQLITE_STATIC);
+    sqlite3_bind_int(s->put, 2, ok ? 1 : 0);
+    if (ok)
+        sqlite3_bind_blob(s->put, 3, y, (int)(s->n_outputs * sizeof(double)), SQLITE_STATIC);
+    else
+        sqlite3_bind_null(s->put, 3);
+    if (!ok)
+        sqlite3_bind_text(s->put, 4, error ? error : "failed", -1, SQLITE_TRANSIENT);
+    else
+        sqlite3_bind_null(s->put, 4);
+    sqlite3_bind_double(s->put, 5, seconds);
+    sqlite3_bind_double(s->put, 6, unix_now());
+    sqlite3_bind_text(s->put, 7, text, -1, SQLITE_TRANSIENT);
+    rf_status st = RF_OK;
+    if (sqlite3_step(s->put) != SQLITE_DONE)
+        st = db_fail(err, s->db, s->path, "cannot commit a result");
+    sqlite3_reset(s->put);
+    sqlite3_clear_bindings(s->put);
+    pthread_mutex_unlock(&s->lock);
+    return st;
+}
+
+rf_status rf_store_limit_pages(rf_store *s, long pages, rf_error *err)
+{
+    char sql[64];
+    snprintf(sql, sizeof sql, "PRAGMA max_page_count=%ld", pages);
+    pthread_mutex_lock(&s->lock);
+    rf_status st = sqlite3_exec(s->db, sql, NULL, NULL, NULL) == SQLITE_OK
+                       ? RF_OK
+                       : db_fail(err, s->db, s->path, "cannot set max_page_count");
+    pthread_mutex_unlock(&s->lock);
+    return st;
+}
+
+/* ----------------------------------------------------------- read-only */
+
+static rf_status open_readonly(const char *path, sqlite3 **db, rf_error *err)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return rf_fail(err, RF_EIO, "%s: no result store here (%s)", path, strerror(errno));
+    if (sqlite3_open_v2(path, db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
+        rf_status st = rf_fail(err, RF_EIO, "result store %s: cannot open: %s", path,
+                               *db ? sqlite3_errmsg(*db) : "out of memory");
+        sqlite3_close(*db);
+        *db = NULL;
+        return st;
+    }
+    sqlite3_busy_timeout(*db, 5000);
+    rf_status st = check_format(*db, path, err);
+    if (st != RF_OK) {
+        sqlite3_close(*db);
+        *db = NULL;
+    }
+    return st;
+}
+
+rf_status rf_store_read_info(const char *path, rf_store_info *info, rf_error *err)
+{
+    memset(info, 0, sizeof *info);
+    sqlite3 *db = NULL;
+    rf_status st = open_readonly(path, &db, err);
+    if (st != RF_OK)
+        return st;
+    char buf[64];
+    if (meta_get(db, "identity", info->identity, sizeof info->identity) ||
+        meta_get(db, "rockfuzz_version", info->version, sizeof info->version) ||
+        meta_get(db, "study", info->study, sizeof info->study) ||
+        meta_get(db, "run_host", info->host, sizeof info->host)) {
+        st = db_fail(err, db, path, "cannot read its meta table");
+        goto done;
+    }
+    meta_get(db, "run_pid", buf, sizeof buf);
+    info->pid = strtol(buf, NULL, 10);
+    meta_get(db, "planned_total", buf, sizeof buf);
+    info->planned_total = (size_t)strtoull(buf, NULL, 10);
+    meta_get(db, "run_started", buf, sizeof buf);
+    info->run_started = strtod(buf, NULL);
+    sqlite3_stmt *q = NULL;
+    if (sqlite3_prepare_v2(db,
+                           "SELECT coalesce(sum(ok), 0), coalesce(sum(1 - ok), 0), coalesce(min(finished), 0),"
+                           " coalesce(max(finished), 0), coalesce(sum(seconds), 0),"
+                           " coalesce(sum(finished >= ?1), 0) FROM results",
+                           -1, &q, NULL) != SQLITE_OK) {
+        st = db_fail(err, db, path, "cannot read its results");
+        goto done;
+    }
+    sqlite3_bind_double(q, 1, info->run_started);
+    if (sqlite3_step(q) == SQLITE_ROW) {
+        info->done = (size_t)sqlite3_column_int64(q, 0);
+        info->failed = (size_t)sqlite3_column_int64(q, 1);
+        info->first_update = sqlite3_column_double(q, 2);
+        info->last_update = sqlite3_column_double(q, 3);
+        info->eval_seconds = sqlite3_column_double(q, 4);
+        info->done_this_run = (size_t)sqlite3_column_int64(q, 5);
+    } else {
+        st = db_fail(err, db, path, "cannot read its results");
+    }
+    sqlite3_finalize(q);
+done:
+    sqlite3_close(db);
+    return st;
+}
+
+size_t rf_store_failures(const char *path, size_t max, char (*x_text)[512], char (*message)[512], rf_error *err)
+{
+    sqlite3 *db = NULL;
+    if (open_readonly(path, &db, err) != RF_OK)
+        return 0;
+    sqlite3_stmt *q = NULL;
+    size_t n = 0;
+    if (sqlite3_prepare_v2(db, "SELECT x_text, error FROM results WHERE ok = 0 ORDER BY finished LIMIT ?1", -1,
+                           &q, NULL) == SQLITE_OK) {
+        sqlite3_bind_int64(q, 1, (sqlite3_int64)max);
+        while (n < max && sqlite3_step(q) == SQLITE_ROW) {
+            const unsigned char *a = sqlite3_column_text(q, 0), *b = sqlite3_column_text(q, 1);
+            snprintf(x_text[n], 512, "%s", a ? (const char *)a : "");
+            snprintf(message[n], 512, "%s", b ? (const char *)b : "");
+            n++;
+        }
+    }
+    sqlite3_finalize(q);
+    sqlite3_close(db);
+    return n;
+}
