@@ -338,6 +338,9 @@ static void test_bad_input(void **state)
     o.domain_factor = 1;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
     rf_fem_options_default(&o);
+    o.boulder_mesh_ratio = 2; /* slave side coarser than the master: refused */
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    rf_fem_options_default(&o);
     o.max_elements = 100;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_ECAP);
     rf_fem_options_default(&o);

@@ -34,7 +34,8 @@ typedef struct {
                                   the contact has stayed open for a while */
     int threads;               /* OpenMP threads for one impact, default 1 */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (existing dir) */
-    double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 */
+    double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 (matching);
+                                  [0.25, 1.25]: the boulder nodes are the contact slaves */
     /* --- expert settings (defaults are the validated ones) --- */
     double core_factor;        /* uniform fine zone extends core_factor * a, default 2.5 */
     double grading;            /* element-size growth per element outside the fine zone, default 1.15 */

@@ -319,8 +319,10 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(o->refinement > 400, "fem: refinement %g is unreasonably fine (> 400)", o->refinement);
     BAD(!(o->domain_factor >= 3) || !isfinite(o->domain_factor), "fem: domain_factor must be >= 3, got %g",
         o->domain_factor);
-    BAD(!(o->boulder_mesh_ratio >= 0.25 && o->boulder_mesh_ratio <= 4),
-        "fem: boulder_mesh_ratio must be in [0.25, 4], got %g", o->boulder_mesh_ratio);
+    BAD(!(o->boulder_mesh_ratio >= 0.25 && o->boulder_mesh_ratio <= 1.25),
+        "fem: boulder_mesh_ratio must be in [0.25, 1.25] (the boulder surface carries the contact nodes and must "
+        "not be coarser than the slope), got %g",
+        o->boulder_mesh_ratio);
     BAD(!(o->core_factor >= 1.5 && o->core_factor <= 10), "fem: core_factor must be in [1.5, 10], got %g",
         o->core_factor);
     BAD(!(o->grading >= 1 && o->grading <= 2), "fem: grading must be in [1, 2], got %g", o->grading);
@@ -403,23 +405,35 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
     }
     /* mesh sizing from the Hertz contact radius */
     double h = H.radius / o.refinement, hb = h * o.boulder_mesh_ratio;
+    /* the uniform fine zone must stay well inside the boulder: shrink it at
+       very high speed (a/R > 0.24 with the default 2.5 a) down to 1.5 a */
+    double core = fmin(o.core_factor, 0.55 * fmin(H.c, H.d) / H.radius);
+    if (core < 1.5)
+        return rf_fail(err, RF_EINVAL,
+                       "fem: the Hertz contact radius %.4g m is too large for the boulder (c = %g m, d = %g m): "
+                       "a fine zone of 1.5 a does not fit (a/R = %.3g); Hertz-based meshing needs a << R",
+                       H.radius, H.c, H.d, H.radius / H.R);
     fem_body_spec bs = {0}, ss = {0};
     ss.h = h;
-    ss.n = 3 * (int)ceil(o.core_factor * o.refinement / 3 - 1e-9);
+    ss.n = 3 * (int)ceil(core * o.refinement / 3 - 1e-9);
+    while (ss.n > 3 && ss.n * h > 0.6 * fmin(H.c, H.d))
+        ss.n -= 3;
     ss.grading = o.grading;
     double cr = cs[1] * (0.87 + 1.12 * mat[1].nu) / (1 + mat[1].nu); /* Rayleigh speed (Viktorov) */
     ss.h_far = fmax(h, fmin(cr * H.duration / 12, L / 8));
     ss.extent = L;
     bs.h = hb;
-    bs.n = 3 * (int)ceil(o.core_factor * o.refinement / o.boulder_mesh_ratio / 3 - 1e-9);
+    bs.n = 3 * (int)ceil(core * o.refinement / o.boulder_mesh_ratio / 3 - 1e-9);
+    while (bs.n > 3 && bs.n * hb > 0.6 * fmin(H.c, H.d))
+        bs.n -= 3;
     bs.grading = o.grading;
     bs.h_far = fmax(hb, fmin(H.c, H.d) / 10);
     bs.extent = H.c;
     bs.height = H.d;
-    if (bs.n * bs.h > 0.6 * fmin(H.c, H.d))
+    if (bs.n * bs.h > 0.7 * fmin(H.c, H.d))
         return rf_fail(err, RF_EINVAL,
                        "fem: the Hertz contact radius %.4g m is too large for the boulder (c = %g m, d = %g m): the "
-                       "fine zone does not fit; lower core_factor or the impact speed",
+                       "fine zone does not fit; lower the impact speed or raise refinement",
                        H.radius, H.c, H.d);
     if (ss.n * ss.h * 4 > L)
         return rf_fail(err, RF_EINVAL, "fem: domain radius %g m is too small for the fine zone (%g m)", L,
