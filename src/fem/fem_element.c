@@ -95,7 +95,7 @@ static double jacobi_max(double *A, int n)
             for (int j = i + 1; j < n; j++)
                 off += A[i * n + j] * A[i * n + j];
         }
-        if (off <= 1e-30 * diag)
+        if (off <= 1e-22 * diag)
             break;
         for (int p = 0; p < n; p++)
             for (int q = p + 1; q < n; q++) {

@@ -378,6 +378,8 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
                         rf_fem_history *hist, rf_error *err)
 {
     double wall0 = wall_now();
+    if (hist)
+        memset(hist, 0, sizeof *hist);
     rf_fem_options o;
     if (opt)
         o = *opt;
@@ -388,8 +390,6 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
     rf_status st = check_input(in, &o, err);
     if (st != RF_OK)
         return st;
-    if (hist)
-        memset(hist, 0, sizeof *hist);
 
     hertz_ref H;
     hertz_local(in, &H);
