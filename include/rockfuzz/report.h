@@ -28,6 +28,7 @@ typedef struct {
     size_t failed;         /* failed in this run (tolerate_failures) */
     size_t resumed;        /* found in the result store */
     int mpi_ranks;         /* MPI ranks (1 = none) */
+    size_t remote;         /* of the evaluated, how many ran on MPI worker ranks */
     double eval_seconds;   /* time spent in the model in this run [s] */
 } rf_report_options;
 

@@ -40,7 +40,7 @@ static void usage(FILE *f)
         "  --progress[=MODE]      MODE line (default): the progress line even when stderr\n"
         "                         is not a terminal; jsonl: one JSON object per finished\n"
         "                         evaluation on stderr (done, total, failed, left, x, ...)\n"
-        "  --quiet                no progress output on stderr\n"
+        "  --quiet                no progress line (--progress=jsonl still applies)\n"
         "  --fresh                discard the results stored in DIR/store.sqlite (also\n"
         "                         those of another model or version) and start over\n"
         "  --tolerate-failures    a failed evaluation (error or NaN) does not stop the run:\n"
@@ -266,7 +266,8 @@ int rf_cli_run(int argc, char **argv)
                   : ranks > 1 ? 1
                   : study.jobs > 0 ? study.jobs
                                    : rf_runner_default_jobs(&study.model);
-    runner.progress = quiet ? RF_PROGRESS_NONE
+    runner.progress = progress == RF_PROGRESS_JSONL ? RF_PROGRESS_JSONL
+                      : quiet ? RF_PROGRESS_NONE
                       : progress ? progress
                       : isatty(STDERR_FILENO) ? RF_PROGRESS_LINE
                                               : RF_PROGRESS_NONE;
@@ -341,6 +342,7 @@ int rf_cli_run(int argc, char **argv)
     ropt.failed = runner.failed;
     ropt.resumed = runner.resumed;
     ropt.mpi_ranks = ranks;
+    ropt.remote = runner.remote;
     ropt.eval_seconds = runner.eval_seconds;
     if (rf_report_write(out_dir, &study, &res, &an, &ropt, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz run: %s\n", err.msg);

@@ -377,9 +377,10 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
     }
     fprintf(f, "\n  },\n  \"evaluations\": {\"requested\": %zu, \"distinct\": %zu, \"probe\": %zu, \"left_right\": "
                "%zu, \"cap\": %zu, \"evaluated\": %zu, \"failed\": %zu, \"from_store\": %zu, "
-               "\"failed_points\": %zu, \"model_seconds\": ",
+               "\"failed_points\": %zu, \"on_worker_ranks\": %zu, \"model_seconds\": ",
             res->requested, res->distinct, res->probe_evaluations, res->lr_evaluations, opt ? opt->cap : 0,
-            opt ? opt->evaluated : 0, opt ? opt->failed : 0, opt ? opt->resumed : 0, res->failed_points);
+            opt ? opt->evaluated : 0, opt ? opt->failed : 0, opt ? opt->resumed : 0, res->failed_points,
+            opt ? opt->remote : 0);
     json_number(f, opt ? opt->eval_seconds : NAN);
     fprintf(f, "},\n  \"mpi_ranks\": %d,\n  \"warnings\": [", opt && opt->mpi_ranks > 0 ? opt->mpi_ranks : 1);
     write_warnings(f, s, res);

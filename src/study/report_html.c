@@ -192,6 +192,7 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
                                             {"evaluated", "evaluated in this run"},
                                             {"from_store", "taken from the result store"},
                                             {"failed", "failed"},
+                                            {"on_worker_ranks", "evaluated on MPI worker ranks"},
                                             {"probe", "extended-form probe"},
                                             {"left_right", "only for the left/right grid"},
                                             {"model_seconds", "time in the model [s]"}};
