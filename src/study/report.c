@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "rockfuzz/impact.h"
 #include "study/report_internal.h"
 
 void rf_report_options_default(rf_report_options *opt)
@@ -218,6 +219,65 @@ static void json_reason(FILE *f, const char *key, double v, rf_na_reason r)
     }
 }
 
+/* A number after " key=" in the impact model's identity (after "base:"), or fallback. */
+static double identity_value(const char *identity, const char *key, double fallback)
+{
+    const char *base = strstr(identity, "base:");
+    char pat[64];
+    snprintf(pat, sizeof pat, " %s=", key);
+    const char *at = strstr(base ? base : identity, pat);
+    if (!at)
+        return fallback;
+    char *end = NULL;
+    double v = strtod(at + strlen(pat), &end);
+    return end != at + strlen(pat) ? v : fallback;
+}
+
+/* SYSTEM.md: the fixed outer boundary reflects P waves; compare 2L/c_p with the
+ * Hertz contact duration at the nominal inputs.  Returns 1 with a message if
+ * the reflection returns during contact. */
+static int fem_reflection_note(const rf_study *s, const rf_tm_result *res, char *msg, size_t size)
+{
+    const char *id = s->model.identity;
+    if (!strstr(id, "boundary=fixed"))
+        return 0;
+    double factor = 10;
+    const char *df = strstr(id, "domain_factor=");
+    if (df)
+        factor = strtod(df + strlen("domain_factor="), NULL);
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    static const char *const keys[] = {"radius", "horizontal_axis", "vertical_axis", "boulder_density",
+                                       "slope_density", "boulder_E", "slope_E", "boulder_poisson",
+                                       "slope_poisson", "velocity"};
+    double *fields[] = {&in.radius, &in.horizontal_axis, &in.vertical_axis, &in.boulder_density,
+                        &in.slope_density, &in.boulder_E, &in.slope_E, &in.boulder_poisson,
+                        &in.slope_poisson, &in.velocity};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++) {
+        *fields[k] = identity_value(id, keys[k], *fields[k]);
+        for (size_t i = 0; i < res->n_inputs; i++)
+            if (!strcmp(s->param_names[i], keys[k]))
+                *fields[k] = res->in_nominal[i];
+    }
+    in.slope_angle = 0;
+    rf_impact_output out;
+    rf_error e;
+    if (rf_impact_hertz(&in, &out, &e) != RF_OK || !(out.contact_duration > 0))
+        return 0;
+    double nu = in.slope_poisson;
+    double c_p = sqrt(in.slope_E * (1 - nu) / (in.slope_density * (1 + nu) * (1 - 2 * nu)));
+    double r = in.radius;
+    double t_back = 2 * factor * r / c_p;
+    if (t_back >= out.contact_duration)
+        return 0;
+    snprintf(msg, size,
+             "FE boundary (at the nominal inputs): P waves reflected by the fixed outer boundary (domain radius "
+             "%g r0) return after 2L/c_p = %.3g ms, before the Hertz contact ends (%.3g ms): R_n and R_ke include "
+             "reflected energy. Use boundary: absorbing or domain_factor >= %.0f",
+             factor, 1e3 * t_back, 1e3 * out.contact_duration, ceil(c_p * out.contact_duration / (2 * r)));
+    return 1;
+}
+
 /* Every message a reader of result.json / report.html must see, as JSON strings. */
 static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res)
 {
@@ -257,11 +317,12 @@ static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res)
         WARN();
     }
     if (s->model_kind == RF_STUDY_MODEL_IMPACT && s->model.identity && strstr(s->model.identity, "solver=fem")) {
+        if (fem_reflection_note(s, res, msg, sizeof msg))
+            WARN();
         snprintf(msg, sizeof msg,
-                 "FE solver: the warnings of single evaluations (e.g. stress waves reflected by the fixed outer "
-                 "boundary returning during contact, rf_fem_history.warning) are printed on stderr while the "
-                 "study runs; the impact model does not pass them through the model interface yet, so they are "
-                 "not listed here");
+                 "FE solver: the warnings of single evaluations (rf_fem_history.warning, e.g. reflections for "
+                 "other inputs than the nominal ones) are not passed through the impact model interface yet, "
+                 "so a study cannot list them; `rockfuzz impact --solver fem ...` prints them for one point");
         WARN();
     }
 #undef WARN
