@@ -336,7 +336,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     if (in->horizontal_axis > 0) {
         double c = in->horizontal_axis;
         double d = in->vertical_axis > 0 ? in->vertical_axis : in->radius * in->radius * in->radius / (c * c);
-        BAD(c / d > 3 || d / c > 3, "fem: spheroid aspect c/d = %g outside [1/3, 3] is not supported by the mesher",
+        BAD(c / d > 3 * (1 + 1e-9) || d / c > 3 * (1 + 1e-9), "fem: spheroid aspect c/d = %g outside [1/3, 3] is not supported by the mesher",
             c / d);
     }
     return RF_OK;
@@ -410,9 +410,9 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
     double core = fmin(o.core_factor, 0.55 * fmin(H.c, H.d) / H.radius);
     if (core < 1.5)
         return rf_fail(err, RF_EINVAL,
-                       "fem: the Hertz contact radius %.4g m is too large for the boulder (c = %g m, d = %g m): "
-                       "a fine zone of 1.5 a does not fit (a/R = %.3g); Hertz-based meshing needs a << R",
-                       H.radius, H.c, H.d, H.radius / H.R);
+                       "fem: the Hertz contact radius a = %.4g m is too large for the boulder (c = %g m, d = %g m): "
+                       "a fine zone of 1.5 a must fit in 0.55 min(c, d); Hertz-based meshing needs a << min(c, d)",
+                       H.radius, H.c, H.d);
     fem_body_spec bs = {0}, ss = {0};
     ss.h = h;
     ss.n = 3 * (int)ceil(core * o.refinement / 3 - 1e-9);
