@@ -112,10 +112,11 @@ static double blend_weight(const pattern *p, double rho)
 
 /* Reference position on ring rho at angular fraction t in [0, 1].  Near the
  * core the ring is the core square offset outward: each core boundary node
- * moves along a straight line, normal to its side away from the corner and
- * fanning to the diagonal at the corner (so the first layers continue the
- * core's grid lines without shear); with weight w the ring blends into the
- * circle of radius rho with uniform angles.  The cap (corner_linear) blends
+ * moves along a straight line, normal to its side, the fan to the diagonal
+ * being confined to the last few nodes before the corner (u^32), so that the
+ * first layers continue the core's grid lines; a smoother fan (u^3) sheared
+ * the boulder's corner elements and cut the stable step by 22 %.  With
+ * weight w the ring blends into the circle of radius rho with uniform angles.  The cap (corner_linear) blends
  * over a short distance and uses the superellipse rule instead. */
 static void ring_pos(const pattern *p, double rho, double t, double *x, double *y)
 {
@@ -130,7 +131,7 @@ static void ring_pos(const pattern *p, double rho, double t, double *x, double *
     double w = blend_weight(p, rho);
     double th = t * M_PI / 2, cx = rho * cos(th), cy = rho * sin(th);
     if (!p->corner_linear) {
-        double u = t <= 0.5 ? 2 * t : 2 - 2 * t, phi = u * u * u, a = p->s * u + (rho - p->s) * phi;
+        double u = t <= 0.5 ? 2 * t : 2 - 2 * t, phi = pow(u, 32), a = p->s * u + (rho - p->s) * phi;
         double ox = t <= 0.5 ? rho : a, oy = t <= 0.5 ? a : rho;
         *x = (1 - w) * ox + w * cx;
         *y = (1 - w) * oy + w * cy;
