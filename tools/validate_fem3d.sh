@@ -37,7 +37,7 @@ oblique) # frictionless 45 deg, sliding 60 deg
     run obl v=10 angle=45 f=0.6 ref=6 hist="$out/hist_45_f06.csv"
     ;;
 sweep) # R_t and spin against f for the three slopes
-    for a in 30 45 60; do for f in 0 0.05 0.1 0.15 0.2 0.3 0.45 0.6 0.8 1.0; do
+    for a in 30 45 60; do for f in 0 0.05 0.1 0.15 0.2 0.3 0.45 0.6 0.8 1.0 2.0 5.0; do
         run sweep v=10 angle=$a f=$f ref=4; done; done
     ;;
 conv) # mesh convergence on the 45 deg slope
