@@ -109,7 +109,14 @@ static void influence_svg(FILE *f, struct fy_node *influence)
     size_t n = (size_t)fy_node_mapping_item_count(influence);
     if (n == 0)
         return;
-    int row = 22, label = 150, width = 420, h = (int)n * row * 3 + 30;
+    /* rho_left/right exist only with the three-point grid: otherwise one bar per input */
+    int bars = 1;
+    void *probe = NULL;
+    struct fy_node_pair *pp;
+    while ((pp = fy_node_mapping_iterate(influence, &probe)))
+        if (!isnan(number(get(fy_node_pair_value(pp), "rho_left"))))
+            bars = 3;
+    int row = 20, label = 130, width = 300, h = (int)n * row * bars + 36;
     fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" class=bars>\n",
             label + width + 70, h);
     static const char *const keys[3] = {"rho", "rho_left", "rho_right"};
@@ -120,14 +127,15 @@ static void influence_svg(FILE *f, struct fy_node *influence)
     while ((p = fy_node_mapping_iterate(influence, &it))) {
         char name[256];
         text(fy_node_pair_key(p), name, sizeof name);
-        fprintf(f, "<text x=\"%d\" y=\"%d\" text-anchor=\"end\" font-size=\"13\">", label - 6, y + row + 4);
+        fprintf(f, "<text x=\"%d\" y=\"%d\" text-anchor=\"end\" font-size=\"13\">", label - 6,
+                y + (bars * row) / 2 + 2);
         html(f, name);
         fputs("</text>\n", f);
-        for (int c = 0; c < 3; c++) {
+        for (int c = 0; c < bars; c++) {
             double v = number(get(fy_node_pair_value(p), keys[c]));
             double w = isnan(v) ? 0 : fmin(fmax(v, 0), 1) * width;
-            fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"%.1f\" height=\"%d\" fill=\"%s\"/>", label, y + c * row / 1,
-                    w, row - 6, colours[c]);
+            fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"%.1f\" height=\"%d\" fill=\"%s\"/>", label, y + c * row, w,
+                    row - 6, colours[c]);
             if (isnan(v))
                 fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"11\" fill=\"#777\">n/a</text>\n", label + 4,
                         y + c * row + 12);
@@ -135,11 +143,14 @@ static void influence_svg(FILE *f, struct fy_node *influence)
                 fprintf(f, "<text x=\"%.1f\" y=\"%d\" font-size=\"11\">%.3f</text>\n", label + w + 4,
                         y + c * row + 12, v);
         }
-        y += 3 * row;
+        y += bars * row;
     }
-    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"11\"><tspan fill=\"%s\">&#9632; rho (Hanss)</tspan> "
-               "<tspan fill=\"%s\">&#9632; rho_left</tspan> <tspan fill=\"%s\">&#9632; rho_right</tspan></text>\n",
-            label, h - 6, colours[0], colours[1], colours[2]);
+    fprintf(f, "<text x=\"%d\" y=\"%d\" font-size=\"11\"><tspan fill=\"%s\">&#9632; rho (Hanss)</tspan>", label,
+            h - 8, colours[0]);
+    if (bars == 3)
+        fprintf(f, " <tspan fill=\"%s\">&#9632; rho_left</tspan> <tspan fill=\"%s\">&#9632; rho_right</tspan>",
+                colours[1], colours[2]);
+    fputs("</text>\n", f);
     fputs("</svg>\n", f);
 }
 
@@ -149,7 +160,7 @@ static const char *CSS =
     "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}"
     "th{background:#eee;white-space:nowrap}td.l{text-align:left}td.na{color:#999}"
     ".warn{background:#fde2e1;border:2px solid #c00;padding:.5em 1em;margin:1em 0}"
-    ".warn li{margin:.3em 0}.note{color:#666}img{max-width:360px;border:1px solid #ddd}"
+    ".warn li{margin:.3em 0}.note{color:#666}img{max-width:340px;border:1px solid #ddd}"
     ".fig{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}";
 
 static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
@@ -184,7 +195,10 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
                                           {"wall_seconds", "wall time [s]"}};
     for (size_t k = 0; k < sizeof meta / sizeof *meta; k++) {
         fprintf(f, "<tr><th>%s</th><td class=l>", meta[k][1]);
-        html(f, text(get(root, meta[k][0]), a, sizeof a));
+        if (!strcmp(meta[k][0], "wall_seconds"))
+            fprintf(f, "%.4g", number(get(root, meta[k][0])));
+        else
+            html(f, text(get(root, meta[k][0]), a, sizeof a));
         fputs("</td></tr>\n", f);
     }
     static const char *const counts[][2] = {{"requested", "grid points requested"},
@@ -198,7 +212,10 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
                                             {"model_seconds", "time in the model [s]"}};
     for (size_t k = 0; k < sizeof counts / sizeof *counts; k++) {
         fprintf(f, "<tr><th>%s</th><td class=l>", counts[k][1]);
-        html(f, text(get(ev, counts[k][0]), a, sizeof a));
+        if (!strcmp(counts[k][0], "model_seconds"))
+            fprintf(f, "%.4g", number(get(ev, counts[k][0])));
+        else
+            html(f, text(get(ev, counts[k][0]), a, sizeof a));
         fputs("</td></tr>\n", f);
     }
     fputs("</table>\n", f);
