@@ -31,7 +31,7 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
     const double h = mesh->h_s;
     const int nx = mesh->nxt_s, ny = mesh->nyt_s;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if (C->nslave > 4096)
 #endif
     for (long k = 0; k < C->nslave; k++) {
         int s = C->slave[k];
@@ -107,7 +107,7 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
     (void)threads;
     const double dt2 = dt * dt;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(threads) if (C->nslave > 4096)
 #endif
     for (long k = 0; k < C->nslave; k++) {
         int s = C->slave[k];

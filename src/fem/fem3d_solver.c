@@ -141,7 +141,6 @@ typedef struct {
     long *inc_ptr;  /* node -> (element * 8 + local) list, in element order */
     long *inc;
     const double *mass; /* per dof */
-    double *ueff;   /* displacement seen by the elements (boulder: co-rotated elastic part) */
     double Mb, c0[3]; /* boulder mass (model) and reference CM */
     int full;
     double R[9], c[3]; /* boulder rotation and CM of the last internal_force call */
@@ -207,7 +206,6 @@ static void internal_force(f3_system *S, const double *u, double *f)
     const int *conn = S->mesh->conn;
     const double *X = S->mesh->x;
     const long ne = S->ne, nn = S->nn, nbn = S->nbn;
-    double *ue = S->ueff;
     boulder_frame(S, u);
     const double *R = S->R, *c = S->c, *c0 = S->c0;
 #ifdef _OPENMP
@@ -217,26 +215,23 @@ static void internal_force(f3_system *S, const double *u, double *f)
 #ifdef _OPENMP
 #pragma omp for schedule(static)
 #endif
-        for (long i = 0; i < nn; i++) {
-            if (i < nbn) {
-                double r[3] = {X[3 * i] + u[3 * i] - c[0], X[3 * i + 1] + u[3 * i + 1] - c[1],
-                               X[3 * i + 2] + u[3 * i + 2] - c[2]};
-                for (int a = 0; a < 3; a++)
-                    ue[3 * i + a] = R[a] * r[0] + R[3 + a] * r[1] + R[6 + a] * r[2] - (X[3 * i + a] - c0[a]);
-            } else {
-                ue[3 * i] = u[3 * i], ue[3 * i + 1] = u[3 * i + 1], ue[3 * i + 2] = u[3 * i + 2];
-            }
-        }
-#ifdef _OPENMP
-#pragma omp for schedule(static)
-#endif
         for (long e = 0; e < ne; e++) {
             const int *cn = conn + 8 * e;
             double uel[24];
-            for (int a = 0; a < 8; a++) {
-                uel[3 * a] = ue[3 * cn[a]];
-                uel[3 * a + 1] = ue[3 * cn[a] + 1];
-                uel[3 * a + 2] = ue[3 * cn[a] + 2];
+            if (e < S->mesh->boulder_elems) { /* elastic part in the boulder's frame */
+                for (int a = 0; a < 8; a++) {
+                    const long i = cn[a];
+                    const double r[3] = {X[3 * i] + u[3 * i] - c[0], X[3 * i + 1] + u[3 * i + 1] - c[1],
+                                         X[3 * i + 2] + u[3 * i + 2] - c[2]};
+                    for (int q = 0; q < 3; q++)
+                        uel[3 * a + q] = R[q] * r[0] + R[3 + q] * r[1] + R[6 + q] * r[2] - (X[3 * i + q] - c0[q]);
+                }
+            } else {
+                for (int a = 0; a < 8; a++) {
+                    uel[3 * a] = u[3 * cn[a]];
+                    uel[3 * a + 1] = u[3 * cn[a] + 1];
+                    uel[3 * a + 2] = u[3 * cn[a] + 2];
+                }
             }
             element_force(S->K + 576 * e, uel, S->fe + 24 * e);
         }
@@ -262,7 +257,10 @@ static void internal_force(f3_system *S, const double *u, double *f)
     double T = 0;
     for (long i = 0; i < nbn; i++) {
         const double *fe = S->fel + 3 * i;
-        double rz = X[3 * i + 2] - c0[2] + ue[3 * i + 2], rx = X[3 * i] - c0[0] + ue[3 * i];
+        /* r = R^T (x - c) = X - c0 + u_el */
+        const double d[3] = {X[3 * i] + u[3 * i] - c[0], X[3 * i + 1] + u[3 * i + 1] - c[1],
+                             X[3 * i + 2] + u[3 * i + 2] - c[2]};
+        const double rx = R[0] * d[0] + R[3] * d[1] + R[6] * d[2], rz = R[2] * d[0] + R[5] * d[1] + R[8] * d[2];
         T += rz * fe[0] - rx * fe[2];
     }
     const double dEdth = -T, pq = S->p * S->p + S->q * S->q;
@@ -403,7 +401,6 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
     int *outer = NULL;
     long nouter = 0;
     S.nn = nn, S.ne = ne, S.ndof = ndof, S.nbn = nbn, S.mesh = &mesh, S.threads = nthreads, S.full = ms.full;
-    S.ueff = malloc((size_t)ndof * sizeof *S.ueff);
     S.fel = malloc((size_t)3 * nbn * sizeof *S.fel);
     S.K = malloc((size_t)ne * 576 * sizeof *S.K);
     S.fe = malloc((size_t)ne * 24 * sizeof *S.fe);
@@ -420,7 +417,7 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
     lamx = malloc((size_t)ne * sizeof *lamx);
     fixed = calloc((size_t)ndof, 1);
     outer = malloc((size_t)nn * sizeof *outer);
-    if (!S.K || !S.fe || !S.ueff || !S.fel || !S.inc_ptr || !S.inc || !u || !v || !f || !fext || !mass_d || !invm || !dash || !elm ||
+    if (!S.K || !S.fe || !S.fel || !S.inc_ptr || !S.inc || !u || !v || !f || !fext || !mass_d || !invm || !dash || !elm ||
         !lamx || !fixed || !outer) {
         st = rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", ne);
         goto done;
@@ -913,7 +910,7 @@ done:
         free(ser.col[k]);
     free(C.slave), free(C.lam), free(C.mnode), free(C.N), free(C.S), free(C.gap), free(C.ds), free(C.s0), free(C.A);
     free(C.gvo), free(C.outside), free(C.cand), free(C.du);
-    free(S.K), free(S.fe), free(S.ueff), free(S.fel), free(S.inc_ptr), free(S.inc);
+    free(S.K), free(S.fe), free(S.fel), free(S.inc_ptr), free(S.inc);
     free(u), free(v), free(f), free(fext), free(mass_d), free(invm), free(dash), free(elm), free(lamx);
     free(fixed), free(outer), free(Fstep), free(fric_ser);
     f3_mesh_free(&mesh);
