@@ -268,8 +268,17 @@ static void test_runner_resumes_from_store(void **state)
     rf_runner_init(&r);
     r.jobs = 2;
     r.store = s;
+    char *line = NULL;
+    size_t line_size = 0;
+    FILE *f = open_memstream(&line, &line_size);
+    r.progress = RF_PROGRESS_LINE;
+    r.stream = f;
+    r.planned_total = NPTS;
     ctx.calls = 0;
     assert_int_equal(rf_runner_evaluate(&r, &m, NPTS, x, y2, NULL, &err), RF_OK);
+    fclose(f);
+    assert_non_null(strstr(line, "evaluations 400/400")); /* stored points count as done */
+    free(line);
     assert_int_equal(ctx.calls, NPTS - NPTS / 2);
     assert_int_equal(r.resumed, NPTS / 2);
     assert_int_equal(r.evaluated, NPTS - NPTS / 2);
