@@ -4,7 +4,8 @@
  * discards it), foreign and corrupt files are refused and left unchanged,
  * a full disk (injected with max_page_count) stops the run with a clear
  * message and keeps what was committed, failures are stored with their
- * message, and the JSONL progress has one object per evaluation. */
+ * message, a point that kills the process is left marked "started, never
+ * finished", and the JSONL progress has one object per evaluation. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -12,6 +13,7 @@
 
 #include <cmocka.h>
 #include <sqlite3.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "rockfuzz/runner.h"
@@ -393,6 +395,62 @@ static void test_failures_stored_and_jsonl(void **state)
     rf_model_free(&m);
 }
 
+/* A model that takes the whole process down at x0 == 3 (as a segfaulting solver would). */
+static rf_status crash_eval(void *ctx, const double *x, double *y, rf_error *err)
+{
+    (void)ctx;
+    (void)err;
+    if (x[0] == 3.0)
+        _exit(77);
+    y[0] = x[0];
+    y[1] = x[1];
+    return RF_OK;
+}
+
+static void test_crash_leaves_unfinished_mark(void **state)
+{
+    (void)state;
+    char path[512];
+    tmp_path(path, sizeof path, "crash.sqlite");
+    remove_store(path);
+    rf_store_key key = {"crash model", "t", 2, 2, IN, OUT};
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        rf_model m;
+        memset(&m, 0, sizeof m);
+        rf_model_init_outputs(&m, 2, OUT, NULL, NULL);
+        m.n_inputs = 2;
+        m.eval = crash_eval;
+        m.threads_per_eval = 1;
+        rf_store *s = NULL;
+        rf_error err;
+        if (rf_store_open(path, &key, 0, &s, &err) != RF_OK)
+            _exit(1);
+        double x[10] = {0, 0, 1, 0, 2, 0, 3, 0, 4, 0}, y[10];
+        rf_runner r;
+        rf_runner_init(&r);
+        r.jobs = 1; /* serial: points 0, 1, 2 finish, point 3 kills the process */
+        r.store = s;
+        rf_runner_evaluate(&r, &m, 5, x, y, NULL, &err);
+        _exit(2);
+    }
+    int status = 0;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 77);
+    rf_store_info info;
+    rf_error err;
+    assert_int_equal(rf_store_read_info(path, &info, &err), RF_OK);
+    assert_int_equal(info.done, 3);
+    assert_int_equal(info.failed, 0);
+    assert_int_equal(info.unfinished, 1);
+    char xs[4][512], msgs[4][512];
+    assert_int_equal(rf_store_failures(path, 4, xs, msgs, &err), 1);
+    assert_string_equal(xs[0], "3, 0");
+    assert_non_null(strstr(msgs[0], "never finished"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -402,6 +460,7 @@ int main(void)
         cmocka_unit_test(test_runner_resumes_from_store),
         cmocka_unit_test(test_full_disk_stops_and_keeps_committed),
         cmocka_unit_test(test_failures_stored_and_jsonl),
+        cmocka_unit_test(test_crash_leaves_unfinished_mark),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

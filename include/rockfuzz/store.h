@@ -15,8 +15,10 @@
  *                                            run_started, run_pid, run_host, study)
  *   results(x BLOB PRIMARY KEY, ok INTEGER, y BLOB, error TEXT, seconds REAL,
  *           finished REAL, x_text TEXT)
- * WAL journal; one transaction per result (INSERT OR REPLACE: a stored
- * failure is evaluated again on the next run and replaced).
+ *   ok = 1 result, 0 failed (error), -1 started but never finished (the
+ *   process was killed, or the evaluation crashed it: `status` lists these)
+ * WAL journal; one transaction per row (INSERT OR REPLACE: a stored failure
+ * or unfinished point is evaluated again on the next run and replaced).
  *
  * Thread safety: every function may be called from any thread; calls on one
  * store are serialised by its own mutex (one writer at a time). */
@@ -62,6 +64,10 @@ int rf_store_lookup(rf_store *s, const double *x, double *y, rf_error *err);
 rf_status rf_store_put(rf_store *s, const double *x, int ok, const double *y, const char *error, double seconds,
                        rf_error *err);
 
+/* Mark x as being evaluated now (ok = -1), so that a point that kills the
+ * process leaves a trace; rf_store_put replaces the row. */
+rf_status rf_store_put_started(rf_store *s, const double *x, rf_error *err);
+
 void rf_store_close(rf_store *s);
 
 /* Fault injection for tests (SQLite's PRAGMA max_page_count): writes beyond
@@ -78,6 +84,7 @@ typedef struct {
     size_t planned_total;     /* distinct points of the current plan (0 if never started) */
     size_t done;              /* successful results stored */
     size_t failed;            /* failed evaluations stored */
+    size_t unfinished;        /* started but never finished (killed, or crashed the process) */
     size_t done_this_run;     /* results (ok or failed) finished since run_started */
     double run_started;       /* Unix time [s], 0 if unknown */
     double first_update;      /* Unix time of the first / last stored result, 0 if none */
@@ -87,7 +94,8 @@ typedef struct {
 
 rf_status rf_store_read_info(const char *path, rf_store_info *info, rf_error *err);
 
-/* The failed evaluations (parameter vector as text, message), up to max; returns the count written. */
+/* The failed evaluations (parameter vector as text, message; unfinished ones
+ * with the message "started, never finished"), up to max; returns the count written. */
 size_t rf_store_failures(const char *path, size_t max, char (*x_text)[512], char (*message)[512], rf_error *err);
 
 #ifdef __cplusplus

@@ -96,6 +96,10 @@ int rf_cli_status(int argc, char **argv)
     printf("\nPlanned points  %zu distinct evaluations\n", total);
     printf("Done            %zu (%.1f %%)\n", done, total ? 100.0 * (double)done / (double)total : 0.0);
     printf("Failed          %zu\n", info.failed);
+    if (info.unfinished > 0)
+        printf("Unfinished      %zu (started, never finished: %s)\n", info.unfinished,
+               alive && !finished ? "in flight now, or left by a killed run"
+                                  : "the run was killed, or these evaluations crashed it");
     printf("This run        %zu results since %s\n", info.done_this_run, started);
     if (rate > 0)
         printf("Rate            %.3g evaluations/s (this run)\n", rate);
@@ -106,11 +110,11 @@ int rf_cli_status(int argc, char **argv)
     printf("Model time      %.1f s in total (all stored evaluations)\n", info.eval_seconds);
     printf("Model           %.200s%s\n", info.identity, strlen(info.identity) > 200 ? "..." : "");
     printf("rockfuzz        %s\n", info.version);
-    if (info.failed > 0) {
+    if (info.failed + info.unfinished > 0) {
         enum { MAXF = 10 };
         char xs[MAXF][512], msgs[MAXF][512];
         size_t nf = rf_store_failures(path, MAXF, xs, msgs, &err);
-        printf("Failed evaluations%s:\n", info.failed > nf ? " (first ones)" : "");
+        printf("Failed or unfinished evaluations%s:\n", info.failed + info.unfinished > nf ? " (first ones)" : "");
         for (size_t k = 0; k < nf; k++)
             printf("  x = (%s): %s\n", xs[k], msgs[k]);
     }

@@ -148,6 +148,7 @@ void rf_mpi_serve_batch(rf_batch *b)
         for (int r = 1; r <= nw; r++) {
             size_t p;
             if (!busy[r] && rf_batch_take(b, &p)) {
+                rf_batch_start(b, p);
                 MPI_Send(b->x + b->todo[p] * nin, (int)nin, MPI_DOUBLE, r, TAG_WORK, MPI_COMM_WORLD);
                 busy[r] = 1;
                 pos[r] = p;

@@ -4,8 +4,9 @@
  * missing ones form a queue that workers drain through an atomic counter
  * (dynamic distribution).  Each worker writes only its own y rows, so the
  * result does not depend on the thread count, the MPI ranks or the order of
- * completion.  Whoever finishes a point commits it to the store under the
- * batch mutex (one writer at a time).  The first failure raises a stop flag
+ * completion.  Whoever takes a point marks it started in the store, and
+ * whoever finishes it commits the result, both under the batch mutex (one
+ * writer at a time), so a point that crashes the process leaves a trace.  The first failure raises a stop flag
  * (unless failures are tolerated); the lowest failing index and its message
  * are kept.  The calling thread draws the progress line, or serves the MPI
  * worker ranks (mpi.c) while the local threads evaluate. */
@@ -143,6 +144,24 @@ static void jsonl_line(rf_batch *b, size_t k, int ok, const rf_error *err, doubl
     fflush(f);
 }
 
+void rf_batch_start(rf_batch *b, size_t pos)
+{
+    rf_runner *r = b->runner;
+    if (!r->store)
+        return;
+    pthread_mutex_lock(&b->lock);
+    if (!b->store_failed) {
+        rf_error serr;
+        memset(&serr, 0, sizeof serr);
+        if (rf_store_put_started(r->store, b->x + b->todo[pos] * b->model->n_inputs, &serr) != RF_OK) {
+            b->store_failed = 1;
+            b->store_err = serr;
+            atomic_store(&b->stop, 1);
+        }
+    }
+    pthread_mutex_unlock(&b->lock);
+}
+
 void rf_batch_finish(rf_batch *b, size_t pos, rf_status st, const rf_error *err, double seconds)
 {
     rf_runner *r = b->runner;
@@ -194,6 +213,7 @@ static void *worker(void *arg)
     size_t pos;
     while (rf_batch_take(b, &pos)) {
         size_t k = b->todo[pos];
+        rf_batch_start(b, pos);
         double t0 = rf_runner_now();
         memset(&err, 0, sizeof err);
         rf_status st = rf_model_eval(b->model, b->x + k * nin, b->y + k * nout, &err);
@@ -227,6 +247,8 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
             found = rf_store_lookup(r->store, x + k * model->n_inputs, y + k * model->n_outputs, err);
             if (found < 0) {
                 free(b.todo);
+                if (failed_index)
+                    *failed_index = count; /* not a model failure */
                 return RF_EIO;
             }
         }

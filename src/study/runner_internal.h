@@ -37,6 +37,9 @@ double rf_runner_now(void);
 /* Take the next todo position, or return 0 when there is none or the batch stops. */
 int rf_batch_take(rf_batch *b, size_t *pos);
 
+/* Mark todo[pos] as started in the store (before evaluating it). */
+void rf_batch_start(rf_batch *b, size_t pos);
+
 /* Record a finished evaluation of todo[pos]: y row already written (or not, on
  * failure), commit to the store, update counts, print a JSONL line. */
 void rf_batch_finish(rf_batch *b, size_t pos, rf_status st, const rf_error *err, double seconds);

@@ -296,7 +296,7 @@ int rf_store_lookup(rf_store *s, const double *x, double *y, rf_error *err)
         int ok = sqlite3_column_int(s->lookup, 0);
         const void *blob = sqlite3_column_blob(s->lookup, 1);
         int bytes = sqlite3_column_bytes(s->lookup, 1);
-        if (ok && blob && (size_t)bytes == s->n_outputs * sizeof(double)) {
+        if (ok == 1 && blob && (size_t)bytes == s->n_outputs * sizeof(double)) {
             memcpy(y, blob, (size_t)bytes);
             found = 1;
         }
@@ -320,13 +320,16 @@ rf_status rf_store_put(rf_store *s, const double *x, int ok, const double *y, co
     pthread_mutex_lock(&s->lock);
     sqlite3_reset(s->put);
     sqlite3_bind_blob(s->put, 1, x, (int)(s->n_inputs * sizeof(double)), SQLITE_STATIC);
-    sqlite3_bind_int(s->put, 2, ok ? 1 : 0);
-    if (ok)
+    sqlite3_bind_int(s->put, 2, ok > 0 ? 1 : ok < 0 ? -1 : 0);
+    if (ok > 0)
         sqlite3_bind_blob(s->put, 3, y, (int)(s->n_outputs * sizeof(double)), SQLITE_STATIC);
     else
         sqlite3_bind_null(s->put, 3);
-    if (!ok)
+    if (ok == 0)
         sqlite3_bind_text(s->put, 4, error ? error : "failed", -1, SQLITE_TRANSIENT);
+    else if (ok < 0)
+        sqlite3_bind_text(s->put, 4, "started, never finished (the run was killed, or this evaluation crashed it)",
+                          -1, SQLITE_STATIC);
     else
         sqlite3_bind_null(s->put, 4);
     sqlite3_bind_double(s->put, 5, seconds);
@@ -339,6 +342,11 @@ rf_status rf_store_put(rf_store *s, const double *x, int ok, const double *y, co
     sqlite3_clear_bindings(s->put);
     pthread_mutex_unlock(&s->lock);
     return st;
+}
+
+rf_status rf_store_put_started(rf_store *s, const double *x, rf_error *err)
+{
+    return rf_store_put(s, x, -1, NULL, NULL, 0, err);
 }
 
 rf_status rf_store_limit_pages(rf_store *s, long pages, rf_error *err)
@@ -399,9 +407,9 @@ rf_status rf_store_read_info(const char *path, rf_store_info *info, rf_error *er
     info->run_started = strtod(buf, NULL);
     sqlite3_stmt *q = NULL;
     if (sqlite3_prepare_v2(db,
-                           "SELECT coalesce(sum(ok), 0), coalesce(sum(1 - ok), 0), coalesce(min(finished), 0),"
+                           "SELECT coalesce(sum(ok = 1), 0), coalesce(sum(ok = 0), 0), coalesce(min(finished), 0),"
                            " coalesce(max(finished), 0), coalesce(sum(seconds), 0),"
-                           " coalesce(sum(finished >= ?1), 0) FROM results",
+                           " coalesce(sum(finished >= ?1 AND ok >= 0), 0), coalesce(sum(ok < 0), 0) FROM results",
                            -1, &q, NULL) != SQLITE_OK) {
         st = db_fail(err, db, path, "cannot read its results");
         goto done;
@@ -414,6 +422,7 @@ rf_status rf_store_read_info(const char *path, rf_store_info *info, rf_error *er
         info->last_update = sqlite3_column_double(q, 3);
         info->eval_seconds = sqlite3_column_double(q, 4);
         info->done_this_run = (size_t)sqlite3_column_int64(q, 5);
+        info->unfinished = (size_t)sqlite3_column_int64(q, 6);
     } else {
         st = db_fail(err, db, path, "cannot read its results");
     }
@@ -430,7 +439,7 @@ size_t rf_store_failures(const char *path, size_t max, char (*x_text)[512], char
         return 0;
     sqlite3_stmt *q = NULL;
     size_t n = 0;
-    if (sqlite3_prepare_v2(db, "SELECT x_text, error FROM results WHERE ok = 0 ORDER BY finished LIMIT ?1", -1,
+    if (sqlite3_prepare_v2(db, "SELECT x_text, error FROM results WHERE ok <= 0 ORDER BY finished LIMIT ?1", -1,
                            &q, NULL) == SQLITE_OK) {
         sqlite3_bind_int64(q, 1, (sqlite3_int64)max);
         while (n < max && sqlite3_step(q) == SQLITE_ROW) {
