@@ -396,7 +396,7 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
     f3_contact C = {0};
     series ser = {0};
     double *u = NULL, *v = NULL, *f = NULL, *fext = NULL, *mass_d = NULL, *invm = NULL, *dash = NULL;
-    double *elm = NULL, *lamx = NULL, *Fstep = NULL, *fric_ser = NULL;
+    double *elm = NULL, *lamx = NULL, *Fstep = NULL;
     unsigned char *fixed = NULL;
     int *outer = NULL;
     long nouter = 0;
@@ -778,7 +778,6 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
     for (int q = 0; q < 3; q++)
         P[q] /= Mb, X[q] /= Mb;
     double H[3] = {0, 0, 0}, I[3][3] = {{0}};
-    double vib = 0;
     for (long i = 0; i < nbn; i++) {
         double m = mass_d[3 * i], r[3], w[3];
         for (int q = 0; q < 3; q++)
@@ -790,7 +789,6 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++)
                 I[a][b] += m * ((a == b ? rr : 0) - r[a] * r[b]);
-        vib += 0.5 * m * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
     }
     double omega[3] = {0, 0, 0};
     if (ms.full) { /* solve I omega = H (Cramer) */
@@ -841,7 +839,6 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
         seb = boulder_strain(&S, u);
         for (long dd = 3 * nbn; dd < ndof; dd++)
             ses += 0.5 * f[dd] * u[dd], eks += 0.5 * mass_d[dd] * v[dd] * v[dd];
-        (void)vib;
         hist->n = ser.n;
         double **dst[12] = {&hist->t,           &hist->contact_force,  &hist->compression, &hist->contact_radius,
                             &hist->kinetic_boulder, &hist->strain_boulder, &hist->kinetic_slope, &hist->strain_slope,
@@ -912,7 +909,7 @@ done:
     free(C.gvo), free(C.outside), free(C.cand), free(C.du);
     free(S.K), free(S.fe), free(S.fel), free(S.inc_ptr), free(S.inc);
     free(u), free(v), free(f), free(fext), free(mass_d), free(invm), free(dash), free(elm), free(lamx);
-    free(fixed), free(outer), free(Fstep), free(fric_ser);
+    free(fixed), free(outer), free(Fstep);
     f3_mesh_free(&mesh);
     if (st != RF_OK && hist)
         rf_fem_history_free(hist);
