@@ -20,15 +20,18 @@ run() { # label, command...
     local label=$1; shift
     local t0 t1
     t0=$(date +%s.%N)
-    "$@" > "$tmp/out.txt" 2> "$tmp/err.txt" || { echo "$label: FAILED"; tail -3 "$tmp/err.txt"; return 1; }
+    setsid -w /usr/bin/time -f "%U %S" -o "$tmp/$label.cpu" "$@" > "$tmp/out.txt" 2> "$tmp/err.txt" \
+        || { echo "$label: FAILED"; tail -3 "$tmp/err.txt"; return 1; }
     t1=$(date +%s.%N)
     local n
     n=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['evaluations']['evaluated'])" "$tmp/$label/result.json")
-    python3 - "$label" "$t0" "$t1" "$n" <<'PY'
+    python3 - "$label" "$t0" "$t1" "$n" "$(tail -1 "$tmp/$label.cpu")" <<'PY'
 import sys
 label, t0, t1, n = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), int(sys.argv[4])
+cpu = sum(map(float, sys.argv[5].split()))
 w = t1 - t0
-print(f"{label:10s} {n:6d} evaluations  {w:8.1f} s wall  {n / w:7.2f} evaluations/s")
+print(f"{label:10s} {n:6d} evaluations  {w:8.1f} s wall  {n / w:7.2f} evaluations/s  "
+      f"CPU {cpu:7.1f} s = {cpu / w:4.2f} cores  {1e3 * cpu / n:6.1f} ms CPU per evaluation")
 PY
     echo "$t0 $t1" > "$tmp/$label.time"
 }
