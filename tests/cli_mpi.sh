@@ -13,7 +13,16 @@ if ! command -v mpirun > /dev/null; then
     exit 0
 fi
 if ! ldd "$bin" 2>/dev/null | grep -q libmpi; then
-    echo "cli_mpi: SKIPPED: $bin was built without MPI (ROCKFUZZ_MPI=OFF or no MPI found)"
+    # a build without MPI must refuse to run once per rank into the same store
+    printf 'parameters:\n  a: {tfn: [2, 1, 1]}\nmodel:\n  formula: {f: "a"}\n' > "${TMPDIR:-/tmp}/rf_nompi.yaml"
+    if OMPI_COMM_WORLD_SIZE=2 "$bin" run "${TMPDIR:-/tmp}/rf_nompi.yaml" --out "${TMPDIR:-/tmp}/rf_nompi" --quiet \
+        2> "${TMPDIR:-/tmp}/rf_nompi.err" > /dev/null || ! grep -q "built without MPI" "${TMPDIR:-/tmp}/rf_nompi.err"; then
+        echo "FAIL: a build without MPI ran under 2 ranks: $(cat "${TMPDIR:-/tmp}/rf_nompi.err")" >&2
+        rm -rf "${TMPDIR:-/tmp}"/rf_nompi*
+        exit 1
+    fi
+    rm -rf "${TMPDIR:-/tmp}"/rf_nompi*
+    echo "cli_mpi: SKIPPED: $bin was built without MPI (ROCKFUZZ_MPI=OFF or no MPI found); refuses mpirun: ok"
     exit 0
 fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader OMPI_MCA_rmaps_base_oversubscribe=1

@@ -208,9 +208,18 @@ rf_status rf_mpi_start(int *argc, char ***argv, int *rank, int *size, rf_error *
 {
     (void)argc;
     (void)argv;
-    (void)err;
     *rank = 0;
     *size = 1;
+    /* Started by mpirun with several ranks: each would run the whole study into the same store. */
+    static const char *const vars[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_STEP_NUM_TASKS"};
+    for (size_t k = 0; k < sizeof vars / sizeof *vars; k++) {
+        const char *v = getenv(vars[k]);
+        if (v && atoi(v) > 1)
+            return rf_fail(err, RF_EINVAL, "started with %s=%s ranks, but this rockfuzz was built without MPI "
+                                           "(ROCKFUZZ_MPI=OFF or no MPI found): every rank would run the whole "
+                                           "study; rebuild with MPI or run without mpirun",
+                           vars[k], v);
+    }
     return RF_OK;
 }
 
