@@ -28,7 +28,7 @@ study() { # $1 = file, $2 = extra model text
 cat > "$1" <<EOF2
 name: resume
 scheme: reduced
-levels: 5
+levels: 8
 parameters:
   a: {tfn: [2, 1, 1]}
   b: {tfn: [3, 1, 2]}
@@ -43,7 +43,7 @@ EOF2
 }
 mkdir -p "$tmp/work"
 study "$tmp/s.yaml" ""
-total=41   # 1 nominal + 5 levels x 8 corners
+total=65   # 1 nominal + 8 levels x 8 corners
 
 # ---- uninterrupted reference ----
 "$bin" run "$tmp/s.yaml" --out "$tmp/ref" --quiet > /dev/null 2> "$tmp/ref.err" || fail "reference run: $(cat "$tmp/ref.err")"
