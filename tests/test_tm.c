@@ -588,6 +588,34 @@ static void test_nan_outputs(void **state)
     rf_model_free(&model);
 }
 
+/* ---- rounding noise is not influence: an output constant on every level
+ * box but level 0 (rolling R_t = 5/7 unless friction is 0) */
+static void f_rolling(const double *x, double *y)
+{
+    y[0] = (x[0] < 0.05 ? 1.0 : 5.0 / 7.0) * (1 + 1e-15 * x[1]);
+}
+
+static void test_noise_is_not_influence(void **state)
+{
+    (void)state;
+    rf_fuzzy in[2];
+    rf_fuzzy_tfn(&in[0], 0.6, 0.6, 0.4, NULL); /* friction, support [0, 1] */
+    rf_fuzzy_tfn(&in[1], 1, 0.05, 0.05, NULL);  /* radius: no physical effect */
+    rf_model model = test_model(2, 1, f_rolling);
+    rf_tm_result r = run(in, 2, &model, RF_TM_REDUCED, 4, 1);
+    rf_analysis an;
+    assert_int_equal(rf_analysis_compute(&r, &an, NULL), RF_OK);
+    /* Hanss's measures weight levels 1..m-1 only, where the output is constant */
+    assert_true(isnan(an.rho[0]) && isnan(an.rho[1]));
+    assert_int_equal(an.reason_hanss[1], RF_NA_ALL_ZERO);
+    /* the left/right measures include level 0: friction takes it all */
+    assert_close(an.rho_right[0], 1, 1e-12);
+    assert_true(an.rho_left[1] == 0 && an.rho_right[1] == 0);
+    rf_analysis_free(&an);
+    rf_tm_result_free(&r);
+    rf_model_free(&model);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -597,7 +625,7 @@ int main(void)
         cmocka_unit_test(test_counts),          cmocka_unit_test(test_general_points),
         cmocka_unit_test(test_interval_arithmetic), cmocka_unit_test(test_never_overestimates),
         cmocka_unit_test(test_cap_and_failure), cmocka_unit_test(test_shapes_and_crisp),
-        cmocka_unit_test(test_nan_outputs),
+        cmocka_unit_test(test_nan_outputs),      cmocka_unit_test(test_noise_is_not_influence),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

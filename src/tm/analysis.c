@@ -68,6 +68,14 @@ static double mean_difference(const struct rf_tm_data *d, const rf_grid *g, size
     return sum / (double)lines;
 }
 
+/* Differences of the output below this are rounding, not influence: a
+ * model constant on a level box (e.g. R_t = 5/7 while a boulder rolls)
+ * returns values that differ in the last bits with inputs that cannot
+ * matter, and normalising such noise would rank an input by it. */
+#define NOISE_RTOL 1e-12
+
+static double denoise(double diff, double floor_abs) { return fabs(diff) <= floor_abs ? 0.0 : diff; }
+
 /* Trapezoidal rule over the levels mu_j = j/m of g[0..m]. */
 static double integrate_levels(const double *g, size_t m)
 {
@@ -116,6 +124,7 @@ rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error
 
     for (size_t k = 0; k < no; k++) {
         double zbar = res->nominal[k];
+        double noise = NOISE_RTOL * fmax(fabs(zbar), fmax(fabs(res->lo[k * (m + 1)]), fabs(res->hi[k * (m + 1)])));
         if (res->output_undefined && res->output_undefined[k]) {
             for (size_t i = 0; i < n; i++) {
                 size_t at = k * n + i;
@@ -140,7 +149,7 @@ rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error
                 double w = res->in_hi[i * (m + 1) + j] - res->in_lo[i * (m + 1) + j];
                 double eta = NAN;
                 if (g->radix[i] >= 2 && w > 0)
-                    eta = mean_difference(d, g, i, k, 0, g->radix[i] - 1) / w;
+                    eta = denoise(mean_difference(d, g, i, k, 0, g->radix[i] - 1), noise) / w;
                 an->gain[at * m + j] = eta;
                 double mu = (double)j / (double)m;
                 if (j >= 1) {
@@ -208,11 +217,11 @@ rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error
                 size_t pn = g->nominal_pos[i], last = g->radix[i] - 1;
                 double em = 0, ep = 0;
                 if (pn > 0 && dm > 0)
-                    em = mean_difference(d, g, i, k, 0, pn) / dm;
+                    em = denoise(mean_difference(d, g, i, k, 0, pn), noise) / dm;
                 else
                     dm = 0;
                 if (pn < last && dp > 0)
-                    ep = mean_difference(d, g, i, k, pn, last) / dp;
+                    ep = denoise(mean_difference(d, g, i, k, pn, last), noise) / dp;
                 else
                     dp = 0;
                 has_width |= dm > 0 || dp > 0;
