@@ -18,7 +18,7 @@ typedef enum {
     RF_NA_CRISP,          /* input has zero width at every level */
     RF_NA_ZERO_NOMINAL,   /* nominal output is 0: normalised measure undefined */
     RF_NA_NO_LR,          /* the three-point grid was not evaluated (left_right off) */
-    RF_NA_ALL_ZERO,       /* all influences are zero: relative measure undefined */
+    RF_NA_ALL_ZERO,       /* all influences are zero (Hanss: on levels 0 < mu < 1): relative measure undefined */
     RF_NA_FEW_LEVELS,     /* levels = 1: no level strictly between 0 and 1 to weight (s.5.3) */
     RF_NA_UNDEFINED       /* the output is NaN at every point (e.g. R_t of a normal impact) */
 } rf_na_reason;

@@ -23,7 +23,7 @@ const char *rf_na_reason_text(rf_na_reason r)
     case RF_NA_CRISP: return "input has zero width";
     case RF_NA_ZERO_NOMINAL: return "nominal output is 0";
     case RF_NA_NO_LR: return "left/right grid not evaluated";
-    case RF_NA_ALL_ZERO: return "no input has any influence";
+    case RF_NA_ALL_ZERO: return "no input changes the output on the levels weighted";
     case RF_NA_FEW_LEVELS: return "needs levels >= 2";
     case RF_NA_UNDEFINED: return "output undefined for this study";
     }
