@@ -52,7 +52,7 @@ static void test_spec_default(void **state)
     assert_int_equal(spec.solver, RF_IMPACT_FEM);
     assert_true(isnan(spec.e_n));
     assert_true(spec.hunter_coefficient == 1.04);
-    assert_true(spec.fem_refinement == 10.0 && spec.fem_domain_factor == 10.0);
+    assert_true(spec.fem_refinement == 0.0 && spec.fem_domain_factor == 10.0); /* 0 = solver default */
     assert_int_equal(spec.fem_boundary, RF_IMPACT_BOUNDARY_FIXED);
     assert_int_equal(spec.fem_threads, 1);
     assert_true(spec.base.boulder_E == 68.2e9 && spec.base.radius == 1.0);
@@ -245,7 +245,7 @@ static void test_fem_model(void **state)
     rf_model model;
     rf_error err = {0};
     assert_int_equal(rf_impact_model_create(&spec, names, 2, &model, &err), RF_OK);
-    assert_non_null(strstr(model.identity, "refinement=2 "));
+    assert_non_null(strstr(model.identity, "refinement_axi=2 refinement_3d=2 "));
     assert_non_null(strstr(model.identity, "boundary=absorbing"));
     double x[2] = {10.0, 0.0}, y[7], want[7];
     if (rf_model_eval(&model, x, y, &err) != RF_OK)
@@ -264,11 +264,47 @@ static void test_fem_model(void **state)
     assert_true(fabs(y[0] / h.contact_force_max - 1) < 0.1);
     assert_true(fabs(y[2] / h.contact_duration - 1) < 0.1);
     assert_true(y[4] > 0.95 && y[4] < 1.0);
-    /* the FE solver's own refusal (inclined slope) is a model error */
-    x[1] = 30.0;
-    assert_int_equal(rf_model_eval(&model, x, y, &err), RF_EMODEL);
-    assert_non_null(strstr(err.msg, "fem"));
+    /* an inclined slope goes to the 3D model: frictionless 45 deg keeps the
+     * tangential velocity (R_t = 1) and its normal response is that of a
+     * normal impact at V cos 45 (R_n within the mesh's scatter) */
     rf_model_free(&model);
+    spec.fem_refinement = 3.0; /* a/h = 2 facets the 3D sphere too coarsely: R_t = 0.990 */
+    assert_int_equal(rf_impact_model_create(&spec, names, 2, &model, &err), RF_OK);
+    x[1] = 45.0;
+    if (rf_model_eval(&model, x, y, &err) != RF_OK)
+        fail_msg("3D FE eval: %s", err.msg);
+    if (!(fabs(y[5] - 1.0) < 2e-3))
+        fail_msg("frictionless 45 deg: R_t = %.6f", y[5]);
+    double normal[7];
+    double xn[2] = {10.0 * sqrt(0.5), 0.0}; /* V cos 45 deg */
+    assert_int_equal(rf_model_eval(&model, xn, normal, &err), RF_OK);
+    if (!(fabs(y[4] - normal[4]) < 3e-3))
+        fail_msg("R_n 3D %.6f vs axisymmetric %.6f", y[4], normal[4]);
+    rf_model_free(&model);
+}
+
+/* Which FE model an impact needs: 3D for a slope, or for friction between
+ * dissimilar bodies (Dundurs beta != 0); axisymmetric otherwise. */
+#include "impact/impact_fem.h"
+static void test_fem_dispatch(void **state)
+{
+    (void)state;
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    assert_int_equal(rf_impact_fem_needs_3d_(&in), 0);
+    in.friction = 0.6; /* identical materials: no tangential traction in a normal impact */
+    assert_int_equal(rf_impact_fem_needs_3d_(&in), 0);
+    in.slope_E = 30e9;
+    assert_int_equal(rf_impact_fem_needs_3d_(&in), 1);
+    in.friction = 0;
+    assert_int_equal(rf_impact_fem_needs_3d_(&in), 0);
+    in.slope_angle = 0.5;
+    assert_int_equal(rf_impact_fem_needs_3d_(&in), 1);
+    rf_impact_model_spec spec;
+    rf_impact_model_spec_default(&spec);
+    assert_true(rf_impact_fem_refinement_(&spec, 0) == 10.0 && rf_impact_fem_refinement_(&spec, 1) == 6.0);
+    spec.fem_refinement = 4;
+    assert_true(rf_impact_fem_refinement_(&spec, 0) == 4.0 && rf_impact_fem_refinement_(&spec, 1) == 4.0);
 }
 #else
 static void test_fem_model(void **state) { skip(); (void)state; }
@@ -323,6 +359,7 @@ int main(void)
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_concurrent),
         cmocka_unit_test(test_fem_model),
+        cmocka_unit_test(test_fem_dispatch),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

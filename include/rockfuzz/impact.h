@@ -119,7 +119,7 @@ typedef struct {
     double e_n;                    /* rigid solver: normal COR; NaN = Hunter's e_n from the current inputs */
     double hunter_coefficient;     /* A of Hunter's loss (hunter solver, and rigid with e_n = NaN) */
     /* FE settings (mirrors of rf_fem_options, kept plain so this header does not need fem.h) */
-    double fem_refinement;         /* a/h in the fine zone, default 10 */
+    double fem_refinement;         /* a/h in the fine zone; 0 (default) = 10 axisymmetric, 6 in 3D */
     double fem_domain_factor;      /* slope domain radius / r0, default 10 */
     rf_impact_boundary fem_boundary; /* default fixed */
     int fem_threads;               /* threads of one FE evaluation, default 1 */
@@ -127,7 +127,7 @@ typedef struct {
 } rf_impact_model_spec;
 
 /* Defaults: FEM solver, nominal granite, e_n = NaN (Hunter), A = 1.04,
- * refinement 10, domain factor 10, fixed boundary, 1 thread, no VTK. */
+ * refinement 0 (solver default), domain factor 10, fixed boundary, 1 thread, no VTK. */
 void rf_impact_model_spec_default(rf_impact_model_spec *spec);
 
 /* Run one impact with the spec's solver and settings on the input `in`

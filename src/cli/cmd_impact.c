@@ -89,7 +89,8 @@ static void usage(FILE *f)
         "                           rigid:  rigid-body impact with Coulomb friction\n"
         "  --e-n EN                 rigid: normal COR in [0, 1] (default: Hunter's e_n)\n"
         "  --hunter-A A             Hunter coefficient A (default 1.04; band 1.112-1.171)\n"
-        "  --refinement A_OVER_H    fem: elements across the Hertz contact radius (default 10)\n"
+        "  --refinement A_OVER_H    fem: elements across the Hertz contact radius\n"
+        "                           (default 10 axisymmetric, 6 for the 3D model)\n"
         "  --boundary KIND          fem: fixed | absorbing outer boundary (default fixed)\n"
         "  --domain-factor F        fem: slope domain radius / r0 (default 10)\n"
         "  --threads N              fem: threads of the solver (default 1)\n"
@@ -183,10 +184,13 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     printf("  impact            V = %g m/s vertical, slope angle = %g deg, friction = %g\n",
            in->velocity, in->slope_angle * 180.0 / PI, in->friction);
     printf("  mass              %.6g kg\n", rf_impact_mass(in));
-    if (spec->solver == RF_IMPACT_FEM)
-        printf("  FE settings       refinement a/h = %g, domain = %g r0, boundary %s, threads %d\n",
-               spec->fem_refinement, spec->fem_domain_factor,
+    if (spec->solver == RF_IMPACT_FEM) {
+        int three_d = rf_impact_fem_needs_3d_(in);
+        printf("  FE settings       %s, refinement a/h = %g, domain = %g r0, boundary %s, threads %d\n",
+               three_d ? "3D half model (inclined slope or friction)" : "axisymmetric",
+               rf_impact_fem_refinement_(spec, three_d), spec->fem_domain_factor,
                rf_impact_boundary_name(spec->fem_boundary), spec->fem_threads);
+    }
     printf("\nResults\n");
     print_value("max contact force", o->contact_force_max, "N");
     print_value("max compression", o->compression_max, "m");
@@ -223,11 +227,13 @@ static void print_references(const rf_impact_model_spec *spec, const rf_impact_i
 /* The FE run with its history, for the diagnostics the summary shows. */
 static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int json)
 {
-    rf_fem_options opt;
     rf_fem_history hist = {0};
     rf_error err = {0};
-    rf_impact_fem_options_(spec, &opt);
-    if (rf_fem_impact(&spec->base, &opt, out, &hist, &err) != RF_OK) {
+    double friction_work = 0.0;
+    int three_d = 0;
+    if (spec->fem_vtk_dir && rf_impact_fem_needs_3d_(&spec->base))
+        fprintf(stderr, "warning: the 3D model writes no VTK files; --vtk is ignored\n");
+    if (rf_impact_fem_run_(spec, &spec->base, out, &hist, &friction_work, &three_d, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz impact: fem solver failed: %s\n", err.msg);
         rf_fem_history_free(&hist);
         return EXIT_FAILED;
@@ -244,6 +250,9 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
         if (hist.ke0 > 0.0)
             printf("  FE energy at the end  boulder vibration %.3g, slope %.3g of the initial KE\n",
                    hist.vibration_energy / hist.ke0, hist.slope_energy / hist.ke0);
+        if (three_d && hist.ke0 > 0.0)
+            printf("  FE friction work      %.3g of the initial KE (half model; energies of the full body)\n",
+                   friction_work / hist.ke0);
         print_references(spec, &spec->base);
     }
     if (hist.warning[0])

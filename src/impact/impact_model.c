@@ -64,7 +64,7 @@ void rf_impact_model_spec_default(rf_impact_model_spec *spec)
     rf_impact_input_default(&spec->base);
     spec->e_n = NAN;
     spec->hunter_coefficient = RF_HUNTER_A_JOHNSON;
-    spec->fem_refinement = 10.0;
+    spec->fem_refinement = 0.0; /* solver default: 10 axisymmetric, 6 in 3D (impact_fem.h) */
     spec->fem_domain_factor = 10.0;
     spec->fem_boundary = RF_IMPACT_BOUNDARY_FIXED;
     spec->fem_threads = 1;
@@ -75,9 +75,7 @@ static rf_status solve_fem(const rf_impact_model_spec *spec, const rf_impact_inp
                            rf_impact_output *out, rf_error *err)
 {
 #ifdef RF_HAVE_FEM
-    rf_fem_options opt;
-    rf_impact_fem_options_(spec, &opt);
-    return rf_fem_impact(in, &opt, out, NULL, err);
+    return rf_impact_fem_run_(spec, in, out, NULL, NULL, NULL, err);
 #else
     (void)spec;
     (void)in;
@@ -98,8 +96,8 @@ static rf_status check_spec(const rf_impact_model_spec *spec, rf_error *err)
         return rf_fail(err, RF_EINVAL, "hunter_coefficient = %g: must be finite and >= 0",
                        spec->hunter_coefficient);
     if (spec->solver == RF_IMPACT_FEM) {
-        if (!(isfinite(spec->fem_refinement) && spec->fem_refinement > 0.0))
-            return rf_fail(err, RF_EINVAL, "refinement = %g: must be finite and > 0 (a/h)",
+        if (!(isfinite(spec->fem_refinement) && spec->fem_refinement >= 0.0))
+            return rf_fail(err, RF_EINVAL, "refinement = %g: must be finite and > 0 (a/h; 0 = solver default)",
                            spec->fem_refinement);
         if (!(isfinite(spec->fem_domain_factor) && spec->fem_domain_factor > 1.0))
             return rf_fail(err, RF_EINVAL, "domain_factor = %g: must be finite and > 1",
@@ -226,9 +224,9 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
     if (s->solver == RF_IMPACT_RIGID)
         append(buf, cap, &len, isnan(s->e_n) ? " e_n=hunter" : " e_n=%.17g", s->e_n);
     if (s->solver == RF_IMPACT_FEM)
-        append(buf, cap, &len, " refinement=%.17g domain_factor=%.17g boundary=%s threads=%d",
-               s->fem_refinement, s->fem_domain_factor, rf_impact_boundary_name(s->fem_boundary),
-               s->fem_threads);
+        append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
+               rf_impact_fem_refinement_(s, 0), rf_impact_fem_refinement_(s, 1), s->fem_domain_factor,
+               rf_impact_boundary_name(s->fem_boundary), s->fem_threads);
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
            " slope_density=%.17g boulder_E=%.17g slope_E=%.17g boulder_poisson=%.17g"
