@@ -14,6 +14,7 @@
  * is the same bit for bit for any thread count. */
 #include "rockfuzz/fem3d.h"
 #include "fem3d_internal.h"
+#include "fem_contact_window.h"
 
 #include <float.h>
 #include <math.h>
@@ -752,20 +753,8 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
     const long nsteps = n + 1;
 
     /* contact duration: first to last nonzero multiplier, ends interpolated as in fem_solver.c */
-    double thr = o.duration_threshold * F_max, t0 = -1, t1 = -1;
-    for (long k = 0; k < nsteps; k++)
-        if (Fstep[k] > thr) {
-            if (t0 < 0) {
-                t0 = k * dt;
-                if (k > 0)
-                    t0 -= dt * fmin(1, (Fstep[k] - thr) / (Fstep[k] - Fstep[k - 1]));
-            }
-            t1 = k * dt;
-            if (k + 1 < nsteps && k > 0 && Fstep[k - 1] > Fstep[k])
-                t1 += dt * fmin(1, (Fstep[k] - thr) / (Fstep[k - 1] - Fstep[k]));
-        }
-    if (t0 < 0)
-        t0 = 0;
+    double t0, t1;
+    rf_fem_contact_window_(Fstep, nsteps, dt, o.duration_threshold * F_max, &t0, &t1);
 
     /* rigid-body state of the boulder: CM velocity, angular momentum about the CM with the lumped
        inertia tensor (current positions) */

@@ -17,6 +17,7 @@
  * applied at step n (contact, dashpots), so the closure error measures the
  * contact scheme (its small inelastic node collisions) and round-off only. */
 #include "rockfuzz/fem.h"
+#include "fem_contact_window.h"
 #include "fem_internal.h"
 
 #include <float.h>
@@ -808,20 +809,8 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
     /* outputs.  Contact duration: first to last nonzero multiplier (exact
        zeros off contact; the threshold only guards round-off), the end
        extrapolated linearly to zero within the last step. */
-    double thr = o.duration_threshold * F_max, t0 = -1, t1 = -1;
-    for (long k = 0; k < nsteps; k++)
-        if (Fstep[k] > thr) {
-            if (t0 < 0) {
-                t0 = k * dt;
-                if (k > 0)
-                    t0 -= dt * fmin(1, (Fstep[k] - thr) / (Fstep[k] - Fstep[k - 1]));
-            }
-            t1 = k * dt;
-            if (k + 1 < nsteps && k > 0 && Fstep[k - 1] > Fstep[k])
-                t1 += dt * fmin(1, (Fstep[k] - thr) / (Fstep[k - 1] - Fstep[k]));
-        }
-    if (t0 < 0)
-        t0 = 0;
+    double t0, t1;
+    rf_fem_contact_window_(Fstep, nsteps, dt, o.duration_threshold * F_max, &t0, &t1);
     double pz = 0, ekb = 0, seb = 0, eks = 0, ses = 0;
     for (long d = 1; d < nbd; d += 2)
         pz += S.mass[d] * v[d];
