@@ -9,9 +9,8 @@ cmake --build "$build" -j"$(nproc)" >/dev/null
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "== TM overhead (bench_tm) =="
 "$build"/bench_tm 7
-for script in bench/fem.sh bench/fem3d.sh; do
-  if [ -x "$script" ] || [ -f "$script" ]; then
-    echo "== $script =="
-    bash "$script" "$build"
-  fi
-done
+echo "== axisymmetric FE (bench/fem.sh, a/h = 10) =="
+bash bench/fem.sh "$build" 10
+echo "== 3D FE, 10 m/s on 45 deg, f = 0.6 (bench_fem3d, a/h = 4) =="
+for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_fem3d 4 "$t"; done
+echo "(whole studies: bench/bench_study.sh; it takes minutes)"

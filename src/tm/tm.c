@@ -751,36 +751,33 @@ static void diagnose_grid(const struct rf_tm_data *d, const rf_grid *g, const do
                           rf_monotonicity *verdict)
 {
     size_t n = d->n, no = d->n_out;
-    for (size_t i = 0; i < n; i++) {
-        size_t r = g->radix[i], s = g->stride[i];
-        if (r < 3)
-            continue;
-        for (size_t k = 0; k < no; k++) {
+    int any = 0;
+    for (size_t i = 0; i < n; i++)
+        any |= g->radix[i] >= 3;
+    if (!any)
+        return;
+    /* gather the grid's outputs once per output (one pass of random reads),
+     * then scan the lines with strides over a contiguous array */
+    double *z = malloc(g->count * sizeof(double));
+    if (!z)
+        return; /* the diagnostic stays "not checked" */
+    for (size_t k = 0; k < no; k++) {
+        for (size_t p = 0; p < g->count; p++)
+            z[p] = d->y[(size_t)g->ids[p] * no + k];
+        double tol = rtol * range[k];
+        for (size_t i = 0; i < n; i++) {
+            size_t r = g->radix[i], s = g->stride[i];
             rf_monotonicity *v = &verdict[k * n + i];
-            if (*v == RF_MONO_NONMONOTONIC)
+            if (r < 3 || *v == RF_MONO_NONMONOTONIC)
                 continue;
-            double tol = rtol * range[k];
             int nm = 0;
             for (size_t outer = 0; outer < g->count && !nm; outer += r * s)
-                for (size_t inner = 0; inner < s && !nm; inner++) {
-                    size_t base = outer + inner;
-                    int dir = 0;
-                    for (size_t l = 1; l < r; l++) {
-                        double dz = d->y[(size_t)g->ids[base + l * s] * no + k] -
-                                    d->y[(size_t)g->ids[base + (l - 1) * s] * no + k];
-                        if (fabs(dz) <= tol)
-                            continue;
-                        int sg = dz > 0 ? 1 : -1;
-                        if (dir && sg != dir) {
-                            nm = 1;
-                            break;
-                        }
-                        dir = sg;
-                    }
-                }
+                for (size_t inner = 0; inner < s && !nm; inner++)
+                    nm = changes_direction(z + outer + inner, r, s, tol);
             *v = nm ? RF_MONO_NONMONOTONIC : RF_MONO_MONOTONIC;
         }
     }
+    free(z);
 }
 
 /* ------------------------------------------------------- retransformation */
