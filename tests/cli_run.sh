@@ -110,7 +110,12 @@ assert a["outputs"] == b["outputs"]
 EOF
 
 # ---- the shipped examples run ----
-for ex in product default; do
+# default.yaml is the FE quick-start study (~1 min): here only that it loads,
+# builds its model and is stopped by the evaluation cap before any run
+"$bin" run "$src/examples/default.yaml" --out "$tmp/ex_default" --quiet --max-evaluations 1 > /dev/null 2> "$tmp/ex.err" \
+    && fail "examples/default.yaml ran past --max-evaluations 1"
+grep -q "more than the cap of 1" "$tmp/ex.err" || fail "examples/default.yaml: $(cat "$tmp/ex.err")"
+for ex in product s1_hunter; do
     "$bin" run "$src/examples/$ex.yaml" --out "$tmp/ex_$ex" --quiet --no-plots > /dev/null 2> "$tmp/ex.err" \
         || fail "examples/$ex.yaml: $(cat "$tmp/ex.err")"
 done
