@@ -115,6 +115,10 @@ EOF
 "$bin" run "$src/examples/default.yaml" --out "$tmp/ex_default" --quiet --max-evaluations 1 > /dev/null 2> "$tmp/ex.err" \
     && fail "examples/default.yaml ran past --max-evaluations 1"
 grep -q "more than the cap of 1" "$tmp/ex.err" || fail "examples/default.yaml: $(cat "$tmp/ex.err")"
+# an output folder whose parents do not exist yet is created (mkdir -p)
+"$bin" run "$src/examples/product.yaml" --out "$tmp/nested/a/b" --quiet --no-plots > /dev/null 2> "$tmp/ex.err" \
+    || fail "nested --out: $(cat "$tmp/ex.err")"
+[ -s "$tmp/nested/a/b/result.json" ] || fail "nested --out: no result.json"
 for ex in product s1_hunter; do
     "$bin" run "$src/examples/$ex.yaml" --out "$tmp/ex_$ex" --quiet --no-plots > /dev/null 2> "$tmp/ex.err" \
         || fail "examples/$ex.yaml: $(cat "$tmp/ex.err")"

@@ -41,6 +41,9 @@ void rf_report_options_default(rf_report_options *opt);
 void rf_report_print_summary(FILE *f, const rf_study *study, const rf_tm_result *res, const rf_analysis *an);
 
 /* Write every output file into dir (created if missing); result.json last. */
+/* Create the output directory and any missing parents (mkdir -p). */
+rf_status rf_report_make_dir(const char *dir, rf_error *err);
+
 rf_status rf_report_write(const char *dir, const rf_study *study, const rf_tm_result *res, const rf_analysis *an,
                           const rf_report_options *opt, rf_error *err);
 

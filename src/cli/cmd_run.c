@@ -235,8 +235,8 @@ int rf_cli_run(int argc, char **argv)
     snprintf(store_path, sizeof store_path, "%s/%s", out_dir, RF_STORE_FILE);
 
     /* An old result must not survive a failed rerun into the same directory. */
-    if (mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "rockfuzz run: %s: cannot create the output directory: %s\n", out_dir, strerror(errno));
+    if (rf_report_make_dir(out_dir, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
         goto done;
     }
     rf_store_key key = {study.model.identity ? study.model.identity : "", ROCKFUZZ_VERSION, study.n_params,

@@ -535,6 +535,28 @@ rf_status rf_report_write_csv(const char *dir, const rf_study *s, const rf_tm_re
 
 /* ------------------------------------------------------------- everything */
 
+rf_status rf_report_make_dir(const char *dir, rf_error *err)
+{
+    char path[4096];
+    size_t len = strlen(dir);
+    if (len == 0 || len >= sizeof path)
+        return rf_fail(err, RF_EIO, "'%s': not a usable output directory name", dir);
+    memcpy(path, dir, len + 1);
+    /* like mkdir -p: every missing parent, then the directory itself */
+    for (char *p = path + 1; *p; p++) {
+        if (*p != '/')
+            continue;
+        *p = '\0';
+        if (mkdir(path, 0777) != 0 && errno != EEXIST)
+            return rf_fail(err, RF_EIO, "%s: cannot create the output directory (at %s): %s", dir, path,
+                           strerror(errno));
+        *p = '/';
+    }
+    if (mkdir(path, 0777) != 0 && errno != EEXIST)
+        return rf_fail(err, RF_EIO, "%s: cannot create the output directory: %s", dir, strerror(errno));
+    return RF_OK;
+}
+
 rf_status rf_report_write(const char *dir, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
                           const rf_report_options *opt, rf_error *err)
 {
@@ -543,8 +565,9 @@ rf_status rf_report_write(const char *dir, const rf_study *s, const rf_tm_result
         rf_report_options_default(&def);
         opt = &def;
     }
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST)
-        return rf_fail(err, RF_EIO, "%s: cannot create the output directory: %s", dir, strerror(errno));
+    rf_status made = rf_report_make_dir(dir, err);
+    if (made != RF_OK)
+        return made;
     char final_path[4096], tmp_path[4096];
     snprintf(final_path, sizeof final_path, "%s/result.json", dir);
     snprintf(tmp_path, sizeof tmp_path, "%s/result.json.tmp", dir);

@@ -159,7 +159,9 @@ static void draw_bars(const void *p)
         int na = !isfinite(bp->a[i]) && (!bp->b || !isfinite(bp->b[i]));
         char label[96];
         snprintf(label, sizeof label, "%s%s", bp->names[i], na ? " (n/a)" : "");
-        plmtex("b", 1.5, (c) / (double)bp->n, 0.5, label);
+        /* more than four names do not fit side by side: stagger them on two lines */
+        double disp = bp->n > 4 ? (i % 2 ? 2.9 : 1.3) : 1.5;
+        plmtex("b", disp, (c) / (double)bp->n, 0.5, label);
     }
     if (bp->b) {
         plcol0(2);
