@@ -151,10 +151,19 @@ static void test_no_result_after_a_failure(void **state)
     rf_error err;
     char out[128], path[256];
 
-    /* the output directory cannot be created */
-    snprintf(out, sizeof out, "%s/missing/parent", f->dir);
+    /* the output directory cannot be created: its parent is a regular file
+     * (missing parents are created, like mkdir -p) */
+    snprintf(path, sizeof path, "%s/a-file", f->dir);
+    FILE *fp = fopen(path, "w");
+    assert_non_null(fp);
+    fclose(fp);
+    snprintf(out, sizeof out, "%s/a-file/parent", f->dir);
     assert_int_equal(rf_report_write(out, &f->study, &f->res, &f->an, &ro, &err), RF_EIO);
     assert_non_null(strstr(err.msg, out));
+    unlink(path);
+    snprintf(out, sizeof out, "%s/missing/parent", f->dir);
+    assert_int_equal(rf_report_write(out, &f->study, &f->res, &f->an, &ro, &err), RF_OK);
+    assert_true(exists_nonempty(out, "result.json"));
 
     /* a complete earlier run, then a rerun whose CSV cannot be written */
     snprintf(out, sizeof out, "%s/rerun", f->dir);
