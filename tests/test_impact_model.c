@@ -283,6 +283,39 @@ static void test_fem_model(void **state)
     rf_model_free(&model);
 }
 
+/* The FE solver's warnings reach the caller through rf_model.warnings: a
+ * fixed boundary at 10 r0 reflects P waves back before a 10 m/s contact
+ * ends (2L/c_p = 3.56 ms < 4.45 ms); absorbing dashpots do not warn. */
+static void test_fem_warnings(void **state)
+{
+    (void)state;
+    const char *names[] = {"velocity"};
+    double x[1] = {10.0}, y[7];
+    char text[1024];
+    rf_error err = {0};
+    for (int absorbing = 0; absorbing <= 1; absorbing++) {
+        rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
+        spec.fem_refinement = 2.0;
+        spec.fem_boundary = absorbing ? RF_IMPACT_BOUNDARY_ABSORBING : RF_IMPACT_BOUNDARY_FIXED;
+        rf_model model;
+        assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
+        assert_non_null(model.warnings);
+        assert_int_equal(model.warnings(model.ctx, text, sizeof text), 0);
+        assert_int_equal(rf_model_eval(&model, x, y, &err), RF_OK);
+        assert_int_equal(rf_model_eval(&model, x, y, &err), RF_OK);
+        size_t warned = model.warnings(model.ctx, text, sizeof text);
+        if (absorbing) {
+            assert_int_equal(warned, 0);
+            assert_string_equal(text, "");
+        } else {
+            assert_int_equal(warned, 2);
+            if (!strstr(text, "2 of the 2 FE evaluations") || !strstr(text, "reflected"))
+                fail_msg("warning summary: %s", text);
+        }
+        rf_model_free(&model);
+    }
+}
+
 /* Which FE model an impact needs: 3D for a slope, or for friction between
  * dissimilar bodies (Dundurs beta != 0); axisymmetric otherwise. */
 #include "impact/impact_fem.h"
@@ -308,6 +341,8 @@ static void test_fem_dispatch(void **state)
 }
 #else
 static void test_fem_model(void **state) { skip(); (void)state; }
+static void test_fem_dispatch(void **state) { skip(); (void)state; }
+static void test_fem_warnings(void **state) { skip(); (void)state; }
 #endif
 
 typedef struct {
@@ -360,6 +395,7 @@ int main(void)
         cmocka_unit_test(test_concurrent),
         cmocka_unit_test(test_fem_model),
         cmocka_unit_test(test_fem_dispatch),
+        cmocka_unit_test(test_fem_warnings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

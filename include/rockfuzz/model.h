@@ -33,6 +33,10 @@ typedef struct rf_model {
     void (*destroy)(void *ctx); /* frees ctx; may be NULL */
     char *identity;             /* canonical description of model + settings (for result stores), owned */
     int threads_per_eval;       /* threads one evaluation uses itself (FE solver), >= 1 */
+    /* Optional (may be NULL): warnings the model raised during the evaluations
+     * made so far in this process (e.g. FE boundary reflections), summarised
+     * into buf; returns how many evaluations warned (0: buf is ""). */
+    size_t (*warnings)(void *ctx, char *buf, size_t size);
 } rf_model;
 
 /* Evaluate (convenience wrapper checking for NULL and non-finite outputs). */

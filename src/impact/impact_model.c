@@ -7,6 +7,7 @@
 #include "impact/impact_internal.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -147,9 +148,44 @@ typedef struct {
     rf_impact_model_spec spec;  /* fem_vtk_dir cleared: evaluations must not share a directory */
     size_t n_params;
     int field[RF_IMPACT_N_PARAMS]; /* index into rf_impact_param_names for each x[i] */
+    /* FE warnings (e.g. reflected waves) of the evaluations so far */
+    pthread_mutex_t lock;
+    size_t evaluations, warned;
+    char first_warning[512];
 } impact_ctx;
 
-static void ctx_destroy(void *p) { free(p); }
+static void ctx_destroy(void *p)
+{
+    impact_ctx *c = p;
+    if (c)
+        pthread_mutex_destroy(&c->lock);
+    free(c);
+}
+
+static void note_evaluation(impact_ctx *c, const char *warning)
+{
+    pthread_mutex_lock(&c->lock);
+    c->evaluations++;
+    if (warning && warning[0] && c->warned++ == 0)
+        snprintf(c->first_warning, sizeof c->first_warning, "%s", warning);
+    pthread_mutex_unlock(&c->lock);
+}
+
+static size_t impact_warnings(void *p, char *buf, size_t size)
+{
+    impact_ctx *c = p;
+    pthread_mutex_lock(&c->lock);
+    size_t warned = c->warned;
+    if (size > 0) {
+        if (warned)
+            snprintf(buf, size, "%zu of the %zu FE evaluations made in this process warned; the first: %s", warned,
+                     c->evaluations, c->first_warning);
+        else
+            buf[0] = '\0';
+    }
+    pthread_mutex_unlock(&c->lock);
+    return warned;
+}
 
 enum { P_RADIUS, P_C, P_RHO_B, P_RHO_S, P_E_B, P_E_S, P_NU_B, P_NU_S, P_V, P_ANGLE, P_MU };
 
@@ -175,7 +211,7 @@ static void bind(rf_impact_input *in, int field, double x)
 
 static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
 {
-    const impact_ctx *c = p;
+    impact_ctx *c = p;
     rf_impact_input in = c->spec.base;
     for (size_t i = 0; i < c->n_params; i++)
         bind(&in, c->field[i], x[i]);
@@ -184,7 +220,18 @@ static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
     if (st != RF_OK)
         return rf_fail(err, RF_EMODEL, "impact model: %s", local.msg);
     rf_impact_output out;
-    st = rf_impact_solve(&c->spec, &in, &out, &local);
+#ifdef RF_HAVE_FEM
+    if (c->spec.solver == RF_IMPACT_FEM) {
+        /* the FE history carries the solver's warnings (spec and input are validated) */
+        rf_fem_history hist;
+        memset(&hist, 0, sizeof hist);
+        st = rf_impact_fem_run_(&c->spec, &in, &out, &hist, NULL, NULL, &local);
+        if (st == RF_OK)
+            note_evaluation(c, hist.warning);
+        rf_fem_history_free(&hist);
+    } else
+#endif
+        st = rf_impact_solve(&c->spec, &in, &out, &local);
     if (st != RF_OK)
         return rf_fail(err, st == RF_EINVAL ? RF_EMODEL : st, "impact model (%s): %s",
                        rf_impact_solver_name(c->spec.solver), local.msg);
@@ -258,6 +305,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     impact_ctx *c = calloc(1, sizeof *c);
     if (!c)
         return rf_fail(err, RF_ENOMEM, "out of memory for the impact model");
+    pthread_mutex_init(&c->lock, NULL);
     c->spec = *spec;
     c->spec.fem_vtk_dir = NULL;
     for (size_t i = 0; i < n_params; i++) {
@@ -306,6 +354,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
 
     model->n_inputs = n_params;
     model->eval = impact_eval;
+    model->warnings = impact_warnings;
     model->ctx = c;
     model->destroy = ctx_destroy;
     model->threads_per_eval = spec->solver == RF_IMPACT_FEM ? spec->fem_threads : 1;

@@ -319,11 +319,15 @@ static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res)
     if (s->model_kind == RF_STUDY_MODEL_IMPACT && s->model.identity && strstr(s->model.identity, "solver=fem")) {
         if (fem_reflection_note(s, res, msg, sizeof msg))
             WARN();
-        snprintf(msg, sizeof msg,
-                 "FE solver: the warnings of single evaluations (rf_fem_history.warning, e.g. reflections for "
-                 "other inputs than the nominal ones) are not passed through the impact model interface yet, "
-                 "so a study cannot list them; `rockfuzz impact --solver fem ...` prints them for one point");
-        WARN();
+    }
+    if (s->model.warnings) {
+        /* warnings the model itself raised while evaluating (points taken
+         * from the result store or run on MPI worker ranks are not seen) */
+        char text[sizeof msg - 16];
+        if (s->model.warnings(s->model.ctx, text, sizeof text) > 0) {
+            snprintf(msg, sizeof msg, "model: %s", text);
+            WARN();
+        }
     }
 #undef WARN
     if (any)
