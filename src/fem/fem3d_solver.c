@@ -58,18 +58,9 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
             return rf_fail(err, RF_EINVAL, __VA_ARGS__);                                                           \
     } while (0)
     BAD(!in, "fem3d: NULL input");
-    BAD(!(in->radius > 0) || !isfinite(in->radius), "fem3d: radius must be > 0 m, got %g", in->radius);
-    BAD(!(in->boulder_density > 0) || !isfinite(in->boulder_density), "fem3d: boulder_density must be > 0, got %g",
-        in->boulder_density);
-    BAD(!(in->slope_density > 0) || !isfinite(in->slope_density), "fem3d: slope_density must be > 0, got %g",
-        in->slope_density);
-    BAD(!(in->boulder_E > 0) || !isfinite(in->boulder_E), "fem3d: boulder_E must be > 0 Pa, got %g", in->boulder_E);
-    BAD(!(in->slope_E > 0) || !isfinite(in->slope_E), "fem3d: slope_E must be > 0 Pa, got %g", in->slope_E);
-    BAD(!(in->boulder_poisson > -1 && in->boulder_poisson < 0.5), "fem3d: boulder_poisson must be in (-1, 0.5), got %g",
-        in->boulder_poisson);
-    BAD(!(in->slope_poisson > -1 && in->slope_poisson < 0.5), "fem3d: slope_poisson must be in (-1, 0.5), got %g",
-        in->slope_poisson);
-    BAD(!(in->velocity > 0) || !isfinite(in->velocity), "fem3d: velocity must be > 0 m/s, got %g", in->velocity);
+    /* the ranges every impact model shares (messages name field and value) */
+    if (rf_impact_input_validate(in, err) != RF_OK)
+        return rf_error_prefix(err, "fem3d");
     BAD(!(in->slope_angle >= 0 && in->slope_angle <= 80 * M_PI / 180),
         "fem3d: slope_angle must be in [0, 80] degrees, got %g rad", in->slope_angle);
     BAD(!(in->friction >= 0 && in->friction <= 5), "fem3d: friction must be in [0, 5], got %g", in->friction);

@@ -300,18 +300,9 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(in->slope_angle == 0),
         "fem: the axisymmetric FE model handles only normal impact (slope_angle = 0); got slope_angle = %g rad",
         in->slope_angle);
-    BAD(!(in->radius > 0) || !isfinite(in->radius), "fem: radius must be > 0 m, got %g", in->radius);
-    BAD(!(in->boulder_density > 0) || !isfinite(in->boulder_density), "fem: boulder_density must be > 0, got %g",
-        in->boulder_density);
-    BAD(!(in->slope_density > 0) || !isfinite(in->slope_density), "fem: slope_density must be > 0, got %g",
-        in->slope_density);
-    BAD(!(in->boulder_E > 0) || !isfinite(in->boulder_E), "fem: boulder_E must be > 0 Pa, got %g", in->boulder_E);
-    BAD(!(in->slope_E > 0) || !isfinite(in->slope_E), "fem: slope_E must be > 0 Pa, got %g", in->slope_E);
-    BAD(!(in->boulder_poisson > -1 && in->boulder_poisson < 0.5), "fem: boulder_poisson must be in (-1, 0.5), got %g",
-        in->boulder_poisson);
-    BAD(!(in->slope_poisson > -1 && in->slope_poisson < 0.5), "fem: slope_poisson must be in (-1, 0.5), got %g",
-        in->slope_poisson);
-    BAD(!(in->velocity > 0) || !isfinite(in->velocity), "fem: velocity must be > 0 m/s, got %g", in->velocity);
+    /* the ranges every impact model shares (messages name field and value) */
+    if (rf_impact_input_validate(in, err) != RF_OK)
+        return rf_error_prefix(err, "fem");
     BAD(!isfinite(in->horizontal_axis) || !isfinite(in->vertical_axis), "fem: spheroid axes must be finite");
     BAD(!(o->refinement >= 2) || !isfinite(o->refinement),
         "fem: refinement (Hertz contact radius / element size) = %g is too coarse to resolve the contact; use >= 2 "
