@@ -678,16 +678,10 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
                 pen_max = -g;
         }
         W_abs += W_abs_inc;
-        if (n >= fcap) {
-            fcap *= 2;
-            double *p = realloc(Fstep, (size_t)fcap * sizeof *p);
-            if (!p) {
-                st = rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
-                goto done;
-            }
-            Fstep = p;
+        if (rf_fem_force_record_(&Fstep, &fcap, n, Fc)) {
+            st = rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
+            goto done;
         }
-        Fstep[n] = Fc;
         if (Fc > 0) {
             if (!in_contact)
                 episodes++;

@@ -690,16 +690,10 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
             W_contact += C.lambda[i] * (gvn + gvo[i]) * dt / 2;
         }
         W_abs += W_abs_inc;
-        if (n >= fcap) {
-            fcap *= 2;
-            double *p = realloc(Fstep, (size_t)fcap * sizeof *p);
-            if (!p) {
-                st = rf_fail(err, RF_ENOMEM, "fem: out of memory");
-                goto done;
-            }
-            Fstep = p;
+        if (rf_fem_force_record_(&Fstep, &fcap, n, Fc)) {
+            st = rf_fail(err, RF_ENOMEM, "fem: out of memory");
+            goto done;
         }
-        Fstep[n] = Fc;
         /* penetration, slip, contact radius (gaps at n+1) */
         long kout = -1;
         for (long i = 0; i < C.npairs; i++) {
