@@ -72,14 +72,26 @@ void rf_impact_model_spec_default(rf_impact_model_spec *spec)
     spec->fem_vtk_dir = NULL;
 }
 
+/* warning (may be NULL, else RF_FEM_WARNING_MAX bytes) receives the FE
+ * solver's warning, "" if none; it needs the solver's history. */
+#define RF_FEM_WARNING_MAX 512
 static rf_status solve_fem(const rf_impact_model_spec *spec, const rf_impact_input *in,
-                           rf_impact_output *out, rf_error *err)
+                           rf_impact_output *out, char *warning, rf_error *err)
 {
 #ifdef RF_HAVE_FEM
-    return rf_impact_fem_run_(spec, in, out, NULL, NULL, NULL, err);
+    if (!warning)
+        return rf_impact_fem_run_(spec, in, out, NULL, NULL, NULL, err);
+    rf_fem_history hist;
+    memset(&hist, 0, sizeof hist);
+    rf_status st = rf_impact_fem_run_(spec, in, out, &hist, NULL, NULL, err);
+    snprintf(warning, RF_FEM_WARNING_MAX, "%s", st == RF_OK ? hist.warning : "");
+    rf_fem_history_free(&hist);
+    return st;
 #else
     (void)spec;
     (void)in;
+    if (warning)
+        warning[0] = '\0';
     rf_impact_output_clear_(out);
     return rf_fail(err, RF_EINVAL, "FE solver not built (rockfuzz/fem.h is missing); "
                                    "use solver hertz, hunter or rigid");
@@ -111,9 +123,12 @@ static rf_status check_spec(const rf_impact_model_spec *spec, rf_error *err)
     return RF_OK;
 }
 
-rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
-                          rf_impact_output *out, rf_error *err)
+/* rf_impact_solve with the FE warning (see solve_fem). */
+static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *in, rf_impact_output *out,
+                       char *warning, rf_error *err)
 {
+    if (warning)
+        warning[0] = '\0';
     rf_status st = check_spec(spec, err);
     if (st == RF_OK)
         st = rf_impact_input_validate(in, err);
@@ -137,9 +152,15 @@ rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_inpu
         }
         return rf_impact_rigid(in, e_n, out, err);
     }
-    case RF_IMPACT_FEM: return solve_fem(spec, in, out, err);
+    case RF_IMPACT_FEM: return solve_fem(spec, in, out, warning, err);
     }
     return rf_fail(err, RF_EINTERNAL, "unreachable impact solver");
+}
+
+rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
+                          rf_impact_output *out, rf_error *err)
+{
+    return solve(spec, in, out, NULL, err);
 }
 
 /* --- the rf_model --- */
@@ -151,7 +172,7 @@ typedef struct {
     /* FE warnings (e.g. reflected waves) of the evaluations so far */
     pthread_mutex_t lock;
     size_t evaluations, warned;
-    char first_warning[512];
+    char first_warning[RF_FEM_WARNING_MAX];
 } impact_ctx;
 
 static void ctx_destroy(void *p)
@@ -220,18 +241,10 @@ static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
     if (st != RF_OK)
         return rf_fail(err, RF_EMODEL, "impact model: %s", local.msg);
     rf_impact_output out;
-#ifdef RF_HAVE_FEM
-    if (c->spec.solver == RF_IMPACT_FEM) {
-        /* the FE history carries the solver's warnings (spec and input are validated) */
-        rf_fem_history hist;
-        memset(&hist, 0, sizeof hist);
-        st = rf_impact_fem_run_(&c->spec, &in, &out, &hist, NULL, NULL, &local);
-        if (st == RF_OK)
-            note_evaluation(c, hist.warning);
-        rf_fem_history_free(&hist);
-    } else
-#endif
-        st = rf_impact_solve(&c->spec, &in, &out, &local);
+    char warning[RF_FEM_WARNING_MAX];
+    st = solve(&c->spec, &in, &out, c->spec.solver == RF_IMPACT_FEM ? warning : NULL, &local);
+    if (st == RF_OK && c->spec.solver == RF_IMPACT_FEM)
+        note_evaluation(c, warning);
     if (st != RF_OK)
         return rf_fail(err, st == RF_EINVAL ? RF_EMODEL : st, "impact model (%s): %s",
                        rf_impact_solver_name(c->spec.solver), local.msg);
