@@ -175,9 +175,7 @@ void rf_mpi_serve_batch(rf_batch *b)
                 memcpy(err.msg, in + 2 * sizeof(double) + nout * sizeof(double), RF_ERROR_MAX);
                 err.msg[RF_ERROR_MAX - 1] = '\0';
                 err.code = st;
-                char tmp[RF_ERROR_MAX - 32];
-                snprintf(tmp, sizeof tmp, "%s", err.msg);
-                snprintf(err.msg, sizeof err.msg, "(MPI rank %d) %s", r, tmp);
+                rf_error_prefix(&err, "MPI rank %d", r);
             }
             rf_batch_finish(b, pos[r], st, &err, head[0]);
             b->remote++;
