@@ -1,0 +1,16 @@
+/* util.h - the few small helpers every module needs, defined once.
+ *
+ * Internal (not part of the public API): pi, a monotonic clock for progress
+ * and timing, and a strdup that C17 lacks. */
+#ifndef ROCKFUZZ_CORE_UTIL_H
+#define ROCKFUZZ_CORE_UTIL_H
+
+#define RF_PI 3.14159265358979323846
+
+/* Seconds on a monotonic clock (arbitrary origin). */
+double rf_monotonic_seconds(void);
+
+/* A malloc'ed copy of s, or NULL when s is NULL or memory runs out. */
+char *rf_strdup(const char *s);
+
+#endif
