@@ -17,6 +17,8 @@ static void usage(FILE *f)
         "  impact [OPTIONS]           simulate one boulder impact; see `rockfuzz impact --help`\n"
         "  status DIR                 progress of a running or stopped study run in DIR\n"
         "  report DIR                 write DIR/report.html again from DIR/result.json\n"
+        "  material [OPTIONS]         drive one material point along a strain path; see\n"
+        "                             `rockfuzz material --help`\n"
         "\n"
         "Options:\n"
         "  -h, --help                 show this help\n"
@@ -53,6 +55,8 @@ int main(int argc, char **argv)
         return rf_cli_status(argc - 1, argv + 1);
     if (!strcmp(cmd, "report"))
         return rf_cli_report(argc - 1, argv + 1);
+    if (!strcmp(cmd, "material"))
+        return rf_cli_material(argc - 1, argv + 1);
     fprintf(stderr, "rockfuzz: unknown command '%s' (try `rockfuzz --help`)\n", cmd);
     return 2;
 }
