@@ -1,0 +1,445 @@
+/* test_material.c - the point-wise constitutive laws of src/material against
+ * closed forms (docs/materials.md, "Validation"): J2 under uniaxial strain,
+ * Drucker-Prager under simple shear from an isotropic pressure, under
+ * hydrostatic tension (apex), confined compression that only the cap yields,
+ * independence of the number of increments for these radial paths, plastic
+ * work against its closed form, huge strength = elastic, admissibility on
+ * random paths, and input validation. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <string.h>
+
+#include "rockfuzz/material.h"
+#include "test_util.h"
+
+#define DEG (3.14159265358979323846 / 180.0)
+
+static const int increment_counts[] = {1, 7, 100, 1000};
+#define N_COUNTS (sizeof increment_counts / sizeof increment_counts[0])
+
+static rf_material make(const rf_material_params *p)
+{
+    rf_material m;
+    rf_error err = {0};
+    if (rf_material_init(&m, p, &err) != RF_OK)
+        fail_msg("rf_material_init: %s", err.msg);
+    return m;
+}
+
+static rf_material_params von_mises(double Y, double H)
+{
+    rf_material_params p;
+    rf_material_params_default(&p);
+    p.model = RF_MATERIAL_VON_MISES;
+    p.E = 200e9;
+    p.poisson = 0.3;
+    p.yield = Y;
+    p.hardening = H;
+    return p;
+}
+
+/* Loose-to-medium sand (docs/materials.md table). */
+static rf_material_params sand(double phi_deg, double psi_deg, double X0, double Hc)
+{
+    rf_material_params p;
+    rf_material_params_default(&p);
+    p.model = RF_MATERIAL_DRUCKER_PRAGER;
+    p.E = 30e6;
+    p.poisson = 0.3;
+    p.cohesion = 2e3;
+    p.friction_angle = phi_deg * DEG;
+    p.dilatancy_angle = psi_deg * DEG;
+    p.cap_pressure = X0;
+    p.cap_hardening = Hc;
+    return p;
+}
+
+/* Drives a point from the isotropic stress p0 along strain_total in n equal
+ * increments; returns the plastic work. */
+static double drive(const rf_material *m, double p0, const double strain_total[6], int n, double sig[6],
+                    rf_material_state *st)
+{
+    double deps[6], work = 0.0, d;
+    for (int i = 0; i < 6; i++) {
+        deps[i] = strain_total[i] / n;
+        sig[i] = i < 3 ? p0 : 0.0;
+    }
+    memset(st, 0, sizeof *st);
+    for (int k = 0; k < n; k++) {
+        rf_material_update(m, deps, sig, st, &d);
+        assert_true(d >= -1e-9 * (fabs(work) + 1.0));
+        work += d;
+    }
+    return work;
+}
+
+static void test_j2_elastic_limit(void **state)
+{
+    (void)state;
+    rf_material_params p = von_mises(250e6, 0.0);
+    rf_material m = make(&p);
+    double nu = p.poisson, eps_y = p.yield / (2.0 * m.G), sig[6];
+    rf_material_state st;
+    double e[6] = {eps_y * (1.0 - 1e-12), 0, 0, 0, 0, 0};
+    drive(&m, 0.0, e, 1, sig, &st);
+    assert_close(sig[0], p.yield * (1.0 - nu) / (1.0 - 2.0 * nu), 1e-11);
+    assert_true(st.plastic_strain_eq == 0.0);
+    e[0] = eps_y * (1.0 + 1e-6);
+    drive(&m, 0.0, e, 1, sig, &st);
+    assert_true(st.plastic_strain_eq > 0.0);
+}
+
+/* Uniaxial strain eps, elastic-plastic: eps_p = (2G|eps| - Y)/(3G + H),
+ * |sxx - syy| = Y + H eps_p, p = K eps, W_p = Y eps_p + H eps_p^2 / 2. */
+static void test_j2_uniaxial_strain(void **state)
+{
+    (void)state;
+    const double H[] = {0.0, 2e9};
+    const double eps[] = {0.01, -0.004};
+    for (int h = 0; h < 2; h++)
+        for (int s = 0; s < 2; s++)
+            for (size_t c = 0; c < N_COUNTS; c++) {
+                rf_material_params p = von_mises(250e6, H[h]);
+                rf_material m = make(&p);
+                double e[6] = {eps[s], 0, 0, 0, 0, 0}, sig[6];
+                rf_material_state st;
+                double work = drive(&m, 0.0, e, increment_counts[c], sig, &st);
+                double ep = (2.0 * m.G * fabs(eps[s]) - p.yield) / (3.0 * m.G + p.hardening);
+                double q = p.yield + p.hardening * ep, sign = eps[s] > 0 ? 1.0 : -1.0;
+                assert_close(st.plastic_strain_eq, ep, 1e-10);
+                assert_close(sig[0] - sig[1], sign * q, 1e-10);
+                assert_close(sig[0], m.K * eps[s] + sign * 2.0 * q / 3.0, 1e-10);
+                assert_close(sig[1], sig[2], 1e-12);
+                assert_close(work, p.yield * ep + 0.5 * p.hardening * ep * ep, 1e-10);
+            }
+}
+
+/* Outer-cone constants against plasticity_refs.md sec. 2.2. */
+static void test_dp_constants(void **state)
+{
+    (void)state;
+    const double phi[] = {25, 30, 35, 40}, eta[] = {0.568, 0.693, 0.819, 0.945},
+                 xi[] = {1.218, 1.200, 1.170, 1.126};
+    for (int i = 0; i < 4; i++) {
+        assert_true(fabs(rf_material_dp_eta(phi[i] * DEG) - eta[i]) < 6e-4);
+        assert_true(fabs(rf_material_dp_xi(phi[i] * DEG) - xi[i]) < 6e-4);
+    }
+    /* Outer cone = Mohr-Coulomb in triaxial compression: q = 6 (c cos + p' sin)/(3 - sin). */
+    double f = 33 * DEG, c = 5e3, pc = 1e5, sn = sin(f);
+    double q_mc = 6.0 * (c * cos(f) + pc * sn) / (3.0 - sn);
+    assert_close(sqrt(3.0) * (rf_material_dp_xi(f) * c + rf_material_dp_eta(f) * pc), q_mc, 1e-14);
+}
+
+/* Simple shear gamma at constant volume from p0 < 0, psi = 0: p stays p0,
+ * tau -> xi c - eta p0; the plastic shear is gamma - tau/G. */
+static void test_dp_simple_shear(void **state)
+{
+    (void)state;
+    for (size_t c = 0; c < N_COUNTS; c++) {
+        rf_material_params p = sand(32, 0, 0, 0);
+        rf_material m = make(&p);
+        double p0 = -1e5, gamma = 0.05, e[6] = {0, 0, 0, gamma, 0, 0}, sig[6];
+        rf_material_state st;
+        double work = drive(&m, p0, e, increment_counts[c], sig, &st);
+        double tau = rf_material_dp_xi(p.friction_angle) * p.cohesion - rf_material_dp_eta(p.friction_angle) * p0;
+        double gp = gamma - tau / m.G;
+        assert_close(sig[3], tau, 1e-10);
+        for (int i = 0; i < 3; i++)
+            assert_close(sig[i], p0, 1e-12);
+        assert_close(st.plastic_strain_eq, gp / sqrt(3.0), 1e-10);
+        assert_close(work, tau * gp, 1e-10);
+        assert_true(st.plastic_volumetric == 0.0);
+    }
+}
+
+/* Same with dilatancy psi > 0 at constant volume: plastic dilation raises the
+ * confinement, p = p0 - K eta_bar G_p, tau = xi c - eta p = G (gamma - G_p),
+ * G_p = (G gamma - xi c + eta p0) / (G + K eta eta_bar). */
+static void test_dp_simple_shear_dilatant(void **state)
+{
+    (void)state;
+    for (size_t c = 0; c < N_COUNTS; c++) {
+        rf_material_params p = sand(36, 8, 0, 0);
+        rf_material m = make(&p);
+        double p0 = -5e4, gamma = 0.02, e[6] = {0, 0, 0, gamma, 0, 0}, sig[6];
+        rf_material_state st;
+        drive(&m, p0, e, increment_counts[c], sig, &st);
+        double gp = (m.G * gamma - m.xi * p.cohesion + m.eta * p0) / (m.G + m.K * m.eta * m.eta_bar);
+        double pf = p0 - m.K * m.eta_bar * gp;
+        assert_close(sig[0], pf, 1e-10);
+        assert_close(sig[3], m.xi * p.cohesion - m.eta * pf, 1e-10);
+        assert_close(sig[3], m.G * (gamma - gp), 1e-10);
+        assert_close(st.plastic_volumetric, m.eta_bar * gp, 1e-10);
+    }
+}
+
+/* Hydrostatic tension: the mean stress stops at the apex c cot(phi), the
+ * deviator stays zero, W_p = p_apex * (3 S - p_apex / K), whatever psi. */
+static void test_dp_apex(void **state)
+{
+    (void)state;
+    const double psi[] = {0, 15, 30};
+    for (int k = 0; k < 3; k++)
+        for (size_t c = 0; c < N_COUNTS; c++) {
+            rf_material_params p = sand(30, psi[k], 0, 0);
+            rf_material m = make(&p);
+            double S = 1e-3, e[6] = {S, S, S, 0, 0, 0}, sig[6];
+            rf_material_state st;
+            double work = drive(&m, 0.0, e, increment_counts[c], sig, &st);
+            double apex = p.cohesion / tan(p.friction_angle), evp = 3.0 * S - apex / m.K;
+            for (int i = 0; i < 3; i++)
+                assert_close(sig[i], apex, 1e-12);
+            assert_true(sig[3] == 0.0 && sig[4] == 0.0 && sig[5] == 0.0);
+            assert_close(st.plastic_volumetric, evp, 1e-10);
+            assert_close(work, apex * evp, 1e-10);
+        }
+}
+
+/* eta K/G >= 2/sqrt3: the elastic oedometric path never reaches the cone
+ * (plasticity_refs.md sec. 2.3), so a plain cone stays elastic for ever. */
+static void test_dp_cone_never_yields_confined(void **state)
+{
+    (void)state;
+    rf_material_params p = sand(35, 0, 0, 0);
+    rf_material m = make(&p);
+    assert_true(m.eta * m.K / m.G > 2.0 / sqrt(3.0));
+    assert_close(m.eta * m.K / m.G, 1.77, 5e-3); /* table of sec. 2.3, nu = 0.3 */
+    double e[6] = {-0.2, 0, 0, 0, 0, 0}, sig[6];
+    rf_material_state st;
+    double work = drive(&m, 0.0, e, 100, sig, &st);
+    assert_close(sig[0], (m.K + 4.0 * m.G / 3.0) * e[0], 1e-12);
+    assert_close(sig[1], (m.K - 2.0 * m.G / 3.0) * e[0], 1e-12);
+    assert_true(st.plastic_strain_eq == 0.0 && work == 0.0);
+}
+
+/* The cap yields it.  Oedometric compression S > X0/K: (cone inactive or with
+ * psi = 0 not changing the volume) eps_c = (K S - X0)/(K + H_c),
+ * p = -(X0 + H_c eps_c); deviator elastic (cap only) or on the cone
+ * (corner): sqrt(J2) = xi c - eta p. */
+static void check_oedometer(const rf_material *m, const rf_material_params *p, double S, int n,
+                            int corner)
+{
+    double e[6] = {-S, 0, 0, 0, 0, 0}, sig[6];
+    rf_material_state st;
+    double work = drive(m, 0.0, e, n, sig, &st);
+    double ec = (m->K * S - p->cap_pressure) / (m->K + p->cap_hardening);
+    double X = p->cap_pressure + p->cap_hardening * ec;
+    double sj2 = corner ? m->xi * p->cohesion + m->eta * X : 2.0 * m->G * S / sqrt(3.0);
+    assert_close(st.compaction, ec, 1e-10);
+    assert_close((sig[0] + sig[1] + sig[2]) / 3.0, -X, 1e-10);
+    assert_close(sig[1] - sig[0], sqrt(3.0) * sj2, 1e-10);
+    assert_close(sig[1], sig[2], 1e-12);
+    assert_close(st.plastic_volumetric, -ec, 1e-10);
+    if (!corner) /* cap only: radial, W_p = X0 eps_c + H_c eps_c^2 / 2 exactly */
+        assert_close(work, p->cap_pressure * ec + 0.5 * p->cap_hardening * ec * ec, 1e-10);
+    assert_true(rf_material_admissible(m, sig, &st, 1e-10));
+}
+
+static void test_dp_cap_confined(void **state)
+{
+    (void)state;
+    rf_material_params p = sand(35, 0, 50e3, 5e6);
+    rf_material m = make(&p);
+    /* Cap only until 2G S/sqrt3 = xi c + eta X(S). */
+    double S_corner = 0.0;
+    for (double S = p.cap_pressure / m.K; S < 1.0; S += 1e-5) {
+        double ec = (m.K * S - p.cap_pressure) / (m.K + p.cap_hardening);
+        if (2.0 * m.G * S / sqrt(3.0) > m.xi * p.cohesion + m.eta * (p.cap_pressure + p.cap_hardening * ec)) {
+            S_corner = S;
+            break;
+        }
+    }
+    assert_true(S_corner > 1.5 * p.cap_pressure / m.K); /* room for a cap-only phase */
+    for (size_t c = 0; c < N_COUNTS; c++) {
+        check_oedometer(&m, &p, 0.9 * S_corner, increment_counts[c], 0);
+        check_oedometer(&m, &p, 2.0 * S_corner, increment_counts[c], 1);
+    }
+    /* Below X0/K nothing yields. */
+    double e[6] = {-0.99 * p.cap_pressure / m.K, 0, 0, 0, 0, 0}, sig[6];
+    rf_material_state st;
+    assert_true(drive(&m, 0.0, e, 10, sig, &st) == 0.0 && st.compaction == 0.0);
+}
+
+/* Hydrostatic compression with the cap (cone never reached: s = 0). */
+static void test_dp_cap_hydrostatic(void **state)
+{
+    (void)state;
+    rf_material_params p = sand(30, 5, 40e3, 2e6);
+    rf_material m = make(&p);
+    for (size_t c = 0; c < N_COUNTS; c++) {
+        double S = -0.01, e[6] = {S, S, S, 0, 0, 0}, sig[6];
+        rf_material_state st;
+        double work = drive(&m, 0.0, e, increment_counts[c], sig, &st);
+        double ec = (-3.0 * S * m.K - p.cap_pressure) / (m.K + p.cap_hardening);
+        assert_close(sig[0], -(p.cap_pressure + p.cap_hardening * ec), 1e-10);
+        assert_close(work, p.cap_pressure * ec + 0.5 * p.cap_hardening * ec * ec, 1e-10);
+        assert_close(st.plastic_strain_eq, sqrt(2.0) / 3.0 * ec, 1e-10);
+    }
+}
+
+/* A fixed pseudo-random strain path (LCG), the same in every run. */
+static void random_increment(uint64_t *seed, double scale, double deps[6])
+{
+    for (int i = 0; i < 6; i++) {
+        *seed = *seed * 6364136223846793005ULL + 1442695040888963407ULL;
+        deps[i] = scale * ((double)(*seed >> 11) / 9007199254740992.0 - 0.5);
+    }
+    deps[0] -= 0.3 * scale; /* drift into compression */
+}
+
+/* With a huge strength every model is the elastic model, bit for bit. */
+static void test_huge_strength_is_elastic(void **state)
+{
+    (void)state;
+    rf_material_params pe = von_mises(1e300, 0), pv = von_mises(1e30, 1e9), pd = sand(30, 10, 1e30, 1e6);
+    pe.model = RF_MATERIAL_ELASTIC;
+    pd.E = pv.E = pe.E;
+    pd.poisson = pv.poisson = pe.poisson;
+    pd.cohesion = 1e30;
+    rf_material me = make(&pe), mv = make(&pv), md = make(&pd);
+    double se[6] = {0}, sv[6] = {0}, sd[6] = {0}, deps[6], d;
+    rf_material_state ste = {0}, stv = {0}, std = {0};
+    uint64_t seed = 42;
+    for (int k = 0; k < 500; k++) {
+        random_increment(&seed, 1e-3, deps);
+        rf_material_update(&me, deps, se, &ste, &d);
+        rf_material_update(&mv, deps, sv, &stv, &d);
+        assert_true(d == 0.0);
+        rf_material_update(&md, deps, sd, &std, &d);
+        assert_true(d == 0.0);
+    }
+    for (int i = 0; i < 6; i++) {
+        assert_close(sv[i], se[i], 1e-14);
+        assert_close(sd[i], se[i], 1e-14);
+    }
+    assert_true(stv.plastic_strain_eq == 0.0 && std.plastic_strain_eq == 0.0);
+}
+
+/* Random non-radial paths: every state admissible, every dissipation >= 0,
+ * and the work identity W_int = elastic energy + plastic work holds to first
+ * order (trapezoidal internal work). */
+static void test_random_paths_admissible(void **state)
+{
+    (void)state;
+    rf_material_params ps[3] = {von_mises(100e6, 1e9), sand(35, 5, 50e3, 5e6), sand(28, 0, 20e3, 0)};
+    ps[0].E = 30e6 * 1e3;
+    for (int k = 0; k < 3; k++) {
+        rf_material m = make(&ps[k]);
+        double sig[6] = {-1e4, -1e4, -1e4, 0, 0, 0}, old[6], deps[6], d, w_int = 0.0, w_p = 0.0;
+        double psi0 = rf_material_elastic_energy(&m, sig);
+        rf_material_state st = {0};
+        uint64_t seed = 7 + (uint64_t)k;
+        for (int i = 0; i < 20000; i++) {
+            random_increment(&seed, k == 0 ? 2e-5 : 2e-5, deps);
+            memcpy(old, sig, sizeof old);
+            rf_material_update(&m, deps, sig, &st, &d);
+            assert_true(d >= 0.0);
+            assert_true(rf_material_admissible(&m, sig, &st, 1e-9));
+            for (int j = 0; j < 6; j++)
+                w_int += 0.5 * (old[j] + sig[j]) * deps[j];
+            w_p += d;
+        }
+        double psi = rf_material_elastic_energy(&m, sig) - psi0;
+        assert_true(w_p > 0.0);
+        assert_true(fabs(w_int - psi - w_p) < 1e-2 * w_p);
+    }
+}
+
+static void test_block_equals_points(void **state)
+{
+    (void)state;
+    rf_material_params p = sand(33, 3, 30e3, 3e6);
+    rf_material m = make(&p);
+    enum { N = 5 };
+    double deps[6 * N], sig[6 * N] = {0}, sig1[6 * N] = {0}, d[N], d1;
+    rf_material_state st[N] = {{0}}, st1[N] = {{0}};
+    uint64_t seed = 3;
+    for (int i = 0; i < N; i++)
+        random_increment(&seed, 4e-3, deps + 6 * i);
+    rf_material_update_block(&m, N, deps, sig, st, d);
+    for (int i = 0; i < N; i++) {
+        rf_material_update(&m, deps + 6 * i, sig1 + 6 * i, st1 + i, &d1);
+        assert_true(d1 == d[i] && st1[i].compaction == st[i].compaction);
+        assert_memory_equal(sig1 + 6 * i, sig + 6 * i, 6 * sizeof(double));
+    }
+}
+
+static void test_wave_speed(void **state)
+{
+    (void)state;
+    rf_material_params p = von_mises(1e8, 0);
+    p.E = 68.2e9;
+    p.poisson = 0.25;
+    rf_material m = make(&p);
+    double nu = 0.25, c = sqrt(p.E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * 2600.0));
+    assert_close(rf_material_wave_speed(&m, 2600.0), c, 1e-14);
+    double sig[6] = {1e6, -2e6, 0.5e6, 3e5, 0, -1e5};
+    /* 1/2 sig : C^-1 : sig with the compliance written out. */
+    double w = (sig[0] * sig[0] + sig[1] * sig[1] + sig[2] * sig[2]) / (2 * p.E)
+               - nu / p.E * (sig[0] * sig[1] + sig[1] * sig[2] + sig[2] * sig[0])
+               + (1 + nu) / p.E * (sig[3] * sig[3] + sig[4] * sig[4] + sig[5] * sig[5]);
+    assert_close(rf_material_elastic_energy(&m, sig), w, 1e-13);
+}
+
+static void expect_invalid(const rf_material_params *p, const char *field)
+{
+    rf_material m;
+    rf_error err = {0};
+    assert_int_equal(rf_material_init(&m, p, &err), RF_EINVAL);
+    if (!strstr(err.msg, field))
+        fail_msg("message '%s' does not name '%s'", err.msg, field);
+}
+
+static void test_validation(void **state)
+{
+    (void)state;
+    rf_material_params p = von_mises(1e8, 0);
+    p.E = -1;
+    expect_invalid(&p, "E = -1");
+    p = von_mises(1e8, 0), p.poisson = 0.5;
+    expect_invalid(&p, "poisson = 0.5");
+    p = von_mises(0, 0);
+    expect_invalid(&p, "yield = 0");
+    p = von_mises(1e8, -1);
+    expect_invalid(&p, "hardening = -1");
+    p = sand(30, 31, 0, 0);
+    expect_invalid(&p, "dilatancy_angle = 31");
+    p = sand(90, 0, 0, 0);
+    expect_invalid(&p, "friction_angle = 90");
+    p = sand(0, 0, 0, 0), p.cohesion = 0;
+    expect_invalid(&p, "cohesion = 0");
+    p = sand(30, 0, -1, 0);
+    expect_invalid(&p, "cap_pressure = -1");
+    p = sand(30, 0, 1e4, NAN);
+    expect_invalid(&p, "cap_hardening = nan");
+    rf_material_model model;
+    rf_error err = {0};
+    assert_int_equal(rf_material_model_parse("mohr", &model, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "'mohr'"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_j2_elastic_limit),
+        cmocka_unit_test(test_j2_uniaxial_strain),
+        cmocka_unit_test(test_dp_constants),
+        cmocka_unit_test(test_dp_simple_shear),
+        cmocka_unit_test(test_dp_simple_shear_dilatant),
+        cmocka_unit_test(test_dp_apex),
+        cmocka_unit_test(test_dp_cone_never_yields_confined),
+        cmocka_unit_test(test_dp_cap_confined),
+        cmocka_unit_test(test_dp_cap_hydrostatic),
+        cmocka_unit_test(test_huge_strength_is_elastic),
+        cmocka_unit_test(test_random_paths_admissible),
+        cmocka_unit_test(test_block_equals_points),
+        cmocka_unit_test(test_wave_speed),
+        cmocka_unit_test(test_validation),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
