@@ -13,4 +13,6 @@ echo "== axisymmetric FE (bench/fem.sh, a/h = 10) =="
 bash bench/fem.sh "$build" 10
 echo "== 3D FE, 10 m/s on 45 deg, f = 0.6 (bench_fem3d, a/h = 4) =="
 for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_fem3d 4 "$t"; done
+echo "== material point updates and energy closure (bench_material) =="
+"$build"/bench_material
 echo "(whole studies: bench/bench_study.sh; it takes minutes)"

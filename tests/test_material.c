@@ -335,7 +335,7 @@ static void test_random_paths_admissible(void **state)
         rf_material_state st = {0};
         uint64_t seed = 7 + (uint64_t)k;
         for (int i = 0; i < 20000; i++) {
-            random_increment(&seed, k == 0 ? 2e-5 : 2e-5, deps);
+            random_increment(&seed, 2e-5, deps);
             memcpy(old, sig, sizeof old);
             rf_material_update(&m, deps, sig, &st, &d);
             assert_true(d >= 0.0);
@@ -346,7 +346,7 @@ static void test_random_paths_admissible(void **state)
         }
         double psi = rf_material_elastic_energy(&m, sig) - psi0;
         assert_true(w_p > 0.0);
-        assert_true(fabs(w_int - psi - w_p) < 1e-2 * w_p);
+        assert_true(fabs(w_int - psi - w_p) < 2e-3 * w_p); /* first order in the increment (docs/materials.md) */
     }
 }
 
