@@ -59,6 +59,11 @@ if command -v python3 >/dev/null; then
     check 'close(o["mean_stress"], -(4e4 + 2e6 * ((K / 1e4 * 0.005 - 4e4) / (K / 1e4 + 2e6))))' \
         --model drucker_prager --E 20e6 --poisson 0.3 --cohesion 1e3 --friction-angle 35 \
         --cap-pressure 4e4 --cap-hardening 2e6 --path uniaxial_strain --strain -0.005
+    # virgin confined compression along the cone-cap corner, c = 0: lateral/axial
+    # stress = Mohr-Coulomb's active ratio (1 - sin phi)/(1 + sin phi)
+    check 'close(o["stress_yy"] / o["stress_xx"], (1 - math.sin(math.radians(35))) / (1 + math.sin(math.radians(35))))' \
+        --model drucker_prager --E 20e6 --poisson 0.3 --cohesion 0 --friction-angle 35 \
+        --cap-pressure 2e4 --cap-hardening 5e6 --path uniaxial_strain --strain -0.05
 fi
 
 # --history: a header and one row per increment

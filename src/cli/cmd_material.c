@@ -236,6 +236,16 @@ static const char *option_name(opt_id id)
     return "?";
 }
 
+/* 0 (message printed) when the option a model needs is missing. */
+static int require(const driver_args *a, opt_id id)
+{
+    if (a->given[id])
+        return 1;
+    fprintf(stderr, "rockfuzz material: --%s is required with --model %s\n", option_name(id),
+            rf_material_model_name(a->params.model));
+    return 0;
+}
+
 /* Required options present, no option of another model. */
 static int check_presence(const driver_args *a)
 {
@@ -252,15 +262,13 @@ static int check_presence(const driver_args *a)
                     a->given[options[k].id], rf_material_model_name(model));
             return 0;
         }
-    const opt_id needed[2][2] = {{O_YIELD, O_YIELD}, {O_COHESION, O_PHI}};
-    for (int i = 0; model != RF_MATERIAL_ELASTIC && i < 2; i++) {
-        opt_id id = needed[model == RF_MATERIAL_DRUCKER_PRAGER][i];
-        if (!a->given[id]) {
-            fprintf(stderr, "rockfuzz material: --%s is required with --model %s\n", option_name(id),
-                    rf_material_model_name(model));
-            return 0;
-        }
-    }
+    int ok = 1;
+    if (model == RF_MATERIAL_VON_MISES)
+        ok = require(a, O_YIELD);
+    else if (model == RF_MATERIAL_DRUCKER_PRAGER)
+        ok = require(a, O_COHESION) && require(a, O_PHI);
+    if (!ok)
+        return 0;
     if (!a->given[O_CAP_P] != !a->given[O_CAP_H]) {
         opt_id id = a->given[O_CAP_P] ? O_CAP_P : O_CAP_H;
         fprintf(stderr, "rockfuzz material: --%s %s: the cap needs both --cap-pressure and "
