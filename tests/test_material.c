@@ -386,6 +386,45 @@ static void test_wave_speed(void **state)
     assert_close(rf_material_elastic_energy(&m, sig), w, 1e-13);
 }
 
+static double det3(const double v[6])
+{
+    return v[0] * (v[1] * v[2] - v[4] * v[4]) - v[3] * (v[3] * v[2] - v[4] * v[5])
+           + v[5] * (v[3] * v[4] - v[1] * v[5]);
+}
+
+/* Hughes-Winget: n steps of spin 2 tan(theta/(2n)) about z turn a uniaxial
+ * stress exactly by theta; any spin keeps the invariants. */
+static void test_rotation(void **state)
+{
+    (void)state;
+    const double theta = 1.1, c = cos(theta), s = sin(theta);
+    for (size_t k = 0; k < N_COUNTS; k++) {
+        int n = increment_counts[k];
+        double sig[6] = {1e6, 0, 0, 0, 0, 0}, w[3] = {0, 0, 2.0 * tan(theta / (2.0 * n))};
+        for (int i = 0; i < n; i++)
+            rf_material_rotate(sig, w);
+        assert_true(fabs(sig[0] - 1e6 * c * c) < 1e-9 * 1e6 && fabs(sig[1] - 1e6 * s * s) < 1e-9 * 1e6);
+        assert_true(fabs(sig[3] - 1e6 * c * s) < 1e-9 * 1e6 && fabs(sig[2]) < 1e-9 && fabs(sig[4]) < 1e-9);
+    }
+    double sig[6] = {3e5, -1e5, -4e5, 2e5, -5e4, 1e5}, w[3] = {0.3, -0.7, 0.45}, s0[6];
+    memcpy(s0, sig, sizeof s0);
+    rf_material_rotate(sig, w);
+    double i1 = s0[0] + s0[1] + s0[2], i1r = sig[0] + sig[1] + sig[2];
+    double t[6], tr[6];
+    for (int i = 0; i < 6; i++)
+        t[i] = s0[i] - (i < 3 ? i1 / 3 : 0), tr[i] = sig[i] - (i < 3 ? i1r / 3 : 0);
+    double j2 = 0.5 * (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) + t[3] * t[3] + t[4] * t[4] + t[5] * t[5];
+    double j2r = 0.5 * (tr[0] * tr[0] + tr[1] * tr[1] + tr[2] * tr[2]) + tr[3] * tr[3] + tr[4] * tr[4] + tr[5] * tr[5];
+    assert_close(i1r, i1, 1e-13);
+    assert_close(j2r, j2, 1e-13);
+    assert_close(det3(sig), det3(s0), 1e-12);
+    assert_true(fabs(sig[0] - s0[0]) > 1e4); /* it did rotate */
+    double zero[3] = {0, 0, 0};
+    memcpy(s0, sig, sizeof s0);
+    rf_material_rotate(sig, zero);
+    assert_memory_equal(sig, s0, sizeof s0);
+}
+
 static void expect_invalid(const rf_material_params *p, const char *field)
 {
     rf_material m;
@@ -439,6 +478,7 @@ int main(void)
         cmocka_unit_test(test_random_paths_admissible),
         cmocka_unit_test(test_block_equals_points),
         cmocka_unit_test(test_wave_speed),
+        cmocka_unit_test(test_rotation),
         cmocka_unit_test(test_validation),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -88,6 +88,13 @@ void rf_material_update(const rf_material *m, const double deps[6], double sig[6
 void rf_material_update_block(const rf_material *m, size_t n, const double *deps, double *sig,
                               rf_material_state *st, double *dissipation);
 
+/* Objective rotation of a stress before its update in large deformation
+ * (Hughes & Winget 1980): sig <- Q sig Q^T, Q = (I - W/2)^-1 (I + W/2),
+ * W = skew(spin), spin = the rotation-vector increment 1/2 curl(v) dt
+ * evaluated at mid-step [rad].  Axisymmetric elements pass
+ * {0, 0, 1/2 (dv_z/dr - dv_r/dz) dt} (r, z in slots x, y). */
+void rf_material_rotate(double sig[6], const double spin[3]);
+
 /* 1 when sig with st is admissible (every yield function <= tol * scale). */
 int rf_material_admissible(const rf_material *m, const double sig[6], const rf_material_state *st,
                            double tol);
