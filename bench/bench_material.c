@@ -13,9 +13,10 @@
 #include <string.h>
 #include <time.h>
 
+#include "core/util.h"
 #include "rockfuzz/material.h"
 
-#define M_PI_DEG (3.14159265358979323846 / 180.0)
+#define DEG (RF_PI / 180.0)
 
 static double now(void)
 {
@@ -82,9 +83,9 @@ static void energy_table(void)
         p[k].model = k == 0 ? RF_MATERIAL_VON_MISES : RF_MATERIAL_DRUCKER_PRAGER;
     }
     p[0].yield = 5e4, p[0].hardening = 1e6;
-    p[1].cohesion = 2e3, p[1].friction_angle = 35 * M_PI_DEG, p[1].dilatancy_angle = 5 * M_PI_DEG;
+    p[1].cohesion = 2e3, p[1].friction_angle = 35 * DEG, p[1].dilatancy_angle = 5 * DEG;
     p[1].cap_pressure = 5e4, p[1].cap_hardening = 5e6;
-    p[2].cohesion = 2e3, p[2].friction_angle = 28 * M_PI_DEG, p[2].cap_pressure = 2e4;
+    p[2].cohesion = 2e3, p[2].friction_angle = 28 * DEG, p[2].cap_pressure = 2e4;
     printf("energy identity |W_int - elastic - W_p| / W_p, random paths to 0.4 strain:\n");
     printf("%-28s %10s %10s %10s\n", "model \\ increment", "4e-5", "1e-5", "2.5e-6");
     for (int k = 0; k < 3; k++) {

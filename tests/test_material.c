@@ -14,10 +14,11 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "rockfuzz/material.h"
 #include "test_util.h"
 
-#define DEG (3.14159265358979323846 / 180.0)
+#define DEG (RF_PI / 180.0)
 
 static const int increment_counts[] = {1, 7, 100, 1000};
 #define N_COUNTS (sizeof increment_counts / sizeof increment_counts[0])

@@ -6,7 +6,8 @@
  * Drucker-Prager with the cone matched to Mohr-Coulomb's compressive meridian,
  * non-associated flow, exact cone and apex returns (de Souza Neto, Peric &
  * Owen 2008 ch. 8) and an optional hardening flat compaction cap (crush curve
- * on the mean stress, Krieg 1972 / LS-DYNA soil-and-foam type).
+ * on the mean stress, Krieg 1972 / LS-DYNA soil-and-foam type); and the
+ * Hughes-Winget (1980) objective stress rotation for large deformation.
  *
  * Conventions: SI units, tension positive, angles in radians (degrees only at
  * the user interface).  Six-component Voigt order xx, yy, zz, xy, yz, zx:
