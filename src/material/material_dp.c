@@ -4,16 +4,17 @@
  * Cone f = sqrt(J2) + eta p - xi c, plastic potential g = sqrt(J2) + eta_bar p
  * (non-associated when psi < phi), perfectly plastic; exact return to the
  * smooth cone and exact apex return (de Souza Neto, Peric & Owen 2008,
- * "Computational Methods for Plasticity", sec. 8.3.3, boxes 8.8-8.9).
+ * "Computational Methods for Plasticity", ch. 8, Drucker-Prager).
  * Cap f_c = -p - X(eps_c), X = X0 + H_c eps_c, associated (purely volumetric
  * compaction): the crush curve of Krieg's (1972) soil-and-foam model seen as
- * a flat cap (Sandler & Rubin 1979 use the same multi-surface corner logic).
+ * a flat cap, combined with the cone as in multi-surface cap models
+ * (Sandler & Rubin 1979).
  * The cap hardens only with its own compaction eps_c: cone dilatancy does not
  * retract it.  With perfect plasticity on the cone and linear cap hardening
  * every branch is a closed form: cone, apex, cap, and the cone-cap corner (a
  * 2x2 linear system).  The active set is found by trying single surfaces
  * first and accepting a candidate only when it violates no other surface
- * (Simo & Hughes 1998, sec. 2.6 / 3.x multisurface returns). */
+ * (the multisurface returns of Simo & Hughes 1998). */
 #include "material/material_internal.h"
 
 #include <math.h>

@@ -1,7 +1,7 @@
 /* material_j2.c - von Mises (J2) plasticity with linear isotropic hardening:
  * the radial return of Wilkins (1964), in the form of Simo & Hughes (1998)
- * "Computational Inelasticity" sec. 3.3 (box 3.1) and de Souza Neto, Peric &
- * Owen (2008) sec. 7.3.2.  Closed form for linear hardening, exact for
+ * "Computational Inelasticity" ch. 3 and de Souza Neto, Peric & Owen (2008)
+ * ch. 7.  Closed form for linear hardening, exact for
  * radial (proportional) strain paths; the mean stress stays elastic. */
 #include "material/material_internal.h"
 
