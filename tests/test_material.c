@@ -283,6 +283,32 @@ static void test_dp_cap_hydrostatic(void **state)
     }
 }
 
+/* Tangent constrained moduli d sigma_xx / d eps_xx in uniaxial strain, the
+ * squared wave speeds times rho of the 1D wave check (docs/materials.md):
+ * J2 plastic K + 4GH/(3(3G + H)); cap only K_t + 4G/3; corner (psi = 0)
+ * K_t (1 + 2 eta/sqrt3), K_t = K H_c/(K + H_c). */
+static double oedometer_slope(const rf_material *m, double e1, double e2)
+{
+    double a[6] = {e1, 0, 0, 0, 0, 0}, b[6] = {e2, 0, 0, 0, 0, 0}, sa[6], sb[6];
+    rf_material_state st;
+    drive(m, 0.0, a, 50, sa, &st);
+    drive(m, 0.0, b, 50, sb, &st);
+    return (sb[0] - sa[0]) / (e2 - e1);
+}
+
+static void test_uniaxial_strain_tangent_moduli(void **state)
+{
+    (void)state;
+    rf_material_params pv = von_mises(250e6, 2e9), pd = sand(35, 0, 50e3, 5e6);
+    rf_material mv = make(&pv), md = make(&pd);
+    double G = mv.G, K = mv.K, H = pv.hardening;
+    assert_close(oedometer_slope(&mv, 0.004, 0.006), K + 4.0 * G * H / (3.0 * (3.0 * G + H)), 1e-9);
+    double Kt = md.K * pd.cap_hardening / (md.K + pd.cap_hardening);
+    double s_cap = pd.cap_pressure / md.K; /* onset of compaction */
+    assert_close(oedometer_slope(&md, -1.2 * s_cap, -1.4 * s_cap), Kt + 4.0 * md.G / 3.0, 1e-9);
+    assert_close(oedometer_slope(&md, -0.04, -0.05), Kt * (1.0 + 2.0 * md.eta / sqrt(3.0)), 1e-9);
+}
+
 /* A fixed pseudo-random strain path (LCG), the same in every run. */
 static void random_increment(uint64_t *seed, double scale, double deps[6])
 {
@@ -475,6 +501,7 @@ int main(void)
         cmocka_unit_test(test_dp_cone_never_yields_confined),
         cmocka_unit_test(test_dp_cap_confined),
         cmocka_unit_test(test_dp_cap_hydrostatic),
+        cmocka_unit_test(test_uniaxial_strain_tangent_moduli),
         cmocka_unit_test(test_huge_strength_is_elastic),
         cmocka_unit_test(test_random_paths_admissible),
         cmocka_unit_test(test_block_equals_points),
