@@ -377,6 +377,50 @@ static void test_random_paths_admissible(void **state)
     }
 }
 
+static double uniform(uint64_t *seed, double lo, double hi)
+{
+    *seed = *seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * ((double)(*seed >> 11) / 9007199254740992.0);
+}
+
+/* 300 random Drucker-Prager materials (with and without cap, psi in [0, phi],
+ * nu up to 0.49) on random paths with LARGE increments (up to 5 %), which
+ * exercise every branch of the multisurface return: every state finite and
+ * admissible, every plastic work and cap multiplier >= 0. */
+static void test_random_materials_large_steps(void **state)
+{
+    (void)state;
+    uint64_t seed = 2026;
+    for (int k = 0; k < 300; k++) {
+        rf_material_params p = sand(uniform(&seed, 0.0, 50.0), 0.0, 0.0, 0.0);
+        p.dilatancy_angle = uniform(&seed, 0.0, 1.0) * p.friction_angle;
+        p.poisson = uniform(&seed, 0.0, 0.49);
+        p.cohesion = k % 5 == 0 ? 0.0 : uniform(&seed, 0.0, 5e4);
+        if (p.friction_angle < 1e-3 * DEG)
+            p.cohesion = 1e4;
+        if (k % 2) {
+            p.cap_pressure = uniform(&seed, 1e3, 2e5);
+            p.cap_hardening = k % 4 == 1 ? 0.0 : uniform(&seed, 0.0, 1e8);
+        }
+        rf_material m = make(&p);
+        double sig[6] = {0}, deps[6], d;
+        rf_material_state st = {0};
+        double scale = uniform(&seed, 1e-4, 5e-2);
+        for (int i = 0; i < 200; i++) {
+            double compaction = st.compaction;
+            random_increment(&seed, scale, deps);
+            rf_material_update(&m, deps, sig, &st, &d);
+            for (int j = 0; j < 6; j++)
+                assert_true(isfinite(sig[j]));
+            assert_true(st.compaction >= compaction); /* cap multiplier >= 0 */
+            if (!(d >= -1e-9 * (fabs(sig[0]) + m.xi * p.cohesion + p.cap_pressure) * scale))
+                fail_msg("material %d step %d: plastic work %g < 0", k, i, d);
+            if (!rf_material_admissible(&m, sig, &st, 1e-9))
+                fail_msg("material %d step %d: inadmissible state", k, i);
+        }
+    }
+}
+
 static void test_block_equals_points(void **state)
 {
     (void)state;
@@ -504,6 +548,7 @@ int main(void)
         cmocka_unit_test(test_uniaxial_strain_tangent_moduli),
         cmocka_unit_test(test_huge_strength_is_elastic),
         cmocka_unit_test(test_random_paths_admissible),
+        cmocka_unit_test(test_random_materials_large_steps),
         cmocka_unit_test(test_block_equals_points),
         cmocka_unit_test(test_wave_speed),
         cmocka_unit_test(test_rotation),
