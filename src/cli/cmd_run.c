@@ -4,6 +4,7 @@
  * started by mpirun), analyse, print the summary and write the report
  * (result.json last, then report.html). */
 #include "cli/cli.h"
+#include "core/util.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -109,13 +110,6 @@ static int parse_count(const char *opt, const char *s, long long max, long long 
     }
     *out = v;
     return 0;
-}
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 typedef struct {
@@ -308,7 +302,7 @@ int rf_cli_run(int argc, char **argv)
         goto done;
     }
 
-    double t0 = now_seconds();
+    double t0 = rf_monotonic_seconds();
     if (rf_tm_run(study.inputs, study.n_params, &study.model, &opt, &res, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz run: %s: %s\n", study_path, pc.store_failed ? pc.err.msg : err.msg);
         fprintf(stderr, "rockfuzz run: %zu evaluation%s of this run committed to %s (%zu found there before); "
@@ -321,7 +315,7 @@ int rf_cli_run(int argc, char **argv)
         fprintf(stderr, "rockfuzz run: %s: analysis: %s\n", study_path, err.msg);
         goto done;
     }
-    double wall = now_seconds() - t0;
+    double wall = rf_monotonic_seconds() - t0;
     rf_report_print_summary(stdout, &study, &res, &an);
     fflush(stdout);
     if (res.failed_points > 0 || runner.failed > 0)

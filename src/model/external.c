@@ -45,6 +45,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/util.h"
+
 #define OUTPUT_FILE_MAX (256u << 20) /* refuse to parse larger output files */
 #define TAIL_BYTES 400               /* stderr/stdout excerpt in error messages */
 
@@ -136,24 +138,6 @@ static void sb_printf(strbuf *b, const char *fmt, ...)
     va_end(ap);
     sb_append(b, big, (size_t)n);
     free(big);
-}
-
-static char *dup_str(const char *s)
-{
-    if (!s)
-        return NULL;
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* Read a whole file (binary-safe, NUL-terminated).  Returns 0 or errno. */
@@ -553,7 +537,7 @@ static int remove_entry(const char *path, const struct stat *sb, int flag, struc
 
 static int make_dirs(const char *path)
 {
-    char *p = dup_str(path);
+    char *p = rf_strdup(path);
     if (!p)
         return ENOMEM;
     int e = 0;
@@ -667,7 +651,7 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
         close(report[0]);
 
     if (pid > 0) {
-        double start = now_seconds();
+        double start = rf_monotonic_seconds();
         long nap_ns = 1000000;
         for (;;) {
             siginfo_t si;
@@ -682,7 +666,7 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
             }
             if (si.si_pid == pid)
                 break;
-            if (c->timeout > 0 && now_seconds() - start >= c->timeout) {
+            if (c->timeout > 0 && rf_monotonic_seconds() - start >= c->timeout) {
                 timed_out = 1;
                 break;
             }
@@ -894,14 +878,14 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
      * external_destroy frees a half-built element after an error. */
     while (c->n_params < n_params) {
         size_t i = c->n_params++;
-        if (!(c->param_names[i] = dup_str(param_names[i])))
+        if (!(c->param_names[i] = rf_strdup(param_names[i])))
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
     }
     while (c->argc < spec->argc) {
         size_t a = c->argc++;
         if (!spec->argv[a])
             return rf_fail(err, RF_EINVAL, "external model: argv[%zu] is NULL", a);
-        if (!(c->argv[a] = dup_str(spec->argv[a])))
+        if (!(c->argv[a] = rf_strdup(spec->argv[a])))
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
         char where[32];
         snprintf(where, sizeof where, "argv[%zu]", a);
@@ -923,8 +907,8 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
         const char *dst = spec->template_dst ? spec->template_dst[t] : NULL;
         if (!src || !dst)
             return rf_fail(err, RF_EINVAL, "external model: template %zu has no source or destination", t + 1);
-        tp->src = dup_str(src);
-        tp->dst = dup_str(dst);
+        tp->src = rf_strdup(src);
+        tp->dst = rf_strdup(dst);
         if (!tp->src || !tp->dst)
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
         if (!is_safe_relative(dst) || strchr(dst, '/') || strcmp(dst, "stdout.txt") == 0 ||
@@ -957,10 +941,10 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
             if (strcmp(c->outputs[j].name, in->name) == 0)
                 return rf_fail(err, RF_EINVAL, "external model: output '%s' is defined twice", in->name);
         }
-        o->name = dup_str(in->name);
-        o->file = dup_str(in->file);
-        o->pattern = dup_str(in->pattern);
-        o->unit = dup_str(in->unit ? in->unit : "");
+        o->name = rf_strdup(in->name);
+        o->file = rf_strdup(in->file);
+        o->pattern = rf_strdup(in->pattern);
+        o->unit = rf_strdup(in->unit ? in->unit : "");
         if (!o->name || !o->unit || (in->file && !o->file) || (in->pattern && !o->pattern))
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
         if (o->file && !is_safe_relative(o->file))
@@ -985,7 +969,7 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
     c->timeout = spec->timeout;
     c->keep_workdirs = spec->keep_workdirs;
     if (spec->workdir_root && spec->workdir_root[0]) {
-        c->workdir_root = dup_str(spec->workdir_root);
+        c->workdir_root = rf_strdup(spec->workdir_root);
     } else {
         const char *tmp = getenv("TMPDIR");
         strbuf b = {0};

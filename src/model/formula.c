@@ -16,6 +16,8 @@
 
 #include <muParserDLL.h>
 
+#include "core/util.h"
+
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -41,15 +43,6 @@ typedef struct {
 /* mupGetExprVar returns the name in a static buffer inside muParser, so
  * listing a handle's variables is serialised across all formula models. */
 static pthread_mutex_t mup_static_buffer_lock = PTHREAD_MUTEX_INITIALIZER;
-
-static char *dup_str(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
 
 static void work_free(formula_work *w, size_t n_outputs)
 {
@@ -342,14 +335,14 @@ rf_status rf_formula_model_create(size_t n_params, const char *const *param_name
     c->n_params = n_params;
     c->n_outputs = n_outputs;
     for (size_t i = 0; i < n_params; i++) {
-        if (!(c->param_names[i] = dup_str(param_names[i]))) {
+        if (!(c->param_names[i] = rf_strdup(param_names[i]))) {
             formula_destroy(c);
             return rf_fail(err, RF_ENOMEM, "out of memory for the formula model");
         }
     }
     for (size_t k = 0; k < n_outputs; k++) {
-        c->output_names[k] = dup_str(output_names[k]);
-        c->expressions[k] = dup_str(expressions[k]);
+        c->output_names[k] = rf_strdup(output_names[k]);
+        c->expressions[k] = rf_strdup(expressions[k]);
         if (!c->output_names[k] || !c->expressions[k]) {
             formula_destroy(c);
             return rf_fail(err, RF_ENOMEM, "out of memory for the formula model");

@@ -21,13 +21,6 @@
 
 #include "study/runner_internal.h"
 
-double rf_runner_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 void rf_runner_init(rf_runner *r)
 {
     memset(r, 0, sizeof *r);
@@ -76,7 +69,7 @@ static void run_counts(rf_batch *b, size_t *done, size_t *total, size_t *failed,
     size_t t = r->planned_total > *done ? r->planned_total : r->resumed + r->evaluated + r->failed + b->count;
     *total = t < *done ? *done : t;
     *failed = r->failed + atomic_load(&b->nfailed);
-    double phase = rf_runner_now() - b->t_start;
+    double phase = rf_monotonic_seconds() - b->t_start;
     *elapsed = r->wall_seconds + phase;
     /* Only fresh evaluations measure the speed: points found in the store took no time. */
     double fresh_wall = r->fresh_wall + phase;
@@ -214,10 +207,10 @@ static void *worker(void *arg)
     while (rf_batch_take(b, &pos)) {
         size_t k = b->todo[pos];
         rf_batch_start(b, pos);
-        double t0 = rf_runner_now();
+        double t0 = rf_monotonic_seconds();
         memset(&err, 0, sizeof err);
         rf_status st = rf_model_eval(b->model, b->x + k * nin, b->y + k * nout, &err);
-        rf_batch_finish(b, pos, st, &err, rf_runner_now() - t0);
+        rf_batch_finish(b, pos, st, &err, rf_monotonic_seconds() - t0);
     }
     atomic_fetch_sub(&b->workers_left, 1);
     return NULL;
@@ -230,7 +223,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
         return rf_fail(err, RF_EINTERNAL, "rf_runner_evaluate: NULL argument");
     if (count == 0)
         return RF_OK;
-    double t_batch = rf_runner_now();
+    double t_batch = rf_monotonic_seconds();
     rf_batch b;
     memset(&b, 0, sizeof b);
     b.runner = r;
@@ -272,7 +265,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
         return rf_fail(err, RF_EINTERNAL, "cannot create a mutex");
     }
 
-    b.t_start = rf_runner_now();
+    b.t_start = rf_monotonic_seconds();
     int started = 0;
     pthread_t *threads = NULL;
     if (b.ntodo > 0) {
@@ -292,7 +285,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
             /* The calling thread only draws, so the line moves even with one job. */
             double last = 0;
             while (atomic_load(&b.workers_left) > 0) {
-                double t = rf_runner_now();
+                double t = rf_monotonic_seconds();
                 if (t - last >= 0.5) {
                     rf_batch_progress(&b, 0);
                     last = t;
@@ -307,7 +300,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
     }
     rf_batch_progress(&b, 1);
 
-    double t_end = rf_runner_now();
+    double t_end = rf_monotonic_seconds();
     if (b.ntodo > 0)
         r->fresh_wall += t_end - b.t_start;
     r->wall_seconds += t_end - t_batch;

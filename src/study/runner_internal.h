@@ -6,6 +6,7 @@
 #include <pthread.h>
 #include <stdatomic.h>
 
+#include "core/util.h"
 #include "rockfuzz/runner.h"
 
 typedef struct {
@@ -31,8 +32,6 @@ typedef struct {
     double eval_seconds;
     size_t remote;
 } rf_batch;
-
-double rf_runner_now(void);
 
 /* Take the next todo position, or return 0 when there is none or the batch stops. */
 int rf_batch_take(rf_batch *b, size_t *pos);
