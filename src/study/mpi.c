@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "study/runner_internal.h"
+#include "study/mpi_internal.h"
 
 #ifdef ROCKFUZZ_HAVE_MPI
 #include <mpi.h>

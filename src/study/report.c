@@ -20,28 +20,6 @@ void rf_report_options_default(rf_report_options *opt)
     opt->plots = 1;
 }
 
-int rp_output_undefined(const rf_tm_result *res, size_t k)
-{
-    for (size_t j = 0; j <= res->levels; j++)
-        if (!isnan(res->lo[k * (res->levels + 1) + j]) || !isnan(res->hi[k * (res->levels + 1) + j]))
-            return 0;
-    return isnan(res->nominal[k]);
-}
-
-void rp_safe_name(const char *name, char *buf, size_t size)
-{
-    size_t k = 0;
-    for (; name[k] && k + 1 < size && k < 80; k++) {
-        char ch = name[k];
-        int ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_' ||
-                 ch == '-' || (ch == '.' && k > 0);
-        buf[k] = ok ? ch : '_';
-    }
-    buf[k] = '\0';
-    if (k == 0)
-        snprintf(buf, size, "_");
-}
-
 static const char *mono_text(rf_monotonicity m)
 {
     switch (m) {

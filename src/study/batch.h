@@ -1,7 +1,7 @@
-/* runner_internal.h - one batch of the runner, shared by runner.c (threads)
+/* batch.h - one batch of the runner (batch.c), shared by runner.c (threads)
  * and mpi.c (rank 0 serving worker ranks from the same queue). */
-#ifndef ROCKFUZZ_RUNNER_INTERNAL_H
-#define ROCKFUZZ_RUNNER_INTERNAL_H
+#ifndef ROCKFUZZ_BATCH_H
+#define ROCKFUZZ_BATCH_H
 
 #include <pthread.h>
 #include <stdatomic.h>
@@ -45,9 +45,5 @@ void rf_batch_finish(rf_batch *b, size_t pos, rf_status st, const rf_error *err,
 
 /* Draw the progress line (final: with a newline). */
 void rf_batch_progress(rf_batch *b, int final);
-
-/* mpi.c: rank 0 serves the worker ranks until the queue is empty and every
- * local worker has returned; draws the progress line while it waits. */
-void rf_mpi_serve_batch(rf_batch *b);
 
 #endif
