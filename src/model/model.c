@@ -21,6 +21,12 @@ rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_er
     return RF_OK;
 }
 
+void rf_model_set_interrupt(rf_model *model, const atomic_int *flag)
+{
+    if (model && model->set_interrupt)
+        model->set_interrupt(model->ctx, flag);
+}
+
 void rf_model_free(rf_model *model)
 {
     if (!model)

@@ -11,7 +11,7 @@
 
 int rf_batch_take(rf_batch *b, size_t *pos)
 {
-    if (atomic_load(&b->stop))
+    if (atomic_load(&b->stop) || (b->runner->interrupt && atomic_load(b->runner->interrupt)))
         return 0;
     size_t k = atomic_fetch_add(&b->next, 1);
     if (k >= b->ntodo)
@@ -146,6 +146,13 @@ void rf_batch_finish(rf_batch *b, size_t pos, rf_status st, const rf_error *err,
     }
     pthread_mutex_lock(&b->lock);
     b->eval_seconds += seconds;
+    if (st == RF_EINTERRUPTED) {
+        /* stopped on request: neither a result nor a failure; the store keeps it as unfinished */
+        b->interrupted++;
+        atomic_store(&b->stop, 1);
+        pthread_mutex_unlock(&b->lock);
+        return;
+    }
     if (r->store && !b->store_failed) {
         rf_error serr;
         memset(&serr, 0, sizeof serr);

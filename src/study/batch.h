@@ -31,6 +31,7 @@ typedef struct {
     rf_error store_err;
     double eval_seconds;
     size_t remote;
+    size_t interrupted;      /* evaluations that returned RF_EINTERRUPTED */
 } rf_batch;
 
 /* Take the next todo position, or return 0 when there is none or the batch stops. */

@@ -158,12 +158,20 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
             *failed_index = count; /* not a model failure */
         return RF_EIO;
     }
+    int interrupted = b.interrupted > 0 || (r->interrupt && atomic_load(r->interrupt));
     if (b.first_failed < count && !r->tolerate_failures) {
         if (failed_index)
             *failed_index = b.first_failed;
         if (err)
             *err = b.first_err;
         return b.first_err.code != RF_OK ? b.first_err.code : RF_EMODEL;
+    }
+    size_t finished = atomic_load(&b.done);
+    if (interrupted && finished < b.ntodo) {
+        if (failed_index)
+            *failed_index = count; /* not a model failure */
+        return rf_fail(err, RF_EINTERRUPTED, "interrupted after %zu of the %zu evaluations of this batch (every "
+                       "finished one is stored; %zu stopped mid-way)", finished, b.ntodo, b.interrupted);
     }
     return RF_OK;
 }

@@ -148,6 +148,91 @@ static const char *SCHEMA =
     "CREATE TABLE results(x BLOB PRIMARY KEY, ok INTEGER NOT NULL, y BLOB, error TEXT, seconds REAL,"
     " finished REAL NOT NULL, x_text TEXT);";
 
+/* Why a database could not be opened: SQLite's message plus the system's
+ * (a read-only folder, a directory in the way, ...). */
+static rf_status open_fail(rf_error *err, sqlite3 *db, const char *path)
+{
+    int e = db ? sqlite3_system_errno(db) : ENOMEM;
+    struct stat sb;
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+        return rf_fail(err, RF_EIO, "result store %s: cannot open: it is not a regular file", path);
+    return rf_fail(err, RF_EIO, "result store %s: cannot open: %s%s%s", path,
+                   db ? sqlite3_errmsg(db) : "out of memory", e ? ": " : "", e ? strerror(e) : "");
+}
+
+/* SQLite's own structural check (PRAGMA quick_check: b-trees, pages, records;
+ * O(size)), run before anything is written.  *damaged = 1 when it fails. */
+static rf_status integrity_check(sqlite3 *db, const char *path, int *damaged, rf_error *err)
+{
+    sqlite3_stmt *st = NULL;
+    *damaged = 0;
+    int rc = sqlite3_prepare_v2(db, "PRAGMA quick_check", -1, &st, NULL);
+    char first[512] = "";
+    int bad = rc != SQLITE_OK;
+    if (bad)
+        snprintf(first, sizeof first, "%s", sqlite3_errmsg(db));
+    while (!bad && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        const unsigned char *row = sqlite3_column_text(st, 0);
+        if (!row || strcmp((const char *)row, "ok") != 0) {
+            snprintf(first, sizeof first, "%s", row ? (const char *)row : "?");
+            bad = 1;
+        }
+    }
+    if (!bad && rc != SQLITE_DONE) {
+        snprintf(first, sizeof first, "%s", sqlite3_errmsg(db));
+        bad = 1;
+    }
+    sqlite3_finalize(st);
+    if (!bad)
+        return RF_OK;
+    *damaged = 1;
+    return rf_fail(err, RF_EIO,
+                   "%s is damaged (SQLite integrity check: %s); nothing in its folder was changed and its results "
+                   "are not used. Rerun with --fresh to move it aside (to %s.damaged) and start over, or choose "
+                   "another --out directory; result.json of the last complete run, if any, is still valid",
+                   path, first, path);
+}
+
+/* --fresh on a damaged store: keep it (and its WAL) as PATH.damaged*, start a new one. */
+static rf_status move_aside(const char *path, rf_error *err)
+{
+    static const char *const sfx[3] = {"", "-wal", "-shm"};
+    for (int k = 0; k < 3; k++) {
+        char from[4096], to[4096];
+        snprintf(from, sizeof from, "%s%s", path, sfx[k]);
+        snprintf(to, sizeof to, "%s.damaged%s", path, sfx[k]);
+        if (rename(from, to) != 0 && errno != ENOENT)
+            return rf_fail(err, RF_EIO, "cannot move the damaged store %s aside to %s: %s", from, to,
+                           strerror(errno));
+    }
+    return RF_OK;
+}
+
+/* Open an existing file as a store: format, then integrity.  Reads only; no
+ * checkpoint on close, so a refused file is left exactly as it was. */
+static rf_status open_existing(rf_store *s, const char *path, int *damaged, rf_error *err)
+{
+    *damaged = 0;
+    if (sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX, NULL) != SQLITE_OK)
+        return open_fail(err, s->db, path);
+    sqlite3_db_config(s->db, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, (int *)NULL);
+    sqlite3_busy_timeout(s->db, 10000);
+    sqlite3_extended_result_codes(s->db, 1);
+    int code = 0;
+    rf_status st = check_format(s->db, path, err);
+    if (st != RF_OK) {
+        code = sqlite3_extended_errcode(s->db) & 0xff;
+        *damaged = code == SQLITE_CORRUPT; /* NOTADB: not an SQLite file, so not ours */
+        if (*damaged)
+            integrity_check(s->db, path, damaged, err);
+        return st;
+    }
+    if ((st = integrity_check(s->db, path, damaged, err)) != RF_OK)
+        return st;
+    sqlite3_db_config(s->db, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 0, (int *)NULL);
+    return RF_OK;
+}
+
 rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf_store **out, rf_error *err)
 {
     *out = NULL;
@@ -168,17 +253,26 @@ rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf
     s->n_inputs = key->n_inputs;
     s->n_outputs = key->n_outputs;
     rf_status st = RF_OK;
-    int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | (exists ? 0 : SQLITE_OPEN_CREATE);
-    if (sqlite3_open_v2(path, &s->db, flags, NULL) != SQLITE_OK) {
-        st = rf_fail(err, RF_EIO, "result store %s: cannot open: %s", path,
-                     s->db ? sqlite3_errmsg(s->db) : "out of memory");
-        goto done;
-    }
-    sqlite3_busy_timeout(s->db, 10000);
-    sqlite3_extended_result_codes(s->db, 1);
-    if (exists) {
-        if ((st = check_format(s->db, path, err)) != RF_OK)
+    int damaged = 0;
+    if (exists && (st = open_existing(s, path, &damaged, err)) != RF_OK) {
+        if (!(damaged && fresh))
             goto done;
+        sqlite3_close(s->db);
+        s->db = NULL;
+        if ((st = move_aside(path, err)) != RF_OK)
+            goto done;
+        exists = 0;
+    }
+    if (!exists) {
+        if (sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | SQLITE_OPEN_CREATE,
+                            NULL) != SQLITE_OK) {
+            st = open_fail(err, s->db, path);
+            goto done;
+        }
+        sqlite3_busy_timeout(s->db, 10000);
+        sqlite3_extended_result_codes(s->db, 1);
+    }
+    if (exists) {
         /* Same model, settings, version and names?  Checked before anything is written. */
         static const char *const keys[4] = {"identity", "rockfuzz_version", "inputs", "outputs"};
         static const char *const what[4] = {"model or its settings", "rockfuzz version", "input names",
@@ -340,6 +434,26 @@ rf_status rf_store_put(rf_store *s, const double *x, int ok, const double *y, co
         st = db_fail(err, s->db, s->path, "cannot commit a result");
     sqlite3_reset(s->put);
     sqlite3_clear_bindings(s->put);
+    pthread_mutex_unlock(&s->lock);
+    return st;
+}
+
+rf_status rf_store_note_set(rf_store *s, const char *key, const char *value, rf_error *err)
+{
+    char k[128];
+    snprintf(k, sizeof k, "note.%s", key);
+    pthread_mutex_lock(&s->lock);
+    rf_status st = meta_set(s->db, k, value) == 0 ? RF_OK : db_fail(err, s->db, s->path, "cannot write a note");
+    pthread_mutex_unlock(&s->lock);
+    return st;
+}
+
+rf_status rf_store_note_get(rf_store *s, const char *key, char *buf, size_t size, rf_error *err)
+{
+    char k[128];
+    snprintf(k, sizeof k, "note.%s", key);
+    pthread_mutex_lock(&s->lock);
+    rf_status st = meta_get(s->db, k, buf, size) == 0 ? RF_OK : db_fail(err, s->db, s->path, "cannot read a note");
     pthread_mutex_unlock(&s->lock);
     return st;
 }
