@@ -127,8 +127,8 @@ static int parse_int(const char *opt, const char *s, int *x)
     char *end = NULL;
     errno = 0;
     long v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE || v < 1 || v > INT_MAX) {
-        fprintf(stderr, "rockfuzz impact: --%s '%s': not a positive integer\n", opt, s);
+    if (end == s || *end != '\0' || errno == ERANGE || v < 1 || v > RF_CLI_MAX_THREADS) {
+        fprintf(stderr, "rockfuzz impact: --%s '%s': expected an integer in [1, %d]\n", opt, s, RF_CLI_MAX_THREADS);
         return 0;
     }
     *x = (int)v;

@@ -111,19 +111,21 @@ static int parse_count(const char *opt, const char *s, long long max, long long 
 
 /* The one piece of global mutable state in the program: a signal handler can
  * reach nothing else.  The first SIGINT/SIGTERM asks the run to stop cleanly;
- * a second one of either kind ends the process at once (the external
- * programs then die with it: their supervisor gets PR_SET_PDEATHSIG). */
+ * a second SIGINT (Ctrl-C pressed again) ends the process at once (the
+ * external programs then die with it: their supervisor gets PR_SET_PDEATHSIG).
+ * A repeated SIGTERM does not: tools like timeout(1) send it twice. */
 static atomic_int stop_requested;
 static volatile sig_atomic_t stop_signal;
 
 static void on_stop_signal(int sig)
 {
-    if (atomic_exchange(&stop_requested, 1)) {
+    if (atomic_exchange(&stop_requested, 1) && sig == SIGINT) {
         signal(sig, SIG_DFL);
         raise(sig);
         return;
     }
-    stop_signal = sig;
+    if (!stop_signal)
+        stop_signal = sig;
 }
 
 static void catch_stop_signals(void)

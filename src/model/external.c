@@ -35,10 +35,12 @@
 #include <regex.h>
 #include <signal.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
@@ -79,6 +81,8 @@ typedef struct {
     double timeout;
     char *workdir_root;
     int keep_workdirs;
+    const atomic_int *interrupt; /* rf_model.set_interrupt; NULL = never */
+    uint64_t program_hash;       /* FNV-1a of the program file (identity) */
 } ext_ctx;
 
 /* ---- small helpers ---------------------------------------------------- */
@@ -212,6 +216,20 @@ static uint64_t fnv1a64(const char *data, size_t len)
         h *= 1099511628211ull;
     }
     return h;
+}
+
+#define HASHED_FILE_MAX (1u << 30) /* program and script files hashed into the identity */
+
+/* FNV-1a of a whole file; 0 and *h set, or errno. */
+static int file_hash(const char *path, uint64_t *h)
+{
+    char *text = NULL;
+    size_t len = 0;
+    int e = read_file(path, HASHED_FILE_MAX, &text, &len);
+    if (!e)
+        *h = fnv1a64(text, len);
+    free(text);
+    return e;
 }
 
 /* "(E=2.1e+11, F=1000)" for messages. */
@@ -491,17 +509,37 @@ static void file_tail(const char *path, char *buf, size_t size)
     }
 }
 
-/* ---- the child process ------------------------------------------------ */
+/* ---- the supervisor and the program ------------------------------------
+ *
+ * Each evaluation forks a supervisor S, which forks the program P.  Between
+ * fork and _exit only async-signal-safe system calls run (the parent has other
+ * threads that may hold the malloc or stdio locks).
+ *   S: blocks SIGTERM/SIGINT/SIGCHLD and waits for them with sigwaitinfo (no
+ *      handler, no global state); dies with rockfuzz (PR_SET_PDEATHSIG sends
+ *      it SIGTERM, which it handles like a stop request); is a child
+ *      subreaper (PR_SET_CHILD_SUBREAPER), so every descendant of P that is
+ *      orphaned - also one that called setsid() to leave P's process group -
+ *      becomes S's child.  When P has ended, or on SIGTERM (timeout,
+ *      interruption, rockfuzz gone), S kills P's group and then every child
+ *      it has, repeatedly, until none is left; then it reports P's wait
+ *      status on the report pipe and exits.
+ *   P: own process group, PR_SET_PDEATHSIG = SIGKILL (S gone: P goes too),
+ *      default signal dispositions, cwd = the working directory, exec.
+ * Report pipe records (two ints): {1|2|3, errno} from P when it could not
+ * enter the directory / redirect / exec; {4, errno} from S when fork failed;
+ * {0, wait status of P} from S at the end. */
 
-/* Only async-signal-safe calls between fork and exec: the parent may have
- * other threads holding locks (malloc, stdio). */
-static void child_exec(const char *dir, const char *path, char *const argv[], int fd_in, int fd_out, int fd_err,
-                       int report_fd)
+enum { REPORT_STATUS = 0, REPORT_CHDIR = 1, REPORT_EXEC = 3, REPORT_FORK = 4 };
+
+static void report_record(int fd, int kind, int value)
 {
-    setpgid(0, 0);
-    sigset_t none;
-    sigemptyset(&none);
-    sigprocmask(SIG_SETMASK, &none, NULL);
+    int rec[2] = {kind, value};
+    ssize_t ignored = write(fd, rec, sizeof rec);
+    (void)ignored;
+}
+
+static void default_signals(void)
+{
     struct sigaction dfl;
     memset(&dfl, 0, sizeof dfl);
     dfl.sa_handler = SIG_DFL;
@@ -509,19 +547,128 @@ static void child_exec(const char *dir, const char *path, char *const argv[], in
         if (s != SIGKILL && s != SIGSTOP)
             sigaction(s, &dfl, NULL);
     }
-    int report[2] = {0, 0};
+}
+
+static void child_exec(const char *dir, const char *path, char *const argv[], pid_t supervisor)
+{
+    setpgid(0, 0);
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != supervisor)
+        _exit(127); /* the supervisor died before the line above */
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, NULL);
     if (chdir(dir) != 0) {
-        report[0] = 1;
-    } else if (dup2(fd_in, 0) < 0 || dup2(fd_out, 1) < 0 || dup2(fd_err, 2) < 0) {
-        report[0] = 2;
-    } else {
-        execve(path, argv, environ);
-        report[0] = 3;
+        report_record(3, REPORT_CHDIR, errno);
+        _exit(127);
     }
-    report[1] = errno;
-    ssize_t ignored = write(report_fd, report, sizeof report);
-    (void)ignored;
+    execve(path, argv, environ);
+    report_record(3, REPORT_EXEC, errno);
     _exit(127);
+}
+
+/* Decimal text of v at *p (no snprintf here: not async-signal-safe). */
+static char *put_int(char *p, long v)
+{
+    char tmp[24];
+    int n = 0;
+    do
+        tmp[n++] = (char)('0' + v % 10);
+    while ((v /= 10) > 0);
+    while (n > 0)
+        *p++ = tmp[--n];
+    return p;
+}
+
+/* Kill and reap every child of this process (S), again and again, until it
+ * has none: killing one orphans its children, which then become S's. */
+static void sweep_children(void)
+{
+    char path[64] = "/proc/", *p = path + 6;
+    pid_t self = getpid();
+    p = put_int(p, self);
+    memcpy(p, "/task/", 6);
+    p = put_int(p + 6, self);
+    memcpy(p, "/children", 10);
+    for (int round = 0; round < 10000; round++) {
+        char buf[4096];
+        int fd = open(path, O_RDONLY | O_CLOEXEC);
+        ssize_t n = fd >= 0 ? read(fd, buf, sizeof buf - 1) : -1;
+        if (fd >= 0)
+            close(fd);
+        if (n <= 0) {
+            while (waitpid(-1, NULL, WNOHANG) > 0) /* no /proc: reap what has ended */
+                ;
+            return;
+        }
+        buf[n] = '\0';
+        for (char *q = buf; *q;) {
+            long pid = 0;
+            while (*q >= '0' && *q <= '9')
+                pid = pid * 10 + (*q++ - '0');
+            while (*q == ' ')
+                q++;
+            if (pid > 0) {
+                kill((pid_t)pid, SIGKILL);
+                while (waitpid((pid_t)pid, NULL, 0) < 0 && errno == EINTR)
+                    ;
+            } else if (*q) {
+                q++;
+            }
+        }
+    }
+}
+
+/* The supervisor S (see above); never returns. */
+static void supervise(const char *dir, const char *path, char *const argv[], int fd_in, int fd_out, int fd_err,
+                      int report_fd, pid_t parent)
+{
+    sigset_t wait_for;
+    sigemptyset(&wait_for);
+    sigaddset(&wait_for, SIGTERM);
+    sigaddset(&wait_for, SIGINT);
+    sigaddset(&wait_for, SIGCHLD);
+    sigprocmask(SIG_SETMASK, &wait_for, NULL);
+    default_signals();
+    setpgid(0, 0);
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent)
+        _exit(1);
+    prctl(PR_SET_CHILD_SUBREAPER, 1);
+    if (dup2(fd_in, 0) < 0 || dup2(fd_out, 1) < 0 || dup2(fd_err, 2) < 0 || dup2(report_fd, 3) < 0) {
+        report_record(report_fd, 2, errno);
+        _exit(1);
+    }
+    fcntl(3, F_SETFD, FD_CLOEXEC);
+    close_range(4, ~0U, 0); /* nothing of rockfuzz's (e.g. the folder lock) stays open in S */
+    pid_t self = getpid();
+    pid_t prog = fork();
+    if (prog == 0)
+        child_exec(dir, path, argv, self);
+    if (prog < 0) {
+        report_record(3, REPORT_FORK, errno);
+        _exit(1);
+    }
+    int status = 0;
+    for (int done = 0; !done;) {
+        siginfo_t si;
+        int sig = sigwaitinfo(&wait_for, &si);
+        if (sig == SIGTERM || sig == SIGINT) {
+            kill(-prog, SIGKILL);
+            kill(prog, SIGKILL);
+        }
+        pid_t w;
+        int st;
+        while ((w = waitpid(-1, &st, WNOHANG)) > 0)
+            if (w == prog) {
+                status = st;
+                done = 1;
+            }
+    }
+    kill(-prog, SIGKILL); /* anything P left running in its group */
+    sweep_children();     /* and every other descendant */
+    report_record(3, REPORT_STATUS, status);
+    _exit(0);
 }
 
 /* ---- evaluation ------------------------------------------------------- */
@@ -561,6 +708,64 @@ typedef struct {
     char *text;
     size_t len;
 } read_cache;
+
+/* Wait for the supervisor; on a timeout or an interruption ask it to stop
+ * (SIGTERM: it kills the program and every descendant), then reap it. */
+static void wait_supervisor(const ext_ctx *c, pid_t pid, int *timed_out, int *interrupted)
+{
+    double start = rf_monotonic_seconds(), stop_sent = 0;
+    long nap_ns = 1000000;
+    for (;;) {
+        int status;
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid || (w < 0 && errno != EINTR))
+            return;
+        double now = rf_monotonic_seconds();
+        if (!stop_sent) {
+            if (c->interrupt && atomic_load(c->interrupt))
+                *interrupted = 1;
+            else if (c->timeout > 0 && now - start >= c->timeout)
+                *timed_out = 1;
+            if (*interrupted || *timed_out) {
+                kill(pid, SIGTERM);
+                stop_sent = now;
+            }
+        } else if (now - stop_sent > 10) {
+            kill(pid, SIGKILL); /* the supervisor is stuck: the program still dies (PDEATHSIG) */
+        }
+        struct timespec nap = {0, nap_ns};
+        nanosleep(&nap, NULL);
+        if (nap_ns < 10000000)
+            nap_ns *= 2;
+    }
+}
+
+/* The records of the report pipe (see the supervisor): P's wait status, or why it never ran. */
+static rf_status read_report(int fd, const ext_ctx *c, const char *point, int *status, rf_error *err)
+{
+    const char *prog = c->argv[0];
+    int rec[2], have_status = 0;
+    ssize_t n;
+    while ((n = read(fd, rec, sizeof rec)) == (ssize_t)sizeof rec || (n < 0 && errno == EINTR)) {
+        if (n < 0)
+            continue;
+        if (rec[0] == REPORT_STATUS) {
+            *status = rec[1];
+            have_status = 1;
+        } else {
+            const char *stage = rec[0] == REPORT_CHDIR ? "cannot enter the working directory" :
+                                rec[0] == REPORT_EXEC  ? "exec failed" :
+                                rec[0] == REPORT_FORK  ? "fork failed" :
+                                                         "cannot redirect its standard streams";
+            return rf_fail(err, RF_EMODEL, "cannot run program '%s' (%s) at %s: %s: %s", prog, c->program_path,
+                           point, stage, strerror(rec[1]));
+        }
+    }
+    if (!have_status)
+        return rf_fail(err, RF_EIO, "program '%s' at %s: its supervisor process ended without reporting (killed?)",
+                       prog, point);
+    return RF_OK;
+}
 
 static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, double *y, rf_error *err)
 {
@@ -609,13 +814,12 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
 
     pid_t pid = -1;
     if (st == RF_OK) {
+        pid_t self = getpid();
         pid = fork();
         if (pid == 0)
-            child_exec(dir, c->program_path, argv, fd_in, fd_out, fd_err, report[1]);
+            supervise(dir, c->program_path, argv, fd_in, fd_out, fd_err, report[1], self);
         if (pid < 0)
             st = rf_fail(err, RF_EIO, "cannot start program '%s' at %s: fork: %s", prog, point, strerror(errno));
-        else
-            setpgid(pid, pid); /* also here: kill(-pid) must work even before the child ran */
     }
     if (report[1] >= 0)
         close(report[1]);
@@ -629,57 +833,16 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
         free(argv[a]);
     free(argv);
 
-    int status = 0, timed_out = 0;
+    int status = 0, timed_out = 0, interrupted = 0;
     if (pid > 0) {
-        /* EOF on the report pipe means exec succeeded (close-on-exec). */
-        int rep[2];
-        ssize_t n;
-        do
-            n = read(report[0], rep, sizeof rep);
-        while (n < 0 && errno == EINTR);
-        if (n == (ssize_t)sizeof rep) {
-            waitpid(pid, &status, 0);
-            const char *stage = rep[0] == 1 ? "cannot enter the working directory" :
-                                rep[0] == 2 ? "cannot redirect its standard streams" :
-                                              "exec failed";
-            st = rf_fail(err, RF_EMODEL, "cannot run program '%s' (%s) at %s: %s: %s", prog, c->program_path, point,
-                         stage, strerror(rep[1]));
-            pid = -1;
-        }
+        wait_supervisor(c, pid, &timed_out, &interrupted);
+        if (st == RF_OK)
+            st = read_report(report[0], c, point, &status, err);
     }
     if (report[0] >= 0)
         close(report[0]);
-
-    if (pid > 0) {
-        double start = rf_monotonic_seconds();
-        long nap_ns = 1000000;
-        for (;;) {
-            siginfo_t si;
-            memset(&si, 0, sizeof si);
-            /* WNOWAIT: the zombie keeps its pid (= process group id)
-             * reserved until the group has been killed below. */
-            if (waitid(P_PID, (id_t)pid, &si, WEXITED | WNOHANG | WNOWAIT) != 0) {
-                if (errno == EINTR)
-                    continue;
-                st = rf_fail(err, RF_EIO, "cannot wait for program '%s': %s", prog, strerror(errno));
-                break;
-            }
-            if (si.si_pid == pid)
-                break;
-            if (c->timeout > 0 && rf_monotonic_seconds() - start >= c->timeout) {
-                timed_out = 1;
-                break;
-            }
-            struct timespec nap = {0, nap_ns};
-            nanosleep(&nap, NULL);
-            if (nap_ns < 10000000)
-                nap_ns *= 2;
-        }
-        /* Also ends anything the program left running in its group. */
-        kill(-pid, SIGKILL);
-        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-            ;
-    }
+    if (st == RF_OK && interrupted)
+        st = rf_fail(err, RF_EINTERRUPTED, "program '%s' at %s was stopped: the run was interrupted", prog, point);
 
     if (st == RF_OK) {
         char tail[TAIL_BYTES + 64];
@@ -765,7 +928,9 @@ static rf_status external_eval(void *ctx, const double *x, double *y, rf_error *
     if (!err)
         err = &local;
     rf_status st = run_once(c, x, dir.data, y, err);
-    if (st != RF_OK) {
+    if (st == RF_EINTERRUPTED && !c->keep_workdirs) {
+        nftw(dir.data, remove_entry, 16, FTW_DEPTH | FTW_PHYS); /* stopped on request: no evidence to keep */
+    } else if (st != RF_OK) {
         char msg[RF_ERROR_MAX];
         memcpy(msg, err->msg, sizeof msg);
         /* The directory is the evidence; make sure its name survives a long message. */
@@ -781,6 +946,11 @@ static rf_status external_eval(void *ctx, const double *x, double *y, rf_error *
 }
 
 /* ---- creation --------------------------------------------------------- */
+
+static void external_set_interrupt(void *ctx, const atomic_int *flag)
+{
+    ((ext_ctx *)ctx)->interrupt = flag;
+}
 
 static void external_destroy(void *ctx)
 {
@@ -839,7 +1009,17 @@ static char *build_identity(const ext_ctx *c)
     sb_puts(&b, "];argv=[");
     for (size_t a = 0; a < c->argc; a++)
         sb_printf(&b, "%s\"%s\"", a ? "," : "", c->argv[a]);
-    sb_puts(&b, "];templates=[");
+    sb_printf(&b, "];program=%s:fnv1a64=%016llx;files=[", c->program_path, (unsigned long long)c->program_hash);
+    /* arguments naming a file by absolute path (e.g. the script of an interpreter) */
+    for (size_t a = 1, any = 0; a < c->argc; a++) {
+        struct stat sb;
+        uint64_t h;
+        if (c->argv[a][0] == '/' && !strchr(c->argv[a], '{') && stat(c->argv[a], &sb) == 0 &&
+            S_ISREG(sb.st_mode) && file_hash(c->argv[a], &h) == 0)
+            sb_printf(&b, "%s%zu:fnv1a64=%016llx", any++ ? "," : "", a, (unsigned long long)h);
+    }
+    sb_puts(&b, "]");
+    sb_puts(&b, ";templates=[");
     for (size_t t = 0; t < c->n_templates; t++)
         sb_printf(&b, "%s%s:fnv1a64=%016llx", t ? "," : "", c->templates[t].dst,
                   (unsigned long long)fnv1a64(c->templates[t].text, c->templates[t].len));
@@ -899,6 +1079,11 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
     rf_status st = resolve_program(c->argv[0], &c->program_path, err);
     if (st != RF_OK)
         return st;
+    /* An edited program must not be served from a result store: its contents enter the identity. */
+    int e = file_hash(c->program_path, &c->program_hash);
+    if (e)
+        return rf_fail(err, e == ENOMEM ? RF_ENOMEM : RF_EIO, "external model: cannot read program '%s' (%s): %s",
+                       c->argv[0], c->program_path, strerror(e));
 
     while (c->n_templates < spec->n_templates) {
         size_t t = c->n_templates++;
@@ -1002,6 +1187,7 @@ rf_status rf_external_model_create(const rf_external_spec *spec, size_t n_params
     model->eval = external_eval;
     model->ctx = c;
     model->destroy = external_destroy;
+    model->set_interrupt = external_set_interrupt;
     model->threads_per_eval = 1;
     const char **names = calloc(c->n_outputs, sizeof *names);
     const char **units = calloc(c->n_outputs, sizeof *units);

@@ -208,6 +208,30 @@ static rf_status move_aside(const char *path, rf_error *err)
     return RF_OK;
 }
 
+/* SQLite's side files of path (-wal, -shm) that do not exist now: on a
+ * refusal they are removed again, so the folder is left as it was found. */
+static void note_side_files(const char *path, int absent[2])
+{
+    static const char *const sfx[2] = {"-wal", "-shm"};
+    for (int k = 0; k < 2; k++) {
+        char f[4096];
+        struct stat sb;
+        snprintf(f, sizeof f, "%s%s", path, sfx[k]);
+        absent[k] = stat(f, &sb) != 0 && errno == ENOENT;
+    }
+}
+
+static void remove_new_side_files(const char *path, const int absent[2])
+{
+    static const char *const sfx[2] = {"-wal", "-shm"};
+    for (int k = 0; k < 2; k++) {
+        char f[4096];
+        snprintf(f, sizeof f, "%s%s", path, sfx[k]);
+        if (absent[k])
+            unlink(f);
+    }
+}
+
 /* Open an existing file as a store: format, then integrity.  Reads only; no
  * checkpoint on close, so a refused file is left exactly as it was. */
 static rf_status open_existing(rf_store *s, const char *path, int *damaged, rf_error *err)
@@ -253,12 +277,14 @@ rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf
     s->n_inputs = key->n_inputs;
     s->n_outputs = key->n_outputs;
     rf_status st = RF_OK;
-    int damaged = 0;
+    int damaged = 0, absent[2];
+    note_side_files(path, absent);
     if (exists && (st = open_existing(s, path, &damaged, err)) != RF_OK) {
-        if (!(damaged && fresh))
-            goto done;
         sqlite3_close(s->db);
         s->db = NULL;
+        remove_new_side_files(path, absent); /* ours, empty: nothing was written */
+        if (!(damaged && fresh))
+            goto done;
         if ((st = move_aside(path, err)) != RF_OK)
             goto done;
         exists = 0;

@@ -78,12 +78,19 @@ static rf_status check_out_dir(const char *dir, int force, rf_error *err)
 }
 
 /* Take DIR/rockfuzz.lock (exclusive flock, released when *fd is closed or
- * the process dies) and write who holds it; a held lock names its holder. */
-static rf_status lock_dir(const char *dir, const char *study_path, int *fd, rf_error *err)
+ * the process dies); a held lock names its holder.  *created: the file is new. */
+static rf_status lock_dir(const char *dir, int *fd, int *created, rf_error *err)
 {
     char path[PATH_MAX];
     snprintf(path, sizeof path, "%s/%s", dir, RF_RUN_LOCK_FILE);
-    *fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    *created = 0;
+    *fd = open(path, O_RDWR | O_CLOEXEC);
+    if (*fd < 0 && errno == ENOENT) {
+        *fd = open(path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        *created = *fd >= 0;
+        if (*fd < 0 && errno == EEXIST)
+            *fd = open(path, O_RDWR | O_CLOEXEC);
+    }
     if (*fd < 0)
         return rf_fail(err, RF_EIO, "--out %s: cannot create the lock file %s: %s", dir, path, strerror(errno));
     if (flock(*fd, LOCK_EX | LOCK_NB) != 0) {
@@ -100,6 +107,13 @@ static rf_status lock_dir(const char *dir, const char *study_path, int *fd, rf_e
                        "end or stop it, or choose another folder",
                        dir, holder[0] ? holder : "holder unknown");
     }
+    return RF_OK;
+}
+
+/* Write who holds the lock (after the store was accepted: a refused run
+ * leaves the folder as it was). */
+static rf_status write_holder(const char *dir, const char *study_path, int fd, rf_error *err)
+{
     char host[256] = "?", text[1024];
     gethostname(host, sizeof host - 1);
     time_t now = time(NULL);
@@ -109,13 +123,9 @@ static rf_status lock_dir(const char *dir, const char *study_path, int *fd, rf_e
         strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S %z", &tmv);
     int len = snprintf(text, sizeof text, "pid %ld on %s since %s, study %s\n", (long)getpid(), host, when,
                        study_path);
-    if (ftruncate(*fd, 0) != 0 || pwrite(*fd, text, (size_t)len, 0) != len) {
-        rf_status st = rf_fail(err, RF_EIO, "--out %s: cannot write the lock file %s: %s", dir, path,
-                               strerror(errno));
-        close(*fd);
-        *fd = -1;
-        return st;
-    }
+    if (ftruncate(fd, 0) != 0 || pwrite(fd, text, (size_t)len, 0) != len)
+        return rf_fail(err, RF_EIO, "--out %s: cannot write the lock file %s: %s", dir, RF_RUN_LOCK_FILE,
+                       strerror(errno));
     return RF_OK;
 }
 
@@ -134,6 +144,7 @@ typedef struct {
     int plan_failed;
     char store_path[PATH_MAX];
     double t0;
+    int lock_fd;
 } run_state;
 
 static int on_plan(void *user, size_t requested, size_t distinct)
@@ -305,6 +316,8 @@ static rf_status run_steps(run_state *r, rf_error *err)
     rf_status st;
     if ((st = open_store(r, err)) != RF_OK)
         return st;
+    if ((st = write_holder(r->opt->out_dir, r->study_path, r->lock_fd, err)) != RF_OK)
+        return st;
     setup_runner(r);
     if ((st = plan(r, err)) != RF_OK)
         return st;
@@ -334,15 +347,23 @@ static rf_status run_rank0(run_state *r, rf_error *err)
     rf_status st = check_out_dir(dir, r->opt->force, err);
     if (st == RF_OK)
         st = rf_report_make_dir(dir, err);
-    int lock_fd = -1;
+    int created = 0;
+    r->lock_fd = -1;
     if (st == RF_OK)
-        st = lock_dir(dir, r->study_path, &lock_fd, err);
+        st = lock_dir(dir, &r->lock_fd, &created, err);
     if (st == RF_OK)
         st = run_steps(r, err);
+    int opened = r->store != NULL;
     rf_store_close(r->store);
     r->store = NULL;
-    if (lock_fd >= 0)
-        close(lock_fd); /* the text stays: it names the last holder; the lock is the flock */
+    if (r->lock_fd >= 0) {
+        if (created && !opened) {
+            char path[PATH_MAX];
+            snprintf(path, sizeof path, "%s/%s", dir, RF_RUN_LOCK_FILE);
+            unlink(path); /* refused before anything was written: leave no trace */
+        }
+        close(r->lock_fd); /* the text stays: it names the last holder; the lock is the flock */
+    }
     return st;
 }
 
