@@ -10,8 +10,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define MAX_PARAMS 64
+#define STUDY_PIPE_WAIT_MS 5000 /* a pipe given as the study file must deliver within this */
 #define MAX_POINTS 10000
 
 static const char *const shape_keys[] = {"tfn", "trapezoid", "interval", "gaussian", "crisp", "points", "cuts"};
@@ -637,8 +642,29 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
     /* Duplicate keys are accepted by the parser and reported by us with both lines. */
     pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
     pc.diag = diag;
-    struct fy_document *doc = fy_document_build_from_string(&pc, len ? buf : "", len);
+    struct fy_parser *fyp = fy_parser_create(&pc);
+    struct fy_document *doc = NULL;
+    if (fyp && fy_parser_set_string(fyp, len ? buf : "", len) == 0)
+        doc = fy_parse_load_document(fyp);
+    if (doc) {
+        /* One study per file: a second document would otherwise be ignored without a word. */
+        struct fy_document *more = fy_parse_load_document(fyp);
+        if (more || fy_parser_get_stream_error(fyp)) {
+            int line = more && fy_document_root(more) ? sp_line(fy_document_root(more)) : 0;
+            st = line ? rf_fail(err, RF_EPARSE, "%s:%d: a second YAML document (after '---'); a study file holds "
+                                "exactly one", name, line)
+                      : rf_fail(err, RF_EPARSE, "%s: a second YAML document, or text after the first that is not "
+                                "YAML; a study file holds exactly one document", name);
+            fy_parse_document_destroy(fyp, more);
+            fy_parse_document_destroy(fyp, doc);
+            fy_parser_destroy(fyp);
+            fy_diag_destroy(diag);
+            rf_study_free(s);
+            return st;
+        }
+    }
     if (!doc) {
+        fy_parser_destroy(fyp);
         void *it = NULL;
         struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
         if (e)
@@ -651,11 +677,43 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
     }
     sp_ctx c = {name, s->dir, err, NULL};
     st = parse_document(&c, s, doc);
-    fy_document_destroy(doc);
+    fy_parse_document_destroy(fyp, doc);
+    fy_parser_destroy(fyp);
     fy_diag_destroy(diag);
     if (st != RF_OK)
         rf_study_free(s);
     return st;
+}
+
+/* Open the study file: a regular file, or a pipe that has a writer (e.g.
+ * `<(generate)`); a directory, a device or a FIFO nobody writes to is refused
+ * instead of read or waited on forever. */
+static rf_status open_study_file(const char *path, FILE **f, rf_error *err)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        return rf_fail(err, RF_EIO, "%s: cannot open the study file: %s", path, strerror(errno));
+    struct stat sb;
+    const char *what = NULL;
+    if (fstat(fd, &sb) != 0)
+        what = strerror(errno);
+    else if (S_ISDIR(sb.st_mode))
+        what = "it is a directory";
+    else if (S_ISFIFO(sb.st_mode)) {
+        struct pollfd p = {fd, POLLIN, 0};
+        if (poll(&p, 1, STUDY_PIPE_WAIT_MS) <= 0 || !(p.revents & (POLLIN | POLLHUP)))
+            what = "it is a pipe or FIFO and nothing was written to it within 5 s";
+    } else if (!S_ISREG(sb.st_mode))
+        what = "it is not a regular file";
+    if (!what && fcntl(fd, F_SETFL, 0) != 0)
+        what = strerror(errno);
+    if (!what && !(*f = fdopen(fd, "rb")))
+        what = strerror(errno);
+    if (what) {
+        close(fd);
+        return rf_fail(err, RF_EIO, "%s: cannot read the study file: %s", path, what);
+    }
+    return RF_OK;
 }
 
 rf_status rf_study_load(const char *path, rf_study *study, rf_error *err)
@@ -663,9 +721,10 @@ rf_status rf_study_load(const char *path, rf_study *study, rf_error *err)
     if (!path || !study)
         return rf_fail(err, RF_EINTERNAL, "rf_study_load: NULL argument");
     memset(study, 0, sizeof *study);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return rf_fail(err, RF_EIO, "%s: cannot open the study file: %s", path, strerror(errno));
+    FILE *f = NULL;
+    rf_status opened = open_study_file(path, &f, err);
+    if (opened != RF_OK)
+        return opened;
     long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
     if (size < 0 || fseek(f, 0, SEEK_SET) != 0)
         size = MAX_STUDY_BYTES; /* not seekable (a pipe): read up to the limit */
