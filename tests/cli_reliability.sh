@@ -67,10 +67,13 @@ wait_stored() { # $1 = dir: wait until some evaluations are stored (at most 10 s
 # ---- SIGTERM and SIGINT: clean stop ----
 for sig in TERM INT; do
     rm -f "$tmp/pids"
-    timeout 30 "$bin" run "$tmp/s.yaml" --out "$tmp/$sig" --quiet > /dev/null 2> "$tmp/$sig.err" &
+    # not under timeout(1): it would pass the signal on twice (and a second SIGINT means "now")
+    "$bin" run "$tmp/s.yaml" --out "$tmp/$sig" --quiet > /dev/null 2> "$tmp/$sig.err" &
     pid=$!
     wait_stored "$tmp/$sig" || fail "$sig: nothing stored within 10 s: $(cat "$tmp/$sig.err")"
     kill -s $sig $pid
+    for _ in $(seq 100); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done
+    kill -0 $pid 2>/dev/null && { fail "$sig: still running 10 s after the signal"; kill -9 $pid; }
     wait $pid; rc=$?
     pid=""
     want=$((128 + $(kill -l $sig)))
