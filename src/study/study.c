@@ -425,11 +425,11 @@ static rf_status parse_parameters(sp_ctx *c, rf_study *s, struct fy_node *n)
             return sp_fail(c, k, "", "%s: a parameter name must be an identifier (letters, digits, _; not "
                                      "starting with a digit; at most 64 characters)",
                            path);
+        s->n_params = i + 1; /* from here rf_study_free releases entry i (also half-filled) */
         s->param_names[i] = sp_strdup(key);
         s->param_units[i] = sp_strdup("");
         if (!s->param_names[i] || !s->param_units[i])
             return rf_fail(c->err, RF_ENOMEM, "out of memory");
-        s->n_params = i + 1; /* from here rf_study_free releases entry i */
         if ((st = parse_param(c, s, i, s->param_names[i], k, v)) != RF_OK)
             return st;
     }
