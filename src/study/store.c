@@ -17,6 +17,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/util.h"
+
 #define STORE_FORMAT "rockfuzz-store"
 #define STORE_FORMAT_VERSION "1"
 
@@ -257,17 +259,104 @@ static rf_status open_existing(rf_store *s, const char *path, int *damaged, rf_e
     return RF_OK;
 }
 
+/* s->db on the file at path: an existing one checked (a damaged one moved
+ * aside with fresh), else a new empty database.  *exists: an old store is open. */
+static rf_status open_or_create(rf_store *s, const char *path, int fresh, int *exists, rf_error *err)
+{
+    struct stat sb;
+    *exists = stat(path, &sb) == 0 && sb.st_size > 0;
+    int damaged = 0, absent[2];
+    note_side_files(path, absent);
+    if (*exists) {
+        rf_status st = open_existing(s, path, &damaged, err);
+        if (st == RF_OK)
+            return RF_OK;
+        sqlite3_close(s->db);
+        s->db = NULL;
+        remove_new_side_files(path, absent); /* ours, empty: nothing was written */
+        if (!(damaged && fresh))
+            return st;
+        if ((st = move_aside(path, err)) != RF_OK)
+            return st;
+        *exists = 0;
+    }
+    if (sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | SQLITE_OPEN_CREATE, NULL) !=
+        SQLITE_OK)
+        return open_fail(err, s->db, path);
+    sqlite3_busy_timeout(s->db, 10000);
+    sqlite3_extended_result_codes(s->db, 1);
+    return RF_OK;
+}
+
+/* Same model, settings, version and names?  Checked before anything is written. */
+static rf_status check_key(rf_store *s, const rf_store_key *key, const char *inputs, const char *outputs, int fresh,
+                           rf_error *err)
+{
+    static const char *const keys[4] = {"identity", "rockfuzz_version", "inputs", "outputs"};
+    static const char *const what[4] = {"model or its settings", "rockfuzz version", "input names", "output names"};
+    const char *now[4] = {key->identity, key->version, inputs, outputs};
+    char *stored = malloc(65536);
+    if (!stored)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    rf_status st = RF_OK;
+    for (int k = 0; k < 4 && st == RF_OK; k++) {
+        if (meta_get(s->db, keys[k], stored, 65536) != 0) {
+            st = db_fail(err, s->db, s->path, "cannot read its meta table");
+        } else if (strcmp(stored, now[k]) != 0 && !fresh) {
+            char diff[512];
+            first_difference(stored, now[k], diff, sizeof diff);
+            st = rf_fail(err, RF_EINVAL,
+                         "%s holds results of a different %s (%s); they are not mixed with this run: rerun with "
+                         "--fresh to discard them, or choose another --out directory",
+                         s->path, what[k], diff);
+        }
+    }
+    free(stored);
+    return st;
+}
+
+/* WAL mode, the tables of a new store, and the key, in one transaction. */
+static rf_status write_key(rf_store *s, const rf_store_key *key, const char *inputs, const char *outputs, int exists,
+                           int fresh, rf_error *err)
+{
+    sqlite3 *db = s->db;
+    if (sqlite3_exec(db, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(err, db, s->path, "cannot switch to WAL mode");
+    if (!exists && sqlite3_exec(db, SCHEMA, NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(err, db, s->path, "cannot create the tables");
+    if (sqlite3_exec(db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(err, db, s->path, "cannot start a transaction");
+    if ((exists && fresh && sqlite3_exec(db, "DELETE FROM results", NULL, NULL, NULL) != SQLITE_OK) ||
+        meta_set(db, "format", STORE_FORMAT) || meta_set(db, "format_version", STORE_FORMAT_VERSION) ||
+        meta_set(db, "identity", key->identity) || meta_set(db, "rockfuzz_version", key->version) ||
+        meta_set(db, "inputs", inputs) || meta_set(db, "outputs", outputs)) {
+        rf_status st = db_fail(err, db, s->path, "cannot write its meta table");
+        sqlite3_exec(db, "ROLLBACK", NULL, NULL, NULL);
+        return st;
+    }
+    if (sqlite3_exec(db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK) {
+        rf_status st = db_fail(err, db, s->path, "cannot commit its meta table");
+        sqlite3_exec(db, "ROLLBACK", NULL, NULL, NULL);
+        return st;
+    }
+    if (sqlite3_prepare_v2(db, "SELECT ok, y FROM results WHERE x = ?1", -1, &s->lookup, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(db,
+                           "INSERT OR REPLACE INTO results(x, ok, y, error, seconds, finished, x_text) "
+                           "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7)",
+                           -1, &s->put, NULL) != SQLITE_OK)
+        return db_fail(err, db, s->path, "cannot prepare its statements");
+    return RF_OK;
+}
+
 rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf_store **out, rf_error *err)
 {
     *out = NULL;
     if (!path || !key || !key->identity || !key->version)
         return rf_fail(err, RF_EINTERNAL, "rf_store_open: NULL argument");
-    struct stat sb;
-    int exists = stat(path, &sb) == 0 && sb.st_size > 0;
     rf_store *s = calloc(1, sizeof *s);
     char *inputs = join_names(key->n_inputs, key->input_names);
     char *outputs = join_names(key->n_outputs, key->output_names);
-    if (!s || !inputs || !outputs || !(s->path = strdup(path))) {
+    if (!s || !inputs || !outputs || !(s->path = rf_strdup(path))) {
         free(s);
         free(inputs);
         free(outputs);
@@ -276,92 +365,12 @@ rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf
     pthread_mutex_init(&s->lock, NULL);
     s->n_inputs = key->n_inputs;
     s->n_outputs = key->n_outputs;
-    rf_status st = RF_OK;
-    int damaged = 0, absent[2];
-    note_side_files(path, absent);
-    if (exists && (st = open_existing(s, path, &damaged, err)) != RF_OK) {
-        sqlite3_close(s->db);
-        s->db = NULL;
-        remove_new_side_files(path, absent); /* ours, empty: nothing was written */
-        if (!(damaged && fresh))
-            goto done;
-        if ((st = move_aside(path, err)) != RF_OK)
-            goto done;
-        exists = 0;
-    }
-    if (!exists) {
-        if (sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | SQLITE_OPEN_CREATE,
-                            NULL) != SQLITE_OK) {
-            st = open_fail(err, s->db, path);
-            goto done;
-        }
-        sqlite3_busy_timeout(s->db, 10000);
-        sqlite3_extended_result_codes(s->db, 1);
-    }
-    if (exists) {
-        /* Same model, settings, version and names?  Checked before anything is written. */
-        static const char *const keys[4] = {"identity", "rockfuzz_version", "inputs", "outputs"};
-        static const char *const what[4] = {"model or its settings", "rockfuzz version", "input names",
-                                            "output names"};
-        const char *now[4] = {key->identity, key->version, inputs, outputs};
-        for (int k = 0; k < 4; k++) {
-            char *stored = malloc(65536);
-            if (!stored) {
-                st = rf_fail(err, RF_ENOMEM, "out of memory");
-                goto done;
-            }
-            if (meta_get(s->db, keys[k], stored, 65536) != 0) {
-                free(stored);
-                st = db_fail(err, s->db, path, "cannot read its meta table");
-                goto done;
-            }
-            if (strcmp(stored, now[k]) != 0 && !fresh) {
-                char diff[512];
-                first_difference(stored, now[k], diff, sizeof diff);
-                st = rf_fail(err, RF_EINVAL,
-                             "%s holds results of a different %s (%s); they are not mixed with this run: "
-                             "rerun with --fresh to discard them, or choose another --out directory",
-                             path, what[k], diff);
-                free(stored);
-                goto done;
-            }
-            free(stored);
-        }
-    }
-    if (sqlite3_exec(s->db, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", NULL, NULL, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot switch to WAL mode");
-        goto done;
-    }
-    if (!exists && sqlite3_exec(s->db, SCHEMA, NULL, NULL, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot create the tables");
-        goto done;
-    }
-    if (sqlite3_exec(s->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot start a transaction");
-        goto done;
-    }
-    if ((exists && fresh && sqlite3_exec(s->db, "DELETE FROM results", NULL, NULL, NULL) != SQLITE_OK) ||
-        meta_set(s->db, "format", STORE_FORMAT) || meta_set(s->db, "format_version", STORE_FORMAT_VERSION) ||
-        meta_set(s->db, "identity", key->identity) || meta_set(s->db, "rockfuzz_version", key->version) ||
-        meta_set(s->db, "inputs", inputs) || meta_set(s->db, "outputs", outputs)) {
-        st = db_fail(err, s->db, path, "cannot write its meta table");
-        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
-        goto done;
-    }
-    if (sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot commit its meta table");
-        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
-        goto done;
-    }
-    if (sqlite3_prepare_v2(s->db, "SELECT ok, y FROM results WHERE x = ?1", -1, &s->lookup, NULL) != SQLITE_OK ||
-        sqlite3_prepare_v2(s->db,
-                           "INSERT OR REPLACE INTO results(x, ok, y, error, seconds, finished, x_text) "
-                           "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7)",
-                           -1, &s->put, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot prepare its statements");
-        goto done;
-    }
-done:
+    int exists = 0;
+    rf_status st = open_or_create(s, path, fresh, &exists, err);
+    if (st == RF_OK && exists)
+        st = check_key(s, key, inputs, outputs, fresh, err);
+    if (st == RF_OK)
+        st = write_key(s, key, inputs, outputs, exists, fresh, err);
     free(inputs);
     free(outputs);
     if (st != RF_OK) {
