@@ -767,13 +767,9 @@ static rf_status read_report(int fd, const ext_ctx *c, const char *point, int *s
     return RF_OK;
 }
 
-static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, double *y, rf_error *err)
+/* The templates with the values of x in place, written into dir. */
+static rf_status write_templates(const ext_ctx *c, const double *x, const char *dir, rf_error *err)
 {
-    char point[512];
-    format_point(c, x, point, sizeof point);
-    const char *prog = c->argv[0];
-
-    /* Templates and argv with the values in place. */
     for (size_t t = 0; t < c->n_templates; t++) {
         strbuf text = {0};
         rf_status st = expand(c, c->templates[t].text, c->templates[t].len, x, c->templates[t].src, &text, err);
@@ -787,6 +783,17 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
         if (e)
             return rf_fail(err, RF_EIO, "cannot write template '%s' into %s: %s", c->templates[t].dst, dir, strerror(e));
     }
+    return RF_OK;
+}
+
+/* Fork the supervisor of one run of the program (argv expanded for x); on
+ * success *pid is the supervisor and *report_fd the read end of its report pipe. */
+static rf_status start_program(const ext_ctx *c, const double *x, const char *dir, const char *point, pid_t *pid,
+                               int *report_fd, rf_error *err)
+{
+    const char *prog = c->argv[0];
+    *pid = -1;
+    *report_fd = -1;
     char **argv = calloc(c->argc + 1, sizeof *argv);
     if (!argv)
         return rf_fail(err, RF_ENOMEM, "out of memory for the argument list");
@@ -796,7 +803,6 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
         st = expand(c, c->argv[a], strlen(c->argv[a]), x, "argv", &arg, err);
         argv[a] = arg.data;
     }
-
     strbuf out_path = {0}, err_path = {0};
     sb_printf(&out_path, "%s/stdout.txt", dir);
     sb_printf(&err_path, "%s/stderr.txt", dir);
@@ -811,101 +817,131 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
             st = rf_fail(err, RF_EIO, "cannot set up the standard streams of program '%s' in %s: %s", prog, dir,
                          strerror(errno));
     }
-
-    pid_t pid = -1;
     if (st == RF_OK) {
         pid_t self = getpid();
-        pid = fork();
-        if (pid == 0)
+        *pid = fork();
+        if (*pid == 0)
             supervise(dir, c->program_path, argv, fd_in, fd_out, fd_err, report[1], self);
-        if (pid < 0)
+        if (*pid < 0)
             st = rf_fail(err, RF_EIO, "cannot start program '%s' at %s: fork: %s", prog, point, strerror(errno));
     }
-    if (report[1] >= 0)
-        close(report[1]);
-    if (fd_in >= 0)
-        close(fd_in);
-    if (fd_out >= 0)
-        close(fd_out);
-    if (fd_err >= 0)
-        close(fd_err);
+    int fds[4] = {report[1], fd_in, fd_out, fd_err};
+    for (int k = 0; k < 4; k++)
+        if (fds[k] >= 0)
+            close(fds[k]);
+    if (st == RF_OK)
+        *report_fd = report[0];
+    else if (report[0] >= 0)
+        close(report[0]);
     for (size_t a = 0; a < c->argc; a++)
         free(argv[a]);
     free(argv);
-
-    int status = 0, timed_out = 0, interrupted = 0;
-    if (pid > 0) {
-        wait_supervisor(c, pid, &timed_out, &interrupted);
-        if (st == RF_OK)
-            st = read_report(report[0], c, point, &status, err);
-    }
-    if (report[0] >= 0)
-        close(report[0]);
-    if (st == RF_OK && interrupted)
-        st = rf_fail(err, RF_EINTERRUPTED, "program '%s' at %s was stopped: the run was interrupted", prog, point);
-
-    if (st == RF_OK) {
-        char tail[TAIL_BYTES + 64];
-        const char *which = "stderr";
-        file_tail(err_path.data, tail, sizeof tail);
-        if (!tail[0]) {
-            which = "stdout";
-            file_tail(out_path.data, tail, sizeof tail);
-        }
-        char tail_msg[sizeof tail + 32];
-        if (tail[0])
-            snprintf(tail_msg, sizeof tail_msg, "; %s tail: %s", which, tail);
-        else
-            snprintf(tail_msg, sizeof tail_msg, "; no output on stdout or stderr");
-        if (timed_out) {
-            st = rf_fail(err, RF_EMODEL, "program '%s' timed out after %g s at %s%s", prog, c->timeout, point,
-                         tail_msg);
-        } else if (WIFSIGNALED(status)) {
-            const char *sig = sigabbrev_np(WTERMSIG(status));
-            st = rf_fail(err, RF_EMODEL, "program '%s' was killed by signal %d (SIG%s) at %s%s", prog,
-                         WTERMSIG(status), sig ? sig : "?", point, tail_msg);
-        } else if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
-            st = rf_fail(err, RF_EMODEL, "program '%s' exited with status %d at %s%s", prog, WEXITSTATUS(status),
-                         point, tail_msg);
-        }
-
-        /* Outputs; each file is read once. */
-        read_cache *cache = st == RF_OK ? calloc(c->n_outputs, sizeof *cache) : NULL;
-        size_t n_cache = 0;
-        if (st == RF_OK && !cache)
-            st = rf_fail(err, RF_ENOMEM, "out of memory reading outputs");
-        for (size_t k = 0; k < c->n_outputs && st == RF_OK; k++) {
-            const ext_output *o = &c->outputs[k];
-            const char *file = o->file ? o->file : "stdout.txt";
-            size_t hit = 0;
-            while (hit < n_cache && strcmp(cache[hit].file, file) != 0)
-                hit++;
-            if (hit == n_cache) {
-                strbuf path = {0};
-                sb_printf(&path, "%s/%s", dir, file);
-                int e = path.oom ? ENOMEM : read_file(path.data, OUTPUT_FILE_MAX, &cache[hit].text, &cache[hit].len);
-                free(path.data);
-                if (e) {
-                    st = rf_fail(err, RF_EMODEL, "program '%s' at %s: output '%s': cannot read %s: %s%s", prog,
-                                 point, o->name, file, strerror(e), tail_msg);
-                    break;
-                }
-                cache[hit].file = (char *)file;
-                n_cache++;
-            }
-            const char *source = o->file ? o->file : "stdout";
-            st = o->has_regex ? parse_regex(o, cache[hit].text, source, &y[k], err) :
-                                parse_named(o, cache[hit].text, source, &y[k], err);
-            if (st != RF_OK)
-                rf_error_prefix(err, "program '%s' at %s", prog, point);
-        }
-        for (size_t i = 0; i < n_cache; i++)
-            free(cache[i].text);
-        free(cache);
-    }
     free(out_path.data);
     free(err_path.data);
     return st;
+}
+
+/* "; stderr tail: ..." (or stdout's when stderr is empty) for messages. */
+static void output_tail(const char *dir, char *msg, size_t size)
+{
+    char path[PATH_MAX], tail[TAIL_BYTES + 64];
+    const char *which = "stderr";
+    snprintf(path, sizeof path, "%s/stderr.txt", dir);
+    file_tail(path, tail, sizeof tail);
+    if (!tail[0]) {
+        which = "stdout";
+        snprintf(path, sizeof path, "%s/stdout.txt", dir);
+        file_tail(path, tail, sizeof tail);
+    }
+    if (tail[0])
+        snprintf(msg, size, "; %s tail: %s", which, tail);
+    else
+        snprintf(msg, size, "; no output on stdout or stderr");
+}
+
+/* The program's end as an error: timed out, killed by a signal, or a non-zero exit. */
+static rf_status exit_error(const ext_ctx *c, int status, int timed_out, const char *point, const char *tail,
+                            rf_error *err)
+{
+    const char *prog = c->argv[0];
+    if (timed_out)
+        return rf_fail(err, RF_EMODEL, "program '%s' timed out after %g s at %s%s", prog, c->timeout, point, tail);
+    if (WIFSIGNALED(status)) {
+        const char *sig = sigabbrev_np(WTERMSIG(status));
+        return rf_fail(err, RF_EMODEL, "program '%s' was killed by signal %d (SIG%s) at %s%s", prog, WTERMSIG(status),
+                       sig ? sig : "?", point, tail);
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+        return rf_fail(err, RF_EMODEL, "program '%s' exited with status %d at %s%s", prog, WEXITSTATUS(status), point,
+                       tail);
+    return RF_OK;
+}
+
+/* Every output from stdout or its file; each file is read once. */
+static rf_status read_outputs(const ext_ctx *c, const char *dir, const char *point, const char *tail, double *y,
+                              rf_error *err)
+{
+    const char *prog = c->argv[0];
+    read_cache *cache = calloc(c->n_outputs, sizeof *cache);
+    if (!cache)
+        return rf_fail(err, RF_ENOMEM, "out of memory reading outputs");
+    size_t n_cache = 0;
+    rf_status st = RF_OK;
+    for (size_t k = 0; k < c->n_outputs && st == RF_OK; k++) {
+        const ext_output *o = &c->outputs[k];
+        const char *file = o->file ? o->file : "stdout.txt";
+        size_t hit = 0;
+        while (hit < n_cache && strcmp(cache[hit].file, file) != 0)
+            hit++;
+        if (hit == n_cache) {
+            strbuf path = {0};
+            sb_printf(&path, "%s/%s", dir, file);
+            int e = path.oom ? ENOMEM : read_file(path.data, OUTPUT_FILE_MAX, &cache[hit].text, &cache[hit].len);
+            free(path.data);
+            if (e) {
+                st = rf_fail(err, RF_EMODEL, "program '%s' at %s: output '%s': cannot read %s: %s%s", prog, point,
+                             o->name, file, strerror(e), tail);
+                break;
+            }
+            cache[hit].file = (char *)file;
+            n_cache++;
+        }
+        const char *source = o->file ? o->file : "stdout";
+        st = o->has_regex ? parse_regex(o, cache[hit].text, source, &y[k], err)
+                          : parse_named(o, cache[hit].text, source, &y[k], err);
+        if (st != RF_OK)
+            rf_error_prefix(err, "program '%s' at %s", prog, point);
+    }
+    for (size_t i = 0; i < n_cache; i++)
+        free(cache[i].text);
+    free(cache);
+    return st;
+}
+
+static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, double *y, rf_error *err)
+{
+    char point[512];
+    format_point(c, x, point, sizeof point);
+    pid_t pid = -1;
+    int report_fd = -1;
+    rf_status st = write_templates(c, x, dir, err);
+    if (st == RF_OK)
+        st = start_program(c, x, dir, point, &pid, &report_fd, err);
+    if (st != RF_OK)
+        return st;
+    int status = 0, timed_out = 0, interrupted = 0;
+    wait_supervisor(c, pid, &timed_out, &interrupted);
+    st = read_report(report_fd, c, point, &status, err);
+    close(report_fd);
+    if (st == RF_OK && interrupted)
+        return rf_fail(err, RF_EINTERRUPTED, "program '%s' at %s was stopped: the run was interrupted", c->argv[0],
+                       point);
+    if (st != RF_OK)
+        return st;
+    char tail[TAIL_BYTES + 128];
+    output_tail(dir, tail, sizeof tail);
+    st = exit_error(c, status, timed_out, point, tail, err);
+    return st == RF_OK ? read_outputs(c, dir, point, tail, y, err) : st;
 }
 
 static rf_status external_eval(void *ctx, const double *x, double *y, rf_error *err)
