@@ -8,12 +8,9 @@
 #include <errno.h>
 #include <signal.h>
 #include <stdatomic.h>
-#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "rockfuzz/mpi.h"

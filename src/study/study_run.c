@@ -392,7 +392,10 @@ rf_status rf_study_run(const char *study_path, const rf_study_run_options *opt, 
     r->opt = opt;
     rf_status st = rf_study_load(study_path, &r->study, err);
     if (opt->mpi_rank > 0) {
-        /* A worker rank: evaluate what rank 0 sends; rank 0 reports every message. */
+        /* A worker rank: evaluate what rank 0 sends; rank 0 reports every message.  With
+         * the flag a stopped program comes back as RF_EINTERRUPTED, which rank 0 does not store. */
+        if (st == RF_OK)
+            rf_model_set_interrupt(&r->study.model, opt->interrupt);
         int wrc = rf_mpi_worker(st == RF_OK ? &r->study.model : NULL, err->msg);
         st = wrc == 0 ? RF_OK : rf_fail(err, RF_EIO, "MPI worker rank %d stopped with status %d", opt->mpi_rank, wrc);
     } else {
