@@ -110,7 +110,10 @@ wait_stored "$tmp/lock" || fail "lock: first run stored nothing"
 timeout 10 "$bin" run "$tmp/s.yaml" --out "$tmp/lock" --quiet > /dev/null 2> "$tmp/lock.err"; rc=$?
 [ $rc -eq 1 ] || fail "lock: second run exit status $rc"
 grep -q "in use by another rockfuzz run (pid [0-9]* on .*study $tmp/s.yaml)" "$tmp/lock.err" || fail "lock: message: $(cat "$tmp/lock.err")"
+"$bin" status "$tmp/lock" | grep -q "^State  *running (pid [0-9]* on .*study $tmp/s.yaml)" \
+    || fail "lock: status does not name the holder: $("$bin" status "$tmp/lock" | grep State)"
 kill -TERM $pid; wait $pid 2>/dev/null; pid=""
+"$bin" status "$tmp/lock" | grep -q "^State  *stopped" || fail "lock: status after the run: $("$bin" status "$tmp/lock" | grep State)"
 
 # ---- --out: a folder of the user's is not overwritten ----
 mkdir -p "$tmp/mine" && echo "my notes" > "$tmp/mine/inputs.csv"
