@@ -381,6 +381,10 @@ static void fill_stats(const run_state *r, rf_study_run_stats *stats)
 rf_status rf_study_run(const char *study_path, const rf_study_run_options *opt, rf_study_run_stats *stats,
                        rf_error *err)
 {
+    rf_error local;
+    if (!err)
+        err = &local;
+    memset(err, 0, sizeof *err);
     if (stats)
         memset(stats, 0, sizeof *stats);
     if (!study_path || !opt || !opt->out_dir)
