@@ -606,9 +606,11 @@ static void sweep_children(void)
             long pid = 0;
             while (*q >= '0' && *q <= '9')
                 pid = pid * 10 + (*q++ - '0');
-            while (*q == ' ')
+            /* the kernel ends every pid with a space: a number cut by the buffer end is not one */
+            int whole = *q == ' ' || *q == '\n';
+            while (*q == ' ' || *q == '\n')
                 q++;
-            if (pid > 0) {
+            if (pid > 0 && whole) {
                 kill((pid_t)pid, SIGKILL);
                 while (waitpid((pid_t)pid, NULL, 0) < 0 && errno == EINTR)
                     ;
@@ -635,6 +637,13 @@ static void supervise(const char *dir, const char *path, char *const argv[], int
     if (getppid() != parent)
         _exit(1);
     prctl(PR_SET_CHILD_SUBREAPER, 1);
+    /* out of the way of 0..3 first, in case the caller had closed its standard streams */
+    fd_in = fcntl(fd_in, F_DUPFD, 10);
+    fd_out = fcntl(fd_out, F_DUPFD, 10);
+    fd_err = fcntl(fd_err, F_DUPFD, 10);
+    report_fd = fcntl(report_fd, F_DUPFD, 10);
+    if (fd_in < 0 || fd_out < 0 || fd_err < 0 || report_fd < 0)
+        _exit(1);
     if (dup2(fd_in, 0) < 0 || dup2(fd_out, 1) < 0 || dup2(fd_err, 2) < 0 || dup2(report_fd, 3) < 0) {
         report_record(report_fd, 2, errno);
         _exit(1);
