@@ -603,6 +603,43 @@ static rf_status check_text(const char *name, const char *buf, size_t len, rf_er
 
 #define MAX_STUDY_BYTES (16u << 20)
 
+/* The one YAML document of buf into *doc (free with fy_parse_document_destroy
+ * on *fyp); invalid YAML, no document or a second one is an error. */
+static rf_status read_yaml(const char *name, const char *buf, size_t len, struct fy_diag *diag,
+                           struct fy_parser **fyp, struct fy_document **doc, rf_error *err)
+{
+    struct fy_parse_cfg pc;
+    memset(&pc, 0, sizeof pc);
+    /* Duplicate keys are accepted by the parser and reported by us with both lines. */
+    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
+    pc.diag = diag;
+    *doc = NULL;
+    *fyp = fy_parser_create(&pc);
+    if (!*fyp)
+        return rf_fail(err, RF_ENOMEM, "out of memory (YAML parser)");
+    if (fy_parser_set_string(*fyp, len ? buf : "", len) == 0)
+        *doc = fy_parse_load_document(*fyp);
+    if (!*doc) {
+        void *it = NULL;
+        struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
+        if (e)
+            return rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg,
+                           e->column);
+        return rf_fail(err, RF_EPARSE, "%s:1: the study file holds no YAML document (empty?)", name);
+    }
+    /* One study per file: a second document would otherwise be ignored without a word. */
+    struct fy_document *more = fy_parse_load_document(*fyp);
+    if (!more && !fy_parser_get_stream_error(*fyp))
+        return RF_OK;
+    int line = more && fy_document_root(more) ? sp_line(fy_document_root(more)) : 0;
+    fy_parse_document_destroy(*fyp, more);
+    if (line)
+        return rf_fail(err, RF_EPARSE, "%s:%d: a second YAML document (after '---'); a study file holds exactly one",
+                       name, line);
+    return rf_fail(err, RF_EPARSE, "%s: a second YAML document, or text after the first that is not YAML; a study "
+                   "file holds exactly one document", name);
+}
+
 static rf_status load(const char *name, const char *buf, size_t len, rf_study *s, rf_error *err)
 {
     memset(s, 0, sizeof *s);
@@ -616,70 +653,34 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
     if (!s->path)
         return rf_fail(err, RF_ENOMEM, "out of memory");
     rf_status st = split_path(name, &s->dir, &stem, err);
-    if (st != RF_OK) {
-        free(stem);
-        rf_study_free(s);
-        return st;
-    }
     s->name = stem;
-
-    if ((st = check_text(name, buf, len, err)) != RF_OK) {
-        rf_study_free(s);
-        return st;
-    }
-    struct fy_diag_cfg dc;
-    fy_diag_cfg_default(&dc);
-    dc.fp = NULL;
-    dc.colorize = false;
-    struct fy_diag *diag = fy_diag_create(&dc);
-    if (!diag) {
-        rf_study_free(s);
-        return rf_fail(err, RF_ENOMEM, "out of memory (YAML diagnostics)");
-    }
-    fy_diag_set_collect_errors(diag, true);
-    struct fy_parse_cfg pc;
-    memset(&pc, 0, sizeof pc);
-    /* Duplicate keys are accepted by the parser and reported by us with both lines. */
-    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
-    pc.diag = diag;
-    struct fy_parser *fyp = fy_parser_create(&pc);
-    struct fy_document *doc = NULL;
-    if (fyp && fy_parser_set_string(fyp, len ? buf : "", len) == 0)
-        doc = fy_parse_load_document(fyp);
-    if (doc) {
-        /* One study per file: a second document would otherwise be ignored without a word. */
-        struct fy_document *more = fy_parse_load_document(fyp);
-        if (more || fy_parser_get_stream_error(fyp)) {
-            int line = more && fy_document_root(more) ? sp_line(fy_document_root(more)) : 0;
-            st = line ? rf_fail(err, RF_EPARSE, "%s:%d: a second YAML document (after '---'); a study file holds "
-                                "exactly one", name, line)
-                      : rf_fail(err, RF_EPARSE, "%s: a second YAML document, or text after the first that is not "
-                                "YAML; a study file holds exactly one document", name);
-            fy_parse_document_destroy(fyp, more);
-            fy_parse_document_destroy(fyp, doc);
-            fy_parser_destroy(fyp);
-            fy_diag_destroy(diag);
-            rf_study_free(s);
-            return st;
-        }
-    }
-    if (!doc) {
-        fy_parser_destroy(fyp);
-        void *it = NULL;
-        struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
-        if (e)
-            st = rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg, e->column);
+    if (st == RF_OK)
+        st = check_text(name, buf, len, err);
+    struct fy_diag *diag = NULL;
+    if (st == RF_OK) {
+        struct fy_diag_cfg dc;
+        fy_diag_cfg_default(&dc);
+        dc.fp = NULL;
+        dc.colorize = false;
+        if (!(diag = fy_diag_create(&dc)))
+            st = rf_fail(err, RF_ENOMEM, "out of memory (YAML diagnostics)");
         else
-            st = rf_fail(err, RF_EPARSE, "%s:1: the study file holds no YAML document (empty?)", name);
-        fy_diag_destroy(diag);
-        rf_study_free(s);
-        return st;
+            fy_diag_set_collect_errors(diag, true);
     }
-    sp_ctx c = {name, s->dir, err, NULL};
-    st = parse_document(&c, s, doc);
-    fy_parse_document_destroy(fyp, doc);
-    fy_parser_destroy(fyp);
-    fy_diag_destroy(diag);
+    struct fy_parser *fyp = NULL;
+    struct fy_document *doc = NULL;
+    if (st == RF_OK)
+        st = read_yaml(name, buf, len, diag, &fyp, &doc, err);
+    if (st == RF_OK) {
+        sp_ctx c = {name, s->dir, err, NULL};
+        st = parse_document(&c, s, doc);
+    }
+    if (doc)
+        fy_parse_document_destroy(fyp, doc);
+    if (fyp)
+        fy_parser_destroy(fyp);
+    if (diag)
+        fy_diag_destroy(diag);
     if (st != RF_OK)
         rf_study_free(s);
     return st;
