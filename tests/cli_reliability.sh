@@ -9,6 +9,7 @@
 #   a damaged store is refused with nothing in the folder changed, the last
 #     result.json and `report` still work, --fresh moves it aside;
 #   an edited program is not served from the store;
+#   the model's warnings reach the report also when every point was stored;
 #   count options are bounded on the command line.
 # Usage: bash cli_reliability.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
@@ -184,6 +185,24 @@ EOF2
 sed -i 's/echo "f = $1"/echo "f = 7"/' "$tmp/p.sh"
 "$bin" run "$tmp/p.yaml" --out "$tmp/edit" --quiet --no-plots > /dev/null 2> "$tmp/edit.err" && fail "edit: the edited program was served from the store"
 grep -q "different model or its settings" "$tmp/edit.err" || fail "edit: message: $(cat "$tmp/edit.err")"
+
+# ---- the model's warnings reach the report as data, also when every point comes from the store ----
+cat > "$tmp/w.yaml" <<'EOF2'
+levels: 1
+parameters:
+  velocity: {tfn: [10, 1, 1]}
+model:
+  impact: {solver: fem, refinement: 2, domain_factor: 4}
+EOF2
+for k in 1 2; do
+    "$bin" run "$tmp/w.yaml" --out "$tmp/w" --quiet --no-plots > /dev/null 2> "$tmp/w.err" || fail "warnings: run $k: $(cat "$tmp/w.err")"
+done
+python3 - "$tmp/w/result.json" <<'EOF2' || fail "warnings: the reflection warning of the first run is not in the second run's report"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["evaluations"]["evaluated"] == 0, r["evaluations"]
+assert any("P waves reflected" in w and "earlier run" in w for w in r["warnings"]), r["warnings"]
+EOF2
 
 # ---- count options are bounded ----
 "$bin" run "$tmp/f.yaml" --out "$tmp/j" --jobs 100000 > /dev/null 2> "$tmp/j.err"; rc=$?
