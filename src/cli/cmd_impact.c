@@ -96,7 +96,7 @@ static void usage(FILE *f)
         "                           (default 10 axisymmetric, 6 for the 3D model)\n"
         "  --boundary KIND          fem: fixed | absorbing outer boundary (default fixed)\n"
         "  --domain-factor F        fem: slope domain radius / r0 (default 10)\n"
-        "  --threads N              fem: threads of the solver (default 1)\n"
+        "  --threads N              fem: threads of the solver, 1..1024 (default 1)\n"
         "  --vtk DIR                fem: write VTK snapshots into DIR\n"
         "\n"
         "Output:\n"
