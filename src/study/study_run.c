@@ -123,6 +123,8 @@ static rf_status write_holder(const char *dir, const char *study_path, int fd, r
         strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S %z", &tmv);
     int len = snprintf(text, sizeof text, "pid %ld on %s since %s, study %s\n", (long)getpid(), host, when,
                        study_path);
+    if (len < 0 || (size_t)len >= sizeof text)
+        len = len < 0 ? 0 : (int)sizeof text - 1; /* a very long path is cut, never over-read */
     if (ftruncate(fd, 0) != 0 || pwrite(fd, text, (size_t)len, 0) != len)
         return rf_fail(err, RF_EIO, "--out %s: cannot write the lock file %s: %s", dir, RF_RUN_LOCK_FILE,
                        strerror(errno));
