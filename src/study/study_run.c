@@ -232,8 +232,10 @@ static rf_status evaluate(run_state *r, rf_error *err)
     r->tm.evaluator = NULL;
     if (st == RF_OK)
         return RF_OK;
-    if (r->plan_failed)
-        *err = r->plan_err;
+    if (r->plan_failed) {
+        *err = r->plan_err; /* the store could not record the plan: that is the error, not the TM's */
+        st = err->code != RF_OK ? err->code : RF_EIO;
+    }
     size_t n = r->runner.evaluated + r->runner.failed;
     rf_error_prefix(err, "%s", r->study_path);
     char tail[PATH_MAX + 128];
