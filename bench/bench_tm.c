@@ -12,16 +12,11 @@
 #include <sys/resource.h>
 #include <time.h>
 
+#include "core/util.h"
 #include "rockfuzz/analysis.h"
 #include "rockfuzz/runner.h"
 #include "rockfuzz/tm.h"
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct {
     size_t n;
@@ -63,27 +58,27 @@ static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t 
     for (int r = 0; r < repeats; r++) {
         rf_tm_result res;
         rf_error err;
-        double t0 = now();
+        double t0 = rf_monotonic_seconds();
         if (rf_tm_run(in, n, &model, &opt, &res, &err)) {
             fprintf(stderr, "%s\n", err.msg);
             exit(1);
         }
-        double t1 = now();
+        double t1 = rf_monotonic_seconds();
         rf_analysis an;
         rf_analysis_compute(&res, &an, NULL);
-        double t2 = now();
+        double t2 = rf_monotonic_seconds();
         requested = res.requested;
         distinct = res.distinct;
         /* the model's own cost on the same number of points */
         double x[16], y[2], sink = 0;
-        double t3 = now();
+        double t3 = rf_monotonic_seconds();
         for (size_t p = 0; p < distinct; p++) {
             for (size_t i = 0; i < n; i++)
                 x[i] = 1.0 + (double)((p + i) % 7);
             cheap_eval(&ctx, x, y, NULL);
             sink += y[1];
         }
-        double t4 = now();
+        double t4 = rf_monotonic_seconds();
         if (sink == 42.4242)
             puts("");
         best_run = t1 - t0 < best_run ? t1 - t0 : best_run;
@@ -140,12 +135,12 @@ static void bench_threads(int repeats)
         for (int r = 0; r < repeats; r++) {
             rf_tm_result res;
             rf_error err;
-            double t0 = now();
+            double t0 = rf_monotonic_seconds();
             if (rf_tm_run(in, 4, &model, &opt, &res, &err)) {
                 fprintf(stderr, "%s\n", err.msg);
                 exit(1);
             }
-            double t = now() - t0;
+            double t = rf_monotonic_seconds() - t0;
             best = t < best ? t : best;
             distinct = res.distinct;
             rf_tm_result_free(&res);

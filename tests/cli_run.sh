@@ -147,7 +147,8 @@ fi
 grep -q "cap" "$tmp/cap.err" || fail "cap: message lacks 'cap': $(cat "$tmp/cap.err")"
 [ -e "$tmp/capped/result.json" ] && fail "cap: result.json written"
 
-# a failing model: non-zero exit, and an old result.json in the directory does not survive
+# a failing model: non-zero exit; the result.json of the last complete run stays until a new
+# complete run replaces it (issue 12: a failed rerun must not lose the previous result)
 mkdir -p "$tmp/failing" && echo '{"stale": true}' > "$tmp/failing/result.json"
 cat > "$tmp/failing.yaml" <<'EOF'
 levels: 2
@@ -160,7 +161,7 @@ if "$bin" run "$tmp/failing.yaml" --out "$tmp/failing" --quiet > /dev/null 2> "$
     fail "failing model: exit status 0"
 fi
 [ -s "$tmp/failing.err" ] || fail "failing model: no message"
-[ -e "$tmp/failing/result.json" ] && fail "failing model: a stale result.json survived"
+grep -q '"stale": true' "$tmp/failing/result.json" || fail "failing model: the previous result.json was lost"
 
 # usage errors
 "$bin" run > /dev/null 2>&1 && fail "run without arguments: exit status 0"

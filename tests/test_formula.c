@@ -83,7 +83,7 @@ static void test_unknown_identifier(void **state)
     rf_error err = {0};
     assert_int_equal(rf_formula_model_create(2, params3, 2, out, expr, &m, &err), RF_EINVAL);
     print_message("message: %s\n", err.msg);
-    assert_string_equal(err.msg, "output 'y': unknown parameter 'x9' in \"x1*x9\" (known: x1, x2)");
+    assert_string_equal(err.msg, "output 'y': unknown parameter 'x9' near \"x1*x9\" (known: x1, x2)");
     assert_null(m.ctx);
 }
 
@@ -104,7 +104,29 @@ static void test_syntax_error(void **state)
     rf_model m;
     rf_error err = {0};
     assert_int_equal(rf_formula_model_create(2, params3, 1, out, bad[0], &m, &err), RF_EPARSE);
-    assert_non_null(strstr(err.msg, "syntax error at position 4 in \"x1*/x2\": Unexpected operator \"/\" found"));
+    assert_non_null(strstr(err.msg, "syntax error at position 4: Unexpected operator \"/\" found, near \"x1*/x2\""));
+}
+
+/* A long expression must not push muParser's reason out of the message
+ * (issue 12): the reason comes first, then an excerpt around the position. */
+static void test_long_expression_error(void **state)
+{
+    (void)state;
+    static char expr[6000];
+    size_t n = 0;
+    for (; n + 3 < 5000; n += 3)
+        memcpy(expr + n, "x1+", 3);
+    memcpy(expr + n, "x2)", 4);
+    const char *out[] = {"y"};
+    const char *e[] = {expr};
+    rf_model m;
+    rf_error err = {0};
+    assert_int_equal(rf_formula_model_create(2, params3, 1, out, e, &m, &err), RF_EPARSE);
+    print_message("%s\n", err.msg);
+    assert_true(strlen(err.msg) < 400);
+    assert_non_null(strstr(err.msg, "Unexpected parenthesis"));
+    assert_non_null(strstr(err.msg, "near \"..."));
+    assert_non_null(strstr(err.msg, "x2)\""));
 }
 
 static void test_empty_and_duplicate(void **state)
@@ -236,6 +258,7 @@ int main(void)
         cmocka_unit_test(test_identity_depends_on_parameter_order),
         cmocka_unit_test(test_unknown_identifier),
         cmocka_unit_test(test_syntax_error),
+        cmocka_unit_test(test_long_expression_error),
         cmocka_unit_test(test_empty_and_duplicate),
         cmocka_unit_test(test_nan_is_an_error),
         cmocka_unit_test(test_many_outputs),

@@ -1,7 +1,8 @@
 /* test_runner.c - the parallel evaluator: the same outputs bit for bit with
  * 1, 2 and 4 threads (directly and through rf_tm_run), and failure
  * propagation (the lowest failing index, its message, and the TM's
- * parameter vector in the final message). */
+ * parameter vector in the final message), and interruption (RF_EINTERRUPTED,
+ * no new points, every finished one stored). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,18 +10,26 @@
 
 #include <cmocka.h>
 
+#include <stdatomic.h>
+#include <unistd.h>
+
 #include "rockfuzz/runner.h"
+#include "rockfuzz/store.h"
 #include "rockfuzz/tm.h"
 #include "test_util.h"
 
 /* Thread-safe model: y0 = x0*x1 + sin(x0), y1 = exp(-x1); fails when x0 >= fail_at. */
 typedef struct {
     double fail_at;
+    atomic_int *interrupt; /* raised by the evaluation of x0 >= interrupt_at (a "signal") */
+    double interrupt_at;
 } runner_ctx;
 
 static rf_status runner_eval(void *ctx, const double *x, double *y, rf_error *err)
 {
     const runner_ctx *c = ctx;
+    if (c->interrupt && x[0] >= c->interrupt_at)
+        atomic_store(c->interrupt, 1);
     if (x[0] >= c->fail_at)
         return rf_fail(err, RF_EMODEL, "x0 = %g is past the failure threshold", x[0]);
     y[0] = x[0] * x[1] + sin(x[0]);
@@ -46,7 +55,7 @@ static rf_model runner_model(runner_ctx *ctx)
 static void test_same_outputs_any_thread_count(void **state)
 {
     (void)state;
-    runner_ctx ctx = {INFINITY};
+    runner_ctx ctx = {INFINITY, NULL, 0};
     rf_model m = runner_model(&ctx);
     double *x = malloc(2 * NPOINTS * sizeof *x);
     double *y[3];
@@ -76,10 +85,72 @@ static void test_same_outputs_any_thread_count(void **state)
     rf_model_free(&m);
 }
 
+/* An interruption (the caller's signal handler raising the flag) stops the
+ * hand-out: the batch returns RF_EINTERRUPTED, not a model failure, and every
+ * evaluation that finished is in the store. */
+static void test_interrupt_stops_and_keeps_finished(void **state)
+{
+    (void)state;
+    atomic_int flag = 0;
+    runner_ctx ctx = {INFINITY, &flag, 0.1}; /* raised at k = 100 */
+    rf_model m = runner_model(&ctx);
+    double *x = malloc(2 * NPOINTS * sizeof *x), *y = calloc(2 * NPOINTS, sizeof(double));
+    for (size_t k = 0; k < NPOINTS; k++) {
+        x[2 * k] = 0.001 * (double)k;
+        x[2 * k + 1] = 0.5;
+    }
+    char dir[] = "/tmp/rockfuzz-test-runner-XXXXXX", path[64];
+    assert_non_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/store.sqlite", dir);
+    static const char *const in[2] = {"x0", "x1"}, *const out[2] = {"y0", "y1"};
+    rf_store_key key = {"runner-test", "1", 2, 2, in, out};
+    rf_store *store = NULL;
+    rf_error err;
+    memset(&err, 0, sizeof err);
+    assert_int_equal(rf_store_open(path, &key, 0, &store, &err), RF_OK);
+    for (int jobs = 1; jobs <= 4; jobs *= 2) {
+        atomic_store(&flag, 0);
+        rf_runner r;
+        rf_runner_init(&r);
+        r.jobs = jobs;
+        r.interrupt = &flag;
+        r.store = jobs == 1 ? store : NULL;
+        size_t failed = 0;
+        memset(&err, 0, sizeof err);
+        assert_int_equal(rf_runner_evaluate(&r, &m, NPOINTS, x, y, &failed, &err), RF_EINTERRUPTED);
+        assert_int_equal(failed, NPOINTS); /* not a model failure */
+        assert_non_null(strstr(err.msg, "interrupted after"));
+        assert_int_equal(r.failed, 0);
+        assert_true(r.evaluated >= 101 && r.evaluated < NPOINTS);
+    }
+    rf_store_close(store);
+    rf_store_info info;
+    assert_int_equal(rf_store_read_info(path, &info, &err), RF_OK);
+    assert_true(info.done >= 101 && info.done < NPOINTS);
+    assert_int_equal(info.failed, 0);
+    assert_int_equal(info.unfinished, 0);
+    /* raised before the batch: nothing is evaluated */
+    rf_runner r;
+    rf_runner_init(&r);
+    r.interrupt = &flag;
+    assert_int_equal(rf_runner_evaluate(&r, &m, NPOINTS, x, y, NULL, &err), RF_EINTERRUPTED);
+    assert_int_equal(r.evaluated, 0);
+    unlink(path);
+    char side[80];
+    snprintf(side, sizeof side, "%s-wal", path);
+    unlink(side);
+    snprintf(side, sizeof side, "%s-shm", path);
+    unlink(side);
+    rmdir(dir);
+    free(x);
+    free(y);
+    rf_model_free(&m);
+}
+
 static void test_failure_reports_lowest_index(void **state)
 {
     (void)state;
-    runner_ctx ctx = {1.0}; /* x0 = 0.001 k fails from k = 1000 on */
+    runner_ctx ctx = {1.0, NULL, 0}; /* x0 = 0.001 k fails from k = 1000 on */
     rf_model m = runner_model(&ctx);
     double *x = malloc(2 * NPOINTS * sizeof *x), *y = calloc(2 * NPOINTS, sizeof(double));
     for (size_t k = 0; k < NPOINTS; k++) {
@@ -108,7 +179,7 @@ static void test_failure_reports_lowest_index(void **state)
 static void test_tm_through_runner(void **state)
 {
     (void)state; /* tm_spec 6.1 through the threaded evaluator, 1 and 2 threads */
-    runner_ctx ctx = {INFINITY};
+    runner_ctx ctx = {INFINITY, NULL, 0};
     rf_model m = runner_model(&ctx);
     rf_fuzzy in[2];
     rf_fuzzy_tfn(&in[0], 2, 1, 1, NULL);
@@ -173,7 +244,7 @@ static void test_default_jobs(void **state)
 static void test_progress_line(void **state)
 {
     (void)state;
-    runner_ctx ctx = {INFINITY};
+    runner_ctx ctx = {INFINITY, NULL, 0};
     rf_model m = runner_model(&ctx);
     double x[8] = {0, 1, 1, 1, 2, 1, 3, 1}, y[8];
     char *buf = NULL;
@@ -199,6 +270,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_outputs_any_thread_count),
         cmocka_unit_test(test_failure_reports_lowest_index),
+        cmocka_unit_test(test_interrupt_stops_and_keeps_finished),
         cmocka_unit_test(test_tm_through_runner),
         cmocka_unit_test(test_default_jobs),
         cmocka_unit_test(test_progress_line),

@@ -11,6 +11,8 @@
 #include "rockfuzz/study.h"
 #include "test_util.h"
 
+#include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define M 4
@@ -287,7 +289,39 @@ static const bad_case bad_cases[] = {
     {"top level is a list", "- 1\n- 2\n", 1, "(top level)", "expected a mapping"},
     {"alias", "levels: 4\nparameters:\n  x1: &t {tfn: [2, 1, 1]}\n  x2: *t\nmodel: {formula: {y: \"x1\"}}\n", 4,
      "parameters.x2", "alias"},
+    /* issue 12 point 9 */
+    {"second document", "levels: 4\nparameters:\n  x1: {tfn: [2, 1, 1]}\nmodel: {formula: {y: \"x1\"}}\n---\nlevels: 5\n",
+     6, "second YAML document", "exactly one"},
+    {"!!str number", "levels: !!str 4\nparameters:\n  x1: {tfn: [2, 1, 1]}\nmodel: {formula: {y: \"x1\"}}\n", 1,
+     "levels = 4", "got a string"},
+    {"!!str in a shape", "levels: 4\nparameters:\n  x1: {tfn: [2, !!str 1, 1]}\nmodel: {formula: {y: \"x1\"}}\n", 3,
+     "parameters.x1.tfn[1]", "expected a number"},
 };
+
+/* A directory or a FIFO nobody writes to as the study file: refused, never
+ * read as empty or waited on forever (issue 12 point 9). */
+static void test_not_a_regular_file(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/rockfuzz-test-study-XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    rf_study s;
+    rf_error err;
+    memset(&err, 0, sizeof err);
+    assert_int_equal(rf_study_load(dir, &s, &err), RF_EIO);
+    assert_non_null(strstr(err.msg, "it is a directory"));
+    rf_study_free(&s);
+    char fifo[sizeof dir + 8];
+    snprintf(fifo, sizeof fifo, "%s/fifo", dir);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    double t0 = (double)time(NULL);
+    assert_int_equal(rf_study_load(fifo, &s, &err), RF_EIO);
+    assert_true((double)time(NULL) - t0 < 30);
+    assert_non_null(strstr(err.msg, "pipe or FIFO"));
+    rf_study_free(&s);
+    unlink(fifo);
+    rmdir(dir);
+}
 
 static void test_bad_inputs(void **state)
 {
@@ -340,6 +374,7 @@ int main(void)
         cmocka_unit_test(test_defaults_and_file),
         cmocka_unit_test(test_bad_inputs),
         cmocka_unit_test(test_truncations_never_crash),
+        cmocka_unit_test(test_not_a_regular_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

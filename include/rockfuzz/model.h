@@ -15,6 +15,8 @@
 #ifndef ROCKFUZZ_MODEL_H
 #define ROCKFUZZ_MODEL_H
 
+#include <stdatomic.h>
+
 #include "rockfuzz/status.h"
 
 #ifdef __cplusplus
@@ -37,10 +39,17 @@ typedef struct rf_model {
      * made so far in this process (e.g. FE boundary reflections), summarised
      * into buf; returns how many evaluations warned (0: buf is ""). */
     size_t (*warnings)(void *ctx, char *buf, size_t size);
+    /* Optional (may be NULL): a flag that asks evaluations in progress to stop
+     * early when it becomes non-zero (an external program is killed); they
+     * then return RF_EINTERRUPTED.  The flag must outlive the evaluations. */
+    void (*set_interrupt)(void *ctx, const atomic_int *flag);
 } rf_model;
 
 /* Evaluate (convenience wrapper checking for NULL and non-finite outputs). */
 rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_error *err);
+
+/* Hand the model an interrupt flag (no-op when it has no set_interrupt). */
+void rf_model_set_interrupt(rf_model *model, const atomic_int *flag);
 
 /* Free everything the model owns (calls destroy); safe on a zeroed struct. */
 void rf_model_free(rf_model *model);

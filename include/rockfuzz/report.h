@@ -5,7 +5,9 @@
  * rename), so its presence means every other file was written too.
  * result.json also carries "warnings": every message a reader must see
  * (failed evaluations left out of the bounds, non-monotonic outputs under the
- * reduced form, FE notes), which report.html shows at the top. */
+ * reduced form, the model's own warnings as the run collected them), which
+ * report.html shows at the top.  The report is written from these data only:
+ * it neither parses the model's identity nor recomputes any physics. */
 #ifndef ROCKFUZZ_REPORT_H
 #define ROCKFUZZ_REPORT_H
 
@@ -30,6 +32,7 @@ typedef struct {
     int mpi_ranks;         /* MPI ranks (1 = none) */
     size_t remote;         /* of the evaluated, how many ran on MPI worker ranks */
     double eval_seconds;   /* time spent in the model in this run [s] */
+    const char *model_warnings; /* what the model reported while evaluating (rf_model.warnings), NULL = none */
 } rf_report_options;
 
 void rf_report_options_default(rf_report_options *opt);

@@ -20,6 +20,11 @@
  * failures, elapsed, time left estimated from the fresh evaluations only), or
  * one JSON object per finished evaluation (RF_PROGRESS_JSONL) for batch systems.
  *
+ * Interruption: when *interrupt becomes non-zero (the caller's signal handler
+ * sets it; the library installs none) no new point is handed out; the points
+ * in flight finish and are stored, except those whose evaluation itself
+ * returns RF_EINTERRUPTED (they stay marked "started, never finished").
+ *
  * tolerate_failures: a failed point gets NaN outputs and the batch goes on
  * (the TM must then run with rf_tm_options.tolerate_failures, see tm.h). */
 #ifndef ROCKFUZZ_RUNNER_H
@@ -45,6 +50,8 @@ typedef struct {
     rf_store *store;       /* result store, NULL = none */
     int tolerate_failures; /* failed points get NaN outputs instead of stopping the batch */
     int mpi_workers;       /* worker ranks served by this (rank 0) process, 0 = no MPI */
+    const atomic_int *interrupt; /* non-zero: hand out no more points, return RF_EINTERRUPTED
+                                  * once those in flight have finished (NULL = never) */
 
     /* Statistics, accumulated over batches (read them after rf_tm_run). */
     size_t evaluated;      /* points evaluated successfully */

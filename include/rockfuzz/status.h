@@ -21,7 +21,8 @@ typedef enum {
     RF_EMODEL,   /* a model evaluation failed */
     RF_ECAP,     /* a user limit (e.g. evaluation cap) would be exceeded */
     RF_EPARSE,   /* a study file or expression could not be parsed */
-    RF_EINTERNAL /* a bug: an invariant did not hold */
+    RF_EINTERNAL, /* a bug: an invariant did not hold */
+    RF_EINTERRUPTED /* stopped on request (e.g. the program got SIGINT/SIGTERM) */
 } rf_status;
 
 #define RF_ERROR_MAX 1024

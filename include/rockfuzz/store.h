@@ -47,10 +47,13 @@ typedef struct {
 } rf_store_key;
 
 /* Open (or create) the store at path for the given key.  An existing file
- * that is not a rockfuzz store, or is corrupt, is refused (RF_EIO) and left
- * untouched.  A rockfuzz store of a different key is refused (RF_EINVAL) with
- * the first difference named, unless fresh is set: then its results are
- * deleted (the file itself is only ever rewritten when it is a rockfuzz store). */
+ * is first checked, reading only: it must be a rockfuzz store and pass
+ * SQLite's integrity check (PRAGMA quick_check).  A foreign or damaged file is
+ * refused (RF_EIO) and left exactly as it was.  A rockfuzz store of a
+ * different key is refused (RF_EINVAL) with the first difference named.  With
+ * fresh set, a store of another key has its results deleted, and a damaged
+ * store is moved aside to PATH.damaged (with its -wal/-shm files) and a new
+ * one created; a foreign file is never touched. */
 rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf_store **out, rf_error *err);
 
 /* Record the start of a run: distinct points planned, study name, pid, host, time. */
@@ -69,6 +72,11 @@ rf_status rf_store_put(rf_store *s, const double *x, int ok, const double *y, co
 rf_status rf_store_put_started(rf_store *s, const double *x, rf_error *err);
 
 void rf_store_close(rf_store *s);
+
+/* A note kept with the store's meta data (key must not be one of the store's
+ * own keys, e.g. "model_warnings"); get returns "" when absent. */
+rf_status rf_store_note_set(rf_store *s, const char *key, const char *value, rf_error *err);
+rf_status rf_store_note_get(rf_store *s, const char *key, char *buf, size_t size, rf_error *err);
 
 /* Fault injection for tests (SQLite's PRAGMA max_page_count): writes beyond
  * this many pages fail as a full disk would. */

@@ -4,6 +4,9 @@
 #ifndef ROCKFUZZ_CLI_H
 #define ROCKFUZZ_CLI_H
 
+/* Bound of every thread count option (--jobs, --threads), as in study files. */
+#define RF_CLI_MAX_THREADS 1024
+
 int rf_cli_run(int argc, char **argv);     /* cmd_run.c: run a study file */
 int rf_cli_impact(int argc, char **argv);  /* cmd_impact.c: one impact */
 int rf_cli_status(int argc, char **argv);  /* cmd_status.c: progress of a study run (its result store) */

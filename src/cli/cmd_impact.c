@@ -6,6 +6,7 @@
  * failures with 1; both print one message on stderr naming the option and
  * value.  Output: a readable summary with units, or one JSON object. */
 #include "cli/cli.h"
+#include "core/util.h"
 #include "impact/impact_fem.h"
 #include "rockfuzz/impact.h"
 
@@ -16,7 +17,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
 #define EXIT_USAGE 2
 #define EXIT_FAILED 1
 
@@ -96,7 +96,7 @@ static void usage(FILE *f)
         "                           (default 10 axisymmetric, 6 for the 3D model)\n"
         "  --boundary KIND          fem: fixed | absorbing outer boundary (default fixed)\n"
         "  --domain-factor F        fem: slope domain radius / r0 (default 10)\n"
-        "  --threads N              fem: threads of the solver (default 1)\n"
+        "  --threads N              fem: threads of the solver, 1..1024 (default 1)\n"
         "  --vtk DIR                fem: write VTK snapshots into DIR\n"
         "\n"
         "Output:\n"
@@ -127,8 +127,8 @@ static int parse_int(const char *opt, const char *s, int *x)
     char *end = NULL;
     errno = 0;
     long v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE || v < 1 || v > INT_MAX) {
-        fprintf(stderr, "rockfuzz impact: --%s '%s': not a positive integer\n", opt, s);
+    if (end == s || *end != '\0' || errno == ERANGE || v < 1 || v > RF_CLI_MAX_THREADS) {
+        fprintf(stderr, "rockfuzz impact: --%s '%s': expected an integer in [1, %d]\n", opt, s, RF_CLI_MAX_THREADS);
         return 0;
     }
     *x = (int)v;
@@ -185,7 +185,7 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     printf("  slope material    rho = %g kg/m^3, E = %g Pa, nu = %g\n", in->slope_density,
            in->slope_E, in->slope_poisson);
     printf("  impact            V = %g m/s vertical, slope angle = %g deg, friction = %g\n",
-           in->velocity, in->slope_angle * 180.0 / PI, in->friction);
+           in->velocity, in->slope_angle * 180.0 / RF_PI, in->friction);
     printf("  mass              %.6g kg\n", rf_impact_mass(in));
     if (spec->solver == RF_IMPACT_FEM) {
         int three_d = rf_impact_fem_needs_3d_(in);
@@ -353,7 +353,7 @@ int rf_cli_impact(int argc, char **argv)
             case O_NU_B: in->boulder_poisson = x; break;
             case O_NU_S: in->slope_poisson = x; break;
             case O_V: in->velocity = x; break;
-            case O_ANGLE: in->slope_angle = x * PI / 180.0; break;
+            case O_ANGLE: in->slope_angle = x * RF_PI / 180.0; break;
             case O_MU: in->friction = x; break;
             case O_EN:
                 if (!(x >= 0.0 && x <= 1.0)) {

@@ -1,26 +1,21 @@
-/* cmd_run.c - `rockfuzz run STUDY.yaml --out DIR`: load and validate the
- * study, open the result store DIR/store.sqlite (resume), show the evaluation
- * count, run the TM through the parallel runner (threads, and MPI ranks when
- * started by mpirun), analyse, print the summary and write the report
- * (result.json last, then report.html). */
+/* cmd_run.c - `rockfuzz run STUDY.yaml --out DIR`: parse the command line,
+ * start MPI when started by mpirun, catch SIGINT/SIGTERM, and hand everything
+ * else to the library's rf_study_run (study_run.h): load, folder lock, result
+ * store, TM, analysis, report.  Exit status: 0, 1 on an error, 2 on a usage
+ * error, or the signal's own status after a clean stop on SIGINT/SIGTERM. */
 #include "cli/cli.h"
 
 #include <errno.h>
-#include <limits.h>
+#include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
-#include "rockfuzz/analysis.h"
 #include "rockfuzz/mpi.h"
-#include "rockfuzz/report.h"
 #include "rockfuzz/runner.h"
-#include "rockfuzz/store.h"
-#include "rockfuzz/study.h"
-#include "rockfuzz/tm.h"
+#include "rockfuzz/study_run.h"
 
 static void usage(FILE *f)
 {
@@ -31,9 +26,10 @@ static void usage(FILE *f)
         "Transformation Method and write the fuzzy outputs and the influence analysis.\n"
         "\n"
         "Options:\n"
-        "  --out DIR              output directory (created if missing; required)\n"
-        "  --jobs N               worker threads (default: options.jobs of the study, else\n"
-        "                         cores / threads one model evaluation uses)\n"
+        "  --out DIR              output directory (created if missing; required); locked\n"
+        "                         for the run: a second run into it is refused\n"
+        "  --jobs N               worker threads, 0..1024 (default or 0: options.jobs of the\n"
+        "                         study, else cores / threads one model evaluation uses)\n"
         "  --max-evaluations N    cap on distinct model evaluations; the run stops before\n"
         "                         evaluating anything if the plan exceeds it (default:\n"
         "                         options.max_evaluations, else 100000; 0 = no cap)\n"
@@ -43,6 +39,8 @@ static void usage(FILE *f)
         "  --quiet                no progress line (--progress=jsonl still applies)\n"
         "  --fresh                discard the results stored in DIR/store.sqlite (also\n"
         "                         those of another model or version) and start over\n"
+        "  --force                write into a non-empty DIR that holds no rockfuzz run\n"
+        "                         (refused otherwise: its files could be overwritten)\n"
         "  --tolerate-failures    a failed evaluation (error or NaN) does not stop the run:\n"
         "                         it is stored, left out of the bounds, and warned about\n"
         "  --no-plots             skip the PNG/SVG plots (report.html then has no figures)\n"
@@ -75,7 +73,9 @@ static void usage(FILE *f)
         "\n"
         "Resuming: every evaluation is committed to DIR/store.sqlite when it finishes;\n"
         "rerunning the same study into DIR evaluates only the points not stored yet.\n"
-        "A store of another model, setting or rockfuzz version is refused (see --fresh).\n"
+        "A store of another model, setting or rockfuzz version is refused (see --fresh);\n"
+        "a damaged store is refused untouched (--fresh moves it to store.sqlite.damaged).\n"
+        "result.json of the last complete run stays until a new run completes.\n"
         "`rockfuzz status DIR` shows the progress of a running or stopped run.\n"
         "\n"
         "MPI: `mpirun -np K rockfuzz run STUDY.yaml --out DIR` (if built with MPI): rank 0\n"
@@ -84,9 +84,10 @@ static void usage(FILE *f)
         "\n"
         "Outputs in DIR:\n"
         "  store.sqlite                every evaluation (parameters, outputs or error, time)\n"
+        "  rockfuzz.lock               the folder lock; names the run holding it\n"
         "  report.html                 self-contained report (figures embedded)\n"
         "  result.json                 everything below plus metadata; written last and\n"
-        "                              atomically, so it exists only after a complete run\n"
+        "                              atomically, so it belongs to a complete run\n"
         "  cuts_OUTPUT.csv             mu,lower,upper of each output\n"
         "  influence_OUTPUT.csv        rho, kappa, rho_left, rho_right, ... per input\n"
         "  inputs.csv                  input,mu,lower,upper\n"
@@ -95,7 +96,12 @@ static void usage(FILE *f)
         "  influence_OUTPUT.{png,svg}  relative measures of influence rho (Hanss)\n"
         "  influence_lr_OUTPUT.{png,svg}  left/right measures (after Gauger et al. 2008)\n"
         "\n"
-        "Exit status: 0 on success, 1 on any error (message on stderr), 2 on a usage error.\n");
+        "Stopping: Ctrl-C or SIGTERM stops cleanly (no new evaluation, external programs and\n"
+        "everything they started killed, finished results stored; rerun to resume) and\n"
+        "exits with the signal's status (130, 143); a second Ctrl-C stops at once.\n"
+        "\n"
+        "Exit status: 0 on success, 1 on any error (message on stderr), 2 on a usage error,\n"
+        "128 + the signal number after a stop on SIGINT/SIGTERM.\n");
 }
 
 static int parse_count(const char *opt, const char *s, long long max, long long *out)
@@ -111,38 +117,54 @@ static int parse_count(const char *opt, const char *s, long long max, long long 
     return 0;
 }
 
-static double now_seconds(void)
+/* The one piece of global mutable state in the program: a signal handler can
+ * reach nothing else.  The first SIGINT/SIGTERM asks the run to stop cleanly;
+ * a second SIGINT (Ctrl-C pressed again) ends the process at once (the
+ * external programs then die with it: their supervisor gets PR_SET_PDEATHSIG).
+ * A repeated SIGTERM does not: tools like timeout(1) send it twice. */
+static atomic_int stop_requested;
+static volatile sig_atomic_t stop_signal;
+
+static void on_stop_signal(int sig)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    if (atomic_exchange(&stop_requested, 1) && sig == SIGINT) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
+    if (!stop_signal)
+        stop_signal = sig;
 }
 
-typedef struct {
-    rf_runner *runner;
-    rf_store *store;
-    const char *study_name;
-    rf_error err;
-    int store_failed;
-} plan_ctx;
-
-static int on_plan(void *user, size_t requested, size_t distinct)
+static void catch_stop_signals(void)
 {
-    (void)requested;
-    plan_ctx *p = user;
-    p->runner->planned_total = distinct;
-    if (p->store && rf_store_begin_run(p->store, distinct, p->study_name, &p->err) != RF_OK) {
-        p->store_failed = 1;
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+/* After a stop on request: end with the signal's own status, as the shell expects. */
+static int exit_for_signal(void)
+{
+    int sig = stop_signal;
+    if (!sig)
         return 1;
-    }
-    return 0;
+    fflush(NULL);
+    signal(sig, SIG_DFL);
+    raise(sig);
+    return 128 + sig; /* not reached */
 }
 
 int rf_cli_run(int argc, char **argv)
 {
-    const char *study_path = NULL, *out_dir = NULL;
-    long long jobs = -1, cap = -1;
-    int quiet = 0, plots = 1, progress = 0, fresh = 0, tolerate = 0;
+    const char *study_path = NULL;
+    rf_study_run_options o;
+    rf_study_run_options_default(&o);
+    long long jobs = 0, cap = -1;
+    int quiet = 0, progress = 0;
     for (int a = 1; a < argc; a++) {
         const char *arg = argv[a];
         if (!strcmp(arg, "-h") || !strcmp(arg, "--help")) {
@@ -155,8 +177,8 @@ int rf_cli_run(int argc, char **argv)
             }
             const char *val = argv[++a];
             if (!strcmp(arg, "--out"))
-                out_dir = val;
-            else if (!strcmp(arg, "--jobs") ? parse_count(arg, val, 1024, &jobs)
+                o.out_dir = val;
+            else if (!strcmp(arg, "--jobs") ? parse_count(arg, val, RF_CLI_MAX_THREADS, &jobs)
                                             : parse_count(arg, val, 1000000000000LL, &cap))
                 return 2;
         } else if (!strcmp(arg, "--quiet")) {
@@ -169,11 +191,13 @@ int rf_cli_run(int argc, char **argv)
             fprintf(stderr, "rockfuzz run: %s: the progress mode is line or jsonl\n", arg);
             return 2;
         } else if (!strcmp(arg, "--fresh")) {
-            fresh = 1;
+            o.fresh = 1;
+        } else if (!strcmp(arg, "--force")) {
+            o.force = 1;
         } else if (!strcmp(arg, "--tolerate-failures")) {
-            tolerate = 1;
+            o.tolerate_failures = 1;
         } else if (!strcmp(arg, "--no-plots")) {
-            plots = 0;
+            o.plots = 0;
         } else if (arg[0] == '-' && arg[1]) {
             fprintf(stderr, "rockfuzz run: unknown option '%s' (see `rockfuzz run --help`)\n", arg);
             return 2;
@@ -184,184 +208,37 @@ int rf_cli_run(int argc, char **argv)
             return 2;
         }
     }
-    if (!study_path || !out_dir) {
+    if (!study_path || !o.out_dir) {
         fprintf(stderr, "rockfuzz run: %s (see `rockfuzz run --help`)\n",
                 !study_path ? "missing the study file" : "missing --out DIR");
         return 2;
     }
+    o.jobs = (int)jobs;
+    o.max_evaluations = cap;
+    o.progress = progress == RF_PROGRESS_JSONL ? RF_PROGRESS_JSONL
+                 : quiet                       ? RF_PROGRESS_NONE
+                 : progress                    ? progress
+                 : isatty(STDERR_FILENO)       ? RF_PROGRESS_LINE
+                                               : RF_PROGRESS_NONE;
+    o.out = stdout;
+    o.log = stderr;
+    o.interrupt = &stop_requested;
 
     rf_error err;
     memset(&err, 0, sizeof err);
-    int rank = 0, ranks = 1;
-    if (rf_mpi_start(&argc, &argv, &rank, &ranks, &err) != RF_OK) {
+    if (rf_mpi_start(&argc, &argv, &o.mpi_rank, &o.mpi_ranks, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz run: %s\n", err.msg);
         rf_mpi_stop();
         return 1;
     }
-    rf_study study;
-    rf_status loaded = rf_study_load(study_path, &study, &err);
-    if (rank > 0) {
-        /* A worker rank: evaluate what rank 0 sends; rank 0 prints every message. */
-        int wrc = rf_mpi_worker(loaded == RF_OK ? &study.model : NULL, err.msg);
-        if (loaded == RF_OK)
-            rf_study_free(&study);
-        rf_mpi_stop();
-        return wrc;
-    }
-    if (ranks > 1) {
-        rf_error herr;
-        memset(&herr, 0, sizeof herr);
-        if (rf_mpi_gather_hello(loaded == RF_OK ? &study.model : NULL, &herr) != RF_OK && loaded == RF_OK) {
-            fprintf(stderr, "rockfuzz run: %s\n", herr.msg);
-            rf_study_free(&study);
-            rf_mpi_release_workers();
-            rf_mpi_stop();
-            return 1;
-        }
-    }
-    if (loaded != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
-        rf_mpi_release_workers();
-        rf_mpi_stop();
-        return 1;
-    }
-    int rc = 1;
-    rf_tm_result res;
-    rf_analysis an;
-    rf_store *store = NULL;
-    memset(&res, 0, sizeof res);
-    memset(&an, 0, sizeof an);
-    char store_path[PATH_MAX];
-    snprintf(store_path, sizeof store_path, "%s/%s", out_dir, RF_STORE_FILE);
-
-    /* An old result must not survive a failed rerun into the same directory. */
-    if (rf_report_make_dir(out_dir, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
-        goto done;
-    }
-    rf_store_key key = {study.model.identity ? study.model.identity : "", ROCKFUZZ_VERSION, study.n_params,
-                        study.model.n_outputs, (const char *const *)study.param_names,
-                        (const char *const *)study.model.output_names};
-    if (rf_store_open(store_path, &key, fresh, &store, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
-        goto done;
-    }
-    {
-        char old[PATH_MAX];
-        snprintf(old, sizeof old, "%s/result.json", out_dir);
-        if (unlink(old) != 0 && errno != ENOENT) {
-            fprintf(stderr, "rockfuzz run: %s: cannot remove the old result: %s\n", old, strerror(errno));
-            goto done;
-        }
-    }
-
-    rf_tm_options opt;
-    rf_study_tm_options(&study, &opt);
-    if (cap >= 0)
-        opt.max_evaluations = (size_t)cap;
-    opt.tolerate_failures = tolerate;
-    rf_runner runner;
-    rf_runner_init(&runner);
-    runner.jobs = jobs > 0    ? (int)jobs
-                  : ranks > 1 ? 1
-                  : study.jobs > 0 ? study.jobs
-                                   : rf_runner_default_jobs(&study.model);
-    runner.progress = progress == RF_PROGRESS_JSONL ? RF_PROGRESS_JSONL
-                      : quiet ? RF_PROGRESS_NONE
-                      : progress ? progress
-                      : isatty(STDERR_FILENO) ? RF_PROGRESS_LINE
-                                              : RF_PROGRESS_NONE;
-    runner.store = store;
-    runner.tolerate_failures = tolerate;
-    runner.mpi_workers = ranks - 1;
-    rf_evaluator ev = rf_runner_evaluator(&runner);
-    opt.evaluator = &ev;
-    plan_ctx pc;
-    memset(&pc, 0, sizeof pc);
-    pc.runner = &runner;
-    pc.store = store;
-    pc.study_name = study.name;
-    opt.on_plan = on_plan;
-    opt.on_plan_user = &pc;
-
-    size_t requested = 0, distinct = 0;
-    if (rf_tm_count(study.inputs, study.n_params, &opt, &requested, &distinct, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s: %s\n", study_path, err.msg);
-        goto done;
-    }
-    printf("Study '%s': %s form, m = %zu, %zu parameter%s; model %s\n", study.name,
-           rf_tm_scheme_name(study.scheme), study.levels, study.n_params, study.n_params == 1 ? "" : "s",
-           study.model_description);
-    printf("Evaluations: %zu requested, %zu distinct%s%s; %d job%s", requested, distinct,
-           study.scheme == RF_TM_EXTENDED ? " (at most; the probe decides)" : "",
-           study.left_right ? ", including the left/right three-point grid" : "", runner.jobs,
-           runner.jobs == 1 ? "" : "s");
-    if (ranks > 1)
-        printf(" on rank 0 + %d MPI worker rank%s", ranks - 1, ranks == 2 ? "" : "s");
-    printf("\n");
-    fflush(stdout);
-    if (opt.max_evaluations > 0 && distinct > opt.max_evaluations && study.scheme != RF_TM_EXTENDED) {
-        fprintf(stderr,
-                "rockfuzz run: %s: the study needs %zu distinct model evaluations, more than the cap of %zu; "
-                "raise --max-evaluations (or options.max_evaluations), lower levels, or use scheme: reduced\n",
-                study_path, distinct, opt.max_evaluations);
-        goto done;
-    }
-
-    double t0 = now_seconds();
-    if (rf_tm_run(study.inputs, study.n_params, &study.model, &opt, &res, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s: %s\n", study_path, pc.store_failed ? pc.err.msg : err.msg);
-        fprintf(stderr, "rockfuzz run: %zu evaluation%s of this run committed to %s (%zu found there before); "
-                        "rerun to resume\n",
-                runner.evaluated + runner.failed, runner.evaluated + runner.failed == 1 ? "" : "s", store_path,
-                runner.resumed);
-        goto done;
-    }
-    if (rf_analysis_compute(&res, &an, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s: analysis: %s\n", study_path, err.msg);
-        goto done;
-    }
-    double wall = now_seconds() - t0;
-    rf_report_print_summary(stdout, &study, &res, &an);
-    fflush(stdout);
-    if (res.failed_points > 0 || runner.failed > 0)
-        fprintf(stderr,
-                "rockfuzz run: WARNING: %zu evaluation%s failed and %s left out of the bounds: the fuzzy outputs "
-                "may be too narrow. The failures (parameters, message) are in %s; `rockfuzz status %s` lists "
-                "them.\n",
-                runner.failed, runner.failed == 1 ? "" : "s", runner.failed == 1 ? "was" : "were", store_path,
-                out_dir);
-
-    rf_report_options ropt;
-    rf_report_options_default(&ropt);
-    ropt.plots = plots;
-    ropt.wall_seconds = wall;
-    ropt.jobs = runner.jobs;
-    ropt.cap = opt.max_evaluations;
-    ropt.evaluated = runner.evaluated;
-    ropt.failed = runner.failed;
-    ropt.resumed = runner.resumed;
-    ropt.mpi_ranks = ranks;
-    ropt.remote = runner.remote;
-    ropt.eval_seconds = runner.eval_seconds;
-    if (rf_report_write(out_dir, &study, &res, &an, &ropt, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
-        goto done;
-    }
-    if (rf_report_write_html(out_dir, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
-        goto done;
-    }
-    printf("Wall time %.3f s (%zu evaluated, %zu failed, %zu from the store; %.3f s in the model). Results: "
-           "%s/result.json, %s/report.html\n",
-           wall, runner.evaluated, runner.failed, runner.resumed, runner.eval_seconds, out_dir, out_dir);
-    rc = 0;
-done:
-    rf_store_close(store);
-    rf_analysis_free(&an);
-    rf_tm_result_free(&res);
-    rf_study_free(&study);
-    rf_mpi_release_workers();
+    catch_stop_signals();
+    rf_status st = rf_study_run(study_path, &o, NULL, &err);
     rf_mpi_stop();
-    return rc;
+    if (st == RF_OK)
+        return 0;
+    if (o.mpi_rank == 0)
+        fprintf(stderr, "rockfuzz run: %s\n", err.msg);
+    if (st == RF_EINTERRUPTED || stop_signal)
+        return exit_for_signal();
+    return 1;
 }

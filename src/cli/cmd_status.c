@@ -4,6 +4,8 @@
 #include "cli/cli.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <limits.h>
 #include <signal.h>
 #include <stdio.h>
@@ -13,6 +15,7 @@
 #include <unistd.h>
 
 #include "rockfuzz/store.h"
+#include "rockfuzz/study_run.h"
 
 static void duration(double s, char *buf, size_t size)
 {
@@ -36,6 +39,24 @@ static void when(double t, char *buf, size_t size)
     struct tm tmv;
     localtime_r(&tt, &tmv);
     strftime(buf, size, "%Y-%m-%d %H:%M:%S", &tmv);
+}
+
+/* 1 if a run holds DIR's lock (its text, naming the holder, into holder), 0 if
+ * not, -1 if there is no lock file.  Only tries a shared lock: never blocks. */
+static int lock_held(const char *dir, char *holder, size_t size)
+{
+    char path[PATH_MAX];
+    snprintf(path, sizeof path, "%s/%s", dir, RF_RUN_LOCK_FILE);
+    holder[0] = '\0';
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return -1;
+    int held = flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+    ssize_t n = pread(fd, holder, size - 1, 0);
+    holder[n > 0 ? n : 0] = '\0';
+    holder[strcspn(holder, "\n")] = '\0';
+    close(fd); /* also releases the shared lock, if taken */
+    return held;
 }
 
 int rf_cli_status(int argc, char **argv)
@@ -75,7 +96,13 @@ int rf_cli_status(int argc, char **argv)
     gethostname(host, sizeof host - 1);
     struct stat sb;
     int finished = stat(result, &sb) == 0 && sb.st_mtime + 1 >= (time_t)info.run_started;
-    int alive = info.pid > 0 && !strcmp(host, info.host) && (kill((pid_t)info.pid, 0) == 0 || errno == EPERM);
+    char holder[512];
+    int locked = lock_held(dir, holder, sizeof holder);
+    /* the folder lock is the authority (also across hosts on a shared file system);
+     * without a lock file (an older run), a live pid on this host */
+    int alive = locked >= 0 ? locked
+                            : info.pid > 0 && !strcmp(host, info.host) &&
+                                  (kill((pid_t)info.pid, 0) == 0 || errno == EPERM);
     const char *state = finished ? "finished (result.json written)"
                         : alive  ? "running"
                                  : "stopped (not running; rerun the same command to resume)";
@@ -91,7 +118,9 @@ int rf_cli_status(int argc, char **argv)
     printf("Run directory   %s\n", dir);
     printf("Study           %s\n", info.study[0] ? info.study : "(unknown)");
     printf("State           %s", state);
-    if (alive && !finished)
+    if (alive && !finished && locked > 0 && holder[0])
+        printf(" (%s)", holder);
+    else if (alive && !finished)
         printf(" (pid %ld on %s)", info.pid, info.host);
     printf("\nPlanned points  %zu distinct evaluations\n", total);
     printf("Done            %zu (%.1f %%)\n", done, total ? 100.0 * (double)done / (double)total : 0.0);

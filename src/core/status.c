@@ -47,6 +47,7 @@ const char *rf_status_name(rf_status s)
     case RF_ECAP: return "limit exceeded";
     case RF_EPARSE: return "parse error";
     case RF_EINTERNAL: return "internal error";
+    case RF_EINTERRUPTED: return "interrupted";
     }
     return "unknown status";
 }

@@ -35,15 +35,19 @@
 #include <regex.h>
 #include <signal.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+
+#include "core/util.h"
 
 #define OUTPUT_FILE_MAX (256u << 20) /* refuse to parse larger output files */
 #define TAIL_BYTES 400               /* stderr/stdout excerpt in error messages */
@@ -77,6 +81,8 @@ typedef struct {
     double timeout;
     char *workdir_root;
     int keep_workdirs;
+    const atomic_int *interrupt; /* rf_model.set_interrupt; NULL = never */
+    uint64_t program_hash;       /* FNV-1a of the program file (identity) */
 } ext_ctx;
 
 /* ---- small helpers ---------------------------------------------------- */
@@ -136,24 +142,6 @@ static void sb_printf(strbuf *b, const char *fmt, ...)
     va_end(ap);
     sb_append(b, big, (size_t)n);
     free(big);
-}
-
-static char *dup_str(const char *s)
-{
-    if (!s)
-        return NULL;
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* Read a whole file (binary-safe, NUL-terminated).  Returns 0 or errno. */
@@ -228,6 +216,20 @@ static uint64_t fnv1a64(const char *data, size_t len)
         h *= 1099511628211ull;
     }
     return h;
+}
+
+#define HASHED_FILE_MAX (1u << 30) /* program and script files hashed into the identity */
+
+/* FNV-1a of a whole file; 0 and *h set, or errno. */
+static int file_hash(const char *path, uint64_t *h)
+{
+    char *text = NULL;
+    size_t len = 0;
+    int e = read_file(path, HASHED_FILE_MAX, &text, &len);
+    if (!e)
+        *h = fnv1a64(text, len);
+    free(text);
+    return e;
 }
 
 /* "(E=2.1e+11, F=1000)" for messages. */
@@ -507,17 +509,37 @@ static void file_tail(const char *path, char *buf, size_t size)
     }
 }
 
-/* ---- the child process ------------------------------------------------ */
+/* ---- the supervisor and the program ------------------------------------
+ *
+ * Each evaluation forks a supervisor S, which forks the program P.  Between
+ * fork and _exit only async-signal-safe system calls run (the parent has other
+ * threads that may hold the malloc or stdio locks).
+ *   S: blocks SIGTERM/SIGINT/SIGCHLD and waits for them with sigwaitinfo (no
+ *      handler, no global state); dies with rockfuzz (PR_SET_PDEATHSIG sends
+ *      it SIGTERM, which it handles like a stop request); is a child
+ *      subreaper (PR_SET_CHILD_SUBREAPER), so every descendant of P that is
+ *      orphaned - also one that called setsid() to leave P's process group -
+ *      becomes S's child.  When P has ended, or on SIGTERM (timeout,
+ *      interruption, rockfuzz gone), S kills P's group and then every child
+ *      it has, repeatedly, until none is left; then it reports P's wait
+ *      status on the report pipe and exits.
+ *   P: own process group, PR_SET_PDEATHSIG = SIGKILL (S gone: P goes too),
+ *      default signal dispositions, cwd = the working directory, exec.
+ * Report pipe records (two ints): {1|2|3, errno} from P when it could not
+ * enter the directory / redirect / exec; {4, errno} from S when fork failed;
+ * {0, wait status of P} from S at the end. */
 
-/* Only async-signal-safe calls between fork and exec: the parent may have
- * other threads holding locks (malloc, stdio). */
-static void child_exec(const char *dir, const char *path, char *const argv[], int fd_in, int fd_out, int fd_err,
-                       int report_fd)
+enum { REPORT_STATUS = 0, REPORT_CHDIR = 1, REPORT_EXEC = 3, REPORT_FORK = 4 };
+
+static void report_record(int fd, int kind, int value)
 {
-    setpgid(0, 0);
-    sigset_t none;
-    sigemptyset(&none);
-    sigprocmask(SIG_SETMASK, &none, NULL);
+    int rec[2] = {kind, value};
+    ssize_t ignored = write(fd, rec, sizeof rec);
+    (void)ignored;
+}
+
+static void default_signals(void)
+{
     struct sigaction dfl;
     memset(&dfl, 0, sizeof dfl);
     dfl.sa_handler = SIG_DFL;
@@ -525,19 +547,137 @@ static void child_exec(const char *dir, const char *path, char *const argv[], in
         if (s != SIGKILL && s != SIGSTOP)
             sigaction(s, &dfl, NULL);
     }
-    int report[2] = {0, 0};
+}
+
+static void child_exec(const char *dir, const char *path, char *const argv[], pid_t supervisor)
+{
+    setpgid(0, 0);
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != supervisor)
+        _exit(127); /* the supervisor died before the line above */
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, NULL);
     if (chdir(dir) != 0) {
-        report[0] = 1;
-    } else if (dup2(fd_in, 0) < 0 || dup2(fd_out, 1) < 0 || dup2(fd_err, 2) < 0) {
-        report[0] = 2;
-    } else {
-        execve(path, argv, environ);
-        report[0] = 3;
+        report_record(3, REPORT_CHDIR, errno);
+        _exit(127);
     }
-    report[1] = errno;
-    ssize_t ignored = write(report_fd, report, sizeof report);
-    (void)ignored;
+    execve(path, argv, environ);
+    report_record(3, REPORT_EXEC, errno);
     _exit(127);
+}
+
+/* Decimal text of v at *p (no snprintf here: not async-signal-safe). */
+static char *put_int(char *p, long v)
+{
+    char tmp[24];
+    int n = 0;
+    do
+        tmp[n++] = (char)('0' + v % 10);
+    while ((v /= 10) > 0);
+    while (n > 0)
+        *p++ = tmp[--n];
+    return p;
+}
+
+/* Kill and reap every child of this process (S), again and again, until it
+ * has none: killing one orphans its children, which then become S's. */
+static void sweep_children(void)
+{
+    char path[64] = "/proc/", *p = path + 6;
+    pid_t self = getpid();
+    p = put_int(p, self);
+    memcpy(p, "/task/", 6);
+    p = put_int(p + 6, self);
+    memcpy(p, "/children", 10);
+    for (int round = 0; round < 10000; round++) {
+        char buf[4096];
+        int fd = open(path, O_RDONLY | O_CLOEXEC);
+        ssize_t n = fd >= 0 ? read(fd, buf, sizeof buf - 1) : -1;
+        if (fd >= 0)
+            close(fd);
+        if (n <= 0) {
+            while (waitpid(-1, NULL, WNOHANG) > 0) /* no /proc: reap what has ended */
+                ;
+            return;
+        }
+        buf[n] = '\0';
+        for (char *q = buf; *q;) {
+            long pid = 0;
+            while (*q >= '0' && *q <= '9')
+                pid = pid * 10 + (*q++ - '0');
+            /* the kernel ends every pid with a space: a number cut by the buffer end is not one */
+            int whole = *q == ' ' || *q == '\n';
+            while (*q == ' ' || *q == '\n')
+                q++;
+            if (pid > 0 && whole) {
+                kill((pid_t)pid, SIGKILL);
+                while (waitpid((pid_t)pid, NULL, 0) < 0 && errno == EINTR)
+                    ;
+            } else if (*q) {
+                q++;
+            }
+        }
+    }
+}
+
+/* The supervisor S (see above); never returns. */
+static void supervise(const char *dir, const char *path, char *const argv[], int fd_in, int fd_out, int fd_err,
+                      int report_fd, pid_t parent)
+{
+    sigset_t wait_for;
+    sigemptyset(&wait_for);
+    sigaddset(&wait_for, SIGTERM);
+    sigaddset(&wait_for, SIGINT);
+    sigaddset(&wait_for, SIGCHLD);
+    sigprocmask(SIG_SETMASK, &wait_for, NULL);
+    default_signals();
+    setpgid(0, 0);
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent)
+        _exit(1);
+    prctl(PR_SET_CHILD_SUBREAPER, 1);
+    /* out of the way of 0..3 first, in case the caller had closed its standard streams */
+    fd_in = fcntl(fd_in, F_DUPFD, 10);
+    fd_out = fcntl(fd_out, F_DUPFD, 10);
+    fd_err = fcntl(fd_err, F_DUPFD, 10);
+    report_fd = fcntl(report_fd, F_DUPFD, 10);
+    if (fd_in < 0 || fd_out < 0 || fd_err < 0 || report_fd < 0)
+        _exit(1);
+    if (dup2(fd_in, 0) < 0 || dup2(fd_out, 1) < 0 || dup2(fd_err, 2) < 0 || dup2(report_fd, 3) < 0) {
+        report_record(report_fd, 2, errno);
+        _exit(1);
+    }
+    fcntl(3, F_SETFD, FD_CLOEXEC);
+    close_range(4, ~0U, 0); /* nothing of rockfuzz's (e.g. the folder lock) stays open in S */
+    pid_t self = getpid();
+    pid_t prog = fork();
+    if (prog == 0)
+        child_exec(dir, path, argv, self);
+    if (prog < 0) {
+        report_record(3, REPORT_FORK, errno);
+        _exit(1);
+    }
+    int status = 0;
+    for (int done = 0; !done;) {
+        siginfo_t si;
+        int sig = sigwaitinfo(&wait_for, &si);
+        if (sig == SIGTERM || sig == SIGINT) {
+            kill(-prog, SIGKILL);
+            kill(prog, SIGKILL);
+        }
+        pid_t w;
+        int st;
+        while ((w = waitpid(-1, &st, WNOHANG)) > 0)
+            if (w == prog) {
+                status = st;
+                done = 1;
+            }
+    }
+    kill(-prog, SIGKILL); /* anything P left running in its group */
+    sweep_children();     /* and every other descendant */
+    report_record(3, REPORT_STATUS, status);
+    _exit(0);
 }
 
 /* ---- evaluation ------------------------------------------------------- */
@@ -553,7 +693,7 @@ static int remove_entry(const char *path, const struct stat *sb, int flag, struc
 
 static int make_dirs(const char *path)
 {
-    char *p = dup_str(path);
+    char *p = rf_strdup(path);
     if (!p)
         return ENOMEM;
     int e = 0;
@@ -578,13 +718,67 @@ typedef struct {
     size_t len;
 } read_cache;
 
-static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, double *y, rf_error *err)
+/* Wait for the supervisor; on a timeout or an interruption ask it to stop
+ * (SIGTERM: it kills the program and every descendant), then reap it. */
+static void wait_supervisor(const ext_ctx *c, pid_t pid, int *timed_out, int *interrupted)
 {
-    char point[512];
-    format_point(c, x, point, sizeof point);
-    const char *prog = c->argv[0];
+    double start = rf_monotonic_seconds(), stop_sent = 0;
+    long nap_ns = 1000000;
+    for (;;) {
+        int status;
+        pid_t w = waitpid(pid, &status, WNOHANG);
+        if (w == pid || (w < 0 && errno != EINTR))
+            return;
+        double now = rf_monotonic_seconds();
+        if (!stop_sent) {
+            if (c->interrupt && atomic_load(c->interrupt))
+                *interrupted = 1;
+            else if (c->timeout > 0 && now - start >= c->timeout)
+                *timed_out = 1;
+            if (*interrupted || *timed_out) {
+                kill(pid, SIGTERM);
+                stop_sent = now;
+            }
+        } else if (now - stop_sent > 10) {
+            kill(pid, SIGKILL); /* the supervisor is stuck: the program still dies (PDEATHSIG) */
+        }
+        struct timespec nap = {0, nap_ns};
+        nanosleep(&nap, NULL);
+        if (nap_ns < 10000000)
+            nap_ns *= 2;
+    }
+}
 
-    /* Templates and argv with the values in place. */
+/* The records of the report pipe (see the supervisor): P's wait status, or why it never ran. */
+static rf_status read_report(int fd, const ext_ctx *c, const char *point, int *status, rf_error *err)
+{
+    const char *prog = c->argv[0];
+    int rec[2], have_status = 0;
+    ssize_t n;
+    while ((n = read(fd, rec, sizeof rec)) == (ssize_t)sizeof rec || (n < 0 && errno == EINTR)) {
+        if (n < 0)
+            continue;
+        if (rec[0] == REPORT_STATUS) {
+            *status = rec[1];
+            have_status = 1;
+        } else {
+            const char *stage = rec[0] == REPORT_CHDIR ? "cannot enter the working directory" :
+                                rec[0] == REPORT_EXEC  ? "exec failed" :
+                                rec[0] == REPORT_FORK  ? "fork failed" :
+                                                         "cannot redirect its standard streams";
+            return rf_fail(err, RF_EMODEL, "cannot run program '%s' (%s) at %s: %s: %s", prog, c->program_path,
+                           point, stage, strerror(rec[1]));
+        }
+    }
+    if (!have_status)
+        return rf_fail(err, RF_EIO, "program '%s' at %s: its supervisor process ended without reporting (killed?)",
+                       prog, point);
+    return RF_OK;
+}
+
+/* The templates with the values of x in place, written into dir. */
+static rf_status write_templates(const ext_ctx *c, const double *x, const char *dir, rf_error *err)
+{
     for (size_t t = 0; t < c->n_templates; t++) {
         strbuf text = {0};
         rf_status st = expand(c, c->templates[t].text, c->templates[t].len, x, c->templates[t].src, &text, err);
@@ -598,6 +792,17 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
         if (e)
             return rf_fail(err, RF_EIO, "cannot write template '%s' into %s: %s", c->templates[t].dst, dir, strerror(e));
     }
+    return RF_OK;
+}
+
+/* Fork the supervisor of one run of the program (argv expanded for x); on
+ * success *pid is the supervisor and *report_fd the read end of its report pipe. */
+static rf_status start_program(const ext_ctx *c, const double *x, const char *dir, const char *point, pid_t *pid,
+                               int *report_fd, rf_error *err)
+{
+    const char *prog = c->argv[0];
+    *pid = -1;
+    *report_fd = -1;
     char **argv = calloc(c->argc + 1, sizeof *argv);
     if (!argv)
         return rf_fail(err, RF_ENOMEM, "out of memory for the argument list");
@@ -607,7 +812,6 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
         st = expand(c, c->argv[a], strlen(c->argv[a]), x, "argv", &arg, err);
         argv[a] = arg.data;
     }
-
     strbuf out_path = {0}, err_path = {0};
     sb_printf(&out_path, "%s/stdout.txt", dir);
     sb_printf(&err_path, "%s/stderr.txt", dir);
@@ -622,143 +826,131 @@ static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, do
             st = rf_fail(err, RF_EIO, "cannot set up the standard streams of program '%s' in %s: %s", prog, dir,
                          strerror(errno));
     }
-
-    pid_t pid = -1;
     if (st == RF_OK) {
-        pid = fork();
-        if (pid == 0)
-            child_exec(dir, c->program_path, argv, fd_in, fd_out, fd_err, report[1]);
-        if (pid < 0)
+        pid_t self = getpid();
+        *pid = fork();
+        if (*pid == 0)
+            supervise(dir, c->program_path, argv, fd_in, fd_out, fd_err, report[1], self);
+        if (*pid < 0)
             st = rf_fail(err, RF_EIO, "cannot start program '%s' at %s: fork: %s", prog, point, strerror(errno));
-        else
-            setpgid(pid, pid); /* also here: kill(-pid) must work even before the child ran */
     }
-    if (report[1] >= 0)
-        close(report[1]);
-    if (fd_in >= 0)
-        close(fd_in);
-    if (fd_out >= 0)
-        close(fd_out);
-    if (fd_err >= 0)
-        close(fd_err);
+    int fds[4] = {report[1], fd_in, fd_out, fd_err};
+    for (int k = 0; k < 4; k++)
+        if (fds[k] >= 0)
+            close(fds[k]);
+    if (st == RF_OK)
+        *report_fd = report[0];
+    else if (report[0] >= 0)
+        close(report[0]);
     for (size_t a = 0; a < c->argc; a++)
         free(argv[a]);
     free(argv);
-
-    int status = 0, timed_out = 0;
-    if (pid > 0) {
-        /* EOF on the report pipe means exec succeeded (close-on-exec). */
-        int rep[2];
-        ssize_t n;
-        do
-            n = read(report[0], rep, sizeof rep);
-        while (n < 0 && errno == EINTR);
-        if (n == (ssize_t)sizeof rep) {
-            waitpid(pid, &status, 0);
-            const char *stage = rep[0] == 1 ? "cannot enter the working directory" :
-                                rep[0] == 2 ? "cannot redirect its standard streams" :
-                                              "exec failed";
-            st = rf_fail(err, RF_EMODEL, "cannot run program '%s' (%s) at %s: %s: %s", prog, c->program_path, point,
-                         stage, strerror(rep[1]));
-            pid = -1;
-        }
-    }
-    if (report[0] >= 0)
-        close(report[0]);
-
-    if (pid > 0) {
-        double start = now_seconds();
-        long nap_ns = 1000000;
-        for (;;) {
-            siginfo_t si;
-            memset(&si, 0, sizeof si);
-            /* WNOWAIT: the zombie keeps its pid (= process group id)
-             * reserved until the group has been killed below. */
-            if (waitid(P_PID, (id_t)pid, &si, WEXITED | WNOHANG | WNOWAIT) != 0) {
-                if (errno == EINTR)
-                    continue;
-                st = rf_fail(err, RF_EIO, "cannot wait for program '%s': %s", prog, strerror(errno));
-                break;
-            }
-            if (si.si_pid == pid)
-                break;
-            if (c->timeout > 0 && now_seconds() - start >= c->timeout) {
-                timed_out = 1;
-                break;
-            }
-            struct timespec nap = {0, nap_ns};
-            nanosleep(&nap, NULL);
-            if (nap_ns < 10000000)
-                nap_ns *= 2;
-        }
-        /* Also ends anything the program left running in its group. */
-        kill(-pid, SIGKILL);
-        while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-            ;
-    }
-
-    if (st == RF_OK) {
-        char tail[TAIL_BYTES + 64];
-        const char *which = "stderr";
-        file_tail(err_path.data, tail, sizeof tail);
-        if (!tail[0]) {
-            which = "stdout";
-            file_tail(out_path.data, tail, sizeof tail);
-        }
-        char tail_msg[sizeof tail + 32];
-        if (tail[0])
-            snprintf(tail_msg, sizeof tail_msg, "; %s tail: %s", which, tail);
-        else
-            snprintf(tail_msg, sizeof tail_msg, "; no output on stdout or stderr");
-        if (timed_out) {
-            st = rf_fail(err, RF_EMODEL, "program '%s' timed out after %g s at %s%s", prog, c->timeout, point,
-                         tail_msg);
-        } else if (WIFSIGNALED(status)) {
-            const char *sig = sigabbrev_np(WTERMSIG(status));
-            st = rf_fail(err, RF_EMODEL, "program '%s' was killed by signal %d (SIG%s) at %s%s", prog,
-                         WTERMSIG(status), sig ? sig : "?", point, tail_msg);
-        } else if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
-            st = rf_fail(err, RF_EMODEL, "program '%s' exited with status %d at %s%s", prog, WEXITSTATUS(status),
-                         point, tail_msg);
-        }
-
-        /* Outputs; each file is read once. */
-        read_cache *cache = st == RF_OK ? calloc(c->n_outputs, sizeof *cache) : NULL;
-        size_t n_cache = 0;
-        if (st == RF_OK && !cache)
-            st = rf_fail(err, RF_ENOMEM, "out of memory reading outputs");
-        for (size_t k = 0; k < c->n_outputs && st == RF_OK; k++) {
-            const ext_output *o = &c->outputs[k];
-            const char *file = o->file ? o->file : "stdout.txt";
-            size_t hit = 0;
-            while (hit < n_cache && strcmp(cache[hit].file, file) != 0)
-                hit++;
-            if (hit == n_cache) {
-                strbuf path = {0};
-                sb_printf(&path, "%s/%s", dir, file);
-                int e = path.oom ? ENOMEM : read_file(path.data, OUTPUT_FILE_MAX, &cache[hit].text, &cache[hit].len);
-                free(path.data);
-                if (e) {
-                    st = rf_fail(err, RF_EMODEL, "program '%s' at %s: output '%s': cannot read %s: %s%s", prog,
-                                 point, o->name, file, strerror(e), tail_msg);
-                    break;
-                }
-                cache[hit].file = (char *)file;
-                n_cache++;
-            }
-            const char *source = o->file ? o->file : "stdout";
-            st = o->has_regex ? parse_regex(o, cache[hit].text, source, &y[k], err) :
-                                parse_named(o, cache[hit].text, source, &y[k], err);
-            if (st != RF_OK)
-                rf_error_prefix(err, "program '%s' at %s", prog, point);
-        }
-        for (size_t i = 0; i < n_cache; i++)
-            free(cache[i].text);
-        free(cache);
-    }
     free(out_path.data);
     free(err_path.data);
     return st;
+}
+
+/* "; stderr tail: ..." (or stdout's when stderr is empty) for messages. */
+static void output_tail(const char *dir, char *msg, size_t size)
+{
+    char path[PATH_MAX], tail[TAIL_BYTES + 64];
+    const char *which = "stderr";
+    snprintf(path, sizeof path, "%s/stderr.txt", dir);
+    file_tail(path, tail, sizeof tail);
+    if (!tail[0]) {
+        which = "stdout";
+        snprintf(path, sizeof path, "%s/stdout.txt", dir);
+        file_tail(path, tail, sizeof tail);
+    }
+    if (tail[0])
+        snprintf(msg, size, "; %s tail: %s", which, tail);
+    else
+        snprintf(msg, size, "; no output on stdout or stderr");
+}
+
+/* The program's end as an error: timed out, killed by a signal, or a non-zero exit. */
+static rf_status exit_error(const ext_ctx *c, int status, int timed_out, const char *point, const char *tail,
+                            rf_error *err)
+{
+    const char *prog = c->argv[0];
+    if (timed_out)
+        return rf_fail(err, RF_EMODEL, "program '%s' timed out after %g s at %s%s", prog, c->timeout, point, tail);
+    if (WIFSIGNALED(status)) {
+        const char *sig = sigabbrev_np(WTERMSIG(status));
+        return rf_fail(err, RF_EMODEL, "program '%s' was killed by signal %d (SIG%s) at %s%s", prog, WTERMSIG(status),
+                       sig ? sig : "?", point, tail);
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+        return rf_fail(err, RF_EMODEL, "program '%s' exited with status %d at %s%s", prog, WEXITSTATUS(status), point,
+                       tail);
+    return RF_OK;
+}
+
+/* Every output from stdout or its file; each file is read once. */
+static rf_status read_outputs(const ext_ctx *c, const char *dir, const char *point, const char *tail, double *y,
+                              rf_error *err)
+{
+    const char *prog = c->argv[0];
+    read_cache *cache = calloc(c->n_outputs, sizeof *cache);
+    if (!cache)
+        return rf_fail(err, RF_ENOMEM, "out of memory reading outputs");
+    size_t n_cache = 0;
+    rf_status st = RF_OK;
+    for (size_t k = 0; k < c->n_outputs && st == RF_OK; k++) {
+        const ext_output *o = &c->outputs[k];
+        const char *file = o->file ? o->file : "stdout.txt";
+        size_t hit = 0;
+        while (hit < n_cache && strcmp(cache[hit].file, file) != 0)
+            hit++;
+        if (hit == n_cache) {
+            strbuf path = {0};
+            sb_printf(&path, "%s/%s", dir, file);
+            int e = path.oom ? ENOMEM : read_file(path.data, OUTPUT_FILE_MAX, &cache[hit].text, &cache[hit].len);
+            free(path.data);
+            if (e) {
+                st = rf_fail(err, RF_EMODEL, "program '%s' at %s: output '%s': cannot read %s: %s%s", prog, point,
+                             o->name, file, strerror(e), tail);
+                break;
+            }
+            cache[hit].file = (char *)file;
+            n_cache++;
+        }
+        const char *source = o->file ? o->file : "stdout";
+        st = o->has_regex ? parse_regex(o, cache[hit].text, source, &y[k], err)
+                          : parse_named(o, cache[hit].text, source, &y[k], err);
+        if (st != RF_OK)
+            rf_error_prefix(err, "program '%s' at %s", prog, point);
+    }
+    for (size_t i = 0; i < n_cache; i++)
+        free(cache[i].text);
+    free(cache);
+    return st;
+}
+
+static rf_status run_once(const ext_ctx *c, const double *x, const char *dir, double *y, rf_error *err)
+{
+    char point[512];
+    format_point(c, x, point, sizeof point);
+    pid_t pid = -1;
+    int report_fd = -1;
+    rf_status st = write_templates(c, x, dir, err);
+    if (st == RF_OK)
+        st = start_program(c, x, dir, point, &pid, &report_fd, err);
+    if (st != RF_OK)
+        return st;
+    int status = 0, timed_out = 0, interrupted = 0;
+    wait_supervisor(c, pid, &timed_out, &interrupted);
+    st = read_report(report_fd, c, point, &status, err);
+    close(report_fd);
+    if (st == RF_OK && interrupted)
+        return rf_fail(err, RF_EINTERRUPTED, "program '%s' at %s was stopped: the run was interrupted", c->argv[0],
+                       point);
+    if (st != RF_OK)
+        return st;
+    char tail[TAIL_BYTES + 128];
+    output_tail(dir, tail, sizeof tail);
+    st = exit_error(c, status, timed_out, point, tail, err);
+    return st == RF_OK ? read_outputs(c, dir, point, tail, y, err) : st;
 }
 
 static rf_status external_eval(void *ctx, const double *x, double *y, rf_error *err)
@@ -781,7 +973,9 @@ static rf_status external_eval(void *ctx, const double *x, double *y, rf_error *
     if (!err)
         err = &local;
     rf_status st = run_once(c, x, dir.data, y, err);
-    if (st != RF_OK) {
+    if (st == RF_EINTERRUPTED && !c->keep_workdirs) {
+        nftw(dir.data, remove_entry, 16, FTW_DEPTH | FTW_PHYS); /* stopped on request: no evidence to keep */
+    } else if (st != RF_OK) {
         char msg[RF_ERROR_MAX];
         memcpy(msg, err->msg, sizeof msg);
         /* The directory is the evidence; make sure its name survives a long message. */
@@ -797,6 +991,11 @@ static rf_status external_eval(void *ctx, const double *x, double *y, rf_error *
 }
 
 /* ---- creation --------------------------------------------------------- */
+
+static void external_set_interrupt(void *ctx, const atomic_int *flag)
+{
+    ((ext_ctx *)ctx)->interrupt = flag;
+}
 
 static void external_destroy(void *ctx)
 {
@@ -855,7 +1054,17 @@ static char *build_identity(const ext_ctx *c)
     sb_puts(&b, "];argv=[");
     for (size_t a = 0; a < c->argc; a++)
         sb_printf(&b, "%s\"%s\"", a ? "," : "", c->argv[a]);
-    sb_puts(&b, "];templates=[");
+    sb_printf(&b, "];program=%s:fnv1a64=%016llx;files=[", c->program_path, (unsigned long long)c->program_hash);
+    /* arguments naming a file by absolute path (e.g. the script of an interpreter) */
+    for (size_t a = 1, any = 0; a < c->argc; a++) {
+        struct stat sb;
+        uint64_t h;
+        if (c->argv[a][0] == '/' && !strchr(c->argv[a], '{') && stat(c->argv[a], &sb) == 0 &&
+            S_ISREG(sb.st_mode) && file_hash(c->argv[a], &h) == 0)
+            sb_printf(&b, "%s%zu:fnv1a64=%016llx", any++ ? "," : "", a, (unsigned long long)h);
+    }
+    sb_puts(&b, "]");
+    sb_puts(&b, ";templates=[");
     for (size_t t = 0; t < c->n_templates; t++)
         sb_printf(&b, "%s%s:fnv1a64=%016llx", t ? "," : "", c->templates[t].dst,
                   (unsigned long long)fnv1a64(c->templates[t].text, c->templates[t].len));
@@ -894,14 +1103,14 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
      * external_destroy frees a half-built element after an error. */
     while (c->n_params < n_params) {
         size_t i = c->n_params++;
-        if (!(c->param_names[i] = dup_str(param_names[i])))
+        if (!(c->param_names[i] = rf_strdup(param_names[i])))
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
     }
     while (c->argc < spec->argc) {
         size_t a = c->argc++;
         if (!spec->argv[a])
             return rf_fail(err, RF_EINVAL, "external model: argv[%zu] is NULL", a);
-        if (!(c->argv[a] = dup_str(spec->argv[a])))
+        if (!(c->argv[a] = rf_strdup(spec->argv[a])))
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
         char where[32];
         snprintf(where, sizeof where, "argv[%zu]", a);
@@ -915,6 +1124,11 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
     rf_status st = resolve_program(c->argv[0], &c->program_path, err);
     if (st != RF_OK)
         return st;
+    /* An edited program must not be served from a result store: its contents enter the identity. */
+    int e = file_hash(c->program_path, &c->program_hash);
+    if (e)
+        return rf_fail(err, e == ENOMEM ? RF_ENOMEM : RF_EIO, "external model: cannot read program '%s' (%s): %s",
+                       c->argv[0], c->program_path, strerror(e));
 
     while (c->n_templates < spec->n_templates) {
         size_t t = c->n_templates++;
@@ -923,8 +1137,8 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
         const char *dst = spec->template_dst ? spec->template_dst[t] : NULL;
         if (!src || !dst)
             return rf_fail(err, RF_EINVAL, "external model: template %zu has no source or destination", t + 1);
-        tp->src = dup_str(src);
-        tp->dst = dup_str(dst);
+        tp->src = rf_strdup(src);
+        tp->dst = rf_strdup(dst);
         if (!tp->src || !tp->dst)
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
         if (!is_safe_relative(dst) || strchr(dst, '/') || strcmp(dst, "stdout.txt") == 0 ||
@@ -957,10 +1171,10 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
             if (strcmp(c->outputs[j].name, in->name) == 0)
                 return rf_fail(err, RF_EINVAL, "external model: output '%s' is defined twice", in->name);
         }
-        o->name = dup_str(in->name);
-        o->file = dup_str(in->file);
-        o->pattern = dup_str(in->pattern);
-        o->unit = dup_str(in->unit ? in->unit : "");
+        o->name = rf_strdup(in->name);
+        o->file = rf_strdup(in->file);
+        o->pattern = rf_strdup(in->pattern);
+        o->unit = rf_strdup(in->unit ? in->unit : "");
         if (!o->name || !o->unit || (in->file && !o->file) || (in->pattern && !o->pattern))
             return rf_fail(err, RF_ENOMEM, "out of memory for the external model");
         if (o->file && !is_safe_relative(o->file))
@@ -985,7 +1199,7 @@ static rf_status build_ctx(const rf_external_spec *spec, size_t n_params, const 
     c->timeout = spec->timeout;
     c->keep_workdirs = spec->keep_workdirs;
     if (spec->workdir_root && spec->workdir_root[0]) {
-        c->workdir_root = dup_str(spec->workdir_root);
+        c->workdir_root = rf_strdup(spec->workdir_root);
     } else {
         const char *tmp = getenv("TMPDIR");
         strbuf b = {0};
@@ -1018,6 +1232,7 @@ rf_status rf_external_model_create(const rf_external_spec *spec, size_t n_params
     model->eval = external_eval;
     model->ctx = c;
     model->destroy = external_destroy;
+    model->set_interrupt = external_set_interrupt;
     model->threads_per_eval = 1;
     const char **names = calloc(c->n_outputs, sizeof *names);
     const char **units = calloc(c->n_outputs, sizeof *units);

@@ -16,6 +16,8 @@
 
 #include <muParserDLL.h>
 
+#include "core/util.h"
+
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -41,15 +43,6 @@ typedef struct {
 /* mupGetExprVar returns the name in a static buffer inside muParser, so
  * listing a handle's variables is serialised across all formula models. */
 static pthread_mutex_t mup_static_buffer_lock = PTHREAD_MUTEX_INITIALIZER;
-
-static char *dup_str(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
 
 static void work_free(formula_work *w, size_t n_outputs)
 {
@@ -95,6 +88,16 @@ static void list_params(const formula_ctx *c, char *buf, size_t size)
         snprintf(buf, size, "none");
 }
 
+/* Up to size-1 characters of expr around pos, "..." marking what was cut. */
+static void excerpt(const char *expr, int pos, char *buf, size_t size)
+{
+    size_t len = strlen(expr), room = size - 7; /* two "..." and the NUL */
+    size_t p = pos < 0 ? 0 : (size_t)pos > len ? len : (size_t)pos;
+    size_t from = p > room * 2 / 3 ? p - room * 2 / 3 : 0;
+    size_t n = len - from < room ? len - from : room;
+    snprintf(buf, size, "%s%.*s%s", from ? "..." : "", (int)n, expr + from, from + n < len ? "..." : "");
+}
+
 /* Positions are reported counting from 1 (muParser counts from 0); the
  * position muParser appends to its own message is dropped so that the
  * message does not carry two different numbers. */
@@ -110,8 +113,12 @@ static rf_status syntax_error(const formula_ctx *c, size_t k, muParserHandle_t h
             break;
         }
     }
-    return rf_fail(err, RF_EPARSE, "output '%s': syntax error at position %d in \"%s\": %s", c->output_names[k],
-                   (int)mupGetErrorPos(h) + 1, c->expressions[k], msg);
+    /* the reason first: a long expression must not push it out of the message */
+    int pos = (int)mupGetErrorPos(h);
+    char near[160];
+    excerpt(c->expressions[k], pos, near, sizeof near);
+    return rf_fail(err, RF_EPARSE, "output '%s': syntax error at position %d: %s, near \"%s\"", c->output_names[k],
+                   pos + 1, msg, near);
 }
 
 /* One handle for output k bound to x.  With check set (creation time), also
@@ -125,12 +132,12 @@ static rf_status make_handle(const formula_ctx *c, size_t k, double *x, int chec
     for (size_t i = 0; i < c->n_params; i++) {
         if (is_mup_identifier(c->param_names[i]))
             mupDefineVar(h, c->param_names[i], &x[i]);
-    }
-    if (mupError(h)) {
-        rf_status st = rf_fail(err, RF_EINVAL, "output '%s': cannot define parameters: %s",
-                               c->output_names[k], mupGetErrorMsg(h));
-        mupRelease(h);
-        return st;
+        if (mupError(h)) {
+            rf_status st = rf_fail(err, RF_EINVAL, "output '%s': parameter '%s' cannot be used in a formula: %s",
+                                   c->output_names[k], c->param_names[i], mupGetErrorMsg(h));
+            mupRelease(h);
+            return st;
+        }
     }
     mupSetExpr(h, c->expressions[k]);
     if (mupError(h)) {
@@ -163,8 +170,11 @@ static rf_status make_handle(const formula_ctx *c, size_t k, double *x, int chec
             if (!known) {
                 char params[512];
                 list_params(c, params, sizeof params);
-                rf_status st = rf_fail(err, RF_EINVAL, "output '%s': unknown parameter '%s' in \"%s\" (known: %s)",
-                                       c->output_names[k], name, c->expressions[k], params);
+                char near[120];
+                excerpt(c->expressions[k], (int)(strstr(c->expressions[k], name) ? strstr(c->expressions[k], name) -
+                                                 c->expressions[k] : 0), near, sizeof near);
+                rf_status st = rf_fail(err, RF_EINVAL, "output '%s': unknown parameter '%s' near \"%s\" (known: %s)",
+                                       c->output_names[k], name, near, params);
                 mupRelease(h);
                 return st;
             }
@@ -342,14 +352,14 @@ rf_status rf_formula_model_create(size_t n_params, const char *const *param_name
     c->n_params = n_params;
     c->n_outputs = n_outputs;
     for (size_t i = 0; i < n_params; i++) {
-        if (!(c->param_names[i] = dup_str(param_names[i]))) {
+        if (!(c->param_names[i] = rf_strdup(param_names[i]))) {
             formula_destroy(c);
             return rf_fail(err, RF_ENOMEM, "out of memory for the formula model");
         }
     }
     for (size_t k = 0; k < n_outputs; k++) {
-        c->output_names[k] = dup_str(output_names[k]);
-        c->expressions[k] = dup_str(expressions[k]);
+        c->output_names[k] = rf_strdup(output_names[k]);
+        c->expressions[k] = rf_strdup(expressions[k]);
         if (!c->output_names[k] || !c->expressions[k]) {
             formula_destroy(c);
             return rf_fail(err, RF_ENOMEM, "out of memory for the formula model");

@@ -5,14 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static char *dup_str(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d)
-        memcpy(d, s, n);
-    return d;
-}
+#include "core/util.h"
 
 rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_error *err)
 {
@@ -26,6 +19,12 @@ rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_er
             return rf_fail(err, RF_EMODEL, "output '%s' is infinite", model->output_names[k]);
     }
     return RF_OK;
+}
+
+void rf_model_set_interrupt(rf_model *model, const atomic_int *flag)
+{
+    if (model && model->set_interrupt)
+        model->set_interrupt(model->ctx, flag);
 }
 
 void rf_model_free(rf_model *model)
@@ -55,8 +54,8 @@ rf_status rf_model_init_outputs(rf_model *model, size_t n_outputs, const char *c
     if (!model->output_names || !model->output_units)
         return rf_fail(err, RF_ENOMEM, "out of memory for model outputs");
     for (size_t k = 0; k < n_outputs; k++) {
-        model->output_names[k] = dup_str(names[k]);
-        model->output_units[k] = dup_str(units && units[k] ? units[k] : "");
+        model->output_names[k] = rf_strdup(names[k]);
+        model->output_units[k] = rf_strdup(units && units[k] ? units[k] : "");
         if (!model->output_names[k] || !model->output_units[k])
             return rf_fail(err, RF_ENOMEM, "out of memory for model outputs");
     }
@@ -68,6 +67,6 @@ rf_status rf_model_init_outputs(rf_model *model, size_t n_outputs, const char *c
 rf_status rf_model_set_identity(rf_model *model, const char *identity, rf_error *err)
 {
     free(model->identity);
-    model->identity = dup_str(identity);
+    model->identity = rf_strdup(identity);
     return model->identity ? RF_OK : rf_fail(err, RF_ENOMEM, "out of memory for model identity");
 }

@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "study/runner_internal.h"
+#include "study/mpi_internal.h"
 
 #ifdef ROCKFUZZ_HAVE_MPI
 #include <mpi.h>
@@ -85,10 +85,10 @@ int rf_mpi_worker(const rf_model *model, const char *load_error)
         MPI_Recv(x, (int)nin, MPI_DOUBLE, 0, TAG_WORK, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
         rf_error err;
         memset(&err, 0, sizeof err);
-        double t0 = rf_runner_now();
+        double t0 = rf_monotonic_seconds();
         double *y = (double *)(void *)(out + 2 * sizeof(double));
         rf_status st = model ? rf_model_eval(model, x, y, &err) : RF_EINTERNAL;
-        double head[2] = {rf_runner_now() - t0, (double)st};
+        double head[2] = {rf_monotonic_seconds() - t0, (double)st};
         memcpy(out, head, sizeof head);
         memcpy(out + 2 * sizeof(double) + nout * sizeof(double), err.msg, RF_ERROR_MAX);
         MPI_Send(out, (int)bytes, MPI_BYTE, 0, TAG_RESULT, MPI_COMM_WORLD);
@@ -182,7 +182,7 @@ void rf_mpi_serve_batch(rf_batch *b)
             busy[r] = 0;
             continue;
         }
-        double t = rf_runner_now();
+        double t = rf_monotonic_seconds();
         if (t - last_draw >= 0.5) {
             rf_batch_progress(b, 0);
             last_draw = t;

@@ -11,35 +11,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "rockfuzz/impact.h"
 #include "study/report_internal.h"
 
 void rf_report_options_default(rf_report_options *opt)
 {
     memset(opt, 0, sizeof *opt);
     opt->plots = 1;
-}
-
-int rp_output_undefined(const rf_tm_result *res, size_t k)
-{
-    for (size_t j = 0; j <= res->levels; j++)
-        if (!isnan(res->lo[k * (res->levels + 1) + j]) || !isnan(res->hi[k * (res->levels + 1) + j]))
-            return 0;
-    return isnan(res->nominal[k]);
-}
-
-void rp_safe_name(const char *name, char *buf, size_t size)
-{
-    size_t k = 0;
-    for (; name[k] && k + 1 < size && k < 80; k++) {
-        char ch = name[k];
-        int ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_' ||
-                 ch == '-' || (ch == '.' && k > 0);
-        buf[k] = ok ? ch : '_';
-    }
-    buf[k] = '\0';
-    if (k == 0)
-        snprintf(buf, size, "_");
 }
 
 static const char *mono_text(rf_monotonicity m)
@@ -219,67 +196,8 @@ static void json_reason(FILE *f, const char *key, double v, rf_na_reason r)
     }
 }
 
-/* A number after " key=" in the impact model's identity (after "base:"), or fallback. */
-static double identity_value(const char *identity, const char *key, double fallback)
-{
-    const char *base = strstr(identity, "base:");
-    char pat[64];
-    snprintf(pat, sizeof pat, " %s=", key);
-    const char *at = strstr(base ? base : identity, pat);
-    if (!at)
-        return fallback;
-    char *end = NULL;
-    double v = strtod(at + strlen(pat), &end);
-    return end != at + strlen(pat) ? v : fallback;
-}
-
-/* SYSTEM.md: the fixed outer boundary reflects P waves; compare 2L/c_p with the
- * Hertz contact duration at the nominal inputs.  Returns 1 with a message if
- * the reflection returns during contact. */
-static int fem_reflection_note(const rf_study *s, const rf_tm_result *res, char *msg, size_t size)
-{
-    const char *id = s->model.identity;
-    if (!strstr(id, "boundary=fixed"))
-        return 0;
-    double factor = 10;
-    const char *df = strstr(id, "domain_factor=");
-    if (df)
-        factor = strtod(df + strlen("domain_factor="), NULL);
-    rf_impact_input in;
-    rf_impact_input_default(&in);
-    static const char *const keys[] = {"radius", "horizontal_axis", "vertical_axis", "boulder_density",
-                                       "slope_density", "boulder_E", "slope_E", "boulder_poisson",
-                                       "slope_poisson", "velocity"};
-    double *fields[] = {&in.radius, &in.horizontal_axis, &in.vertical_axis, &in.boulder_density,
-                        &in.slope_density, &in.boulder_E, &in.slope_E, &in.boulder_poisson,
-                        &in.slope_poisson, &in.velocity};
-    for (size_t k = 0; k < sizeof keys / sizeof *keys; k++) {
-        *fields[k] = identity_value(id, keys[k], *fields[k]);
-        for (size_t i = 0; i < res->n_inputs; i++)
-            if (!strcmp(s->param_names[i], keys[k]))
-                *fields[k] = res->in_nominal[i];
-    }
-    in.slope_angle = 0;
-    rf_impact_output out;
-    rf_error e;
-    if (rf_impact_hertz(&in, &out, &e) != RF_OK || !(out.contact_duration > 0))
-        return 0;
-    double nu = in.slope_poisson;
-    double c_p = sqrt(in.slope_E * (1 - nu) / (in.slope_density * (1 + nu) * (1 - 2 * nu)));
-    double r = in.radius;
-    double t_back = 2 * factor * r / c_p;
-    if (t_back >= out.contact_duration)
-        return 0;
-    snprintf(msg, size,
-             "FE boundary (at the nominal inputs): P waves reflected by the fixed outer boundary (domain radius "
-             "%g r0) return after 2L/c_p = %.3g ms, before the Hertz contact ends (%.3g ms): R_n and R_ke include "
-             "reflected energy. Use boundary: absorbing or domain_factor >= %.0f",
-             factor, 1e3 * t_back, 1e3 * out.contact_duration, ceil(c_p * out.contact_duration / (2 * r)));
-    return 1;
-}
-
 /* Every message a reader of result.json / report.html must see, as JSON strings. */
-static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res)
+static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_report_options *opt)
 {
     char msg[1024];
     int any = 0;
@@ -316,18 +234,10 @@ static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res)
         snprintf(msg, sizeof msg, "monotonicity not checked (options.left_right is off)");
         WARN();
     }
-    if (s->model_kind == RF_STUDY_MODEL_IMPACT && s->model.identity && strstr(s->model.identity, "solver=fem")) {
-        if (fem_reflection_note(s, res, msg, sizeof msg))
-            WARN();
-    }
-    if (s->model.warnings) {
-        /* warnings the model itself raised while evaluating (points taken
-         * from the result store or run on MPI worker ranks are not seen) */
-        char text[sizeof msg - 16];
-        if (s->model.warnings(s->model.ctx, text, sizeof text) > 0) {
-            snprintf(msg, sizeof msg, "model: %s", text);
-            WARN();
-        }
+    if (opt && opt->model_warnings && opt->model_warnings[0]) {
+        /* what the model itself reported while evaluating, handed over as data */
+        snprintf(msg, sizeof msg, "model: %s", opt->model_warnings);
+        WARN();
     }
 #undef WARN
     if (any)
@@ -448,7 +358,7 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
             opt ? opt->remote : 0);
     json_number(f, opt ? opt->eval_seconds : NAN);
     fprintf(f, "},\n  \"mpi_ranks\": %d,\n  \"warnings\": [", opt && opt->mpi_ranks > 0 ? opt->mpi_ranks : 1);
-    write_warnings(f, s, res);
+    write_warnings(f, s, res, opt);
     fputs("],\n", f);
     fputs("  \"wall_seconds\": ", f);
     json_number(f, opt ? opt->wall_seconds : NAN);

@@ -1,4 +1,4 @@
-/* report_internal.h - helpers shared by report.c and report_plot.c. */
+/* report_internal.h - helpers shared by the report writers (report_util.c). */
 #ifndef ROCKFUZZ_REPORT_INTERNAL_H
 #define ROCKFUZZ_REPORT_INTERNAL_H
 

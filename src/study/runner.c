@@ -19,14 +19,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "study/runner_internal.h"
-
-double rf_runner_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "study/batch.h"
+#include "study/mpi_internal.h"
 
 void rf_runner_init(rf_runner *r)
 {
@@ -43,168 +37,6 @@ int rf_runner_default_jobs(const rf_model *model)
     return jobs < 1 ? 1 : (int)jobs;
 }
 
-int rf_batch_take(rf_batch *b, size_t *pos)
-{
-    if (atomic_load(&b->stop))
-        return 0;
-    size_t k = atomic_fetch_add(&b->next, 1);
-    if (k >= b->ntodo)
-        return 0;
-    *pos = k;
-    return 1;
-}
-
-static void format_duration(double s, char *buf, size_t size)
-{
-    if (!(s >= 0) || s > 1e8)
-        snprintf(buf, size, "?");
-    else if (s < 60)
-        snprintf(buf, size, "%.1fs", s);
-    else if (s < 3600)
-        snprintf(buf, size, "%dm%02ds", (int)(s / 60), (int)s % 60);
-    else
-        snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
-}
-
-/* Counts over the whole run so far: done (incl. resumed), total, failed, time left. */
-static void run_counts(rf_batch *b, size_t *done, size_t *total, size_t *failed, double *left, double *elapsed)
-{
-    rf_runner *r = b->runner;
-    size_t fresh_batch = atomic_load(&b->done);
-    size_t fresh = r->evaluated + r->failed + fresh_batch;
-    *done = r->resumed + b->resumed + fresh;
-    size_t t = r->planned_total > *done ? r->planned_total : r->resumed + r->evaluated + r->failed + b->count;
-    *total = t < *done ? *done : t;
-    *failed = r->failed + atomic_load(&b->nfailed);
-    double phase = rf_runner_now() - b->t_start;
-    *elapsed = r->wall_seconds + phase;
-    /* Only fresh evaluations measure the speed: points found in the store took no time. */
-    double fresh_wall = r->fresh_wall + phase;
-    *left = fresh > 0 ? fresh_wall / (double)fresh * (double)(*total - *done) : (*total == *done ? 0 : -1);
-}
-
-void rf_batch_progress(rf_batch *b, int final)
-{
-    rf_runner *r = b->runner;
-    if (r->progress != RF_PROGRESS_LINE)
-        return;
-    FILE *f = r->stream ? r->stream : stderr;
-    size_t done, total, failed;
-    double left, elapsed;
-    run_counts(b, &done, &total, &failed, &left, &elapsed);
-    char e[32], l[32];
-    format_duration(elapsed, e, sizeof e);
-    format_duration(left, l, sizeof l);
-    fprintf(f, "\r  evaluations %zu/%zu  failed %zu  elapsed %s  left %s   ", done, total, failed, e,
-            final ? "0.0s" : l);
-    if (final)
-        fputc('\n', f);
-    fflush(f);
-}
-
-static void json_text(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            fprintf(f, "\\%c", *p);
-        else if (*p < 0x20)
-            fprintf(f, "\\u%04x", *p);
-        else
-            fputc(*p, f);
-    }
-    fputc('"', f);
-}
-
-/* Called with b->lock held. */
-static void jsonl_line(rf_batch *b, size_t k, int ok, const rf_error *err, double seconds)
-{
-    rf_runner *r = b->runner;
-    FILE *f = r->stream ? r->stream : stderr;
-    size_t done, total, failed;
-    double left, elapsed;
-    run_counts(b, &done, &total, &failed, &left, &elapsed);
-    fprintf(f, "{\"event\": \"evaluation\", \"done\": %zu, \"total\": %zu, \"failed\": %zu, \"ok\": %s, "
-               "\"seconds\": %.6g, \"elapsed\": %.6g, \"left\": ",
-            done, total, failed, ok ? "true" : "false", seconds, elapsed);
-    if (left >= 0)
-        fprintf(f, "%.6g", left);
-    else
-        fputs("null", f);
-    fputs(", \"x\": [", f);
-    const double *x = b->x + k * b->model->n_inputs;
-    for (size_t i = 0; i < b->model->n_inputs; i++)
-        fprintf(f, i ? ", %.17g" : "%.17g", x[i]);
-    fputc(']', f);
-    if (!ok) {
-        fputs(", \"error\": ", f);
-        json_text(f, err && err->msg[0] ? err->msg : "failed");
-    }
-    fputs("}\n", f);
-    fflush(f);
-}
-
-void rf_batch_start(rf_batch *b, size_t pos)
-{
-    rf_runner *r = b->runner;
-    if (!r->store)
-        return;
-    pthread_mutex_lock(&b->lock);
-    if (!b->store_failed) {
-        rf_error serr;
-        memset(&serr, 0, sizeof serr);
-        if (rf_store_put_started(r->store, b->x + b->todo[pos] * b->model->n_inputs, &serr) != RF_OK) {
-            b->store_failed = 1;
-            b->store_err = serr;
-            atomic_store(&b->stop, 1);
-        }
-    }
-    pthread_mutex_unlock(&b->lock);
-}
-
-void rf_batch_finish(rf_batch *b, size_t pos, rf_status st, const rf_error *err, double seconds)
-{
-    rf_runner *r = b->runner;
-    size_t k = b->todo[pos];
-    size_t nin = b->model->n_inputs, nout = b->model->n_outputs;
-    rf_error local;
-    memset(&local, 0, sizeof local);
-    if (st != RF_OK) {
-        local = *err;
-        if (local.code == RF_OK)
-            local.code = st;
-        if (local.msg[0] == '\0')
-            rf_fail(&local, st, "model evaluation failed (%s)", rf_status_name(st));
-        for (size_t o = 0; o < nout; o++)
-            b->y[k * nout + o] = NAN;
-    }
-    pthread_mutex_lock(&b->lock);
-    b->eval_seconds += seconds;
-    if (r->store && !b->store_failed) {
-        rf_error serr;
-        memset(&serr, 0, sizeof serr);
-        if (rf_store_put(r->store, b->x + k * nin, st == RF_OK, b->y + k * nout, local.msg, seconds, &serr) !=
-            RF_OK) {
-            b->store_failed = 1;
-            b->store_err = serr;
-            atomic_store(&b->stop, 1);
-        }
-    }
-    if (st != RF_OK) {
-        if (k < b->first_failed) {
-            b->first_failed = k;
-            b->first_err = local;
-        }
-        atomic_fetch_add(&b->nfailed, 1);
-        if (!r->tolerate_failures)
-            atomic_store(&b->stop, 1);
-    }
-    atomic_fetch_add(&b->done, 1);
-    if (r->progress == RF_PROGRESS_JSONL)
-        jsonl_line(b, k, st == RF_OK, &local, seconds);
-    pthread_mutex_unlock(&b->lock);
-}
-
 static void *worker(void *arg)
 {
     rf_batch *b = arg;
@@ -214,10 +46,10 @@ static void *worker(void *arg)
     while (rf_batch_take(b, &pos)) {
         size_t k = b->todo[pos];
         rf_batch_start(b, pos);
-        double t0 = rf_runner_now();
+        double t0 = rf_monotonic_seconds();
         memset(&err, 0, sizeof err);
         rf_status st = rf_model_eval(b->model, b->x + k * nin, b->y + k * nout, &err);
-        rf_batch_finish(b, pos, st, &err, rf_runner_now() - t0);
+        rf_batch_finish(b, pos, st, &err, rf_monotonic_seconds() - t0);
     }
     atomic_fetch_sub(&b->workers_left, 1);
     return NULL;
@@ -230,7 +62,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
         return rf_fail(err, RF_EINTERNAL, "rf_runner_evaluate: NULL argument");
     if (count == 0)
         return RF_OK;
-    double t_batch = rf_runner_now();
+    double t_batch = rf_monotonic_seconds();
     rf_batch b;
     memset(&b, 0, sizeof b);
     b.runner = r;
@@ -272,7 +104,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
         return rf_fail(err, RF_EINTERNAL, "cannot create a mutex");
     }
 
-    b.t_start = rf_runner_now();
+    b.t_start = rf_monotonic_seconds();
     int started = 0;
     pthread_t *threads = NULL;
     if (b.ntodo > 0) {
@@ -292,7 +124,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
             /* The calling thread only draws, so the line moves even with one job. */
             double last = 0;
             while (atomic_load(&b.workers_left) > 0) {
-                double t = rf_runner_now();
+                double t = rf_monotonic_seconds();
                 if (t - last >= 0.5) {
                     rf_batch_progress(&b, 0);
                     last = t;
@@ -307,7 +139,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
     }
     rf_batch_progress(&b, 1);
 
-    double t_end = rf_runner_now();
+    double t_end = rf_monotonic_seconds();
     if (b.ntodo > 0)
         r->fresh_wall += t_end - b.t_start;
     r->wall_seconds += t_end - t_batch;
@@ -326,12 +158,20 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
             *failed_index = count; /* not a model failure */
         return RF_EIO;
     }
+    int interrupted = b.interrupted > 0 || (r->interrupt && atomic_load(r->interrupt));
     if (b.first_failed < count && !r->tolerate_failures) {
         if (failed_index)
             *failed_index = b.first_failed;
         if (err)
             *err = b.first_err;
         return b.first_err.code != RF_OK ? b.first_err.code : RF_EMODEL;
+    }
+    size_t finished = atomic_load(&b.done);
+    if (interrupted && finished < b.ntodo) {
+        if (failed_index)
+            *failed_index = count; /* not a model failure */
+        return rf_fail(err, RF_EINTERRUPTED, "interrupted after %zu of the %zu evaluations of this batch (every "
+                       "finished one is stored; %zu stopped mid-way)", finished, b.ntodo, b.interrupted);
     }
     return RF_OK;
 }

@@ -17,6 +17,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/util.h"
+
 #define STORE_FORMAT "rockfuzz-store"
 #define STORE_FORMAT_VERSION "1"
 
@@ -148,17 +150,213 @@ static const char *SCHEMA =
     "CREATE TABLE results(x BLOB PRIMARY KEY, ok INTEGER NOT NULL, y BLOB, error TEXT, seconds REAL,"
     " finished REAL NOT NULL, x_text TEXT);";
 
+/* Why a database could not be opened: SQLite's message plus the system's
+ * (a read-only folder, a directory in the way, ...). */
+static rf_status open_fail(rf_error *err, sqlite3 *db, const char *path)
+{
+    int e = db ? sqlite3_system_errno(db) : ENOMEM;
+    struct stat sb;
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+        return rf_fail(err, RF_EIO, "result store %s: cannot open: it is not a regular file", path);
+    return rf_fail(err, RF_EIO, "result store %s: cannot open: %s%s%s", path,
+                   db ? sqlite3_errmsg(db) : "out of memory", e ? ": " : "", e ? strerror(e) : "");
+}
+
+/* SQLite's own structural check (PRAGMA quick_check: b-trees, pages, records;
+ * O(size)), run before anything is written.  *damaged = 1 when it fails. */
+static rf_status integrity_check(sqlite3 *db, const char *path, int *damaged, rf_error *err)
+{
+    sqlite3_stmt *st = NULL;
+    *damaged = 0;
+    int rc = sqlite3_prepare_v2(db, "PRAGMA quick_check", -1, &st, NULL);
+    char first[512] = "";
+    int bad = rc != SQLITE_OK;
+    if (bad)
+        snprintf(first, sizeof first, "%s", sqlite3_errmsg(db));
+    while (!bad && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        const unsigned char *row = sqlite3_column_text(st, 0);
+        if (!row || strcmp((const char *)row, "ok") != 0) {
+            snprintf(first, sizeof first, "%s", row ? (const char *)row : "?");
+            bad = 1;
+        }
+    }
+    if (!bad && rc != SQLITE_DONE) {
+        snprintf(first, sizeof first, "%s", sqlite3_errmsg(db));
+        bad = 1;
+    }
+    sqlite3_finalize(st);
+    if (!bad)
+        return RF_OK;
+    *damaged = 1;
+    return rf_fail(err, RF_EIO,
+                   "%s is damaged (SQLite integrity check: %s); nothing in its folder was changed and its results "
+                   "are not used. Rerun with --fresh to move it aside (to %s.damaged) and start over, or choose "
+                   "another --out directory; result.json of the last complete run, if any, is still valid",
+                   path, first, path);
+}
+
+/* --fresh on a damaged store: keep it (and its WAL) as PATH.damaged*, start a new one. */
+static rf_status move_aside(const char *path, rf_error *err)
+{
+    static const char *const sfx[3] = {"", "-wal", "-shm"};
+    for (int k = 0; k < 3; k++) {
+        char from[4096], to[4096];
+        snprintf(from, sizeof from, "%s%s", path, sfx[k]);
+        snprintf(to, sizeof to, "%s.damaged%s", path, sfx[k]);
+        if (rename(from, to) != 0 && errno != ENOENT)
+            return rf_fail(err, RF_EIO, "cannot move the damaged store %s aside to %s: %s", from, to,
+                           strerror(errno));
+    }
+    return RF_OK;
+}
+
+/* SQLite's side files of path (-wal, -shm) that do not exist now: on a
+ * refusal they are removed again, so the folder is left as it was found. */
+static void note_side_files(const char *path, int absent[2])
+{
+    static const char *const sfx[2] = {"-wal", "-shm"};
+    for (int k = 0; k < 2; k++) {
+        char f[4096];
+        struct stat sb;
+        snprintf(f, sizeof f, "%s%s", path, sfx[k]);
+        absent[k] = stat(f, &sb) != 0 && errno == ENOENT;
+    }
+}
+
+static void remove_new_side_files(const char *path, const int absent[2])
+{
+    static const char *const sfx[2] = {"-wal", "-shm"};
+    for (int k = 0; k < 2; k++) {
+        char f[4096];
+        snprintf(f, sizeof f, "%s%s", path, sfx[k]);
+        if (absent[k])
+            unlink(f);
+    }
+}
+
+/* Open an existing file as a store: format, then integrity.  Reads only; no
+ * checkpoint on close, so a refused file is left exactly as it was. */
+static rf_status open_existing(rf_store *s, const char *path, int *damaged, rf_error *err)
+{
+    *damaged = 0;
+    if (sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX, NULL) != SQLITE_OK)
+        return open_fail(err, s->db, path);
+    sqlite3_db_config(s->db, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, (int *)NULL);
+    sqlite3_busy_timeout(s->db, 10000);
+    sqlite3_extended_result_codes(s->db, 1);
+    int code = 0;
+    rf_status st = check_format(s->db, path, err);
+    if (st != RF_OK) {
+        code = sqlite3_extended_errcode(s->db) & 0xff;
+        *damaged = code == SQLITE_CORRUPT; /* NOTADB: not an SQLite file, so not ours */
+        if (*damaged)
+            integrity_check(s->db, path, damaged, err);
+        return st;
+    }
+    if ((st = integrity_check(s->db, path, damaged, err)) != RF_OK)
+        return st;
+    sqlite3_db_config(s->db, SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 0, (int *)NULL);
+    return RF_OK;
+}
+
+/* s->db on the file at path: an existing one checked (a damaged one moved
+ * aside with fresh), else a new empty database.  *exists: an old store is open. */
+static rf_status open_or_create(rf_store *s, const char *path, int fresh, int *exists, rf_error *err)
+{
+    struct stat sb;
+    *exists = stat(path, &sb) == 0 && sb.st_size > 0;
+    int damaged = 0, absent[2];
+    note_side_files(path, absent);
+    if (*exists) {
+        rf_status st = open_existing(s, path, &damaged, err);
+        if (st == RF_OK)
+            return RF_OK;
+        sqlite3_close(s->db);
+        s->db = NULL;
+        remove_new_side_files(path, absent); /* ours, empty: nothing was written */
+        if (!(damaged && fresh))
+            return st;
+        if ((st = move_aside(path, err)) != RF_OK)
+            return st;
+        *exists = 0;
+    }
+    if (sqlite3_open_v2(path, &s->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | SQLITE_OPEN_CREATE, NULL) !=
+        SQLITE_OK)
+        return open_fail(err, s->db, path);
+    sqlite3_busy_timeout(s->db, 10000);
+    sqlite3_extended_result_codes(s->db, 1);
+    return RF_OK;
+}
+
+/* Same model, settings, version and names?  Checked before anything is written. */
+static rf_status check_key(rf_store *s, const rf_store_key *key, const char *inputs, const char *outputs, int fresh,
+                           rf_error *err)
+{
+    static const char *const keys[4] = {"identity", "rockfuzz_version", "inputs", "outputs"};
+    static const char *const what[4] = {"model or its settings", "rockfuzz version", "input names", "output names"};
+    const char *now[4] = {key->identity, key->version, inputs, outputs};
+    char *stored = malloc(65536);
+    if (!stored)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    rf_status st = RF_OK;
+    for (int k = 0; k < 4 && st == RF_OK; k++) {
+        if (meta_get(s->db, keys[k], stored, 65536) != 0) {
+            st = db_fail(err, s->db, s->path, "cannot read its meta table");
+        } else if (strcmp(stored, now[k]) != 0 && !fresh) {
+            char diff[512];
+            first_difference(stored, now[k], diff, sizeof diff);
+            st = rf_fail(err, RF_EINVAL,
+                         "%s holds results of a different %s (%s); they are not mixed with this run: rerun with "
+                         "--fresh to discard them, or choose another --out directory",
+                         s->path, what[k], diff);
+        }
+    }
+    free(stored);
+    return st;
+}
+
+/* WAL mode, the tables of a new store, and the key, in one transaction. */
+static rf_status write_key(rf_store *s, const rf_store_key *key, const char *inputs, const char *outputs, int exists,
+                           int fresh, rf_error *err)
+{
+    sqlite3 *db = s->db;
+    if (sqlite3_exec(db, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(err, db, s->path, "cannot switch to WAL mode");
+    if (!exists && sqlite3_exec(db, SCHEMA, NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(err, db, s->path, "cannot create the tables");
+    if (sqlite3_exec(db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
+        return db_fail(err, db, s->path, "cannot start a transaction");
+    if ((exists && fresh && sqlite3_exec(db, "DELETE FROM results", NULL, NULL, NULL) != SQLITE_OK) ||
+        meta_set(db, "format", STORE_FORMAT) || meta_set(db, "format_version", STORE_FORMAT_VERSION) ||
+        meta_set(db, "identity", key->identity) || meta_set(db, "rockfuzz_version", key->version) ||
+        meta_set(db, "inputs", inputs) || meta_set(db, "outputs", outputs)) {
+        rf_status st = db_fail(err, db, s->path, "cannot write its meta table");
+        sqlite3_exec(db, "ROLLBACK", NULL, NULL, NULL);
+        return st;
+    }
+    if (sqlite3_exec(db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK) {
+        rf_status st = db_fail(err, db, s->path, "cannot commit its meta table");
+        sqlite3_exec(db, "ROLLBACK", NULL, NULL, NULL);
+        return st;
+    }
+    if (sqlite3_prepare_v2(db, "SELECT ok, y FROM results WHERE x = ?1", -1, &s->lookup, NULL) != SQLITE_OK ||
+        sqlite3_prepare_v2(db,
+                           "INSERT OR REPLACE INTO results(x, ok, y, error, seconds, finished, x_text) "
+                           "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7)",
+                           -1, &s->put, NULL) != SQLITE_OK)
+        return db_fail(err, db, s->path, "cannot prepare its statements");
+    return RF_OK;
+}
+
 rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf_store **out, rf_error *err)
 {
     *out = NULL;
     if (!path || !key || !key->identity || !key->version)
         return rf_fail(err, RF_EINTERNAL, "rf_store_open: NULL argument");
-    struct stat sb;
-    int exists = stat(path, &sb) == 0 && sb.st_size > 0;
     rf_store *s = calloc(1, sizeof *s);
     char *inputs = join_names(key->n_inputs, key->input_names);
     char *outputs = join_names(key->n_outputs, key->output_names);
-    if (!s || !inputs || !outputs || !(s->path = strdup(path))) {
+    if (!s || !inputs || !outputs || !(s->path = rf_strdup(path))) {
         free(s);
         free(inputs);
         free(outputs);
@@ -167,81 +365,12 @@ rf_status rf_store_open(const char *path, const rf_store_key *key, int fresh, rf
     pthread_mutex_init(&s->lock, NULL);
     s->n_inputs = key->n_inputs;
     s->n_outputs = key->n_outputs;
-    rf_status st = RF_OK;
-    int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | (exists ? 0 : SQLITE_OPEN_CREATE);
-    if (sqlite3_open_v2(path, &s->db, flags, NULL) != SQLITE_OK) {
-        st = rf_fail(err, RF_EIO, "result store %s: cannot open: %s", path,
-                     s->db ? sqlite3_errmsg(s->db) : "out of memory");
-        goto done;
-    }
-    sqlite3_busy_timeout(s->db, 10000);
-    sqlite3_extended_result_codes(s->db, 1);
-    if (exists) {
-        if ((st = check_format(s->db, path, err)) != RF_OK)
-            goto done;
-        /* Same model, settings, version and names?  Checked before anything is written. */
-        static const char *const keys[4] = {"identity", "rockfuzz_version", "inputs", "outputs"};
-        static const char *const what[4] = {"model or its settings", "rockfuzz version", "input names",
-                                            "output names"};
-        const char *now[4] = {key->identity, key->version, inputs, outputs};
-        for (int k = 0; k < 4; k++) {
-            char *stored = malloc(65536);
-            if (!stored) {
-                st = rf_fail(err, RF_ENOMEM, "out of memory");
-                goto done;
-            }
-            if (meta_get(s->db, keys[k], stored, 65536) != 0) {
-                free(stored);
-                st = db_fail(err, s->db, path, "cannot read its meta table");
-                goto done;
-            }
-            if (strcmp(stored, now[k]) != 0 && !fresh) {
-                char diff[512];
-                first_difference(stored, now[k], diff, sizeof diff);
-                st = rf_fail(err, RF_EINVAL,
-                             "%s holds results of a different %s (%s); they are not mixed with this run: "
-                             "rerun with --fresh to discard them, or choose another --out directory",
-                             path, what[k], diff);
-                free(stored);
-                goto done;
-            }
-            free(stored);
-        }
-    }
-    if (sqlite3_exec(s->db, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", NULL, NULL, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot switch to WAL mode");
-        goto done;
-    }
-    if (!exists && sqlite3_exec(s->db, SCHEMA, NULL, NULL, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot create the tables");
-        goto done;
-    }
-    if (sqlite3_exec(s->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot start a transaction");
-        goto done;
-    }
-    if ((exists && fresh && sqlite3_exec(s->db, "DELETE FROM results", NULL, NULL, NULL) != SQLITE_OK) ||
-        meta_set(s->db, "format", STORE_FORMAT) || meta_set(s->db, "format_version", STORE_FORMAT_VERSION) ||
-        meta_set(s->db, "identity", key->identity) || meta_set(s->db, "rockfuzz_version", key->version) ||
-        meta_set(s->db, "inputs", inputs) || meta_set(s->db, "outputs", outputs)) {
-        st = db_fail(err, s->db, path, "cannot write its meta table");
-        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
-        goto done;
-    }
-    if (sqlite3_exec(s->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot commit its meta table");
-        sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
-        goto done;
-    }
-    if (sqlite3_prepare_v2(s->db, "SELECT ok, y FROM results WHERE x = ?1", -1, &s->lookup, NULL) != SQLITE_OK ||
-        sqlite3_prepare_v2(s->db,
-                           "INSERT OR REPLACE INTO results(x, ok, y, error, seconds, finished, x_text) "
-                           "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7)",
-                           -1, &s->put, NULL) != SQLITE_OK) {
-        st = db_fail(err, s->db, path, "cannot prepare its statements");
-        goto done;
-    }
-done:
+    int exists = 0;
+    rf_status st = open_or_create(s, path, fresh, &exists, err);
+    if (st == RF_OK && exists)
+        st = check_key(s, key, inputs, outputs, fresh, err);
+    if (st == RF_OK)
+        st = write_key(s, key, inputs, outputs, exists, fresh, err);
     free(inputs);
     free(outputs);
     if (st != RF_OK) {
@@ -340,6 +469,26 @@ rf_status rf_store_put(rf_store *s, const double *x, int ok, const double *y, co
         st = db_fail(err, s->db, s->path, "cannot commit a result");
     sqlite3_reset(s->put);
     sqlite3_clear_bindings(s->put);
+    pthread_mutex_unlock(&s->lock);
+    return st;
+}
+
+rf_status rf_store_note_set(rf_store *s, const char *key, const char *value, rf_error *err)
+{
+    char k[128];
+    snprintf(k, sizeof k, "note.%s", key);
+    pthread_mutex_lock(&s->lock);
+    rf_status st = meta_set(s->db, k, value) == 0 ? RF_OK : db_fail(err, s->db, s->path, "cannot write a note");
+    pthread_mutex_unlock(&s->lock);
+    return st;
+}
+
+rf_status rf_store_note_get(rf_store *s, const char *key, char *buf, size_t size, rf_error *err)
+{
+    char k[128];
+    snprintf(k, sizeof k, "note.%s", key);
+    pthread_mutex_lock(&s->lock);
+    rf_status st = meta_get(s->db, k, buf, size) == 0 ? RF_OK : db_fail(err, s->db, s->path, "cannot read a note");
     pthread_mutex_unlock(&s->lock);
     return st;
 }

@@ -10,8 +10,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #define MAX_PARAMS 64
+#define STUDY_PIPE_WAIT_MS 5000 /* a pipe given as the study file must deliver within this */
 #define MAX_POINTS 10000
 
 static const char *const shape_keys[] = {"tfn", "trapezoid", "interval", "gaussian", "crisp", "points", "cuts"};
@@ -420,11 +425,11 @@ static rf_status parse_parameters(sp_ctx *c, rf_study *s, struct fy_node *n)
             return sp_fail(c, k, "", "%s: a parameter name must be an identifier (letters, digits, _; not "
                                      "starting with a digit; at most 64 characters)",
                            path);
+        s->n_params = i + 1; /* from here rf_study_free releases entry i (also half-filled) */
         s->param_names[i] = sp_strdup(key);
         s->param_units[i] = sp_strdup("");
         if (!s->param_names[i] || !s->param_units[i])
             return rf_fail(c->err, RF_ENOMEM, "out of memory");
-        s->n_params = i + 1; /* from here rf_study_free releases entry i */
         if ((st = parse_param(c, s, i, s->param_names[i], k, v)) != RF_OK)
             return st;
     }
@@ -598,6 +603,43 @@ static rf_status check_text(const char *name, const char *buf, size_t len, rf_er
 
 #define MAX_STUDY_BYTES (16u << 20)
 
+/* The one YAML document of buf into *doc (free with fy_parse_document_destroy
+ * on *fyp); invalid YAML, no document or a second one is an error. */
+static rf_status read_yaml(const char *name, const char *buf, size_t len, struct fy_diag *diag,
+                           struct fy_parser **fyp, struct fy_document **doc, rf_error *err)
+{
+    struct fy_parse_cfg pc;
+    memset(&pc, 0, sizeof pc);
+    /* Duplicate keys are accepted by the parser and reported by us with both lines. */
+    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
+    pc.diag = diag;
+    *doc = NULL;
+    *fyp = fy_parser_create(&pc);
+    if (!*fyp)
+        return rf_fail(err, RF_ENOMEM, "out of memory (YAML parser)");
+    if (fy_parser_set_string(*fyp, len ? buf : "", len) == 0)
+        *doc = fy_parse_load_document(*fyp);
+    if (!*doc) {
+        void *it = NULL;
+        struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
+        if (e)
+            return rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg,
+                           e->column);
+        return rf_fail(err, RF_EPARSE, "%s:1: the study file holds no YAML document (empty?)", name);
+    }
+    /* One study per file: a second document would otherwise be ignored without a word. */
+    struct fy_document *more = fy_parse_load_document(*fyp);
+    if (!more && !fy_parser_get_stream_error(*fyp))
+        return RF_OK;
+    int line = more && fy_document_root(more) ? sp_line(fy_document_root(more)) : 0;
+    fy_parse_document_destroy(*fyp, more);
+    if (line)
+        return rf_fail(err, RF_EPARSE, "%s:%d: a second YAML document (after '---'); a study file holds exactly one",
+                       name, line);
+    return rf_fail(err, RF_EPARSE, "%s: a second YAML document, or text after the first that is not YAML; a study "
+                   "file holds exactly one document", name);
+}
+
 static rf_status load(const char *name, const char *buf, size_t len, rf_study *s, rf_error *err)
 {
     memset(s, 0, sizeof *s);
@@ -611,51 +653,68 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
     if (!s->path)
         return rf_fail(err, RF_ENOMEM, "out of memory");
     rf_status st = split_path(name, &s->dir, &stem, err);
-    if (st != RF_OK) {
-        free(stem);
-        rf_study_free(s);
-        return st;
-    }
     s->name = stem;
-
-    if ((st = check_text(name, buf, len, err)) != RF_OK) {
-        rf_study_free(s);
-        return st;
-    }
-    struct fy_diag_cfg dc;
-    fy_diag_cfg_default(&dc);
-    dc.fp = NULL;
-    dc.colorize = false;
-    struct fy_diag *diag = fy_diag_create(&dc);
-    if (!diag) {
-        rf_study_free(s);
-        return rf_fail(err, RF_ENOMEM, "out of memory (YAML diagnostics)");
-    }
-    fy_diag_set_collect_errors(diag, true);
-    struct fy_parse_cfg pc;
-    memset(&pc, 0, sizeof pc);
-    /* Duplicate keys are accepted by the parser and reported by us with both lines. */
-    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
-    pc.diag = diag;
-    struct fy_document *doc = fy_document_build_from_string(&pc, len ? buf : "", len);
-    if (!doc) {
-        void *it = NULL;
-        struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
-        if (e)
-            st = rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg, e->column);
+    if (st == RF_OK)
+        st = check_text(name, buf, len, err);
+    struct fy_diag *diag = NULL;
+    if (st == RF_OK) {
+        struct fy_diag_cfg dc;
+        fy_diag_cfg_default(&dc);
+        dc.fp = NULL;
+        dc.colorize = false;
+        if (!(diag = fy_diag_create(&dc)))
+            st = rf_fail(err, RF_ENOMEM, "out of memory (YAML diagnostics)");
         else
-            st = rf_fail(err, RF_EPARSE, "%s:1: the study file holds no YAML document (empty?)", name);
-        fy_diag_destroy(diag);
-        rf_study_free(s);
-        return st;
+            fy_diag_set_collect_errors(diag, true);
     }
-    sp_ctx c = {name, s->dir, err, NULL};
-    st = parse_document(&c, s, doc);
-    fy_document_destroy(doc);
-    fy_diag_destroy(diag);
+    struct fy_parser *fyp = NULL;
+    struct fy_document *doc = NULL;
+    if (st == RF_OK)
+        st = read_yaml(name, buf, len, diag, &fyp, &doc, err);
+    if (st == RF_OK) {
+        sp_ctx c = {name, s->dir, err, NULL};
+        st = parse_document(&c, s, doc);
+    }
+    if (doc)
+        fy_parse_document_destroy(fyp, doc);
+    if (fyp)
+        fy_parser_destroy(fyp);
+    if (diag)
+        fy_diag_destroy(diag);
     if (st != RF_OK)
         rf_study_free(s);
     return st;
+}
+
+/* Open the study file: a regular file, or a pipe that has a writer (e.g.
+ * `<(generate)`); a directory, a device or a FIFO nobody writes to is refused
+ * instead of read or waited on forever. */
+static rf_status open_study_file(const char *path, FILE **f, rf_error *err)
+{
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+        return rf_fail(err, RF_EIO, "%s: cannot open the study file: %s", path, strerror(errno));
+    struct stat sb;
+    const char *what = NULL;
+    if (fstat(fd, &sb) != 0)
+        what = strerror(errno);
+    else if (S_ISDIR(sb.st_mode))
+        what = "it is a directory";
+    else if (S_ISFIFO(sb.st_mode)) {
+        struct pollfd p = {fd, POLLIN, 0};
+        if (poll(&p, 1, STUDY_PIPE_WAIT_MS) <= 0 || !(p.revents & (POLLIN | POLLHUP)))
+            what = "it is a pipe or FIFO and nothing was written to it within 5 s";
+    } else if (!S_ISREG(sb.st_mode))
+        what = "it is not a regular file";
+    if (!what && fcntl(fd, F_SETFL, 0) != 0)
+        what = strerror(errno);
+    if (!what && !(*f = fdopen(fd, "rb")))
+        what = strerror(errno);
+    if (what) {
+        close(fd);
+        return rf_fail(err, RF_EIO, "%s: cannot read the study file: %s", path, what);
+    }
+    return RF_OK;
 }
 
 rf_status rf_study_load(const char *path, rf_study *study, rf_error *err)
@@ -663,9 +722,10 @@ rf_status rf_study_load(const char *path, rf_study *study, rf_error *err)
     if (!path || !study)
         return rf_fail(err, RF_EINTERNAL, "rf_study_load: NULL argument");
     memset(study, 0, sizeof *study);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return rf_fail(err, RF_EIO, "%s: cannot open the study file: %s", path, strerror(errno));
+    FILE *f = NULL;
+    rf_status opened = open_study_file(path, &f, err);
+    if (opened != RF_OK)
+        return opened;
     long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
     if (size < 0 || fseek(f, 0, SEEK_SET) != 0)
         size = MAX_STUDY_BYTES; /* not seekable (a pipe): read up to the limit */

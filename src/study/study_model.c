@@ -5,6 +5,7 @@
 #include "study/study_internal.h"
 
 #include "rockfuzz/impact.h"
+#include "core/util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -456,7 +457,7 @@ static double *impact_field(rf_impact_input *in, const char *name)
     return NULL;
 }
 
-static const double deg = 3.14159265358979323846 / 180.0;
+static const double deg = RF_PI / 180.0;
 
 static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
 {

@@ -140,6 +140,8 @@ rf_status sp_prefix(sp_ctx *c, struct fy_node *n, const char *path)
     return code;
 }
 
+static int is_quoted(struct fy_node *n);
+
 static const char *type_name(struct fy_node *n)
 {
     if (!n)
@@ -150,7 +152,7 @@ static const char *type_name(struct fy_node *n)
     default:
         if (fy_node_get_style(n) == FYNS_ALIAS)
             return "an alias (aliases are not supported)";
-        if (fy_node_get_style(n) == FYNS_SINGLE_QUOTED || fy_node_get_style(n) == FYNS_DOUBLE_QUOTED)
+        if (is_quoted(n))
             return "a string";
         return "a scalar";
     }
@@ -184,10 +186,18 @@ static int is_scalar(struct fy_node *n)
     return n && fy_node_get_type(n) == FYNT_SCALAR && fy_node_get_style(n) != FYNS_ALIAS;
 }
 
+/* A scalar that is text by the author's choice: quoted, or tagged !!str
+ * (YAML's explicit "this is a string", e.g. `levels: !!str 2`). */
 static int is_quoted(struct fy_node *n)
 {
     enum fy_node_style st = fy_node_get_style(n);
-    return st == FYNS_SINGLE_QUOTED || st == FYNS_DOUBLE_QUOTED;
+    if (st == FYNS_SINGLE_QUOTED || st == FYNS_DOUBLE_QUOTED)
+        return 1;
+    size_t len = 0;
+    const char *tag = fy_node_get_tag(n, &len);
+    static const char str_tag[] = "tag:yaml.org,2002:str";
+    return tag && ((len == 5 && !memcmp(tag, "!!str", 5)) ||
+                   (len == sizeof str_tag - 1 && !memcmp(tag, str_tag, len)));
 }
 
 rf_status sp_number(sp_ctx *c, struct fy_node *n, const char *path, double *v)

@@ -331,7 +331,7 @@ static void ctx_free(tm_ctx *c)
                 for (size_t j = 0; j <= c->m; j++)
                     free(c->gen[i][j]);
             free(c->gen[i]);
-            free(c->gen_cnt[i]);
+            free(c->gen_cnt ? c->gen_cnt[i] : NULL);
         }
     }
     free(c->gen);
@@ -992,7 +992,7 @@ rf_status rf_tm_run(const rf_fuzzy *inputs, size_t n_inputs, const rf_model *mod
                      c.d->npoints, opt->max_evaluations);
     if (!st)
         st = evaluate_pending(&c, model, &evaluated, err);
-    size_t before_main = c.d->npoints;
+    size_t before_main = c.d ? c.d->npoints : 0;
     if (!st && deferred) {
         classify(&c, ps, nps, res->monotonicity);
         res->probe_evaluations = c.d->npoints;

@@ -1,11 +1,12 @@
-/* runner_internal.h - one batch of the runner, shared by runner.c (threads)
+/* batch.h - one batch of the runner (batch.c), shared by runner.c (threads)
  * and mpi.c (rank 0 serving worker ranks from the same queue). */
-#ifndef ROCKFUZZ_RUNNER_INTERNAL_H
-#define ROCKFUZZ_RUNNER_INTERNAL_H
+#ifndef ROCKFUZZ_BATCH_H
+#define ROCKFUZZ_BATCH_H
 
 #include <pthread.h>
 #include <stdatomic.h>
 
+#include "core/util.h"
 #include "rockfuzz/runner.h"
 
 typedef struct {
@@ -30,9 +31,8 @@ typedef struct {
     rf_error store_err;
     double eval_seconds;
     size_t remote;
+    size_t interrupted;      /* evaluations that returned RF_EINTERRUPTED */
 } rf_batch;
-
-double rf_runner_now(void);
 
 /* Take the next todo position, or return 0 when there is none or the batch stops. */
 int rf_batch_take(rf_batch *b, size_t *pos);
@@ -46,9 +46,5 @@ void rf_batch_finish(rf_batch *b, size_t pos, rf_status st, const rf_error *err,
 
 /* Draw the progress line (final: with a newline). */
 void rf_batch_progress(rf_batch *b, int final);
-
-/* mpi.c: rank 0 serves the worker ranks until the queue is empty and every
- * local worker has returned; draws the progress line while it waits. */
-void rf_mpi_serve_batch(rf_batch *b);
 
 #endif
