@@ -1,0 +1,368 @@
+/* grid.c - the TM's grids and its point registry (see tm_internal.h).
+ *
+ * Grid values are registered per input, merged within rtol and then sorted,
+ * so that value indices grow with the value and a grid's index list is
+ * ascending.  rf_tm_grid_build maps a grid's value lists to index lists and
+ * enumerates its points with an odometer, telling new points from repeated
+ * ones by the AND of per-position "earlier grids holding this value" sets.
+ * A new point gets the next id and its input vector is written once; a
+ * repeated point takes the id stored by the first earlier grid holding it
+ * (its position there is the rank of each index in that grid's bitsets). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tm/tm_internal.h"
+
+#define WORD_BITS 64
+
+static size_t words_for(size_t bits) { return (bits + WORD_BITS - 1) / WORD_BITS; }
+
+static int bit_test(const uint64_t *set, size_t words, size_t b)
+{
+    return b / WORD_BITS < words && ((set[b / WORD_BITS] >> (b % WORD_BITS)) & 1);
+}
+
+/* Number of set bits below b: the position of index b in a grid's ascending list. */
+static size_t bit_rank(const uint64_t *set, size_t b)
+{
+    size_t r = 0, w = b / WORD_BITS;
+    for (size_t q = 0; q < w; q++)
+        r += (size_t)__builtin_popcountll(set[q]);
+    uint64_t low = (b % WORD_BITS) ? set[w] & ((UINT64_C(1) << (b % WORD_BITS)) - 1) : 0;
+    return r + (size_t)__builtin_popcountll(low);
+}
+
+/* Index of the smallest stored value of input i within rtol of v (the
+ * values are sorted), or -1 if there is none. */
+int rf_tm_value_index(struct rf_tm_data *d, size_t i, double v, uint32_t *out)
+{
+    const double *vals = d->values[i];
+    double tol = d->rtol * d->scale[i];
+    size_t lo = 0, hi = d->nvalues[i];
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (vals[mid] < v - tol)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    if (lo == d->nvalues[i] || vals[lo] > v + tol)
+        return -1;
+    *out = (uint32_t)lo;
+    return 0;
+}
+
+void rf_tm_grid_free(rf_grid *g, size_t n)
+{
+    if (!g)
+        return;
+    for (size_t i = 0; i < n; i++) {
+        if (g->vidx)
+            free(g->vidx[i]);
+        if (g->member)
+            free(g->member[i]);
+    }
+    free(g->vidx);
+    free(g->member);
+    free(g->radix);
+    free(g->stride);
+    free(g->nominal_pos);
+    free(g->ids);
+    memset(g, 0, sizeof *g);
+}
+
+void rf_tm_data_free(struct rf_tm_data *d)
+{
+    if (!d)
+        return;
+    for (size_t i = 0; i < d->n; i++)
+        free(d->values ? d->values[i] : NULL);
+    free(d->values);
+    free(d->nvalues);
+    free(d->capvalues);
+    free(d->scale);
+    free(d->reg);
+    free(d->x);
+    free(d->y);
+    rf_tm_grid_free(d->nominal, d->n);
+    free(d->nominal);
+    for (size_t j = 0; d->main && j <= d->m; j++)
+        rf_tm_grid_free(&d->main[j], d->n);
+    free(d->main);
+    for (size_t j = 0; d->lr && j <= d->m; j++)
+        rf_tm_grid_free(&d->lr[j], d->n);
+    free(d->lr);
+    for (size_t s = 0; d->probe && s < d->nprobe; s++)
+        rf_tm_grid_free(&d->probe[s], d->n);
+    free(d->probe);
+    free(d);
+}
+
+void rf_tm_gather(const struct rf_tm_data *d, const rf_grid *g, size_t k, double *z)
+{
+    const uint32_t *ids = g->ids;
+    const double *y = d->y + k;
+    size_t no = d->n_out;
+    for (size_t p = 0; p < g->count; p++)
+        z[p] = y[(size_t)ids[p] * no];
+}
+
+void rf_tm_gather_all(const struct rf_tm_data *d, const rf_grid *g, double *z)
+{
+    size_t no = d->n_out, count = g->count;
+    for (size_t p = 0; p < count; p++) {
+        const double *y = d->y + (size_t)g->ids[p] * no;
+        for (size_t k = 0; k < no; k++)
+            z[k * count + p] = y[k];
+    }
+}
+
+/* Index lists of g from ascending value lists; equal indices (values merged
+ * within rtol) are kept once.  Sets radix, stride, member and count. */
+static rf_status grid_lists(struct rf_tm_data *d, rf_grid *g, double *const *vals, const size_t *cnt,
+                            rf_error *err)
+{
+    size_t n = d->n, count = 1;
+    g->radix = calloc(n, sizeof *g->radix);
+    g->stride = calloc(n, sizeof *g->stride);
+    g->vidx = calloc(n, sizeof *g->vidx);
+    g->member = calloc(n, sizeof *g->member);
+    g->nominal_pos = calloc(n, sizeof *g->nominal_pos);
+    if (!g->radix || !g->stride || !g->vidx || !g->member || !g->nominal_pos)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the TM grid");
+    for (size_t i = n; i-- > 0;) {
+        g->vidx[i] = malloc((cnt[i] ? cnt[i] : 1) * sizeof(uint32_t));
+        g->member[i] = calloc(words_for(d->nvalues[i]) + 1, sizeof(uint64_t));
+        if (!g->vidx[i] || !g->member[i])
+            return rf_fail(err, RF_ENOMEM, "out of memory for the TM grid");
+        size_t r = 0;
+        for (size_t l = 0; l < cnt[i]; l++) {
+            uint32_t v;
+            if (rf_tm_value_index(d, i, vals[i][l], &v))
+                return rf_fail(err, RF_EINTERNAL, "TM grid value %.17g of input %zu was not registered",
+                               vals[i][l], i + 1);
+            if (r == 0 || g->vidx[i][r - 1] != v)
+                g->vidx[i][r++] = v;
+            g->member[i][v / WORD_BITS] |= UINT64_C(1) << (v % WORD_BITS);
+        }
+        g->radix[i] = r;
+        g->stride[i] = count;
+        if (r && count > SIZE_MAX / r)
+            return rf_fail(err, RF_ECAP, "the TM grid is too large to enumerate");
+        count *= r;
+    }
+    g->count = count;
+    return RF_OK;
+}
+
+/* The odometer's state while a grid is enumerated. */
+typedef struct {
+    size_t n, words;      /* words: of a set of earlier grids */
+    size_t *digit;        /* [n] */
+    uint64_t *mask;       /* [(offset[i] + l) * words]: earlier grids holding value l of input i */
+    size_t *offset;       /* [n] */
+    uint64_t *prefix;     /* [(n + 1) * words]: AND of the masks of inputs < i */
+    double *cur;          /* [n] current input vector */
+} odometer;
+
+static void odometer_free(odometer *o)
+{
+    free(o->digit);
+    free(o->mask);
+    free(o->offset);
+    free(o->prefix);
+    free(o->cur);
+}
+
+static rf_status odometer_init(odometer *o, const struct rf_tm_data *d, const rf_grid *g, rf_error *err)
+{
+    size_t n = d->n, total = 0;
+    memset(o, 0, sizeof *o);
+    o->n = n;
+    o->words = words_for(d->nreg) ? words_for(d->nreg) : 1;
+    o->offset = malloc(n * sizeof *o->offset);
+    for (size_t i = 0; o->offset && i < n; i++) {
+        o->offset[i] = total;
+        total += g->radix[i];
+    }
+    o->digit = calloc(n, sizeof *o->digit);
+    o->mask = calloc(total * o->words + 1, sizeof *o->mask);
+    o->prefix = malloc((n + 1) * o->words * sizeof *o->prefix);
+    o->cur = malloc(n * sizeof *o->cur);
+    if (!o->offset || !o->digit || !o->mask || !o->prefix || !o->cur)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the TM grid");
+    for (size_t h = 0; h < d->nreg; h++) {
+        const rf_grid *e = d->reg[h];
+        for (size_t i = 0; i < n; i++)
+            for (size_t l = 0; l < g->radix[i]; l++)
+                if (bit_test(e->member[i], words_for(d->nvalues[i]) + 1, g->vidx[i][l]))
+                    o->mask[(o->offset[i] + l) * o->words + h / WORD_BITS] |= UINT64_C(1) << (h % WORD_BITS);
+    }
+    for (size_t w = 0; w < o->words; w++)
+        o->prefix[w] = d->nreg ? ~UINT64_C(0) : 0;
+    for (size_t i = 0; i < n; i++)
+        o->cur[i] = d->values[i][g->vidx[i][0]];
+    return RF_OK;
+}
+
+/* Recompute the prefix ANDs from input `from` on. */
+static void odometer_prefix(odometer *o, size_t from)
+{
+    size_t W = o->words;
+    for (size_t i = from; i < o->n; i++) {
+        const uint64_t *a = o->prefix + i * W, *b = o->mask + (o->offset[i] + o->digit[i]) * W;
+        uint64_t *c = o->prefix + (i + 1) * W;
+        for (size_t w = 0; w < W; w++)
+            c[w] = a[w] & b[w];
+    }
+}
+
+/* First earlier grid holding the current point, or SIZE_MAX if it is new. */
+static size_t odometer_first_holder(const odometer *o)
+{
+    const uint64_t *acc = o->prefix + o->n * o->words;
+    for (size_t w = 0; w < o->words; w++)
+        if (acc[w])
+            return w * WORD_BITS + (size_t)__builtin_ctzll(acc[w]);
+    return SIZE_MAX;
+}
+
+/* Advance the inputs before the last one (the last is swept by the caller);
+ * returns the lowest input changed, or SIZE_MAX after the last point. */
+static size_t odometer_next_row(odometer *o, const struct rf_tm_data *d, const rf_grid *g)
+{
+    for (size_t i = o->n - 1; i-- > 0;) {
+        size_t l = ++o->digit[i] < g->radix[i] ? o->digit[i] : (o->digit[i] = 0);
+        o->cur[i] = d->values[i][g->vidx[i][l]];
+        if (l)
+            return i;
+    }
+    return SIZE_MAX;
+}
+
+/* Id the earlier grid e gave the current point. */
+static uint32_t id_in(const struct rf_tm_data *d, const rf_grid *e, const odometer *o, const rf_grid *g)
+{
+    size_t pos = 0;
+    for (size_t i = 0; i < d->n; i++)
+        pos += bit_rank(e->member[i], g->vidx[i][o->digit[i]]) * e->stride[i];
+    return e->ids[pos];
+}
+
+static rf_status grid_reserve(struct rf_tm_data *d, const rf_grid *g, int with_ids, rf_error *err)
+{
+    if (d->nreg == d->capreg) {
+        size_t cap = d->capreg ? 2 * d->capreg : 32;
+        rf_grid **r = realloc(d->reg, cap * sizeof *r);
+        if (!r)
+            return rf_fail(err, RF_ENOMEM, "out of memory for the TM grid");
+        d->reg = r;
+        d->capreg = cap;
+    }
+    if (!with_ids)
+        return RF_OK;
+    if (g->count > UINT32_MAX - 1 - d->npoints)
+        return rf_fail(err, RF_ECAP, "the TM grids have more points than this build can index");
+    size_t need = d->npoints + g->count;
+    if (need > d->capx) {
+        double *x = realloc(d->x, need * d->n * sizeof(double));
+        if (!x)
+            return rf_fail(err, RF_ENOMEM, "out of memory for the TM points (%zu)", need);
+        d->x = x;
+        d->capx = need;
+    }
+    return RF_OK;
+}
+
+/* A repeated point at position l of the current row: its id from the
+ * first earlier grid holding it. */
+static uint32_t repeated_id(struct rf_tm_data *d, const rf_grid *g, odometer *o, size_t l)
+{
+    size_t last = d->n - 1;
+    o->digit[last] = l;
+    odometer_prefix(o, last);
+    uint32_t id = id_in(d, d->reg[odometer_first_holder(o)], o, g);
+    o->digit[last] = 0;
+    return id;
+}
+
+/* Copy the fixed inputs of a row into a new point's vector (a plain loop:
+ * n is small, and a call to memcpy per point would cost more than the copy). */
+#if defined(__GNUC__) && !defined(__clang__)
+__attribute__((optimize("no-tree-loop-distribute-patterns")))
+#endif
+static void copy_row_head(double *restrict x, const double *restrict cur, size_t k)
+{
+    for (size_t i = 0; i < k; i++)
+        x[i] = cur[i];
+}
+
+/* One row of the grid: the last input sweeps its values, the others are
+ * fixed (their AND of earlier-grid sets is o->prefix[n-1]).  *p is the
+ * position of the row's first point in the grid. */
+static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t *p, int with_ids, rf_error *err)
+{
+    size_t n = d->n, W = o->words, last = n - 1, r = g->radix[last];
+    const uint64_t *pre = o->prefix + last * W, *mask = o->mask + o->offset[last] * W;
+    const double *vals = d->values[last];
+    const uint32_t *vidx = g->vidx[last];
+    for (size_t l = 0; l < r; l++, (*p)++) {
+        uint64_t any = 0;
+        for (size_t w = 0; w < W; w++)
+            any |= pre[w] & mask[l * W + w];
+        if (any) {
+            if (with_ids)
+                g->ids[*p] = repeated_id(d, g, o, l);
+            continue;
+        }
+        if (d->limit && d->npoints >= d->limit)
+            return rf_fail(err, RF_ECAP, "more than %zu distinct points", d->limit);
+        if (with_ids) {
+            double *x = d->x + d->npoints * n;
+            copy_row_head(x, o->cur, last);
+            x[last] = vals[vidx[l]];
+            g->ids[*p] = (uint32_t)d->npoints;
+        }
+        d->npoints++;
+    }
+    return RF_OK;
+}
+
+static rf_status grid_enumerate(struct rf_tm_data *d, rf_grid *g, int with_ids, rf_error *err)
+{
+    odometer o;
+    rf_status st = odometer_init(&o, d, g, err);
+    if (!st && with_ids && !(g->ids = malloc((g->count ? g->count : 1) * sizeof(uint32_t))))
+        st = rf_fail(err, RF_ENOMEM, "out of memory for the TM grid (%zu points)", g->count);
+    if (!st && g->count > 0) {
+        odometer_prefix(&o, 0);
+        size_t p = 0, changed = 0;
+        while (!st && changed != SIZE_MAX) {
+            st = grid_row(d, g, &o, &p, with_ids, err);
+            changed = d->n > 1 ? odometer_next_row(&o, d, g) : SIZE_MAX;
+            if (changed != SIZE_MAX)
+                odometer_prefix(&o, changed);
+        }
+    }
+    odometer_free(&o);
+    return st;
+}
+
+/* Build grid g from per-input value lists (vals[i], cnt[i] ascending),
+ * register its points (ids only if with_ids; otherwise they are counted) and
+ * the grid itself; *requested grows by the grid size. */
+rf_status rf_tm_grid_build(struct rf_tm_data *d, rf_grid *g, double *const *vals, const size_t *cnt,
+                           size_t *requested, int with_ids, rf_error *err)
+{
+    rf_status st = grid_lists(d, g, vals, cnt, err);
+    if (!st)
+        st = grid_reserve(d, g, with_ids, err);
+    if (!st)
+        st = grid_enumerate(d, g, with_ids, err);
+    if (st)
+        return st;
+    *requested += g->count;
+    d->reg[d->nreg++] = g;
+    return RF_OK;
+}
