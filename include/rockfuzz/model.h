@@ -41,6 +41,12 @@ typedef struct rf_model {
 
 /* Evaluate (convenience wrapper checking for NULL and non-finite outputs). */
 rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_error *err);
+/* rf_model_eval over count points x[p*n_inputs..], y[p*n_outputs..] in
+ * order; on failure sets *failed to the first failed point's index (a point
+ * with an infinite output is found after the evaluations: the points after
+ * it may have been evaluated as well). */
+rf_status rf_model_eval_many(const rf_model *model, size_t count, const double *x, double *y, size_t *failed,
+                             rf_error *err);
 
 /* Free everything the model owns (calls destroy); safe on a zeroed struct. */
 void rf_model_free(rf_model *model);

@@ -43,10 +43,18 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Sort ascending and drop values within tol of their predecessor. */
+/* Sort ascending and drop values within tol of their predecessor.  The
+ * lists are short and nearly sorted (lower bound, midpoints, upper bound):
+ * insertion sort. */
 size_t tm_sort_unique(double *v, size_t k, double tol)
 {
-    qsort(v, k, sizeof(double), cmp_double);
+    for (size_t r = 1; r < k; r++) {
+        double x = v[r];
+        size_t q = r;
+        for (; q > 0 && v[q - 1] > x; q--)
+            v[q] = v[q - 1];
+        v[q] = x;
+    }
     size_t w = 0;
     for (size_t r = 0; r < k; r++)
         if (w == 0 || v[r] - v[w - 1] > tol)
@@ -154,14 +162,17 @@ static rf_status ctx_input(tm_ctx *c, const rf_fuzzy *in, size_t i, rf_error *er
                        "reference value)",
                        i + 1, m - bad + (c->gen_cnt[i][m]), (double)bad / (double)m, lo[bad], hi[bad],
                        c->gen_cnt[i][bad]);
-    /* every value any grid can use: the general form holds the reduced
-     * form's and the probe's; plus the cut bounds and the nominal */
-    int fail = value_add(d, i, c->nominal[i]);
-    for (size_t j = 0; j <= m; j++) {
-        fail |= value_add(d, i, lo[j]) | value_add(d, i, hi[j]);
+    /* every value any grid can use, the general-form points first (they
+     * hold the reduced form's and the probe's; registering them for every
+     * form keeps the merged values, hence the results, independent of the
+     * form), then the cut bounds and the nominal */
+    int fail = 0;
+    for (size_t j = 0; j <= m; j++)
         for (size_t l = 0; l < c->gen_cnt[i][j]; l++)
             fail |= value_add(d, i, c->gen[i][j][l]);
-    }
+    fail |= value_add(d, i, c->nominal[i]);
+    for (size_t j = 0; j <= m; j++)
+        fail |= value_add(d, i, lo[j]) | value_add(d, i, hi[j]);
     if (fail)
         return rf_fail(err, RF_ENOMEM, "out of memory");
     qsort(d->values[i], d->nvalues[i], sizeof(double), cmp_double);
@@ -186,8 +197,12 @@ rf_status tm_ctx_init(tm_ctx *c, const rf_fuzzy *inputs, size_t n, const rf_tm_o
     if (m > 100000)
         return rf_fail(err, RF_EINVAL, "levels = %zu: at most 100000 are supported", m);
     rf_status st = ctx_alloc(c, n, m, n_out, opt, err);
-    for (size_t i = 0; !st && i < n; i++)
+    size_t most = 0;
+    for (size_t i = 0; !st && i < n; i++) {
         st = ctx_input(c, &inputs[i], i, err);
+        most = c->d->nvalues[i] > most ? c->d->nvalues[i] : most;
+    }
+    c->d->tw = most <= 256 ? 1 : most <= 65536 ? 2 : 4; /* bytes per value index in a tuple */
     return st;
 }
 
@@ -269,7 +284,11 @@ rf_status tm_build_nominal(tm_ctx *c, int with_ids, rf_error *err)
 rf_status tm_build_main(tm_ctx *c, int with_ids, rf_error *err)
 {
     lists L;
+    tm_grid_sizes s;
+    tm_sizes(c, &s);
     rf_status st = lists_alloc(&L, c->n, err);
+    if (!st && with_ids && s.floor <= UINT32_MAX) /* room for the whole family at once */
+        st = rf_tm_reserve(c->d, s.floor, err);
     for (size_t j = 0; !st && j <= c->m; j++) {
         for (size_t i = 0; i < c->n; i++)
             L.cnt[i] = main_values(c, i, j, L.buf + 3 * i, &L.vals[i]);
@@ -285,7 +304,11 @@ rf_status tm_build_main(tm_ctx *c, int with_ids, rf_error *err)
 rf_status tm_build_lr(tm_ctx *c, int with_ids, rf_error *err)
 {
     lists L;
+    tm_grid_sizes s;
+    tm_sizes(c, &s);
     rf_status st = lists_alloc(&L, c->n, err);
+    if (!st && with_ids && s.lr <= UINT32_MAX)
+        st = rf_tm_reserve(c->d, s.lr, err);
     if (!st && !(c->d->lr = calloc(c->m + 1, sizeof(rf_grid))))
         st = rf_fail(err, RF_ENOMEM, "out of memory");
     for (size_t j = 0; !st && j <= c->m; j++) {

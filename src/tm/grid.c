@@ -15,6 +15,7 @@
 #include "tm/tm_internal.h"
 
 #define WORD_BITS 64
+#define SLACK_BYTES 128 /* after the tuples and the input buffer: see new_point */
 
 static size_t words_for(size_t bits) { return (bits + WORD_BITS - 1) / WORD_BITS; }
 
@@ -83,7 +84,8 @@ void rf_tm_data_free(struct rf_tm_data *d)
     free(d->capvalues);
     free(d->scale);
     free(d->reg);
-    free(d->x);
+    free(d->tuples);
+    free(d->xbuf);
     free(d->y);
     rf_tm_grid_free(d->nominal, d->n);
     free(d->nominal);
@@ -110,12 +112,8 @@ void rf_tm_gather(const struct rf_tm_data *d, const rf_grid *g, size_t k, double
 
 void rf_tm_gather_all(const struct rf_tm_data *d, const rf_grid *g, double *z)
 {
-    size_t no = d->n_out, count = g->count;
-    for (size_t p = 0; p < count; p++) {
-        const double *y = d->y + (size_t)g->ids[p] * no;
-        for (size_t k = 0; k < no; k++)
-            z[k * count + p] = y[k];
-    }
+    for (size_t k = 0; k < d->n_out; k++)
+        rf_tm_gather(d, g, k, z + k * g->count);
 }
 
 /* Index lists of g from ascending value lists; equal indices (values merged
@@ -164,7 +162,20 @@ typedef struct {
     size_t *offset;       /* [n] */
     uint64_t *prefix;     /* [(n + 1) * words]: AND of the masks of inputs < i */
     double *cur;          /* [n] current input vector */
+    unsigned char tup[64 * 4]; /* current tuple, tw bytes per input (n <= 64) */
 } odometer;
+
+static void set_tuple(unsigned char *t, size_t tw, size_t i, uint32_t v)
+{
+    if (tw == 1) {
+        t[i] = (unsigned char)v;
+    } else if (tw == 2) {
+        uint16_t h = (uint16_t)v;
+        memcpy(t + 2 * i, &h, 2);
+    } else {
+        memcpy(t + 4 * i, &v, 4);
+    }
+}
 
 static void odometer_free(odometer *o)
 {
@@ -201,8 +212,10 @@ static rf_status odometer_init(odometer *o, const struct rf_tm_data *d, const rf
     }
     for (size_t w = 0; w < o->words; w++)
         o->prefix[w] = d->nreg ? ~UINT64_C(0) : 0;
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {
         o->cur[i] = d->values[i][g->vidx[i][0]];
+        set_tuple(o->tup, d->tw, i, g->vidx[i][0]);
+    }
     return RF_OK;
 }
 
@@ -210,6 +223,11 @@ static rf_status odometer_init(odometer *o, const struct rf_tm_data *d, const rf
 static void odometer_prefix(odometer *o, size_t from)
 {
     size_t W = o->words;
+    if (W == 1) {
+        for (size_t i = from; i < o->n; i++)
+            o->prefix[i + 1] = o->prefix[i] & o->mask[o->offset[i] + o->digit[i]];
+        return;
+    }
     for (size_t i = from; i < o->n; i++) {
         const uint64_t *a = o->prefix + i * W, *b = o->mask + (o->offset[i] + o->digit[i]) * W;
         uint64_t *c = o->prefix + (i + 1) * W;
@@ -235,6 +253,7 @@ static size_t odometer_next_row(odometer *o, const struct rf_tm_data *d, const r
     for (size_t i = o->n - 1; i-- > 0;) {
         size_t l = ++o->digit[i] < g->radix[i] ? o->digit[i] : (o->digit[i] = 0);
         o->cur[i] = d->values[i][g->vidx[i][l]];
+        set_tuple(o->tup, d->tw, i, g->vidx[i][l]);
         if (l)
             return i;
     }
@@ -250,6 +269,27 @@ static uint32_t id_in(const struct rf_tm_data *d, const rf_grid *e, const odomet
     return e->ids[pos];
 }
 
+/* Room for `extra` more points in the tuples and outputs (grown at least
+ * geometrically, so that building a family of grids copies little). */
+rf_status rf_tm_reserve(struct rf_tm_data *d, size_t extra, rf_error *err)
+{
+    size_t need = d->npoints + extra;
+    if (need <= d->cap_points)
+        return RF_OK;
+    size_t cap = need > 2 * d->cap_points ? need : 2 * d->cap_points;
+    void *t = realloc(d->tuples, cap * d->n * d->tw + SLACK_BYTES);
+    if (t)
+        d->tuples = t;
+    double *y = t ? realloc(d->y, cap * d->n_out * sizeof(double)) : NULL;
+    if (!t || !y)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the TM points (%zu)", need);
+    d->y = y;
+    d->cap_points = cap;
+    return RF_OK;
+}
+
+/* Room for every point of g in the registry, the tuples and the outputs
+ * (grown geometrically), and for a full chunk of input vectors. */
 static rf_status grid_reserve(struct rf_tm_data *d, const rf_grid *g, int with_ids, rf_error *err)
 {
     if (d->nreg == d->capreg) {
@@ -265,12 +305,16 @@ static rf_status grid_reserve(struct rf_tm_data *d, const rf_grid *g, int with_i
     if (g->count > UINT32_MAX - 1 - d->npoints)
         return rf_fail(err, RF_ECAP, "the TM grids have more points than this build can index");
     size_t need = d->npoints + g->count;
-    if (need > d->capx) {
-        double *x = realloc(d->x, need * d->n * sizeof(double));
+    rf_status st = rf_tm_reserve(d, g->count, err);
+    if (st)
+        return st;
+    size_t chunk = d->chunk ? d->chunk : need - d->xfirst;
+    if (chunk > d->xcap) {
+        double *x = realloc(d->xbuf, chunk * d->n * sizeof(double) + SLACK_BYTES);
         if (!x)
-            return rf_fail(err, RF_ENOMEM, "out of memory for the TM points (%zu)", need);
-        d->x = x;
-        d->capx = need;
+            return rf_fail(err, RF_ENOMEM, "out of memory for the TM points (%zu)", chunk);
+        d->xbuf = x;
+        d->xcap = chunk;
     }
     return RF_OK;
 }
@@ -287,46 +331,74 @@ static uint32_t repeated_id(struct rf_tm_data *d, const rf_grid *g, odometer *o,
     return id;
 }
 
-/* Copy the fixed inputs of a row into a new point's vector (a plain loop:
- * n is small, and a call to memcpy per point would cost more than the copy). */
-#if defined(__GNUC__) && !defined(__clang__)
-__attribute__((optimize("no-tree-loop-distribute-patterns")))
-#endif
-static void copy_row_head(double *restrict x, const double *restrict cur, size_t k)
+/* Record a new point: its tuple, and its input vector in the buffer.  Short
+ * vectors are copied as fixed blocks (the buffers have SLACK_BYTES to
+ * spare), which the compiler inlines: a call to memcpy per point would cost
+ * more than the copy. */
+static inline void new_point(const struct rf_tm_data *d, const odometer *o, double *x, unsigned char *t, uint32_t v)
 {
-    for (size_t i = 0; i < k; i++)
-        x[i] = cur[i];
+    size_t n = d->n, last = n - 1, tw = d->tw;
+    if (n <= 8)
+        memcpy(x, o->cur, 8 * sizeof(double));
+    else if (n <= 16)
+        memcpy(x, o->cur, 16 * sizeof(double));
+    else
+        memcpy(x, o->cur, n * sizeof(double));
+    if (n * tw <= 8)
+        memcpy(t, o->tup, 8);
+    else if (n * tw <= 16)
+        memcpy(t, o->tup, 16);
+    else
+        memcpy(t, o->tup, n * tw);
+    x[last] = d->values[last][v];
+    set_tuple(t, tw, last, v);
+}
+
+/* Is the point at position l of the row in an earlier grid? */
+static inline int in_earlier(const odometer *o, const uint64_t *pre, const uint64_t *mask, size_t l)
+{
+    if (o->words == 1)
+        return (pre[0] & mask[l]) != 0;
+    uint64_t any = 0;
+    for (size_t w = 0; w < o->words; w++)
+        any |= pre[w] & mask[l * o->words + w];
+    return any != 0;
 }
 
 /* One row of the grid: the last input sweeps its values, the others are
  * fixed (their AND of earlier-grid sets is o->prefix[n-1]).  *p is the
- * position of the row's first point in the grid. */
+ * position of the row's first point in the grid.  New points wait in the
+ * buffer, which is evaluated (flushed) when full. */
 static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t *p, int with_ids, rf_error *err)
 {
-    size_t n = d->n, W = o->words, last = n - 1, r = g->radix[last];
+    size_t W = o->words, n = d->n, last = n - 1, r = g->radix[last], rowlen = n * d->tw;
     const uint64_t *pre = o->prefix + last * W, *mask = o->mask + o->offset[last] * W;
-    const double *vals = d->values[last];
     const uint32_t *vidx = g->vidx[last];
-    for (size_t l = 0; l < r; l++, (*p)++) {
-        uint64_t any = 0;
-        for (size_t w = 0; w < W; w++)
-            any |= pre[w] & mask[l * W + w];
-        if (any) {
+    size_t np = d->npoints, limit = d->limit ? d->limit : SIZE_MAX;
+    rf_status st = RF_OK;
+    for (size_t l = 0; l < r && !st; l++) {
+        if (in_earlier(o, pre, mask, l)) {
             if (with_ids)
-                g->ids[*p] = repeated_id(d, g, o, l);
+                g->ids[*p + l] = repeated_id(d, g, o, l);
             continue;
         }
-        if (d->limit && d->npoints >= d->limit)
-            return rf_fail(err, RF_ECAP, "more than %zu distinct points", d->limit);
-        if (with_ids) {
-            double *x = d->x + d->npoints * n;
-            copy_row_head(x, o->cur, last);
-            x[last] = vals[vidx[l]];
-            g->ids[*p] = (uint32_t)d->npoints;
+        if (np >= limit) {
+            st = rf_fail(err, RF_ECAP, "more than %zu distinct points", d->limit);
+            break;
         }
-        d->npoints++;
+        if (with_ids) {
+            new_point(d, o, d->xbuf + d->xcount * n, (unsigned char *)d->tuples + np * rowlen, vidx[l]);
+            g->ids[*p + l] = (uint32_t)np;
+            if (++d->xcount == d->xcap && d->chunk) {
+                d->npoints = np + 1;
+                st = d->flush(d->flush_user, err);
+            }
+        }
+        np++;
     }
-    return RF_OK;
+    d->npoints = np;
+    *p += r;
+    return st;
 }
 
 static rf_status grid_enumerate(struct rf_tm_data *d, rf_grid *g, int with_ids, rf_error *err)

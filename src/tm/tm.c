@@ -20,6 +20,8 @@
 
 #include "tm/tm_internal.h"
 
+#define SERIAL_CHUNK 256 /* points evaluated at a time without an evaluator */
+
 
 void rf_tm_options_default(rf_tm_options *opt)
 {
@@ -76,47 +78,49 @@ static void format_point(const struct rf_tm_data *d, uint32_t id, char *buf, siz
     size_t used = 0;
     used += (size_t)snprintf(buf + used, size - used, "(");
     for (size_t i = 0; i < d->n && used < size; i++)
-        used += (size_t)snprintf(buf + used, size - used, "%s%.17g", i ? ", " : "", d->x[(size_t)id * d->n + i]);
+        used += (size_t)snprintf(buf + used, size - used, "%s%.17g", i ? ", " : "",
+                                 d->values[i][rf_tm_tuple(d, id, i)]);
     if (used < size)
         snprintf(buf + used, size - used, ")");
 }
 
-/* user: the rf_tm_options (tolerate_failures: a failed point gets NaN outputs). */
+/* user: the rf_tm_options (tolerate_failures: a failed point gets NaN
+ * outputs and the evaluation goes on after it). */
 static rf_status serial_evaluate(void *user, const rf_model *model, size_t count, const double *x, double *y,
                                  size_t *failed, rf_error *err)
 {
     const rf_tm_options *opt = user;
-    for (size_t p = 0; p < count; p++) {
-        rf_status st = rf_model_eval(model, x + p * model->n_inputs, y + p * model->n_outputs, err);
-        if (st && opt->tolerate_failures) {
-            for (size_t k = 0; k < model->n_outputs; k++)
-                y[p * model->n_outputs + k] = NAN;
-        } else if (st) {
-            *failed = p;
+    size_t done = 0, nin = model->n_inputs, nout = model->n_outputs;
+    while (done < count) {
+        size_t at = 0;
+        rf_status st = rf_model_eval_many(model, count - done, x + done * nin, y + done * nout, &at, err);
+        if (st == RF_OK)
+            return RF_OK;
+        if (!opt->tolerate_failures || !model->eval) {
+            *failed = done + at;
             return st;
         }
+        for (size_t k = 0; k < nout; k++)
+            y[(done + at) * nout + k] = NAN;
+        done += at + 1;
     }
     return RF_OK;
 }
 
-/* Evaluate the points registered since *already; their input vectors are
- * contiguous in d->x, so the evaluator reads them in place. */
-static rf_status evaluate_pending(tm_ctx *c, const rf_model *model, size_t *already, rf_error *err)
+/* Evaluate the points waiting in the buffer (ids xfirst ..) into y. */
+static rf_status flush_points(void *user, rf_error *err)
 {
+    tm_ctx *c = user;
     struct rf_tm_data *d = c->d;
-    size_t n = d->n, no = d->n_out;
-    size_t first = *already, count = d->npoints - first;
+    size_t no = d->n_out, first = d->xfirst, count = d->xcount;
     if (count == 0)
         return RF_OK;
-    double *y = realloc(d->y, d->npoints * no * sizeof(double));
-    if (!y)
-        return rf_fail(err, RF_ENOMEM, "out of memory for model outputs");
-    d->y = y;
-    const double *x = d->x + first * n;
     const rf_evaluator *ev = c->opt->evaluator;
+    const rf_model *model = c->model;
     size_t failed = 0;
-    rf_status st = ev ? ev->evaluate(ev->user, model, count, x, d->y + first * no, &failed, err)
-                      : serial_evaluate((void *)c->opt, model, count, x, d->y + first * no, &failed, err);
+    double *y = d->y + first * no;
+    rf_status st = ev ? ev->evaluate(ev->user, model, count, d->xbuf, y, &failed, err)
+                      : serial_evaluate((void *)c->opt, model, count, d->xbuf, y, &failed, err);
     if (st && failed >= count)
         return st; /* not a model failure (e.g. the result store could not be written) */
     if (st) {
@@ -124,7 +128,8 @@ static rf_status evaluate_pending(tm_ctx *c, const rf_model *model, size_t *alre
         format_point(d, (uint32_t)(first + failed), pt, sizeof pt);
         return rf_error_prefix(err, "model evaluation at parameters %s", pt);
     }
-    *already = d->npoints;
+    d->xfirst += count;
+    d->xcount = 0;
     return RF_OK;
 }
 
@@ -201,6 +206,19 @@ static void classify(tm_ctx *c, const probe_set *ps, size_t nps, rf_monotonicity
 static int lines_change_direction(const double *z, size_t count, size_t r, size_t s, double tol,
                                   double *restrict rise, double *restrict fall)
 {
+    if (s == 1) { /* contiguous lines, one at a time */
+        for (size_t outer = 0; outer < count; outer += r) {
+            double up = 0, down = 0;
+            for (size_t l = 1; l < r; l++) {
+                double dz = z[outer + l] - z[outer + l - 1];
+                up = dz > up ? dz : up;
+                down = dz < down ? dz : down;
+            }
+            if (up > tol && down < -tol)
+                return 1;
+        }
+        return 0;
+    }
     for (size_t outer = 0; outer < count; outer += r * s) {
         const double *b = z + outer;
         for (size_t inner = 0; inner < s; inner++)
@@ -323,8 +341,8 @@ static void set_cut(const struct rf_tm_data *d, rf_tm_result *res, size_t at, in
     res->lo[at] = none ? NAN : zmin;
     res->hi[at] = none ? NAN : zmax;
     for (size_t i = 0; i < n; i++) {
-        res->x_lo[at * n + i] = none ? NAN : d->x[(size_t)amin * n + i];
-        res->x_hi[at * n + i] = none ? NAN : d->x[(size_t)amax * n + i];
+        res->x_lo[at * n + i] = none ? NAN : d->values[i][rf_tm_tuple(d, amin, i)];
+        res->x_hi[at * n + i] = none ? NAN : d->values[i][rf_tm_tuple(d, amax, i)];
     }
 }
 
@@ -600,13 +618,20 @@ rf_status rf_tm_run(const rf_fuzzy *inputs, size_t n_inputs, const rf_model *mod
                        model ? model->n_inputs : 0, n_inputs);
     if (model->n_outputs == 0)
         return rf_fail(err, RF_EINVAL, "the model has no outputs");
-    size_t no = model->n_outputs, nps = 0, evaluated = 0, cap = opt->max_evaluations;
+    size_t no = model->n_outputs, nps = 0, cap = opt->max_evaluations;
     tm_ctx c;
     probe_set *ps = NULL;
     int deferred = 0;
     rf_status st = tm_ctx_init(&c, inputs, n_inputs, opt, no, err);
-    if (!st)
+    if (!st) {
+        /* the serial path evaluates in chunks that stay in cache; an
+         * evaluator (threads, store, MPI) gets every pending point at once */
+        c.model = model;
+        c.d->chunk = opt->evaluator ? 0 : SERIAL_CHUNK;
+        c.d->flush = flush_points;
+        c.d->flush_user = &c;
         st = preflight(&c, inputs, n_inputs, opt, err);
+    }
     if (!st)
         st = result_alloc(res, n_inputs, no, opt->levels, err);
     if (!st && !(ps = calloc(n_inputs, sizeof *ps)))
@@ -617,13 +642,13 @@ rf_status rf_tm_run(const rf_fuzzy *inputs, size_t n_inputs, const rf_model *mod
         st = rf_fail(err, RF_ECAP, "%zu distinct evaluations needed, more than max_evaluations = %zu",
                      c.d->npoints, cap);
     if (!st)
-        st = evaluate_pending(&c, model, &evaluated, err);
+        st = flush_points(&c, err);
     if (!st && deferred) {
         classify(&c, ps, nps, res->monotonicity);
         res->probe_evaluations = c.d->npoints;
         st = build_main_after_probe(&c, err);
         if (!st)
-            st = evaluate_pending(&c, model, &evaluated, err);
+            st = flush_points(&c, err);
     }
     output_scan scan = {0};
     if (!st && scan_outputs(c.d, &scan))

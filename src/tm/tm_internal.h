@@ -45,10 +45,20 @@ struct rf_tm_data {
     size_t nreg, capreg;
     size_t npoints;      /* distinct points so far */
     size_t limit;        /* refuse a new point beyond this many (0 = none) */
-    double *x;           /* [npoints * n] input vector of every distinct point (NULL when counting) */
-    size_t capx;         /* points x has room for */
+    void *tuples;        /* [npoints * n] value indices of every distinct point, tw bytes each */
+    size_t tw;           /* 1, 2 or 4 bytes per index (from the largest nvalues) */
+    size_t cap_points;   /* points tuples and y have room for */
 
-    double *y;           /* [npoints * n_out] outputs */
+    /* New points wait in xbuf (input vectors) until `chunk` of them are
+     * there, then flush evaluates them into y: a small buffer that stays in
+     * cache for the serial path, all pending points for an evaluator. */
+    double *xbuf;        /* [chunk * n] */
+    size_t chunk, xcap;  /* points per flush (0 = no flush while building), room in xbuf */
+    size_t xcount, xfirst; /* points waiting in xbuf, id of the first of them */
+    rf_status (*flush)(void *user, rf_error *err);
+    void *flush_user;
+
+    double *y;           /* [cap_points * n_out] outputs of the evaluated points */
 
     rf_grid *nominal;    /* the one-point grid of the nominal inputs; its point is id 0 */
     rf_grid *main;       /* [m+1] grids of the chosen form, level j */
@@ -69,6 +79,7 @@ typedef struct {
     struct rf_tm_data *d;
     size_t requested;
     rf_monotonicity *cls;   /* [i] extended-form class in use */
+    const rf_model *model;  /* rf_tm_run: the model the flush evaluates */
 } tm_ctx;
 
 /* Extended-form probe lines of one input. */
@@ -101,6 +112,15 @@ void tm_sizes(const tm_ctx *c, tm_grid_sizes *s);
 rf_status tm_check_sizes(const tm_ctx *c, const tm_grid_sizes *s, rf_error *err);
 
 /* grid.c */
+/* Value index of input i of point id. */
+static inline uint32_t rf_tm_tuple(const struct rf_tm_data *d, size_t id, size_t i)
+{
+    size_t at = id * d->n + i;
+    return d->tw == 1 ? ((const uint8_t *)d->tuples)[at]
+           : d->tw == 2 ? ((const uint16_t *)d->tuples)[at]
+                        : ((const uint32_t *)d->tuples)[at];
+}
+rf_status rf_tm_reserve(struct rf_tm_data *d, size_t extra, rf_error *err);
 int rf_tm_value_index(struct rf_tm_data *d, size_t i, double v, uint32_t *out);
 rf_status rf_tm_grid_build(struct rf_tm_data *d, rf_grid *g, double *const *vals, const size_t *cnt,
                            size_t *requested, int with_ids, rf_error *err);
