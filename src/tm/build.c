@@ -43,9 +43,9 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Sort ascending and drop values within tol of their predecessor.  The
- * lists are short and nearly sorted (lower bound, midpoints, upper bound):
- * insertion sort. */
+/* Sort ascending and drop values within tol of their predecessor (tol < 0:
+ * keep all).  The lists are short and nearly sorted (lower bound, midpoints,
+ * upper bound): insertion sort. */
 size_t tm_sort_unique(double *v, size_t k, double tol)
 {
     for (size_t r = 1; r < k; r++) {
@@ -175,7 +175,10 @@ static rf_status ctx_input(tm_ctx *c, const rf_fuzzy *in, size_t i, rf_error *er
         fail |= value_add(d, i, lo[j]) | value_add(d, i, hi[j]);
     if (fail)
         return rf_fail(err, RF_ENOMEM, "out of memory");
-    qsort(d->values[i], d->nvalues[i], sizeof(double), cmp_double);
+    if (d->nvalues[i] <= 512) /* registered nearly in order: insertion sort */
+        tm_sort_unique(d->values[i], d->nvalues[i], -1.0);
+    else
+        qsort(d->values[i], d->nvalues[i], sizeof(double), cmp_double);
     c->cls[i] = c->opt->force_class ? c->opt->force_class[i] : RF_MONO_AUTO;
     return RF_OK;
 }

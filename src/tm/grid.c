@@ -220,7 +220,7 @@ static rf_status odometer_init(odometer *o, const struct rf_tm_data *d, const rf
 }
 
 /* Recompute the prefix ANDs from input `from` on. */
-static void odometer_prefix(odometer *o, size_t from)
+static inline void odometer_prefix(odometer *o, size_t from)
 {
     size_t W = o->words;
     if (W == 1) {
@@ -248,7 +248,7 @@ static size_t odometer_first_holder(const odometer *o)
 
 /* Advance the inputs before the last one (the last is swept by the caller);
  * returns the lowest input changed, or SIZE_MAX after the last point. */
-static size_t odometer_next_row(odometer *o, const struct rf_tm_data *d, const rf_grid *g)
+static inline size_t odometer_next_row(odometer *o, const struct rf_tm_data *d, const rf_grid *g)
 {
     for (size_t i = o->n - 1; i-- > 0;) {
         size_t l = ++o->digit[i] < g->radix[i] ? o->digit[i] : (o->digit[i] = 0);
@@ -340,8 +340,10 @@ static inline void new_point(const struct rf_tm_data *d, const odometer *o, doub
     size_t n = d->n, last = n - 1, tw = d->tw;
     if (n <= 8)
         memcpy(x, o->cur, 8 * sizeof(double));
-    else if (n <= 16)
-        memcpy(x, o->cur, 16 * sizeof(double));
+    else if (n <= 16) { /* two blocks: a single 128-byte copy becomes a call */
+        memcpy(x, o->cur, 8 * sizeof(double));
+        memcpy(x + 8, o->cur + 8, 8 * sizeof(double));
+    }
     else
         memcpy(x, o->cur, n * sizeof(double));
     if (n * tw <= 8)
