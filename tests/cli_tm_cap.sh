@@ -50,7 +50,7 @@ refused() {
 }
 
 study general8 general 8
-refused general8 "general8.yaml" "general-form grid at mu = 0 has 214358881 points" "max_evaluations = 100000" \
+refused general8 "general8.yaml" "general-form grid at mu = 0 has 214358881 points" "more than the cap of 100000" \
     "scheme: reduced"
 
 study reduced14 reduced 14

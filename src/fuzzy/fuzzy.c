@@ -213,7 +213,8 @@ rf_status rf_fuzzy_cuts(rf_fuzzy *f, size_t n, const double *mu, const double *l
                            "cut %zu at mu = %g is [%g, %g], not inside the cut at mu = %g [%g, %g]: cuts must nest",
                            k + 1, mu[k], lower[k], upper[k], mu[k - 1], lower[k - 1], upper[k - 1]);
     }
-    if (end_or_fail(lower[0], "lower bound at mu = 0", err) || end_or_fail(upper[0], "upper bound at mu = 0", err))
+    if (end_or_fail(lower[0], "lower bound at mu = 0", err) ||
+        end_or_fail(upper[0], "upper bound at mu = 0", err))
         return RF_EINVAL;
     f->a = malloc(n * sizeof(double));
     f->b = malloc(n * sizeof(double));

@@ -475,8 +475,12 @@ static rf_status too_large(rf_error *err, const char *grid, double mu, size_t po
         snprintf(count, sizeof count, "more than %zu", SIZE_MAX);
     else
         snprintf(count, sizeof count, "%zu", points);
-    return rf_fail(err, RF_ECAP, "the %s at mu = %g has %s points, more than %s %zu: %s", grid, mu, count,
-                   is_cap ? "max_evaluations =" : "this build can index,", limit, advice);
+    if (is_cap)
+        return rf_fail(err, RF_ECAP,
+                       "the %s at mu = %g has %s points, more than the cap of %zu (max_evaluations = %zu): %s", grid,
+                       mu, count, limit, limit, advice);
+    return rf_fail(err, RF_ECAP, "the %s at mu = %g has %s points, more than this build can index (%zu): %s", grid, mu,
+                   count, limit, advice);
 }
 
 /* Refuse, before anything is built, a grid with more points than the cap (a

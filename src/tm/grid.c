@@ -200,7 +200,7 @@ static rf_status odometer_init(odometer *o, const struct rf_tm_data *d, const rf
     o->digit = calloc(n, sizeof *o->digit);
     o->mask = calloc(total * o->words + 1, sizeof *o->mask);
     o->prefix = malloc((n + 1) * o->words * sizeof *o->prefix);
-    o->cur = malloc(n * sizeof *o->cur);
+    o->cur = calloc(n < 16 ? 16 : n, sizeof *o->cur); /* slack: new_point copies fixed blocks */
     if (!o->offset || !o->digit || !o->mask || !o->prefix || !o->cur)
         return rf_fail(err, RF_ENOMEM, "out of memory for the TM grid");
     for (size_t h = 0; h < d->nreg; h++) {

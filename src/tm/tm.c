@@ -421,9 +421,10 @@ static rf_status over_cap(const tm_ctx *c, const tm_grid_sizes *s, size_t distin
                                 "grids request %zu points), ", s->lr);
     return rf_fail(err, RF_ECAP,
                    "the study needs %zu distinct model evaluations (the %s-form grids request %zu points%s), more "
-                   "than max_evaluations = %zu: %slower levels%s, or raise max_evaluations",
+                   "than the cap of %zu (max_evaluations = %zu): %slower levels%s, or raise max_evaluations",
                    distinct, rf_tm_scheme_name(opt->scheme), s->main, opt->left_right ? ", with left/right" : "",
-                   opt->max_evaluations, lr, opt->scheme == RF_TM_GENERAL ? ", use scheme: reduced or extended" : "");
+                   opt->max_evaluations, opt->max_evaluations, lr,
+                   opt->scheme == RF_TM_GENERAL ? ", use scheme: reduced or extended" : "");
 }
 
 /* Count without storing any point: sizes analytically (refusing a grid
@@ -550,9 +551,10 @@ static rf_status build_main_after_probe(tm_ctx *c, rf_error *err)
     c->d->limit = 0;
     if (st == RF_ECAP && c->opt->max_evaluations)
         return rf_fail(err, RF_ECAP,
-                       "with the classes the probe found, the extended form needs more than max_evaluations = %zu "
-                       "distinct evaluations: declare parameters monotonic, lower levels, or raise max_evaluations",
-                       c->opt->max_evaluations);
+                       "with the classes the probe found, the extended form needs more distinct evaluations than "
+                       "the cap of %zu (max_evaluations = %zu): declare parameters monotonic, lower levels, or raise "
+                       "max_evaluations",
+                       c->opt->max_evaluations, c->opt->max_evaluations);
     return st;
 }
 
@@ -639,8 +641,8 @@ rf_status rf_tm_run(const rf_fuzzy *inputs, size_t n_inputs, const rf_model *mod
     if (!st)
         st = plan(&c, 1, ps, &nps, &deferred, err);
     if (!st && cap && c.d->npoints > cap)
-        st = rf_fail(err, RF_ECAP, "%zu distinct evaluations needed, more than max_evaluations = %zu",
-                     c.d->npoints, cap);
+        st = rf_fail(err, RF_ECAP, "%zu distinct evaluations needed, more than the cap of %zu (max_evaluations = %zu)",
+                     c.d->npoints, cap, cap);
     if (!st)
         st = flush_points(&c, err);
     if (!st && deferred) {
