@@ -95,15 +95,14 @@ static int grid_differences(const struct rf_tm_data *d, const rf_grid *grids, si
     size_t n = d->n, no = d->n_out, maxc = 1;
     for (size_t j = 0; j < nlev; j++)
         maxc = grids[j].count > maxc ? grids[j].count : maxc;
-    double *z = malloc(no * maxc * sizeof(double));
+    double *z = malloc(no * maxc * sizeof(double)); /* outputs of a grid whose ids are not consecutive */
     if (!z)
         return -1;
     for (size_t j = 0; j < nlev; j++) {
         const rf_grid *g = &grids[j];
-        rf_tm_gather_all(d, g, z);
-        for (size_t k = 0; k < no; k++)
+        for (size_t k = 0; k < no; k++) {
+            const double *zk = rf_tm_outputs(d, g, k, z + k * g->count);
             for (size_t i = 0; i < n; i++) {
-                const double *zk = z + k * g->count;
                 size_t at = (k * n + i) * nlev + j, last = g->radix[i] - 1, pn = g->nominal_pos[i];
                 if (span)
                     span[at] = last >= 1 ? mean_difference(zk, g, i, 0, last) : NAN;
@@ -112,6 +111,7 @@ static int grid_differences(const struct rf_tm_data *d, const rf_grid *grids, si
                     right[at] = pn < last ? mean_difference(zk, g, i, pn, last) : 0;
                 }
             }
+        }
     }
     free(z);
     return 0;

@@ -86,6 +86,7 @@ void rf_tm_data_free(struct rf_tm_data *d)
     free(d->reg);
     free(d->tuples);
     free(d->xbuf);
+    free(d->ybuf);
     free(d->y);
     rf_tm_grid_free(d->nominal, d->n);
     free(d->nominal);
@@ -101,19 +102,14 @@ void rf_tm_data_free(struct rf_tm_data *d)
     free(d);
 }
 
-void rf_tm_gather(const struct rf_tm_data *d, const rf_grid *g, size_t k, double *z)
+const double *rf_tm_outputs(const struct rf_tm_data *d, const rf_grid *g, size_t k, double *scratch)
 {
-    const uint32_t *ids = g->ids;
-    const double *y = d->y + k;
-    size_t no = d->n_out;
+    const double *col = d->y + k * d->cap_points;
+    if (g->consecutive)
+        return col + g->first_id;
     for (size_t p = 0; p < g->count; p++)
-        z[p] = y[(size_t)ids[p] * no];
-}
-
-void rf_tm_gather_all(const struct rf_tm_data *d, const rf_grid *g, double *z)
-{
-    for (size_t k = 0; k < d->n_out; k++)
-        rf_tm_gather(d, g, k, z + k * g->count);
+        scratch[p] = col[g->ids[p]];
+    return scratch;
 }
 
 /* Index lists of g from ascending value lists; equal indices (values merged
@@ -280,9 +276,12 @@ rf_status rf_tm_reserve(struct rf_tm_data *d, size_t extra, rf_error *err)
     void *t = realloc(d->tuples, cap * d->n * d->tw + SLACK_BYTES);
     if (t)
         d->tuples = t;
-    double *y = t ? realloc(d->y, cap * d->n_out * sizeof(double)) : NULL;
+    double *y = t ? malloc(cap * d->n_out * sizeof(double)) : NULL;
     if (!t || !y)
         return rf_fail(err, RF_ENOMEM, "out of memory for the TM points (%zu)", need);
+    for (size_t k = 0; d->y && k < d->n_out; k++) /* columns move to their new length */
+        memcpy(y + k * cap, d->y + k * d->cap_points, d->npoints * sizeof(double));
+    free(d->y);
     d->y = y;
     d->cap_points = cap;
     return RF_OK;
@@ -311,9 +310,12 @@ static rf_status grid_reserve(struct rf_tm_data *d, const rf_grid *g, int with_i
     size_t chunk = d->chunk ? d->chunk : need - d->xfirst;
     if (chunk > d->xcap) {
         double *x = realloc(d->xbuf, chunk * d->n * sizeof(double) + SLACK_BYTES);
-        if (!x)
+        if (x)
+            d->xbuf = x;
+        double *yb = x ? realloc(d->ybuf, chunk * d->n_out * sizeof(double)) : NULL;
+        if (!x || !yb)
             return rf_fail(err, RF_ENOMEM, "out of memory for the TM points (%zu)", chunk);
-        d->xbuf = x;
+        d->ybuf = yb;
         d->xcap = chunk;
     }
     return RF_OK;
@@ -331,80 +333,91 @@ static uint32_t repeated_id(struct rf_tm_data *d, const rf_grid *g, odometer *o,
     return id;
 }
 
-/* Record a new point: its tuple, and its input vector in the buffer.  Short
- * vectors are copied as fixed blocks (the buffers have SLACK_BYTES to
+/* Copy a short vector as fixed blocks (the buffers have SLACK_BYTES to
  * spare), which the compiler inlines: a call to memcpy per point would cost
  * more than the copy. */
-static inline void new_point(const struct rf_tm_data *d, const odometer *o, double *x, unsigned char *t, uint32_t v)
+static inline void copy_head(void *restrict dst, const void *restrict src, size_t bytes)
 {
-    size_t n = d->n, last = n - 1, tw = d->tw;
-    if (n <= 8)
-        memcpy(x, o->cur, 8 * sizeof(double));
-    else if (n <= 16) { /* two blocks: a single 128-byte copy becomes a call */
-        memcpy(x, o->cur, 8 * sizeof(double));
-        memcpy(x + 8, o->cur + 8, 8 * sizeof(double));
+    if (bytes <= 16) {
+        memcpy(dst, src, 16);
+    } else if (bytes <= 128) {
+        memcpy(dst, src, 64);
+        if (bytes > 64)
+            memcpy((char *)dst + 64, (const char *)src + 64, 64);
+    } else {
+        memcpy(dst, src, bytes);
     }
-    else
-        memcpy(x, o->cur, n * sizeof(double));
-    if (n * tw <= 8)
-        memcpy(t, o->tup, 8);
-    else if (n * tw <= 16)
-        memcpy(t, o->tup, 16);
-    else
-        memcpy(t, o->tup, n * tw);
-    x[last] = d->values[last][v];
-    set_tuple(t, tw, last, v);
 }
 
 /* Is the point at position l of the row in an earlier grid? */
-static inline int in_earlier(const odometer *o, const uint64_t *pre, const uint64_t *mask, size_t l)
+static inline int in_earlier(size_t W, const uint64_t *pre, const uint64_t *mask, size_t l)
 {
-    if (o->words == 1)
+    if (W == 1)
         return (pre[0] & mask[l]) != 0;
     uint64_t any = 0;
-    for (size_t w = 0; w < o->words; w++)
-        any |= pre[w] & mask[l * o->words + w];
+    for (size_t w = 0; w < W; w++)
+        any |= pre[w] & mask[l * W + w];
     return any != 0;
 }
 
 /* One row of the grid: the last input sweeps its values, the others are
  * fixed (their AND of earlier-grid sets is o->prefix[n-1]).  *p is the
- * position of the row's first point in the grid.  New points wait in the
- * buffer, which is evaluated (flushed) when full. */
+ * position of the row's first point in the grid.  A new point gets the next
+ * id, its tuple, and its input vector in the buffer, which is evaluated
+ * (flushed) when full.  The state lives in locals while the row is swept:
+ * the byte stores of the tuples could alias any field of d or o. */
 static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t *p, int with_ids, rf_error *err)
 {
-    size_t W = o->words, n = d->n, last = n - 1, r = g->radix[last], rowlen = n * d->tw;
+    const size_t W = o->words, n = d->n, last = n - 1, r = g->radix[last], tw = d->tw, rowlen = n * tw;
     const uint64_t *pre = o->prefix + last * W, *mask = o->mask + o->offset[last] * W;
     const uint32_t *vidx = g->vidx[last];
-    size_t np = d->npoints, limit = d->limit ? d->limit : SIZE_MAX;
+    const double *vals = d->values[last], *cur = o->cur;
+    const unsigned char *tup = o->tup;
+    uint32_t *ids = with_ids ? g->ids + *p : NULL;
+    const size_t limit = d->limit ? d->limit : SIZE_MAX, xcap = d->xcap, chunked = d->chunk != 0;
+    size_t np = d->npoints, xc = d->xcount;
+    double *xb = d->xbuf;
+    unsigned char *tb = d->tuples;
     rf_status st = RF_OK;
-    for (size_t l = 0; l < r && !st; l++) {
-        if (in_earlier(o, pre, mask, l)) {
+    for (size_t l = 0; l < r; l++) {
+        if (in_earlier(W, pre, mask, l)) {
             if (with_ids)
-                g->ids[*p + l] = repeated_id(d, g, o, l);
+                ids[l] = repeated_id(d, g, o, l);
             continue;
         }
         if (np >= limit) {
             st = rf_fail(err, RF_ECAP, "more than %zu distinct points", d->limit);
             break;
         }
-        if (with_ids) {
-            new_point(d, o, d->xbuf + d->xcount * n, (unsigned char *)d->tuples + np * rowlen, vidx[l]);
-            g->ids[*p + l] = (uint32_t)np;
-            if (++d->xcount == d->xcap && d->chunk) {
-                d->npoints = np + 1;
-                st = d->flush(d->flush_user, err);
-            }
+        if (!with_ids) {
+            np++;
+            continue;
         }
-        np++;
+        double *x = xb + xc * n;
+        unsigned char *t = tb + np * rowlen;
+        copy_head(x, cur, n * sizeof(double));
+        copy_head(t, tup, rowlen);
+        x[last] = vals[vidx[l]];
+        set_tuple(t, tw, last, vidx[l]);
+        ids[l] = (uint32_t)np++;
+        if (++xc == xcap && chunked) {
+            d->npoints = np;
+            d->xcount = xc;
+            if ((st = d->flush(d->flush_user, err)))
+                break;
+            xc = d->xcount;
+            xb = d->xbuf;
+        }
     }
     d->npoints = np;
+    d->xcount = xc;
     *p += r;
     return st;
 }
 
 static rf_status grid_enumerate(struct rf_tm_data *d, rf_grid *g, int with_ids, rf_error *err)
 {
+    size_t first = d->npoints;
     odometer o;
     rf_status st = odometer_init(&o, d, g, err);
     if (!st && with_ids && !(g->ids = malloc((g->count ? g->count : 1) * sizeof(uint32_t))))
@@ -420,6 +433,8 @@ static rf_status grid_enumerate(struct rf_tm_data *d, rf_grid *g, int with_ids, 
         }
     }
     odometer_free(&o);
+    g->first_id = (uint32_t)first;
+    g->consecutive = with_ids && !st && d->npoints - first == g->count; /* new points get consecutive ids */
     return st;
 }
 

@@ -118,9 +118,14 @@ static rf_status flush_points(void *user, rf_error *err)
     const rf_evaluator *ev = c->opt->evaluator;
     const rf_model *model = c->model;
     size_t failed = 0;
-    double *y = d->y + first * no;
-    rf_status st = ev ? ev->evaluate(ev->user, model, count, d->xbuf, y, &failed, err)
-                      : serial_evaluate((void *)c->opt, model, count, d->xbuf, y, &failed, err);
+    double *yb = d->ybuf;
+    rf_status st = ev ? ev->evaluate(ev->user, model, count, d->xbuf, yb, &failed, err)
+                      : serial_evaluate((void *)c->opt, model, count, d->xbuf, yb, &failed, err);
+    for (size_t k = 0; !st && k < no; k++) { /* into the output columns */
+        double *col = d->y + k * d->cap_points + first;
+        for (size_t p = 0; p < count; p++)
+            col[p] = yb[p * no + k];
+    }
     if (st && failed >= count)
         return st; /* not a model failure (e.g. the result store could not be written) */
     if (st) {
@@ -156,7 +161,7 @@ static void output_range(const struct rf_tm_data *d, double *range)
     for (size_t k = 0; k < d->n_out; k++) {
         double lo = INFINITY, hi = -INFINITY;
         for (size_t p = 0; p < d->npoints; p++) {
-            double v = d->y[p * d->n_out + k];
+            double v = rf_tm_y(d, p, k);
             if (v < lo)
                 lo = v;
             if (v > hi)
@@ -188,8 +193,8 @@ static void classify(tm_ctx *c, const probe_set *ps, size_t nps, rf_monotonicity
         for (size_t k = 0; k < no; k++) {
             int nm_k = 0;
             for (size_t line = 0; line < p->nlines && !nm_k; line++) {
-                rf_tm_gather(d, &p->lines[line], k, z);
-                nm_k = changes_direction(z, p->lines[line].count, 1, c->opt->probe_rtol * range[k]);
+                const double *zl = rf_tm_outputs(d, &p->lines[line], k, z);
+                nm_k = changes_direction(zl, p->lines[line].count, 1, c->opt->probe_rtol * range[k]);
             }
             verdict[k * c->n + p->i] = nm_k ? RF_MONO_NONMONOTONIC : RF_MONO_MONOTONIC;
             nonmono |= nm_k;
@@ -250,18 +255,18 @@ static void diagnose_grid(const struct rf_tm_data *d, const rf_grid *g, const do
         any |= g->radix[i] >= 3;
     if (!any)
         return;
-    /* gather the grid's outputs once, then scan contiguous blocks */
-    double *z = malloc((no + 2) * count * sizeof(double));
+    /* each output of the grid contiguous (gathered unless its ids are), then scan blocks */
+    double *z = malloc(3 * count * sizeof(double));
     if (!z)
         return; /* the diagnostic stays "not checked" */
-    rf_tm_gather_all(d, g, z);
     for (size_t k = 0; k < no; k++) {
+        const double *zk = rf_tm_outputs(d, g, k, z);
         for (size_t i = 0; i < n; i++) {
             rf_monotonicity *v = &verdict[k * n + i];
             if (g->radix[i] < 3 || *v == RF_MONO_NONMONOTONIC)
                 continue;
-            int nm = lines_change_direction(z + k * count, count, g->radix[i], g->stride[i], rtol * range[k],
-                                            z + no * count, z + (no + 1) * count);
+            int nm = lines_change_direction(zk, count, g->radix[i], g->stride[i], rtol * range[k], z + count,
+                                            z + 2 * count);
             *v = nm ? RF_MONO_NONMONOTONIC : RF_MONO_MONOTONIC;
         }
     }
@@ -280,34 +285,39 @@ typedef struct {
 
 static int scan_outputs(const struct rf_tm_data *d, output_scan *s)
 {
-    size_t no = d->n_out;
+    size_t no = d->n_out, np = d->npoints;
     s->nan = calloc(2 * no, sizeof(size_t));
-    s->range = malloc(2 * no * sizeof(double));
+    s->range = malloc(no * sizeof(double));
     s->failed = 0;
     if (!s->nan || !s->range)
         return -1;
     s->first_nan = s->nan + no;
-    double *lo = s->range + no, *hi = s->range;
+    int any_nan = 0;
     for (size_t k = 0; k < no; k++) {
-        lo[k] = INFINITY;
-        hi[k] = -INFINITY;
-    }
-    for (size_t p = 0; p < d->npoints; p++) {
-        const double *y = d->y + p * no;
-        size_t nan_here = 0;
-        for (size_t k = 0; k < no; k++) {
-            double v = y[k];
-            if (isnan(v)) {
-                s->first_nan[k] = s->nan[k]++ ? s->first_nan[k] : p;
-                nan_here++;
-            }
-            lo[k] = v < lo[k] ? v : lo[k];
-            hi[k] = v > hi[k] ? v : hi[k];
+        const double *col = d->y + k * d->cap_points;
+        double lo = INFINITY, hi = -INFINITY;
+        size_t nan = 0;
+        for (size_t p = 0; p < np; p++) {
+            double v = col[p];
+            nan += isnan(v) != 0;
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
         }
-        s->failed += nan_here == no;
+        for (size_t p = 0; nan && p < np; p++)
+            if (isnan(col[p])) {
+                s->first_nan[k] = p;
+                break;
+            }
+        s->nan[k] = nan;
+        any_nan |= nan > 0;
+        s->range[k] = hi > lo ? hi - lo : 0;
     }
-    for (size_t k = 0; k < no; k++)
-        s->range[k] = hi[k] > lo[k] ? hi[k] - lo[k] : 0;
+    for (size_t p = 0; any_nan && p < np; p++) {
+        size_t k = 0;
+        while (k < no && isnan(rf_tm_y(d, p, k)))
+            k++;
+        s->failed += k == no;
+    }
     return 0;
 }
 
@@ -346,45 +356,41 @@ static void set_cut(const struct rf_tm_data *d, rf_tm_result *res, size_t at, in
     }
 }
 
-/* Recursive retransformation (s.2.4): every output in one pass per level,
- * starting from the bounds of level j+1.  A NaN never becomes a bound. */
+/* Recursive retransformation (s.2.4), output by output: each level starts
+ * from the bounds of level j+1.  A NaN never becomes a bound. */
 static int retransform(const tm_ctx *c, rf_tm_result *res)
 {
     const struct rf_tm_data *d = c->d;
-    size_t m = d->m, no = d->n_out;
-    double *zmin = malloc(2 * no * sizeof(double)), *zmax = zmin ? zmin + no : NULL;
-    uint32_t *amin = calloc(2 * no, sizeof(uint32_t)), *amax = amin ? amin + no : NULL;
-    if (!zmin || !amin) {
-        free(zmin);
-        free(amin);
+    size_t m = d->m, no = d->n_out, maxc = 1;
+    for (size_t j = 0; j <= m; j++)
+        maxc = d->main[j].count > maxc ? d->main[j].count : maxc;
+    double *scratch = malloc(maxc * sizeof(double));
+    if (!scratch)
         return -1;
-    }
     for (size_t k = 0; k < no; k++) {
-        zmin[k] = INFINITY;
-        zmax[k] = -INFINITY;
-    }
-    for (size_t jj = m + 1; jj-- > 0;) {
-        const rf_grid *g = &d->main[jj];
-        for (size_t p = 0; p < g->count; p++) {
-            uint32_t id = g->ids[p];
-            const double *y = d->y + (size_t)id * no;
-            for (size_t k = 0; k < no; k++) {
-                if (y[k] < zmin[k]) {
-                    zmin[k] = y[k];
-                    amin[k] = id;
+        uint32_t amin = 0, amax = 0;
+        double zmin = INFINITY, zmax = -INFINITY;
+        for (size_t jj = m + 1; jj-- > 0;) {
+            const rf_grid *g = &d->main[jj];
+            const double *z = rf_tm_outputs(d, g, k, scratch);
+            size_t pmin = SIZE_MAX, pmax = SIZE_MAX;
+            for (size_t p = 0; p < g->count; p++) {
+                if (z[p] < zmin) {
+                    zmin = z[p];
+                    pmin = p;
                 }
-                if (y[k] > zmax[k]) {
-                    zmax[k] = y[k];
-                    amax[k] = id;
+                if (z[p] > zmax) {
+                    zmax = z[p];
+                    pmax = p;
                 }
             }
+            amin = pmin == SIZE_MAX ? amin : g->ids[pmin];
+            amax = pmax == SIZE_MAX ? amax : g->ids[pmax];
+            /* tolerate_failures: every point of the cut was NaN so far */
+            set_cut(d, res, k * (m + 1) + jj, res->output_undefined[k] || zmin > zmax, amin, amax, zmin, zmax);
         }
-        for (size_t k = 0; k < no; k++) /* tolerate_failures: every point of the cut was NaN so far */
-            set_cut(d, res, k * (m + 1) + jj, res->output_undefined[k] || zmin[k] > zmax[k], amin[k], amax[k],
-                    zmin[k], zmax[k]);
     }
-    free(zmin);
-    free(amin);
+    free(scratch);
     return 0;
 }
 
@@ -590,7 +596,7 @@ static rf_status finish(tm_ctx *c, const output_scan *s, rf_tm_result *res, rf_e
     memcpy(res->in_hi, c->hi, n * (m + 1) * sizeof(double));
     memcpy(res->in_nominal, c->nominal, n * sizeof(double));
     for (size_t k = 0; k < no; k++)
-        res->nominal[k] = d->y[(size_t)d->nominal_id * no + k];
+        res->nominal[k] = rf_tm_y(d, d->nominal_id, k);
     if (opt->scheme == RF_TM_EXTENDED)
         memcpy(res->input_class, c->cls, n * sizeof *c->cls);
     /* diagnostic on whatever grids have interior points */

@@ -31,6 +31,8 @@ typedef struct {
     uint64_t **member;   /* [n][words of nvalues[i]] bitset of the value indices in vidx[i] */
     uint32_t *ids;       /* [count] point id of every grid point, or NULL (counting only) */
     size_t count;
+    uint32_t first_id;   /* consecutive: ids[p] == first_id + p (every point new) */
+    int consecutive;
 } rf_grid;
 
 struct rf_tm_data {
@@ -53,12 +55,13 @@ struct rf_tm_data {
      * there, then flush evaluates them into y: a small buffer that stays in
      * cache for the serial path, all pending points for an evaluator. */
     double *xbuf;        /* [chunk * n] */
+    double *ybuf;        /* [chunk * n_out] the evaluator's outputs, before they go into y */
     size_t chunk, xcap;  /* points per flush (0 = no flush while building), room in xbuf */
     size_t xcount, xfirst; /* points waiting in xbuf, id of the first of them */
     rf_status (*flush)(void *user, rf_error *err);
     void *flush_user;
 
-    double *y;           /* [cap_points * n_out] outputs of the evaluated points */
+    double *y;           /* [k * cap_points + id] output k of point id (one column per output) */
 
     rf_grid *nominal;    /* the one-point grid of the nominal inputs; its point is id 0 */
     rf_grid *main;       /* [m+1] grids of the chosen form, level j */
@@ -127,9 +130,11 @@ rf_status rf_tm_grid_build(struct rf_tm_data *d, rf_grid *g, double *const *vals
 void rf_tm_grid_free(rf_grid *g, size_t n);
 void rf_tm_data_free(struct rf_tm_data *d);
 
-/* Gather output k of every point of g, in grid order, into z[g->count]. */
-void rf_tm_gather(const struct rf_tm_data *d, const rf_grid *g, size_t k, double *z);
-/* Every output at once: z[k * g->count + p]. */
-void rf_tm_gather_all(const struct rf_tm_data *d, const rf_grid *g, double *z);
+/* Output k of every point of g in grid order: the column itself when the
+ * grid's ids are consecutive, else gathered into scratch[g->count]. */
+const double *rf_tm_outputs(const struct rf_tm_data *d, const rf_grid *g, size_t k, double *scratch);
+
+/* Output k of point id. */
+static inline double rf_tm_y(const struct rf_tm_data *d, size_t id, size_t k) { return d->y[k * d->cap_points + id]; }
 
 #endif
