@@ -18,34 +18,42 @@
 #define MAX_PROBE_CORNERS 64
 
 /* Registration (ctx_init only): add v to values[i] unless a stored value is
- * within rtol.  The values are sorted once all are in. */
+ * within rtol.  The values are kept sorted (binary search, insertion): the
+ * set stored is the same as with a scan in registration order. */
 static int value_add(struct rf_tm_data *d, size_t i, double v)
 {
-    double tol = d->rtol * d->scale[i];
-    for (size_t k = 0; k < d->nvalues[i]; k++)
-        if (fabs(d->values[i][k] - v) <= tol)
+    double tol = d->rtol * d->scale[i], *vals = d->values[i];
+    size_t lo = 0, hi = d->nvalues[i];
+    while (lo < hi) { /* first stored value >= v - tol */
+        size_t mid = lo + (hi - lo) / 2;
+        if (vals[mid] < v - tol)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (size_t k = lo; k < d->nvalues[i] && vals[k] <= v + tol; k++)
+        if (fabs(vals[k] - v) <= tol)
             return 0;
     if (d->nvalues[i] == d->capvalues[i]) {
         size_t cap = d->capvalues[i] ? 2 * d->capvalues[i] : 16;
         double *nv = realloc(d->values[i], cap * sizeof(double));
         if (!nv)
             return -1;
-        d->values[i] = nv;
+        d->values[i] = vals = nv;
         d->capvalues[i] = cap;
     }
-    d->values[i][d->nvalues[i]++] = v;
+    size_t at = lo;
+    while (at < d->nvalues[i] && vals[at] < v)
+        at++;
+    memmove(vals + at + 1, vals + at, (d->nvalues[i] - at) * sizeof(double));
+    vals[at] = v;
+    d->nvalues[i]++;
     return 0;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Sort ascending and drop values within tol of their predecessor (tol < 0:
- * keep all).  The lists are short and nearly sorted (lower bound, midpoints,
- * upper bound): insertion sort. */
+/* Sort ascending and drop values within tol of their predecessor.  The
+ * lists are short and nearly sorted (lower bound, midpoints, upper bound):
+ * insertion sort. */
 size_t tm_sort_unique(double *v, size_t k, double tol)
 {
     for (size_t r = 1; r < k; r++) {
@@ -175,10 +183,6 @@ static rf_status ctx_input(tm_ctx *c, const rf_fuzzy *in, size_t i, rf_error *er
         fail |= value_add(d, i, lo[j]) | value_add(d, i, hi[j]);
     if (fail)
         return rf_fail(err, RF_ENOMEM, "out of memory");
-    if (d->nvalues[i] <= 512) /* registered nearly in order: insertion sort */
-        tm_sort_unique(d->values[i], d->nvalues[i], -1.0);
-    else
-        qsort(d->values[i], d->nvalues[i], sizeof(double), cmp_double);
     c->cls[i] = c->opt->force_class ? c->opt->force_class[i] : RF_MONO_AUTO;
     return RF_OK;
 }
