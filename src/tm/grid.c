@@ -157,8 +157,15 @@ typedef struct {
     uint64_t *mask;       /* [(offset[i] + l) * words]: earlier grids holding value l of input i */
     size_t *offset;       /* [n] */
     uint64_t *prefix;     /* [(n + 1) * words]: AND of the masks of inputs < i */
-    double *cur;          /* [n] current input vector */
+    double *cur;          /* [n] current input vector (its head part) */
     unsigned char tup[64 * 4]; /* current tuple, tw bytes per input (n <= 64) */
+    /* A row sweeps the tail, inputs head..n-1, as one flattened digit t of
+     * tail_count values (at least 16 when the grid allows): short radices
+     * (2 corners) would otherwise make every row a couple of points. */
+    size_t head, tail_count;
+    uint64_t *tmask;      /* [t * words]: AND of the tail inputs' masks at tail digit t */
+    double *tx;           /* [t * (n - head)] tail input values */
+    unsigned char *ttup;  /* [t * (n - head) * tw] tail tuple bytes */
 } odometer;
 
 static void set_tuple(unsigned char *t, size_t tw, size_t i, uint32_t v)
@@ -175,12 +182,17 @@ static void set_tuple(unsigned char *t, size_t tw, size_t i, uint32_t v)
 
 static void odometer_free(odometer *o)
 {
+    free(o->tmask);
+    free(o->tx);
+    free(o->ttup);
     free(o->digit);
     free(o->mask);
     free(o->offset);
     free(o->prefix);
     free(o->cur);
 }
+
+static rf_status odometer_tail(odometer *o, const struct rf_tm_data *d, const rf_grid *g, rf_error *err);
 
 static rf_status odometer_init(odometer *o, const struct rf_tm_data *d, const rf_grid *g, rf_error *err)
 {
@@ -212,19 +224,60 @@ static rf_status odometer_init(odometer *o, const struct rf_tm_data *d, const rf
         o->cur[i] = d->values[i][g->vidx[i][0]];
         set_tuple(o->tup, d->tw, i, g->vidx[i][0]);
     }
+    return odometer_tail(o, d, g, err);
+}
+
+/* Set the tail digits from the flattened tail digit t (last input fastest). */
+static void tail_digits(odometer *o, const rf_grid *g, size_t t)
+{
+    for (size_t i = o->n; i-- > o->head;) {
+        o->digit[i] = t % g->radix[i];
+        t /= g->radix[i];
+    }
+}
+
+/* Choose the tail and tabulate its masks, values and tuple bytes. */
+static rf_status odometer_tail(odometer *o, const struct rf_tm_data *d, const rf_grid *g, rf_error *err)
+{
+    size_t n = o->n, W = o->words, R = 1, head = n, tw = d->tw;
+    while (head > 0 && R < 16 && R * g->radix[head - 1] <= 4096)
+        R *= g->radix[--head];
+    if (head == n) /* a last radix above 4096: sweep it alone */
+        R = g->radix[--head];
+    size_t L = n - head;
+    o->head = head;
+    o->tail_count = R;
+    o->tmask = malloc(R * W * sizeof *o->tmask);
+    o->tx = calloc(R * L + 16, sizeof *o->tx); /* slack: rows are copied as fixed blocks */
+    o->ttup = calloc(R * L * tw + 128, 1);
+    if (!o->tmask || !o->tx || !o->ttup)
+        return rf_fail(err, RF_ENOMEM, "out of memory for the TM grid");
+    for (size_t t = 0; t < R; t++) {
+        tail_digits(o, g, t);
+        for (size_t w = 0; w < W; w++)
+            o->tmask[t * W + w] = ~UINT64_C(0);
+        for (size_t i = head; i < n; i++) {
+            uint32_t v = g->vidx[i][o->digit[i]];
+            for (size_t w = 0; w < W; w++)
+                o->tmask[t * W + w] &= o->mask[(o->offset[i] + o->digit[i]) * W + w];
+            o->tx[t * L + (i - head)] = d->values[i][v];
+            set_tuple(o->ttup + t * L * tw, tw, i - head, v);
+        }
+    }
+    tail_digits(o, g, 0);
     return RF_OK;
 }
 
-/* Recompute the prefix ANDs from input `from` on. */
-static inline void odometer_prefix(odometer *o, size_t from)
+/* Recompute the prefix ANDs of inputs from..upto-1. */
+static inline void odometer_prefix(odometer *o, size_t from, size_t upto)
 {
     size_t W = o->words;
     if (W == 1) {
-        for (size_t i = from; i < o->n; i++)
+        for (size_t i = from; i < upto; i++)
             o->prefix[i + 1] = o->prefix[i] & o->mask[o->offset[i] + o->digit[i]];
         return;
     }
-    for (size_t i = from; i < o->n; i++) {
+    for (size_t i = from; i < upto; i++) {
         const uint64_t *a = o->prefix + i * W, *b = o->mask + (o->offset[i] + o->digit[i]) * W;
         uint64_t *c = o->prefix + (i + 1) * W;
         for (size_t w = 0; w < W; w++)
@@ -242,11 +295,11 @@ static size_t odometer_first_holder(const odometer *o)
     return SIZE_MAX;
 }
 
-/* Advance the inputs before the last one (the last is swept by the caller);
- * returns the lowest input changed, or SIZE_MAX after the last point. */
+/* Advance the head inputs (the tail is swept by the caller); returns the
+ * lowest input changed, or SIZE_MAX after the last row. */
 static inline size_t odometer_next_row(odometer *o, const struct rf_tm_data *d, const rf_grid *g)
 {
-    for (size_t i = o->n - 1; i-- > 0;) {
+    for (size_t i = o->head; i-- > 0;) {
         size_t l = ++o->digit[i] < g->radix[i] ? o->digit[i] : (o->digit[i] = 0);
         o->cur[i] = d->values[i][g->vidx[i][l]];
         set_tuple(o->tup, d->tw, i, g->vidx[i][l]);
@@ -321,15 +374,14 @@ static rf_status grid_reserve(struct rf_tm_data *d, const rf_grid *g, int with_i
     return RF_OK;
 }
 
-/* A repeated point at position l of the current row: its id from the
+/* A repeated point at tail digit t of the current row: its id from the
  * first earlier grid holding it. */
-static uint32_t repeated_id(struct rf_tm_data *d, const rf_grid *g, odometer *o, size_t l)
+static uint32_t repeated_id(struct rf_tm_data *d, const rf_grid *g, odometer *o, size_t t)
 {
-    size_t last = d->n - 1;
-    o->digit[last] = l;
-    odometer_prefix(o, last);
+    tail_digits(o, g, t);
+    odometer_prefix(o, o->head, o->n);
     uint32_t id = id_in(d, d->reg[odometer_first_holder(o)], o, g);
-    o->digit[last] = 0;
+    tail_digits(o, g, 0);
     return id;
 }
 
@@ -360,29 +412,29 @@ static inline int in_earlier(size_t W, const uint64_t *pre, const uint64_t *mask
     return any != 0;
 }
 
-/* One row of the grid: the last input sweeps its values, the others are
- * fixed (their AND of earlier-grid sets is o->prefix[n-1]).  *p is the
+/* One row of the grid: the tail sweeps its tail_count values, the head is
+ * fixed (its AND of earlier-grid sets is o->prefix[head]).  *p is the
  * position of the row's first point in the grid.  A new point gets the next
  * id, its tuple, and its input vector in the buffer, which is evaluated
  * (flushed) when full.  The state lives in locals while the row is swept:
  * the byte stores of the tuples could alias any field of d or o. */
 static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t *p, int with_ids, rf_error *err)
 {
-    const size_t W = o->words, n = d->n, last = n - 1, r = g->radix[last], tw = d->tw, rowlen = n * tw;
-    const uint64_t *pre = o->prefix + last * W, *mask = o->mask + o->offset[last] * W;
-    const uint32_t *vidx = g->vidx[last];
-    const double *vals = d->values[last], *cur = o->cur;
-    const unsigned char *tup = o->tup;
+    const size_t W = o->words, n = d->n, head = o->head, L = n - head, R = o->tail_count, tw = d->tw;
+    const size_t rowlen = n * tw;
+    const uint64_t *pre = o->prefix + head * W, *tmask = o->tmask;
+    const double *cur = o->cur, *tx = o->tx;
+    const unsigned char *tup = o->tup, *ttup = o->ttup;
     uint32_t *ids = with_ids ? g->ids + *p : NULL;
     const size_t limit = d->limit ? d->limit : SIZE_MAX, xcap = d->xcap, chunked = d->chunk != 0;
     size_t np = d->npoints, xc = d->xcount;
     double *xb = d->xbuf;
     unsigned char *tb = d->tuples;
     rf_status st = RF_OK;
-    for (size_t l = 0; l < r; l++) {
-        if (in_earlier(W, pre, mask, l)) {
+    for (size_t t = 0; t < R; t++) {
+        if (in_earlier(W, pre, tmask, t)) {
             if (with_ids)
-                ids[l] = repeated_id(d, g, o, l);
+                ids[t] = repeated_id(d, g, o, t);
             continue;
         }
         if (np >= limit) {
@@ -394,12 +446,12 @@ static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t 
             continue;
         }
         double *x = xb + xc * n;
-        unsigned char *t = tb + np * rowlen;
+        unsigned char *tp = tb + np * rowlen;
         copy_head(x, cur, n * sizeof(double));
-        copy_head(t, tup, rowlen);
-        x[last] = vals[vidx[l]];
-        set_tuple(t, tw, last, vidx[l]);
-        ids[l] = (uint32_t)np++;
+        copy_head(x + head, tx + t * L, L * sizeof(double));
+        copy_head(tp, tup, rowlen);
+        copy_head(tp + head * tw, ttup + t * L * tw, L * tw);
+        ids[t] = (uint32_t)np++;
         if (++xc == xcap && chunked) {
             d->npoints = np;
             d->xcount = xc;
@@ -411,7 +463,7 @@ static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t 
     }
     d->npoints = np;
     d->xcount = xc;
-    *p += r;
+    *p += R;
     return st;
 }
 
@@ -423,13 +475,13 @@ static rf_status grid_enumerate(struct rf_tm_data *d, rf_grid *g, int with_ids, 
     if (!st && with_ids && !(g->ids = malloc((g->count ? g->count : 1) * sizeof(uint32_t))))
         st = rf_fail(err, RF_ENOMEM, "out of memory for the TM grid (%zu points)", g->count);
     if (!st && g->count > 0) {
-        odometer_prefix(&o, 0);
+        odometer_prefix(&o, 0, o.head);
         size_t p = 0, changed = 0;
         while (!st && changed != SIZE_MAX) {
             st = grid_row(d, g, &o, &p, with_ids, err);
-            changed = d->n > 1 ? odometer_next_row(&o, d, g) : SIZE_MAX;
+            changed = odometer_next_row(&o, d, g);
             if (changed != SIZE_MAX)
-                odometer_prefix(&o, changed);
+                odometer_prefix(&o, changed, o.head);
         }
     }
     odometer_free(&o);
