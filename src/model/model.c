@@ -23,9 +23,11 @@ rf_status rf_model_eval_many(const rf_model *model, size_t count, const double *
     if (!model || !model->eval)
         return rf_fail(err, RF_EINTERNAL, "model has no evaluation function");
     size_t nin = model->n_inputs, nout = model->n_outputs, done = 0;
+    rf_model_eval_fn eval = model->eval; /* locals: the calls may write anywhere */
+    void *ctx = model->ctx;
     rf_status st = RF_OK;
     for (; done < count && st == RF_OK; done++)
-        st = model->eval(model->ctx, x + done * nin, y + done * nout, err);
+        st = eval(ctx, x + done * nin, y + done * nout, err);
     size_t evaluated = st == RF_OK ? done : done - 1; /* points with outputs */
     int any_inf = 0;
     for (size_t e = 0; e < evaluated * nout; e++)
