@@ -4,7 +4,11 @@
  * Cases of the fuzzy-core issue: general form n = 4, m = 10 (39 974 grid
  * points) and reduced form n = 10, m = 10 (10 241).  Prints the wall time of
  * the TM run, of the analysis, the model's own time measured separately on
- * the same points, the overhead per requested evaluation, and the peak RSS.
+ * the same points, the overhead per requested evaluation (cache and
+ * analysis on, serial path; goal of issue 9: <= 12 ns incl. analysis), the
+ * runner's speed-up from 1 to 2 workers on a ~1 us model, and the peak RSS.
+ * Wall times on a shared machine are noisy: compare within one run, and use
+ * callgrind instruction counts for small changes (docs/architecture.md).
  * Usage: bench_tm [repeats] */
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,10 +1,12 @@
 /* test_fuzzy.c - fuzzy numbers: cuts of every shape against hand-computed
  * values (tm_spec.md s.1), membership consistency, and rejection of invalid
  * shapes with messages that name the value. */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -134,12 +136,50 @@ static void test_invalid(void **state)
     expect_error(rf_fuzzy_decompose(&f, 0, lo, hi, &err), &err, "levels = 0");
 }
 
+/* Supports whose ends, widths or midpoints overflow, and spreads too small
+ * for doubles to resolve, are refused with the field named (issue 12). */
+static void expect_refused(rf_status st, const rf_error *err, const char *field)
+{
+    assert_int_equal(st, RF_EINVAL);
+    if (!strstr(err->msg, field))
+        fail_msg("message '%s' does not name '%s'", err->msg, field);
+}
+
+static void test_overflowing_supports(void **state)
+{
+    (void)state;
+    rf_fuzzy f;
+    rf_error err = {0};
+    expect_refused(rf_fuzzy_tfn(&f, 1e308, 1e307, 1e308, &err), &err, "peak");
+    expect_refused(rf_fuzzy_tfn(&f, 1e307, 1e307, 1.79e308, &err), &err, "peak + right deviation = inf");
+    expect_refused(rf_fuzzy_tfn(&f, -1e307, 1.7e308, 1, &err), &err, "peak - left deviation");
+    expect_refused(rf_fuzzy_interval(&f, -1e308, 1e308, &err), &err, "lower bound = -1e+308");
+    expect_refused(rf_fuzzy_trapezoid(&f, 0, 1, 2, 1e308, &err), &err, "x4 = 1e+308");
+    expect_refused(rf_fuzzy_gaussian(&f, 1e307, 1e306, 2e307, 3, &err), &err, "peak + cutoff * right sigma");
+    expect_refused(rf_fuzzy_crisp(&f, -1.5e308, &err), &err, "value");
+    /* the largest accepted magnitude still gives finite widths and midpoints */
+    assert_int_equal(rf_fuzzy_interval(&f, -4e307, 4e307, &err), RF_OK);
+    double lo[11], hi[11];
+    assert_int_equal(rf_fuzzy_decompose(&f, 10, lo, hi, &err), RF_OK);
+    assert_true(isfinite(hi[0] - lo[0]) && isfinite(0.5 * (lo[0] + hi[0])));
+    /* a spread that vanishes next to the peak would make the input silently crisp */
+    expect_refused(rf_fuzzy_tfn(&f, 1e16, 1e-5, 1e-5, &err), &err, "left deviation = 1e-05 vanishes");
+    expect_refused(rf_fuzzy_gaussian(&f, 1e20, 1, 1e-3, 3, &err), &err, "left sigma");
+    /* representable but too narrow for 10 levels: 8 wide where doubles are 2 apart */
+    assert_int_equal(rf_fuzzy_trapezoid(&f, 1e16, 1e16 + 2, 1e16 + 4, 1e16 + 8, &err), RF_OK);
+    expect_refused(rf_fuzzy_decompose(&f, 10, lo, hi, &err), &err, "too narrow for doubles");
+    /* a narrow support at a small magnitude is fine */
+    assert_int_equal(rf_fuzzy_tfn(&f, 1e-300, 1e-310, 1e-310, &err), RF_OK);
+    assert_int_equal(rf_fuzzy_decompose(&f, 10, lo, hi, &err), RF_OK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_triangular), cmocka_unit_test(test_gaussian_spec_example),
         cmocka_unit_test(test_trapezoid_interval_crisp), cmocka_unit_test(test_points),
         cmocka_unit_test(test_cuts_form), cmocka_unit_test(test_invalid),
+        cmocka_unit_test(test_overflowing_supports),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

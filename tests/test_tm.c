@@ -6,6 +6,9 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
 
 #include <cmocka.h>
 
@@ -486,6 +489,99 @@ static void test_cap_and_failure(void **state)
     rf_model_free(&bad);
 }
 
+/* ---- grids beyond the cap are refused before anything is built (issue 12) */
+static double seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static long peak_rss_kib(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_maxrss;
+}
+
+/* rf_tm_count and rf_tm_run must both refuse, with the message naming
+ * `grid` and `advice`, without evaluating anything. */
+static void expect_refused_fast(rf_fuzzy *in, size_t n, const rf_tm_options *opt, const char *grid,
+                                const char *advice)
+{
+    rf_model model = test_model(n, 1, f_first);
+    rf_error err = {0};
+    size_t rq = 0, ds = 0;
+    double t0 = seconds();
+    assert_int_equal(rf_tm_count(in, n, opt, &rq, &ds, &err), RF_ECAP);
+    if (!strstr(err.msg, grid) || !strstr(err.msg, advice))
+        fail_msg("rf_tm_count: '%s' should name '%s' and say '%s'", err.msg, grid, advice);
+    rf_tm_result r;
+    assert_int_equal(rf_tm_run(in, n, &model, opt, &r, &err), RF_ECAP);
+    if (!strstr(err.msg, grid) || !strstr(err.msg, advice))
+        fail_msg("rf_tm_run: '%s' should name '%s' and say '%s'", err.msg, grid, advice);
+    assert_int_equal(test_model_calls(&model), 0);
+    assert_true(seconds() - t0 < 1.0); /* analytic: no grid is enumerated */
+    rf_model_free(&model);
+}
+
+static void test_cap_before_allocating(void **state)
+{
+    (void)state;
+    long rss0 = peak_rss_kib();
+    rf_fuzzy in[16];
+    for (size_t i = 0; i < 16; i++)
+        rf_fuzzy_tfn(&in[i], 1.0 + (double)i, 0.1, 0.2, NULL);
+    rf_tm_options opt;
+    rf_tm_options_default(&opt);
+    opt.max_evaluations = 100000;
+    /* general form, 8 inputs, m = 10: 11^8 = 214 358 881 points at mu = 0
+     * (this allocated 23.8 GB before the cap message) */
+    opt.scheme = RF_TM_GENERAL;
+    opt.levels = 10;
+    opt.left_right = 0;
+    expect_refused_fast(in, 8, &opt, "general-form grid at mu = 0 has 214358881 points", "scheme: reduced");
+    /* reduced form, 14 inputs with left/right: 3^14 = 4 782 969 on the
+     * three-point grid (2^14 corners alone would fit): it is named, and the
+     * advice is to turn the left/right influence off, not the reduced form */
+    opt.scheme = RF_TM_REDUCED;
+    opt.left_right = 1;
+    expect_refused_fast(in, 14, &opt, "three-point grid of the left/right influence at mu = 0 has 4782969 points",
+                        "options.left_right: false");
+    /* without a cap a grid beyond what point ids can index is still refused */
+    opt.max_evaluations = 0;
+    opt.left_right = 0;
+    opt.scheme = RF_TM_GENERAL;
+    expect_refused_fast(in, 12, &opt, "general-form grid at mu = 0 has", "this build can index");
+    /* memory bounded by the cap, not by the grid: a few MiB at most */
+    long grown = peak_rss_kib() - rss0;
+    if (grown > 64 * 1024)
+        fail_msg("peak RSS grew by %ld KiB while refusing", grown);
+
+    /* no single grid exceeds the cap, their distinct union does: counted
+     * exactly without storing points, refused with the sizes */
+    opt.scheme = RF_TM_REDUCED;
+    opt.left_right = 1;
+    opt.levels = 10;
+    opt.max_evaluations = 2000; /* 3^6 = 729 per level, 11 levels, 2^6 corners */
+    rf_error err = {0};
+    size_t rq, ds;
+    assert_int_equal(rf_tm_count(in, 6, &opt, &rq, &ds, &err), RF_ECAP);
+    assert_non_null(strstr(err.msg, "distinct model evaluations"));
+    assert_non_null(strstr(err.msg, "options.left_right: false"));
+    opt.max_evaluations = 0;
+    assert_int_equal(rf_tm_count(in, 6, &opt, &rq, &ds, &err), RF_OK);
+    assert_true(ds > 2000 && rq >= ds);
+    opt.max_evaluations = ds; /* exactly at the cap: runs */
+    rf_model model = test_model(6, 1, f_first);
+    rf_tm_result r;
+    assert_int_equal(rf_tm_run(in, 6, &model, &opt, &r, &err), RF_OK);
+    assert_int_equal(r.distinct, ds);
+    assert_int_equal(test_model_calls(&model), ds);
+    rf_tm_result_free(&r);
+    rf_model_free(&model);
+}
+
 /* ---- inputs of every shape give nested outputs; crisp inputs are n/a */
 static void f_sum(const double *x, double *y)
 {
@@ -624,7 +720,8 @@ int main(void)
         cmocka_unit_test(test_sgpp_trapezoids), cmocka_unit_test(test_dependency),
         cmocka_unit_test(test_counts),          cmocka_unit_test(test_general_points),
         cmocka_unit_test(test_interval_arithmetic), cmocka_unit_test(test_never_overestimates),
-        cmocka_unit_test(test_cap_and_failure), cmocka_unit_test(test_shapes_and_crisp),
+        cmocka_unit_test(test_cap_and_failure), cmocka_unit_test(test_cap_before_allocating),
+        cmocka_unit_test(test_shapes_and_crisp),
         cmocka_unit_test(test_nan_outputs),      cmocka_unit_test(test_noise_is_not_influence),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,7 +1,11 @@
 /* fuzzy.h - fuzzy numbers and their alpha-cut decomposition (tm_spec.md s.1).
  *
  * One type, rf_fuzzy, for every shape.  Constructors validate and return a
- * message naming the offending value; a constructed number is always valid.
+ * message naming the offending value; a constructed number is always valid:
+ * its support ends are finite and within +-DBL_MAX/4 (the TM adds and
+ * subtracts them), and a positive spread does not vanish in rounding at the
+ * peak.  rf_fuzzy_decompose also refuses a support too narrow for doubles
+ * to resolve the m levels' grid values.
  * Level j of a decomposition with m intervals has membership mu_j = j/m; the
  * level-0 cut is the closure of the support. */
 #ifndef ROCKFUZZ_FUZZY_H
@@ -65,6 +69,11 @@ rf_status rf_fuzzy_decompose(const rf_fuzzy *f, size_t m, double *lo, double *hi
 
 /* Check that m+1 cuts nest: lo[j] <= lo[j+1] <= hi[j+1] <= hi[j]. */
 rf_status rf_cuts_check_nested(size_t m, const double *lo, const double *hi, rf_error *err);
+
+/* Check that a support of positive width is wide enough for doubles to
+ * resolve the TM's grid values at m levels (64 m spacings of doubles at the
+ * support's magnitude); rf_fuzzy_decompose applies it. */
+rf_status rf_cuts_check_resolution(size_t m, const double *lo, const double *hi, rf_error *err);
 
 #ifdef __cplusplus
 }

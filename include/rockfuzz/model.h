@@ -47,6 +47,12 @@ typedef struct rf_model {
 
 /* Evaluate (convenience wrapper checking for NULL and non-finite outputs). */
 rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_error *err);
+/* rf_model_eval over count points x[p*n_inputs..], y[p*n_outputs..] in
+ * order; on failure sets *failed to the first failed point's index (a point
+ * with an infinite output is found after the evaluations: the points after
+ * it may have been evaluated as well). */
+rf_status rf_model_eval_many(const rf_model *model, size_t count, const double *x, double *y, size_t *failed,
+                             rf_error *err);
 
 /* Hand the model an interrupt flag (no-op when it has no set_interrupt). */
 void rf_model_set_interrupt(rf_model *model, const atomic_int *flag);

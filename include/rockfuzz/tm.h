@@ -2,8 +2,9 @@
  *
  * rf_tm_run decomposes the fuzzy inputs, builds the grid of the chosen form
  * (general, reduced or extended), evaluates every DISTINCT point once through
- * an evaluator (a cache keyed on exact grid-value indices: values closer than
- * cache_rtol are merged before any evaluation), and retransforms recursively
+ * an evaluator (points are tuples of grid-value indices, values closer than
+ * cache_rtol merged before any evaluation; a point repeated by another grid
+ * is recognised from the grids' structure), and retransforms recursively
  * so that the output cuts always nest.  Several outputs share one set of
  * evaluations.  For every output bound the input vector that produced it is
  * kept.  The TM never knows what model it calls.
@@ -90,7 +91,14 @@ typedef struct {
 
 /* Count requested and distinct evaluations without evaluating anything
  * (extended form with auto classes: the probe is counted, the main grid
- * bounded above by the general form). */
+ * bounded above by the general form).  Every grid's size is counted
+ * analytically first: a grid with more points than max_evaluations (or than
+ * point ids can index) is refused with RF_ECAP, naming the grid (general- or
+ * reduced-form grid at a level, the left/right three-point grid, the
+ * extended form's probe) and what to change; then the distinct points are
+ * counted without storing any, and a count above max_evaluations is refused
+ * too (not for the extended form's upper bound).  Memory does not grow with
+ * the grid.  rf_tm_run makes the same checks before it builds anything. */
 rf_status rf_tm_count(const rf_fuzzy *inputs, size_t n_inputs, const rf_tm_options *opt,
                       size_t *requested, size_t *distinct, rf_error *err);
 

@@ -3,6 +3,7 @@
  * the TM needs: the cut at a level and the nominal value. */
 #include "rockfuzz/fuzzy.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +16,34 @@ static rf_status finite_or_fail(double v, const char *what, rf_error *err)
     return RF_OK;
 }
 
+/* Largest magnitude a support end may have: the TM forms sums and
+ * differences of two support values (midpoints, widths), which must stay
+ * finite. */
+#define RF_FUZZY_MAX_ABS (DBL_MAX / 4)
+
+/* A support end computed from the parameters must be a finite number the
+ * TM can add and subtract. */
+static rf_status end_or_fail(double v, const char *what, rf_error *err)
+{
+    if (!isfinite(v) || fabs(v) > RF_FUZZY_MAX_ABS)
+        return rf_fail(err, RF_EINVAL, "%s = %g: beyond +-%g, the largest support end the TM can handle (sums "
+                                       "and widths of support values must stay finite)",
+                       what, v, RF_FUZZY_MAX_ABS);
+    return RF_OK;
+}
+
+/* A spread given as positive must survive rounding at the peak's magnitude:
+ * peak - left == peak would make a fuzzy input silently crisp. */
+static rf_status spread_or_fail(double peak, double spread, double end, const char *what, rf_error *err)
+{
+    if (spread > 0 && end == peak)
+        return rf_fail(err, RF_EINVAL,
+                       "%s = %g vanishes next to the peak %g in double precision (spacing %g there): the "
+                       "parameter would be crisp; shift or rescale it (e.g. give it relative to a reference value)",
+                       what, spread, peak, nextafter(fabs(peak), INFINITY) - fabs(peak));
+    return RF_OK;
+}
+
 static void reset(rf_fuzzy *f, rf_fuzzy_kind kind)
 {
     memset(f, 0, sizeof *f);
@@ -24,7 +53,7 @@ static void reset(rf_fuzzy *f, rf_fuzzy_kind kind)
 rf_status rf_fuzzy_crisp(rf_fuzzy *f, double value, rf_error *err)
 {
     reset(f, RF_FUZZY_CRISP);
-    if (finite_or_fail(value, "value", err))
+    if (finite_or_fail(value, "value", err) || end_or_fail(value, "value", err))
         return RF_EINVAL;
     f->p[0] = value;
     return RF_OK;
@@ -37,6 +66,8 @@ rf_status rf_fuzzy_interval(rf_fuzzy *f, double lo, double hi, rf_error *err)
         return RF_EINVAL;
     if (lo > hi)
         return rf_fail(err, RF_EINVAL, "interval [%g, %g]: the lower bound exceeds the upper bound", lo, hi);
+    if (end_or_fail(lo, "lower bound", err) || end_or_fail(hi, "upper bound", err))
+        return RF_EINVAL;
     f->p[0] = lo;
     f->p[1] = hi;
     return RF_OK;
@@ -52,6 +83,11 @@ rf_status rf_fuzzy_tfn(rf_fuzzy *f, double peak, double left, double right, rf_e
         return rf_fail(err, RF_EINVAL, "left deviation = %g: must be >= 0", left);
     if (right < 0)
         return rf_fail(err, RF_EINVAL, "right deviation = %g: must be >= 0", right);
+    if (end_or_fail(peak, "peak", err) || end_or_fail(peak - left, "peak - left deviation", err) ||
+        end_or_fail(peak + right, "peak + right deviation", err) ||
+        spread_or_fail(peak, left, peak - left, "left deviation", err) ||
+        spread_or_fail(peak, right, peak + right, "right deviation", err))
+        return RF_EINVAL;
     f->p[0] = peak;
     f->p[1] = left;
     f->p[2] = right;
@@ -72,6 +108,8 @@ rf_status rf_fuzzy_trapezoid(rf_fuzzy *f, double x1, double x2, double x3, doubl
         return rf_fail(err, RF_EINVAL,
                        "trapezoid (%g, %g, %g, %g): needs x1 <= x2 <= x3 <= x4 (support [x1, x4], core [x2, x3])",
                        x1, x2, x3, x4);
+    if (end_or_fail(x1, "x1", err) || end_or_fail(x4, "x4", err))
+        return RF_EINVAL;
     memcpy(f->p, x, sizeof x);
     return RF_OK;
 }
@@ -89,6 +127,11 @@ rf_status rf_fuzzy_gaussian(rf_fuzzy *f, double peak, double sigma_l, double sig
         return rf_fail(err, RF_EINVAL, "right sigma = %g: must be >= 0", sigma_r);
     if (cutoff <= 0)
         return rf_fail(err, RF_EINVAL, "cutoff = %g: must be > 0 (usually 3)", cutoff);
+    if (end_or_fail(peak, "peak", err) || end_or_fail(peak - cutoff * sigma_l, "peak - cutoff * left sigma", err) ||
+        end_or_fail(peak + cutoff * sigma_r, "peak + cutoff * right sigma", err) ||
+        spread_or_fail(peak, sigma_l, peak - cutoff * sigma_l, "left sigma", err) ||
+        spread_or_fail(peak, sigma_r, peak + cutoff * sigma_r, "right sigma", err))
+        return RF_EINVAL;
     f->p[0] = peak;
     f->p[1] = sigma_l;
     f->p[2] = sigma_r;
@@ -118,6 +161,8 @@ rf_status rf_fuzzy_points(rf_fuzzy *f, size_t n, const double *x, const double *
     }
     if (top_first == n)
         return rf_fail(err, RF_EINVAL, "points: no point has membership 1 (a fuzzy number needs a non-empty core)");
+    if (end_or_fail(x[0], "x of point 1", err) || end_or_fail(x[n - 1], "x of the last point", err))
+        return RF_EINVAL;
     for (size_t k = top_first; k <= top_last; k++)
         if (mu[k] != 1)
             return rf_fail(err, RF_EINVAL,
@@ -168,6 +213,9 @@ rf_status rf_fuzzy_cuts(rf_fuzzy *f, size_t n, const double *mu, const double *l
                            "cut %zu at mu = %g is [%g, %g], not inside the cut at mu = %g [%g, %g]: cuts must nest",
                            k + 1, mu[k], lower[k], upper[k], mu[k - 1], lower[k - 1], upper[k - 1]);
     }
+    if (end_or_fail(lower[0], "lower bound at mu = 0", err) ||
+        end_or_fail(upper[0], "upper bound at mu = 0", err))
+        return RF_EINVAL;
     f->a = malloc(n * sizeof(double));
     f->b = malloc(n * sizeof(double));
     f->c = malloc(n * sizeof(double));
@@ -415,7 +463,33 @@ rf_status rf_fuzzy_decompose(const rf_fuzzy *f, size_t m, double *lo, double *hi
 {
     if (m < 1)
         return rf_fail(err, RF_EINVAL, "levels = %zu: at least one membership interval is needed", m);
-    for (size_t j = 0; j <= m; j++)
+    for (size_t j = 0; j <= m; j++) {
         rf_fuzzy_cut(f, (double)j / (double)m, &lo[j], &hi[j]);
-    return rf_cuts_check_nested(m, lo, hi, err);
+        if (!isfinite(lo[j]) || !isfinite(hi[j]) || fabs(lo[j]) > RF_FUZZY_MAX_ABS || fabs(hi[j]) > RF_FUZZY_MAX_ABS)
+            return rf_fail(err, RF_EINVAL, "the cut at mu = %g is [%g, %g]: its ends must be finite and within +-%g",
+                           (double)j / (double)m, lo[j], hi[j], RF_FUZZY_MAX_ABS);
+    }
+    rf_status st = rf_cuts_check_nested(m, lo, hi, err);
+    if (st)
+        return st;
+    return rf_cuts_check_resolution(m, lo, hi, err);
+}
+
+/* The TM's grids put about m values (more with the midpoints of the general
+ * form) across the support; doubles must resolve them: the support width
+ * must be at least RESOLUTION_ULPS * m spacings of doubles at the support's
+ * magnitude, unless the number is crisp. */
+#define RESOLUTION_ULPS 64
+
+rf_status rf_cuts_check_resolution(size_t m, const double *lo, const double *hi, rf_error *err)
+{
+    double w = hi[0] - lo[0], a = fmax(fabs(lo[0]), fabs(hi[0]));
+    double ulp = nextafter(a, INFINITY) - a;
+    if (w > 0 && w < RESOLUTION_ULPS * (double)m * ulp)
+        return rf_fail(err, RF_EINVAL,
+                       "the support [%.17g, %.17g] is only %g wide, too narrow for doubles near %g (spacing %g): "
+                       "the %zu levels' grid values would not be distinct; shift or rescale the parameter (e.g. "
+                       "give it relative to a reference value) or lower levels",
+                       lo[0], hi[0], w, a, ulp, m);
+    return RF_OK;
 }

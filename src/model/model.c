@@ -7,18 +7,38 @@
 
 #include "core/util.h"
 
-rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_error *err)
+/* The points are evaluated first and their outputs checked after, in one
+ * pass that vectorises: an infinite output is reported at its point, the
+ * points after it may have been evaluated too. */
+rf_status rf_model_eval_many(const rf_model *model, size_t count, const double *x, double *y, size_t *failed,
+                             rf_error *err)
 {
     if (!model || !model->eval)
         return rf_fail(err, RF_EINTERNAL, "model has no evaluation function");
-    rf_status st = model->eval(model->ctx, x, y, err);
+    size_t nin = model->n_inputs, nout = model->n_outputs, done = 0;
+    rf_model_eval_fn eval = model->eval; /* locals: the calls may write anywhere */
+    void *ctx = model->ctx;
+    rf_status st = RF_OK;
+    for (; done < count && st == RF_OK; done++)
+        st = eval(ctx, x + done * nin, y + done * nout, err);
+    size_t evaluated = st == RF_OK ? done : done - 1; /* points with outputs */
+    int any_inf = 0;
+    for (size_t e = 0; e < evaluated * nout; e++)
+        any_inf |= isinf(y[e]); /* NaN is allowed: "undefined here" */
+    for (size_t e = 0; any_inf && e < evaluated * nout; e++)
+        if (isinf(y[e])) {
+            *failed = e / nout;
+            return rf_fail(err, RF_EMODEL, "output '%s' is infinite", model->output_names[e % nout]);
+        }
     if (st != RF_OK)
-        return st;
-    for (size_t k = 0; k < model->n_outputs; k++) {
-        if (!isfinite(y[k]) && !isnan(y[k]))
-            return rf_fail(err, RF_EMODEL, "output '%s' is infinite", model->output_names[k]);
-    }
-    return RF_OK;
+        *failed = done - 1;
+    return st;
+}
+
+rf_status rf_model_eval(const rf_model *model, const double *x, double *y, rf_error *err)
+{
+    size_t failed = 0;
+    return rf_model_eval_many(model, 1, x, y, &failed, err);
 }
 
 void rf_model_set_interrupt(rf_model *model, const atomic_int *flag)

@@ -218,8 +218,9 @@ static rf_status plan(run_state *r, rf_error *err)
     if (r->tm.max_evaluations > 0 && distinct > r->tm.max_evaluations && s->scheme != RF_TM_EXTENDED)
         return rf_fail(err, RF_ECAP,
                        "%s: the study needs %zu distinct model evaluations, more than the cap of %zu; raise "
-                       "--max-evaluations (or options.max_evaluations), lower levels, or use scheme: reduced",
-                       r->study_path, distinct, r->tm.max_evaluations);
+                       "--max-evaluations (or options.max_evaluations) or lower levels%s",
+                       r->study_path, distinct, r->tm.max_evaluations,
+                       s->scheme == RF_TM_GENERAL ? ", or use scheme: reduced" : "");
     return RF_OK;
 }
 

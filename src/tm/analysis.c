@@ -52,19 +52,23 @@ void rf_analysis_free(rf_analysis *an)
     memset(an, 0, sizeof *an);
 }
 
-/* Mean over the lines parallel to axis i of z(last) - z(first), or of the
- * given positions pa -> pb. */
-static double mean_difference(const struct rf_tm_data *d, const rf_grid *g, size_t i, size_t k, size_t pa,
-                              size_t pb)
+/* Mean over the lines parallel to axis i of z(pb) - z(pa), z being one
+ * output of every point of g in grid order. */
+static double mean_difference(const double *z, const rf_grid *g, size_t i, size_t pa, size_t pb)
 {
-    size_t r = g->radix[i], s = g->stride[i], no = d->n_out, lines = 0;
+    size_t r = g->radix[i], s = g->stride[i], lines = 0;
     double sum = 0;
-    for (size_t outer = 0; outer < g->count; outer += r * s)
-        for (size_t inner = 0; inner < s; inner++) {
-            size_t base = outer + inner;
-            sum += d->y[(size_t)g->ids[base + pb * s] * no + k] - d->y[(size_t)g->ids[base + pa * s] * no + k];
-            lines++;
-        }
+    if (s == 1) { /* the last input: one line per block, the same order */
+        for (size_t outer = 0; outer < g->count; outer += r)
+            sum += z[outer + pb] - z[outer + pa];
+        return sum / (double)(g->count / r);
+    }
+    for (size_t outer = 0; outer < g->count; outer += r * s) {
+        const double *za = z + outer + pa * s, *zb = z + outer + pb * s;
+        for (size_t inner = 0; inner < s; inner++)
+            sum += zb[inner] - za[inner];
+        lines += s;
+    }
     return sum / (double)lines;
 }
 
@@ -85,13 +89,180 @@ static double integrate_levels(const double *g, size_t m)
     return t / (double)m;
 }
 
-rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error *err)
+/* Mean differences along every input of every output on a family of grids
+ * (levels 0..nlev-1), each grid's outputs gathered once:
+ * first-to-last into span[(k*n + i)*nlev + j] (NaN if the input has one
+ * value there); with left != NULL also first-to-nominal into left and
+ * nominal-to-last into right (0 where the nominal is an end). */
+static int grid_differences(const struct rf_tm_data *d, const rf_grid *grids, size_t nlev, double *span,
+                            double *left, double *right)
 {
-    memset(an, 0, sizeof *an);
+    size_t n = d->n, no = d->n_out, maxc = 1;
+    for (size_t j = 0; j < nlev; j++)
+        maxc = grids[j].count > maxc ? grids[j].count : maxc;
+    double *z = malloc(no * maxc * sizeof(double)); /* outputs of a grid whose ids are not consecutive */
+    if (!z)
+        return -1;
+    for (size_t j = 0; j < nlev; j++) {
+        const rf_grid *g = &grids[j];
+        for (size_t k = 0; k < no; k++) {
+            const double *zk = rf_tm_outputs(d, g, k, z + k * g->count);
+            for (size_t i = 0; i < n; i++) {
+                size_t at = (k * n + i) * nlev + j, last = g->radix[i] - 1, pn = g->nominal_pos[i];
+                if (span)
+                    span[at] = last >= 1 ? mean_difference(zk, g, i, 0, last) : NAN;
+                if (left) {
+                    left[at] = pn > 0 ? mean_difference(zk, g, i, 0, pn) : 0;
+                    right[at] = pn < last ? mean_difference(zk, g, i, pn, last) : 0;
+                }
+            }
+        }
+    }
+    free(z);
+    return 0;
+}
+
+/* Gain factors and Hanss's measures (s.5.1-5.3) of output k; diff from
+ * grid_differences on the main grids, levels 0..m-1. */
+static void hanss_measures(const rf_tm_result *res, rf_analysis *an, size_t k, const double *diff, double noise)
+{
+    size_t n = res->n_inputs, m = res->levels;
+    double zbar = res->nominal[k], ksum = 0;
+    int any_kappa = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t at = k * n + i;
+        double wsum = 0, gsum = 0, ksum_i = 0, kw = 0;
+        for (size_t j = 0; j < m; j++) {
+            double w = res->in_hi[i * (m + 1) + j] - res->in_lo[i * (m + 1) + j];
+            double dz = diff[at * m + j], eta = NAN;
+            if (!isnan(dz) && w > 0)
+                eta = denoise(dz, noise) / w;
+            an->gain[at * m + j] = eta;
+            double mu = (double)j / (double)m;
+            if (j >= 1) {
+                kw += mu;
+                if (!isnan(eta)) {
+                    wsum += mu;
+                    gsum += mu * eta;
+                    ksum_i += mu * fabs(eta) * w;
+                }
+            }
+        }
+        if (wsum > 0) {
+            an->mean_gain[at] = gsum / wsum;
+            an->kappa[at] = ksum_i / kw;
+            ksum += an->kappa[at];
+            any_kappa = 1;
+            if (zbar != 0) {
+                an->std_gain[at] = an->mean_gain[at] * res->in_nominal[i] / zbar;
+            } else {
+                an->std_gain[at] = NAN;
+                an->reason_std[at] = RF_NA_ZERO_NOMINAL;
+            }
+        } else {
+            an->mean_gain[at] = an->kappa[at] = an->std_gain[at] = NAN;
+            an->reason_hanss[at] = an->reason_std[at] = m < 2 ? RF_NA_FEW_LEVELS : RF_NA_CRISP;
+        }
+    }
+    for (size_t i = 0; i < n; i++) {
+        size_t at = k * n + i;
+        if (an->reason_hanss[at]) {
+            an->rho[at] = NAN;
+        } else if (!any_kappa || ksum <= 0) {
+            an->rho[at] = NAN;
+            an->reason_hanss[at] = RF_NA_ALL_ZERO;
+        } else {
+            an->rho[at] = an->kappa[at] / ksum;
+        }
+    }
+}
+
+/* Left/right spreads L, U of input i (output k) at every level from the
+ * three-point differences; returns whether the input has any width. */
+static int lr_spreads(const rf_tm_result *res, size_t k, size_t i, const double *left, const double *right,
+                      double noise, double *L, double *U)
+{
     const struct rf_tm_data *d = res->data;
-    if (!d)
-        return rf_fail(err, RF_EINVAL, "the TM result holds no evaluation data");
-    size_t n = res->n_inputs, no = res->n_outputs, m = res->levels, nk = n * no;
+    size_t n = res->n_inputs, m = res->levels, at = (k * n + i) * (m + 1);
+    int has_width = 0;
+    for (size_t j = 0; j <= m; j++) {
+        const rf_grid *g = &d->lr[j];
+        double a = res->in_lo[i * (m + 1) + j], b = res->in_hi[i * (m + 1) + j];
+        double xb = res->in_nominal[i], dm = xb - a, dp = b - xb;
+        size_t pn = g->nominal_pos[i], last = g->radix[i] - 1;
+        double em = 0, ep = 0;
+        if (pn > 0 && dm > 0)
+            em = denoise(left[at + j], noise) / dm;
+        else
+            dm = 0;
+        if (pn < last && dp > 0)
+            ep = denoise(right[at + j], noise) / dp;
+        else
+            dp = 0;
+        has_width |= dm > 0 || dp > 0;
+        L[j] = fmax(0, em) * dm + fmax(0, -ep) * dp;
+        U[j] = fmax(0, -em) * dm + fmax(0, ep) * dp;
+    }
+    return has_width;
+}
+
+/* Left/right measures (s.5.4) of output k; returns their sum. */
+static double lr_measures(const rf_tm_result *res, rf_analysis *an, size_t k, const double *left,
+                          const double *right, double noise, double *L, double *U)
+{
+    size_t n = res->n_inputs, m = res->levels;
+    double zbar = res->nominal[k], lrsum = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t at = k * n + i;
+        an->kappa_left[at] = an->kappa_right[at] = NAN;
+        if (!res->data->lr) {
+            an->reason_lr[at] = RF_NA_NO_LR;
+            continue;
+        }
+        if (!lr_spreads(res, k, i, left, right, noise, L, U)) {
+            an->reason_lr[at] = RF_NA_CRISP;
+            continue;
+        }
+        if (zbar == 0) {
+            an->reason_lr[at] = RF_NA_ZERO_NOMINAL;
+            continue;
+        }
+        an->kappa_left[at] = integrate_levels(L, m) / fabs(zbar);
+        an->kappa_right[at] = integrate_levels(U, m) / fabs(zbar);
+        lrsum += an->kappa_left[at] + an->kappa_right[at];
+    }
+    for (size_t i = 0; i < n; i++) {
+        size_t at = k * n + i;
+        if (an->reason_lr[at]) {
+            an->rho_left[at] = an->rho_right[at] = NAN;
+        } else if (lrsum <= 0) {
+            an->rho_left[at] = an->rho_right[at] = NAN;
+            an->reason_lr[at] = RF_NA_ALL_ZERO;
+        } else {
+            an->rho_left[at] = an->kappa_left[at] / lrsum;
+            an->rho_right[at] = an->kappa_right[at] / lrsum;
+        }
+    }
+    return lrsum;
+}
+
+static void undefined_output(rf_analysis *an, size_t k, size_t n, size_t m)
+{
+    for (size_t i = 0; i < n; i++) {
+        size_t at = k * n + i;
+        for (size_t j = 0; j < m; j++)
+            an->gain[at * m + j] = NAN;
+        an->mean_gain[at] = an->std_gain[at] = an->kappa[at] = an->rho[at] = NAN;
+        an->kappa_left[at] = an->kappa_right[at] = an->rho_left[at] = an->rho_right[at] = NAN;
+        an->reason_hanss[at] = an->reason_std[at] = an->reason_lr[at] = RF_NA_UNDEFINED;
+    }
+    an->degree_of_uncertainty[k] = an->interaction[k] = NAN;
+    an->reason_nu[k] = RF_NA_UNDEFINED;
+}
+
+static int analysis_alloc(rf_analysis *an, size_t n, size_t no, size_t m)
+{
+    size_t nk = n * no;
     an->n_inputs = n;
     an->n_outputs = no;
     an->levels = m;
@@ -110,152 +281,56 @@ rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error
     an->degree_of_uncertainty = malloc(no * sizeof(double));
     an->interaction = malloc(no * sizeof(double));
     an->reason_nu = calloc(no, sizeof(rf_na_reason));
-    double *L = malloc((m + 1) * sizeof(double)), *U = malloc((m + 1) * sizeof(double));
-    double *width = malloc((m + 1) * sizeof(double));
-    if (!an->gain || !an->mean_gain || !an->std_gain || !an->kappa || !an->rho || !an->kappa_left ||
-        !an->kappa_right || !an->rho_left || !an->rho_right || !an->reason_hanss || !an->reason_std ||
-        !an->reason_lr || !an->degree_of_uncertainty || !an->interaction || !an->reason_nu || !L || !U || !width) {
-        free(L);
-        free(U);
-        free(width);
-        rf_analysis_free(an);
-        return rf_fail(err, RF_ENOMEM, "out of memory for the analysis");
-    }
+    return !an->gain || !an->mean_gain || !an->std_gain || !an->kappa || !an->rho || !an->kappa_left ||
+           !an->kappa_right || !an->rho_left || !an->rho_right || !an->reason_hanss || !an->reason_std ||
+           !an->reason_lr || !an->degree_of_uncertainty || !an->interaction || !an->reason_nu;
+}
 
-    for (size_t k = 0; k < no; k++) {
+/* Degree of uncertainty: area under the output membership / |zbar|. */
+static void degree_of_uncertainty(const rf_tm_result *res, rf_analysis *an, size_t k, double *width)
+{
+    size_t m = res->levels;
+    double zbar = res->nominal[k];
+    for (size_t j = 0; j <= m; j++)
+        width[j] = res->hi[k * (m + 1) + j] - res->lo[k * (m + 1) + j];
+    double area = integrate_levels(width, m);
+    if (zbar != 0) {
+        an->degree_of_uncertainty[k] = area / fabs(zbar);
+    } else {
+        an->degree_of_uncertainty[k] = NAN;
+        an->reason_nu[k] = RF_NA_ZERO_NOMINAL;
+    }
+}
+
+rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error *err)
+{
+    memset(an, 0, sizeof *an);
+    const struct rf_tm_data *d = res->data;
+    if (!d)
+        return rf_fail(err, RF_EINVAL, "the TM result holds no evaluation data");
+    size_t n = res->n_inputs, no = res->n_outputs, m = res->levels, nk = n * no;
+    double *L = malloc(3 * (m + 1) * sizeof(double)), *U = L ? L + (m + 1) : NULL, *width = L ? U + (m + 1) : NULL;
+    double *diff = malloc(nk * (3 * m + 2) * sizeof(double));
+    double *left = diff ? diff + nk * m : NULL, *right = diff ? left + nk * (m + 1) : NULL;
+    int bad = analysis_alloc(an, n, no, m) || !L || !diff || grid_differences(d, d->main, m, diff, NULL, NULL) ||
+              (d->lr && grid_differences(d, d->lr, m + 1, NULL, left, right));
+    for (size_t k = 0; !bad && k < no; k++) {
         double zbar = res->nominal[k];
         double noise = NOISE_RTOL * fmax(fabs(zbar), fmax(fabs(res->lo[k * (m + 1)]), fabs(res->hi[k * (m + 1)])));
         if (res->output_undefined && res->output_undefined[k]) {
-            for (size_t i = 0; i < n; i++) {
-                size_t at = k * n + i;
-                for (size_t j = 0; j < m; j++)
-                    an->gain[at * m + j] = NAN;
-                an->mean_gain[at] = an->std_gain[at] = an->kappa[at] = an->rho[at] = NAN;
-                an->kappa_left[at] = an->kappa_right[at] = an->rho_left[at] = an->rho_right[at] = NAN;
-                an->reason_hanss[at] = an->reason_std[at] = an->reason_lr[at] = RF_NA_UNDEFINED;
-            }
-            an->degree_of_uncertainty[k] = an->interaction[k] = NAN;
-            an->reason_nu[k] = RF_NA_UNDEFINED;
+            undefined_output(an, k, n, m);
             continue;
         }
-        /* ---- gain factors and Hanss measures (s.5.1-5.3) */
-        double ksum = 0;
-        int any_kappa = 0;
-        for (size_t i = 0; i < n; i++) {
-            size_t at = k * n + i;
-            double wsum = 0, gsum = 0, ksum_i = 0, kw = 0;
-            for (size_t j = 0; j < m; j++) {
-                const rf_grid *g = &d->main[j];
-                double w = res->in_hi[i * (m + 1) + j] - res->in_lo[i * (m + 1) + j];
-                double eta = NAN;
-                if (g->radix[i] >= 2 && w > 0)
-                    eta = denoise(mean_difference(d, g, i, k, 0, g->radix[i] - 1), noise) / w;
-                an->gain[at * m + j] = eta;
-                double mu = (double)j / (double)m;
-                if (j >= 1) {
-                    kw += mu;
-                    if (!isnan(eta)) {
-                        wsum += mu;
-                        gsum += mu * eta;
-                        ksum_i += mu * fabs(eta) * w;
-                    }
-                }
-            }
-            if (wsum > 0) {
-                an->mean_gain[at] = gsum / wsum;
-                an->kappa[at] = ksum_i / kw;
-                ksum += an->kappa[at];
-                any_kappa = 1;
-                if (zbar != 0) {
-                    an->std_gain[at] = an->mean_gain[at] * res->in_nominal[i] / zbar;
-                } else {
-                    an->std_gain[at] = NAN;
-                    an->reason_std[at] = RF_NA_ZERO_NOMINAL;
-                }
-            } else {
-                an->mean_gain[at] = an->kappa[at] = an->std_gain[at] = NAN;
-                an->reason_hanss[at] = an->reason_std[at] = m < 2 ? RF_NA_FEW_LEVELS : RF_NA_CRISP;
-            }
-        }
-        for (size_t i = 0; i < n; i++) {
-            size_t at = k * n + i;
-            if (an->reason_hanss[at]) {
-                an->rho[at] = NAN;
-            } else if (!any_kappa || ksum <= 0) {
-                an->rho[at] = NAN;
-                an->reason_hanss[at] = RF_NA_ALL_ZERO;
-            } else {
-                an->rho[at] = an->kappa[at] / ksum;
-            }
-        }
-
-        /* ---- degree of uncertainty: area under the output membership / |zbar| */
-        for (size_t j = 0; j <= m; j++)
-            width[j] = res->hi[k * (m + 1) + j] - res->lo[k * (m + 1) + j];
-        double area = integrate_levels(width, m);
-        if (zbar != 0) {
-            an->degree_of_uncertainty[k] = area / fabs(zbar);
-        } else {
-            an->degree_of_uncertainty[k] = NAN;
-            an->reason_nu[k] = RF_NA_ZERO_NOMINAL;
-        }
-
-        /* ---- left/right measures (s.5.4) */
-        double lrsum = 0;
-        for (size_t i = 0; i < n; i++) {
-            size_t at = k * n + i;
-            an->kappa_left[at] = an->kappa_right[at] = NAN;
-            if (!d->lr) {
-                an->reason_lr[at] = RF_NA_NO_LR;
-                continue;
-            }
-            int has_width = 0;
-            for (size_t j = 0; j <= m; j++) {
-                const rf_grid *g = &d->lr[j];
-                double a = res->in_lo[i * (m + 1) + j], b = res->in_hi[i * (m + 1) + j];
-                double xb = res->in_nominal[i], dm = xb - a, dp = b - xb;
-                size_t pn = g->nominal_pos[i], last = g->radix[i] - 1;
-                double em = 0, ep = 0;
-                if (pn > 0 && dm > 0)
-                    em = denoise(mean_difference(d, g, i, k, 0, pn), noise) / dm;
-                else
-                    dm = 0;
-                if (pn < last && dp > 0)
-                    ep = denoise(mean_difference(d, g, i, k, pn, last), noise) / dp;
-                else
-                    dp = 0;
-                has_width |= dm > 0 || dp > 0;
-                L[j] = fmax(0, em) * dm + fmax(0, -ep) * dp;
-                U[j] = fmax(0, -em) * dm + fmax(0, ep) * dp;
-            }
-            if (!has_width) {
-                an->reason_lr[at] = RF_NA_CRISP;
-                continue;
-            }
-            if (zbar == 0) {
-                an->reason_lr[at] = RF_NA_ZERO_NOMINAL;
-                continue;
-            }
-            an->kappa_left[at] = integrate_levels(L, m) / fabs(zbar);
-            an->kappa_right[at] = integrate_levels(U, m) / fabs(zbar);
-            lrsum += an->kappa_left[at] + an->kappa_right[at];
-        }
-        for (size_t i = 0; i < n; i++) {
-            size_t at = k * n + i;
-            if (an->reason_lr[at]) {
-                an->rho_left[at] = an->rho_right[at] = NAN;
-            } else if (lrsum <= 0) {
-                an->rho_left[at] = an->rho_right[at] = NAN;
-                an->reason_lr[at] = RF_NA_ALL_ZERO;
-            } else {
-                an->rho_left[at] = an->kappa_left[at] / lrsum;
-                an->rho_right[at] = an->kappa_right[at] / lrsum;
-            }
-        }
+        hanss_measures(res, an, k, diff, noise);
+        degree_of_uncertainty(res, an, k, width);
+        double lrsum = lr_measures(res, an, k, left, right, noise, L, U);
         an->interaction[k] = (d->lr && zbar != 0) ? an->degree_of_uncertainty[k] - lrsum : NAN;
     }
     free(L);
-    free(U);
-    free(width);
+    free(diff);
+    if (bad) {
+        rf_analysis_free(an);
+        return rf_fail(err, RF_ENOMEM, "out of memory for the analysis");
+    }
     return RF_OK;
 }
