@@ -115,6 +115,7 @@ static void test_energy_and_momentum(void **state)
     rf_fem_options o;
     rf_fem_options_default(&o);
     o.refinement = 4;
+    o.domain_factor = 10; /* the seed paper's model, which reflects (checked below) */
     rf_impact_output out;
     rf_fem_history h;
     run(&in, &o, &out, &h);
@@ -168,6 +169,36 @@ static void test_absorbing(void **state)
     assert_true(h.absorbed[h.n - 1] > 0);
     assert_true(h.warning[0] == 0);
     assert_true(out.energy_error < 1e-3);
+    rf_fem_history_free(&h);
+}
+
+/* The default domain is sized so that the P wave reflected by the fixed
+ * outer surface returns after the contact ends: at 1 m/s (the longest
+ * contact, 7.0 ms) 2 L / c_p >= 1.25 t_c with c_p = sqrt(E (1 - nu) /
+ * (rho (1 + nu) (1 - 2 nu))) = 5611 m/s computed here, so L >= 24.5 r0; no
+ * reflection warning, and the contact closes once. */
+static void test_default_domain(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(1);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3;
+    rf_impact_output out;
+    rf_fem_history h;
+    run(&in, &o, &out, &h);
+    const double nu = in.slope_poisson;
+    const double c_p = sqrt(in.slope_E * (1 - nu) / (in.slope_density * (1 + nu) * (1 - 2 * nu)));
+    hertz ref = hertz_of(&in, 1, sphere_mass(&in));
+    const double factor = rf_fem_domain_factor(&o, &in);
+    printf("default domain at 1 m/s: %g r0, 2L/c_p = %.4g ms, Hertz t_c = %.4g ms, R_n = %.5f\n", factor,
+           2e3 * factor / c_p, 1e3 * ref.duration, out.R_n);
+    assert_true(2 * factor * in.radius / c_p >= 1.25 * ref.duration);
+    assert_true(factor < 30); /* not grossly oversized either */
+    assert_true(fabs(h.reflection_time - 2 * factor / c_p) < 1e-9 * h.reflection_time);
+    assert_true(h.warning[0] == 0);
+    o.domain_factor = 10; /* the seed paper's model warns */
+    assert_true(rf_fem_domain_factor(&o, &in) == 10);
     rf_fem_history_free(&h);
 }
 
@@ -324,7 +355,7 @@ static void test_bad_input(void **state)
     in = granite(10);
     o.refinement = 1.5;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
-    assert_non_null(strstr(err.msg, "too coarse"));
+    assert_non_null(strstr(err.msg, "refinement = 1.5"));
     rf_fem_options_default(&o);
     in.velocity = 0;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
@@ -400,6 +431,7 @@ int main(void)
         cmocka_unit_test(test_low_speed_hertz),
         cmocka_unit_test(test_energy_and_momentum),
         cmocka_unit_test(test_absorbing),
+        cmocka_unit_test(test_default_domain),
         cmocka_unit_test(test_scale_invariance),
         cmocka_unit_test(test_spheroid),
         cmocka_unit_test(test_time_step_bound),

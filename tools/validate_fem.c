@@ -19,6 +19,7 @@ int main(int argc, char **argv)
                           .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10};
     rf_fem_options o;
     rf_fem_options_default(&o);
+    o.domain_factor = 10; /* the documented runs use the seed paper's 10 r0; dom=0 = automatic */
     const char *histfile = NULL;
     for (int i = 1; i < argc; i++) {
         char key[64];

@@ -3,7 +3,10 @@
  *
  * The half-space is a hemisphere of radius domain_factor * r0 centred on the
  * first-contact point; its curved surface is fixed or absorbing
- * (Lysmer-Kuhlemeyer dashpots).  Both bodies are meshed with 4-node
+ * (Lysmer-Kuhlemeyer dashpots).  By default (domain_factor = 0) the radius is
+ * sized from the Hertz contact duration so that no P wave reflected by the
+ * fixed surface returns into the contact before it ends:
+ * 2 L / c_p >= RF_FEM_DOMAIN_MARGIN t_c, and L >= 10 r0.  Both bodies are meshed with 4-node
  * axisymmetric quads (full 2x2 integration, lumped mass) by a structured
  * mesher that puts a node exactly at the first-contact point and sizes the
  * fine zone from the Hertz contact radius.  Time integration: central
@@ -24,15 +27,33 @@
 extern "C" {
 #endif
 
-typedef enum { RF_FEM_BOUNDARY_FIXED, RF_FEM_BOUNDARY_ABSORBING } rf_fem_boundary;
+typedef enum {
+    RF_FEM_BOUNDARY_FIXED = 0,  /* fixed outer surface of the slope domain */
+    RF_FEM_BOUNDARY_ABSORBING   /* viscous (Lysmer-Kuhlemeyer) dashpots */
+} rf_fem_boundary;
+
+/* "fixed" | "absorbing" <-> enum. */
+const char *rf_fem_boundary_name(rf_fem_boundary b);
+rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *err);
+
+/* Refinement (a/h) used when the options leave it at 0: the axisymmetric
+ * model is converged to < 0.1 % at 10; the 3D one costs ~50x more per a/h and
+ * is within 0.3 % on R_t at 6 (docs/validation*.md). */
+#define RF_FEM_REFINEMENT_AXI 10.0
+#define RF_FEM_REFINEMENT_3D 6.0
+/* Automatic domain: 2 L / c_p >= RF_FEM_DOMAIN_MARGIN * Hertz t_c, L >= RF_FEM_DOMAIN_MIN r0. */
+#define RF_FEM_DOMAIN_MARGIN 1.25
+#define RF_FEM_DOMAIN_MIN 10.0
 
 typedef struct {
-    double refinement;         /* elements across the Hertz contact radius a (a/h), default 10, >= 2 */
-    double domain_factor;      /* hemisphere radius / r0, default 10 */
+    double refinement;         /* elements across the Hertz contact radius a (a/h), >= 2;
+                                  default 0 = RF_FEM_REFINEMENT_AXI / RF_FEM_REFINEMENT_3D */
+    double domain_factor;      /* hemisphere radius / r0, >= 3; default 0 = automatic (see above);
+                                  10 with a fixed boundary is the seed paper's model */
     rf_fem_boundary boundary;  /* outer curved surface of the half-space, default fixed */
     double end_time;           /* [s]; 0 = automatic: >= 1.3 Hertz durations and until
                                   the contact has stayed open for a while */
-    int threads;               /* OpenMP threads for one impact, default 1 */
+    int threads;               /* OpenMP threads for one impact, default 1 (0 = 1) */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (existing dir) */
     double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 (matching);
                                   [0.25, 1.25]: the boulder nodes are the contact slaves */
@@ -47,6 +68,20 @@ typedef struct {
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);
+
+/* The one check of the options (three_d: for the 3D model, whose limits
+ * differ where noted in fem_options.c); messages name the setting and value. */
+rf_status rf_fem_options_validate(const rf_fem_options *opt, int three_d, rf_error *err);
+
+/* The refinement and the domain radius / r0 actually used for an impact. */
+double rf_fem_refinement(const rf_fem_options *opt, int three_d);
+double rf_fem_domain_factor(const rf_fem_options *opt, const rf_impact_input *in);
+
+/* 1 if the impact needs the 3D model: an inclined slope, or a normal impact
+ * with friction between elastically dissimilar bodies (Dundurs beta != 0:
+ * the two surfaces would slip radially against each other); else the
+ * axisymmetric model is exact. */
+int rf_fem_needs_3d(const rf_impact_input *in);
 
 /* Time series and diagnostics of one impact.  Energies in J. */
 typedef struct {
@@ -89,6 +124,14 @@ void rf_fem_history_free(rf_fem_history *hist);
  * a mesh too coarse for the contact radius. */
 rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt,
                         rf_impact_output *out, rf_fem_history *hist, rf_error *err);
+
+/* Run the FE model the impact needs (rf_fem_needs_3d): the axisymmetric one
+ * or the 3D half model with default 3D settings.  hist may be NULL;
+ * friction_work (may be NULL) receives the Coulomb dissipation [J] (0 for the
+ * axisymmetric model); *three_d (may be NULL) says which model ran.  The 3D
+ * model writes no VTK: opt->vtk_dir is ignored there. */
+rf_status rf_fem_solve(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,
+                       rf_fem_history *hist, double *friction_work, int *three_d, rf_error *err);
 
 #ifdef __cplusplus
 }

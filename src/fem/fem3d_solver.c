@@ -15,6 +15,7 @@
 #include "rockfuzz/fem3d.h"
 #include "fem3d_internal.h"
 #include "fem_contact_window.h"
+#include "core/util.h"
 
 #include <float.h>
 #include <math.h>
@@ -49,6 +50,8 @@ static double wall_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* What the 3D model can do beyond the ranges every impact model shares
+ * (rf_impact_input_validate) and the option rules (rf_fem_options_validate). */
 static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o, const rf_fem3d_options *o3,
                              rf_error *err)
 {
@@ -58,37 +61,22 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
             return rf_fail(err, RF_EINVAL, __VA_ARGS__);                                                           \
     } while (0)
     BAD(!in, "fem3d: NULL input");
-    /* the ranges every impact model shares (messages name field and value) */
     if (rf_impact_input_validate(in, err) != RF_OK)
         return rf_error_prefix(err, "fem3d");
-    BAD(!(in->slope_angle >= 0 && in->slope_angle <= 80 * M_PI / 180),
-        "fem3d: slope_angle must be in [0, 80] degrees, got %g rad", in->slope_angle);
-    BAD(!(in->friction >= 0 && in->friction <= 5), "fem3d: friction must be in [0, 5], got %g", in->friction);
-    BAD(!isfinite(in->horizontal_axis) || !isfinite(in->vertical_axis), "fem3d: spheroid axes must be finite");
+    rf_status st = rf_fem_options_validate(o, 1, err);
+    if (st != RF_OK)
+        return st;
+    BAD(!(in->slope_angle <= 80 * RF_PI / 180), "fem3d: slope_angle must be in [0, 80] degrees, got %g rad",
+        in->slope_angle);
+    BAD(!(in->friction <= 5), "fem3d: friction must be in [0, 5], got %g", in->friction);
     BAD(in->horizontal_axis > 0 && in->slope_angle != 0,
         "fem3d: a spheroid on an inclined slope is not supported (its contact point is not a pole); got "
         "horizontal_axis = %g m, slope_angle = %g rad",
         in->horizontal_axis, in->slope_angle);
     if (in->horizontal_axis > 0) {
-        double c = in->horizontal_axis;
-        double d = in->vertical_axis > 0 ? in->vertical_axis : in->radius * in->radius * in->radius / (c * c);
+        double c = in->horizontal_axis, d = rf_impact_vertical_semi_axis(in);
         BAD(c / d > 3 || d / c > 3, "fem3d: spheroid aspect c/d = %g outside [1/3, 3] is not supported", c / d);
     }
-    BAD(!(o->refinement >= 2) || !isfinite(o->refinement),
-        "fem3d: refinement (Hertz contact radius / element size) = %g is too coarse; use >= 2", o->refinement);
-    BAD(o->refinement > 100, "fem3d: refinement %g is unreasonably fine for 3D (> 100)", o->refinement);
-    BAD(!(o->domain_factor >= 3) || !isfinite(o->domain_factor), "fem3d: domain_factor must be >= 3, got %g",
-        o->domain_factor);
-    BAD(!(o->boulder_mesh_ratio >= 0.25 && o->boulder_mesh_ratio <= 4),
-        "fem3d: boulder_mesh_ratio must be in [0.25, 4], got %g", o->boulder_mesh_ratio);
-    BAD(!(o->dt_safety > 0 && o->dt_safety <= 1), "fem3d: dt_safety must be in (0, 1], got %g", o->dt_safety);
-    BAD(!(o->end_time >= 0) || !isfinite(o->end_time), "fem3d: end_time must be >= 0 s, got %g", o->end_time);
-    BAD(o->boundary != RF_FEM_BOUNDARY_FIXED && o->boundary != RF_FEM_BOUNDARY_ABSORBING,
-        "fem3d: unknown boundary kind %d", (int)o->boundary);
-    BAD(!(o->duration_threshold >= 0 && o->duration_threshold < 0.5),
-        "fem3d: duration_threshold must be in [0, 0.5), got %g", o->duration_threshold);
-    BAD(o->threads < 0, "fem3d: threads must be >= 0, got %d", o->threads);
-    BAD(o->vtk_dir != NULL, "fem3d: VTK output is not implemented in 3D yet");
     BAD(!(o3->core_factor >= 1 && o3->core_factor <= 4), "fem3d: core_factor must be in [1, 4], got %g",
         o3->core_factor);
     BAD(!(o3->elongation >= 0 && o3->elongation <= 4), "fem3d: elongation must be in [0, 4], got %g", o3->elongation);
@@ -325,19 +313,13 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
     if (rep)
         memset(rep, 0, sizeof *rep);
 
+    o.refinement = rf_fem_refinement(&o, 1);
+    o.domain_factor = rf_fem_domain_factor(&o, in);
     /* geometry and Hertz reference with the normal velocity component */
-    const double alpha = in->slope_angle, V = in->velocity;
-    const double Vn = V * cos(alpha), Vt = V * sin(alpha);
-    double c = in->radius, d = in->radius;
-    if (in->horizontal_axis > 0) {
-        c = in->horizontal_axis;
-        d = in->vertical_axis > 0 ? in->vertical_axis : in->radius * in->radius * in->radius / (c * c);
-    }
-    const double Rc = c * c / d, mass = 4.0 / 3.0 * M_PI * c * c * d * in->boulder_density;
-    const double Estar = 1 / ((1 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E +
-                              (1 - in->slope_poisson * in->slope_poisson) / in->slope_E);
-    const double delta_h = pow(15 * mass * Vn * Vn / (16 * Estar * sqrt(Rc)), 0.4);
-    const double a_h = sqrt(Rc * delta_h), t_h = 2.94328 * delta_h / Vn;
+    rf_hertz_reference H;
+    rf_impact_hertz_reference(in, &H);
+    const double V = in->velocity, Vn = H.normal_velocity, Vt = H.tangential_velocity;
+    const double c = H.c, d = H.d, mass = H.mass, a_h = H.contact_radius, t_h = H.duration;
     const double L = o.domain_factor * in->radius;
     const f3_material mat[2] = {{in->boulder_density, in->boulder_E, in->boulder_poisson},
                                 {in->slope_density, in->slope_E, in->slope_poisson}};
@@ -751,14 +733,14 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
         }
     for (int q = 0; q < 3; q++)
         P[q] /= Mb, X[q] /= Mb;
-    double H[3] = {0, 0, 0}, I[3][3] = {{0}};
+    double Lm[3] = {0, 0, 0}, I[3][3] = {{0}};
     for (long i = 0; i < nbn; i++) {
         double m = mass_d[3 * i], r[3], w[3];
         for (int q = 0; q < 3; q++)
             r[q] = mesh.x[3 * i + q] + u[3 * i + q] - X[q], w[q] = v[3 * i + q];
-        H[0] += m * (r[1] * w[2] - r[2] * w[1]);
-        H[1] += m * (r[2] * w[0] - r[0] * w[2]);
-        H[2] += m * (r[0] * w[1] - r[1] * w[0]);
+        Lm[0] += m * (r[1] * w[2] - r[2] * w[1]);
+        Lm[1] += m * (r[2] * w[0] - r[0] * w[2]);
+        Lm[2] += m * (r[0] * w[1] - r[1] * w[0]);
         double rr = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++)
@@ -772,14 +754,14 @@ rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *op
             double M3[3][3];
             memcpy(M3, I, sizeof M3);
             for (int a = 0; a < 3; a++)
-                M3[a][col] = H[a];
+                M3[a][col] = Lm[a];
             omega[col] = (M3[0][0] * (M3[1][1] * M3[2][2] - M3[1][2] * M3[2][1]) -
                           M3[0][1] * (M3[1][0] * M3[2][2] - M3[1][2] * M3[2][0]) +
                           M3[0][2] * (M3[1][0] * M3[2][1] - M3[1][1] * M3[2][0])) /
                          det;
         }
     } else { /* mirror symmetry: only the y component survives in the full body */
-        omega[1] = H[1] / I[1][1];
+        omega[1] = Lm[1] / I[1][1];
         P[1] = 0;
     }
     const double Iyy = I[1][1];

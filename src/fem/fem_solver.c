@@ -30,25 +30,6 @@
 #include <omp.h>
 #endif
 
-void rf_fem_options_default(rf_fem_options *opt)
-{
-    memset(opt, 0, sizeof *opt);
-    opt->refinement = 10;
-    opt->domain_factor = 10;
-    opt->boundary = RF_FEM_BOUNDARY_FIXED;
-    opt->end_time = 0;
-    opt->threads = 1;
-    opt->vtk_dir = NULL;
-    opt->boulder_mesh_ratio = 1;
-    opt->core_factor = 2.5;
-    opt->grading = 1.15;
-    opt->dt_safety = 0.9;
-    opt->vtk_frames = 60;
-    opt->history_stride = 0;
-    opt->max_elements = 2000000;
-    opt->duration_threshold = 1e-6;
-}
-
 void rf_fem_history_free(rf_fem_history *h)
 {
     if (!h)
@@ -264,75 +245,26 @@ static rf_status contact_solve(contact_state *C, const double *u, const double *
     return RF_OK;
 }
 
-/* Local Hertz reference (impact_refs.md section 1) for sizing and defaults. */
-typedef struct {
-    double c, d, R, mass, Estar, delta, force, radius, duration, ke0;
-} hertz_ref;
-
-static void hertz_local(const rf_impact_input *in, hertz_ref *h)
-{
-    double c = in->radius, d = in->radius;
-    if (in->horizontal_axis > 0) {
-        c = in->horizontal_axis;
-        d = in->vertical_axis > 0 ? in->vertical_axis : in->radius * in->radius * in->radius / (c * c);
-    }
-    h->c = c, h->d = d;
-    h->R = c * c / d;
-    h->mass = 4.0 / 3.0 * M_PI * c * c * d * in->boulder_density;
-    h->Estar = 1 / ((1 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E +
-                    (1 - in->slope_poisson * in->slope_poisson) / in->slope_E);
-    double V = in->velocity;
-    h->delta = pow(15 * h->mass * V * V / (16 * h->Estar * sqrt(h->R)), 0.4);
-    h->force = 4.0 / 3.0 * h->Estar * sqrt(h->R) * pow(h->delta, 1.5);
-    h->radius = sqrt(h->R * h->delta);
-    h->duration = 2.94328 * h->delta / V;
-    h->ke0 = 0.5 * h->mass * V * V;
-}
-
+/* What the axisymmetric model can do beyond the ranges every impact model
+ * shares (rf_impact_input_validate) and the option rules (rf_fem_options_validate). */
 static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o, rf_error *err)
 {
-#define BAD(cond, ...)                                                                                   \
-    do {                                                                                                 \
-        if (cond)                                                                                        \
-            return rf_fail(err, RF_EINVAL, __VA_ARGS__);                                                 \
-    } while (0)
-    BAD(!in || !o, "fem: NULL input or options");
-    BAD(!(in->slope_angle == 0),
-        "fem: the axisymmetric FE model handles only normal impact (slope_angle = 0); got slope_angle = %g rad",
-        in->slope_angle);
-    /* the ranges every impact model shares (messages name field and value) */
+    if (!in || !o)
+        return rf_fail(err, RF_EINVAL, "fem: NULL input or options");
+    if (!(in->slope_angle == 0))
+        return rf_fail(err, RF_EINVAL,
+                       "fem: the axisymmetric FE model handles only normal impact (slope_angle = 0); got slope_angle = %g rad",
+                       in->slope_angle);
     if (rf_impact_input_validate(in, err) != RF_OK)
         return rf_error_prefix(err, "fem");
-    BAD(!isfinite(in->horizontal_axis) || !isfinite(in->vertical_axis), "fem: spheroid axes must be finite");
-    BAD(!(o->refinement >= 2) || !isfinite(o->refinement),
-        "fem: refinement (Hertz contact radius / element size) = %g is too coarse to resolve the contact; use >= 2 "
-        "(10 or more for accuracy)",
-        o->refinement);
-    BAD(o->refinement > 400, "fem: refinement %g is unreasonably fine (> 400)", o->refinement);
-    BAD(!(o->domain_factor >= 3) || !isfinite(o->domain_factor), "fem: domain_factor must be >= 3, got %g",
-        o->domain_factor);
-    BAD(!(o->boulder_mesh_ratio >= 0.25 && o->boulder_mesh_ratio <= 1.25),
-        "fem: boulder_mesh_ratio must be in [0.25, 1.25] (the boulder surface carries the contact nodes and must "
-        "not be coarser than the slope), got %g",
-        o->boulder_mesh_ratio);
-    BAD(!(o->core_factor >= 1.5 && o->core_factor <= 10), "fem: core_factor must be in [1.5, 10], got %g",
-        o->core_factor);
-    BAD(!(o->grading >= 1 && o->grading <= 2), "fem: grading must be in [1, 2], got %g", o->grading);
-    BAD(!(o->dt_safety > 0 && o->dt_safety <= 4), "fem: dt_safety must be in (0, 4], got %g", o->dt_safety);
-    BAD(!(o->end_time >= 0) || !isfinite(o->end_time), "fem: end_time must be >= 0 s, got %g", o->end_time);
-    BAD(o->boundary != RF_FEM_BOUNDARY_FIXED && o->boundary != RF_FEM_BOUNDARY_ABSORBING,
-        "fem: unknown boundary kind %d", (int)o->boundary);
-    BAD(!(o->duration_threshold >= 0 && o->duration_threshold < 0.5), "fem: duration_threshold must be in [0, 0.5), got %g",
-        o->duration_threshold);
-    BAD(o->threads < 0, "fem: threads must be >= 0, got %d", o->threads);
-    if (in->horizontal_axis > 0) {
-        double c = in->horizontal_axis;
-        double d = in->vertical_axis > 0 ? in->vertical_axis : in->radius * in->radius * in->radius / (c * c);
-        BAD(c / d > 3 * (1 + 1e-9) || d / c > 3 * (1 + 1e-9), "fem: spheroid aspect c/d = %g outside [1/3, 3] is not supported by the mesher",
-            c / d);
-    }
+    rf_status st = rf_fem_options_validate(o, 0, err);
+    if (st != RF_OK)
+        return st;
+    double c = in->horizontal_axis, d = rf_impact_vertical_semi_axis(in);
+    if (c > 0 && (c / d > 3 * (1 + 1e-9) || d / c > 3 * (1 + 1e-9)))
+        return rf_fail(err, RF_EINVAL, "fem: spheroid aspect c/d = %g outside [1/3, 3] is not supported by the mesher",
+                       c / d);
     return RF_OK;
-#undef BAD
 }
 
 /* Growable time series. */
@@ -382,9 +314,11 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
     rf_status st = check_input(in, &o, err);
     if (st != RF_OK)
         return st;
+    o.refinement = rf_fem_refinement(&o, 0);
+    o.domain_factor = rf_fem_domain_factor(&o, in);
 
-    hertz_ref H;
-    hertz_local(in, &H);
+    rf_hertz_reference H;
+    rf_impact_hertz_reference(in, &H);
     const double V = in->velocity, L = o.domain_factor * in->radius;
     fem_material mat[2] = {{in->boulder_density, in->boulder_E, in->boulder_poisson},
                            {in->slope_density, in->slope_E, in->slope_poisson}};
@@ -396,15 +330,15 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
         cs[b] = sqrt(mu / mat[b].rho);
     }
     /* mesh sizing from the Hertz contact radius */
-    double h = H.radius / o.refinement, hb = h * o.boulder_mesh_ratio;
+    double h = H.contact_radius / o.refinement, hb = h * o.boulder_mesh_ratio;
     /* the uniform fine zone must stay well inside the boulder: shrink it at
        very high speed (a/R > 0.24 with the default 2.5 a) down to 1.5 a */
-    double core = fmin(o.core_factor, 0.55 * fmin(H.c, H.d) / H.radius);
+    double core = fmin(o.core_factor, 0.55 * fmin(H.c, H.d) / H.contact_radius);
     if (core < 1.5)
         return rf_fail(err, RF_EINVAL,
                        "fem: the Hertz contact radius a = %.4g m is too large for the boulder (c = %g m, d = %g m): "
                        "a fine zone of 1.5 a must fit in 0.55 min(c, d); Hertz-based meshing needs a << min(c, d)",
-                       H.radius, H.c, H.d);
+                       H.contact_radius, H.c, H.d);
     fem_body_spec bs = {0}, ss = {0};
     ss.h = h;
     ss.n = 3 * (int)ceil(core * o.refinement / 3 - 1e-9);
@@ -426,7 +360,7 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
         return rf_fail(err, RF_EINVAL,
                        "fem: the Hertz contact radius %.4g m is too large for the boulder (c = %g m, d = %g m): the "
                        "fine zone does not fit; lower the impact speed or raise refinement",
-                       H.radius, H.c, H.d);
+                       H.contact_radius, H.c, H.d);
     if (ss.n * ss.h * 4 > L)
         return rf_fail(err, RF_EINVAL, "fem: domain radius %g m is too small for the fine zone (%g m)", L,
                        ss.n * ss.h);
@@ -846,7 +780,7 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
         hist->dt_bound = dt_bound;
         hist->dt_edge = dt_edge;
         hist->h_contact = h;
-        hist->hertz_radius = H.radius;
+        hist->hertz_radius = H.contact_radius;
         hist->hertz_duration = H.duration;
         hist->boulder_mass = H.mass;
         hist->boulder_mesh_mass = mesh_mass_b;

@@ -245,6 +245,8 @@ static int fem_reflection_note(const rf_study *s, const rf_tm_result *res, char 
     const char *df = strstr(id, "domain_factor=");
     if (df)
         factor = strtod(df + strlen("domain_factor="), NULL);
+    if (!(factor > 0)) /* "auto": sized by the solver so that no reflection returns during contact */
+        return 0;
     rf_impact_input in;
     rf_impact_input_default(&in);
     static const char *const keys[] = {"radius", "horizontal_axis", "vertical_axis", "boulder_density",

@@ -1,10 +1,12 @@
 /* impact_model.c - the impact model behind the rf_model interface: a spec
- * (solver + crisp base input + FE settings), the binding of study parameter
- * names to the physical inputs, and rf_impact_solve, the one dispatch to the
- * analytic models or the FE solver.  The model's ctx is read-only after
- * creation, so eval is thread-safe (each FE evaluation owns its state). */
-#include "impact/impact_fem.h"
-#include "impact/impact_internal.h"
+ * (solver + crisp base input + the FE solvers' own options), the binding of
+ * study parameter names to the physical inputs, and rf_impact_solve, the one
+ * dispatch to the analytic models or the FE solvers (rf_fem_solve).  It sits
+ * above src/impact (the problem) and src/fem (the solvers).  The model's ctx
+ * is read-only after creation, so eval is thread-safe (each FE evaluation
+ * owns its state). */
+#include "rockfuzz/impact_model.h"
+#include "core/util.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -24,7 +26,6 @@ const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
 const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS] = {"N", "m", "s", "m", "", "", ""};
 
 static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid"};
-static const char *const boundary_names[] = {"fixed", "absorbing"};
 
 const char *rf_impact_solver_name(rf_impact_solver s)
 {
@@ -42,22 +43,6 @@ rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error
                    name ? name : "(null)");
 }
 
-const char *rf_impact_boundary_name(rf_impact_boundary b)
-{
-    return (unsigned)b < 2 ? boundary_names[b] : "unknown";
-}
-
-rf_status rf_impact_boundary_parse(const char *name, rf_impact_boundary *b, rf_error *err)
-{
-    for (int k = 0; k < 2; k++)
-        if (name && !strcmp(name, boundary_names[k])) {
-            *b = (rf_impact_boundary)k;
-            return RF_OK;
-        }
-    return rf_fail(err, RF_EINVAL, "boundary '%s' is unknown (accepted: fixed, absorbing)",
-                   name ? name : "(null)");
-}
-
 void rf_impact_model_spec_default(rf_impact_model_spec *spec)
 {
     memset(spec, 0, sizeof *spec);
@@ -65,11 +50,15 @@ void rf_impact_model_spec_default(rf_impact_model_spec *spec)
     rf_impact_input_default(&spec->base);
     spec->e_n = NAN;
     spec->hunter_coefficient = RF_HUNTER_A_JOHNSON;
-    spec->fem_refinement = 0.0; /* solver default: 10 axisymmetric, 6 in 3D (impact_fem.h) */
-    spec->fem_domain_factor = 10.0;
-    spec->fem_boundary = RF_IMPACT_BOUNDARY_FIXED;
-    spec->fem_threads = 1;
-    spec->fem_vtk_dir = NULL;
+    rf_fem_options_default(&spec->fem);
+}
+
+/* Clear the output to NaN (the models that do not define a field leave it so). */
+static void output_clear(rf_impact_output *out)
+{
+    *out = (rf_impact_output){0};
+    out->contact_force_max = out->compression_max = out->contact_duration = out->contact_radius = NAN;
+    out->R_n = out->R_t = out->R_ke = NAN;
 }
 
 /* warning (may be NULL, else RF_FEM_WARNING_MAX bytes) receives the FE
@@ -78,27 +67,17 @@ void rf_impact_model_spec_default(rf_impact_model_spec *spec)
 static rf_status solve_fem(const rf_impact_model_spec *spec, const rf_impact_input *in,
                            rf_impact_output *out, char *warning, rf_error *err)
 {
-#ifdef RF_HAVE_FEM
     if (!warning)
-        return rf_impact_fem_run_(spec, in, out, NULL, NULL, NULL, err);
+        return rf_fem_solve(in, &spec->fem, out, NULL, NULL, NULL, err);
     rf_fem_history hist;
     memset(&hist, 0, sizeof hist);
-    rf_status st = rf_impact_fem_run_(spec, in, out, &hist, NULL, NULL, err);
+    rf_status st = rf_fem_solve(in, &spec->fem, out, &hist, NULL, NULL, err);
     snprintf(warning, RF_FEM_WARNING_MAX, "%s", st == RF_OK ? hist.warning : "");
     rf_fem_history_free(&hist);
     return st;
-#else
-    (void)spec;
-    (void)in;
-    if (warning)
-        warning[0] = '\0';
-    rf_impact_output_clear_(out);
-    return rf_fail(err, RF_EINVAL, "FE solver not built (rockfuzz/fem.h is missing); "
-                                   "use solver hertz, hunter or rigid");
-#endif
 }
 
-static rf_status check_spec(const rf_impact_model_spec *spec, rf_error *err)
+rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_error *err)
 {
     if ((unsigned)spec->solver > RF_IMPACT_RIGID)
         return rf_fail(err, RF_EINVAL, "impact solver %d is unknown", (int)spec->solver);
@@ -108,19 +87,11 @@ static rf_status check_spec(const rf_impact_model_spec *spec, rf_error *err)
     if (!(isfinite(spec->hunter_coefficient) && spec->hunter_coefficient >= 0.0))
         return rf_fail(err, RF_EINVAL, "hunter_coefficient = %g: must be finite and >= 0",
                        spec->hunter_coefficient);
-    if (spec->solver == RF_IMPACT_FEM) {
-        if (!(isfinite(spec->fem_refinement) && spec->fem_refinement >= 0.0))
-            return rf_fail(err, RF_EINVAL, "refinement = %g: must be finite and > 0 (a/h; 0 = solver default)",
-                           spec->fem_refinement);
-        if (!(isfinite(spec->fem_domain_factor) && spec->fem_domain_factor > 1.0))
-            return rf_fail(err, RF_EINVAL, "domain_factor = %g: must be finite and > 1",
-                           spec->fem_domain_factor);
-        if ((unsigned)spec->fem_boundary > RF_IMPACT_BOUNDARY_ABSORBING)
-            return rf_fail(err, RF_EINVAL, "FE boundary %d is unknown", (int)spec->fem_boundary);
-        if (spec->fem_threads < 1)
-            return rf_fail(err, RF_EINVAL, "threads = %d: must be >= 1", spec->fem_threads);
-    }
-    return RF_OK;
+    if (spec->solver != RF_IMPACT_FEM)
+        return RF_OK;
+    rf_fem_options o = spec->fem;
+    o.vtk_dir = NULL; /* the model ignores it; the 3D model rejects it */
+    return rf_fem_options_validate(&o, 0, err); /* the 3D limits are checked when a 3D impact runs */
 }
 
 /* rf_impact_solve with the FE warning (see solve_fem). */
@@ -129,11 +100,11 @@ static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *
 {
     if (warning)
         warning[0] = '\0';
-    rf_status st = check_spec(spec, err);
+    rf_status st = rf_impact_model_spec_validate(spec, err);
     if (st == RF_OK)
         st = rf_impact_input_validate(in, err);
     if (st != RF_OK) {
-        rf_impact_output_clear_(out);
+        output_clear(out);
         return st;
     }
     switch (spec->solver) {
@@ -145,7 +116,7 @@ static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *
             rf_impact_output h;
             st = rf_impact_hunter_A(in, spec->hunter_coefficient, &h, err);
             if (st != RF_OK) {
-                rf_impact_output_clear_(out);
+                output_clear(out);
                 return st;
             }
             e_n = h.R_n;
@@ -166,7 +137,7 @@ rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_inpu
 /* --- the rf_model --- */
 
 typedef struct {
-    rf_impact_model_spec spec;  /* fem_vtk_dir cleared: evaluations must not share a directory */
+    rf_impact_model_spec spec;  /* fem.vtk_dir cleared: evaluations must not share a directory */
     size_t n_params;
     int field[RF_IMPACT_N_PARAMS]; /* index into rf_impact_param_names for each x[i] */
     /* FE warnings (e.g. reflected waves) of the evaluations so far */
@@ -283,10 +254,22 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
     if (s->solver == RF_IMPACT_RIGID)
         append(buf, cap, &len, isnan(s->e_n) ? " e_n=hunter" : " e_n=%.17g", s->e_n);
-    if (s->solver == RF_IMPACT_FEM)
-        append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
-               rf_impact_fem_refinement_(s, 0), rf_impact_fem_refinement_(s, 1), s->fem_domain_factor,
-               rf_impact_boundary_name(s->fem_boundary), s->fem_threads);
+    if (s->solver == RF_IMPACT_FEM) {
+        if (s->fem.domain_factor > 0)
+            append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
+                   rf_fem_refinement(&s->fem, 0), rf_fem_refinement(&s->fem, 1), s->fem.domain_factor,
+                   rf_fem_boundary_name(s->fem.boundary), s->fem.threads);
+        else
+            append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=auto domain_margin=%.17g domain_min=%.17g boundary=%s threads=%d",
+                   rf_fem_refinement(&s->fem, 0), rf_fem_refinement(&s->fem, 1), RF_FEM_DOMAIN_MARGIN,
+                   RF_FEM_DOMAIN_MIN, rf_fem_boundary_name(s->fem.boundary), s->fem.threads);
+        const rf_fem_options *o = &s->fem;
+        append(buf, cap, &len,
+               " boulder_mesh_ratio=%.17g core_factor=%.17g grading=%.17g dt_safety=%.17g end_time=%.17g"
+               " duration_threshold=%.17g max_elements=%ld",
+               o->boulder_mesh_ratio, o->core_factor, o->grading, o->dt_safety, o->end_time,
+               o->duration_threshold, o->max_elements);
+    }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
            " slope_density=%.17g boulder_E=%.17g slope_E=%.17g boulder_poisson=%.17g"
@@ -304,14 +287,9 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     if (!spec || !model || (n_params && !param_names))
         return rf_fail(err, RF_EINTERNAL, "rf_impact_model_create: NULL argument");
     memset(model, 0, sizeof *model);
-    rf_status st = check_spec(spec, err);
+    rf_status st = rf_impact_model_spec_validate(spec, err);
     if (st != RF_OK)
         return st;
-#ifndef RF_HAVE_FEM
-    if (spec->solver == RF_IMPACT_FEM)
-        return rf_fail(err, RF_EINVAL, "impact model: FE solver not built (rockfuzz/fem.h is "
-                                       "missing); use solver hertz, hunter or rigid");
-#endif
     if (n_params > RF_IMPACT_N_PARAMS)
         return rf_fail(err, RF_EINVAL, "impact model: %zu parameters given, at most %d distinct "
                                        "ones exist", n_params, RF_IMPACT_N_PARAMS);
@@ -320,7 +298,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
         return rf_fail(err, RF_ENOMEM, "out of memory for the impact model");
     pthread_mutex_init(&c->lock, NULL);
     c->spec = *spec;
-    c->spec.fem_vtk_dir = NULL;
+    c->spec.fem.vtk_dir = NULL;
     for (size_t i = 0; i < n_params; i++) {
         int found = -1;
         for (int k = 0; k < RF_IMPACT_N_PARAMS; k++)
@@ -370,7 +348,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     model->warnings = impact_warnings;
     model->ctx = c;
     model->destroy = ctx_destroy;
-    model->threads_per_eval = spec->solver == RF_IMPACT_FEM ? spec->fem_threads : 1;
+    model->threads_per_eval = spec->solver == RF_IMPACT_FEM && spec->fem.threads > 1 ? spec->fem.threads : 1;
     st = rf_model_init_outputs(model, RF_IMPACT_N_OUTPUTS, rf_impact_output_names,
                                rf_impact_output_units, err);
     if (st == RF_OK) {
