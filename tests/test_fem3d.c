@@ -112,7 +112,8 @@ static void test_sliding_60(void **state)
     rf_fem3d_report_free(&rep);
 }
 
-/* The same bits for 1 and 2 threads (FNV-1a over the final u and v). */
+/* The same bits for 1 and 2 threads (FNV-1a over the final u and v), in the
+ * report and in the history alike. */
 static void test_determinism(void **state)
 {
     (void)state;
@@ -127,11 +128,14 @@ static void test_determinism(void **state)
         o.threads = t + 1;
         rf_impact_output out;
         rf_fem3d_report rep;
+        rf_fem_history hist;
         rf_error err;
-        assert_int_equal(rf_fem3d_impact_ex(&in, &o, NULL, &out, NULL, &rep, &err), RF_OK);
+        assert_int_equal(rf_fem3d_impact_ex(&in, &o, NULL, &out, &hist, &rep, &err), RF_OK);
         h[t] = rep.state_hash;
+        assert_true(hist.state_hash == rep.state_hash);
         rt[t] = out.v_t_after;
         rf_fem3d_report_free(&rep);
+        rf_fem_history_free(&hist);
     }
     printf("# hash 1 thread %016llx, 2 threads %016llx\n", (unsigned long long)h[0], (unsigned long long)h[1]);
     assert_true(h[0] == h[1]);

@@ -16,9 +16,13 @@
  * See docs/validation.md for the measured accuracy.
  *
  * Units: SI.  Thread safety: rf_fem_impact keeps all state in its own
- * allocations and may be called from several threads at once. */
+ * allocations (or a caller's rf_fem_workspace) and may be called from several
+ * threads at once; results do not depend on opt->threads (fixed-order
+ * assembly). */
 #ifndef ROCKFUZZ_FEM_H
 #define ROCKFUZZ_FEM_H
+
+#include <stdint.h>
 
 #include "rockfuzz/impact.h"
 #include "rockfuzz/status.h"
@@ -113,10 +117,18 @@ typedef struct {
     double slope_energy;          /* slope KE + strain energy at the end [J] */
     double ke0;                   /* initial kinetic energy [J] */
     long boulder_nodes, boulder_elements, slope_nodes, slope_elements;
+    uint64_t state_hash;          /* FNV-1a over the bytes of the final u and v (determinism checks) */
     char warning[512];            /* "" or a human-readable warning */
 } rf_fem_history;
 
 void rf_fem_history_free(rf_fem_history *hist);
+
+/* The state of the FE solvers between evaluations (GSL style): growable
+ * buffers that a worker thread reuses, so that a study's evaluations do not
+ * reallocate the solver's arrays.  One workspace per thread. */
+typedef struct rf_fem_workspace rf_fem_workspace;
+rf_fem_workspace *rf_fem_workspace_alloc(void);
+void rf_fem_workspace_free(rf_fem_workspace *ws);
 
 /* Run one normal impact.  out is filled on success; hist (may be NULL) gets
  * time series and diagnostics and must be released with rf_fem_history_free.
@@ -124,6 +136,9 @@ void rf_fem_history_free(rf_fem_history *hist);
  * a mesh too coarse for the contact radius. */
 rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt,
                         rf_impact_output *out, rf_fem_history *hist, rf_error *err);
+/* The same in a caller's workspace (rf_fem_impact allocates a fresh one). */
+rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                           rf_impact_output *out, rf_fem_history *hist, rf_error *err);
 
 /* Run the FE model the impact needs (rf_fem_needs_3d): the axisymmetric one
  * or the 3D half model with default 3D settings.  hist may be NULL;

@@ -9,9 +9,7 @@
 
 #include "rockfuzz/status.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/util.h"
 
 enum { F3_BOULDER = 0, F3_SLOPE = 1 };
 
