@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "rockfuzz/fem3d.h"
 
 int main(int argc, char **argv)
@@ -17,7 +18,7 @@ int main(int argc, char **argv)
     double domain = argc > 3 ? atof(argv[3]) : 0;
     rf_impact_input in = {.radius = 1, .boulder_density = 2600, .slope_density = 2600, .boulder_E = 68.2e9,
                           .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10,
-                          .slope_angle = 45 * 3.14159265358979323846 / 180, .friction = 0.6};
+                          .slope_angle = 45 * RF_PI / 180, .friction = 0.6};
     unsigned long long h1 = 0;
     int same = 1;
     for (int t = 1; t <= tmax; t++) {

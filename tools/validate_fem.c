@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "rockfuzz/fem.h"
 
 int main(int argc, char **argv)
@@ -67,7 +68,7 @@ int main(int argc, char **argv)
         c = in.horizontal_axis;
         d = in.vertical_axis > 0 ? in.vertical_axis : pow(in.radius, 3) / (c * c);
     }
-    double R = c * c / d, m = 4.0 / 3.0 * 3.14159265358979323846 * c * c * d * in.boulder_density;
+    double R = c * c / d, m = 4.0 / 3.0 * RF_PI * c * c * d * in.boulder_density;
     double Es = 1 / ((1 - 0.0625) / in.boulder_E + (1 - 0.0625) / in.slope_E), V = in.velocity;
     double dH = pow(15 * m * V * V / (16 * Es * sqrt(R)), 0.4), FH = 1.25 * m * V * V / dH;
     double aH = sqrt(R * dH), tH = 2.94328 * dH / V; /* 2 (2/5) B(2/5, 1/2), to 6 digits */

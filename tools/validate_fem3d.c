@@ -12,11 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "rockfuzz/fem3d.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 int main(int argc, char **argv)
 {
@@ -44,7 +42,7 @@ int main(int argc, char **argv)
         if (!strcmp(key, "v"))
             in.velocity = x;
         else if (!strcmp(key, "angle"))
-            in.slope_angle = x * M_PI / 180;
+            in.slope_angle = x * RF_PI / 180;
         else if (!strcmp(key, "f"))
             in.friction = x;
         else if (!strcmp(key, "r0"))

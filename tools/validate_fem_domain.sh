@@ -13,7 +13,7 @@ out=${2:-$build/validation}
 mkdir -p "$out"
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j2 --target rockfuzz >/dev/null
-cc -O2 -std=c17 -D_POSIX_C_SOURCE=200809L -I"$src/include" "$src/tools/validate_fem.c" \
+cc -O2 -std=c17 -D_POSIX_C_SOURCE=200809L -I"$src/include" -I"$src/src" "$src/tools/validate_fem.c" \
    "$build/librockfuzz.a" -lm -fopenmp -o "$build/validate_fem"
 V="$build/validate_fem"
 R="$out/results_domain.txt"

@@ -147,6 +147,10 @@ rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, cons
  * model writes no VTK: opt->vtk_dir is ignored there. */
 rf_status rf_fem_solve(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,
                        rf_fem_history *hist, double *friction_work, int *three_d, rf_error *err);
+/* The same in a caller's workspace (NULL = a fresh one). */
+rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                          rf_impact_output *out, rf_fem_history *hist, double *friction_work, int *three_d,
+                          rf_error *err);
 
 #ifdef __cplusplus
 }

@@ -2,9 +2,11 @@
  * (solver + crisp base input + the FE solvers' own options), the binding of
  * study parameter names to the physical inputs, and rf_impact_solve, the one
  * dispatch to the analytic models or the FE solvers (rf_fem_solve).  It sits
- * above src/impact (the problem) and src/fem (the solvers).  The model's ctx
- * is read-only after creation, so eval is thread-safe (each FE evaluation
- * owns its state). */
+ * above src/impact (the problem) and src/fem (the solvers).  The model's
+ * spec is read-only after creation; the warning counters and the pool of
+ * idle FE workspaces (reused by the evaluations of any worker thread, one
+ * workspace per running evaluation) are behind one mutex, so eval is
+ * thread-safe. */
 #include "rockfuzz/impact_model.h"
 #include "core/util.h"
 
@@ -64,14 +66,14 @@ static void output_clear(rf_impact_output *out)
 /* warning (may be NULL, else RF_FEM_WARNING_MAX bytes) receives the FE
  * solver's warning, "" if none; it needs the solver's history. */
 #define RF_FEM_WARNING_MAX 512
-static rf_status solve_fem(const rf_impact_model_spec *spec, const rf_impact_input *in,
+static rf_status solve_fem(const rf_impact_model_spec *spec, rf_fem_workspace *ws, const rf_impact_input *in,
                            rf_impact_output *out, char *warning, rf_error *err)
 {
     if (!warning)
-        return rf_fem_solve(in, &spec->fem, out, NULL, NULL, NULL, err);
+        return rf_fem_solve_ws(ws, in, &spec->fem, out, NULL, NULL, NULL, err);
     rf_fem_history hist;
     memset(&hist, 0, sizeof hist);
-    rf_status st = rf_fem_solve(in, &spec->fem, out, &hist, NULL, NULL, err);
+    rf_status st = rf_fem_solve_ws(ws, in, &spec->fem, out, &hist, NULL, NULL, err);
     snprintf(warning, RF_FEM_WARNING_MAX, "%s", st == RF_OK ? hist.warning : "");
     rf_fem_history_free(&hist);
     return st;
@@ -95,8 +97,8 @@ rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_err
 }
 
 /* rf_impact_solve with the FE warning (see solve_fem). */
-static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *in, rf_impact_output *out,
-                       char *warning, rf_error *err)
+static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, const rf_impact_input *in,
+                       rf_impact_output *out, char *warning, rf_error *err)
 {
     if (warning)
         warning[0] = '\0';
@@ -123,7 +125,7 @@ static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *
         }
         return rf_impact_rigid(in, e_n, out, err);
     }
-    case RF_IMPACT_FEM: return solve_fem(spec, in, out, warning, err);
+    case RF_IMPACT_FEM: return solve_fem(spec, ws, in, out, warning, err);
     }
     return rf_fail(err, RF_EINTERNAL, "unreachable impact solver");
 }
@@ -131,7 +133,7 @@ static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *
 rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
                           rf_impact_output *out, rf_error *err)
 {
-    return solve(spec, in, out, NULL, err);
+    return solve(spec, NULL, in, out, NULL, err);
 }
 
 /* --- the rf_model --- */
@@ -140,8 +142,11 @@ typedef struct {
     rf_impact_model_spec spec;  /* fem.vtk_dir cleared: evaluations must not share a directory */
     size_t n_params;
     int field[RF_IMPACT_N_PARAMS]; /* index into rf_impact_param_names for each x[i] */
-    /* FE warnings (e.g. reflected waves) of the evaluations so far */
+    /* FE warnings (e.g. reflected waves) of the evaluations so far, and the
+       idle FE workspaces that evaluations (on any worker thread) reuse */
     pthread_mutex_t lock;
+    rf_fem_workspace *idle[64];
+    int n_idle;
     size_t evaluations, warned;
     char first_warning[RF_FEM_WARNING_MAX];
 } impact_ctx;
@@ -149,9 +154,37 @@ typedef struct {
 static void ctx_destroy(void *p)
 {
     impact_ctx *c = p;
-    if (c)
+    if (c) {
+        for (int k = 0; k < c->n_idle; k++)
+            rf_fem_workspace_free(c->idle[k]);
         pthread_mutex_destroy(&c->lock);
+    }
     free(c);
+}
+
+/* An idle workspace (or a new one; NULL if out of memory: the solver then
+ * allocates its own), and its return after the evaluation. */
+static rf_fem_workspace *workspace_take(impact_ctx *c)
+{
+    rf_fem_workspace *ws = NULL;
+    pthread_mutex_lock(&c->lock);
+    if (c->n_idle > 0)
+        ws = c->idle[--c->n_idle];
+    pthread_mutex_unlock(&c->lock);
+    return ws ? ws : rf_fem_workspace_alloc();
+}
+
+static void workspace_give(impact_ctx *c, rf_fem_workspace *ws)
+{
+    if (!ws)
+        return;
+    pthread_mutex_lock(&c->lock);
+    if (c->n_idle < (int)(sizeof c->idle / sizeof c->idle[0])) {
+        c->idle[c->n_idle++] = ws;
+        ws = NULL;
+    }
+    pthread_mutex_unlock(&c->lock);
+    rf_fem_workspace_free(ws);
 }
 
 static void note_evaluation(impact_ctx *c, const char *warning)
@@ -213,7 +246,10 @@ static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
         return rf_fail(err, RF_EMODEL, "impact model: %s", local.msg);
     rf_impact_output out;
     char warning[RF_FEM_WARNING_MAX];
-    st = solve(&c->spec, &in, &out, c->spec.solver == RF_IMPACT_FEM ? warning : NULL, &local);
+    const int fem = c->spec.solver == RF_IMPACT_FEM;
+    rf_fem_workspace *ws = fem ? workspace_take(c) : NULL;
+    st = solve(&c->spec, ws, &in, &out, fem ? warning : NULL, &local);
+    workspace_give(c, ws);
     if (st == RF_OK && c->spec.solver == RF_IMPACT_FEM)
         note_evaluation(c, warning);
     if (st != RF_OK)
