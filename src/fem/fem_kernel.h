@@ -37,6 +37,10 @@ typedef struct fem_kernel fem_kernel;
 typedef struct {
     const char *name;
     void (*forces)(const fem_kernel *k, long e0, long e1, const double *ue, double *fe);
+    /* Optional fused path (NULL if absent) for one thread and elements whose
+       displacements are plain u: gather, forces and f += scatter per element,
+       in element order (the same sums as forces() + the node-ordered gather). */
+    void (*assemble)(const fem_kernel *k, long e0, long e1, const int *conn, const double *u, double *f);
     void (*commit)(fem_kernel *k);
     void (*destroy)(fem_kernel *k);
 } fem_kernel_ops;
