@@ -53,6 +53,10 @@ typedef struct {
     double nodes, elements, steps, wall_seconds; /* FE statistics (0 for analytic models) */
 } rf_impact_output;
 
+/* Zero the output and mark the quantities every model may leave undefined
+ * (force, compression, duration, contact radius, the three COR) as NaN. */
+void rf_impact_output_clear(rf_impact_output *out);
+
 /* --- analytic references (impact_refs.md) --- */
 
 /* Effective modulus 1/E* = (1-nu_b^2)/E_b + (1-nu_s^2)/E_s [Pa]. */

@@ -66,7 +66,7 @@ static rf_status hertz_normal(const rf_impact_input *in, rf_impact_output *out, 
 
 rf_status rf_impact_hertz(const rf_impact_input *in, rf_impact_output *out, rf_error *err)
 {
-    rf_impact_output_clear_(out);
+    rf_impact_output_clear(out);
     rf_status st = hertz_normal(in, out, err);
     if (st != RF_OK)
         return st;
@@ -90,7 +90,7 @@ double rf_hunter_loss(const rf_impact_input *in, double A)
 rf_status rf_impact_hunter_A(const rf_impact_input *in, double A, rf_impact_output *out,
                              rf_error *err)
 {
-    rf_impact_output_clear_(out);
+    rf_impact_output_clear(out);
     if (!isfinite(A) || A < 0.0)
         return rf_fail(err, RF_EINVAL, "Hunter coefficient A = %g: must be finite and >= 0", A);
     rf_status st = hertz_normal(in, out, err);

@@ -166,7 +166,7 @@ void rf_impact_wave_speeds(const rf_impact_input *in, int body, rf_wave_speeds *
     w->rayleigh = w->s * (0.87 + 1.12 * nu) / (1 + nu); /* Viktorov */
 }
 
-void rf_impact_output_clear_(rf_impact_output *out)
+void rf_impact_output_clear(rf_impact_output *out)
 {
     *out = (rf_impact_output){0};
     out->contact_force_max = NAN;

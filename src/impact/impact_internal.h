@@ -15,7 +15,7 @@
 rf_status rf_impact_kinematics_(const rf_impact_input *in, double e_n, rf_impact_output *out,
                                 rf_error *err);
 
-/* (impact_input.c) Zero the output and mark the quantities a model does not define as NaN. */
-void rf_impact_output_clear_(rf_impact_output *out);
+/* The public rf_impact_output_clear (impact_input.c), under its older internal name. */
+#define rf_impact_output_clear_ rf_impact_output_clear
 
 #endif

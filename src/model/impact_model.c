@@ -55,14 +55,6 @@ void rf_impact_model_spec_default(rf_impact_model_spec *spec)
     rf_fem_options_default(&spec->fem);
 }
 
-/* Clear the output to NaN (the models that do not define a field leave it so). */
-static void output_clear(rf_impact_output *out)
-{
-    *out = (rf_impact_output){0};
-    out->contact_force_max = out->compression_max = out->contact_duration = out->contact_radius = NAN;
-    out->R_n = out->R_t = out->R_ke = NAN;
-}
-
 /* warning (may be NULL, else RF_FEM_WARNING_MAX bytes) receives the FE
  * solver's warning, "" if none; it needs the solver's history. */
 #define RF_FEM_WARNING_MAX 512
@@ -106,7 +98,7 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
     if (st == RF_OK)
         st = rf_impact_input_validate(in, err);
     if (st != RF_OK) {
-        output_clear(out);
+        rf_impact_output_clear(out);
         return st;
     }
     switch (spec->solver) {
@@ -118,7 +110,7 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
             rf_impact_output h;
             st = rf_impact_hunter_A(in, spec->hunter_coefficient, &h, err);
             if (st != RF_OK) {
-                output_clear(out);
+                rf_impact_output_clear(out);
                 return st;
             }
             e_n = h.R_n;
