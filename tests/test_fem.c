@@ -391,6 +391,51 @@ static void test_workspace_reuse(void **state)
     rf_fem_workspace_free(ws);
 }
 
+/* One rule table checks the options; each message names the setting and
+ * its value, and the 3D limits differ where the table says so. */
+static void test_options_validate(void **state)
+{
+    (void)state;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    rf_error err = {0};
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_OK);
+    assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_OK);
+    o.refinement = 200; /* fine for the axisymmetric model, not for 3D */
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_OK);
+    assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "refinement = 200"));
+    rf_fem_options_default(&o);
+    o.domain_factor = 2;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "domain_factor = 2"));
+    rf_fem_options_default(&o);
+    o.dt_safety = NAN;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "dt_safety"));
+    rf_fem_options_default(&o);
+    o.end_time = INFINITY;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "end_time"));
+    rf_fem_options_default(&o);
+    o.boundary = (rf_fem_boundary)7;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    rf_fem_options_default(&o);
+    o.threads = -1;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "threads = -1"));
+    /* defaults resolve: 10 axisymmetric, 6 in 3D; an explicit domain is kept */
+    rf_fem_options_default(&o);
+    assert_true(rf_fem_refinement(&o, 0) == 10 && rf_fem_refinement(&o, 1) == 6);
+    rf_impact_input in = granite(10);
+    o.domain_factor = 12;
+    assert_true(rf_fem_domain_factor(&o, &in) == 12);
+    rf_fem_boundary b;
+    assert_int_equal(rf_fem_boundary_parse("absorbing", &b, &err), RF_OK);
+    assert_int_equal(b, RF_FEM_BOUNDARY_ABSORBING);
+    assert_string_equal(rf_fem_boundary_name(RF_FEM_BOUNDARY_FIXED), "fixed");
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -489,6 +534,7 @@ int main(void)
         cmocka_unit_test(test_thread_safety),
         cmocka_unit_test(test_determinism),
         cmocka_unit_test(test_workspace_reuse),
+        cmocka_unit_test(test_options_validate),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_vtk),
     };
