@@ -40,6 +40,13 @@ typedef enum {
 const char *rf_fem_boundary_name(rf_fem_boundary b);
 rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *err);
 
+/* Material kernel of a body (src/fem/fem_kernel.h): how its internal force is computed. */
+typedef enum {
+    RF_FEM_KERNEL_STIFFNESS = 0, /* linear elastic, precomputed element stiffness (the fastest; default) */
+    RF_FEM_KERNEL_POINTS         /* linear elastic stress update at the integration points: the form
+                                    elasto-plastic laws take (axisymmetric model only; ~5x slower) */
+} rf_fem_kernel;
+
 /* Refinement (a/h) used when the options leave it at 0: the axisymmetric
  * model is converged to < 0.1 % at 10; the 3D one costs ~50x more per a/h and
  * is within 0.3 % on R_t at 6 (docs/validation*.md). */
@@ -69,6 +76,7 @@ typedef struct {
     int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */
     double duration_threshold; /* contact counts while force > this * F_max, default 1e-6 */
+    rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);

@@ -56,6 +56,9 @@ typedef struct {
  * nodal masses (area-weighted share of the 2*pi*r element mass) and area. */
 void fem_element_matrices(const double r[4], const double z[4], const fem_material *mat,
                           double K[64], double m[4], double *mass, double *area);
+/* B matrices (4 x 8 row-major, strains e_rr e_zz e_tt g_rz) and volume
+ * weights 2 pi r det(J) at the 2x2 Gauss points, for integration-point kernels. */
+void fem_element_points(const double r[4], const double z[4], double B[4][32], double w[4]);
 /* Largest eigenvalue of M_e^-1 K_e over the unconstrained dofs (free[i] != 0). */
 double fem_element_lambda_max(const double K[64], const double m[4], const int free_dof[8]);
 /* Stress at the element centre: sigma_rr, sigma_zz, sigma_tt, sigma_rz. */

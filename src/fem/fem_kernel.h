@@ -52,6 +52,20 @@ struct fem_kernel {
     void *data;        /* the kernel's own data */
 };
 
+/* A point-wise constitutive law, the unit an integration-point kernel calls:
+ * from the strain increment deps and the committed stress sig_n and internal
+ * variables state_n of one point, the trial stress sig and variables state
+ * (ncomp = 4 for axisymmetry: rr, zz, tt, rz with engineering shear; 6 in
+ * 3D).  A J2 or Drucker-Prager-with-cap return map (src/material) has this
+ * shape; linear elasticity is sig = sig_n + D deps (fem_point_law_linear). */
+typedef struct {
+    const char *name;
+    int ncomp, nstate;
+    void (*update)(const void *params, const double *deps, const double *sig_n, const double *state_n, double *sig,
+                   double *state);
+    const void *params;
+} fem_point_law;
+
 /* Elements per call of forces() in the time loops (bounded stack buffers). */
 #define FEM_KERNEL_CHUNK 32
 
@@ -63,6 +77,21 @@ struct fem_kernel {
  * The kernel takes ownership of K (freed by destroy unless pooled != 0). */
 void fem_kernel_linear_axi(fem_kernel *k, long first, long count, double *K, int pooled);
 void fem_kernel_linear_hex(fem_kernel *k, long first, long count, float *K, int pooled);
+
+/* Integration-point kernel of the axisymmetric quad (2x2 Gauss): keeps B and
+ * the weight at every point, the committed strain, stress and internal
+ * variables, and calls `law` at every point of every element each step; the
+ * template for elasto-plastic kernels.  r, z: node coordinates, conn: 4
+ * nodes per element (global numbering; the block's elements are
+ * [first, first + count)).  With the linear law it reproduces the
+ * precomputed-stiffness kernel to round-off (test_fem). */
+rf_status fem_kernel_points_axi(fem_kernel *k, long first, long count, const double *r, const double *z,
+                                const int *conn, const fem_point_law *law, rf_error *err);
+/* sig = sig_n + D deps for an isotropic material (lam, mu = the Lame constants). */
+typedef struct {
+    double lam, mu;
+} fem_lame;
+fem_point_law fem_point_law_linear(const fem_lame *lame);
 
 static inline void fem_kernel_release(fem_kernel *k)
 {

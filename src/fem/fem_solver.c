@@ -79,6 +79,7 @@ typedef struct {
     long nn, ndof, ne, nbd;
     int threads, fixed_outer;
     fem_kernel kernel[2]; /* boulder and slope blocks */
+    fem_lame lame[2];     /* parameters of the point laws */
     double *K, *fe, *invm, *mass, *u, *v, *f, *fext, *dash;
     long *inc_ptr, *inc;
     int *outer;
@@ -268,6 +269,27 @@ static void axi_dashpots(axi_run *S)
             S->outer[S->nouter++] = (int)i;
 }
 
+/* The material kernel of each body: one block of elements per body. */
+static rf_status axi_kernels(axi_run *S, rf_error *err)
+{
+    const long nbe = S->mesh.boulder_elems;
+    const long first[2] = {0, nbe}, count[2] = {nbe, S->ne - nbe};
+    for (int b = 0; b < 2; b++) {
+        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS) {
+            fem_kernel_linear_axi(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], 1);
+            continue;
+        }
+        const double E = S->mat[b].E, nu = S->mat[b].nu;
+        S->lame[b] = (fem_lame){E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+        fem_point_law law = fem_point_law_linear(&S->lame[b]);
+        rf_status st = fem_kernel_points_axi(&S->kernel[b], first[b], count[b], S->mesh.r, S->mesh.z, S->mesh.conn,
+                                             &law, err);
+        if (st != RF_OK)
+            return st;
+    }
+    return RF_OK;
+}
+
 /* Assembly: arrays, incidence, element matrices, masses and time step,
  * material kernels (linear elastic, one block per body), dashpots, contact
  * pairs, and the initial state (boulder translating down at V). */
@@ -286,9 +308,8 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
     if (st != RF_OK)
         return st;
     axi_masses(S, elm, fixed);
-    const long nbe = S->mesh.boulder_elems;
-    fem_kernel_linear_axi(&S->kernel[FEM_BOULDER], 0, nbe, S->K, 1);
-    fem_kernel_linear_axi(&S->kernel[FEM_SLOPE], nbe, S->ne - nbe, S->K + 64 * nbe, 1);
+    if ((st = axi_kernels(S, err)) != RF_OK)
+        return st;
     axi_dashpots(S);
     st = fem_contact_setup(&S->C, &S->mesh, S->ndof, S->H.d, err);
     if (st != RF_OK)
@@ -407,6 +428,9 @@ static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
     const double dt = S->dt;
     double *u = S->u, *v = S->v;
     axi_internal_force(S, u, S->f);
+    for (int b = 0; b < 2; b++) /* the state at u_n is accepted */
+        if (S->kernel[b].ops->commit)
+            S->kernel[b].ops->commit(&S->kernel[b]);
     double W_abs_inc = axi_dashpot_forces(S);
     fem_contact_begin(&S->C, v);
     for (long d = 0; d < S->ndof; d++) {

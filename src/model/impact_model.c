@@ -294,9 +294,9 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         const rf_fem_options *o = &s->fem;
         append(buf, cap, &len,
                " boulder_mesh_ratio=%.17g core_factor=%.17g grading=%.17g dt_safety=%.17g end_time=%.17g"
-               " duration_threshold=%.17g max_elements=%ld",
+               " duration_threshold=%.17g max_elements=%ld kernels=%d,%d",
                o->boulder_mesh_ratio, o->core_factor, o->grading, o->dt_safety, o->end_time,
-               o->duration_threshold, o->max_elements);
+               o->duration_threshold, o->max_elements, (int)o->kernel[0], (int)o->kernel[1]);
     }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
