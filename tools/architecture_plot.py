@@ -75,7 +75,7 @@ for i, s in enumerate(stages):
     ax.text(6.45, y - 0.05 - i * 0.36, "%d. %s" % (i + 1, s), fontsize=6.6, va="top", family="monospace")
 arrow(7.65, 3.18, 7.65, 2.87)
 # material kernel
-box(9.1, 3.2, 1.75, 1.5, "material kernels", "fem_kernel.h\nlinear elastic (K_e)\nnext: J2, DP-cap\n(src/material)", color="#fbe3e3")
+box(9.1, 3.2, 1.75, 1.5, "material kernels", "fem_kernel.h\nstiffness K_e (default)\nintegration points +\npoint law: linear;\nnext J2, DP-cap\n(src/material)", color="#fbe3e3")
 ax.annotate("", xy=(9.5, 2.86), xytext=(9.8, 3.18), arrowprops=dict(arrowstyle="->", lw=1.0, color="#a33"))
 
 # the problem, the low module
