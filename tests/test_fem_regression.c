@@ -26,6 +26,13 @@
 
 #include "rockfuzz/fem3d.h"
 
+/* Layering (issue 8): the FE solvers' headers bring in the impact problem
+ * only, never the study side. */
+#if defined(ROCKFUZZ_MODEL_H) || defined(ROCKFUZZ_TM_H) || defined(ROCKFUZZ_STUDY_H) || defined(ROCKFUZZ_RUNNER_H) || \
+    defined(ROCKFUZZ_STORE_H) || defined(ROCKFUZZ_REPORT_H) || defined(ROCKFUZZ_ANALYSIS_H) || defined(ROCKFUZZ_MPI_H)
+#error "rockfuzz/fem.h or fem3d.h includes a model, TM or study header"
+#endif
+
 #define N_FIELDS 15
 
 typedef struct {
