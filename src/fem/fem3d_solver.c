@@ -28,16 +28,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void rf_fem3d_options_default(rf_fem3d_options *o3)
-{
-    memset(o3, 0, sizeof *o3);
-    o3->full_model = 0;
-    o3->core_factor = 1.3;
-    o3->elongation = 1.0;
-    o3->layer_aspect = 1.6;
-    o3->boulder_inner = 4.0;
-}
-
 void rf_fem3d_report_free(rf_fem3d_report *rep)
 {
     if (!rep)

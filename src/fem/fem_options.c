@@ -1,8 +1,9 @@
-/* fem_options.c - the settings of the FE solvers: their one default, their
- * one validation (a table of rules, the few that differ in 3D marked), the
- * resolution of the automatic settings (refinement, domain radius), and the
- * choice between the axisymmetric and the 3D model. */
-#include "rockfuzz/fem.h"
+/* fem_options.c - the settings of the FE solvers: their one default (and the
+ * 3D model's own defaults), their one validation (a table of rules, the few
+ * that differ in 3D marked), the resolution of the automatic settings
+ * (refinement, domain radius), and the choice between the axisymmetric and
+ * the 3D model. */
+#include "rockfuzz/fem3d.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -25,6 +26,16 @@ void rf_fem_options_default(rf_fem_options *opt)
     opt->history_stride = 0;
     opt->max_elements = 2000000;
     opt->duration_threshold = 1e-6;
+}
+
+void rf_fem3d_options_default(rf_fem3d_options *o3)
+{
+    memset(o3, 0, sizeof *o3);
+    o3->full_model = 0;
+    o3->core_factor = 1.3;
+    o3->elongation = 1.0;
+    o3->layer_aspect = 1.6;
+    o3->boulder_inner = 4.0;
 }
 
 static const char *const boundary_names[] = {"fixed", "absorbing"};
