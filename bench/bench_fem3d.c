@@ -1,6 +1,6 @@
 /* bench_fem3d.c - wall time of one 3D impact (10 m/s, 45 degree slope,
  * f = 0.6, half model) on 1 and 2 threads, and ns per element-step.
- *   bench_fem3d [refinement (a/h), default 6] [max threads, default 2]
+ *   bench_fem3d [refinement (a/h), default 6] [max threads, default 2] [domain factor, default 0 = automatic]
  * The results must not depend on the thread count: the state hashes are
  * printed and compared. */
 #include <math.h>
@@ -15,6 +15,7 @@ int main(int argc, char **argv)
 {
     double ref = argc > 1 ? atof(argv[1]) : 6;
     int tmax = argc > 2 ? atoi(argv[2]) : 2;
+    double domain = argc > 3 ? atof(argv[3]) : 0;
     rf_impact_input in = {.radius = 1, .boulder_density = 2600, .slope_density = 2600, .boulder_E = 68.2e9,
                           .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10,
                           .slope_angle = 45 * RF_PI / 180, .friction = 0.6};
@@ -25,6 +26,7 @@ int main(int argc, char **argv)
         rf_fem_options_default(&o);
         o.refinement = ref;
         o.threads = t;
+        o.domain_factor = domain;
         rf_impact_output out;
         rf_fem3d_report rep;
         rf_error err;
@@ -33,9 +35,9 @@ int main(int argc, char **argv)
             return 1;
         }
         double ns = 1e9 * out.wall_seconds / (out.elements * out.steps);
-        printf("threads=%d ref=%g elements=%.0f steps=%.0f wall=%.3f s ns_per_element_step=%.1f R_t=%.6f "
+        printf("threads=%d ref=%g domain=%g elements=%.0f steps=%.0f wall=%.3f s ns_per_element_step=%.1f R_t=%.6f "
                "omega=%.5f hash=%016llx\n",
-               t, ref, out.elements, out.steps, out.wall_seconds, ns, out.R_t, out.omega_after,
+               t, ref, rf_fem_domain_factor(&o, &in), out.elements, out.steps, out.wall_seconds, ns, out.R_t, out.omega_after,
                (unsigned long long)rep.state_hash);
         if (t == 1)
             h1 = rep.state_hash;

@@ -15,6 +15,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <cmocka.h>
 
 #include "rockfuzz/fem.h"
@@ -115,6 +116,7 @@ static void test_energy_and_momentum(void **state)
     rf_fem_options o;
     rf_fem_options_default(&o);
     o.refinement = 4;
+    o.domain_factor = 10; /* the seed paper's model, which reflects (checked below) */
     rf_impact_output out;
     rf_fem_history h;
     run(&in, &o, &out, &h);
@@ -168,6 +170,36 @@ static void test_absorbing(void **state)
     assert_true(h.absorbed[h.n - 1] > 0);
     assert_true(h.warning[0] == 0);
     assert_true(out.energy_error < 1e-3);
+    rf_fem_history_free(&h);
+}
+
+/* The default domain is sized so that the P wave reflected by the fixed
+ * outer surface returns after the contact ends: at 1 m/s (the longest
+ * contact, 7.0 ms) 2 L / c_p >= 1.25 t_c with c_p = sqrt(E (1 - nu) /
+ * (rho (1 + nu) (1 - 2 nu))) = 5611 m/s computed here, so L >= 24.5 r0; no
+ * reflection warning, and the contact closes once. */
+static void test_default_domain(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(1);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3;
+    rf_impact_output out;
+    rf_fem_history h;
+    run(&in, &o, &out, &h);
+    const double nu = in.slope_poisson;
+    const double c_p = sqrt(in.slope_E * (1 - nu) / (in.slope_density * (1 + nu) * (1 - 2 * nu)));
+    hertz ref = hertz_of(&in, 1, sphere_mass(&in));
+    const double factor = rf_fem_domain_factor(&o, &in);
+    printf("default domain at 1 m/s: %g r0, 2L/c_p = %.4g ms, Hertz t_c = %.4g ms, R_n = %.5f\n", factor,
+           2e3 * factor / c_p, 1e3 * ref.duration, out.R_n);
+    assert_true(2 * factor * in.radius / c_p >= 1.25 * ref.duration);
+    assert_true(factor < 30); /* not grossly oversized either */
+    assert_true(fabs(h.reflection_time - 2 * factor / c_p) < 1e-9 * h.reflection_time);
+    assert_true(h.warning[0] == 0);
+    o.domain_factor = 10; /* the seed paper's model warns */
+    assert_true(rf_fem_domain_factor(&o, &in) == 10);
     rf_fem_history_free(&h);
 }
 
@@ -310,6 +342,131 @@ static void test_thread_safety(void **state)
     assert_true(fabs(one.contact_force_max / two.contact_force_max - 1) < 1e-9);
 }
 
+/* Determinism: the same bits (FNV-1a over the final u and v) for 1, 2 and 3
+ * threads: element forces are assembled per node in element order. */
+static void test_determinism(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3;
+    o.end_time = 2e-3;
+    uint64_t hash[3];
+    double rn[3];
+    for (int t = 0; t < 3; t++) {
+        o.threads = t + 1;
+        rf_impact_output out;
+        rf_fem_history h;
+        run(&in, &o, &out, &h);
+        hash[t] = h.state_hash;
+        rn[t] = out.v_n_after;
+        rf_fem_history_free(&h);
+    }
+    printf("# hash 1 thread %016llx, 2 threads %016llx, 3 threads %016llx\n", (unsigned long long)hash[0],
+           (unsigned long long)hash[1], (unsigned long long)hash[2]);
+    assert_true(hash[0] == hash[1] && hash[0] == hash[2]);
+    assert_true(rn[0] == rn[1] && rn[0] == rn[2]);
+}
+
+/* A workspace reused across evaluations of different sizes gives the
+ * numbers of a fresh one, bit for bit. */
+static void test_workspace_reuse(void **state)
+{
+    (void)state;
+    rf_fem_workspace *ws = rf_fem_workspace_alloc();
+    assert_non_null(ws);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3;
+    const double speeds[3] = {10, 30, 10};
+    for (int k = 0; k < 3; k++) {
+        rf_impact_input in = granite(speeds[k]);
+        rf_impact_output a, b;
+        rf_error err = {0};
+        assert_int_equal(rf_fem_impact_ws(ws, &in, &o, &a, NULL, &err), RF_OK);
+        run(&in, &o, &b, NULL);
+        assert_true(a.R_n == b.R_n && a.contact_force_max == b.contact_force_max && a.steps == b.steps);
+    }
+    rf_fem_workspace_free(ws);
+}
+
+/* The material interface: linear elasticity through the integration-point
+ * kernel (strain from B u, stress update by a point law, B^T sigma) against
+ * the precomputed-stiffness kernel, both bodies, 10 m/s up to peak force.
+ * Same physics, different arithmetic: equal to round-off (measured 2e-14 on a
+ * whole impact). */
+static void test_point_kernel(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3;
+    o.domain_factor = 10;
+    o.end_time = 2.5e-3;
+    rf_impact_output a, b;
+    run(&in, &o, &a, NULL);
+    o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_POINTS;
+    run(&in, &o, &b, NULL);
+    printf("# point kernel: F %.3g, delta %.3g, v %.3g relative to the stiffness kernel\n",
+           b.contact_force_max / a.contact_force_max - 1, b.compression_max / a.compression_max - 1,
+           b.v_n_after / a.v_n_after - 1);
+    assert_true(a.steps == b.steps);
+    assert_true(fabs(b.contact_force_max / a.contact_force_max - 1) < 1e-10);
+    assert_true(fabs(b.compression_max / a.compression_max - 1) < 1e-10);
+    assert_true(fabs(b.v_n_after / a.v_n_after - 1) < 1e-10);
+    assert_true(fabs(b.energy_error - a.energy_error) < 1e-10);
+    rf_error err = {0}; /* 3D has only the stiffness kernel */
+    assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "kernel[0]"));
+}
+
+/* One rule table checks the options; each message names the setting and
+ * its value, and the 3D limits differ where the table says so. */
+static void test_options_validate(void **state)
+{
+    (void)state;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    rf_error err = {0};
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_OK);
+    assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_OK);
+    o.refinement = 200; /* fine for the axisymmetric model, not for 3D */
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_OK);
+    assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "refinement = 200"));
+    rf_fem_options_default(&o);
+    o.domain_factor = 2;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "domain_factor = 2"));
+    rf_fem_options_default(&o);
+    o.dt_safety = NAN;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "dt_safety"));
+    rf_fem_options_default(&o);
+    o.end_time = INFINITY;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "end_time"));
+    rf_fem_options_default(&o);
+    o.boundary = (rf_fem_boundary)7;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    rf_fem_options_default(&o);
+    o.threads = -1;
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "threads = -1"));
+    /* defaults resolve: 10 axisymmetric, 6 in 3D; an explicit domain is kept */
+    rf_fem_options_default(&o);
+    assert_true(rf_fem_refinement(&o, 0) == 10 && rf_fem_refinement(&o, 1) == 6);
+    rf_impact_input in = granite(10);
+    o.domain_factor = 12;
+    assert_true(rf_fem_domain_factor(&o, &in) == 12);
+    rf_fem_boundary b;
+    assert_int_equal(rf_fem_boundary_parse("absorbing", &b, &err), RF_OK);
+    assert_int_equal(b, RF_FEM_BOUNDARY_ABSORBING);
+    assert_string_equal(rf_fem_boundary_name(RF_FEM_BOUNDARY_FIXED), "fixed");
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -324,7 +481,7 @@ static void test_bad_input(void **state)
     in = granite(10);
     o.refinement = 1.5;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
-    assert_non_null(strstr(err.msg, "too coarse"));
+    assert_non_null(strstr(err.msg, "refinement = 1.5"));
     rf_fem_options_default(&o);
     in.velocity = 0;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
@@ -400,11 +557,16 @@ int main(void)
         cmocka_unit_test(test_low_speed_hertz),
         cmocka_unit_test(test_energy_and_momentum),
         cmocka_unit_test(test_absorbing),
+        cmocka_unit_test(test_default_domain),
         cmocka_unit_test(test_scale_invariance),
         cmocka_unit_test(test_spheroid),
         cmocka_unit_test(test_time_step_bound),
         cmocka_unit_test(test_non_matching),
         cmocka_unit_test(test_thread_safety),
+        cmocka_unit_test(test_determinism),
+        cmocka_unit_test(test_workspace_reuse),
+        cmocka_unit_test(test_point_kernel),
+        cmocka_unit_test(test_options_validate),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_vtk),
     };

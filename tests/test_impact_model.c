@@ -11,7 +11,7 @@
 #include <pthread.h>
 #include <string.h>
 
-#include "rockfuzz/impact.h"
+#include "rockfuzz/impact_model.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
 
@@ -52,21 +52,21 @@ static void test_spec_default(void **state)
     assert_int_equal(spec.solver, RF_IMPACT_FEM);
     assert_true(isnan(spec.e_n));
     assert_true(spec.hunter_coefficient == 1.04);
-    assert_true(spec.fem_refinement == 0.0 && spec.fem_domain_factor == 10.0); /* 0 = solver default */
-    assert_int_equal(spec.fem_boundary, RF_IMPACT_BOUNDARY_FIXED);
-    assert_int_equal(spec.fem_threads, 1);
+    assert_true(spec.fem.refinement == 0.0 && spec.fem.domain_factor == 0.0); /* 0 = automatic */
+    assert_int_equal(spec.fem.boundary, RF_FEM_BOUNDARY_FIXED);
+    assert_int_equal(spec.fem.threads, 1);
     assert_true(spec.base.boulder_E == 68.2e9 && spec.base.radius == 1.0);
     rf_impact_solver s;
-    rf_impact_boundary b;
+    rf_fem_boundary b;
     rf_error err = {0};
     assert_int_equal(rf_impact_solver_parse("hunter", &s, &err), RF_OK);
     assert_int_equal(s, RF_IMPACT_HUNTER);
     assert_string_equal(rf_impact_solver_name(RF_IMPACT_RIGID), "rigid");
     assert_int_equal(rf_impact_solver_parse("abaqus", &s, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "'abaqus'"));
-    assert_int_equal(rf_impact_boundary_parse("absorbing", &b, &err), RF_OK);
-    assert_int_equal(b, RF_IMPACT_BOUNDARY_ABSORBING);
-    assert_int_equal(rf_impact_boundary_parse("open", &b, &err), RF_EINVAL);
+    assert_int_equal(rf_fem_boundary_parse("absorbing", &b, &err), RF_OK);
+    assert_int_equal(b, RF_FEM_BOUNDARY_ABSORBING);
+    assert_int_equal(rf_fem_boundary_parse("open", &b, &err), RF_EINVAL);
 }
 
 /* All eleven names, in a shuffled order, against direct calls. */
@@ -239,8 +239,8 @@ static void test_fem_model(void **state)
 {
     (void)state;
     rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
-    spec.fem_refinement = 2.0;
-    spec.fem_boundary = RF_IMPACT_BOUNDARY_ABSORBING;
+    spec.fem.refinement = 2.0;
+    spec.fem.boundary = RF_FEM_BOUNDARY_ABSORBING;
     const char *names[] = {"velocity", "slope_angle"};
     rf_model model;
     rf_error err = {0};
@@ -268,7 +268,7 @@ static void test_fem_model(void **state)
      * tangential velocity (R_t = 1) and its normal response is that of a
      * normal impact at V cos 45 (R_n within the mesh's scatter) */
     rf_model_free(&model);
-    spec.fem_refinement = 3.0; /* a/h = 2 facets the 3D sphere too coarsely: R_t = 0.990 */
+    spec.fem.refinement = 3.0; /* a/h = 2 facets the 3D sphere too coarsely: R_t = 0.990 */
     assert_int_equal(rf_impact_model_create(&spec, names, 2, &model, &err), RF_OK);
     x[1] = 45.0;
     if (rf_model_eval(&model, x, y, &err) != RF_OK)
@@ -284,8 +284,9 @@ static void test_fem_model(void **state)
 }
 
 /* The FE solver's warnings reach the caller through rf_model.warnings: a
- * fixed boundary at 10 r0 reflects P waves back before a 10 m/s contact
- * ends (2L/c_p = 3.56 ms < 4.45 ms); absorbing dashpots do not warn. */
+ * fixed boundary at 10 r0 (the seed paper's model) reflects P waves back
+ * before a 10 m/s contact ends (2L/c_p = 3.56 ms < 4.45 ms); absorbing
+ * dashpots and the default (automatic) domain do not warn. */
 static void test_fem_warnings(void **state)
 {
     (void)state;
@@ -293,10 +294,12 @@ static void test_fem_warnings(void **state)
     double x[1] = {10.0}, y[7];
     char text[1024];
     rf_error err = {0};
-    for (int absorbing = 0; absorbing <= 1; absorbing++) {
+    for (int kind = 0; kind <= 2; kind++) { /* fixed 10 r0, absorbing 10 r0, default */
+        const int absorbing = kind > 0;
         rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
-        spec.fem_refinement = 2.0;
-        spec.fem_boundary = absorbing ? RF_IMPACT_BOUNDARY_ABSORBING : RF_IMPACT_BOUNDARY_FIXED;
+        spec.fem.refinement = 2.0;
+        spec.fem.boundary = kind == 1 ? RF_FEM_BOUNDARY_ABSORBING : RF_FEM_BOUNDARY_FIXED;
+        spec.fem.domain_factor = kind < 2 ? 10 : 0;
         rf_model model;
         assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
         assert_non_null(model.warnings);
@@ -318,26 +321,25 @@ static void test_fem_warnings(void **state)
 
 /* Which FE model an impact needs: 3D for a slope, or for friction between
  * dissimilar bodies (Dundurs beta != 0); axisymmetric otherwise. */
-#include "impact/impact_fem.h"
 static void test_fem_dispatch(void **state)
 {
     (void)state;
     rf_impact_input in;
     rf_impact_input_default(&in);
-    assert_int_equal(rf_impact_fem_needs_3d_(&in), 0);
+    assert_int_equal(rf_fem_needs_3d(&in), 0);
     in.friction = 0.6; /* identical materials: no tangential traction in a normal impact */
-    assert_int_equal(rf_impact_fem_needs_3d_(&in), 0);
+    assert_int_equal(rf_fem_needs_3d(&in), 0);
     in.slope_E = 30e9;
-    assert_int_equal(rf_impact_fem_needs_3d_(&in), 1);
+    assert_int_equal(rf_fem_needs_3d(&in), 1);
     in.friction = 0;
-    assert_int_equal(rf_impact_fem_needs_3d_(&in), 0);
+    assert_int_equal(rf_fem_needs_3d(&in), 0);
     in.slope_angle = 0.5;
-    assert_int_equal(rf_impact_fem_needs_3d_(&in), 1);
+    assert_int_equal(rf_fem_needs_3d(&in), 1);
     rf_impact_model_spec spec;
     rf_impact_model_spec_default(&spec);
-    assert_true(rf_impact_fem_refinement_(&spec, 0) == 10.0 && rf_impact_fem_refinement_(&spec, 1) == 6.0);
-    spec.fem_refinement = 4;
-    assert_true(rf_impact_fem_refinement_(&spec, 0) == 4.0 && rf_impact_fem_refinement_(&spec, 1) == 4.0);
+    assert_true(rf_fem_refinement(&spec.fem, 0) == 10.0 && rf_fem_refinement(&spec.fem, 1) == 6.0);
+    spec.fem.refinement = 4;
+    assert_true(rf_fem_refinement(&spec.fem, 0) == 4.0 && rf_fem_refinement(&spec.fem, 1) == 4.0);
 }
 #else
 static void test_fem_model(void **state) { skip(); (void)state; }

@@ -12,11 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "rockfuzz/fem3d.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 int main(int argc, char **argv)
 {
@@ -24,6 +22,7 @@ int main(int argc, char **argv)
                           .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10};
     rf_fem_options o;
     rf_fem_options_default(&o);
+    o.domain_factor = 10; /* the documented runs use the seed paper's 10 r0; dom=0 = automatic */
     o.refinement = 6;
     rf_fem3d_options o3;
     rf_fem3d_options_default(&o3);
@@ -43,7 +42,7 @@ int main(int argc, char **argv)
         if (!strcmp(key, "v"))
             in.velocity = x;
         else if (!strcmp(key, "angle"))
-            in.slope_angle = x * M_PI / 180;
+            in.slope_angle = x * RF_PI / 180;
         else if (!strcmp(key, "f"))
             in.friction = x;
         else if (!strcmp(key, "r0"))

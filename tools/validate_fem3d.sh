@@ -15,7 +15,7 @@ T=${THREADS:-1}
 mkdir -p "$out"
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j2 --target rockfuzz >/dev/null
-cc -O2 -std=c17 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -I"$src/include" "$src/tools/validate_fem3d.c" \
+cc -O2 -std=c17 -Wall -Wextra -D_POSIX_C_SOURCE=200809L -I"$src/include" -I"$src/src" "$src/tools/validate_fem3d.c" \
    "$build/librockfuzz.a" -lm -fopenmp $(pkg-config --libs libfyaml muparser plplot) -lstdc++ \
    -o "$build/validate_fem3d"
 V="$build/validate_fem3d"

@@ -3,7 +3,10 @@
  *
  * The half-space is a hemisphere of radius domain_factor * r0 centred on the
  * first-contact point; its curved surface is fixed or absorbing
- * (Lysmer-Kuhlemeyer dashpots).  Both bodies are meshed with 4-node
+ * (Lysmer-Kuhlemeyer dashpots).  By default (domain_factor = 0) the radius is
+ * sized from the Hertz contact duration so that no P wave reflected by the
+ * fixed surface returns into the contact before it ends:
+ * 2 L / c_p >= RF_FEM_DOMAIN_MARGIN t_c, and L >= 10 r0.  Both bodies are meshed with 4-node
  * axisymmetric quads (full 2x2 integration, lumped mass) by a structured
  * mesher that puts a node exactly at the first-contact point and sizes the
  * fine zone from the Hertz contact radius.  Time integration: central
@@ -13,9 +16,13 @@
  * See docs/validation.md for the measured accuracy.
  *
  * Units: SI.  Thread safety: rf_fem_impact keeps all state in its own
- * allocations and may be called from several threads at once. */
+ * allocations (or a caller's rf_fem_workspace) and may be called from several
+ * threads at once; results do not depend on opt->threads (fixed-order
+ * assembly). */
 #ifndef ROCKFUZZ_FEM_H
 #define ROCKFUZZ_FEM_H
+
+#include <stdint.h>
 
 #include "rockfuzz/impact.h"
 #include "rockfuzz/status.h"
@@ -24,15 +31,40 @@
 extern "C" {
 #endif
 
-typedef enum { RF_FEM_BOUNDARY_FIXED, RF_FEM_BOUNDARY_ABSORBING } rf_fem_boundary;
+typedef enum {
+    RF_FEM_BOUNDARY_FIXED = 0,  /* fixed outer surface of the slope domain */
+    RF_FEM_BOUNDARY_ABSORBING   /* viscous (Lysmer-Kuhlemeyer) dashpots */
+} rf_fem_boundary;
+
+/* "fixed" | "absorbing" <-> enum. */
+const char *rf_fem_boundary_name(rf_fem_boundary b);
+rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *err);
+
+/* Material kernel of a body (src/fem/fem_kernel.h): how its internal force is computed. */
+typedef enum {
+    RF_FEM_KERNEL_STIFFNESS = 0, /* linear elastic, precomputed element stiffness (the fastest; default) */
+    RF_FEM_KERNEL_POINTS         /* linear elastic stress update at the integration points: the form
+                                    elasto-plastic laws take (axisymmetric model only; ~5x slower) */
+} rf_fem_kernel;
+
+/* Refinement (a/h) used when the options leave it at 0: the axisymmetric
+ * model is converged to < 0.1 % at 10; the 3D one costs ~50x more per a/h and
+ * is within 0.3 % on R_t at 6 (docs/validation*.md). */
+#define RF_FEM_REFINEMENT_AXI 10.0
+#define RF_FEM_REFINEMENT_3D 6.0
+/* Automatic domain: 2 L / c_p >= RF_FEM_DOMAIN_MARGIN * Hertz t_c, L >= RF_FEM_DOMAIN_MIN r0. */
+#define RF_FEM_DOMAIN_MARGIN 1.25
+#define RF_FEM_DOMAIN_MIN 10.0
 
 typedef struct {
-    double refinement;         /* elements across the Hertz contact radius a (a/h), default 10, >= 2 */
-    double domain_factor;      /* hemisphere radius / r0, default 10 */
+    double refinement;         /* elements across the Hertz contact radius a (a/h), >= 2;
+                                  default 0 = RF_FEM_REFINEMENT_AXI / RF_FEM_REFINEMENT_3D */
+    double domain_factor;      /* hemisphere radius / r0, >= 3; default 0 = automatic (see above);
+                                  10 with a fixed boundary is the seed paper's model */
     rf_fem_boundary boundary;  /* outer curved surface of the half-space, default fixed */
     double end_time;           /* [s]; 0 = automatic: >= 1.3 Hertz durations and until
                                   the contact has stayed open for a while */
-    int threads;               /* OpenMP threads for one impact, default 1 */
+    int threads;               /* OpenMP threads for one impact, default 1 (0 = 1) */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (existing dir) */
     double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 (matching);
                                   [0.25, 1.25]: the boulder nodes are the contact slaves */
@@ -44,9 +76,24 @@ typedef struct {
     int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */
     double duration_threshold; /* contact counts while force > this * F_max, default 1e-6 */
+    rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);
+
+/* The one check of the options (three_d: for the 3D model, whose limits
+ * differ where noted in fem_options.c); messages name the setting and value. */
+rf_status rf_fem_options_validate(const rf_fem_options *opt, int three_d, rf_error *err);
+
+/* The refinement and the domain radius / r0 actually used for an impact. */
+double rf_fem_refinement(const rf_fem_options *opt, int three_d);
+double rf_fem_domain_factor(const rf_fem_options *opt, const rf_impact_input *in);
+
+/* 1 if the impact needs the 3D model: an inclined slope, or a normal impact
+ * with friction between elastically dissimilar bodies (Dundurs beta != 0:
+ * the two surfaces would slip radially against each other); else the
+ * axisymmetric model is exact. */
+int rf_fem_needs_3d(const rf_impact_input *in);
 
 /* Time series and diagnostics of one impact.  Energies in J. */
 typedef struct {
@@ -78,10 +125,18 @@ typedef struct {
     double slope_energy;          /* slope KE + strain energy at the end [J] */
     double ke0;                   /* initial kinetic energy [J] */
     long boulder_nodes, boulder_elements, slope_nodes, slope_elements;
+    uint64_t state_hash;          /* FNV-1a over the bytes of the final u and v (determinism checks) */
     char warning[512];            /* "" or a human-readable warning */
 } rf_fem_history;
 
 void rf_fem_history_free(rf_fem_history *hist);
+
+/* The state of the FE solvers between evaluations (GSL style): growable
+ * buffers that a worker thread reuses, so that a study's evaluations do not
+ * reallocate the solver's arrays.  One workspace per thread. */
+typedef struct rf_fem_workspace rf_fem_workspace;
+rf_fem_workspace *rf_fem_workspace_alloc(void);
+void rf_fem_workspace_free(rf_fem_workspace *ws);
 
 /* Run one normal impact.  out is filled on success; hist (may be NULL) gets
  * time series and diagnostics and must be released with rf_fem_history_free.
@@ -89,6 +144,21 @@ void rf_fem_history_free(rf_fem_history *hist);
  * a mesh too coarse for the contact radius. */
 rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt,
                         rf_impact_output *out, rf_fem_history *hist, rf_error *err);
+/* The same in a caller's workspace (rf_fem_impact allocates a fresh one). */
+rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                           rf_impact_output *out, rf_fem_history *hist, rf_error *err);
+
+/* Run the FE model the impact needs (rf_fem_needs_3d): the axisymmetric one
+ * or the 3D half model with default 3D settings.  hist may be NULL;
+ * friction_work (may be NULL) receives the Coulomb dissipation [J] (0 for the
+ * axisymmetric model); *three_d (may be NULL) says which model ran.  The 3D
+ * model writes no VTK: opt->vtk_dir is ignored there. */
+rf_status rf_fem_solve(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,
+                       rf_fem_history *hist, double *friction_work, int *three_d, rf_error *err);
+/* The same in a caller's workspace (NULL = a fresh one). */
+rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                          rf_impact_output *out, rf_fem_history *hist, double *friction_work, int *three_d,
+                          rf_error *err);
 
 #ifdef __cplusplus
 }

@@ -72,6 +72,10 @@ rf_status rf_fem3d_impact(const rf_impact_input *in, const rf_fem_options *opt, 
  * or a mesh beyond opt->max_elements (RF_ECAP). */
 rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *opt, const rf_fem3d_options *o3,
                              rf_impact_output *out, rf_fem_history *hist, rf_fem3d_report *rep, rf_error *err);
+/* The same in a caller's workspace (see rf_fem_workspace in fem.h). */
+rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                             const rf_fem3d_options *o3, rf_impact_output *out, rf_fem_history *hist,
+                             rf_fem3d_report *rep, rf_error *err);
 
 #ifdef __cplusplus
 }

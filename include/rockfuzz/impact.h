@@ -1,5 +1,9 @@
-/* impact.h - boulder-on-slope impact: inputs, outputs, analytic references,
- * and the impact model that the study layer binds fuzzy parameters to.
+/* impact.h - the boulder-on-slope impact problem: inputs (geometry,
+ * materials, velocity, slope angle, friction) with their validation, the
+ * outputs every impact solver fills, and the analytic references (Hertz,
+ * Hunter, rigid-body oblique impact).  This is the low module the FE solvers
+ * (fem.h, fem3d.h) build on; the impact model that a study binds fuzzy
+ * parameters to sits above them, in impact_model.h.
  *
  * Units: SI throughout (m, kg, s, Pa, N, J, rad).  The boulder is a sphere of
  * radius `radius`, or a spheroid with horizontal semi-axis c and vertical
@@ -10,7 +14,6 @@
 #define ROCKFUZZ_IMPACT_H
 
 #include "rockfuzz/status.h"
-#include "rockfuzz/model.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -49,6 +52,10 @@ typedef struct {
     double energy_error;        /* energy closure error / initial KE [-] (0 for analytic models) */
     double nodes, elements, steps, wall_seconds; /* FE statistics (0 for analytic models) */
 } rf_impact_output;
+
+/* Zero the output and mark the quantities every model may leave undefined
+ * (force, compression, duration, contact radius, the three COR) as NaN. */
+void rf_impact_output_clear(rf_impact_output *out);
 
 /* --- analytic references (impact_refs.md) --- */
 
@@ -93,64 +100,35 @@ double rf_hunter_loss(const rf_impact_input *in, double A);
 rf_status rf_impact_hunter_A(const rf_impact_input *in, double A, rf_impact_output *out,
                              rf_error *err);
 
-/* --- the impact model behind the rf_model interface --- */
+/* --- the Hertz reference every solver sizes itself from (impact_refs.md sec. 1) --- */
 
-typedef enum {
-    RF_IMPACT_FEM = 0,  /* explicit finite elements (rockfuzz/fem.h) */
-    RF_IMPACT_HERTZ,    /* elastic Hertz: R_n = 1 */
-    RF_IMPACT_HUNTER,   /* Hertz + Hunter wave loss */
-    RF_IMPACT_RIGID     /* rigid-body oblique impact with Coulomb friction, e_n given */
-} rf_impact_solver;
-
-typedef enum {
-    RF_IMPACT_BOUNDARY_FIXED = 0,    /* fixed outer surface of the slope domain */
-    RF_IMPACT_BOUNDARY_ABSORBING     /* viscous (Lysmer-Kuhlemeyer) dashpots */
-} rf_impact_boundary;
-
-/* "fem" | "hertz" | "hunter" | "rigid" <-> enum; "fixed" | "absorbing". */
-const char *rf_impact_solver_name(rf_impact_solver s);
-rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err);
-const char *rf_impact_boundary_name(rf_impact_boundary b);
-rf_status rf_impact_boundary_parse(const char *name, rf_impact_boundary *b, rf_error *err);
-
+/* Hertz impact on a half-space with the normal velocity component.  One
+ * place computes it: the analytic models, the FE mesh sizing, time span and
+ * diagnostics all use this. */
 typedef struct {
-    rf_impact_solver solver;
-    rf_impact_input base;          /* crisp values of the inputs not bound to parameters (SI, angle in rad) */
-    double e_n;                    /* rigid solver: normal COR; NaN = Hunter's e_n from the current inputs */
-    double hunter_coefficient;     /* A of Hunter's loss (hunter solver, and rigid with e_n = NaN) */
-    /* FE settings (mirrors of rf_fem_options, kept plain so this header does not need fem.h) */
-    double fem_refinement;         /* a/h in the fine zone; 0 (default) = 10 axisymmetric, 6 in 3D */
-    double fem_domain_factor;      /* slope domain radius / r0, default 10 */
-    rf_impact_boundary fem_boundary; /* default fixed */
-    int fem_threads;               /* threads of one FE evaluation, default 1 */
-    const char *fem_vtk_dir;       /* VTK output directory or NULL; ignored by the model (CLI only) */
-} rf_impact_model_spec;
+    double c, d;                  /* horizontal and vertical semi-axes [m] (c = d = r0 for a sphere) */
+    double curvature_radius;      /* R at the contact point [m] */
+    double mass;                  /* [kg] */
+    double effective_modulus;     /* E* [Pa] */
+    double normal_velocity;       /* V cos(angle) [m/s] */
+    double tangential_velocity;   /* V sin(angle) [m/s] */
+    double compression;           /* delta_max [m] */
+    double force;                 /* F_max [N] */
+    double contact_radius;        /* a at F_max [m] */
+    double duration;              /* t_c [s] */
+} rf_hertz_reference;
 
-/* Defaults: FEM solver, nominal granite, e_n = NaN (Hunter), A = 1.04,
- * refinement 0 (solver default), domain factor 10, fixed boundary, 1 thread, no VTK. */
-void rf_impact_model_spec_default(rf_impact_model_spec *spec);
+/* Fill ref for the input (not validated: call rf_impact_input_validate first). */
+void rf_impact_hertz_reference(const rf_impact_input *in, rf_hertz_reference *ref);
+/* t_c = factor * delta_max / v_n, factor = 2 (2/5) B(2/5, 1/2) = 2.9432... */
+double rf_hertz_duration_factor(void);
 
-/* Run one impact with the spec's solver and settings on the input `in`
- * (validated here). */
-rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
-                          rf_impact_output *out, rf_error *err);
-
-/* Parameter names a study may bind (slope_angle in DEGREES here), and the
- * model outputs in order, with their units. */
-#define RF_IMPACT_N_PARAMS 11
-#define RF_IMPACT_N_OUTPUTS 7
-extern const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS];
-extern const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS];
-extern const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS];
-
-/* Create the impact model: x[i] is the value of param_names[i] (one of
- * rf_impact_param_names; an unknown or repeated name is RF_EINVAL).  Outputs:
- * contact_force_max [N], compression_max [m], contact_duration [s],
- * contact_radius [m], R_n, R_t, R_ke [-].  eval copies spec->base, overwrites
- * the bound inputs, validates them and runs the solver; thread-safe.  Free
- * with rf_model_free. */
-rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *const *param_names,
-                                 size_t n_params, rf_model *model, rf_error *err);
+/* Elastic wave speeds of the boulder (body 0) or the slope (body 1) [m/s]:
+ * P, S, and Rayleigh (Viktorov's approximation). */
+typedef struct {
+    double p, s, rayleigh;
+} rf_wave_speeds;
+void rf_impact_wave_speeds(const rf_impact_input *in, int body, rf_wave_speeds *w);
 
 #ifdef __cplusplus
 }

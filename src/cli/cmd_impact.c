@@ -7,8 +7,7 @@
  * value.  Output: a readable summary with units, or one JSON object. */
 #include "cli/cli.h"
 #include "core/util.h"
-#include "impact/impact_fem.h"
-#include "rockfuzz/impact.h"
+#include "rockfuzz/impact_model.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -92,10 +91,13 @@ static void usage(FILE *f)
         "                           rigid:  rigid-body impact with Coulomb friction\n"
         "  --e-n EN                 rigid: normal COR in [0, 1] (default: Hunter's e_n)\n"
         "  --hunter-A A             Hunter coefficient A (default 1.04; band 1.112-1.171)\n"
-        "  --refinement A_OVER_H    fem: elements across the Hertz contact radius\n"
+        "  --refinement A_OVER_H    fem: elements across the Hertz contact radius, >= 2\n"
         "                           (default 10 axisymmetric, 6 for the 3D model)\n"
         "  --boundary KIND          fem: fixed | absorbing outer boundary (default fixed)\n"
-        "  --domain-factor F        fem: slope domain radius / r0 (default 10)\n"
+        "  --domain-factor F        fem: slope domain radius / r0 >= 3 (default: sized so that\n"
+        "                           2 L / c_p >= 1.25 Hertz t_c, at least 10: no reflected\n"
+        "                           wave returns into the contact); --boundary fixed\n"
+        "                           --domain-factor 10 is the seed paper's model\n"
         "  --threads N              fem: threads of the solver, 1..1024 (default 1)\n"
         "  --vtk DIR                fem: write VTK snapshots into DIR\n"
         "\n"
@@ -188,11 +190,12 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
            in->velocity, in->slope_angle * 180.0 / RF_PI, in->friction);
     printf("  mass              %.6g kg\n", rf_impact_mass(in));
     if (spec->solver == RF_IMPACT_FEM) {
-        int three_d = rf_impact_fem_needs_3d_(in);
-        printf("  FE settings       %s, refinement a/h = %g, domain = %g r0, boundary %s, threads %d\n",
+        int three_d = rf_fem_needs_3d(in);
+        printf("  FE settings       %s, refinement a/h = %g, domain = %g r0%s, boundary %s, threads %d\n",
                three_d ? "3D half model (inclined slope or friction)" : "axisymmetric",
-               rf_impact_fem_refinement_(spec, three_d), spec->fem_domain_factor,
-               rf_impact_boundary_name(spec->fem_boundary), spec->fem_threads);
+               rf_fem_refinement(&spec->fem, three_d), rf_fem_domain_factor(&spec->fem, in),
+               spec->fem.domain_factor > 0 ? "" : " (automatic)", rf_fem_boundary_name(spec->fem.boundary),
+               spec->fem.threads);
     }
     printf("\nResults\n");
     print_value("max contact force", o->contact_force_max, "N");
@@ -226,7 +229,6 @@ static void print_references(const rf_impact_model_spec *spec, const rf_impact_i
                sqrt(1 - lo), sqrt(1 - hi));
 }
 
-#ifdef RF_HAVE_FEM
 /* The FE run with its history, for the diagnostics the summary shows. */
 static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int json)
 {
@@ -234,9 +236,9 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
     rf_error err = {0};
     double friction_work = 0.0;
     int three_d = 0;
-    if (spec->fem_vtk_dir && rf_impact_fem_needs_3d_(&spec->base))
+    if (spec->fem.vtk_dir && rf_fem_needs_3d(&spec->base))
         fprintf(stderr, "warning: the 3D model writes no VTK files; --vtk is ignored\n");
-    if (rf_impact_fem_run_(spec, &spec->base, out, &hist, &friction_work, &three_d, &err) != RF_OK) {
+    if (rf_fem_solve(&spec->base, &spec->fem, out, &hist, &friction_work, &three_d, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz impact: fem solver failed: %s\n", err.msg);
         rf_fem_history_free(&hist);
         return EXIT_FAILED;
@@ -263,7 +265,6 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
     rf_fem_history_free(&hist);
     return 0;
 }
-#endif
 
 int rf_cli_impact(int argc, char **argv)
 {
@@ -327,17 +328,17 @@ int rf_cli_impact(int argc, char **argv)
             }
             break;
         case O_BOUNDARY:
-            if (rf_impact_boundary_parse(val, &spec.fem_boundary, &err) != RF_OK) {
+            if (rf_fem_boundary_parse(val, &spec.fem.boundary, &err) != RF_OK) {
                 fprintf(stderr, "rockfuzz impact: --boundary: %s\n", err.msg);
                 return EXIT_USAGE;
             }
             break;
         case O_THREADS:
-            if (!parse_int(oname, val, &spec.fem_threads))
+            if (!parse_int(oname, val, &spec.fem.threads))
                 return EXIT_USAGE;
             break;
         case O_VTK:
-            spec.fem_vtk_dir = val;
+            spec.fem.vtk_dir = val;
             break;
         default:
             if (!parse_double(oname, val, &x))
@@ -370,19 +371,12 @@ int rf_cli_impact(int argc, char **argv)
                 spec.hunter_coefficient = x;
                 break;
             case O_REFINEMENT:
-                if (!(x > 0.0)) {
-                    fprintf(stderr, "rockfuzz impact: --refinement %s: must be > 0 (elements "
-                                    "across the contact radius)\n", val);
-                    return EXIT_USAGE;
-                }
-                spec.fem_refinement = x;
-                break;
             case O_DOMAIN:
-                if (!(x > 1.0)) {
-                    fprintf(stderr, "rockfuzz impact: --domain-factor %s: must be > 1\n", val);
+                *(id == O_REFINEMENT ? &spec.fem.refinement : &spec.fem.domain_factor) = x;
+                if (rf_fem_options_validate(&spec.fem, 0, &err) != RF_OK) { /* the solvers' own rule */
+                    fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", oname, val, err.msg);
                     return EXIT_USAGE;
                 }
-                spec.fem_domain_factor = x;
                 break;
             default: break;
             }
@@ -406,10 +400,8 @@ int rf_cli_impact(int argc, char **argv)
     }
 
     rf_impact_output out;
-#ifdef RF_HAVE_FEM
     if (spec.solver == RF_IMPACT_FEM)
         return run_fem(&spec, &out, json);
-#endif
     if (rf_impact_solve(&spec, in, &out, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz impact: %s solver failed: %s\n",
                 rf_impact_solver_name(spec.solver), err.msg);

@@ -1,7 +1,7 @@
 /* fem3d_internal.h - data shared by the parts of the 3D impact solver: the
  * mesh (fem3d_mesh.c), the hexahedron routines (fem3d_element.c), the
- * contact with friction (fem3d_contact.c) and the time loop
- * (fem3d_solver.c). */
+ * contact with friction (fem3d_contact.c), the internal force
+ * (fem3d_force.c) and the stages of the run (fem3d_solver.c). */
 #ifndef ROCKFUZZ_FEM3D_INTERNAL_H
 #define ROCKFUZZ_FEM3D_INTERNAL_H
 
@@ -9,9 +9,8 @@
 
 #include "rockfuzz/status.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/util.h"
+#include "fem_kernel.h"
 
 enum { F3_BOULDER = 0, F3_SLOPE = 1 };
 
@@ -108,5 +107,28 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
                         int threads);
 /* Multipliers for the predicted state; adds the corrections to u and v. */
 rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double *u, double *v, rf_error *err);
+
+/* The internal-force system of the 3D model (fem3d_force.c). */
+typedef struct {
+    long nn, ne, ndof, nbn;
+    const f3_mesh *mesh;
+    fem_kernel kernel[2]; /* boulder and slope blocks */
+    double *fe;     /* 24 per element */
+    long *inc_ptr;  /* node -> (element * 8 + local) list, in element order */
+    long *inc;
+    const double *mass; /* per dof */
+    double Mb, c0[3]; /* boulder mass (model) and reference CM */
+    int full;
+    double R[9], c[3]; /* boulder rotation and CM of the last internal_force call */
+    double p, q;       /* atan2 arguments of the rotation angle */
+    double *fel;       /* boulder element forces in the boulder frame, 3 per node */
+    int threads;
+} f3_system;
+
+/* f = f_int(u) (element forces by the kernels, node-ordered gather; the
+ * boulder co-rotational); keeps the boulder frame of u for f3_boulder_strain. */
+void f3_internal_force(f3_system *S, const double *u, double *f);
+/* Strain energy of the boulder, 1/2 f_el(n)' u_el(n+1) in the frame of the last f3_internal_force. */
+double f3_boulder_strain(const f3_system *S, const double *u);
 
 #endif

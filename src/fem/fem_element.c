@@ -51,6 +51,15 @@ static double bmatrix(const double r[4], const double z[4], double xi, double et
     return det;
 }
 
+void fem_element_points(const double r[4], const double z[4], double B[4][32], double w[4])
+{
+    double g = 1 / sqrt(3.0), N[4];
+    for (int q = 0; q < 4; q++) {
+        double rp, det = bmatrix(r, z, XI[q] * g, ETA[q] * g, (double(*)[8])B[q], N, &rp);
+        w[q] = 2 * RF_PI * rp * det;
+    }
+}
+
 void fem_element_matrices(const double r[4], const double z[4], const fem_material *mat, double K[64],
                           double m[4], double *mass, double *area)
 {
@@ -60,7 +69,7 @@ void fem_element_matrices(const double r[4], const double z[4], const fem_materi
     double g = 1 / sqrt(3.0), M = 0, A = 0, an[4] = {0, 0, 0, 0};
     for (int q = 0; q < 4; q++) {
         double rp, det = bmatrix(r, z, XI[q] * g, ETA[q] * g, B, N, &rp);
-        double wv = 2 * M_PI * rp * det;
+        double wv = 2 * RF_PI * rp * det;
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 8; j++)
                 DB[i][j] = D[i][0] * B[0][j] + D[i][1] * B[1][j] + D[i][2] * B[2][j] + D[i][3] * B[3][j];

@@ -1,6 +1,7 @@
 /* fem_internal.h - data shared by the parts of the axisymmetric impact solver:
- * the mesh (fem_mesh.c), the element routines (fem_element.c), VTK output
- * (fem_vtk.c) and the time loop with contact (fem_solver.c). */
+ * the mesh (fem_mesh.c), the element routines (fem_element.c), the contact
+ * (fem_contact.c), VTK output (fem_vtk.c) and the stages of the run
+ * (fem_solver.c). */
 #ifndef ROCKFUZZ_FEM_INTERNAL_H
 #define ROCKFUZZ_FEM_INTERNAL_H
 
@@ -8,9 +9,8 @@
 
 #include "rockfuzz/status.h"
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
+#include "core/util.h"
+
 #ifndef M_SQRT2
 #define M_SQRT2 1.41421356237309504880
 #endif
@@ -56,6 +56,9 @@ typedef struct {
  * nodal masses (area-weighted share of the 2*pi*r element mass) and area. */
 void fem_element_matrices(const double r[4], const double z[4], const fem_material *mat,
                           double K[64], double m[4], double *mass, double *area);
+/* B matrices (4 x 8 row-major, strains e_rr e_zz e_tt g_rz) and volume
+ * weights 2 pi r det(J) at the 2x2 Gauss points, for integration-point kernels. */
+void fem_element_points(const double r[4], const double z[4], double B[4][32], double w[4]);
 /* Largest eigenvalue of M_e^-1 K_e over the unconstrained dofs (free[i] != 0). */
 double fem_element_lambda_max(const double K[64], const double m[4], const int free_dof[8]);
 /* Stress at the element centre: sigma_rr, sigma_zz, sigma_tt, sigma_rz. */
@@ -67,5 +70,41 @@ rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *me
                         const double *u, const double *v, const fem_material mat[2],
                         rf_error *err);
 rf_status fem_vtk_index(const char *dir, int frames, const double *times, rf_error *err);
+
+/* One contact pair: boulder node s over slope segment (m1, m2) at coordinate xi. */
+typedef struct {
+    int dof[3];    /* z dofs: slave, master 1, master 2 */
+    double c[3];   /* gap gradient: 1, -(1 - xi), -xi */
+    int rdof[3];   /* r dofs, for the slip diagnostic */
+    double g0;     /* reference gap */
+    double r;      /* reference radius of the slave */
+} contact_pair;
+
+typedef struct {
+    long npairs;
+    contact_pair *pair;
+    double *gpred;   /* predicted gap per pair */
+    double *lambda;  /* multiplier per pair [N] */
+    int *active, *cand;
+    double *A, *rhs;
+    double *du;      /* ndof scratch, kept zero between calls */
+    double *gvo;     /* G v_{n-1/2} per pair */
+    double tol;      /* gap tolerance [m] */
+    double band;     /* pairs with predicted gap below this are candidates [m] */
+    double work;     /* work of the contact forces so far [J] */
+    double pen_max;  /* largest penetration [m] */
+    double slip_max; /* largest radial slip of a closed pair [m] */
+} fem_contact;
+
+/* Pairs of the boulder surface nodes below height d / 2 (fem_contact.c). */
+rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err);
+/* Before the predictor: keep G v_{n-1/2}. */
+void fem_contact_begin(fem_contact *C, const double *v);
+/* After the predictor: multipliers, corrections of u and v, contact work, total force. */
+rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double *u, double *v, double *Fc,
+                           rf_error *err);
+/* Gaps at n+1: penetration and slip maxima; returns the contact radius [m]. */
+double fem_contact_measure(fem_contact *C, const double *u);
+void fem_contact_free(fem_contact *C);
 
 #endif

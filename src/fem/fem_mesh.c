@@ -129,7 +129,7 @@ static void ring_pos(const pattern *p, double rho, double t, double *x, double *
         return;
     }
     double w = blend_weight(p, rho);
-    double th = t * M_PI / 2, cx = rho * cos(th), cy = rho * sin(th);
+    double th = t * RF_PI / 2, cx = rho * cos(th), cy = rho * sin(th);
     if (!p->corner_linear) {
         double u = t <= 0.5 ? 2 * t : 2 - 2 * t, phi = pow(u, 32), a = p->s * u + (rho - p->s) * phi;
         double ox = t <= 0.5 ? rho : a, oy = t <= 0.5 ? a : rho;

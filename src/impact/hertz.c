@@ -7,9 +7,9 @@
 
 #include <math.h>
 
-/* Integral_0^1 dx / sqrt(1 - x^(5/2)) = (2/5) B(2/5, 1/2) = 1.47164, so that
- * t_c = 2 * 1.47164 * delta_max / v_n = 2.94328 delta_max / v_n. */
-static double hertz_duration_factor(void)
+/* Integral_0^1 dx / sqrt(1 - x^(5/2)) = (2/5) B(2/5, 1/2), so that
+ * t_c = 2 (2/5) B(2/5, 1/2) delta_max / v_n. */
+double rf_hertz_duration_factor(void)
 {
     return 2.0 * 0.4 * tgamma(0.4) * tgamma(0.5) / tgamma(0.9);
 }
@@ -32,14 +32,22 @@ double rf_hertz_contact_radius(const rf_impact_input *in)
     return pow(15.0 * R * R * m * v * v * x_sum / 16.0, 0.2);
 }
 
-void rf_impact_output_clear_(rf_impact_output *out)
+void rf_impact_hertz_reference(const rf_impact_input *in, rf_hertz_reference *h)
 {
-    *out = (rf_impact_output){0};
-    out->contact_force_max = NAN;
-    out->compression_max = NAN;
-    out->contact_duration = NAN;
-    out->contact_radius = NAN;
-    out->R_n = out->R_t = out->R_ke = NAN;
+    h->c = in->horizontal_axis > 0.0 ? in->horizontal_axis : in->radius;
+    h->d = rf_impact_vertical_semi_axis(in);
+    h->curvature_radius = rf_impact_contact_curvature_radius(in);
+    h->mass = rf_impact_mass(in);
+    h->effective_modulus = rf_impact_effective_modulus(in);
+    h->normal_velocity = normal_speed(in);
+    h->tangential_velocity = in->velocity * sin(in->slope_angle);
+    const double R = h->curvature_radius, m = h->mass, v = h->normal_velocity, Es = h->effective_modulus;
+    /* (1/2) m v^2 = (2/5) k delta^(5/2), k = (4/3) E* R^(1/2) */
+    const double delta = pow(15.0 * m * v * v / (16.0 * Es * sqrt(R)), 0.4);
+    h->compression = delta;
+    h->force = 4.0 / 3.0 * Es * sqrt(R) * pow(delta, 1.5);
+    h->contact_radius = sqrt(R * delta);
+    h->duration = rf_hertz_duration_factor() * delta / v;
 }
 
 static rf_status hertz_normal(const rf_impact_input *in, rf_impact_output *out, rf_error *err)
@@ -47,21 +55,18 @@ static rf_status hertz_normal(const rf_impact_input *in, rf_impact_output *out, 
     rf_status st = rf_impact_input_validate(in, err);
     if (st != RF_OK)
         return st;
-    double R = rf_impact_contact_curvature_radius(in);
-    double m = rf_impact_mass(in), v = normal_speed(in);
-    double Es = rf_impact_effective_modulus(in);
-    /* (1/2) m v^2 = (2/5) k delta^(5/2), k = (4/3) E* R^(1/2) */
-    double delta = pow(15.0 * m * v * v / (16.0 * Es * sqrt(R)), 0.4);
-    out->compression_max = delta;
-    out->contact_force_max = 4.0 / 3.0 * Es * sqrt(R) * pow(delta, 1.5);
-    out->contact_radius = sqrt(R * delta);
-    out->contact_duration = hertz_duration_factor() * delta / v;
+    rf_hertz_reference h;
+    rf_impact_hertz_reference(in, &h);
+    out->compression_max = h.compression;
+    out->contact_force_max = h.force;
+    out->contact_radius = h.contact_radius;
+    out->contact_duration = h.duration;
     return RF_OK;
 }
 
 rf_status rf_impact_hertz(const rf_impact_input *in, rf_impact_output *out, rf_error *err)
 {
-    rf_impact_output_clear_(out);
+    rf_impact_output_clear(out);
     rf_status st = hertz_normal(in, out, err);
     if (st != RF_OK)
         return st;
@@ -85,7 +90,7 @@ double rf_hunter_loss(const rf_impact_input *in, double A)
 rf_status rf_impact_hunter_A(const rf_impact_input *in, double A, rf_impact_output *out,
                              rf_error *err)
 {
-    rf_impact_output_clear_(out);
+    rf_impact_output_clear(out);
     if (!isfinite(A) || A < 0.0)
         return rf_fail(err, RF_EINVAL, "Hunter coefficient A = %g: must be finite and >= 0", A);
     rf_status st = hertz_normal(in, out, err);

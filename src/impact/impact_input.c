@@ -1,12 +1,12 @@
-/* impact_input.c - the impact input: nominal values, validation, and the
- * geometry every impact model shares (mass, inertia, contact curvature,
- * effective modulus).  Geometry follows impact_refs.md sec. 1.1. */
-#include "rockfuzz/impact.h"
+/* impact_input.c - the impact input and output: nominal values, validation
+ * (one rule table), the cleared output, and the geometry and material
+ * quantities every impact solver shares (mass, inertia, contact curvature,
+ * effective modulus, wave speeds).  Geometry follows impact_refs.md sec. 1.1. */
+#include "core/util.h"
+#include "impact/impact_internal.h"
 
 #include <math.h>
 #include <stddef.h>
-
-#define RF_PI 3.14159265358979323846
 
 void rf_impact_input_default(rf_impact_input *in)
 {
@@ -154,4 +154,24 @@ double rf_impact_contact_curvature_radius(const rf_impact_input *in)
     /* both principal radii at the lower pole of a spheroid (c, c, d) */
     double c = in->horizontal_axis;
     return c * c / rf_impact_vertical_semi_axis(in);
+}
+
+void rf_impact_wave_speeds(const rf_impact_input *in, int body, rf_wave_speeds *w)
+{
+    const double E = body ? in->slope_E : in->boulder_E, nu = body ? in->slope_poisson : in->boulder_poisson;
+    const double rho = body ? in->slope_density : in->boulder_density;
+    const double lam = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+    w->p = sqrt((lam + 2 * mu) / rho);
+    w->s = sqrt(mu / rho);
+    w->rayleigh = w->s * (0.87 + 1.12 * nu) / (1 + nu); /* Viktorov */
+}
+
+void rf_impact_output_clear(rf_impact_output *out)
+{
+    *out = (rf_impact_output){0};
+    out->contact_force_max = NAN;
+    out->compression_max = NAN;
+    out->contact_duration = NAN;
+    out->contact_radius = NAN;
+    out->R_n = out->R_t = out->R_ke = NAN;
 }

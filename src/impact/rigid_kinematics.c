@@ -47,7 +47,7 @@ rf_status rf_impact_kinematics_(const rf_impact_input *in, double e_n, rf_impact
 rf_status rf_impact_rigid(const rf_impact_input *in, double e_n, rf_impact_output *out,
                           rf_error *err)
 {
-    rf_impact_output_clear_(out);
+    rf_impact_output_clear(out);
     rf_status st = rf_impact_input_validate(in, err);
     if (st != RF_OK)
         return st;

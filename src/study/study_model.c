@@ -4,7 +4,7 @@
  * unknown name fails at load time with the constructor's message, located. */
 #include "study/study_internal.h"
 
-#include "rockfuzz/impact.h"
+#include "rockfuzz/impact_model.h"
 #include "core/util.h"
 
 #include <math.h>
@@ -496,20 +496,21 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
             rf_error tmp;
             if (len >= 31 || (key[0] == 's' ? rf_impact_solver_parse(buf, &spec.solver, &tmp)
-                                            : rf_impact_boundary_parse(buf, &spec.fem_boundary, &tmp)) != RF_OK)
+                                            : rf_fem_boundary_parse(buf, &spec.fem.boundary, &tmp)) != RF_OK)
                 return sp_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter or rigid"
                                                       : "unknown boundary; expected fixed or absorbing");
         } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor")) {
-            double *d = key[0] == 'r' ? &spec.fem_refinement : &spec.fem_domain_factor;
+            double *d = key[0] == 'r' ? &spec.fem.refinement : &spec.fem.domain_factor;
             if ((st = sp_number(c, v, p, d)) != RF_OK)
                 return st;
-            if (!(*d > 0))
-                return sp_fail(c, v, p, "must be > 0");
+            rf_error tmp; /* the FE solvers' own rule (fem_options.c) */
+            if (rf_fem_options_validate(&spec.fem, 0, &tmp) != RF_OK)
+                return sp_fail(c, v, p, "%s", tmp.msg);
         } else if (!strcmp(key, "threads")) {
             long long t;
             if ((st = sp_integer(c, v, p, 1, 1024, &t)) != RF_OK)
                 return st;
-            spec.fem_threads = (int)t;
+            spec.fem.threads = (int)t;
         } else if (!strcmp(key, "e_n")) {
             if ((st = sp_number(c, v, p, &spec.e_n)) != RF_OK)
                 return st;

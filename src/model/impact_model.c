@@ -1,10 +1,14 @@
 /* impact_model.c - the impact model behind the rf_model interface: a spec
- * (solver + crisp base input + FE settings), the binding of study parameter
- * names to the physical inputs, and rf_impact_solve, the one dispatch to the
- * analytic models or the FE solver.  The model's ctx is read-only after
- * creation, so eval is thread-safe (each FE evaluation owns its state). */
-#include "impact/impact_fem.h"
-#include "impact/impact_internal.h"
+ * (solver + crisp base input + the FE solvers' own options), the binding of
+ * study parameter names to the physical inputs, and rf_impact_solve, the one
+ * dispatch to the analytic models or the FE solvers (rf_fem_solve).  It sits
+ * above src/impact (the problem) and src/fem (the solvers).  The model's
+ * spec is read-only after creation; the warning counters and the pool of
+ * idle FE workspaces (reused by the evaluations of any worker thread, one
+ * workspace per running evaluation) are behind one mutex, so eval is
+ * thread-safe. */
+#include "rockfuzz/impact_model.h"
+#include "core/util.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -24,7 +28,6 @@ const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
 const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS] = {"N", "m", "s", "m", "", "", ""};
 
 static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid"};
-static const char *const boundary_names[] = {"fixed", "absorbing"};
 
 const char *rf_impact_solver_name(rf_impact_solver s)
 {
@@ -42,22 +45,6 @@ rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error
                    name ? name : "(null)");
 }
 
-const char *rf_impact_boundary_name(rf_impact_boundary b)
-{
-    return (unsigned)b < 2 ? boundary_names[b] : "unknown";
-}
-
-rf_status rf_impact_boundary_parse(const char *name, rf_impact_boundary *b, rf_error *err)
-{
-    for (int k = 0; k < 2; k++)
-        if (name && !strcmp(name, boundary_names[k])) {
-            *b = (rf_impact_boundary)k;
-            return RF_OK;
-        }
-    return rf_fail(err, RF_EINVAL, "boundary '%s' is unknown (accepted: fixed, absorbing)",
-                   name ? name : "(null)");
-}
-
 void rf_impact_model_spec_default(rf_impact_model_spec *spec)
 {
     memset(spec, 0, sizeof *spec);
@@ -65,40 +52,26 @@ void rf_impact_model_spec_default(rf_impact_model_spec *spec)
     rf_impact_input_default(&spec->base);
     spec->e_n = NAN;
     spec->hunter_coefficient = RF_HUNTER_A_JOHNSON;
-    spec->fem_refinement = 0.0; /* solver default: 10 axisymmetric, 6 in 3D (impact_fem.h) */
-    spec->fem_domain_factor = 10.0;
-    spec->fem_boundary = RF_IMPACT_BOUNDARY_FIXED;
-    spec->fem_threads = 1;
-    spec->fem_vtk_dir = NULL;
+    rf_fem_options_default(&spec->fem);
 }
 
 /* warning (may be NULL, else RF_FEM_WARNING_MAX bytes) receives the FE
  * solver's warning, "" if none; it needs the solver's history. */
 #define RF_FEM_WARNING_MAX 512
-static rf_status solve_fem(const rf_impact_model_spec *spec, const rf_impact_input *in,
+static rf_status solve_fem(const rf_impact_model_spec *spec, rf_fem_workspace *ws, const rf_impact_input *in,
                            rf_impact_output *out, char *warning, rf_error *err)
 {
-#ifdef RF_HAVE_FEM
     if (!warning)
-        return rf_impact_fem_run_(spec, in, out, NULL, NULL, NULL, err);
+        return rf_fem_solve_ws(ws, in, &spec->fem, out, NULL, NULL, NULL, err);
     rf_fem_history hist;
     memset(&hist, 0, sizeof hist);
-    rf_status st = rf_impact_fem_run_(spec, in, out, &hist, NULL, NULL, err);
+    rf_status st = rf_fem_solve_ws(ws, in, &spec->fem, out, &hist, NULL, NULL, err);
     snprintf(warning, RF_FEM_WARNING_MAX, "%s", st == RF_OK ? hist.warning : "");
     rf_fem_history_free(&hist);
     return st;
-#else
-    (void)spec;
-    (void)in;
-    if (warning)
-        warning[0] = '\0';
-    rf_impact_output_clear_(out);
-    return rf_fail(err, RF_EINVAL, "FE solver not built (rockfuzz/fem.h is missing); "
-                                   "use solver hertz, hunter or rigid");
-#endif
 }
 
-static rf_status check_spec(const rf_impact_model_spec *spec, rf_error *err)
+rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_error *err)
 {
     if ((unsigned)spec->solver > RF_IMPACT_RIGID)
         return rf_fail(err, RF_EINVAL, "impact solver %d is unknown", (int)spec->solver);
@@ -108,32 +81,24 @@ static rf_status check_spec(const rf_impact_model_spec *spec, rf_error *err)
     if (!(isfinite(spec->hunter_coefficient) && spec->hunter_coefficient >= 0.0))
         return rf_fail(err, RF_EINVAL, "hunter_coefficient = %g: must be finite and >= 0",
                        spec->hunter_coefficient);
-    if (spec->solver == RF_IMPACT_FEM) {
-        if (!(isfinite(spec->fem_refinement) && spec->fem_refinement >= 0.0))
-            return rf_fail(err, RF_EINVAL, "refinement = %g: must be finite and > 0 (a/h; 0 = solver default)",
-                           spec->fem_refinement);
-        if (!(isfinite(spec->fem_domain_factor) && spec->fem_domain_factor > 1.0))
-            return rf_fail(err, RF_EINVAL, "domain_factor = %g: must be finite and > 1",
-                           spec->fem_domain_factor);
-        if ((unsigned)spec->fem_boundary > RF_IMPACT_BOUNDARY_ABSORBING)
-            return rf_fail(err, RF_EINVAL, "FE boundary %d is unknown", (int)spec->fem_boundary);
-        if (spec->fem_threads < 1)
-            return rf_fail(err, RF_EINVAL, "threads = %d: must be >= 1", spec->fem_threads);
-    }
-    return RF_OK;
+    if (spec->solver != RF_IMPACT_FEM)
+        return RF_OK;
+    rf_fem_options o = spec->fem;
+    o.vtk_dir = NULL; /* the model ignores it; the 3D model rejects it */
+    return rf_fem_options_validate(&o, 0, err); /* the 3D limits are checked when a 3D impact runs */
 }
 
 /* rf_impact_solve with the FE warning (see solve_fem). */
-static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *in, rf_impact_output *out,
-                       char *warning, rf_error *err)
+static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, const rf_impact_input *in,
+                       rf_impact_output *out, char *warning, rf_error *err)
 {
     if (warning)
         warning[0] = '\0';
-    rf_status st = check_spec(spec, err);
+    rf_status st = rf_impact_model_spec_validate(spec, err);
     if (st == RF_OK)
         st = rf_impact_input_validate(in, err);
     if (st != RF_OK) {
-        rf_impact_output_clear_(out);
+        rf_impact_output_clear(out);
         return st;
     }
     switch (spec->solver) {
@@ -145,14 +110,14 @@ static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *
             rf_impact_output h;
             st = rf_impact_hunter_A(in, spec->hunter_coefficient, &h, err);
             if (st != RF_OK) {
-                rf_impact_output_clear_(out);
+                rf_impact_output_clear(out);
                 return st;
             }
             e_n = h.R_n;
         }
         return rf_impact_rigid(in, e_n, out, err);
     }
-    case RF_IMPACT_FEM: return solve_fem(spec, in, out, warning, err);
+    case RF_IMPACT_FEM: return solve_fem(spec, ws, in, out, warning, err);
     }
     return rf_fail(err, RF_EINTERNAL, "unreachable impact solver");
 }
@@ -160,17 +125,20 @@ static rf_status solve(const rf_impact_model_spec *spec, const rf_impact_input *
 rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
                           rf_impact_output *out, rf_error *err)
 {
-    return solve(spec, in, out, NULL, err);
+    return solve(spec, NULL, in, out, NULL, err);
 }
 
 /* --- the rf_model --- */
 
 typedef struct {
-    rf_impact_model_spec spec;  /* fem_vtk_dir cleared: evaluations must not share a directory */
+    rf_impact_model_spec spec;  /* fem.vtk_dir cleared: evaluations must not share a directory */
     size_t n_params;
     int field[RF_IMPACT_N_PARAMS]; /* index into rf_impact_param_names for each x[i] */
-    /* FE warnings (e.g. reflected waves) of the evaluations so far */
+    /* FE warnings (e.g. reflected waves) of the evaluations so far, and the
+       idle FE workspaces that evaluations (on any worker thread) reuse */
     pthread_mutex_t lock;
+    rf_fem_workspace *idle[64];
+    int n_idle;
     size_t evaluations, warned;
     char first_warning[RF_FEM_WARNING_MAX];
 } impact_ctx;
@@ -178,9 +146,37 @@ typedef struct {
 static void ctx_destroy(void *p)
 {
     impact_ctx *c = p;
-    if (c)
+    if (c) {
+        for (int k = 0; k < c->n_idle; k++)
+            rf_fem_workspace_free(c->idle[k]);
         pthread_mutex_destroy(&c->lock);
+    }
     free(c);
+}
+
+/* An idle workspace (or a new one; NULL if out of memory: the solver then
+ * allocates its own), and its return after the evaluation. */
+static rf_fem_workspace *workspace_take(impact_ctx *c)
+{
+    rf_fem_workspace *ws = NULL;
+    pthread_mutex_lock(&c->lock);
+    if (c->n_idle > 0)
+        ws = c->idle[--c->n_idle];
+    pthread_mutex_unlock(&c->lock);
+    return ws ? ws : rf_fem_workspace_alloc();
+}
+
+static void workspace_give(impact_ctx *c, rf_fem_workspace *ws)
+{
+    if (!ws)
+        return;
+    pthread_mutex_lock(&c->lock);
+    if (c->n_idle < (int)(sizeof c->idle / sizeof c->idle[0])) {
+        c->idle[c->n_idle++] = ws;
+        ws = NULL;
+    }
+    pthread_mutex_unlock(&c->lock);
+    rf_fem_workspace_free(ws);
 }
 
 static void note_evaluation(impact_ctx *c, const char *warning)
@@ -242,7 +238,10 @@ static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
         return rf_fail(err, RF_EMODEL, "impact model: %s", local.msg);
     rf_impact_output out;
     char warning[RF_FEM_WARNING_MAX];
-    st = solve(&c->spec, &in, &out, c->spec.solver == RF_IMPACT_FEM ? warning : NULL, &local);
+    const int fem = c->spec.solver == RF_IMPACT_FEM;
+    rf_fem_workspace *ws = fem ? workspace_take(c) : NULL;
+    st = solve(&c->spec, ws, &in, &out, fem ? warning : NULL, &local);
+    workspace_give(c, ws);
     if (st == RF_OK && c->spec.solver == RF_IMPACT_FEM)
         note_evaluation(c, warning);
     if (st != RF_OK)
@@ -283,10 +282,22 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
     if (s->solver == RF_IMPACT_RIGID)
         append(buf, cap, &len, isnan(s->e_n) ? " e_n=hunter" : " e_n=%.17g", s->e_n);
-    if (s->solver == RF_IMPACT_FEM)
-        append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
-               rf_impact_fem_refinement_(s, 0), rf_impact_fem_refinement_(s, 1), s->fem_domain_factor,
-               rf_impact_boundary_name(s->fem_boundary), s->fem_threads);
+    if (s->solver == RF_IMPACT_FEM) {
+        if (s->fem.domain_factor > 0)
+            append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
+                   rf_fem_refinement(&s->fem, 0), rf_fem_refinement(&s->fem, 1), s->fem.domain_factor,
+                   rf_fem_boundary_name(s->fem.boundary), s->fem.threads);
+        else
+            append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=auto domain_margin=%.17g domain_min=%.17g boundary=%s threads=%d",
+                   rf_fem_refinement(&s->fem, 0), rf_fem_refinement(&s->fem, 1), RF_FEM_DOMAIN_MARGIN,
+                   RF_FEM_DOMAIN_MIN, rf_fem_boundary_name(s->fem.boundary), s->fem.threads);
+        const rf_fem_options *o = &s->fem;
+        append(buf, cap, &len,
+               " boulder_mesh_ratio=%.17g core_factor=%.17g grading=%.17g dt_safety=%.17g end_time=%.17g"
+               " duration_threshold=%.17g max_elements=%ld kernels=%d,%d",
+               o->boulder_mesh_ratio, o->core_factor, o->grading, o->dt_safety, o->end_time,
+               o->duration_threshold, o->max_elements, (int)o->kernel[0], (int)o->kernel[1]);
+    }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
            " slope_density=%.17g boulder_E=%.17g slope_E=%.17g boulder_poisson=%.17g"
@@ -304,14 +315,9 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     if (!spec || !model || (n_params && !param_names))
         return rf_fail(err, RF_EINTERNAL, "rf_impact_model_create: NULL argument");
     memset(model, 0, sizeof *model);
-    rf_status st = check_spec(spec, err);
+    rf_status st = rf_impact_model_spec_validate(spec, err);
     if (st != RF_OK)
         return st;
-#ifndef RF_HAVE_FEM
-    if (spec->solver == RF_IMPACT_FEM)
-        return rf_fail(err, RF_EINVAL, "impact model: FE solver not built (rockfuzz/fem.h is "
-                                       "missing); use solver hertz, hunter or rigid");
-#endif
     if (n_params > RF_IMPACT_N_PARAMS)
         return rf_fail(err, RF_EINVAL, "impact model: %zu parameters given, at most %d distinct "
                                        "ones exist", n_params, RF_IMPACT_N_PARAMS);
@@ -320,7 +326,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
         return rf_fail(err, RF_ENOMEM, "out of memory for the impact model");
     pthread_mutex_init(&c->lock, NULL);
     c->spec = *spec;
-    c->spec.fem_vtk_dir = NULL;
+    c->spec.fem.vtk_dir = NULL;
     for (size_t i = 0; i < n_params; i++) {
         int found = -1;
         for (int k = 0; k < RF_IMPACT_N_PARAMS; k++)
@@ -370,7 +376,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     model->warnings = impact_warnings;
     model->ctx = c;
     model->destroy = ctx_destroy;
-    model->threads_per_eval = spec->solver == RF_IMPACT_FEM ? spec->fem_threads : 1;
+    model->threads_per_eval = spec->solver == RF_IMPACT_FEM && spec->fem.threads > 1 ? spec->fem.threads : 1;
     st = rf_model_init_outputs(model, RF_IMPACT_N_OUTPUTS, rf_impact_output_names,
                                rf_impact_output_units, err);
     if (st == RF_OK) {

@@ -1,0 +1,272 @@
+/* fem_contact.c - contact of the axisymmetric solver: node-to-segment pairs
+ * (boulder surface nodes on slope surface segments, small sliding, the
+ * slope's undeformed normal), forward-increment Lagrange multipliers
+ * (Carpenter, Taylor & Katona 1991, IJNME 32:103): the multipliers lambda_n
+ * >= 0 are the forces at step n that make the predicted gaps at n+1 exactly
+ * non-negative, a small linear complementarity problem over the pairs near
+ * contact solved by an active set with dense Cholesky.  They add no
+ * compliance and do not restrict dt.  Frictionless. */
+#include "fem_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Dense Cholesky solve of A x = b (n x n, A overwritten).  Returns 0 on success. */
+static int cholesky_solve(double *A, double *b, int n)
+{
+    for (int j = 0; j < n; j++) {
+        double d = A[j * n + j];
+        for (int k = 0; k < j; k++)
+            d -= A[j * n + k] * A[j * n + k];
+        if (!(d > 0))
+            return -1;
+        d = sqrt(d);
+        A[j * n + j] = d;
+        for (int i = j + 1; i < n; i++) {
+            double s = A[i * n + j];
+            for (int k = 0; k < j; k++)
+                s -= A[i * n + k] * A[j * n + k];
+            A[i * n + j] = s / d;
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        double s = b[i];
+        for (int k = 0; k < i; k++)
+            s -= A[i * n + k] * b[k];
+        b[i] = s / A[i * n + i];
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        double s = b[i];
+        for (int k = i + 1; k < n; k++)
+            s -= A[k * n + i] * b[k];
+        b[i] = s / A[i * n + i];
+    }
+    return 0;
+}
+
+static double pair_aij(const contact_pair *a, const contact_pair *b, const double *invm)
+{
+    double s = 0;
+    for (int p = 0; p < 3; p++)
+        for (int q = 0; q < 3; q++)
+            if (a->dof[p] == b->dof[q])
+                s += a->c[p] * b->c[q] * invm[a->dof[p]];
+    return s;
+}
+
+/* Solve the contact LCP for the predicted displacements u; writes lambda. */
+static rf_status contact_solve(fem_contact *C, const double *u, const double *invm, double dt, rf_error *err)
+{
+    int nc = 0, na = 0;
+    for (long i = 0; i < C->npairs; i++) {
+        const contact_pair *p = C->pair + i;
+        double g = p->g0 + p->c[0] * u[p->dof[0]] + p->c[1] * u[p->dof[1]] + p->c[2] * u[p->dof[2]];
+        C->gpred[i] = g;
+        C->lambda[i] = 0;
+        if (g < C->band) {
+            C->cand[nc++] = (int)i;
+            if (g < 0)
+                C->active[na++] = (int)i;
+        }
+    }
+    double dt2 = dt * dt;
+    for (int iter = 0; iter < 200 && na > 0; iter++) {
+        for (int a = 0; a < na; a++) {
+            const contact_pair *pa = C->pair + C->active[a];
+            for (int b = 0; b <= a; b++) {
+                double v = dt2 * pair_aij(pa, C->pair + C->active[b], invm);
+                C->A[a * na + b] = C->A[b * na + a] = v;
+            }
+            C->rhs[a] = -C->gpred[C->active[a]];
+        }
+        if (cholesky_solve(C->A, C->rhs, na) != 0)
+            return rf_fail(err, RF_EINTERNAL, "fem contact: singular contact matrix (%d pairs)", na);
+        int neg = 0;
+        for (int a = 0; a < na; a++)
+            if (C->rhs[a] < 0)
+                neg = 1;
+        if (neg) { /* drop pairs in tension */
+            int k = 0;
+            for (int a = 0; a < na; a++)
+                if (C->rhs[a] >= 0)
+                    C->active[k++] = C->active[a];
+            na = k;
+            continue;
+        }
+        /* displacement corrections, then check the inactive candidates */
+        for (int a = 0; a < na; a++) {
+            const contact_pair *p = C->pair + C->active[a];
+            C->lambda[C->active[a]] = C->rhs[a];
+            for (int q = 0; q < 3; q++)
+                C->du[p->dof[q]] += dt2 * invm[p->dof[q]] * p->c[q] * C->rhs[a];
+        }
+        int added = 0;
+        for (int k = 0; k < nc; k++) {
+            int i = C->cand[k];
+            if (C->lambda[i] > 0)
+                continue;
+            const contact_pair *p = C->pair + i;
+            double g = C->gpred[i] + p->c[0] * C->du[p->dof[0]] + p->c[1] * C->du[p->dof[1]] +
+                       p->c[2] * C->du[p->dof[2]];
+            if (g < -C->tol) {
+                int in = 0;
+                for (int a = 0; a < na; a++)
+                    in |= C->active[a] == i;
+                if (!in)
+                    C->active[na++] = i, added = 1;
+            }
+        }
+        for (int k = 0; k < nc; k++) { /* clean scratch */
+            const contact_pair *p = C->pair + C->cand[k];
+            for (int q = 0; q < 3; q++)
+                C->du[p->dof[q]] = 0;
+        }
+        if (!added)
+            return RF_OK;
+        for (int k = 0; k < nc; k++)
+            C->lambda[C->cand[k]] = 0;
+    }
+    if (na > 0)
+        return rf_fail(err, RF_EINTERNAL, "fem contact: active set did not settle");
+    return RF_OK;
+}
+
+void fem_contact_free(fem_contact *C)
+{
+    free(C->pair), free(C->gpred), free(C->lambda), free(C->active), free(C->cand), free(C->A), free(C->rhs);
+    free(C->du), free(C->gvo);
+    *C = (fem_contact){0};
+}
+
+/* Pair every boulder surface node below d/2 with the slope segment under it. */
+rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err)
+{
+    *C = (fem_contact){0};
+    const size_t nb = (size_t)mesh->n_bsurf + 1;
+    C->pair = malloc(nb * sizeof *C->pair);
+    C->gpred = calloc(nb, sizeof *C->gpred);
+    C->lambda = calloc(nb, sizeof *C->lambda);
+    C->active = malloc(nb * sizeof *C->active);
+    C->cand = malloc(nb * sizeof *C->cand);
+    C->du = calloc((size_t)ndof, sizeof *C->du);
+    if (!C->pair || !C->gpred || !C->lambda || !C->active || !C->cand || !C->du)
+        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+    for (long k = 0; k < mesh->n_bsurf; k++) {
+        int s = mesh->bsurf[k];
+        double rs = mesh->r[s];
+        if (mesh->z[s] > 0.5 * d || rs >= mesh->r[mesh->ssurf[mesh->n_ssurf - 1]])
+            continue;
+        long j = 0;
+        while (j + 2 < mesh->n_ssurf && mesh->r[mesh->ssurf[j + 1]] <= rs)
+            j++;
+        int m1 = mesh->ssurf[j], m2 = mesh->ssurf[j + 1];
+        double xi = (rs - mesh->r[m1]) / (mesh->r[m2] - mesh->r[m1]);
+        contact_pair *p = C->pair + C->npairs++;
+        p->dof[0] = 2 * s + 1, p->dof[1] = 2 * m1 + 1, p->dof[2] = 2 * m2 + 1;
+        p->rdof[0] = 2 * s, p->rdof[1] = 2 * m1, p->rdof[2] = 2 * m2;
+        p->c[0] = 1, p->c[1] = -(1 - xi), p->c[2] = -xi;
+        p->g0 = mesh->z[s] - ((1 - xi) * mesh->z[m1] + xi * mesh->z[m2]);
+        p->r = rs;
+    }
+    C->A = malloc((size_t)C->npairs * C->npairs * sizeof *C->A + sizeof(double));
+    C->rhs = malloc(((size_t)C->npairs + 1) * sizeof *C->rhs);
+    C->gvo = malloc(((size_t)C->npairs + 1) * sizeof *C->gvo);
+    if (!C->A || !C->rhs || !C->gvo)
+        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+    return RF_OK;
+}
+
+/* G v_{n-1/2} of every pair, kept for the contact work. */
+void fem_contact_begin(fem_contact *C, const double *v)
+{
+    for (long i = 0; i < C->npairs; i++) {
+        const contact_pair *p = C->pair + i;
+        C->gvo[i] = p->c[0] * v[p->dof[0]] + p->c[1] * v[p->dof[1]] + p->c[2] * v[p->dof[2]];
+    }
+}
+
+/* Multipliers for the predicted u, their corrections of u and v, the
+ * contact work lambda' G (v_{n+1/2} + v_{n-1/2}) dt / 2; returns the total
+ * contact force in *Fc. */
+rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double *u, double *v, double *Fc,
+                           rf_error *err)
+{
+    rf_status st = contact_solve(C, u, invm, dt, err);
+    if (st != RF_OK)
+        return st;
+    double F = 0;
+    for (long i = 0; i < C->npairs; i++) {
+        if (C->lambda[i] <= 0)
+            continue;
+        const contact_pair *p = C->pair + i;
+        for (int q = 0; q < 3; q++) {
+            double dv = dt * invm[p->dof[q]] * p->c[q] * C->lambda[i];
+            v[p->dof[q]] += dv;
+            u[p->dof[q]] += dt * dv;
+        }
+        F += C->lambda[i];
+    }
+    for (long i = 0; i < C->npairs; i++) {
+        if (C->lambda[i] <= 0)
+            continue;
+        const contact_pair *p = C->pair + i;
+        double gvn = 0;
+        for (int q = 0; q < 3; q++)
+            gvn += p->c[q] * v[p->dof[q]];
+        C->work += C->lambda[i] * (gvn + C->gvo[i]) * dt / 2;
+    }
+    *Fc = F;
+    return RF_OK;
+}
+
+/* Radius of the contact from the outermost closed pair kout and the gaps of
+ * the next two pairs: gap ~ (r - a)^(3/2) outside a Hertz contact, so
+ * g^(2/3) is extrapolated linearly to zero. */
+static double contact_radius(const fem_contact *C, long kout)
+{
+    double rad = C->pair[kout].r;
+    long k1 = -1, k2 = -1;
+    for (long i = 0; i < C->npairs; i++) {
+        double ri = C->pair[i].r;
+        if (ri <= rad)
+            continue;
+        if (k1 < 0 || ri < C->pair[k1].r)
+            k2 = k1, k1 = i;
+        else if (k2 < 0 || ri < C->pair[k2].r)
+            k2 = i;
+    }
+    if (k1 >= 0 && k2 >= 0 && C->pair[k2].r < C->pair[k1].r) {
+        long t2 = k1;
+        k1 = k2, k2 = t2;
+    }
+    if (k1 >= 0 && k2 >= 0) {
+        double g1 = pow(fmax(C->gpred[k1], 0), 2.0 / 3), g2 = pow(fmax(C->gpred[k2], 0), 2.0 / 3);
+        double r1 = C->pair[k1].r, r2 = C->pair[k2].r;
+        if (g2 > g1) {
+            double a = r1 - g1 * (r2 - r1) / (g2 - g1);
+            rad = fmin(fmax(a, rad), r1);
+        }
+    }
+    return rad;
+}
+
+/* Gaps at n+1: largest penetration and radial slip so far, contact radius. */
+double fem_contact_measure(fem_contact *C, const double *u)
+{
+    long kout = -1;
+    for (long i = 0; i < C->npairs; i++) {
+        const contact_pair *p = C->pair + i;
+        double g = p->g0 + p->c[0] * u[p->dof[0]] + p->c[1] * u[p->dof[1]] + p->c[2] * u[p->dof[2]];
+        if (-g > C->pen_max)
+            C->pen_max = -g;
+        C->gpred[i] = g;
+        if (C->lambda[i] > 0) {
+            double slip = fabs(u[p->rdof[0]] + p->c[1] * u[p->rdof[1]] + p->c[2] * u[p->rdof[2]]);
+            if (slip > C->slip_max)
+                C->slip_max = slip;
+            if (kout < 0 || p->r > C->pair[kout].r)
+                kout = i;
+        }
+    }
+    return kout >= 0 ? contact_radius(C, kout) : 0;
+}

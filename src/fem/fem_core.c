@@ -1,0 +1,227 @@
+/* fem_core.c - the stages both FE solvers share (see fem_core.h): the
+ * workspace pool, the time step, and the run account (time span and stop
+ * test, contact-force record and duration, maxima, energy-closure check,
+ * sampled history, warnings, the common outputs). */
+#include "fem_core.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void *fem_pool_get(fem_pool *p, int slot, size_t bytes, int zero)
+{
+    if (bytes == 0)
+        bytes = 1;
+    if (p->cap[slot] < bytes) {
+        free(p->ptr[slot]);
+        p->ptr[slot] = malloc(bytes);
+        p->cap[slot] = p->ptr[slot] ? bytes : 0;
+        if (!p->ptr[slot])
+            return NULL;
+    }
+    if (zero)
+        memset(p->ptr[slot], 0, bytes);
+    return p->ptr[slot];
+}
+
+void fem_pool_free(fem_pool *p)
+{
+    for (int k = 0; k < FEM_POOL_SLOTS; k++)
+        free(p->ptr[k]), p->ptr[k] = NULL, p->cap[k] = 0;
+}
+
+rf_fem_workspace *rf_fem_workspace_alloc(void)
+{
+    return calloc(1, sizeof(rf_fem_workspace));
+}
+
+void rf_fem_workspace_free(rf_fem_workspace *ws)
+{
+    if (!ws)
+        return;
+    fem_pool_free(&ws->axi);
+    fem_pool_free(&ws->solid);
+    free(ws);
+}
+
+double fem_time_step(double lambda_max, double safety, double *dt_bound)
+{
+    *dt_bound = 2 / sqrt(lambda_max);
+    return safety * *dt_bound;
+}
+
+rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, double dt, double t_h, int record,
+                        int ncol, rf_error *err)
+{
+    memset(r, 0, sizeof *r);
+    r->who = who;
+    r->dt = dt, r->t_h = t_h, r->end_time = o->end_time;
+    r->t_min = o->end_time > 0 ? o->end_time : 1.3 * t_h;
+    r->t_max = o->end_time > 0 ? o->end_time : 3.0 * t_h;
+    r->steps_estimate = (long)ceil(r->t_min / dt);
+    r->stride = o->history_stride > 0 ? o->history_stride : (int)(r->steps_estimate / 5000 + 1);
+    r->record = record;
+    r->series.ncol = ncol;
+    r->force_cap = r->steps_estimate + 16;
+    r->force = malloc((size_t)r->force_cap * sizeof *r->force);
+    if (!r->force)
+        return rf_fail(err, RF_ENOMEM, "%s: out of memory", who);
+    return RF_OK;
+}
+
+static int force_record(fem_run *r, long n, double value)
+{
+    if (n >= r->force_cap) {
+        long grown = 2 * r->force_cap > n ? 2 * r->force_cap : n + 1;
+        double *p = realloc(r->force, (size_t)grown * sizeof *p);
+        if (!p)
+            return -1;
+        r->force = p;
+        r->force_cap = grown;
+    }
+    r->force[n] = value;
+    return 0;
+}
+
+static int series_push(fem_series *s, const double *v)
+{
+    if (s->n == s->cap) {
+        size_t cap = s->cap ? 2 * s->cap : 1024;
+        for (int k = 0; k < s->ncol; k++) {
+            double *p = realloc(s->col[k], cap * sizeof *p);
+            if (!p)
+                return -1;
+            s->col[k] = p;
+        }
+        s->cap = cap;
+    }
+    for (int k = 0; k < s->ncol; k++)
+        s->col[k][s->n] = v[k];
+    s->n++;
+    return 0;
+}
+
+rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
+                          const double *row, rf_error *err)
+{
+    const double t = (double)n * r->dt;
+    if (force_record(r, n, Fc))
+        return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
+    if (Fc > 0) {
+        if (!r->in_contact)
+            r->episodes++;
+        r->in_contact = 1;
+        r->t_last_contact = t;
+    } else
+        r->in_contact = 0;
+    if (Fc > r->F_max)
+        r->F_max = Fc, r->a_at_Fmax = rad;
+    if (comp > r->comp_max)
+        r->comp_max = comp;
+    if (!isfinite(closure) || fabs(closure) > 10 * ke0)
+        return rf_fail(err, RF_EMODEL,
+                       "%s: the solution diverged at t = %.4g s (energy %.3g x KE0); time step %.3g s is unstable",
+                       r->who, t, closure / ke0, r->dt);
+    if (fabs(closure) > r->closure_max)
+        r->closure_max = fabs(closure);
+    if (r->record && n % r->stride == 0 && series_push(&r->series, row) != 0)
+        return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
+    return RF_OK;
+}
+
+int fem_run_stop(const fem_run *r, long n)
+{
+    const double tn = (double)(n + 1) * r->dt;
+    if (tn >= r->t_max)
+        return 1;
+    if (r->end_time > 0)
+        return tn >= r->end_time;
+    return tn >= r->t_min && !r->in_contact && tn - r->t_last_contact > 0.1 * r->t_h;
+}
+
+void fem_contact_window(const double *force, long nsteps, double dt, double threshold, double *t_first,
+                        double *t_last)
+{
+    double t0 = -1, t1 = -1;
+    for (long k = 0; k < nsteps; k++)
+        if (force[k] > threshold) {
+            if (t0 < 0) {
+                t0 = (double)k * dt;
+                if (k > 0)
+                    t0 -= dt * fmin(1, (force[k] - threshold) / (force[k] - force[k - 1]));
+            }
+            t1 = (double)k * dt;
+            if (k + 1 < nsteps && k > 0 && force[k - 1] > force[k])
+                t1 += dt * fmin(1, (force[k] - threshold) / (force[k - 1] - force[k]));
+        }
+    *t_first = t0 < 0 ? 0 : t0;
+    *t_last = t1;
+}
+
+/* Contact duration: first to last nonzero multiplier (exact zeros off
+ * contact; the threshold only guards round-off). */
+void fem_run_outputs(const fem_run *r, long nsteps, double duration_threshold, double ke0, double force_factor,
+                     long nodes, long elements, rf_impact_output *out)
+{
+    double t0, t1;
+    fem_contact_window(r->force, nsteps, r->dt, duration_threshold * r->F_max, &t0, &t1);
+    memset(out, 0, sizeof *out);
+    out->contact_force_max = r->F_max * force_factor;
+    out->compression_max = r->comp_max;
+    out->contact_duration = t1 - t0;
+    out->contact_radius = r->a_at_Fmax;
+    out->energy_error = r->closure_max / ke0;
+    out->nodes = (double)nodes;
+    out->elements = (double)elements;
+    out->steps = (double)nsteps;
+}
+
+void fem_run_history(fem_run *r, rf_fem_history *hist)
+{
+    double **dst[12] = {&hist->t,           &hist->contact_force,   &hist->compression,   &hist->contact_radius,
+                        &hist->kinetic_boulder, &hist->strain_boulder, &hist->kinetic_slope, &hist->strain_slope,
+                        &hist->contact_work, &hist->absorbed,       &hist->closure,       &hist->boulder_velocity};
+    hist->n = r->series.n;
+    for (int k = 0; k < 12; k++)
+        *dst[k] = r->series.col[k], r->series.col[k] = NULL;
+}
+
+void fem_run_warnings(const fem_run *r, int fixed_outer, double L, double c_p, double r0, char *buf, size_t size,
+                      const char *extra)
+{
+    size_t wl = 0;
+    buf[0] = 0;
+    if (fixed_outer && 2 * L / c_p < r->t_h)
+        wl += (size_t)snprintf(buf + wl, size - wl,
+                               "P waves reflected by the fixed boundary return after 2L/c_p = %.3g ms, before the "
+                               "Hertz contact ends (%.3g ms): R_n includes reflected energy; use the automatic "
+                               "domain (domain_factor 0, here %.0f), or absorbing boundaries. ",
+                               2e3 * L / c_p, 1e3 * r->t_h,
+                               fmax(RF_FEM_DOMAIN_MIN, ceil(0.5 * RF_FEM_DOMAIN_MARGIN * c_p * r->t_h / r0)));
+    if (r->episodes > 1 && wl < size)
+        wl += (size_t)snprintf(buf + wl, size - wl, "Contact closed %d times (re-contact after separation). ",
+                               r->episodes);
+    if (extra && extra[0] && wl < size)
+        wl += (size_t)snprintf(buf + wl, size - wl, "%s", extra);
+    if (r->end_time > 0 && r->in_contact && wl < size)
+        snprintf(buf + wl, size - wl, "Still in contact at end_time: rebound velocity is not final. ");
+}
+
+void fem_run_free(fem_run *r)
+{
+    free(r->force);
+    for (int k = 0; k < FEM_SERIES_MAX; k++)
+        free(r->series.col[k]);
+    memset(r, 0, sizeof *r);
+}
+
+uint64_t fem_hash(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 1099511628211ULL;
+    }
+    return h;
+}

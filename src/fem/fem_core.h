@@ -1,0 +1,101 @@
+/* fem_core.h - the stages of the explicit-dynamics impact run that the
+ * axisymmetric (fem_solver.c) and the 3D (fem3d_solver.c) solvers share:
+ *
+ *   sizing     rf_impact_hertz_reference, rf_fem_refinement, rf_fem_domain_factor (fem_options.c)
+ *   workspace  fem_pool: reusable buffers of a solver, owned by rf_fem_workspace
+ *   time step  fem_time_step: dt from the largest element eigenvalue
+ *   run        fem_run: the time span and stop test, the contact-force record,
+ *              the maxima, the energy-closure check, the sampled history
+ *   outputs    fem_run_outputs (peak force, compression, duration, radius,
+ *              energy error, counts), fem_run_history, fem_run_warnings
+ *              (reflection check, re-contact, unfinished contact)
+ *
+ * Each solver keeps what its geometry needs (mesher, element, contact, the
+ * rigid-body extraction) and calls these stages in the same order; the
+ * material enters through fem_kernel.h. */
+#ifndef ROCKFUZZ_FEM_CORE_H
+#define ROCKFUZZ_FEM_CORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rockfuzz/fem.h"
+
+/* --- workspace: growable buffers addressed by a solver's slot number --- */
+
+#define FEM_POOL_SLOTS 48
+typedef struct {
+    void *ptr[FEM_POOL_SLOTS];
+    size_t cap[FEM_POOL_SLOTS];
+} fem_pool;
+
+/* A buffer of at least `bytes` for slot (kept across calls: a worker that
+ * reuses its workspace allocates only when a mesh grows), zeroed if zero. */
+void *fem_pool_get(fem_pool *p, int slot, size_t bytes, int zero);
+void fem_pool_free(fem_pool *p);
+
+struct rf_fem_workspace {
+    fem_pool axi, solid; /* the axisymmetric and the 3D solver's buffers */
+};
+
+/* --- time step --- */
+
+/* dt = safety * 2 / sqrt(lambda_max) (central differences, undamped). */
+double fem_time_step(double lambda_max, double safety, double *dt_bound);
+
+/* --- the run account --- */
+
+#define FEM_SERIES_MAX 13
+typedef struct {
+    size_t n, cap;
+    int ncol;
+    double *col[FEM_SERIES_MAX];
+} fem_series;
+
+typedef struct {
+    const char *who;          /* "fem" or "fem3d", for messages */
+    double dt, t_h, end_time; /* time step, Hertz duration, requested end (0 = automatic) */
+    double t_min, t_max;      /* the run lasts at least t_min, at most t_max */
+    int stride;               /* history sample every stride steps */
+    int record;               /* keep the sampled history */
+    long steps_estimate;
+    /* contact force of every step */
+    double *force;
+    long force_cap;
+    /* maxima and contact episodes */
+    double F_max, a_at_Fmax, comp_max, closure_max, t_last_contact;
+    int episodes, in_contact;
+    fem_series series;
+} fem_run;
+
+/* Start the account: time span from the options and the Hertz duration. */
+rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, double dt, double t_h, int record,
+                        int ncol, rf_error *err);
+/* Step n (time t = n dt) done: total contact force Fc, contact radius rad,
+ * boulder compression comp, energy closure error (absolute, J) against ke0;
+ * row (ncol values) is sampled into the history.  Fails on divergence. */
+rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
+                          const double *row, rf_error *err);
+/* 1 when the run ends after step n. */
+int fem_run_stop(const fem_run *r, long n);
+/* Fill the outputs every FE model defines; nsteps steps were made. */
+void fem_run_outputs(const fem_run *r, long nsteps, double duration_threshold, double ke0, double force_factor,
+                     long nodes, long elements, rf_impact_output *out);
+/* Move the first 12 sampled columns into hist (the series keeps the rest). */
+void fem_run_history(fem_run *r, rf_fem_history *hist);
+/* The warnings: reflection (fixed boundary and 2 L / c_p < t_c), re-contact,
+ * contact at end_time; extra (may be NULL) is appended. */
+void fem_run_warnings(const fem_run *r, int fixed_outer, double L, double c_p, double r0, char *buf, size_t size,
+                      const char *extra);
+void fem_run_free(fem_run *r);
+
+/* First to last step whose force exceeds threshold, ends interpolated
+ * linearly within the neighbouring step; *t_first = 0, *t_last = -1 if none. */
+void fem_contact_window(const double *force, long nsteps, double dt, double threshold, double *t_first,
+                        double *t_last);
+
+/* FNV-1a over n bytes, continuing from h (start with FEM_HASH_SEED). */
+#define FEM_HASH_SEED 1469598103934665603ULL
+uint64_t fem_hash(uint64_t h, const void *data, size_t n);
+
+#endif

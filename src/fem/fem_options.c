@@ -1,0 +1,145 @@
+/* fem_options.c - the settings of the FE solvers: their one default (and the
+ * 3D model's own defaults), their one validation (a table of rules, the few
+ * that differ in 3D marked), the resolution of the automatic settings
+ * (refinement, domain radius), and the choice between the axisymmetric and
+ * the 3D model. */
+#include "rockfuzz/fem3d.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+void rf_fem_options_default(rf_fem_options *opt)
+{
+    memset(opt, 0, sizeof *opt);
+    opt->refinement = 0;     /* automatic: RF_FEM_REFINEMENT_AXI / _3D */
+    opt->domain_factor = 0;  /* automatic: no reflection into the contact */
+    opt->boundary = RF_FEM_BOUNDARY_FIXED;
+    opt->end_time = 0;
+    opt->threads = 1;
+    opt->vtk_dir = NULL;
+    opt->boulder_mesh_ratio = 1;
+    opt->core_factor = 2.5;
+    opt->grading = 1.15;
+    opt->dt_safety = 0.9;
+    opt->vtk_frames = 60;
+    opt->history_stride = 0;
+    opt->max_elements = 2000000;
+    opt->duration_threshold = 1e-6;
+}
+
+void rf_fem3d_options_default(rf_fem3d_options *o3)
+{
+    memset(o3, 0, sizeof *o3);
+    o3->full_model = 0;
+    o3->core_factor = 1.3;
+    o3->elongation = 1.0;
+    o3->layer_aspect = 1.6;
+    o3->boulder_inner = 4.0;
+}
+
+static const char *const boundary_names[] = {"fixed", "absorbing"};
+
+const char *rf_fem_boundary_name(rf_fem_boundary b)
+{
+    return (unsigned)b < 2 ? boundary_names[b] : "unknown";
+}
+
+rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *err)
+{
+    for (int k = 0; k < 2; k++)
+        if (name && !strcmp(name, boundary_names[k])) {
+            *b = (rf_fem_boundary)k;
+            return RF_OK;
+        }
+    return rf_fail(err, RF_EINVAL, "boundary '%s' is unknown (accepted: fixed, absorbing)", name ? name : "(null)");
+}
+
+/* Closed ranges of the real-valued settings; lo3/hi3 are the 3D limits. */
+static const struct {
+    const char *name;
+    size_t offset;
+    double lo, hi, lo3, hi3;
+    int zero_ok; /* 0 means "automatic" */
+    const char *why;
+} rules[] = {
+    {"refinement", offsetof(rf_fem_options, refinement), 2, 400, 2, 100, 1,
+     "(Hertz contact radius / element size; 0 = automatic, 10 or more for accuracy)"},
+    {"domain_factor", offsetof(rf_fem_options, domain_factor), 3, 1e4, 3, 1e4, 1,
+     "(slope hemisphere radius / r0; 0 = automatic)"},
+    {"boulder_mesh_ratio", offsetof(rf_fem_options, boulder_mesh_ratio), 0.25, 1.25, 0.25, 4, 0,
+     "(the boulder surface carries the contact nodes and must not be much coarser than the slope)"},
+    {"core_factor", offsetof(rf_fem_options, core_factor), 1.5, 10, 1.5, 10, 0, "(fine zone / a)"},
+    {"grading", offsetof(rf_fem_options, grading), 1, 2, 1, 2, 0, "(element-size growth)"},
+    {"dt_safety", offsetof(rf_fem_options, dt_safety), 1e-6, 4, 1e-6, 1, 0, "(time step / eigenvalue bound)"},
+    {"end_time", offsetof(rf_fem_options, end_time), 0, INFINITY, 0, INFINITY, 0, "[s] (0 = automatic)"},
+    {"duration_threshold", offsetof(rf_fem_options, duration_threshold), 0, 0.4999999, 0, 0.4999999, 0,
+     "(share of F_max)"},
+};
+
+rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error *err)
+{
+    if (!o)
+        return rf_fail(err, RF_EINVAL, "fem: NULL options");
+    for (size_t k = 0; k < sizeof rules / sizeof rules[0]; k++) {
+        double x = *(const double *)((const char *)o + rules[k].offset);
+        double lo = three_d ? rules[k].lo3 : rules[k].lo, hi = three_d ? rules[k].hi3 : rules[k].hi;
+        if (rules[k].zero_ok && x == 0)
+            continue;
+        if (!(x >= lo && x <= hi) || isnan(x))
+            return rf_fail(err, RF_EINVAL, "fem%s: %s = %g must lie in [%g, %g] %s", three_d ? "3d" : "",
+                           rules[k].name, x, lo, hi, rules[k].why);
+    }
+    if (isinf(o->end_time))
+        return rf_fail(err, RF_EINVAL, "fem: end_time = %g must be finite [s]", o->end_time);
+    if ((unsigned)o->boundary > RF_FEM_BOUNDARY_ABSORBING)
+        return rf_fail(err, RF_EINVAL, "fem: unknown boundary kind %d", (int)o->boundary);
+    if (o->threads < 0)
+        return rf_fail(err, RF_EINVAL, "fem: threads = %d must be >= 0", o->threads);
+    if (o->max_elements < 1)
+        return rf_fail(err, RF_EINVAL, "fem: max_elements = %ld must be >= 1", o->max_elements);
+    for (int b = 0; b < 2; b++)
+        if ((unsigned)o->kernel[b] > RF_FEM_KERNEL_POINTS || (three_d && o->kernel[b] != RF_FEM_KERNEL_STIFFNESS))
+            return rf_fail(err, RF_EINVAL, "fem%s: kernel[%d] = %d is not available%s", three_d ? "3d" : "", b,
+                           (int)o->kernel[b], three_d ? " in 3D (stiffness only)" : "");
+    if (three_d && o->vtk_dir)
+        return rf_fail(err, RF_EINVAL, "fem3d: VTK output is not implemented in 3D yet");
+    return RF_OK;
+}
+
+double rf_fem_refinement(const rf_fem_options *opt, int three_d)
+{
+    if (opt->refinement > 0)
+        return opt->refinement;
+    return three_d ? RF_FEM_REFINEMENT_3D : RF_FEM_REFINEMENT_AXI;
+}
+
+/* Automatic: the P wave reflected at distance L returns to the contact after
+ * 2 L / c_p; it must not arrive before the contact ends (Hertz t_c with a
+ * margin for the finite-body lengthening of the contact). */
+double rf_fem_domain_factor(const rf_fem_options *opt, const rf_impact_input *in)
+{
+    if (opt->domain_factor > 0)
+        return opt->domain_factor;
+    rf_hertz_reference H;
+    rf_wave_speeds w;
+    rf_impact_hertz_reference(in, &H);
+    rf_impact_wave_speeds(in, 1, &w);
+    double L = 0.5 * RF_FEM_DOMAIN_MARGIN * w.p * H.duration;
+    return fmax(RF_FEM_DOMAIN_MIN, ceil(L / in->radius));
+}
+
+int rf_fem_needs_3d(const rf_impact_input *in)
+{
+    if (in->slope_angle != 0.0)
+        return 1;
+    if (!(in->friction > 0.0))
+        return 0;
+    /* Dundurs' second parameter: zero when a normal contact causes no
+     * tangential traction (identical elastic constants, among others). */
+    double g1 = in->boulder_E / (2.0 * (1.0 + in->boulder_poisson));
+    double g2 = in->slope_E / (2.0 * (1.0 + in->slope_poisson));
+    double num = g1 * (1.0 - 2.0 * in->slope_poisson) - g2 * (1.0 - 2.0 * in->boulder_poisson);
+    double den = 2.0 * g1 * (1.0 - in->slope_poisson) + 2.0 * g2 * (1.0 - in->boulder_poisson);
+    return fabs(num / den) > 1e-12;
+}

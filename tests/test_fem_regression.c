@@ -1,0 +1,132 @@
+/* test_fem_regression.c - physics regression of both FE solvers across the
+ * restructuring of issue 8.
+ *
+ * The reference numbers below are NOT an independent method: they are what
+ * the code printed BEFORE the FE core was cut into stages (commit c5bc27a,
+ * Release build, gcc), with explicit settings that do not depend on any
+ * default: fixed boundary, domain factor 10 (the seed paper's model), an
+ * explicit (coarse, to stay fast) refinement.  They guard against a
+ * refactoring that changes the physics: every FE output of the validation set
+ * (axisymmetric 1, 10, 30 m/s; spheroid c = 1.1 m at 10 m/s; 3D at 45 deg
+ * f = 0.6 and 60 deg f = 0.2) must stay within 1e-6 relative.  The accuracy
+ * against Hertz, Hunter and converged meshes is tested elsewhere
+ * (test_fem.c, test_fem3d.c) and documented in docs/validation*.md.
+ *
+ * RF_REGRESSION_PRINT=1 prints the table in the layout of `refs` below. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rockfuzz/fem3d.h"
+
+/* Layering (issue 8): the FE solvers' headers bring in the impact problem
+ * only, never the study side. */
+#if defined(ROCKFUZZ_MODEL_H) || defined(ROCKFUZZ_TM_H) || defined(ROCKFUZZ_STUDY_H) || defined(ROCKFUZZ_RUNNER_H) || \
+    defined(ROCKFUZZ_STORE_H) || defined(ROCKFUZZ_REPORT_H) || defined(ROCKFUZZ_ANALYSIS_H) || defined(ROCKFUZZ_MPI_H)
+#error "rockfuzz/fem.h or fem3d.h includes a model, TM or study header"
+#endif
+
+#define N_FIELDS 15
+
+typedef struct {
+    const char *name;
+    int three_d;
+    double velocity, angle_deg, friction, horizontal_axis, refinement;
+    double value[N_FIELDS];
+} regression_case;
+
+static const char *const field_names[N_FIELDS] = {
+    "contact_force_max", "compression_max", "contact_duration", "contact_radius", "R_n",
+    "R_t", "R_ke", "v_n_after", "v_t_after", "omega_after",
+    "energy_error", "nodes", "elements", "steps", "boulder_mesh_mass"};
+
+/* clang-format off */
+static const regression_case refs[] = {
+#include "fem_regression_refs.inc"
+};
+/* clang-format on */
+
+static void fields(const rf_impact_output *o, const rf_fem_history *h, double v[N_FIELDS])
+{
+    const double f[N_FIELDS] = {o->contact_force_max, o->compression_max, o->contact_duration, o->contact_radius,
+                                o->R_n, o->R_t, o->R_ke, o->v_n_after, o->v_t_after, o->omega_after,
+                                o->energy_error, o->nodes, o->elements, o->steps, h->boulder_mesh_mass};
+    memcpy(v, f, sizeof f);
+}
+
+static void run_case(const regression_case *c, double v[N_FIELDS])
+{
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.velocity = c->velocity;
+    in.slope_angle = c->angle_deg * 3.14159265358979323846 / 180;
+    in.friction = c->friction;
+    in.horizontal_axis = c->horizontal_axis;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.boundary = RF_FEM_BOUNDARY_FIXED;
+    o.domain_factor = 10;
+    o.refinement = c->refinement;
+    rf_impact_output out;
+    rf_fem_history hist;
+    rf_error err = {0};
+    rf_status st = c->three_d ? rf_fem3d_impact_ex(&in, &o, NULL, &out, &hist, NULL, &err)
+                              : rf_fem_impact(&in, &o, &out, &hist, &err);
+    if (st != RF_OK)
+        fprintf(stderr, "%s: %s\n", c->name, err.msg);
+    assert_int_equal(st, RF_OK);
+    fields(&out, &hist, v);
+    rf_fem_history_free(&hist);
+}
+
+/* Relative difference; NaN equals NaN (R_t of a normal impact). */
+static double rel_diff(double a, double ref)
+{
+    if (isnan(a) || isnan(ref))
+        return isnan(a) && isnan(ref) ? 0 : INFINITY;
+    if (ref == 0)
+        return fabs(a);
+    return fabs(a / ref - 1);
+}
+
+static void test_regression(void **state)
+{
+    (void)state;
+    const int print = getenv("RF_REGRESSION_PRINT") != NULL;
+    double worst = 0;
+    for (size_t k = 0; k < sizeof refs / sizeof refs[0]; k++) {
+        const regression_case *c = refs + k;
+        double v[N_FIELDS];
+        run_case(c, v);
+        if (print) {
+            printf("{\"%s\", %d, %g, %g, %g, %g, %g,\n {", c->name, c->three_d, c->velocity, c->angle_deg,
+                   c->friction, c->horizontal_axis, c->refinement);
+            for (int i = 0; i < N_FIELDS; i++)
+                printf("%.17g%s", v[i], i + 1 < N_FIELDS ? ", " : "}},\n");
+            continue;
+        }
+        for (int i = 0; i < N_FIELDS; i++) {
+            double d = rel_diff(v[i], c->value[i]);
+            if (d > worst)
+                worst = d;
+            if (d > 1e-6)
+                printf("# %s %s: %.17g, reference %.17g (rel. diff %.3g)\n", c->name, field_names[i], v[i],
+                       c->value[i], d);
+            assert_true(d <= 1e-6);
+        }
+    }
+    printf("# largest relative difference to the pre-refactoring values: %.3g\n", worst);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_regression)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
