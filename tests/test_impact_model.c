@@ -23,7 +23,7 @@ static rf_impact_model_spec spec_for(rf_impact_solver solver)
     return spec;
 }
 
-static void outputs_of(const rf_impact_output *o, double y[7])
+static void outputs_of(const rf_impact_output *o, double y[RF_IMPACT_N_OUTPUTS])
 {
     y[0] = o->contact_force_max;
     y[1] = o->compression_max;
@@ -32,6 +32,10 @@ static void outputs_of(const rf_impact_output *o, double y[7])
     y[4] = o->R_n;
     y[5] = o->R_t;
     y[6] = o->R_ke;
+    y[7] = o->plastic_work;
+    y[8] = o->penetration_max;
+    y[9] = o->indentation_depth;
+    y[10] = o->equivalent_plastic_strain_max;
 }
 
 static void assert_same(const double *a, const double *b, size_t n)
@@ -96,13 +100,13 @@ static void test_eval_matches_direct(void **state)
         rf_error err = {0};
         assert_int_equal(rf_impact_model_create(&spec, names, 10, &model, &err), RF_OK);
         assert_int_equal(model.n_inputs, 10);
-        assert_int_equal(model.n_outputs, 7);
+        assert_int_equal(model.n_outputs, RF_IMPACT_N_OUTPUTS);
         assert_int_equal(model.threads_per_eval, 1);
         assert_string_equal(model.output_names[0], "contact_force_max");
         assert_string_equal(model.output_units[0], "N");
         assert_string_equal(model.output_names[6], "R_ke");
         assert_string_equal(model.output_units[6], "");
-        double y[7], want[7];
+        double y[RF_IMPACT_N_OUTPUTS], want[RF_IMPACT_N_OUTPUTS];
         assert_int_equal(rf_model_eval(&model, x, y, &err), RF_OK);
         rf_impact_output o;
         if (solvers[s] == RF_IMPACT_HERTZ) {
@@ -117,7 +121,7 @@ static void test_eval_matches_direct(void **state)
             assert_true(isnan(y[0]) && isnan(y[3]));
         }
         outputs_of(&o, want);
-        assert_same(y, want, 7);
+        assert_same(y, want, RF_IMPACT_N_OUTPUTS);
         assert_non_null(strstr(model.identity, rf_impact_solver_name(solvers[s])));
         rf_model_free(&model);
     }
@@ -134,7 +138,7 @@ static void test_rigid_fixed_en_and_identity(void **state)
     rf_model model;
     rf_error err = {0};
     assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
-    double x = 0.2, y[7];
+    double x = 0.2, y[RF_IMPACT_N_OUTPUTS];
     assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_OK);
     assert_true(fabs(y[5] - 0.771) < 6e-4); /* impact_refs 4.1, sliding row */
     assert_true(fabs(y[6] - 0.784) < 6e-4);
@@ -159,7 +163,7 @@ static void test_angle_in_degrees_and_spheroid(void **state)
     rf_model model;
     rf_error err = {0};
     assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
-    double x = 60.0, y[7];
+    double x = 60.0, y[RF_IMPACT_N_OUTPUTS];
     assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_OK);
     rf_impact_input in;
     rf_impact_input_default(&in);
@@ -203,7 +207,7 @@ static void test_errors(void **state)
     /* a fuzzy Poisson's cut reaching 0.5 is a clear model error */
     const char *nu[] = {"boulder_poisson"};
     assert_int_equal(rf_impact_model_create(&spec, nu, 1, &model, &err), RF_OK);
-    double x = 0.5, y[7];
+    double x = 0.5, y[RF_IMPACT_N_OUTPUTS];
     assert_int_equal(rf_model_eval(&model, &x, y, &err), RF_EMODEL);
     assert_non_null(strstr(err.msg, "boulder_poisson = 0.5"));
     x = 0.49;
@@ -247,7 +251,7 @@ static void test_fem_model(void **state)
     assert_int_equal(rf_impact_model_create(&spec, names, 2, &model, &err), RF_OK);
     assert_non_null(strstr(model.identity, "refinement_axi=2 refinement_3d=2 "));
     assert_non_null(strstr(model.identity, "boundary=absorbing"));
-    double x[2] = {10.0, 0.0}, y[7], want[7];
+    double x[2] = {10.0, 0.0}, y[RF_IMPACT_N_OUTPUTS], want[RF_IMPACT_N_OUTPUTS];
     if (rf_model_eval(&model, x, y, &err) != RF_OK)
         fail_msg("FE eval: %s", err.msg);
     rf_fem_options opt;
@@ -258,7 +262,7 @@ static void test_fem_model(void **state)
     rf_impact_output o;
     assert_int_equal(rf_fem_impact(&in, &opt, &o, NULL, &err), RF_OK);
     outputs_of(&o, want);
-    assert_same(y, want, 7);
+    assert_same(y, want, RF_IMPACT_N_OUTPUTS);
     rf_impact_output h;
     assert_int_equal(rf_impact_hertz(&in, &h, &err), RF_OK);
     assert_true(fabs(y[0] / h.contact_force_max - 1) < 0.1);
@@ -275,7 +279,7 @@ static void test_fem_model(void **state)
         fail_msg("3D FE eval: %s", err.msg);
     if (!(fabs(y[5] - 1.0) < 2e-3))
         fail_msg("frictionless 45 deg: R_t = %.6f", y[5]);
-    double normal[7];
+    double normal[RF_IMPACT_N_OUTPUTS];
     double xn[2] = {10.0 * sqrt(0.5), 0.0}; /* V cos 45 deg */
     assert_int_equal(rf_model_eval(&model, xn, normal, &err), RF_OK);
     if (!(fabs(y[4] - normal[4]) < 3e-3))
@@ -291,7 +295,7 @@ static void test_fem_warnings(void **state)
 {
     (void)state;
     const char *names[] = {"velocity"};
-    double x[1] = {10.0}, y[7];
+    double x[1] = {10.0}, y[RF_IMPACT_N_OUTPUTS];
     char text[1024];
     rf_error err = {0};
     for (int kind = 0; kind <= 2; kind++) { /* fixed 10 r0, absorbing 10 r0, default */
@@ -356,7 +360,7 @@ static void *worker(void *p)
 {
     worker_arg *a = p;
     for (int i = 0; i < 2000; i++) {
-        double x[2] = {1.0 + (i % 30), 0.1 * (i % 11)}, y[7];
+        double x[2] = {1.0 + (i % 30), 0.1 * (i % 11)}, y[RF_IMPACT_N_OUTPUTS];
         rf_error err = {0};
         if (rf_model_eval(a->model, x, y, &err) != RF_OK || !(y[4] > 0.9 && y[4] < 1.0))
             a->fails++;

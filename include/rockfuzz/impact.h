@@ -8,11 +8,15 @@
  * Units: SI throughout (m, kg, s, Pa, N, J, rad).  The boulder is a sphere of
  * radius `radius`, or a spheroid with horizontal semi-axis c and vertical
  * semi-axis d (set horizontal_axis > 0; d = radius^3 / c^2 keeps the volume
- * of the sphere of radius `radius`).  The slope is an elastic half-space.
+ * of the sphere of radius `radius`).  The slope is a half-space, elastic by
+ * default; each body may be elasto-plastic (material.h: von Mises for the
+ * boulder and the slope, Drucker-Prager with an optional compaction cap for
+ * the slope; the FE solvers only, axisymmetric model only for now).
  * Velocity is the vertical impact speed; slope_angle tilts the slope. */
 #ifndef ROCKFUZZ_IMPACT_H
 #define ROCKFUZZ_IMPACT_H
 
+#include "rockfuzz/material.h"
 #include "rockfuzz/status.h"
 
 #ifdef __cplusplus
@@ -32,7 +36,21 @@ typedef struct {
     double velocity;         /* vertical impact speed [m/s], > 0 */
     double slope_angle;      /* [rad], 0 = horizontal slope */
     double friction;         /* Coulomb coefficient [-], static = kinetic */
+    /* Materials (docs/materials.md; defaults elastic, the other fields then unused). */
+    rf_material_model boulder_material; /* elastic | von_mises */
+    double boulder_yield;               /* von_mises: initial yield stress Y [Pa] */
+    double boulder_hardening;           /* von_mises: H [Pa], sigma_eq = Y + H eps_p */
+    rf_material_model slope_material;   /* elastic | von_mises | drucker_prager */
+    double slope_yield, slope_hardening; /* von_mises [Pa] */
+    double slope_cohesion;              /* drucker_prager: c [Pa] */
+    double slope_friction_angle;        /* drucker_prager: phi [rad] (degrees in the CLI and studies) */
+    double slope_dilatancy_angle;       /* drucker_prager: psi [rad] in [0, phi] */
+    double slope_cap_pressure;          /* drucker_prager: crush pressure X0 [Pa]; 0 = no cap */
+    double slope_cap_hardening;         /* drucker_prager: compaction modulus H_c [Pa] */
 } rf_impact_input;
+
+/* The constitutive parameters of the boulder (body 0) or the slope (body 1). */
+void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_params *p);
 
 /* Nominal granite of SYSTEM.md: r0 = 1 m, rho 2600, E 68.2 GPa, nu 0.25,
  * 10 m/s, horizontal slope, friction 0. */
@@ -50,6 +68,11 @@ typedef struct {
     double v_n_before, v_t_before, v_n_after, v_t_after; /* [m/s], n along outward slope normal */
     double omega_after;         /* [rad/s] */
     double energy_error;        /* energy closure error / initial KE [-] (0 for analytic models) */
+    /* FE only (0 for elastic bodies; NaN for the analytic models): */
+    double plastic_work;        /* plastic dissipation / initial KE [-] */
+    double penetration_max;     /* deepest position of the boulder's lowest point below the undeformed surface [m] */
+    double indentation_depth;   /* permanent depth of the slope surface at the first-contact point at the end [m] */
+    double equivalent_plastic_strain_max; /* over both bodies [-] */
     double nodes, elements, steps, wall_seconds; /* FE statistics (0 for analytic models) */
 } rf_impact_output;
 

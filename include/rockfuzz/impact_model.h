@@ -50,10 +50,12 @@ rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_err
 rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
                           rf_impact_output *out, rf_error *err);
 
-/* Parameter names a study may bind (slope_angle in DEGREES here), and the
+/* Parameter names a study may bind (slope_angle, slope_friction_angle and
+ * slope_dilatancy_angle in DEGREES here; the material choice itself is
+ * spec->base.boulder_material / slope_material, crisp), and the
  * model outputs in order, with their units. */
-#define RF_IMPACT_N_PARAMS 11
-#define RF_IMPACT_N_OUTPUTS 7
+#define RF_IMPACT_N_PARAMS 20
+#define RF_IMPACT_N_OUTPUTS 11
 extern const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS];
 extern const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS];
 extern const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS];
@@ -61,7 +63,9 @@ extern const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS];
 /* Create the impact model: x[i] is the value of param_names[i] (one of
  * rf_impact_param_names; an unknown or repeated name is RF_EINVAL).  Outputs:
  * contact_force_max [N], compression_max [m], contact_duration [s],
- * contact_radius [m], R_n, R_t, R_ke [-].  eval copies spec->base, overwrites
+ * contact_radius [m], R_n, R_t, R_ke [-], plastic_work [-, fraction of the
+ * initial KE], penetration_max [m], indentation_depth [m],
+ * equivalent_plastic_strain_max [-] (NaN for the analytic solvers).  eval copies spec->base, overwrites
  * the bound inputs, validates them and runs the solver; thread-safe.  Free
  * with rf_model_free. */
 rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *const *param_names,

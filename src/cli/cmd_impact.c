@@ -22,6 +22,7 @@
 typedef enum {
     O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
     O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_DOMAIN, O_THREADS, O_VTK, O_JSON,
+    O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S,
     O_HELP, O_COUNT
 } opt_id;
 
@@ -44,6 +45,17 @@ static const struct {
     {O_V, "velocity", "velocity"},
     {O_ANGLE, "slope-angle", "slope_angle"},
     {O_MU, "friction", "friction"},
+    {O_MAT_B, "boulder-material", "boulder_material"},
+    {O_Y_B, "boulder-yield", "boulder_yield"},
+    {O_H_B, "boulder-hardening", "boulder_hardening"},
+    {O_MAT_S, "slope-material", "slope_material"},
+    {O_Y_S, "slope-yield", "slope_yield"},
+    {O_H_S, "slope-hardening", "slope_hardening"},
+    {O_COH_S, "slope-cohesion", "slope_cohesion"},
+    {O_PHI_S, "slope-friction-angle", "slope_friction_angle"},
+    {O_PSI_S, "slope-dilatancy-angle", "slope_dilatancy_angle"},
+    {O_CAP_S, "slope-cap-pressure", "slope_cap_pressure"},
+    {O_CAPH_S, "slope-cap-hardening", "slope_cap_hardening"},
     {O_SOLVER, "solver", NULL},
     {O_EN, "e-n", NULL},
     {O_HUNTER_A, "hunter-A", NULL},
@@ -64,7 +76,7 @@ static void usage(FILE *f)
         "\n"
         "Simulate one impact of a boulder (sphere, or spheroid with horizontal semi-axis c\n"
         "and vertical semi-axis d) falling vertically onto an elastic slope (half-space).\n"
-        "Units are SI except --slope-angle (degrees).  Defaults: nominal granite.\n"
+        "Units are SI except the angles (degrees).  Defaults: nominal granite, elastic.\n"
         "\n"
         "Boulder and slope:\n"
         "  --radius M               sphere radius r0 [m] (default 1)\n"
@@ -80,6 +92,20 @@ static void usage(FILE *f)
         "  --velocity MS            vertical impact speed [m/s] (default 10)\n"
         "  --slope-angle DEG        slope inclination [degrees] in [0, 90) (default 0)\n"
         "  --friction MU            Coulomb coefficient >= 0, static = kinetic (default 0)\n"
+        "\n"
+        "Materials (docs/materials.md; fem solver, axisymmetric model only when not elastic):\n"
+        "  --boulder-material M     elastic | von_mises (default elastic)\n"
+        "  --boulder-yield PA       von_mises: initial yield stress Y [Pa]\n"
+        "  --boulder-hardening PA   von_mises: hardening modulus H >= 0 [Pa] (default 0)\n"
+        "  --slope-material M       elastic | von_mises | drucker_prager (default elastic)\n"
+        "  --slope-yield PA         von_mises: Y [Pa]\n"
+        "  --slope-hardening PA     von_mises: H >= 0 [Pa] (default 0)\n"
+        "  --slope-cohesion PA      drucker_prager: cohesion c >= 0 [Pa]\n"
+        "  --slope-friction-angle DEG   drucker_prager: phi in [0, 90) (outer Mohr-Coulomb cone)\n"
+        "  --slope-dilatancy-angle DEG  drucker_prager: psi in [0, phi] (default 0)\n"
+        "  --slope-cap-pressure PA  drucker_prager: crush pressure X0 of the compaction cap\n"
+        "                           [Pa] (default 0 = no cap)\n"
+        "  --slope-cap-hardening PA drucker_prager: cap hardening modulus H_c >= 0 [Pa]\n"
         "\n"
         "Model:\n"
         "  --solver NAME            fem | hertz | hunter | rigid (default fem)\n"
@@ -105,6 +131,8 @@ static void usage(FILE *f)
         "  --json                   print one JSON object: contact_force_max [N],\n"
         "                           compression_max [m], contact_duration [s],\n"
         "                           contact_radius [m], R_n, R_t, R_ke, energy_error [-],\n"
+        "                           plastic_work [-, of the initial KE], penetration_max [m],\n"
+        "                           indentation_depth [m], equivalent_plastic_strain_max [-],\n"
         "                           nodes, elements, steps, wall_seconds [s]; NaN -> null\n"
         "  -h, --help               show this help\n"
         "\n"
@@ -156,6 +184,10 @@ static void print_json(const rf_impact_output *o)
     json_number("R_t", o->R_t, 0);
     json_number("R_ke", o->R_ke, 0);
     json_number("energy_error", o->energy_error, 0);
+    json_number("plastic_work", o->plastic_work, 0);
+    json_number("penetration_max", o->penetration_max, 0);
+    json_number("indentation_depth", o->indentation_depth, 0);
+    json_number("equivalent_plastic_strain_max", o->equivalent_plastic_strain_max, 0);
     json_number("nodes", o->nodes, 0);
     json_number("elements", o->elements, 0);
     json_number("steps", o->steps, 0);
@@ -186,6 +218,14 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
            in->boulder_E, in->boulder_poisson);
     printf("  slope material    rho = %g kg/m^3, E = %g Pa, nu = %g\n", in->slope_density,
            in->slope_E, in->slope_poisson);
+    if (in->boulder_material == RF_MATERIAL_VON_MISES)
+        printf("  boulder plasticity von_mises Y = %g Pa, H = %g Pa\n", in->boulder_yield, in->boulder_hardening);
+    if (in->slope_material == RF_MATERIAL_VON_MISES)
+        printf("  slope plasticity  von_mises Y = %g Pa, H = %g Pa\n", in->slope_yield, in->slope_hardening);
+    if (in->slope_material == RF_MATERIAL_DRUCKER_PRAGER)
+        printf("  slope plasticity  drucker_prager c = %g Pa, phi = %g deg, psi = %g deg, cap X0 = %g Pa, "
+               "H_c = %g Pa\n", in->slope_cohesion, in->slope_friction_angle * 180.0 / RF_PI,
+               in->slope_dilatancy_angle * 180.0 / RF_PI, in->slope_cap_pressure, in->slope_cap_hardening);
     printf("  impact            V = %g m/s vertical, slope angle = %g deg, friction = %g\n",
            in->velocity, in->slope_angle * 180.0 / RF_PI, in->friction);
     printf("  mass              %.6g kg\n", rf_impact_mass(in));
@@ -210,6 +250,12 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     printf("  R_ke                  %.6g (rotation included)\n", o->R_ke);
     printf("  velocity after        v_n = %.6g m/s, v_t = %.6g m/s, omega = %.6g rad/s\n",
            o->v_n_after, o->v_t_after, o->omega_after);
+    if (spec->solver == RF_IMPACT_FEM) {
+        print_value("plastic work", o->plastic_work, "of the initial KE");
+        print_value("penetration max", o->penetration_max, "m (lowest boulder point below the surface)");
+        print_value("indentation depth", o->indentation_depth, "m (crater at the first-contact point)");
+        print_value("plastic strain max", o->equivalent_plastic_strain_max, "");
+    }
     if (spec->solver == RF_IMPACT_FEM)
         printf("  FE                    energy error %.3g, %g nodes, %g elements, %g steps, "
                "%.3g s\n", o->energy_error, o->nodes, o->elements, o->steps, o->wall_seconds);
@@ -340,6 +386,17 @@ int rf_cli_impact(int argc, char **argv)
         case O_VTK:
             spec.fem.vtk_dir = val;
             break;
+        case O_MAT_B:
+        case O_MAT_S: {
+            rf_material_model *m = id == O_MAT_B ? &in->boulder_material : &in->slope_material;
+            if (rf_material_model_parse(val, m, &err) != RF_OK ||
+                (id == O_MAT_B && *m == RF_MATERIAL_DRUCKER_PRAGER)) {
+                fprintf(stderr, "rockfuzz impact: --%s '%s': expected %s\n", oname, val,
+                        id == O_MAT_B ? "elastic or von_mises" : "elastic, von_mises or drucker_prager");
+                return EXIT_USAGE;
+            }
+            break;
+        }
         default:
             if (!parse_double(oname, val, &x))
                 return EXIT_USAGE;
@@ -356,6 +413,15 @@ int rf_cli_impact(int argc, char **argv)
             case O_V: in->velocity = x; break;
             case O_ANGLE: in->slope_angle = x * RF_PI / 180.0; break;
             case O_MU: in->friction = x; break;
+            case O_Y_B: in->boulder_yield = x; break;
+            case O_H_B: in->boulder_hardening = x; break;
+            case O_Y_S: in->slope_yield = x; break;
+            case O_H_S: in->slope_hardening = x; break;
+            case O_COH_S: in->slope_cohesion = x; break;
+            case O_PHI_S: in->slope_friction_angle = x * RF_PI / 180.0; break;
+            case O_PSI_S: in->slope_dilatancy_angle = x * RF_PI / 180.0; break;
+            case O_CAP_S: in->slope_cap_pressure = x; break;
+            case O_CAPH_S: in->slope_cap_hardening = x; break;
             case O_EN:
                 if (!(x >= 0.0 && x <= 1.0)) {
                     fprintf(stderr, "rockfuzz impact: --e-n %s: the normal COR must lie in [0, 1]\n", val);

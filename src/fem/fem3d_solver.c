@@ -680,6 +680,7 @@ static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_out
     const double vn_after = P[2], vt_after = P[0], w_after = omega[1];
     const double K_after = 0.5 * R->Mb * (vn_after * vn_after + vt_after * vt_after) + 0.5 * Iyy * w_after * w_after;
     fem_run_outputs(run, nsteps, R->o.duration_threshold, R->ke0, R->sym_factor, R->nn, R->ne, out);
+    out->penetration_max = out->indentation_depth = NAN; /* not measured by the 3D model yet (elastic bodies only) */
     out->v_n_before = -R->Vn;
     out->v_t_before = R->Vt;
     out->v_n_after = vn_after;

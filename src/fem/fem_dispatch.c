@@ -22,6 +22,12 @@ rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const
         *three_d = want_3d;
     if (friction_work)
         *friction_work = 0.0;
+    if (want_3d && (in->boulder_material != RF_MATERIAL_ELASTIC || in->slope_material != RF_MATERIAL_ELASTIC))
+        return rf_fail(err, RF_EINVAL,
+                       "fem: plastic materials (boulder_material = %s, slope_material = %s) are available in the "
+                       "axisymmetric model only (normal impact, slope_angle = 0, no friction between dissimilar "
+                       "bodies); the 3D model is elastic for now",
+                       rf_material_model_name(in->boulder_material), rf_material_model_name(in->slope_material));
     if (!want_3d)
         return ws ? rf_fem_impact_ws(ws, in, opt, out, hist, err) : rf_fem_impact(in, opt, out, hist, err);
     rf_fem_options o;

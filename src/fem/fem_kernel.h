@@ -30,9 +30,16 @@
 #ifndef ROCKFUZZ_FEM_KERNEL_H
 #define ROCKFUZZ_FEM_KERNEL_H
 
+#include "rockfuzz/material.h"
 #include "rockfuzz/status.h"
 
 typedef struct fem_kernel fem_kernel;
+
+/* What a dissipative kernel reports of its committed state. */
+typedef struct {
+    double plastic_work;         /* plastic dissipation of the block so far [J] */
+    double plastic_strain_max;   /* largest equivalent plastic strain of an integration point [-] */
+} fem_kernel_report;
 
 typedef struct {
     const char *name;
@@ -64,6 +71,10 @@ typedef struct {
     void (*update)(const void *params, const double *deps, const double *sig_n, const double *state_n, double *sig,
                    double *state);
     const void *params;
+    /* 1 for a dissipative law: state[0] is the equivalent plastic strain and
+       state[nstate - 1] the plastic work per unit volume of the last
+       increment [J/m^3]; the kernel then integrates the dissipation. */
+    int dissipative;
 } fem_point_law;
 
 /* Elements per call of forces() in the time loops (bounded stack buffers). */
@@ -87,11 +98,28 @@ void fem_kernel_linear_hex(fem_kernel *k, long first, long count, float *K, int 
  * precomputed-stiffness kernel to round-off (test_fem). */
 rf_status fem_kernel_points_axi(fem_kernel *k, long first, long count, const double *r, const double *z,
                                 const int *conn, const fem_point_law *law, rf_error *err);
+/* The same with the mean-dilatation B-bar (Hughes 1980; Nagtegaal, Parks &
+ * Rice 1974) when bbar != 0: the volumetric strain of every point is replaced
+ * by its volume average over the element, so that isochoric (plastic or
+ * near-incompressible) flow does not lock the fully integrated quad; the
+ * force is the transpose, sum_q w_q Bbar_q^T sigma_q (the element stays
+ * symmetric, its stiffness below the fully integrated one: the time step
+ * bound of the full stiffness stays valid). */
+rf_status fem_kernel_points_axi_ex(fem_kernel *k, long first, long count, const double *r, const double *z,
+                                   const int *conn, const fem_point_law *law, int bbar, rf_error *err);
 /* sig = sig_n + D deps for an isotropic material (lam, mu = the Lame constants). */
 typedef struct {
     double lam, mu;
 } fem_lame;
 fem_point_law fem_point_law_linear(const fem_lame *lame);
+/* The material library's return maps (rockfuzz/material.h) as a point law of
+ * the axisymmetric quad: rr, zz, tt, rz (engineering shear) map onto xx, yy,
+ * zz, xy with zero yz, zx; state = {eps_p_eq, eps_p_vol, compaction,
+ * dissipation of the increment}.  m must outlive the kernel. */
+fem_point_law fem_point_law_material(const rf_material *m);
+/* The dissipation account of a kernel's committed state: zeros for any
+ * kernel that is not an integration-point kernel with a dissipative law. */
+void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r);
 
 static inline void fem_kernel_release(fem_kernel *k)
 {

@@ -1,9 +1,11 @@
 /* fem_kernel_points.c - the integration-point material kernel of the
  * axisymmetric quad (fem_kernel.h): strain at each Gauss point from B ue,
  * the point law's stress update from the strain increment, internal force
- * sum_q w_q B_q^T sigma_q; trial values become committed in commit().  And
- * the linear-elastic point law, which makes this kernel the reference for
- * elasto-plastic laws plugged in the same way. */
+ * sum_q w_q B_q^T sigma_q; trial values become committed in commit(), which
+ * also integrates a dissipative law's plastic work (sum_q w_q D_q).  Optional
+ * mean-dilatation B-bar.  And two point laws: linear elasticity (the
+ * reference: with it this kernel reproduces the precomputed stiffness) and
+ * the material library's return maps (rockfuzz/material.h). */
 #include "fem_internal.h"
 #include "fem_kernel.h"
 
@@ -19,6 +21,7 @@ typedef struct {
     double *w;      /* 4 per element */
     double *eps, *sig, *var;          /* committed, per point */
     double *eps_t, *sig_t, *var_t;    /* trial of the last forces() */
+    double plastic_work, plastic_strain_max; /* committed (dissipative laws) */
 } points_data;
 
 static void points_forces(const fem_kernel *k, long e0, long e1, const double *ue, double *fe)
@@ -51,12 +54,24 @@ static void points_forces(const fem_kernel *k, long e0, long e1, const double *u
 static void points_commit(fem_kernel *k)
 {
     points_data *d = k->data;
-    const size_t np = (size_t)NQ * (size_t)k->count;
+    const size_t np = (size_t)NQ * (size_t)k->count, ns = (size_t)d->law.nstate;
     memcpy(d->eps, d->eps_t, np * NC * sizeof(double));
     memcpy(d->sig, d->sig_t, np * NC * sizeof(double));
-    if (d->law.nstate)
-        memcpy(d->var, d->var_t, np * (size_t)d->law.nstate * sizeof(double));
+    if (ns)
+        memcpy(d->var, d->var_t, np * ns * sizeof(double));
+    if (!d->law.dissipative)
+        return;
+    double W = 0, emax = d->plastic_strain_max;
+    for (size_t p = 0; p < np; p++) {
+        const double *v = d->var + ns * p;
+        W += d->w[p] * v[ns - 1];
+        if (v[0] > emax)
+            emax = v[0];
+    }
+    d->plastic_work += W, d->plastic_strain_max = emax;
 }
+
+
 
 static void points_destroy(fem_kernel *k)
 {
@@ -72,12 +87,47 @@ static void points_destroy(fem_kernel *k)
 static const fem_kernel_ops points_ops = {"integration points (axisymmetric quad)", points_forces, NULL,
                                           points_commit, points_destroy};
 
+void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r)
+{
+    r->plastic_work = r->plastic_strain_max = 0;
+    if (k->ops != &points_ops || !k->data)
+        return;
+    const points_data *d = k->data;
+    r->plastic_work = d->plastic_work, r->plastic_strain_max = d->plastic_strain_max;
+}
+
+/* Mean dilatation: B_q rows rr, zz, tt get (bbar - b_q) / 3 with b_q the
+ * volumetric row (sum of the three normal rows) and bbar its w-weighted mean. */
+static void mean_dilatation(double B[NQ][32], const double w[NQ])
+{
+    double bbar[8] = {0}, W = 0;
+    for (int q = 0; q < NQ; q++) {
+        W += w[q];
+        for (int j = 0; j < 8; j++)
+            bbar[j] += w[q] * (B[q][j] + B[q][8 + j] + B[q][16 + j]);
+    }
+    for (int q = 0; q < NQ; q++)
+        for (int j = 0; j < 8; j++) {
+            const double c = (bbar[j] / W - (B[q][j] + B[q][8 + j] + B[q][16 + j])) / 3;
+            B[q][j] += c, B[q][8 + j] += c, B[q][16 + j] += c;
+        }
+}
+
 rf_status fem_kernel_points_axi(fem_kernel *k, long first, long count, const double *r, const double *z,
                                 const int *conn, const fem_point_law *law, rf_error *err)
+{
+    return fem_kernel_points_axi_ex(k, first, count, r, z, conn, law, 0, err);
+}
+
+rf_status fem_kernel_points_axi_ex(fem_kernel *k, long first, long count, const double *r, const double *z,
+                                   const int *conn, const fem_point_law *law, int bbar, rf_error *err)
 {
     if (law->ncomp != NC)
         return rf_fail(err, RF_EINVAL, "fem: the point law '%s' has %d strain components; the axisymmetric quad "
                        "needs %d", law->name, law->ncomp, NC);
+    if (law->dissipative && law->nstate < 2)
+        return rf_fail(err, RF_EINVAL, "fem: the dissipative point law '%s' needs >= 2 state variables",
+                       law->name);
     points_data *d = calloc(1, sizeof *d);
     const size_t np = (size_t)NQ * (size_t)count, ns = (size_t)(law->nstate > 0 ? law->nstate : 1);
     k->ops = &points_ops, k->first = first, k->count = count, k->ndofe = 8, k->data = d;
@@ -96,6 +146,8 @@ rf_status fem_kernel_points_axi(fem_kernel *k, long first, long count, const dou
         for (int a = 0; a < 4; a++)
             re[a] = r[c[a]], ze[a] = z[c[a]];
         fem_element_points(re, ze, (double(*)[32])(d->B + 128 * e), d->w + NQ * e);
+        if (bbar)
+            mean_dilatation((double(*)[32])(d->B + 128 * e), d->w + NQ * e);
     }
     return RF_OK;
 }
@@ -113,6 +165,23 @@ static void linear_update(const void *params, const double *deps, const double *
 
 fem_point_law fem_point_law_linear(const fem_lame *lame)
 {
-    fem_point_law law = {"linear elastic", NC, 0, linear_update, lame};
+    fem_point_law law = {"linear elastic", NC, 0, linear_update, lame, 0};
+    return law;
+}
+
+static void material_update(const void *params, const double *deps, const double *sig_n, const double *state_n,
+                            double *sig, double *state)
+{
+    const double d6[6] = {deps[0], deps[1], deps[2], deps[3], 0, 0};
+    double s6[6] = {sig_n[0], sig_n[1], sig_n[2], sig_n[3], 0, 0}, D;
+    rf_material_state st = {state_n[0], state_n[1], state_n[2]};
+    rf_material_update(params, d6, s6, &st, &D);
+    memcpy(sig, s6, NC * sizeof *sig);
+    state[0] = st.plastic_strain_eq, state[1] = st.plastic_volumetric, state[2] = st.compaction, state[3] = D;
+}
+
+fem_point_law fem_point_law_material(const rf_material *m)
+{
+    fem_point_law law = {rf_material_model_name(m->model), NC, 4, material_update, m, 1};
     return law;
 }

@@ -11,6 +11,12 @@
  * changes only by the work f' (u_{n+1} - u_{n-1}) / 2 of the forces f
  * applied at step n (contact, dashpots), so the closure error measures the
  * contact scheme (its small inelastic node collisions) and round-off only.
+ * With a plastic body the strain energy is replaced by the internal work
+ * W_n = sum_k f_int(u_k)' (u_{k+1} - u_{k-1}) / 2, accumulated per step as
+ * dt/2 f_int(u_n)' (v_{n-1/2} + v_{n+1/2}); for a linear material it equals
+ * 1/2 u_n' K u_{n+1} exactly (the sum telescopes), so the closure means the
+ * same; the plastic dissipation (integrated by the kernels from the return
+ * maps) is the part of W that is not stored elastically.
  * Determinism: each element writes its own forces, each node sums its
  * elements in element order: the same bits for any thread count. */
 #include "rockfuzz/fem.h"
@@ -80,6 +86,10 @@ typedef struct {
     int threads, fixed_outer;
     fem_kernel kernel[2]; /* boulder and slope blocks */
     fem_lame lame[2];     /* parameters of the point laws */
+    rf_material matl[2];  /* constitutive law of each body (plastic[b] != 0: not elastic) */
+    int plastic[2], work_account; /* work_account: energy from the internal work (a plastic body) */
+    double W_int[2];      /* internal work of each body so far [J] */
+    double pen_max;       /* deepest position of the boulder's lowest point below z = 0 [m] */
     double *K, *fe, *invm, *mass, *u, *v, *f, *fext, *dash;
     long *inc_ptr, *inc;
     int *outer;
@@ -275,6 +285,14 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
     const long nbe = S->mesh.boulder_elems;
     const long first[2] = {0, nbe}, count[2] = {nbe, S->ne - nbe};
     for (int b = 0; b < 2; b++) {
+        if (S->plastic[b]) { /* return maps at the points, mean dilatation against locking */
+            fem_point_law law = fem_point_law_material(&S->matl[b]);
+            rf_status st = fem_kernel_points_axi_ex(&S->kernel[b], first[b], count[b], S->mesh.r, S->mesh.z,
+                                                    S->mesh.conn, &law, 1, err);
+            if (st != RF_OK)
+                return st;
+            continue;
+        }
         if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS) {
             fem_kernel_linear_axi(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], 1);
             continue;
@@ -421,6 +439,15 @@ static double axi_dashpot_forces(axi_run *S)
     return W;
 }
 
+/* f_int' v of each body (boulder dofs first). */
+static void axi_power(const axi_run *S, double fv[2])
+{
+    for (long d = 0; d < S->nbd; d++)
+        fv[0] += S->f[d] * S->v[d];
+    for (long d = S->nbd; d < S->ndof; d++)
+        fv[1] += S->f[d] * S->v[d];
+}
+
 /* One step: internal force -> dashpots -> predictor -> contact.  Returns the
  * total contact force in *Fc and the contact radius in *rad. */
 static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
@@ -432,6 +459,9 @@ static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
         if (S->kernel[b].ops->commit)
             S->kernel[b].ops->commit(&S->kernel[b]);
     double W_abs_inc = axi_dashpot_forces(S);
+    double fv[2] = {0, 0};
+    if (S->work_account)
+        axi_power(S, fv);
     fem_contact_begin(&S->C, v);
     for (long d = 0; d < S->ndof; d++) {
         v[d] += dt * S->invm[d] * (S->fext[d] - S->f[d]);
@@ -445,8 +475,25 @@ static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
     if (st != RF_OK)
         return st;
     S->W_abs += W_abs_inc;
+    if (S->work_account) { /* f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
+        double fv1[2] = {0, 0};
+        axi_power(S, fv1);
+        S->W_int[0] += 0.5 * dt * (fv[0] + fv1[0]), S->W_int[1] += 0.5 * dt * (fv[1] + fv1[1]);
+    }
+    const long nb = S->mesh.bsurf[0]; /* the boulder's lowest point (on the axis) */
+    const double pen = -(S->mesh.z[nb] + u[2 * nb + 1]);
+    if (pen > S->pen_max)
+        S->pen_max = pen;
     *rad = fem_contact_measure(&S->C, u);
     return RF_OK;
+}
+
+/* Plastic dissipation of body b so far [J]. */
+static double axi_plastic_work(const axi_run *S, int b)
+{
+    fem_kernel_report r;
+    fem_kernel_report_get(&S->kernel[b], &r);
+    return r.plastic_work;
 }
 
 /* Energies at t_{n+1/2} (KE with v_{n+1/2}, strain 1/2 u_n' f_int(u_n) ...
@@ -469,8 +516,13 @@ static void axi_energy(const axi_run *S, double t, double Fc, double rad, double
         se[1] += f[d] * u[d];
     }
     ke[0] *= 0.5, ke[1] *= 0.5, se[0] *= 0.5, se[1] *= 0.5;
+    if (S->work_account) /* stored elastically: the internal work less the dissipation */
+        for (int b = 0; b < 2; b++)
+            se[b] = S->W_int[b] - axi_plastic_work(S, b);
     *comp = -uz / S->Mb;
     *closure = ke[0] + ke[1] + se[0] + se[1] + S->W_abs - S->ke0;
+    if (S->work_account)
+        *closure = ke[0] + ke[1] + S->W_int[0] + S->W_int[1] + S->W_abs - S->ke0;
     const double r[12] = {t, Fc, *comp, rad, ke[0], se[0], ke[1], se[1], S->C.work, S->W_abs, *closure, pz / S->Mb};
     memcpy(row, r, sizeof r);
 }
@@ -517,11 +569,15 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
         ekb += 0.5 * m[d] * v[d] * v[d];
     for (long d = S->nbd; d < S->ndof; d++)
         eks += 0.5 * m[d] * v[d] * v[d];
-    axi_internal_force(S, u, S->f); /* strain energy of the final state, 1/2 u' K u */
-    for (long d = 0; d < S->nbd; d++)
-        seb += 0.5 * S->f[d] * u[d];
-    for (long d = S->nbd; d < S->ndof; d++)
-        ses += 0.5 * S->f[d] * u[d];
+    if (S->work_account) { /* stored elastic energy: internal work less dissipation */
+        seb = S->W_int[0] - axi_plastic_work(S, 0), ses = S->W_int[1] - axi_plastic_work(S, 1);
+    } else {
+        axi_internal_force(S, u, S->f); /* strain energy of the final state, 1/2 u' K u */
+        for (long d = 0; d < S->nbd; d++)
+            seb += 0.5 * S->f[d] * u[d];
+        for (long d = S->nbd; d < S->ndof; d++)
+            ses += 0.5 * S->f[d] * u[d];
+    }
     const double V = S->V, v_after = pz / S->Mb;
     fem_run_outputs(R, nsteps, S->o.duration_threshold, S->ke0, 1.0, S->nn, S->ne, out);
     out->v_n_before = -V;
@@ -529,6 +585,14 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     out->R_n = -v_after / -V;
     out->R_t = NAN;
     out->R_ke = (v_after * v_after) / (V * V);
+    fem_kernel_report rep[2];
+    for (int b = 0; b < 2; b++)
+        fem_kernel_report_get(&S->kernel[b], &rep[b]);
+    out->plastic_work = (rep[0].plastic_work + rep[1].plastic_work) / S->ke0;
+    out->equivalent_plastic_strain_max = fmax(rep[0].plastic_strain_max, rep[1].plastic_strain_max);
+    out->penetration_max = S->pen_max;
+    const long ns0 = S->mesh.ssurf[0]; /* the slope's first-contact point */
+    out->indentation_depth = -u[2 * ns0 + 1];
     if (!hist)
         return;
     hist->dt = S->dt, hist->dt_bound = S->dt_bound, hist->dt_edge = S->dt_edge;
@@ -571,6 +635,14 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
     S->threads = 1;
 #endif
     S->fixed_outer = S->o.boundary == RF_FEM_BOUNDARY_FIXED;
+    for (int b = 0; b < 2; b++) {
+        rf_material_params p;
+        rf_impact_material_params(in, b, &p);
+        if ((st = rf_material_init(&S->matl[b], &p, err)) != RF_OK) /* validated above: cannot fail */
+            return rf_error_prefix(err, "fem");
+        S->plastic[b] = p.model != RF_MATERIAL_ELASTIC;
+    }
+    S->work_account = S->plastic[0] || S->plastic[1];
     return RF_OK;
 }
 

@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 void rf_impact_input_default(rf_impact_input *in)
 {
@@ -22,6 +23,67 @@ void rf_impact_input_default(rf_impact_input *in)
     in->velocity = 10.0;
     in->slope_angle = 0.0;
     in->friction = 0.0;
+    in->boulder_material = RF_MATERIAL_ELASTIC;
+    in->boulder_yield = in->boulder_hardening = 0.0;
+    in->slope_material = RF_MATERIAL_ELASTIC;
+    in->slope_yield = in->slope_hardening = in->slope_cohesion = 0.0;
+    in->slope_friction_angle = in->slope_dilatancy_angle = 0.0;
+    in->slope_cap_pressure = in->slope_cap_hardening = 0.0;
+}
+
+void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_params *p)
+{
+    rf_material_params_default(p);
+    if (body == 0) {
+        p->model = in->boulder_material;
+        p->E = in->boulder_E, p->poisson = in->boulder_poisson;
+        p->yield = in->boulder_yield, p->hardening = in->boulder_hardening;
+        return;
+    }
+    p->model = in->slope_material;
+    p->E = in->slope_E, p->poisson = in->slope_poisson;
+    p->yield = in->slope_yield, p->hardening = in->slope_hardening;
+    p->cohesion = in->slope_cohesion;
+    p->friction_angle = in->slope_friction_angle, p->dilatancy_angle = in->slope_dilatancy_angle;
+    p->cap_pressure = in->slope_cap_pressure, p->cap_hardening = in->slope_cap_hardening;
+}
+
+/* The material fields of each body, checked by the material library
+ * (rf_material_init), whose messages start with the parameter's own name. */
+static const char *const material_fields[2][8][2] = {
+    {{"yield", "boulder_yield"}, {"hardening", "boulder_hardening"}, {"model", "boulder_material"}},
+    {{"yield", "slope_yield"}, {"hardening", "slope_hardening"}, {"cohesion", "slope_cohesion"},
+     {"friction_angle", "slope_friction_angle"}, {"dilatancy_angle", "slope_dilatancy_angle"},
+     {"cap_pressure", "slope_cap_pressure"}, {"cap_hardening", "slope_cap_hardening"},
+     {"model", "slope_material"}}};
+
+/* NULL if the materials are valid, else the impact field at fault; msg gets
+ * the library's message prefixed with the body. */
+static const char *material_invalid(const rf_impact_input *in, rf_error *err)
+{
+    if ((unsigned)in->boulder_material > RF_MATERIAL_VON_MISES) {
+        rf_fail(err, RF_EINVAL, "boulder_material = %s: the boulder may be elastic or von_mises",
+                rf_material_model_name(in->boulder_material));
+        return "boulder_material";
+    }
+    for (int b = 0; b < 2; b++) {
+        rf_material_params p;
+        rf_material m;
+        rf_error e = {0};
+        rf_impact_material_params(in, b, &p);
+        if (p.model == RF_MATERIAL_ELASTIC || rf_material_init(&m, &p, &e) == RF_OK)
+            continue;
+        const char *name = b ? "slope_material" : "boulder_material";
+        for (int k = 0; k < 8 && material_fields[b][k][0]; k++) {
+            size_t n = strlen(material_fields[b][k][0]);
+            if (!strncmp(e.msg, material_fields[b][k][0], n) && e.msg[n] == ' ')
+                name = material_fields[b][k][1];
+        }
+        rf_fail(err, RF_EINVAL, "%s_%s (%s material %s)", b ? "slope" : "boulder", e.msg,
+                b ? "slope" : "boulder", rf_material_model_name(p.model));
+        return name;
+    }
+    return NULL;
 }
 
 static int positive(double x) { return isfinite(x) && x > 0.0; }
@@ -91,7 +153,7 @@ static size_t first_invalid(const rf_impact_input *in)
 const char *rf_impact_input_first_invalid(const rf_impact_input *in)
 {
     size_t k = first_invalid(in);
-    return k < N_FIELDS ? fields[k].name : NULL;
+    return k < N_FIELDS ? fields[k].name : material_invalid(in, NULL);
 }
 
 rf_status rf_impact_input_validate(const rf_impact_input *in, rf_error *err)
@@ -100,7 +162,7 @@ rf_status rf_impact_input_validate(const rf_impact_input *in, rf_error *err)
         return rf_fail(err, RF_EINTERNAL, "impact input is NULL");
     size_t k = first_invalid(in);
     if (k == N_FIELDS)
-        return RF_OK;
+        return material_invalid(in, err) ? RF_EINVAL : RF_OK;
     double x = field_value(in, k);
     if (fields[k].check == CHECK_ANGLE)
         return rf_fail(err, RF_EINVAL, "slope_angle = %g rad (%g deg): %s", x, x * 180.0 / RF_PI,
@@ -174,4 +236,6 @@ void rf_impact_output_clear(rf_impact_output *out)
     out->contact_duration = NAN;
     out->contact_radius = NAN;
     out->R_n = out->R_t = out->R_ke = NAN;
+    out->plastic_work = out->penetration_max = out->indentation_depth = NAN;
+    out->equivalent_plastic_strain_max = NAN;
 }

@@ -19,13 +19,16 @@
 
 const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS] = {
     "radius", "horizontal_axis", "boulder_density", "slope_density", "boulder_E", "slope_E",
-    "boulder_poisson", "slope_poisson", "velocity", "slope_angle", "friction"};
+    "boulder_poisson", "slope_poisson", "velocity", "slope_angle", "friction",
+    "boulder_yield", "boulder_hardening", "slope_yield", "slope_hardening", "slope_cohesion",
+    "slope_friction_angle", "slope_dilatancy_angle", "slope_cap_pressure", "slope_cap_hardening"};
 
 const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
     "contact_force_max", "compression_max", "contact_duration", "contact_radius",
-    "R_n", "R_t", "R_ke"};
+    "R_n", "R_t", "R_ke", "plastic_work", "penetration_max", "indentation_depth",
+    "equivalent_plastic_strain_max"};
 
-const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS] = {"N", "m", "s", "m", "", "", ""};
+const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS] = {"N", "m", "s", "m", "", "", "", "", "m", "m", ""};
 
 static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid"};
 
@@ -204,7 +207,10 @@ static size_t impact_warnings(void *p, char *buf, size_t size)
     return warned;
 }
 
-enum { P_RADIUS, P_C, P_RHO_B, P_RHO_S, P_E_B, P_E_S, P_NU_B, P_NU_S, P_V, P_ANGLE, P_MU };
+enum {
+    P_RADIUS, P_C, P_RHO_B, P_RHO_S, P_E_B, P_E_S, P_NU_B, P_NU_S, P_V, P_ANGLE, P_MU,
+    P_Y_B, P_H_B, P_Y_S, P_H_S, P_COH_S, P_PHI_S, P_PSI_S, P_CAP_S, P_CAPH_S
+};
 
 static void bind(rf_impact_input *in, int field, double x)
 {
@@ -223,6 +229,15 @@ static void bind(rf_impact_input *in, int field, double x)
     case P_V: in->velocity = x; break;
     case P_ANGLE: in->slope_angle = x * RF_PI / 180.0; break;
     case P_MU: in->friction = x; break;
+    case P_Y_B: in->boulder_yield = x; break;
+    case P_H_B: in->boulder_hardening = x; break;
+    case P_Y_S: in->slope_yield = x; break;
+    case P_H_S: in->slope_hardening = x; break;
+    case P_COH_S: in->slope_cohesion = x; break;
+    case P_PHI_S: in->slope_friction_angle = x * RF_PI / 180.0; break;
+    case P_PSI_S: in->slope_dilatancy_angle = x * RF_PI / 180.0; break;
+    case P_CAP_S: in->slope_cap_pressure = x; break;
+    case P_CAPH_S: in->slope_cap_hardening = x; break;
     }
 }
 
@@ -254,6 +269,10 @@ static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
     y[4] = out.R_n;
     y[5] = out.R_t;
     y[6] = out.R_ke;
+    y[7] = out.plastic_work;
+    y[8] = out.penetration_max;
+    y[9] = out.indentation_depth;
+    y[10] = out.equivalent_plastic_strain_max;
     return RF_OK;
 }
 
@@ -301,10 +320,19 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
            " slope_density=%.17g boulder_E=%.17g slope_E=%.17g boulder_poisson=%.17g"
-           " slope_poisson=%.17g velocity=%.17g slope_angle_rad=%.17g friction=%.17g params:",
+           " slope_poisson=%.17g velocity=%.17g slope_angle_rad=%.17g friction=%.17g",
            b->radius, b->horizontal_axis, b->vertical_axis, b->boulder_density, b->slope_density,
            b->boulder_E, b->slope_E, b->boulder_poisson, b->slope_poisson, b->velocity,
            b->slope_angle, b->friction);
+    if (b->boulder_material != RF_MATERIAL_ELASTIC || b->slope_material != RF_MATERIAL_ELASTIC)
+        append(buf, cap, &len,
+               " boulder_material=%s boulder_yield=%.17g boulder_hardening=%.17g slope_material=%s"
+               " slope_yield=%.17g slope_hardening=%.17g slope_cohesion=%.17g slope_friction_angle_rad=%.17g"
+               " slope_dilatancy_angle_rad=%.17g slope_cap_pressure=%.17g slope_cap_hardening=%.17g",
+               rf_material_model_name(b->boulder_material), b->boulder_yield, b->boulder_hardening,
+               rf_material_model_name(b->slope_material), b->slope_yield, b->slope_hardening, b->slope_cohesion,
+               b->slope_friction_angle, b->slope_dilatancy_angle, b->slope_cap_pressure, b->slope_cap_hardening);
+    append(buf, cap, &len, " params:");
     for (size_t i = 0; i < c->n_params; i++)
         append(buf, cap, &len, "%s%s", i ? "," : "", rf_impact_param_names[c->field[i]]);
 }
@@ -337,7 +365,10 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
             return rf_fail(err, RF_EINVAL,
                            "impact model: parameter '%s' is unknown (accepted: radius, "
                            "horizontal_axis, boulder_density, slope_density, boulder_E, slope_E, "
-                           "boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction)",
+                           "boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction, "
+                           "boulder_yield, boulder_hardening, slope_yield, slope_hardening, slope_cohesion, "
+                           "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
+                           "slope_cap_hardening)",
                            param_names[i] ? param_names[i] : "(null)");
         }
         for (size_t j = 0; j < i; j++)
@@ -358,7 +389,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
         const double nominal_x[RF_IMPACT_N_PARAMS] = {
             nominal.radius, 1.0, nominal.boulder_density, nominal.slope_density,
             nominal.boulder_E, nominal.slope_E, nominal.boulder_poisson, nominal.slope_poisson,
-            nominal.velocity, 0.0, 0.0};
+            nominal.velocity, 0.0, 0.0, 1e8, 0.0, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0};
         int f = c->field[i];
         if (f == P_C)
             bind(&probe, f, 0.0); /* a sphere probe: c = 0 is valid */

@@ -450,6 +450,15 @@ static double *impact_field(rf_impact_input *in, const char *name)
         {"velocity", &in->velocity},
         {"slope_angle", &in->slope_angle},
         {"friction", &in->friction},
+        {"boulder_yield", &in->boulder_yield},
+        {"boulder_hardening", &in->boulder_hardening},
+        {"slope_yield", &in->slope_yield},
+        {"slope_hardening", &in->slope_hardening},
+        {"slope_cohesion", &in->slope_cohesion},
+        {"slope_friction_angle", &in->slope_friction_angle},
+        {"slope_dilatancy_angle", &in->slope_dilatancy_angle},
+        {"slope_cap_pressure", &in->slope_cap_pressure},
+        {"slope_cap_hardening", &in->slope_cap_hardening},
     };
     for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
         if (!strcmp(name, f[k].name))
@@ -458,6 +467,14 @@ static double *impact_field(rf_impact_input *in, const char *name)
 }
 
 static const double deg = RF_PI / 180.0;
+
+/* Angles are given in degrees in a study and kept in radians in the input. */
+static double impact_unit(const rf_impact_input *in, const double *field)
+{
+    return field == &in->slope_angle || field == &in->slope_friction_angle || field == &in->slope_dilatancy_angle
+               ? deg
+               : 1.0;
+}
 
 static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
 {
@@ -488,8 +505,18 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                                    key, s->param_line[i]);
             if ((st = sp_number(c, v, p, field)) != RF_OK)
                 return st;
-            if (field == &spec.base.slope_angle)
-                *field *= deg;
+            *field *= impact_unit(&spec.base, field);
+        } else if (!strcmp(key, "boulder_material") || !strcmp(key, "slope_material")) {
+            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+                return st;
+            snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
+            rf_error tmp;
+            rf_material_model *m = key[0] == 'b' ? &spec.base.boulder_material : &spec.base.slope_material;
+            if (len >= 31 || rf_material_model_parse(buf, m, &tmp) != RF_OK ||
+                (key[0] == 'b' && *m == RF_MATERIAL_DRUCKER_PRAGER))
+                return sp_fail(c, v, p, key[0] == 'b' ? "unknown boulder material; expected elastic or von_mises"
+                                                      : "unknown slope material; expected elastic, von_mises or "
+                                                        "drucker_prager");
         } else if (!strcmp(key, "solver") || !strcmp(key, "boundary")) {
             if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
                 return st;
@@ -524,9 +551,12 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
         } else {
             return sp_fail(c, k, p,
                            "unknown key; the impact model takes solver, boundary, refinement, domain_factor, "
-                           "threads, e_n, hunter_coefficient and crisp inputs (radius, horizontal_axis, "
-                           "vertical_axis, boulder_density, slope_density, boulder_E, slope_E, boulder_poisson, "
-                           "slope_poisson, velocity, slope_angle [deg], friction)");
+                           "threads, e_n, hunter_coefficient, boulder_material, slope_material and crisp inputs "
+                           "(radius, horizontal_axis, vertical_axis, boulder_density, slope_density, boulder_E, "
+                           "slope_E, boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction, "
+                           "boulder_yield, boulder_hardening, slope_yield, slope_hardening, slope_cohesion, "
+                           "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
+                           "slope_cap_hardening)");
         }
     }
     /* Every parameter must name an impact input. */
@@ -548,7 +578,7 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
     rf_impact_input probe = spec.base;
     for (size_t i = 0; i < s->n_params; i++) {
         double *f = impact_field(&probe, s->param_names[i]);
-        *f = rf_fuzzy_nominal(&s->inputs[i]) * (f == &probe.slope_angle ? deg : 1);
+        *f = rf_fuzzy_nominal(&s->inputs[i]) * impact_unit(&probe, f);
     }
     const char *bad = rf_impact_input_first_invalid(&probe);
     if (bad) {
@@ -581,7 +611,7 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
         for (int e = 0; e < 2; e++) {
             rf_impact_input q = probe;
             double *f = impact_field(&q, s->param_names[i]);
-            *f = ends[e] * (f == &q.slope_angle ? deg : 1);
+            *f = ends[e] * impact_unit(&q, f);
             const char *b = rf_impact_input_first_invalid(&q);
             if (b && !strcmp(b, s->param_names[i])) {
                 rf_error tmp;
