@@ -65,6 +65,18 @@ expect_error 2 "--friction -0.2" --solver rigid --friction -0.2
 expect_error 2 "'--velocity' needs a value" --solver hertz --velocity
 expect_error 2 "--threads '0'" --threads 0
 expect_error 1 "horizontal_axis" --solver hertz --c 1.2 --slope-angle 30
+# materials: the option and value named
+expect_error 2 "--slope-material 'clay'" --slope-material clay
+expect_error 2 "--boulder-material 'drucker_prager'" --boulder-material drucker_prager
+expect_error 2 "slope_yield = 0" --slope-material von_mises
+expect_error 2 "--slope-yield -5" --slope-material von_mises --slope-yield -5
+expect_error 2 "--slope-dilatancy-angle 40" --slope-material drucker_prager --slope-cohesion 1e4 \
+    --slope-friction-angle 30 --slope-dilatancy-angle 40
+expect_error 2 "--slope-cap-pressure -1" --slope-material drucker_prager --slope-cohesion 1e4 \
+    --slope-friction-angle 30 --slope-cap-pressure -1
+expect_error 2 "--boulder-hardening -1" --boulder-material von_mises --boulder-yield 1e8 --boulder-hardening -1
+expect_error 1 "axisymmetric model only" --slope-material von_mises --slope-yield 2e8 --slope-angle 30
+"$bin" impact --help | grep -q -- '--slope-cap-pressure PA' || fail "help lacks --slope-cap-pressure"
 
 # --- FE on the coarsest mesh, when the solver is built ---
 out=$("$bin" impact --solver fem --refinement 2 --boundary absorbing --json 2>/dev/null)
@@ -77,6 +89,17 @@ o = json.loads(sys.argv[1])
 assert abs(o["contact_force_max"] / 9.0089e7 - 1) < 0.1, o
 assert 0.95 < o["R_n"] < 1.0 and o["nodes"] > 0 and o["steps"] > 0, o
 assert abs(o["energy_error"]) < 1e-2, o
+assert o["plastic_work"] == 0 and o["equivalent_plastic_strain_max"] == 0, o
+PY
+        out=$("$bin" impact --refinement 2 --slope-material von_mises --slope-yield 2e8 --json 2>/dev/null) \
+            || fail "plastic fem exit"
+        python3 - "$out" <<'PY' || fail "plastic fem JSON: $out"
+import json, sys
+o = json.loads(sys.argv[1])
+# J2 slope, Y = 200 MPa, 10 m/s: Thornton (p_y = 1.55 Y) 0.30 < R_n < Johnson 0.55 (plasticity_refs.md 1.5)
+assert 0.3 < o["R_n"] < 0.6 and 0.3 < o["plastic_work"] < 0.9, o
+assert 0 < o["indentation_depth"] < o["penetration_max"] and o["equivalent_plastic_strain_max"] > 0, o
+assert abs(o["energy_error"]) < 5e-3, o
 PY
     fi
 else

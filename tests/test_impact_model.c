@@ -390,6 +390,42 @@ static void test_concurrent(void **state)
     rf_model_free(&model);
 }
 
+/* Material parameters are study parameters (angles in degrees); the model
+ * returns the plastic outputs, equal to a direct FE call. */
+static void test_plastic_parameters(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
+    spec.fem.refinement = 2.0;
+    spec.base.slope_material = RF_MATERIAL_DRUCKER_PRAGER;
+    spec.base.slope_cohesion = 1e6;
+    const char *names[] = {"slope_friction_angle", "slope_dilatancy_angle", "slope_cap_pressure",
+                           "slope_cap_hardening"};
+    const double x[] = {35.0, 5.0, 2e8, 1e9};
+    rf_model model;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_model_create(&spec, names, 4, &model, &err), RF_OK);
+    assert_non_null(strstr(model.identity, "slope_material=drucker_prager"));
+    assert_string_equal(model.output_names[7], "plastic_work");
+    assert_string_equal(model.output_units[8], "m");
+    double y[RF_IMPACT_N_OUTPUTS], want[RF_IMPACT_N_OUTPUTS];
+    if (rf_model_eval(&model, x, y, &err) != RF_OK)
+        fail_msg("plastic eval: %s", err.msg);
+    rf_impact_input in = spec.base;
+    in.slope_friction_angle = 35.0 * DEG, in.slope_dilatancy_angle = 5.0 * DEG;
+    in.slope_cap_pressure = 2e8, in.slope_cap_hardening = 1e9;
+    rf_impact_output o;
+    assert_int_equal(rf_fem_impact(&in, &spec.fem, &o, NULL, &err), RF_OK);
+    outputs_of(&o, want);
+    assert_same(y, want, RF_IMPACT_N_OUTPUTS);
+    assert_true(y[7] > 0 && y[10] > 0 && y[4] < 0.98);
+    /* an inadmissible value is named */
+    const double bad[] = {30.0, 40.0, 2e8, 1e9};
+    assert_int_not_equal(rf_model_eval(&model, bad, y, &err), RF_OK);
+    assert_non_null(strstr(err.msg, "slope_dilatancy_angle"));
+    rf_model_free(&model);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -400,6 +436,7 @@ int main(void)
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_concurrent),
         cmocka_unit_test(test_fem_model),
+        cmocka_unit_test(test_plastic_parameters),
         cmocka_unit_test(test_fem_dispatch),
         cmocka_unit_test(test_fem_warnings),
     };

@@ -294,6 +294,13 @@ static const bad_case bad_cases[] = {
     {"impact support inadmissible",
      "levels: 4\nparameters:\n  boulder_poisson: {tfn: [0.25, 0.1, 0.3]}\nmodel:\n  impact: {solver: hertz}\n", 3,
      "parameters.boulder_poisson", "0.55"},
+    {"unknown slope material",
+     "levels: 4\nparameters:\n  velocity: {tfn: [10, 1, 1]}\nmodel:\n  impact: {slope_material: clay}\n", 5,
+     "model.impact.slope_material = clay", "drucker_prager"},
+    {"slope friction angle support inadmissible (degrees)",
+     "levels: 4\nparameters:\n  slope_friction_angle: {tfn: [30, 10, 70]}\nmodel:\n"
+     "  impact: {slope_material: drucker_prager, slope_cohesion: 1e4}\n",
+     3, "parameters.slope_friction_angle", "100 deg"},
     {"not YAML", "levels: 4\nparameters: [1, 2\n", 3, "not valid YAML", "column"},
     {"missing model", "levels: 4\nparameters:\n  x1: {tfn: [2, 1, 1]}\n", 1, "model", "missing"},
     {"top level is a list", "- 1\n- 2\n", 1, "(top level)", "expected a mapping"},

@@ -124,6 +124,11 @@ typedef struct {
     double vibration_energy;      /* boulder KE + strain energy - rigid KE at the end [J] */
     double slope_energy;          /* slope KE + strain energy at the end [J] */
     double ke0;                   /* initial kinetic energy [J] */
+    /* plasticity (axisymmetric model; zeros from the 3D model) */
+    double plastic_work_boulder, plastic_work_slope; /* plastic dissipation of each body at the end [J] */
+    int plastic_strain_max_in;    /* where the largest equivalent plastic strain is: 0 nowhere, 1 boulder, 2 slope */
+    double plastic_strain_max_r, plastic_strain_max_z; /* centre of its element (reference coordinates,
+                                                            z = 0 on the slope surface) [m] */
     long boulder_nodes, boulder_elements, slope_nodes, slope_elements;
     uint64_t state_hash;          /* FNV-1a over the bytes of the final u and v (determinism checks) */
     char warning[512];            /* "" or a human-readable warning */

@@ -39,6 +39,7 @@ typedef struct fem_kernel fem_kernel;
 typedef struct {
     double plastic_work;         /* plastic dissipation of the block so far [J] */
     double plastic_strain_max;   /* largest equivalent plastic strain of an integration point [-] */
+    long element_max;            /* the element of that point (global number; -1 if none yielded) */
 } fem_kernel_report;
 
 typedef struct {

@@ -22,6 +22,7 @@ typedef struct {
     double *eps, *sig, *var;          /* committed, per point */
     double *eps_t, *sig_t, *var_t;    /* trial of the last forces() */
     double plastic_work, plastic_strain_max; /* committed (dissipative laws) */
+    long point_max;                          /* the point of plastic_strain_max (-1: none) */
 } points_data;
 
 static void points_forces(const fem_kernel *k, long e0, long e1, const double *ue, double *fe)
@@ -62,13 +63,14 @@ static void points_commit(fem_kernel *k)
     if (!d->law.dissipative)
         return;
     double W = 0, emax = d->plastic_strain_max;
+    long pmax = d->point_max;
     for (size_t p = 0; p < np; p++) {
         const double *v = d->var + ns * p;
         W += d->w[p] * v[ns - 1];
         if (v[0] > emax)
-            emax = v[0];
+            emax = v[0], pmax = (long)p;
     }
-    d->plastic_work += W, d->plastic_strain_max = emax;
+    d->plastic_work += W, d->plastic_strain_max = emax, d->point_max = pmax;
 }
 
 
@@ -89,11 +91,12 @@ static const fem_kernel_ops points_ops = {"integration points (axisymmetric quad
 
 void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r)
 {
-    r->plastic_work = r->plastic_strain_max = 0;
+    r->plastic_work = r->plastic_strain_max = 0, r->element_max = -1;
     if (k->ops != &points_ops || !k->data)
         return;
     const points_data *d = k->data;
     r->plastic_work = d->plastic_work, r->plastic_strain_max = d->plastic_strain_max;
+    r->element_max = d->point_max < 0 ? -1 : k->first + d->point_max / NQ;
 }
 
 /* Mean dilatation: B_q rows rr, zz, tt get (bbar - b_q) / 3 with b_q the
@@ -134,6 +137,7 @@ rf_status fem_kernel_points_axi_ex(fem_kernel *k, long first, long count, const 
     if (!d)
         return rf_fail(err, RF_ENOMEM, "fem: out of memory");
     d->law = *law;
+    d->point_max = -1;
     d->B = malloc(np * 32 * sizeof *d->B), d->w = malloc(np * sizeof *d->w);
     d->eps = calloc(np * NC, sizeof *d->eps), d->sig = calloc(np * NC, sizeof *d->sig);
     d->eps_t = calloc(np * NC, sizeof *d->eps_t), d->sig_t = calloc(np * NC, sizeof *d->sig_t);

@@ -604,6 +604,16 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     hist->vibration_energy = ekb + seb - 0.5 * S->Mb * v_after * v_after;
     hist->slope_energy = eks + ses;
     hist->ke0 = S->ke0;
+    hist->plastic_work_boulder = rep[0].plastic_work, hist->plastic_work_slope = rep[1].plastic_work;
+    const int bm = rep[1].plastic_strain_max > rep[0].plastic_strain_max ? 1 : 0;
+    hist->plastic_strain_max_in = rep[bm].element_max < 0 ? 0 : 1 + bm;
+    if (rep[bm].element_max >= 0) {
+        const int *c = S->mesh.conn + 4 * rep[bm].element_max;
+        for (int a = 0; a < 4; a++) {
+            hist->plastic_strain_max_r += 0.25 * S->mesh.r[c[a]];
+            hist->plastic_strain_max_z += 0.25 * S->mesh.z[c[a]];
+        }
+    }
     hist->boulder_nodes = S->mesh.boulder_nodes, hist->boulder_elements = S->mesh.boulder_elems;
     hist->slope_nodes = S->nn - S->mesh.boulder_nodes, hist->slope_elements = S->ne - S->mesh.boulder_elems;
     hist->state_hash = fem_hash(fem_hash(FEM_HASH_SEED, u, (size_t)S->ndof * sizeof *u), v,

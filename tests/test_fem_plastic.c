@@ -1,0 +1,302 @@
+/* test_fem_plastic.c - elasto-plastic bodies in the axisymmetric FE model
+ * (issue 10) against closed forms:
+ *   - locking: the mean-dilatation (B-bar) integration-point kernel on a
+ *     thick cylinder under internal pressure in plane strain at nu = 0.49
+ *     and 0.4999, static solve, against Lame's solution;
+ *   - limit: with a huge yield stress (or cohesion) every plastic model gives
+ *     the elastic R_n (1e-4) and no plastic work;
+ *   - first yield: Hertz theory puts it at p0 = C(nu) Y on the axis below the
+ *     surface (Johnson 1985 sec. 4.2; C and the depth recomputed here from the
+ *     Hertz axis stresses), hence the yield velocity V_y: no plastic strain
+ *     at 0.85 V_y, plastic strain on the axis at the predicted depth at
+ *     1.25 V_y;
+ *   - energy: the account with plastic dissipation closes (< 0.5 % of KE).
+ * Coarse meshes so that the file runs in seconds. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "fem/fem_kernel.h"
+#include "rockfuzz/fem.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static rf_impact_input granite(double v)
+{
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.velocity = v;
+    return in;
+}
+
+static rf_fem_options coarse(double refinement)
+{
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = refinement;
+    o.domain_factor = 10;
+    return o;
+}
+
+/* --- locking: thick cylinder, plane strain, internal pressure --- */
+
+/* Solves A x = b (n x n, row-major) by Gaussian elimination with partial pivoting. */
+static void solve_dense(double *A, double *b, int n)
+{
+    for (int c = 0; c < n; c++) {
+        int piv = c;
+        for (int r = c + 1; r < n; r++)
+            if (fabs(A[r * n + c]) > fabs(A[piv * n + c]))
+                piv = r;
+        for (int j = 0; j < n; j++) {
+            double t = A[c * n + j];
+            A[c * n + j] = A[piv * n + j], A[piv * n + j] = t;
+        }
+        double t = b[c];
+        b[c] = b[piv], b[piv] = t;
+        for (int r = c + 1; r < n; r++) {
+            double f = A[r * n + c] / A[c * n + c];
+            for (int j = c; j < n; j++)
+                A[r * n + j] -= f * A[c * n + j];
+            b[r] -= f * b[c];
+        }
+    }
+    for (int r = n - 1; r >= 0; r--) {
+        for (int j = r + 1; j < n; j++)
+            b[r] -= A[r * n + j] * b[j];
+        b[r] /= A[r * n + r];
+    }
+}
+
+/* u_r at the inner radius from the kernel's stiffness (probed column by
+ * column with the linear law), relative to Lame's plane-strain solution. */
+static double cylinder_error(double nu, int bbar)
+{
+    enum { NR = 8, NN = 2 * (NR + 1), NE = NR };
+    const double a = 1, b = 2, hz = 0.25, E = 1e9, p = 1e6;
+    double r[NN], z[NN];
+    int conn[4 * NE];
+    for (int i = 0; i <= NR; i++)
+        for (int j = 0; j < 2; j++)
+            r[2 * i + j] = a + (b - a) * i / NR, z[2 * i + j] = hz * j;
+    for (int e = 0; e < NE; e++) {
+        int *c = conn + 4 * e;
+        c[0] = 2 * e, c[1] = 2 * (e + 1), c[2] = 2 * (e + 1) + 1, c[3] = 2 * e + 1;
+    }
+    fem_lame lame = {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+    fem_point_law law = fem_point_law_linear(&lame);
+    fem_kernel k;
+    rf_error err = {0};
+    assert_int_equal(fem_kernel_points_axi_ex(&k, 0, NE, r, z, conn, &law, bbar, &err), RF_OK);
+    /* free dofs: the radial ones (u_z = 0 everywhere: plane strain) */
+    const int nf = NN;
+    double *K = calloc((size_t)nf * nf, sizeof *K), F[NN] = {0};
+    assert_non_null(K);
+    for (int e = 0; e < NE; e++)
+        for (int jd = 0; jd < 8; jd += 2) {
+            double ue[8] = {0}, fe[8];
+            ue[jd] = 1;
+            k.ops->forces(&k, e, e + 1, ue, fe);
+            for (int id = 0; id < 8; id += 2)
+                K[conn[4 * e + id / 2] * nf + conn[4 * e + jd / 2]] += fe[id];
+        }
+    F[0] = F[1] = p * 2 * M_PI * a * hz / 2; /* the inner face, consistent nodal forces */
+    solve_dense(K, F, nf);
+    free(K);
+    fem_kernel_release(&k);
+    const double A = p * a * a / (b * b - a * a), B = p * a * a * b * b / (b * b - a * a);
+    const double exact = (1 + nu) / E * ((1 - 2 * nu) * A * a + B / a);
+    return F[0] / exact - 1;
+}
+
+static void test_bbar_no_locking(void **state)
+{
+    (void)state;
+    const double nus[] = {0.25, 0.49, 0.4999};
+    for (int i = 0; i < 3; i++) {
+        double full = cylinder_error(nus[i], 0), bar = cylinder_error(nus[i], 1);
+        printf("thick cylinder nu = %g: u_r(a) error full 2x2 %+.4f, B-bar %+.4f\n", nus[i], full, bar);
+        /* 8 linear elements through the wall: 1 % is the discretisation error */
+        if (!(fabs(bar) < 0.01))
+            fail_msg("B-bar nu = %g: error %g", nus[i], bar);
+        if (nus[i] > 0.4998 && !(fabs(full) > 5 * fabs(bar)))
+            fail_msg("full integration should lock at nu = %g: error %g vs B-bar %g", nus[i], full, bar);
+    }
+}
+
+/* The material library's law with an unreachable yield stress is the linear
+ * law in the same kernel (same B-bar): forces equal to round-off over steps. */
+static void test_material_law_elastic_limit(void **state)
+{
+    (void)state;
+    const double r[6] = {0, 0.1, 0.25, 0, 0.12, 0.2}, z[6] = {0, 0, 0, 0.1, 0.12, 0.15};
+    const int conn[8] = {0, 1, 4, 3, 1, 2, 5, 4};
+    rf_material_params p;
+    rf_material_params_default(&p);
+    p.model = RF_MATERIAL_VON_MISES, p.yield = 1e15, p.poisson = 0.3;
+    rf_material m;
+    rf_error err = {0};
+    assert_int_equal(rf_material_init(&m, &p, &err), RF_OK);
+    fem_lame lame = {p.E * p.poisson / ((1 + p.poisson) * (1 - 2 * p.poisson)), p.E / (2 * (1 + p.poisson))};
+    fem_point_law lin = fem_point_law_linear(&lame), mat = fem_point_law_material(&m);
+    fem_kernel a, b;
+    assert_int_equal(fem_kernel_points_axi_ex(&a, 0, 2, r, z, conn, &lin, 1, &err), RF_OK);
+    assert_int_equal(fem_kernel_points_axi_ex(&b, 0, 2, r, z, conn, &mat, 1, &err), RF_OK);
+    double worst = 0;
+    for (int step = 1; step <= 5; step++) {
+        double ue[16], fa[16], fb[16], scale = 0;
+        for (int i = 0; i < 16; i++)
+            ue[i] = 1e-4 * step * sin(1.3 * i + step); /* elements share nodes only through conn: any ue works */
+        a.ops->forces(&a, 0, 2, ue, fa), b.ops->forces(&b, 0, 2, ue, fb);
+        a.ops->commit(&a), b.ops->commit(&b);
+        for (int i = 0; i < 16; i++)
+            scale = fmax(scale, fabs(fa[i]));
+        for (int i = 0; i < 16; i++)
+            worst = fmax(worst, fabs(fa[i] - fb[i]) / scale);
+    }
+    fem_kernel_report rep;
+    fem_kernel_report_get(&b, &rep);
+    assert_true(rep.plastic_work == 0 && rep.plastic_strain_max == 0 && rep.element_max == -1);
+    if (!(worst < 1e-12))
+        fail_msg("material law vs linear law: relative force difference %g", worst);
+    fem_kernel_release(&a), fem_kernel_release(&b);
+}
+
+/* --- limit: huge strength = elastic --- */
+
+static void test_huge_yield_is_elastic(void **state)
+{
+    (void)state;
+    rf_fem_options o = coarse(3);
+    rf_impact_input el = granite(10);
+    rf_impact_output ref, out;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&el, &o, &ref, NULL, &err), RF_OK);
+    for (int m = 0; m < 3; m++) {
+        rf_impact_input in = el;
+        if (m == 0) { /* J2 in both bodies */
+            in.boulder_material = in.slope_material = RF_MATERIAL_VON_MISES;
+            in.boulder_yield = in.slope_yield = 1e15;
+        } else if (m == 1) { /* DP cone + cap */
+            in.slope_material = RF_MATERIAL_DRUCKER_PRAGER;
+            in.slope_cohesion = 1e15, in.slope_friction_angle = 30 * M_PI / 180;
+            in.slope_cap_pressure = 1e15;
+        } else { /* DP without cap, phi = 0 (a Tresca-like cone) */
+            in.slope_material = RF_MATERIAL_DRUCKER_PRAGER;
+            in.slope_cohesion = 1e15;
+        }
+        if (rf_fem_impact(&in, &o, &out, NULL, &err) != RF_OK)
+            fail_msg("%s", err.msg);
+        printf("huge strength model %d: R_n %.8f vs elastic %.8f, F_max ratio %.6f, energy error %.2e\n", m,
+               out.R_n, ref.R_n, out.contact_force_max / ref.contact_force_max, out.energy_error);
+        if (!(fabs(out.R_n - ref.R_n) < 1e-4))
+            fail_msg("model %d: R_n %.8f vs elastic %.8f", m, out.R_n, ref.R_n);
+        assert_true(out.plastic_work == 0 && out.equivalent_plastic_strain_max == 0);
+        /* B-bar (plastic bodies) vs full 2x2 integration (the elastic kernel) at a/h = 3 */
+        assert_true(fabs(out.contact_force_max / ref.contact_force_max - 1) < 1e-2);
+    }
+}
+
+/* --- first yield and the yield velocity (Hertz) --- */
+
+/* C(nu) = p0 / Y at first yield on the axis, and the depth z / a there, from
+ * Hertz's axis stresses (Johnson 1985 eq. 3.45 with the 1 + nu factor):
+ * sigma_z = -p0 / (1 + s^2), sigma_r = p0 (-(1 + nu)(1 - s atan(1/s)) + 1 / (2 (1 + s^2))). */
+static void hertz_first_yield(double nu, double *C, double *depth)
+{
+    double best = 0;
+    for (int i = 1; i <= 200000; i++) {
+        double s = i * 1e-5, sz = -1 / (1 + s * s);
+        double sr = -(1 + nu) * (1 - s * atan(1 / s)) + 0.5 / (1 + s * s);
+        if (fabs(sr - sz) > best)
+            best = fabs(sr - sz), *depth = s;
+    }
+    *C = 1 / best;
+}
+
+static void test_yield_velocity(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(1);
+    in.slope_material = RF_MATERIAL_VON_MISES;
+    in.slope_yield = 1e9;
+    double C = 0, depth = 0;
+    hertz_first_yield(in.slope_poisson, &C, &depth);
+    assert_true(fabs(C - 1.554) < 2e-3 && fabs(depth - 0.46) < 0.01); /* plasticity_refs.md sec. 1.1 */
+    /* V_y^2 = (pi^5/30) R^3 p_y^5 / (m E*^4): the energy to reach delta_y */
+    const double Es = rf_impact_effective_modulus(&in), m = rf_impact_mass(&in), py = C * in.slope_yield;
+    const double Vy = sqrt(pow(M_PI, 5) / 30 * pow(py, 5) / (m * pow(Es, 4)));
+    rf_fem_options o = coarse(6);
+    rf_error err = {0};
+    rf_impact_output out;
+    rf_fem_history h;
+    in.velocity = 0.85 * Vy;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_OK);
+    printf("V_y = %.4f m/s; at 0.85 V_y: eps_p max %.3g\n", Vy, out.equivalent_plastic_strain_max);
+    assert_true(out.equivalent_plastic_strain_max == 0 && out.plastic_work == 0);
+    in.velocity = 1.25 * Vy;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, &h, &err), RF_OK);
+    rf_impact_output hz;
+    assert_int_equal(rf_impact_hertz(&in, &hz, &err), RF_OK);
+    const double a = hz.contact_radius;
+    printf("at 1.25 V_y: eps_p max %.3g in body %d at r = %.3f a, depth %.3f a (Hertz: on the axis, first "
+           "yield at %.2f a); plastic work %.2e KE\n",
+           out.equivalent_plastic_strain_max, h.plastic_strain_max_in, h.plastic_strain_max_r / a,
+           -h.plastic_strain_max_z / a, depth, out.plastic_work);
+    assert_true(out.equivalent_plastic_strain_max > 0 && out.plastic_work > 0 && out.plastic_work < 0.01);
+    assert_int_equal(h.plastic_strain_max_in, 2);
+    /* element centres, h = a/6: on the axis (first ring) and at the depth within one element */
+    assert_true(h.plastic_strain_max_r < 0.2 * a);
+    assert_true(fabs(-h.plastic_strain_max_z / a - depth) < 1.0 / 6 + 0.05);
+    rf_fem_history_free(&h);
+}
+
+/* --- energy closure with plastic dissipation --- */
+
+static void test_plastic_energy_closure(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    in.slope_material = RF_MATERIAL_VON_MISES;
+    in.slope_yield = 200e6;
+    rf_fem_options o = coarse(4);
+    rf_impact_output out;
+    rf_fem_history h;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &out, &h, &err), RF_OK);
+    const double ke_after = out.R_ke;
+    printf("J2 slope Y = 200 MPa, 10 m/s: R_n %.4f, plastic work %.4f, rebound %.4f, slope %.4f, vibration %.4f "
+           "of KE; energy error %.2e; penetration %.4f m, crater %.4f m\n",
+           out.R_n, out.plastic_work, ke_after, h.slope_energy / h.ke0, h.vibration_energy / h.ke0, out.energy_error,
+           out.penetration_max, out.indentation_depth);
+    assert_true(out.energy_error < 5e-3);
+    /* what went where adds up (closure at the end, fixed boundary: nothing absorbed) */
+    const double sum = out.plastic_work + ke_after + (h.slope_energy + h.vibration_energy) / h.ke0;
+    assert_true(fabs(sum - 1) < 5e-3);
+    assert_true(out.plastic_work > 0.2 && out.plastic_work < 0.9);
+    assert_true(h.plastic_work_boulder == 0 && h.plastic_work_slope > 0);
+    /* a permanent crater, shallower than the deepest penetration */
+    assert_true(out.indentation_depth > 0 && out.indentation_depth < out.penetration_max);
+    rf_fem_history_free(&h);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bbar_no_locking),
+        cmocka_unit_test(test_material_law_elastic_limit),
+        cmocka_unit_test(test_huge_yield_is_elastic),
+        cmocka_unit_test(test_yield_velocity),
+        cmocka_unit_test(test_plastic_energy_closure),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
