@@ -1,0 +1,55 @@
+/* bench_fem_plastic.c - cost of the material kernels of the axisymmetric FE
+ * impact (issue 10): nanoseconds per element-step and wall time of a granite
+ * sphere at V m/s on a slope that is elastic (precomputed stiffness, and the
+ * integration-point kernel), von Mises, or Drucker-Prager with a cap.
+ *   bench_fem_plastic [refinement=10] [velocity=10] [repeats=3]
+ * Prints the best of `repeats` runs (other jobs share the machine). */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "rockfuzz/fem.h"
+
+int main(int argc, char **argv)
+{
+    const double ref = argc > 1 ? atof(argv[1]) : 10, V = argc > 2 ? atof(argv[2]) : 10;
+    const int repeats = argc > 3 ? atoi(argv[3]) : 3;
+    printf("# refinement a/h = %g, V = %g m/s, domain factor 10, best of %d\n", ref, V, repeats);
+    printf("%-34s %9s %9s %8s %10s %9s %9s\n", "slope material", "elements", "steps", "wall[s]", "ns/el-step", "R_n",
+           "W_p/KE");
+    for (int m = 0; m < 4; m++) {
+        rf_impact_input in;
+        rf_impact_input_default(&in);
+        in.velocity = V;
+        rf_fem_options o;
+        rf_fem_options_default(&o);
+        o.refinement = ref;
+        o.domain_factor = 10;
+        const char *name = "elastic (stiffness kernel)";
+        if (m == 1) {
+            o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_POINTS;
+            name = "elastic (integration points, 2x2)";
+        } else if (m == 2) {
+            in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 200e6;
+            name = "von_mises Y 200 MPa (B-bar)";
+        } else if (m == 3) {
+            in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 20e6;
+            in.slope_friction_angle = 0.6, in.slope_dilatancy_angle = 0.1;
+            in.slope_cap_pressure = 300e6, in.slope_cap_hardening = 5e9;
+            name = "drucker_prager + cap (B-bar)";
+        }
+        double best = 1e300;
+        rf_impact_output out = {0};
+        for (int r = 0; r < repeats; r++) {
+            rf_error err = {0};
+            if (rf_fem_impact(&in, &o, &out, NULL, &err) != RF_OK) {
+                fprintf(stderr, "bench_fem_plastic: %s\n", err.msg);
+                return 1;
+            }
+            if (out.wall_seconds < best)
+                best = out.wall_seconds;
+        }
+        printf("%-34s %9.0f %9.0f %8.3f %10.1f %9.5f %9.4f\n", name, out.elements, out.steps, best,
+               1e9 * best / (out.elements * out.steps), out.R_n, out.plastic_work);
+    }
+    return 0;
+}
