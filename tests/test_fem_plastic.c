@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <setjmp.h>
 #include <stdarg.h>
@@ -289,6 +290,50 @@ static void test_plastic_energy_closure(void **state)
     rf_fem_history_free(&h);
 }
 
+/* VTK frames carry the plastic state: the committed stress of the points and
+ * the equivalent plastic strain, whose largest value the outputs report. */
+static void test_vtk_plastic_fields(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/rockfuzz_plastic_vtkXXXXXX";
+    assert_non_null(mkdtemp(dir));
+    rf_impact_input in = granite(10);
+    in.slope_material = RF_MATERIAL_VON_MISES;
+    in.slope_yield = 200e6;
+    rf_fem_options o = coarse(2);
+    o.vtk_dir = dir;
+    o.vtk_frames = 3;
+    rf_impact_output out;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_OK);
+    double vmax = 0;
+    char path[256];
+    for (int f = 0;; f++) {
+        snprintf(path, sizeof path, "%s/fem_%04d.vtu", dir, f);
+        FILE *fp = fopen(path, "r");
+        if (!fp)
+            break;
+        char line[256];
+        int in_field = 0;
+        while (fgets(line, sizeof line, fp)) {
+            if (strstr(line, "Name=\"equivalent_plastic_strain\""))
+                in_field = 1;
+            else if (strstr(line, "</DataArray>"))
+                in_field = 0;
+            else if (in_field)
+                vmax = fmax(vmax, atof(line));
+        }
+        fclose(fp);
+        remove(path);
+    }
+    snprintf(path, sizeof path, "%s/fem.pvd", dir);
+    remove(path);
+    rmdir(dir);
+    printf("VTK: largest plastic strain of the frames %.4f, output %.4f\n", vmax, out.equivalent_plastic_strain_max);
+    assert_true(vmax > 0 && vmax <= out.equivalent_plastic_strain_max);
+    assert_true(vmax > 0.5 * out.equivalent_plastic_strain_max); /* the last frames are after the loading */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -297,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_huge_yield_is_elastic),
         cmocka_unit_test(test_yield_velocity),
         cmocka_unit_test(test_plastic_energy_closure),
+        cmocka_unit_test(test_vtk_plastic_fields),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -65,10 +65,14 @@ double fem_element_lambda_max(const double K[64], const double m[4], const int f
 void fem_element_stress(const double r[4], const double z[4], const fem_material *mat,
                         const double u[8], double s[4]);
 
-/* VTK output of one frame; appends the frame to the .pvd index text. */
+/* VTK output of one frame; appends the frame to the .pvd index text.
+ * kernel (may be NULL): the material kernel of each body; an
+ * integration-point kernel supplies its committed stress and plastic strain
+ * (of the previous step), else the stress is the elastic one from u. */
+struct fem_kernel;
 rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *mesh,
                         const double *u, const double *v, const fem_material mat[2],
-                        rf_error *err);
+                        const struct fem_kernel *kernel, rf_error *err);
 rf_status fem_vtk_index(const char *dir, int frames, const double *times, rf_error *err);
 
 /* One contact pair: boulder node s over slope segment (m1, m2) at coordinate xi. */

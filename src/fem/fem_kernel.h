@@ -121,6 +121,11 @@ fem_point_law fem_point_law_material(const rf_material *m);
 /* The dissipation account of a kernel's committed state: zeros for any
  * kernel that is not an integration-point kernel with a dissipative law. */
 void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r);
+/* The committed state of element e (global number) of an integration-point
+ * kernel: mean stress components over its points (rr, zz, tt, rz) and the
+ * largest equivalent plastic strain (0 for a law without one).  Returns 0,
+ * leaving the outputs alone, for other kernels or elements outside the block. */
+int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *plastic_strain);
 
 static inline void fem_kernel_release(fem_kernel *k)
 {

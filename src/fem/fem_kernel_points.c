@@ -89,6 +89,25 @@ static void points_destroy(fem_kernel *k)
 static const fem_kernel_ops points_ops = {"integration points (axisymmetric quad)", points_forces, NULL,
                                           points_commit, points_destroy};
 
+int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *plastic_strain)
+{
+    if (k->ops != &points_ops || !k->data || e < k->first || e >= k->first + k->count)
+        return 0;
+    const points_data *d = k->data;
+    const size_t p0 = (size_t)NQ * (size_t)(e - k->first), ns = (size_t)d->law.nstate;
+    double emax = 0;
+    for (int i = 0; i < NC; i++)
+        sig[i] = 0;
+    for (size_t p = p0; p < p0 + NQ; p++) {
+        for (int i = 0; i < NC; i++)
+            sig[i] += 0.25 * d->sig[NC * p + i];
+        if (d->law.dissipative && d->var[ns * p] > emax)
+            emax = d->var[ns * p];
+    }
+    *plastic_strain = emax;
+    return 1;
+}
+
 void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r)
 {
     r->plastic_work = r->plastic_strain_max = 0, r->element_max = -1;

@@ -541,7 +541,7 @@ static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
     for (;; n++) {
         const double t = (double)n * S->dt;
         if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap) {
-            if ((st = fem_vtk_frame(o->vtk_dir, vtk_n, t, &S->mesh, S->u, S->v, S->mat, err)) != RF_OK)
+            if ((st = fem_vtk_frame(o->vtk_dir, vtk_n, t, &S->mesh, S->u, S->v, S->mat, S->kernel, err)) != RF_OK)
                 return st;
             vtk_times[vtk_n++] = t;
         }

@@ -1,14 +1,16 @@
 /* fem_vtk.c - ParaView output of the impact: one ASCII .vtu per frame
  * (points in the (r, z) plane as x, y; point data displacement and velocity;
- * cell data stress components and body id) and a .pvd time index. */
+ * cell data stress components, equivalent plastic strain and body id) and a
+ * .pvd time index. */
 #include "fem_internal.h"
+#include "fem_kernel.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
 rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *mesh, const double *u,
-                        const double *v, const fem_material mat[2], rf_error *err)
+                        const double *v, const fem_material mat[2], const fem_kernel *kernel, rf_error *err)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/fem_%04d.vtu", dir, frame);
@@ -45,17 +47,19 @@ rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *me
         fprintf(fp, "</DataArray>\n");
     }
     fprintf(fp, "</PointData>\n<CellData>\n");
-    const char *sn[4] = {"sigma_rr", "sigma_zz", "sigma_tt", "sigma_rz"};
-    for (int k = 0; k < 4; k++) {
+    const char *sn[5] = {"sigma_rr", "sigma_zz", "sigma_tt", "sigma_rz", "equivalent_plastic_strain"};
+    for (int k = 0; k < 5; k++) {
         fprintf(fp, "<DataArray type=\"Float64\" Name=\"%s\" format=\"ascii\">\n", sn[k]);
         for (long e = 0; e < mesh->n_elems; e++) {
             const int *c = mesh->conn + 4 * e;
-            double r[4], z[4], ue[8], s[4];
-            for (int a = 0; a < 4; a++) {
-                r[a] = mesh->r[c[a]], z[a] = mesh->z[c[a]];
-                ue[2 * a] = u[2 * c[a]], ue[2 * a + 1] = u[2 * c[a] + 1];
+            double r[4], z[4], ue[8], s[5] = {0, 0, 0, 0, 0};
+            if (!kernel || !fem_kernel_cell_state(&kernel[mesh->ebody[e]], e, s, &s[4])) {
+                for (int a = 0; a < 4; a++) {
+                    r[a] = mesh->r[c[a]], z[a] = mesh->z[c[a]];
+                    ue[2 * a] = u[2 * c[a]], ue[2 * a + 1] = u[2 * c[a] + 1];
+                }
+                fem_element_stress(r, z, &mat[mesh->ebody[e]], ue, s);
             }
-            fem_element_stress(r, z, &mat[mesh->ebody[e]], ue, s);
             fprintf(fp, "%.7g\n", s[k]);
         }
         fprintf(fp, "</DataArray>\n");
