@@ -377,6 +377,12 @@ static void test_plastic_energy_closure(void **state)
     assert_true(fabs(sum - 1) < 5e-3);
     assert_true(out.plastic_work > 0.2 && out.plastic_work < 0.9);
     assert_true(h.plastic_work_boulder == 0 && h.plastic_work_slope > 0);
+    /* the dissipation the return maps report is the part of the FE's internal
+       work that the final stresses do not store elastically */
+    printf("slope elastic energy: from the stresses %.5f KE, internal work - plastic work %.5f KE\n",
+           h.elastic_energy_stress / h.ke0, h.elastic_energy_work / h.ke0);
+    assert_true(h.elastic_energy_stress > 0);
+    assert_true(fabs(h.elastic_energy_stress - h.elastic_energy_work) < 2e-3 * h.ke0);
     /* a permanent crater, shallower than the deepest penetration */
     assert_true(out.indentation_depth > 0 && out.indentation_depth < out.penetration_max);
     rf_fem_history_free(&h);

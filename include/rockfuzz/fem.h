@@ -126,6 +126,8 @@ typedef struct {
     double ke0;                   /* initial kinetic energy [J] */
     /* plasticity (axisymmetric model; zeros from the 3D model) */
     double plastic_work_boulder, plastic_work_slope; /* plastic dissipation of each body at the end [J] */
+    double elastic_energy_stress; /* plastic bodies: elastic energy of the committed stresses [J] ... */
+    double elastic_energy_work;   /* ... and their internal work less the plastic work (should agree) [J] */
     int plastic_strain_max_in;    /* where the largest equivalent plastic strain is: 0 nowhere, 1 boulder, 2 slope */
     double plastic_strain_max_r, plastic_strain_max_z; /* centre of its element (reference coordinates,
                                                             z = 0 on the slope surface) [m] */

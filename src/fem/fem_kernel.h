@@ -76,6 +76,9 @@ typedef struct {
        state[nstate - 1] the plastic work per unit volume of the last
        increment [J/m^3]; the kernel then integrates the dissipation. */
     int dissipative;
+    /* Optional (NULL): elastic energy density of a stress [J/m^3], for the
+       energy account's check (fem_kernel_elastic_energy). */
+    double (*energy)(const void *params, const double *sig);
 } fem_point_law;
 
 /* Elements per call of forces() in the time loops (bounded stack buffers). */
@@ -126,6 +129,9 @@ void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r);
  * largest equivalent plastic strain (0 for a law without one).  Returns 0,
  * leaving the outputs alone, for other kernels or elements outside the block. */
 int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *plastic_strain);
+/* Elastic energy of the committed stresses, sum_q w_q psi(sigma_q) [J], of an
+ * integration-point kernel whose law gives psi; -1 otherwise. */
+double fem_kernel_elastic_energy(const fem_kernel *k);
 
 static inline void fem_kernel_release(fem_kernel *k)
 {

@@ -108,6 +108,19 @@ int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *pl
     return 1;
 }
 
+double fem_kernel_elastic_energy(const fem_kernel *k)
+{
+    if (k->ops != &points_ops || !k->data)
+        return -1;
+    const points_data *d = k->data;
+    if (!d->law.energy)
+        return -1;
+    double E = 0;
+    for (size_t p = 0; p < (size_t)NQ * (size_t)k->count; p++)
+        E += d->w[p] * d->law.energy(d->law.params, d->sig + NC * p);
+    return E;
+}
+
 void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r)
 {
     r->plastic_work = r->plastic_strain_max = 0, r->element_max = -1;
@@ -188,7 +201,7 @@ static void linear_update(const void *params, const double *deps, const double *
 
 fem_point_law fem_point_law_linear(const fem_lame *lame)
 {
-    fem_point_law law = {"linear elastic", NC, 0, linear_update, lame, 0};
+    fem_point_law law = {"linear elastic", NC, 0, linear_update, lame, 0, NULL};
     return law;
 }
 
@@ -203,8 +216,14 @@ static void material_update(const void *params, const double *deps, const double
     state[0] = st.plastic_strain_eq, state[1] = st.plastic_volumetric, state[2] = st.compaction, state[3] = D;
 }
 
+static double material_energy(const void *params, const double *sig)
+{
+    const double s6[6] = {sig[0], sig[1], sig[2], sig[3], 0, 0};
+    return rf_material_elastic_energy(params, s6);
+}
+
 fem_point_law fem_point_law_material(const rf_material *m)
 {
-    fem_point_law law = {rf_material_model_name(m->model), NC, 4, material_update, m, 1};
+    fem_point_law law = {rf_material_model_name(m->model), NC, 4, material_update, m, 1, material_energy};
     return law;
 }

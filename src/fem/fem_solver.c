@@ -605,6 +605,13 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     hist->slope_energy = eks + ses;
     hist->ke0 = S->ke0;
     hist->plastic_work_boulder = rep[0].plastic_work, hist->plastic_work_slope = rep[1].plastic_work;
+    for (int b = 0; b < 2; b++) {
+        const double Ee = S->plastic[b] ? fem_kernel_elastic_energy(&S->kernel[b]) : -1;
+        if (Ee >= 0) {
+            hist->elastic_energy_stress += Ee;
+            hist->elastic_energy_work += S->W_int[b] - rep[b].plastic_work;
+        }
+    }
     const int bm = rep[1].plastic_strain_max > rep[0].plastic_strain_max ? 1 : 0;
     hist->plastic_strain_max_in = rep[bm].element_max < 0 ? 0 : 1 + bm;
     if (rep[bm].element_max >= 0) {
