@@ -432,6 +432,32 @@ static void test_vtk_plastic_fields(void **state)
     assert_true(vmax > 0.5 * out.equivalent_plastic_strain_max); /* the last frames are after the loading */
 }
 
+/* Both bodies plastic (J2 boulder, DP + cap slope): the same bits on 1 and 2
+ * threads (each element writes its own points' state; commits are serial). */
+static void test_plastic_threads_deterministic(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    in.boulder_material = RF_MATERIAL_VON_MISES, in.boulder_yield = 300e6;
+    in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 20e6;
+    in.slope_friction_angle = 34 * M_PI / 180, in.slope_dilatancy_angle = 6 * M_PI / 180;
+    in.slope_cap_pressure = 300e6, in.slope_cap_hardening = 5e9;
+    uint64_t hash[2];
+    double wp[2];
+    for (int t = 1; t <= 2; t++) {
+        rf_fem_options o = coarse(2);
+        o.threads = t;
+        rf_impact_output out;
+        rf_fem_history h;
+        rf_error err = {0};
+        assert_int_equal(rf_fem_impact(&in, &o, &out, &h, &err), RF_OK);
+        hash[t - 1] = h.state_hash, wp[t - 1] = out.plastic_work;
+        assert_true(h.plastic_work_boulder > 0 && h.plastic_work_slope > 0);
+        rf_fem_history_free(&h);
+    }
+    assert_true(hash[0] == hash[1] && wp[0] == wp[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -442,6 +468,7 @@ int main(void)
         cmocka_unit_test(test_yield_velocity),
         cmocka_unit_test(test_plastic_energy_closure),
         cmocka_unit_test(test_vtk_plastic_fields),
+        cmocka_unit_test(test_plastic_threads_deterministic),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
