@@ -77,6 +77,9 @@ expect_error 2 "--slope-cap-pressure -1" --slope-material drucker_prager --slope
 expect_error 2 "--boulder-hardening -1" --boulder-material von_mises --boulder-yield 1e8 --boulder-hardening -1
 expect_error 1 "axisymmetric model only" --slope-material von_mises --slope-yield 2e8 --slope-angle 30
 "$bin" impact --help | grep -q -- '--slope-cap-pressure PA' || fail "help lacks --slope-cap-pressure"
+# a rigid boulder: Hertz with E* = E_s / (1 - nu_s^2) (F = 1.18873e8 N at 10 m/s)
+out=$("$bin" impact --solver hertz --boulder-material rigid --json) || fail "rigid hertz exit"
+echo "$out" | grep -q '"contact_force_max": 11887' || fail "rigid boulder Hertz force: $out"
 
 # --- FE on the coarsest mesh, when the solver is built ---
 out=$("$bin" impact --solver fem --refinement 2 --boundary absorbing --json 2>/dev/null)

@@ -10,7 +10,9 @@
  *     Hertz axis stresses), hence the yield velocity V_y: no plastic strain
  *     at 0.85 V_y, plastic strain on the axis at the predicted depth at
  *     1.25 V_y;
- *   - energy: the account with plastic dissipation closes (< 0.5 % of KE).
+ *   - energy: the account with plastic dissipation closes (< 0.5 % of KE);
+ *   - a rigid boulder: Hertz with E* = E_s / (1 - nu_s^2), compression ==
+ *     penetration, no vibration, and the slope alone sets the time step.
  * Coarse meshes so that the file runs in seconds. */
 #include <math.h>
 #include <stdio.h>
@@ -458,6 +460,45 @@ static void test_plastic_threads_deterministic(void **state)
     assert_true(hash[0] == hash[1] && wp[0] == wp[1]);
 }
 
+static void test_rigid_boulder(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    rf_fem_options o = coarse(5);
+    o.boundary = RF_FEM_BOUNDARY_ABSORBING;
+    rf_impact_output out, hz;
+    rf_fem_history h;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &out, &h, &err), RF_OK);
+    assert_int_equal(rf_impact_hertz(&in, &hz, &err), RF_OK);
+    const double Es = in.slope_E / (1 - in.slope_poisson * in.slope_poisson);
+    assert_true(fabs(rf_impact_effective_modulus(&in) / Es - 1) < 1e-15);
+    printf("rigid boulder, 10 m/s, a/h = 5: F %+.2f %%, delta %+.2f %%, t_c %+.2f %%, a %+.2f %% vs Hertz; R_n %.5f; "
+           "vibration %.1e KE\n",
+           100 * (out.contact_force_max / hz.contact_force_max - 1), 100 * (out.compression_max / hz.compression_max - 1),
+           100 * (out.contact_duration / hz.contact_duration - 1), 100 * (out.contact_radius / hz.contact_radius - 1),
+           out.R_n, h.vibration_energy / h.ke0);
+    assert_true(fabs(out.contact_force_max / hz.contact_force_max - 1) < 0.03);
+    assert_true(fabs(out.compression_max / hz.compression_max - 1) < 0.03);
+    assert_true(fabs(out.contact_duration / hz.contact_duration - 1) < 0.03);
+    assert_true(fabs(out.contact_radius / hz.contact_radius - 1) < 0.03);
+    /* rigid: the centre's approach is the lowest point's penetration, nothing vibrates */
+    assert_true(fabs(out.penetration_max / out.compression_max - 1) < 1e-9);
+    assert_true(fabs(h.vibration_energy) < 1e-9 * h.ke0 && out.energy_error < 1e-3);
+    assert_true(out.R_n > 0.95 && out.R_n < 1);
+    rf_fem_history_free(&h);
+    /* a soft slope under a stiff boulder: the slope alone sets dt */
+    in.slope_E = 1e9;
+    rf_fem_history hr, he;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, &hr, &err), RF_OK);
+    in.boulder_material = RF_MATERIAL_ELASTIC;
+    assert_int_equal(rf_fem_impact(&in, &o, &out, &he, &err), RF_OK);
+    printf("slope E = 1 GPa: dt rigid boulder %.3g s, elastic boulder %.3g s\n", hr.dt, he.dt);
+    assert_true(hr.dt > 3 * he.dt);
+    rf_fem_history_free(&hr), rf_fem_history_free(&he);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -469,6 +510,7 @@ int main(void)
         cmocka_unit_test(test_plastic_energy_closure),
         cmocka_unit_test(test_vtk_plastic_fields),
         cmocka_unit_test(test_plastic_threads_deterministic),
+        cmocka_unit_test(test_rigid_boulder),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -37,7 +37,7 @@ typedef struct {
     double slope_angle;      /* [rad], 0 = horizontal slope */
     double friction;         /* Coulomb coefficient [-], static = kinetic */
     /* Materials (docs/materials.md; defaults elastic, the other fields then unused). */
-    rf_material_model boulder_material; /* elastic | von_mises */
+    rf_material_model boulder_material; /* elastic | von_mises | RF_MATERIAL_RIGID_BODY */
     double boulder_yield;               /* von_mises: initial yield stress Y [Pa] */
     double boulder_hardening;           /* von_mises: H [Pa], sigma_eq = Y + H eps_p */
     rf_material_model slope_material;   /* elastic | von_mises | drucker_prager */
@@ -49,7 +49,16 @@ typedef struct {
     double slope_cap_hardening;         /* drucker_prager: compaction modulus H_c [Pa] */
 } rf_impact_input;
 
-/* The constitutive parameters of the boulder (body 0) or the slope (body 1). */
+/* boulder_material value of a rigid boulder ("rigid"; not a material of
+ * material.h): exact mass, no deformation (boulder_E and boulder_poisson are
+ * ignored, E* = E_s / (1 - nu_s^2)); axisymmetric FE model only. */
+#define RF_MATERIAL_RIGID_BODY ((rf_material_model)16)
+/* "elastic" | "von_mises" | "rigid" -> boulder_material (RF_EINVAL otherwise). */
+rf_status rf_impact_boulder_material_parse(const char *name, rf_material_model *m, rf_error *err);
+const char *rf_impact_material_name(rf_material_model m);
+
+/* The constitutive parameters of the boulder (body 0) or the slope (body 1);
+ * a rigid boulder gives its elastic constants. */
 void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_params *p);
 
 /* Nominal granite of SYSTEM.md: r0 = 1 m, rho 2600, E 68.2 GPa, nu 0.25,

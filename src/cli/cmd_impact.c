@@ -94,7 +94,8 @@ static void usage(FILE *f)
         "  --friction MU            Coulomb coefficient >= 0, static = kinetic (default 0)\n"
         "\n"
         "Materials (docs/materials.md; fem solver, axisymmetric model only when not elastic):\n"
-        "  --boulder-material M     elastic | von_mises (default elastic)\n"
+        "  --boulder-material M     elastic | von_mises | rigid (default elastic; rigid: exact\n"
+        "                           mass, no deformation, E* from the slope alone)\n"
         "  --boulder-yield PA       von_mises: initial yield stress Y [Pa]\n"
         "  --boulder-hardening PA   von_mises: hardening modulus H >= 0 [Pa] (default 0)\n"
         "  --slope-material M       elastic | von_mises | drucker_prager (default elastic)\n"
@@ -218,6 +219,8 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
            in->boulder_E, in->boulder_poisson);
     printf("  slope material    rho = %g kg/m^3, E = %g Pa, nu = %g\n", in->slope_density,
            in->slope_E, in->slope_poisson);
+    if (in->boulder_material == RF_MATERIAL_RIGID_BODY)
+        printf("  boulder           rigid (its E and nu are not used)\n");
     if (in->boulder_material == RF_MATERIAL_VON_MISES)
         printf("  boulder plasticity von_mises Y = %g Pa, H = %g Pa\n", in->boulder_yield, in->boulder_hardening);
     if (in->slope_material == RF_MATERIAL_VON_MISES)
@@ -388,11 +391,10 @@ int rf_cli_impact(int argc, char **argv)
             break;
         case O_MAT_B:
         case O_MAT_S: {
-            rf_material_model *m = id == O_MAT_B ? &in->boulder_material : &in->slope_material;
-            if (rf_material_model_parse(val, m, &err) != RF_OK ||
-                (id == O_MAT_B && *m == RF_MATERIAL_DRUCKER_PRAGER)) {
+            if ((id == O_MAT_B ? rf_impact_boulder_material_parse(val, &in->boulder_material, &err)
+                               : rf_material_model_parse(val, &in->slope_material, &err)) != RF_OK) {
                 fprintf(stderr, "rockfuzz impact: --%s '%s': expected %s\n", oname, val,
-                        id == O_MAT_B ? "elastic or von_mises" : "elastic, von_mises or drucker_prager");
+                        id == O_MAT_B ? "elastic, von_mises or rigid" : "elastic, von_mises or drucker_prager");
                 return EXIT_USAGE;
             }
             break;

@@ -44,11 +44,13 @@ static int cholesky_solve(double *A, double *b, int n)
     return 0;
 }
 
-static double pair_aij(const contact_pair *a, const contact_pair *b, const double *invm)
+/* (G M^-1 G^T)_ab; with a rigid boulder every two slaves are coupled
+ * through its mass (slave dofs are the boulder's, masters the slope's). */
+static double pair_aij(const contact_pair *a, const contact_pair *b, const double *invm, double rigid_invm)
 {
-    double s = 0;
-    for (int p = 0; p < 3; p++)
-        for (int q = 0; q < 3; q++)
+    double s = rigid_invm > 0 ? a->c[0] * b->c[0] * rigid_invm : 0;
+    for (int p = rigid_invm > 0; p < 3; p++)
+        for (int q = rigid_invm > 0; q < 3; q++)
             if (a->dof[p] == b->dof[q])
                 s += a->c[p] * b->c[q] * invm[a->dof[p]];
     return s;
@@ -74,7 +76,7 @@ static rf_status contact_solve(fem_contact *C, const double *u, const double *in
         for (int a = 0; a < na; a++) {
             const contact_pair *pa = C->pair + C->active[a];
             for (int b = 0; b <= a; b++) {
-                double v = dt2 * pair_aij(pa, C->pair + C->active[b], invm);
+                double v = dt2 * pair_aij(pa, C->pair + C->active[b], invm, C->rigid_invm);
                 C->A[a * na + b] = C->A[b * na + a] = v;
             }
             C->rhs[a] = -C->gpred[C->active[a]];
@@ -94,12 +96,18 @@ static rf_status contact_solve(fem_contact *C, const double *u, const double *in
             continue;
         }
         /* displacement corrections, then check the inactive candidates */
+        double du_rigid = 0; /* of a rigid boulder (every slave) */
+        const int q0 = C->rigid_invm > 0;
         for (int a = 0; a < na; a++) {
             const contact_pair *p = C->pair + C->active[a];
             C->lambda[C->active[a]] = C->rhs[a];
-            for (int q = 0; q < 3; q++)
+            du_rigid += dt2 * C->rigid_invm * p->c[0] * C->rhs[a];
+            for (int q = q0; q < 3; q++)
                 C->du[p->dof[q]] += dt2 * invm[p->dof[q]] * p->c[q] * C->rhs[a];
         }
+        if (q0)
+            for (int k = 0; k < nc; k++)
+                C->du[C->pair[C->cand[k]].dof[0]] = du_rigid;
         int added = 0;
         for (int k = 0; k < nc; k++) {
             int i = C->cand[k];
@@ -194,18 +202,23 @@ rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double
     rf_status st = contact_solve(C, u, invm, dt, err);
     if (st != RF_OK)
         return st;
-    double F = 0;
+    double F = 0, dv_rigid = 0;
+    const int q0 = C->rigid_invm > 0;
     for (long i = 0; i < C->npairs; i++) {
         if (C->lambda[i] <= 0)
             continue;
         const contact_pair *p = C->pair + i;
-        for (int q = 0; q < 3; q++) {
+        dv_rigid += dt * C->rigid_invm * p->c[0] * C->lambda[i];
+        for (int q = q0; q < 3; q++) {
             double dv = dt * invm[p->dof[q]] * p->c[q] * C->lambda[i];
             v[p->dof[q]] += dv;
             u[p->dof[q]] += dt * dv;
         }
         F += C->lambda[i];
     }
+    if (q0 && dv_rigid != 0) /* the whole boulder moves */
+        for (long d = 1; d < C->rigid_dofs; d += 2)
+            v[d] += dv_rigid, u[d] += dt * dv_rigid;
     for (long i = 0; i < C->npairs; i++) {
         if (C->lambda[i] <= 0)
             continue;

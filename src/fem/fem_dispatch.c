@@ -27,7 +27,7 @@ rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const
                        "fem: plastic materials (boulder_material = %s, slope_material = %s) are available in the "
                        "axisymmetric model only (normal impact, slope_angle = 0, no friction between dissimilar "
                        "bodies); the 3D model is elastic for now",
-                       rf_material_model_name(in->boulder_material), rf_material_model_name(in->slope_material));
+                       rf_impact_material_name(in->boulder_material), rf_material_model_name(in->slope_material));
     if (!want_3d)
         return ws ? rf_fem_impact_ws(ws, in, opt, out, hist, err) : rf_fem_impact(in, opt, out, hist, err);
     rf_fem_options o;

@@ -98,6 +98,10 @@ typedef struct {
     double work;     /* work of the contact forces so far [J] */
     double pen_max;  /* largest penetration [m] */
     double slip_max; /* largest radial slip of a closed pair [m] */
+    /* A rigid boulder (rigid_invm = 1 / its mass > 0): every slave moves with
+       the boulder, whose z dofs 1, 3, ..., rigid_dofs - 1 get the correction. */
+    double rigid_invm;
+    long rigid_dofs;
 } fem_contact;
 
 /* Pairs of the boulder surface nodes below height d / 2 (fem_contact.c). */

@@ -93,6 +93,9 @@ typedef struct {
 void fem_kernel_linear_axi(fem_kernel *k, long first, long count, double *K, int pooled);
 void fem_kernel_linear_hex(fem_kernel *k, long first, long count, float *K, int pooled);
 
+/* A rigid body's block: no internal force (fem_kernel_rigid.c). */
+void fem_kernel_rigid(fem_kernel *k, long first, long count, int ndofe);
+
 /* Integration-point kernel of the axisymmetric quad (2x2 Gauss): keeps B and
  * the weight at every point, the committed strain, stress and internal
  * variables, and calls `law` at every point of every element each step; the

@@ -88,6 +88,7 @@ typedef struct {
     fem_lame lame[2];     /* parameters of the point laws */
     rf_material matl[2];  /* constitutive law of each body (plastic[b] != 0: not elastic) */
     int plastic[2], work_account; /* work_account: energy from the internal work (a plastic body) */
+    int rigid;            /* a rigid boulder: no internal force, one vertical velocity */
     double W_int[2];      /* internal work of each body so far [J] */
     double pen_max;       /* deepest position of the boulder's lowest point below z = 0 [m] */
     double *K, *fe, *invm, *mass, *u, *v, *f, *fext, *dash;
@@ -245,6 +246,8 @@ static void axi_masses(axi_run *S, const double *elm, unsigned char *fixed)
                 if (c[b] == c[a])
                     me[a] += elm[4 * e + b];
         }
+        if (S->rigid && e < mesh->boulder_elems)
+            continue; /* a rigid boulder has no stiffness: the slope sets the step */
         double lm = fem_element_lambda_max(S->K + 64 * e, me, freed);
         if (lm > lam_max)
             lam_max = lm;
@@ -285,6 +288,10 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
     const long nbe = S->mesh.boulder_elems;
     const long first[2] = {0, nbe}, count[2] = {nbe, S->ne - nbe};
     for (int b = 0; b < 2; b++) {
+        if (b == FEM_BOULDER && S->rigid) {
+            fem_kernel_rigid(&S->kernel[b], first[b], count[b], 8);
+            continue;
+        }
         if (S->plastic[b]) { /* return maps at the points, mean dilatation against locking */
             fem_point_law law = fem_point_law_material(&S->matl[b]);
             rf_status st = fem_kernel_points_axi_ex(&S->kernel[b], first[b], count[b], S->mesh.r, S->mesh.z,
@@ -341,6 +348,8 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
         *(i < S->mesh.boulder_nodes ? &Mb : &Ms) += S->mass[2 * i + 1];
     S->Mb = Mb;
     S->ke0 = 0.5 * Mb * S->V * S->V;
+    if (S->rigid)
+        S->C.rigid_invm = 1 / Mb, S->C.rigid_dofs = S->nbd;
     return RF_OK;
 }
 
@@ -659,6 +668,7 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
             return rf_error_prefix(err, "fem");
         S->plastic[b] = p.model != RF_MATERIAL_ELASTIC;
     }
+    S->rigid = in->boulder_material == RF_MATERIAL_RIGID_BODY;
     S->work_account = S->plastic[0] || S->plastic[1];
     return RF_OK;
 }

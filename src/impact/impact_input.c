@@ -31,11 +31,31 @@ void rf_impact_input_default(rf_impact_input *in)
     in->slope_cap_pressure = in->slope_cap_hardening = 0.0;
 }
 
+rf_status rf_impact_boulder_material_parse(const char *name, rf_material_model *m, rf_error *err)
+{
+    if (name && !strcmp(name, "rigid")) {
+        *m = RF_MATERIAL_RIGID_BODY;
+        return RF_OK;
+    }
+    rf_material_model x;
+    if (rf_material_model_parse(name, &x, NULL) == RF_OK && x != RF_MATERIAL_DRUCKER_PRAGER) {
+        *m = x;
+        return RF_OK;
+    }
+    return rf_fail(err, RF_EINVAL, "boulder material '%s' is not one of elastic, von_mises, rigid",
+                   name ? name : "(null)");
+}
+
+const char *rf_impact_material_name(rf_material_model m)
+{
+    return m == RF_MATERIAL_RIGID_BODY ? "rigid" : rf_material_model_name(m);
+}
+
 void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_params *p)
 {
     rf_material_params_default(p);
     if (body == 0) {
-        p->model = in->boulder_material;
+        p->model = in->boulder_material == RF_MATERIAL_RIGID_BODY ? RF_MATERIAL_ELASTIC : in->boulder_material;
         p->E = in->boulder_E, p->poisson = in->boulder_poisson;
         p->yield = in->boulder_yield, p->hardening = in->boulder_hardening;
         return;
@@ -61,9 +81,9 @@ static const char *const material_fields[2][8][2] = {
  * the library's message prefixed with the body. */
 static const char *material_invalid(const rf_impact_input *in, rf_error *err)
 {
-    if ((unsigned)in->boulder_material > RF_MATERIAL_VON_MISES) {
-        rf_fail(err, RF_EINVAL, "boulder_material = %s: the boulder may be elastic or von_mises",
-                rf_material_model_name(in->boulder_material));
+    if ((unsigned)in->boulder_material > RF_MATERIAL_VON_MISES && in->boulder_material != RF_MATERIAL_RIGID_BODY) {
+        rf_fail(err, RF_EINVAL, "boulder_material = %s: the boulder may be elastic, von_mises or rigid",
+                rf_impact_material_name(in->boulder_material));
         return "boulder_material";
     }
     for (int b = 0; b < 2; b++) {
@@ -176,7 +196,9 @@ rf_status rf_impact_input_validate(const rf_impact_input *in, rf_error *err)
 
 double rf_impact_effective_modulus(const rf_impact_input *in)
 {
-    double xb = (1.0 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E;
+    double xb = in->boulder_material == RF_MATERIAL_RIGID_BODY
+                    ? 0.0
+                    : (1.0 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E;
     double xs = (1.0 - in->slope_poisson * in->slope_poisson) / in->slope_E;
     return 1.0 / (xb + xs);
 }

@@ -329,7 +329,7 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                " boulder_material=%s boulder_yield=%.17g boulder_hardening=%.17g slope_material=%s"
                " slope_yield=%.17g slope_hardening=%.17g slope_cohesion=%.17g slope_friction_angle_rad=%.17g"
                " slope_dilatancy_angle_rad=%.17g slope_cap_pressure=%.17g slope_cap_hardening=%.17g",
-               rf_material_model_name(b->boulder_material), b->boulder_yield, b->boulder_hardening,
+               rf_impact_material_name(b->boulder_material), b->boulder_yield, b->boulder_hardening,
                rf_material_model_name(b->slope_material), b->slope_yield, b->slope_hardening, b->slope_cohesion,
                b->slope_friction_angle, b->slope_dilatancy_angle, b->slope_cap_pressure, b->slope_cap_hardening);
     append(buf, cap, &len, " params:");

@@ -511,10 +511,9 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                 return st;
             snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
             rf_error tmp;
-            rf_material_model *m = key[0] == 'b' ? &spec.base.boulder_material : &spec.base.slope_material;
-            if (len >= 31 || rf_material_model_parse(buf, m, &tmp) != RF_OK ||
-                (key[0] == 'b' && *m == RF_MATERIAL_DRUCKER_PRAGER))
-                return sp_fail(c, v, p, key[0] == 'b' ? "unknown boulder material; expected elastic or von_mises"
+            if (len >= 31 || (key[0] == 'b' ? rf_impact_boulder_material_parse(buf, &spec.base.boulder_material, &tmp)
+                                             : rf_material_model_parse(buf, &spec.base.slope_material, &tmp)) != RF_OK)
+                return sp_fail(c, v, p, key[0] == 'b' ? "unknown boulder material; expected elastic, von_mises or rigid"
                                                       : "unknown slope material; expected elastic, von_mises or "
                                                         "drucker_prager");
         } else if (!strcmp(key, "solver") || !strcmp(key, "boundary")) {
