@@ -77,6 +77,12 @@ expect_error 2 "--slope-cap-pressure -1" --slope-material drucker_prager --slope
 expect_error 2 "--boulder-hardening -1" --boulder-material von_mises --boulder-yield 1e8 --boulder-hardening -1
 expect_error 1 "axisymmetric model only" --slope-material von_mises --slope-yield 2e8 --slope-angle 30
 "$bin" impact --help | grep -q -- '--slope-cap-pressure PA' || fail "help lacks --slope-cap-pressure"
+# a layer: its inputs named, FE only
+expect_error 2 "--layer-thickness -1" --layer-thickness -1
+expect_error 2 "layer_yield = 0" --layer-thickness 0.1 --layer-material von_mises
+expect_error 2 "--layer-E -5" --layer-thickness 0.1 --layer-E -5
+expect_error 2 "--layer-material 'sand'" --layer-material sand
+expect_error 1 "has no layer" --solver hunter --layer-thickness 0.1
 # a rigid boulder: Hertz with E* = E_s / (1 - nu_s^2) (F = 1.18873e8 N at 10 m/s)
 out=$("$bin" impact --solver hertz --boulder-material rigid --json) || fail "rigid hertz exit"
 echo "$out" | grep -q '"contact_force_max": 11887' || fail "rigid boulder Hertz force: $out"

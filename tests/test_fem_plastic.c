@@ -499,6 +499,60 @@ static void test_rigid_boulder(void **state)
     rf_fem_history_free(&hr), rf_fem_history_free(&he);
 }
 
+/* A layer over the slope: of the slope's own material it changes nothing; a
+ * soft elastic layer moves the peak force from the rock's Hertz value to the
+ * soft material's as it thickens; a plastic layer confines the plastic zone. */
+static void test_layer(void **state)
+{
+    (void)state;
+    rf_fem_options o = coarse(4);
+    rf_error err = {0};
+    rf_impact_output a, b;
+    rf_impact_input in = granite(5);
+    in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 1e15;
+    assert_int_equal(rf_fem_impact(&in, &o, &a, NULL, &err), RF_OK);
+    in.slope_material = RF_MATERIAL_ELASTIC;
+    in.layer_thickness = 0.3; /* granite on granite, elastic */
+    assert_int_equal(rf_fem_impact(&in, &o, &b, NULL, &err), RF_OK);
+    assert_true(a.R_n == b.R_n && a.contact_force_max == b.contact_force_max);
+    /* soft (10 GPa) layer: thin, thick, and a homogeneous soft slope */
+    double F[4];
+    const double t[3] = {0.0, 0.05, 5.0}; /* h = 2.3 cm at the contact */
+    for (int k = 0; k < 3; k++) {
+        rf_impact_input q = granite(5);
+        q.layer_thickness = t[k], q.layer_E = 10e9;
+        assert_int_equal(rf_fem_impact(&q, &o, &a, NULL, &err), RF_OK);
+        F[k] = a.contact_force_max;
+    }
+    rf_impact_input q = granite(5);
+    q.slope_E = 10e9;
+    assert_int_equal(rf_fem_impact(&q, &o, &a, NULL, &err), RF_OK);
+    F[3] = a.contact_force_max;
+    printf("soft layer: F_max granite %.4g N, 5 cm layer %.4g, 5 m layer %.4g, soft slope %.4g\n", F[0], F[1], F[2],
+           F[3]);
+    assert_true(F[1] < F[0] && F[1] > F[2]);
+    assert_true(fabs(F[2] / F[3] - 1) < 0.03); /* different meshes (sized for the stiffer contact) */
+    /* a thin J2 layer (Y = 200 MPa, 4 cm: h = 3 cm at the contact) on elastic granite, at 10 m/s */
+    rf_impact_input p = granite(10);
+    p.layer_thickness = 0.04, p.layer_material = RF_MATERIAL_VON_MISES, p.layer_yield = 200e6;
+    rf_fem_history h;
+    assert_int_equal(rf_fem_impact(&p, &o, &a, &h, &err), RF_OK);
+    rf_impact_input r = granite(10);
+    r.slope_material = RF_MATERIAL_VON_MISES, r.slope_yield = 200e6;
+    assert_int_equal(rf_fem_impact(&r, &o, &b, NULL, &err), RF_OK);
+    printf("J2 layer 4 cm: R_n %.4f, W_p %.4f KE, eps_p max at depth %.4f m; homogeneous J2 slope: R_n %.4f, "
+           "W_p %.4f KE; energy error %.1e\n",
+           a.R_n, a.plastic_work, -h.plastic_strain_max_z, b.R_n, b.plastic_work, a.energy_error);
+    assert_true(a.plastic_work > 0 && a.plastic_work < b.plastic_work && a.R_n > b.R_n);
+    assert_true(h.plastic_strain_max_in == 2 && -h.plastic_strain_max_z < 0.04 + 0.03);
+    /* thinner than half an element: refused, not silently homogeneous */
+    p.layer_thickness = 0.005;
+    assert_int_equal(rf_fem_impact(&p, &o, &a, NULL, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "layer_thickness"));
+    assert_true(a.energy_error < 5e-3);
+    rf_fem_history_free(&h);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -511,6 +565,7 @@ int main(void)
         cmocka_unit_test(test_vtk_plastic_fields),
         cmocka_unit_test(test_plastic_threads_deterministic),
         cmocka_unit_test(test_rigid_boulder),
+        cmocka_unit_test(test_layer),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

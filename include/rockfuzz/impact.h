@@ -47,6 +47,15 @@ typedef struct {
     double slope_dilatancy_angle;       /* drucker_prager: psi [rad] in [0, phi] */
     double slope_cap_pressure;          /* drucker_prager: crush pressure X0 [Pa]; 0 = no cap */
     double slope_cap_hardening;         /* drucker_prager: compaction modulus H_c [Pa] */
+    /* A layer over the slope's material (the bedrock): 0 = homogeneous slope.
+       Its own density, elasticity and material, named as the slope's
+       (defaults: the nominal granite, elastic).  FE axisymmetric model only. */
+    double layer_thickness;             /* [m], >= 0 */
+    double layer_density, layer_E, layer_poisson;
+    rf_material_model layer_material;
+    double layer_yield, layer_hardening, layer_cohesion;
+    double layer_friction_angle, layer_dilatancy_angle; /* [rad] (degrees in the CLI and studies) */
+    double layer_cap_pressure, layer_cap_hardening;
 } rf_impact_input;
 
 /* boulder_material value of a rigid boulder ("rigid"; not a material of
@@ -57,8 +66,8 @@ typedef struct {
 rf_status rf_impact_boulder_material_parse(const char *name, rf_material_model *m, rf_error *err);
 const char *rf_impact_material_name(rf_material_model m);
 
-/* The constitutive parameters of the boulder (body 0) or the slope (body 1);
- * a rigid boulder gives its elastic constants. */
+/* The constitutive parameters of the boulder (body 0), the slope (body 1) or
+ * the layer (body 2); a rigid boulder gives its elastic constants. */
 void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_params *p);
 
 /* Nominal granite of SYSTEM.md: r0 = 1 m, rho 2600, E 68.2 GPa, nu 0.25,

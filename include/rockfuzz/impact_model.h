@@ -51,10 +51,10 @@ rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_inpu
                           rf_impact_output *out, rf_error *err);
 
 /* Parameter names a study may bind (slope_angle, slope_friction_angle and
- * slope_dilatancy_angle in DEGREES here; the material choice itself is
- * spec->base.boulder_material / slope_material, crisp), and the
+ * slope_dilatancy_angle and the layer's two angles in DEGREES here; the
+ * material choice itself is spec->base.*_material, crisp), and the
  * model outputs in order, with their units. */
-#define RF_IMPACT_N_PARAMS 20
+#define RF_IMPACT_N_PARAMS 31
 #define RF_IMPACT_N_OUTPUTS 11
 extern const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS];
 extern const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS];

@@ -23,6 +23,7 @@ typedef enum {
     O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
     O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_DOMAIN, O_THREADS, O_VTK, O_JSON,
     O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S,
+    O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L,
     O_HELP, O_COUNT
 } opt_id;
 
@@ -56,6 +57,18 @@ static const struct {
     {O_PSI_S, "slope-dilatancy-angle", "slope_dilatancy_angle"},
     {O_CAP_S, "slope-cap-pressure", "slope_cap_pressure"},
     {O_CAPH_S, "slope-cap-hardening", "slope_cap_hardening"},
+    {O_L_T, "layer-thickness", "layer_thickness"},
+    {O_L_RHO, "layer-density", "layer_density"},
+    {O_L_E, "layer-E", "layer_E"},
+    {O_L_NU, "layer-poisson", "layer_poisson"},
+    {O_MAT_L, "layer-material", "layer_material"},
+    {O_Y_L, "layer-yield", "layer_yield"},
+    {O_H_L, "layer-hardening", "layer_hardening"},
+    {O_COH_L, "layer-cohesion", "layer_cohesion"},
+    {O_PHI_L, "layer-friction-angle", "layer_friction_angle"},
+    {O_PSI_L, "layer-dilatancy-angle", "layer_dilatancy_angle"},
+    {O_CAP_L, "layer-cap-pressure", "layer_cap_pressure"},
+    {O_CAPH_L, "layer-cap-hardening", "layer_cap_hardening"},
     {O_SOLVER, "solver", NULL},
     {O_EN, "e-n", NULL},
     {O_HUNTER_A, "hunter-A", NULL},
@@ -107,6 +120,12 @@ static void usage(FILE *f)
         "  --slope-cap-pressure PA  drucker_prager: crush pressure X0 of the compaction cap\n"
         "                           [Pa] (default 0 = no cap)\n"
         "  --slope-cap-hardening PA drucker_prager: cap hardening modulus H_c >= 0 [Pa]\n"
+        "  --layer-thickness M      a layer over the slope (the bedrock), [m] (default 0 = none;\n"
+        "                           fem, axisymmetric model only)\n"
+        "  --layer-density, --layer-E, --layer-poisson, --layer-material, --layer-yield,\n"
+        "  --layer-hardening, --layer-cohesion, --layer-friction-angle, --layer-dilatancy-angle,\n"
+        "  --layer-cap-pressure, --layer-cap-hardening\n"
+        "                           the layer's inputs, as the slope's (default: granite, elastic)\n"
         "\n"
         "Model:\n"
         "  --solver NAME            fem | hertz | hunter | rigid (default fem)\n"
@@ -225,6 +244,9 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
         printf("  boulder plasticity von_mises Y = %g Pa, H = %g Pa\n", in->boulder_yield, in->boulder_hardening);
     if (in->slope_material == RF_MATERIAL_VON_MISES)
         printf("  slope plasticity  von_mises Y = %g Pa, H = %g Pa\n", in->slope_yield, in->slope_hardening);
+    if (in->layer_thickness > 0)
+        printf("  layer             %g m thick: rho = %g kg/m^3, E = %g Pa, nu = %g, %s\n", in->layer_thickness,
+               in->layer_density, in->layer_E, in->layer_poisson, rf_material_model_name(in->layer_material));
     if (in->slope_material == RF_MATERIAL_DRUCKER_PRAGER)
         printf("  slope plasticity  drucker_prager c = %g Pa, phi = %g deg, psi = %g deg, cap X0 = %g Pa, "
                "H_c = %g Pa\n", in->slope_cohesion, in->slope_friction_angle * 180.0 / RF_PI,
@@ -390,9 +412,11 @@ int rf_cli_impact(int argc, char **argv)
             spec.fem.vtk_dir = val;
             break;
         case O_MAT_B:
-        case O_MAT_S: {
+        case O_MAT_S:
+        case O_MAT_L: {
             if ((id == O_MAT_B ? rf_impact_boulder_material_parse(val, &in->boulder_material, &err)
-                               : rf_material_model_parse(val, &in->slope_material, &err)) != RF_OK) {
+                               : rf_material_model_parse(val, id == O_MAT_S ? &in->slope_material : &in->layer_material,
+                                                         &err)) != RF_OK) {
                 fprintf(stderr, "rockfuzz impact: --%s '%s': expected %s\n", oname, val,
                         id == O_MAT_B ? "elastic, von_mises or rigid" : "elastic, von_mises or drucker_prager");
                 return EXIT_USAGE;
@@ -424,6 +448,17 @@ int rf_cli_impact(int argc, char **argv)
             case O_PSI_S: in->slope_dilatancy_angle = x * RF_PI / 180.0; break;
             case O_CAP_S: in->slope_cap_pressure = x; break;
             case O_CAPH_S: in->slope_cap_hardening = x; break;
+            case O_L_T: in->layer_thickness = x; break;
+            case O_L_RHO: in->layer_density = x; break;
+            case O_L_E: in->layer_E = x; break;
+            case O_L_NU: in->layer_poisson = x; break;
+            case O_Y_L: in->layer_yield = x; break;
+            case O_H_L: in->layer_hardening = x; break;
+            case O_COH_L: in->layer_cohesion = x; break;
+            case O_PHI_L: in->layer_friction_angle = x * RF_PI / 180.0; break;
+            case O_PSI_L: in->layer_dilatancy_angle = x * RF_PI / 180.0; break;
+            case O_CAP_L: in->layer_cap_pressure = x; break;
+            case O_CAPH_L: in->layer_cap_hardening = x; break;
             case O_EN:
                 if (!(x >= 0.0 && x <= 1.0)) {
                     fprintf(stderr, "rockfuzz impact: --e-n %s: the normal COR must lie in [0, 1]\n", val);

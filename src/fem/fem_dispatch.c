@@ -28,6 +28,9 @@ rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const
                        "axisymmetric model only (normal impact, slope_angle = 0, no friction between dissimilar "
                        "bodies); the 3D model is elastic for now",
                        rf_impact_material_name(in->boulder_material), rf_material_model_name(in->slope_material));
+    if (want_3d && in->layer_thickness > 0)
+        return rf_fail(err, RF_EINVAL, "fem: a layer (layer_thickness = %g m) is available in the axisymmetric model "
+                       "only (normal impact); the 3D model has a homogeneous slope", in->layer_thickness);
     if (!want_3d)
         return ws ? rf_fem_impact_ws(ws, in, opt, out, hist, err) : rf_fem_impact(in, opt, out, hist, err);
     rf_fem_options o;

@@ -114,6 +114,12 @@ rf_status fem_kernel_points_axi(fem_kernel *k, long first, long count, const dou
  * bound of the full stiffness stays valid). */
 rf_status fem_kernel_points_axi_ex(fem_kernel *k, long first, long count, const double *r, const double *z,
                                    const int *conn, const fem_point_law *law, int bbar, rf_error *err);
+/* The same with two laws of the same state size: element first + i uses
+ * law2 where use_law2[i] != 0 (count flags, copied), else law: a layered
+ * body in one block. */
+rf_status fem_kernel_points_axi_two(fem_kernel *k, long first, long count, const double *r, const double *z,
+                                    const int *conn, const fem_point_law *law, const fem_point_law *law2,
+                                    const unsigned char *use_law2, int bbar, rf_error *err);
 /* sig = sig_n + D deps for an isotropic material (lam, mu = the Lame constants). */
 typedef struct {
     double lam, mu;

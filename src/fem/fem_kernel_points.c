@@ -16,7 +16,8 @@
 #define NC 4 /* strain components */
 
 typedef struct {
-    fem_point_law law;
+    fem_point_law law, law2;
+    unsigned char *use2;      /* per element: law2 (NULL: law everywhere) */
     double *B;      /* 4 x 32 per element */
     double *w;      /* 4 per element */
     double *eps, *sig, *var;          /* committed, per point */
@@ -31,6 +32,7 @@ static void points_forces(const fem_kernel *k, long e0, long e1, const double *u
     const int ns = d->law.nstate;
     for (long e = e0; e < e1; e++, ue += 8, fe += 8) {
         const long le = e - k->first;
+        const fem_point_law *L = d->use2 && d->use2[le] ? &d->law2 : &d->law;
         double y[8] = {0};
         for (int q = 0; q < NQ; q++) {
             const long p = NQ * le + q;
@@ -43,8 +45,7 @@ static void points_forces(const fem_kernel *k, long e0, long e1, const double *u
                 eps[i] = s;
                 deps[i] = s - d->eps[NC * p + i];
             }
-            d->law.update(d->law.params, deps, d->sig + NC * p, d->var + (size_t)ns * p, sig,
-                          d->var_t + (size_t)ns * p);
+            L->update(L->params, deps, d->sig + NC * p, d->var + (size_t)ns * p, sig, d->var_t + (size_t)ns * p);
             for (int j = 0; j < 8; j++)
                 y[j] += d->w[p] * (B[j] * sig[0] + B[8 + j] * sig[1] + B[16 + j] * sig[2] + B[24 + j] * sig[3]);
         }
@@ -80,7 +81,7 @@ static void points_destroy(fem_kernel *k)
     points_data *d = k->data;
     if (d) {
         free(d->B), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t), free(d->sig_t);
-        free(d->var_t);
+        free(d->var_t), free(d->use2);
     }
     free(d);
     k->data = NULL;
@@ -113,11 +114,13 @@ double fem_kernel_elastic_energy(const fem_kernel *k)
     if (k->ops != &points_ops || !k->data)
         return -1;
     const points_data *d = k->data;
-    if (!d->law.energy)
+    if (!d->law.energy || (d->use2 && !d->law2.energy))
         return -1;
     double E = 0;
-    for (size_t p = 0; p < (size_t)NQ * (size_t)k->count; p++)
-        E += d->w[p] * d->law.energy(d->law.params, d->sig + NC * p);
+    for (size_t p = 0; p < (size_t)NQ * (size_t)k->count; p++) {
+        const fem_point_law *L = d->use2 && d->use2[p / NQ] ? &d->law2 : &d->law;
+        E += d->w[p] * L->energy(L->params, d->sig + NC * p);
+    }
     return E;
 }
 
@@ -157,6 +160,16 @@ rf_status fem_kernel_points_axi(fem_kernel *k, long first, long count, const dou
 rf_status fem_kernel_points_axi_ex(fem_kernel *k, long first, long count, const double *r, const double *z,
                                    const int *conn, const fem_point_law *law, int bbar, rf_error *err)
 {
+    return fem_kernel_points_axi_two(k, first, count, r, z, conn, law, NULL, NULL, bbar, err);
+}
+
+rf_status fem_kernel_points_axi_two(fem_kernel *k, long first, long count, const double *r, const double *z,
+                                    const int *conn, const fem_point_law *law, const fem_point_law *law2,
+                                    const unsigned char *use_law2, int bbar, rf_error *err)
+{
+    if (use_law2 && (!law2 || law2->nstate != law->nstate || law2->ncomp != law->ncomp ||
+                     law2->dissipative != law->dissipative))
+        return rf_fail(err, RF_EINVAL, "fem: the two point laws of a block must have the same shape");
     if (law->ncomp != NC)
         return rf_fail(err, RF_EINVAL, "fem: the point law '%s' has %d strain components; the axisymmetric quad "
                        "needs %d", law->name, law->ncomp, NC);
@@ -170,6 +183,12 @@ rf_status fem_kernel_points_axi_ex(fem_kernel *k, long first, long count, const 
         return rf_fail(err, RF_ENOMEM, "fem: out of memory");
     d->law = *law;
     d->point_max = -1;
+    if (use_law2) {
+        d->law2 = *law2;
+        if (!(d->use2 = malloc((size_t)count > 0 ? (size_t)count : 1)))
+            return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+        memcpy(d->use2, use_law2, (size_t)count);
+    }
     d->B = malloc(np * 32 * sizeof *d->B), d->w = malloc(np * sizeof *d->w);
     d->eps = calloc(np * NC, sizeof *d->eps), d->sig = calloc(np * NC, sizeof *d->sig);
     d->eps_t = calloc(np * NC, sizeof *d->eps_t), d->sig_t = calloc(np * NC, sizeof *d->sig_t);

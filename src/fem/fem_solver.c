@@ -70,15 +70,18 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 }
 
 /* Buffers of the axisymmetric solver in the workspace pool. */
-enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DASH, P_OUTER, P_ELM, P_FIXED, P_VTK };
+enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DASH, P_OUTER, P_ELM, P_FIXED, P_VTK,
+       P_EMAT, P_USE2 };
 
 /* The state of one axisymmetric run. */
 typedef struct {
     const rf_impact_input *in;
     rf_fem_options o;
     rf_hertz_reference H;
-    fem_material mat[2];
-    rf_wave_speeds w[2];
+    fem_material mat[3];  /* boulder, slope (bedrock), layer */
+    rf_wave_speeds w[3];
+    unsigned char *emat;  /* material of each element: 0 boulder, 1 slope, 2 layer */
+    int layer;            /* a layer of thickness in->layer_thickness over the slope */
     double V, L, h, hb;
     fem_mesh mesh;
     int have_mesh;
@@ -86,8 +89,8 @@ typedef struct {
     int threads, fixed_outer;
     fem_kernel kernel[2]; /* boulder and slope blocks */
     fem_lame lame[2];     /* parameters of the point laws */
-    rf_material matl[2];  /* constitutive law of each body (plastic[b] != 0: not elastic) */
-    int plastic[2], work_account; /* work_account: energy from the internal work (a plastic body) */
+    rf_material matl[3];  /* constitutive law of each body (plastic[b] != 0: not elastic) */
+    int plastic[3], work_account; /* work_account: energy from the internal work (a plastic body) */
     int rigid;            /* a rigid boulder: no internal force, one vertical velocity */
     double W_int[2];      /* internal work of each body so far [J] */
     double pen_max;       /* deepest position of the boulder's lowest point below z = 0 [m] */
@@ -122,7 +125,8 @@ static rf_status axi_mesh(axi_run *S, rf_error *err)
     while (ss.n > 3 && ss.n * h > 0.6 * fmin(H->c, H->d))
         ss.n -= 3;
     ss.grading = o->grading;
-    ss.h_far = fmax(h, fmin(S->w[1].rayleigh * H->duration / 12, S->L / 8));
+    const double c_r = S->layer ? fmin(S->w[1].rayleigh, S->w[2].rayleigh) : S->w[1].rayleigh;
+    ss.h_far = fmax(h, fmin(c_r * H->duration / 12, S->L / 8));
     ss.extent = S->L;
     bs.h = hb;
     bs.n = 3 * (int)ceil(core * o->refinement / o->boulder_mesh_ratio / 3 - 1e-9);
@@ -198,16 +202,16 @@ static rf_status axi_elements(axi_run *S, double *elm, rf_error *err)
         double r[4], z[4], mass, area;
         for (int a = 0; a < 4; a++)
             r[a] = mesh->r[c[a]], z[a] = mesh->z[c[a]];
-        int b = mesh->ebody[e];
-        fem_element_matrices(r, z, &S->mat[b], S->K + 64 * e, elm + 4 * e, &mass, &area);
+        const int b = mesh->ebody[e], mb = S->emat[e];
+        fem_element_matrices(r, z, &S->mat[mb], S->K + 64 * e, elm + 4 * e, &mass, &area);
         if (!(area > 0))
             return rf_fail(err, RF_EINTERNAL, "fem mesh: element %ld has non-positive area", e);
         if (b == FEM_BOULDER)
             S->mesh_mass_b += mass;
         for (int a = 0; a < 4; a++) {
             double ed = hypot(r[(a + 1) % 4] - r[a], z[(a + 1) % 4] - z[a]);
-            if (ed > 1e-12 * S->h && ed / S->w[b].p < S->dt_edge)
-                S->dt_edge = ed / S->w[b].p;
+            if (ed > 1e-12 * S->h && ed / S->w[mb].p < S->dt_edge)
+                S->dt_edge = ed / S->w[mb].p;
         }
     }
     const double mscale = S->H.mass / S->mesh_mass_b;
@@ -292,10 +296,20 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
             fem_kernel_rigid(&S->kernel[b], first[b], count[b], 8);
             continue;
         }
-        if (S->plastic[b]) { /* return maps at the points, mean dilatation against locking */
-            fem_point_law law = fem_point_law_material(&S->matl[b]);
-            rf_status st = fem_kernel_points_axi_ex(&S->kernel[b], first[b], count[b], S->mesh.r, S->mesh.z,
-                                                    S->mesh.conn, &law, 1, err);
+        if (S->plastic[b] || (b == FEM_SLOPE && S->layer)) { /* return maps at the points, B-bar */
+            fem_point_law law = fem_point_law_material(&S->matl[b]), law2 = fem_point_law_material(&S->matl[2]);
+            const unsigned char *use2 = NULL;
+            unsigned char *flags = NULL;
+            if (b == FEM_SLOPE && S->layer) { /* layer elements take the layer's law */
+                flags = fem_pool_get(S->pool, P_USE2, (size_t)count[b] + 1, 0);
+                if (!flags)
+                    return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+                for (long e = 0; e < count[b]; e++)
+                    flags[e] = S->emat[first[b] + e] == 2;
+                use2 = flags;
+            }
+            rf_status st = fem_kernel_points_axi_two(&S->kernel[b], first[b], count[b], S->mesh.r, S->mesh.z,
+                                                     S->mesh.conn, &law, &law2, use2, 1, err);
             if (st != RF_OK)
                 return st;
             continue;
@@ -329,6 +343,19 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
     unsigned char *fixed = fem_pool_get(S->pool, P_FIXED, (size_t)S->ndof, 1);
     if (!elm || !fixed)
         return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+    if (!(S->emat = fem_pool_get(S->pool, P_EMAT, (size_t)S->ne, 0)))
+        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+    long nlayer = 0;
+    for (long e = 0; e < S->ne; e++) { /* the layer: slope elements whose centre lies above -thickness */
+        const int *c = S->mesh.conn + 4 * e;
+        const double zc = 0.25 * (S->mesh.z[c[0]] + S->mesh.z[c[1]] + S->mesh.z[c[2]] + S->mesh.z[c[3]]);
+        S->emat[e] = S->mesh.ebody[e] == FEM_BOULDER ? 0 : S->layer && zc > -S->in->layer_thickness ? 2 : 1;
+        nlayer += S->emat[e] == 2;
+    }
+    if (S->layer && nlayer == 0)
+        return rf_fail(err, RF_EINVAL,
+                       "fem: layer_thickness = %g m is thinner than half an element at the contact (h = %g m): "
+                       "raise refinement or the thickness", S->in->layer_thickness, S->h);
     st = axi_elements(S, elm, err);
     if (st != RF_OK)
         return st;
@@ -615,7 +642,7 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     hist->ke0 = S->ke0;
     hist->plastic_work_boulder = rep[0].plastic_work, hist->plastic_work_slope = rep[1].plastic_work;
     for (int b = 0; b < 2; b++) {
-        const double Ee = S->plastic[b] ? fem_kernel_elastic_energy(&S->kernel[b]) : -1;
+        const double Ee = S->plastic[b] || (b == FEM_SLOPE && S->plastic[2]) ? fem_kernel_elastic_energy(&S->kernel[b]) : -1;
         if (Ee >= 0) {
             hist->elastic_energy_stress += Ee;
             hist->elastic_energy_work += S->W_int[b] - rep[b].plastic_work;
@@ -651,9 +678,20 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
     S->o.refinement = rf_fem_refinement(&S->o, 0);
     S->o.domain_factor = rf_fem_domain_factor(&S->o, in);
     rf_impact_hertz_reference(in, &S->H);
+    S->layer = in->layer_thickness > 0;
+    if (S->layer) { /* size the mesh for the finer of the two contacts, run for the longer */
+        rf_impact_input lay = *in;
+        lay.slope_density = in->layer_density, lay.slope_E = in->layer_E, lay.slope_poisson = in->layer_poisson;
+        rf_hertz_reference HL;
+        rf_impact_hertz_reference(&lay, &HL);
+        S->H.contact_radius = fmin(S->H.contact_radius, HL.contact_radius);
+        S->H.duration = fmax(S->H.duration, HL.duration);
+        rf_impact_wave_speeds(&lay, 1, &S->w[2]);
+    }
     S->V = in->velocity, S->L = S->o.domain_factor * in->radius;
     S->mat[0] = (fem_material){in->boulder_density, in->boulder_E, in->boulder_poisson};
     S->mat[1] = (fem_material){in->slope_density, in->slope_E, in->slope_poisson};
+    S->mat[2] = (fem_material){in->layer_density, in->layer_E, in->layer_poisson};
     rf_impact_wave_speeds(in, 0, &S->w[0]);
     rf_impact_wave_speeds(in, 1, &S->w[1]);
     S->threads = S->o.threads > 0 ? S->o.threads : 1;
@@ -661,15 +699,19 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
     S->threads = 1;
 #endif
     S->fixed_outer = S->o.boundary == RF_FEM_BOUNDARY_FIXED;
-    for (int b = 0; b < 2; b++) {
+    for (int b = 0; b < 3; b++) {
         rf_material_params p;
+        if (b == 2 && !S->layer) { /* no layer: its (unchecked) inputs are not used */
+            S->matl[2] = S->matl[1], S->plastic[2] = 0;
+            continue;
+        }
         rf_impact_material_params(in, b, &p);
         if ((st = rf_material_init(&S->matl[b], &p, err)) != RF_OK) /* validated above: cannot fail */
             return rf_error_prefix(err, "fem");
-        S->plastic[b] = p.model != RF_MATERIAL_ELASTIC;
+        S->plastic[b] = p.model != RF_MATERIAL_ELASTIC && (b < 2 || S->layer);
     }
     S->rigid = in->boulder_material == RF_MATERIAL_RIGID_BODY;
-    S->work_account = S->plastic[0] || S->plastic[1];
+    S->work_account = S->plastic[0] || S->plastic[1] || S->plastic[2];
     return RF_OK;
 }
 

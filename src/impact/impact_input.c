@@ -29,6 +29,12 @@ void rf_impact_input_default(rf_impact_input *in)
     in->slope_yield = in->slope_hardening = in->slope_cohesion = 0.0;
     in->slope_friction_angle = in->slope_dilatancy_angle = 0.0;
     in->slope_cap_pressure = in->slope_cap_hardening = 0.0;
+    in->layer_thickness = 0.0;
+    in->layer_density = 2600.0, in->layer_E = 68.2e9, in->layer_poisson = 0.25;
+    in->layer_material = RF_MATERIAL_ELASTIC;
+    in->layer_yield = in->layer_hardening = in->layer_cohesion = 0.0;
+    in->layer_friction_angle = in->layer_dilatancy_angle = 0.0;
+    in->layer_cap_pressure = in->layer_cap_hardening = 0.0;
 }
 
 rf_status rf_impact_boulder_material_parse(const char *name, rf_material_model *m, rf_error *err)
@@ -60,6 +66,15 @@ void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_
         p->yield = in->boulder_yield, p->hardening = in->boulder_hardening;
         return;
     }
+    if (body == 2) {
+        p->model = in->layer_material;
+        p->E = in->layer_E, p->poisson = in->layer_poisson;
+        p->yield = in->layer_yield, p->hardening = in->layer_hardening;
+        p->cohesion = in->layer_cohesion;
+        p->friction_angle = in->layer_friction_angle, p->dilatancy_angle = in->layer_dilatancy_angle;
+        p->cap_pressure = in->layer_cap_pressure, p->cap_hardening = in->layer_cap_hardening;
+        return;
+    }
     p->model = in->slope_material;
     p->E = in->slope_E, p->poisson = in->slope_poisson;
     p->yield = in->slope_yield, p->hardening = in->slope_hardening;
@@ -70,12 +85,17 @@ void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_
 
 /* The material fields of each body, checked by the material library
  * (rf_material_init), whose messages start with the parameter's own name. */
-static const char *const material_fields[2][8][2] = {
+static const char *const material_fields[3][9][2] = {
     {{"yield", "boulder_yield"}, {"hardening", "boulder_hardening"}, {"model", "boulder_material"}},
     {{"yield", "slope_yield"}, {"hardening", "slope_hardening"}, {"cohesion", "slope_cohesion"},
      {"friction_angle", "slope_friction_angle"}, {"dilatancy_angle", "slope_dilatancy_angle"},
      {"cap_pressure", "slope_cap_pressure"}, {"cap_hardening", "slope_cap_hardening"},
-     {"model", "slope_material"}}};
+     {"model", "slope_material"}},
+    {{"yield", "layer_yield"}, {"hardening", "layer_hardening"}, {"cohesion", "layer_cohesion"},
+     {"friction_angle", "layer_friction_angle"}, {"dilatancy_angle", "layer_dilatancy_angle"},
+     {"cap_pressure", "layer_cap_pressure"}, {"cap_hardening", "layer_cap_hardening"},
+     {"model", "layer_material"}, {"E", "layer_E"}}};
+static const char *const body_names[3] = {"boulder", "slope", "layer"};
 
 /* NULL if the materials are valid, else the impact field at fault; msg gets
  * the library's message prefixed with the body. */
@@ -86,21 +106,35 @@ static const char *material_invalid(const rf_impact_input *in, rf_error *err)
                 rf_impact_material_name(in->boulder_material));
         return "boulder_material";
     }
-    for (int b = 0; b < 2; b++) {
+    if (in->layer_thickness > 0.0) { /* the layer's elasticity (the slope's is in the table) */
+        const char *bad = !(isfinite(in->layer_density) && in->layer_density > 0.0) ? "layer_density"
+                          : !(isfinite(in->layer_E) && in->layer_E > 0.0)           ? "layer_E"
+                          : !(isfinite(in->layer_poisson) && in->layer_poisson > -1.0 && in->layer_poisson < 0.5) ? "layer_poisson"
+                                                                                     : NULL;
+        if (bad) {
+            double x = bad[6] == 'd' ? in->layer_density : bad[6] == 'E' ? in->layer_E : in->layer_poisson;
+            rf_fail(err, RF_EINVAL, "%s = %g: must be %s (layer_thickness = %g m)", bad, x,
+                    bad[6] == 'p' ? "in (-1, 0.5)" : "finite and > 0", in->layer_thickness);
+            return bad;
+        }
+    }
+    for (int b = 0; b < 3; b++) {
         rf_material_params p;
         rf_material m;
         rf_error e = {0};
+        if (b == 2 && !(in->layer_thickness > 0.0))
+            continue;
         rf_impact_material_params(in, b, &p);
         if (p.model == RF_MATERIAL_ELASTIC || rf_material_init(&m, &p, &e) == RF_OK)
             continue;
-        const char *name = b ? "slope_material" : "boulder_material";
-        for (int k = 0; k < 8 && material_fields[b][k][0]; k++) {
+        const char *name = b == 0 ? "boulder_material" : b == 1 ? "slope_material" : "layer_material";
+        for (int k = 0; k < 9 && material_fields[b][k][0]; k++) {
             size_t n = strlen(material_fields[b][k][0]);
             if (!strncmp(e.msg, material_fields[b][k][0], n) && e.msg[n] == ' ')
                 name = material_fields[b][k][1];
         }
-        rf_fail(err, RF_EINVAL, "%s_%s (%s material %s)", b ? "slope" : "boulder", e.msg,
-                b ? "slope" : "boulder", rf_material_model_name(p.model));
+        rf_fail(err, RF_EINVAL, "%s_%s (%s material %s)", body_names[b], e.msg, body_names[b],
+                rf_material_model_name(p.model));
         return name;
     }
     return NULL;
@@ -136,6 +170,8 @@ static const struct {
     {"slope_angle", offsetof(rf_impact_input, slope_angle), CHECK_ANGLE,
      "must lie in [0, 90) degrees"},
     {"friction", offsetof(rf_impact_input, friction), CHECK_FRICTION, "must be finite and >= 0"},
+    {"layer_thickness", offsetof(rf_impact_input, layer_thickness), CHECK_AXIS,
+     "must be finite and >= 0 [m] (0 = homogeneous slope)"},
 };
 #define N_FIELDS (sizeof fields / sizeof fields[0])
 

@@ -21,7 +21,9 @@ const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS] = {
     "radius", "horizontal_axis", "boulder_density", "slope_density", "boulder_E", "slope_E",
     "boulder_poisson", "slope_poisson", "velocity", "slope_angle", "friction",
     "boulder_yield", "boulder_hardening", "slope_yield", "slope_hardening", "slope_cohesion",
-    "slope_friction_angle", "slope_dilatancy_angle", "slope_cap_pressure", "slope_cap_hardening"};
+    "slope_friction_angle", "slope_dilatancy_angle", "slope_cap_pressure", "slope_cap_hardening",
+    "layer_thickness", "layer_density", "layer_E", "layer_poisson", "layer_yield", "layer_hardening",
+    "layer_cohesion", "layer_friction_angle", "layer_dilatancy_angle", "layer_cap_pressure", "layer_cap_hardening"};
 
 const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
     "contact_force_max", "compression_max", "contact_duration", "contact_radius",
@@ -103,6 +105,11 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
     if (st != RF_OK) {
         rf_impact_output_clear(out);
         return st;
+    }
+    if (spec->solver != RF_IMPACT_FEM && in->layer_thickness > 0) {
+        rf_impact_output_clear(out);
+        return rf_fail(err, RF_EINVAL, "layer_thickness = %g m: the %s solver has no layer (use solver fem)",
+                       in->layer_thickness, rf_impact_solver_name(spec->solver));
     }
     switch (spec->solver) {
     case RF_IMPACT_HERTZ: return rf_impact_hertz(in, out, err);
@@ -209,7 +216,8 @@ static size_t impact_warnings(void *p, char *buf, size_t size)
 
 enum {
     P_RADIUS, P_C, P_RHO_B, P_RHO_S, P_E_B, P_E_S, P_NU_B, P_NU_S, P_V, P_ANGLE, P_MU,
-    P_Y_B, P_H_B, P_Y_S, P_H_S, P_COH_S, P_PHI_S, P_PSI_S, P_CAP_S, P_CAPH_S
+    P_Y_B, P_H_B, P_Y_S, P_H_S, P_COH_S, P_PHI_S, P_PSI_S, P_CAP_S, P_CAPH_S,
+    P_L_T, P_L_RHO, P_L_E, P_L_NU, P_Y_L, P_H_L, P_COH_L, P_PHI_L, P_PSI_L, P_CAP_L, P_CAPH_L
 };
 
 static void bind(rf_impact_input *in, int field, double x)
@@ -238,6 +246,17 @@ static void bind(rf_impact_input *in, int field, double x)
     case P_PSI_S: in->slope_dilatancy_angle = x * RF_PI / 180.0; break;
     case P_CAP_S: in->slope_cap_pressure = x; break;
     case P_CAPH_S: in->slope_cap_hardening = x; break;
+    case P_L_T: in->layer_thickness = x; break;
+    case P_L_RHO: in->layer_density = x; break;
+    case P_L_E: in->layer_E = x; break;
+    case P_L_NU: in->layer_poisson = x; break;
+    case P_Y_L: in->layer_yield = x; break;
+    case P_H_L: in->layer_hardening = x; break;
+    case P_COH_L: in->layer_cohesion = x; break;
+    case P_PHI_L: in->layer_friction_angle = x * RF_PI / 180.0; break;
+    case P_PSI_L: in->layer_dilatancy_angle = x * RF_PI / 180.0; break;
+    case P_CAP_L: in->layer_cap_pressure = x; break;
+    case P_CAPH_L: in->layer_cap_hardening = x; break;
     }
 }
 
@@ -332,6 +351,14 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                rf_impact_material_name(b->boulder_material), b->boulder_yield, b->boulder_hardening,
                rf_material_model_name(b->slope_material), b->slope_yield, b->slope_hardening, b->slope_cohesion,
                b->slope_friction_angle, b->slope_dilatancy_angle, b->slope_cap_pressure, b->slope_cap_hardening);
+    if (b->layer_thickness > 0)
+        append(buf, cap, &len,
+               " layer_thickness=%.17g layer_density=%.17g layer_E=%.17g layer_poisson=%.17g layer_material=%s"
+               " layer_yield=%.17g layer_hardening=%.17g layer_cohesion=%.17g layer_friction_angle_rad=%.17g"
+               " layer_dilatancy_angle_rad=%.17g layer_cap_pressure=%.17g layer_cap_hardening=%.17g",
+               b->layer_thickness, b->layer_density, b->layer_E, b->layer_poisson,
+               rf_material_model_name(b->layer_material), b->layer_yield, b->layer_hardening, b->layer_cohesion,
+               b->layer_friction_angle, b->layer_dilatancy_angle, b->layer_cap_pressure, b->layer_cap_hardening);
     append(buf, cap, &len, " params:");
     for (size_t i = 0; i < c->n_params; i++)
         append(buf, cap, &len, "%s%s", i ? "," : "", rf_impact_param_names[c->field[i]]);
@@ -368,7 +395,9 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
                            "boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction, "
                            "boulder_yield, boulder_hardening, slope_yield, slope_hardening, slope_cohesion, "
                            "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
-                           "slope_cap_hardening)",
+                           "slope_cap_hardening, layer_thickness, layer_density, layer_E, layer_poisson, "
+                           "layer_yield, layer_hardening, layer_cohesion, layer_friction_angle [deg], "
+                           "layer_dilatancy_angle [deg], layer_cap_pressure, layer_cap_hardening)",
                            param_names[i] ? param_names[i] : "(null)");
         }
         for (size_t j = 0; j < i; j++)
@@ -389,7 +418,8 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
         const double nominal_x[RF_IMPACT_N_PARAMS] = {
             nominal.radius, 1.0, nominal.boulder_density, nominal.slope_density,
             nominal.boulder_E, nominal.slope_E, nominal.boulder_poisson, nominal.slope_poisson,
-            nominal.velocity, 0.0, 0.0, 1e8, 0.0, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0};
+            nominal.velocity, 0.0, 0.0, 1e8, 0.0, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0,
+            0.1, nominal.layer_density, nominal.layer_E, nominal.layer_poisson, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0};
         int f = c->field[i];
         if (f == P_C)
             bind(&probe, f, 0.0); /* a sphere probe: c = 0 is valid */
@@ -411,7 +441,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     st = rf_model_init_outputs(model, RF_IMPACT_N_OUTPUTS, rf_impact_output_names,
                                rf_impact_output_units, err);
     if (st == RF_OK) {
-        char buf[2048];
+        char buf[4096];
         make_identity(c, buf, sizeof buf);
         st = rf_model_set_identity(model, buf, err);
     }

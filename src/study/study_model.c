@@ -459,6 +459,17 @@ static double *impact_field(rf_impact_input *in, const char *name)
         {"slope_dilatancy_angle", &in->slope_dilatancy_angle},
         {"slope_cap_pressure", &in->slope_cap_pressure},
         {"slope_cap_hardening", &in->slope_cap_hardening},
+        {"layer_thickness", &in->layer_thickness},
+        {"layer_density", &in->layer_density},
+        {"layer_E", &in->layer_E},
+        {"layer_poisson", &in->layer_poisson},
+        {"layer_yield", &in->layer_yield},
+        {"layer_hardening", &in->layer_hardening},
+        {"layer_cohesion", &in->layer_cohesion},
+        {"layer_friction_angle", &in->layer_friction_angle},
+        {"layer_dilatancy_angle", &in->layer_dilatancy_angle},
+        {"layer_cap_pressure", &in->layer_cap_pressure},
+        {"layer_cap_hardening", &in->layer_cap_hardening},
     };
     for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
         if (!strcmp(name, f[k].name))
@@ -471,7 +482,8 @@ static const double deg = RF_PI / 180.0;
 /* Angles are given in degrees in a study and kept in radians in the input. */
 static double impact_unit(const rf_impact_input *in, const double *field)
 {
-    return field == &in->slope_angle || field == &in->slope_friction_angle || field == &in->slope_dilatancy_angle
+    return field == &in->slope_angle || field == &in->slope_friction_angle || field == &in->slope_dilatancy_angle ||
+                   field == &in->layer_friction_angle || field == &in->layer_dilatancy_angle
                ? deg
                : 1.0;
 }
@@ -506,15 +518,18 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             if ((st = sp_number(c, v, p, field)) != RF_OK)
                 return st;
             *field *= impact_unit(&spec.base, field);
-        } else if (!strcmp(key, "boulder_material") || !strcmp(key, "slope_material")) {
+        } else if (!strcmp(key, "boulder_material") || !strcmp(key, "slope_material") ||
+                   !strcmp(key, "layer_material")) {
             if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
                 return st;
             snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
             rf_error tmp;
             if (len >= 31 || (key[0] == 'b' ? rf_impact_boulder_material_parse(buf, &spec.base.boulder_material, &tmp)
-                                             : rf_material_model_parse(buf, &spec.base.slope_material, &tmp)) != RF_OK)
+                                             : rf_material_model_parse(buf, key[0] == 's' ? &spec.base.slope_material
+                                                                                          : &spec.base.layer_material,
+                                                                       &tmp)) != RF_OK)
                 return sp_fail(c, v, p, key[0] == 'b' ? "unknown boulder material; expected elastic, von_mises or rigid"
-                                                      : "unknown slope material; expected elastic, von_mises or "
+                                                      : "unknown material; expected elastic, von_mises or "
                                                         "drucker_prager");
         } else if (!strcmp(key, "solver") || !strcmp(key, "boundary")) {
             if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
@@ -550,12 +565,15 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
         } else {
             return sp_fail(c, k, p,
                            "unknown key; the impact model takes solver, boundary, refinement, domain_factor, "
-                           "threads, e_n, hunter_coefficient, boulder_material, slope_material and crisp inputs "
+                           "threads, e_n, hunter_coefficient, boulder_material, slope_material, layer_material and "
+                           "crisp inputs "
                            "(radius, horizontal_axis, vertical_axis, boulder_density, slope_density, boulder_E, "
                            "slope_E, boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction, "
                            "boulder_yield, boulder_hardening, slope_yield, slope_hardening, slope_cohesion, "
                            "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
-                           "slope_cap_hardening)");
+                           "slope_cap_hardening, layer_thickness, layer_density, layer_E, layer_poisson, layer_yield, "
+                           "layer_hardening, layer_cohesion, layer_friction_angle [deg], layer_dilatancy_angle [deg], "
+                           "layer_cap_pressure, layer_cap_hardening)");
         }
     }
     /* Every parameter must name an impact input. */
