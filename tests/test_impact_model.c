@@ -419,6 +419,22 @@ static void test_plastic_parameters(void **state)
     outputs_of(&o, want);
     assert_same(y, want, RF_IMPACT_N_OUTPUTS);
     assert_true(y[7] > 0 && y[10] > 0 && y[4] < 0.98);
+    rf_model_free(&model);
+    /* the layer's inputs are parameters too */
+    const char *lnames[] = {"layer_thickness", "layer_E", "layer_friction_angle"};
+    const double lx[] = {0.2, 20e9, 30.0};
+    spec.base.layer_material = RF_MATERIAL_DRUCKER_PRAGER, spec.base.layer_cohesion = 1e6;
+    assert_int_equal(rf_impact_model_create(&spec, lnames, 3, &model, &err), RF_OK);
+    assert_non_null(strstr(model.identity, "layer_material=drucker_prager"));
+    if (rf_model_eval(&model, lx, y, &err) != RF_OK)
+        fail_msg("layer eval: %s", err.msg);
+    in = spec.base;
+    in.layer_thickness = 0.2, in.layer_E = 20e9, in.layer_friction_angle = 30.0 * DEG;
+    assert_int_equal(rf_fem_impact(&in, &spec.fem, &o, NULL, &err), RF_OK);
+    outputs_of(&o, want);
+    assert_same(y, want, RF_IMPACT_N_OUTPUTS);
+    rf_model_free(&model);
+    assert_int_equal(rf_impact_model_create(&spec, names, 4, &model, &err), RF_OK);
     /* an inadmissible value is named */
     const double bad[] = {30.0, 40.0, 2e8, 1e9};
     assert_int_not_equal(rf_model_eval(&model, bad, y, &err), RF_OK);

@@ -351,7 +351,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                rf_impact_material_name(b->boulder_material), b->boulder_yield, b->boulder_hardening,
                rf_material_model_name(b->slope_material), b->slope_yield, b->slope_hardening, b->slope_cohesion,
                b->slope_friction_angle, b->slope_dilatancy_angle, b->slope_cap_pressure, b->slope_cap_hardening);
-    if (b->layer_thickness > 0)
+    int layer = b->layer_thickness > 0; /* or bound: a layer may appear at some points */
+    for (size_t i = 0; i < c->n_params; i++)
+        layer |= c->field[i] == P_L_T;
+    if (layer)
         append(buf, cap, &len,
                " layer_thickness=%.17g layer_density=%.17g layer_E=%.17g layer_poisson=%.17g layer_material=%s"
                " layer_yield=%.17g layer_hardening=%.17g layer_cohesion=%.17g layer_friction_angle_rad=%.17g"
