@@ -99,7 +99,8 @@ typedef enum {
     RF_IMPACT_FEM = 0,  /* explicit finite elements (rockfuzz/fem.h) */
     RF_IMPACT_HERTZ,    /* elastic Hertz: R_n = 1 */
     RF_IMPACT_HUNTER,   /* Hertz + Hunter wave loss */
-    RF_IMPACT_RIGID     /* rigid-body oblique impact with Coulomb friction, e_n given */
+    RF_IMPACT_RIGID,    /* rigid-body oblique impact with Coulomb friction, e_n given */
+    RF_IMPACT_MDR       /* Hertz + Mindlin-Deresiewicz partial slip (rockfuzz/mdr.h), e_n given */
 } rf_impact_solver;
 
 typedef enum {
@@ -107,7 +108,7 @@ typedef enum {
     RF_IMPACT_BOUNDARY_ABSORBING     /* viscous (Lysmer-Kuhlemeyer) dashpots */
 } rf_impact_boundary;
 
-/* "fem" | "hertz" | "hunter" | "rigid" <-> enum; "fixed" | "absorbing". */
+/* "fem" | "hertz" | "hunter" | "rigid" | "mdr" <-> enum; "fixed" | "absorbing". */
 const char *rf_impact_solver_name(rf_impact_solver s);
 rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err);
 const char *rf_impact_boundary_name(rf_impact_boundary b);
