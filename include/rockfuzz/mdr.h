@@ -46,6 +46,7 @@ typedef struct {
     double E_star;   /* [Pa] */
     double G_star;   /* MDR tangential modulus [Pa] */
     double friction; /* Coulomb coefficient [-] */
+    double a;        /* contact radius of the last step [m] */
     double *q;       /* tangential force of each spring [N] (one half of the contact) */
 } rf_mdr_contact;
 
@@ -76,8 +77,9 @@ typedef struct {
 } rf_mdr_problem;
 
 typedef struct {
-    size_t springs;   /* springs over the largest contact radius (default 200) */
-    size_t steps;     /* time steps per elastic Hertz contact duration (default 800) */
+    size_t springs;   /* springs over the largest contact radius (default 100) */
+    size_t steps;     /* time steps per elastic Hertz contact duration (default 400);
+                         the defaults keep R_t within 3e-5 of the converged value */
 } rf_mdr_options;
 
 void rf_mdr_options_default(rf_mdr_options *o);
@@ -90,7 +92,8 @@ typedef struct {
     double compression_max;  /* [m] */
     double contact_duration; /* [s] */
     double contact_radius;   /* at maximum compression [m] */
-    double friction_work;    /* energy dissipated by slip [J] */
+    double friction_work;    /* energy dissipated in the contact [J]: slip, and the release
+                                of stuck springs at a receding contact edge */
     double beta_t;           /* v_c' / v_c: contact-point velocity after / before (NaN if v_c = 0) */
     double chi;              /* MBF: (G_star/E_star)(1 + m R^2/I)/2 */
     double psi1, psi2;       /* MBF: (G_star/E_star) v_c/(mu v_n), and the same with v_c after */

@@ -54,25 +54,39 @@ void rf_mdr_contact_free(rf_mdr_contact *c)
     *c = (rf_mdr_contact){0};
 }
 
+/* Length of the strip [x0, x0 + dx] inside the contact radius a. */
+static double contact_length(double a, double x0, double dx)
+{
+    double l = a - x0;
+    return l <= 0.0 ? 0.0 : (l < dx ? l : dx);
+}
+
 double rf_mdr_contact_step(rf_mdr_contact *c, double d, double du, double scale, double *normal_force)
 {
     double a = d > 0.0 ? sqrt(c->R * d) : 0.0;
     double inv3R = 1.0 / (3.0 * c->R), normal = 0.0, tangential = 0.0;
-    for (size_t i = 0; i < c->n; i++) {
-        double x0 = (double)i * c->dx, x1 = x0 + c->dx;
-        double xe = a < x1 ? a : x1;
-        if (xe <= x0) {
+    double reach = (a > c->a ? a : c->a) / c->dx + 1.0; /* springs beyond carry nothing */
+    size_t n = reach < (double)c->n ? (size_t)reach : c->n;
+    for (size_t i = 0; i < n; i++) {
+        double x0 = (double)i * c->dx;
+        double l = contact_length(a, x0, c->dx), l_old = contact_length(c->a, x0, c->dx);
+        if (l <= 0.0) {
             c->q[i] = 0.0; /* out of contact: the spring carries nothing */
             continue;
         }
-        double p = scale * c->E_star * (d * (xe - x0) - (xe * xe * xe - x0 * x0 * x0) * inv3R);
+        double xe = x0 + l;
+        double p = scale * c->E_star * (d * l - (xe * xe * xe - x0 * x0 * x0) * inv3R);
         double cap = c->friction * p;
-        double q = c->q[i] + c->G_star * (xe - x0) * du;
+        /* The part of the strip that left the contact takes its share of the
+         * force with it; the part that entered during the step was loaded for
+         * about half of it: midpoint stiffness, second order in dx and dt. */
+        double q = c->q[i] * (l < l_old ? l / l_old : 1.0) + c->G_star * 0.5 * (l + l_old) * du;
         q = q > cap ? cap : (q < -cap ? -cap : q);
         c->q[i] = q;
         tangential += q;
         normal += p;
     }
+    c->a = a;
     if (normal_force)
         *normal_force = 2.0 * normal; /* both halves of the profile */
     return 2.0 * tangential;
@@ -80,8 +94,8 @@ double rf_mdr_contact_step(rf_mdr_contact *c, double d, double du, double scale,
 
 void rf_mdr_options_default(rf_mdr_options *o)
 {
-    o->springs = 200;
-    o->steps = 800;
+    o->springs = 100;
+    o->steps = 400;
 }
 
 static rf_status check_problem(const rf_mdr_problem *p, const rf_mdr_options *o, rf_error *err)
