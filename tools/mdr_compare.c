@@ -5,7 +5,9 @@
  * keys (SI, angle in degrees): v, angle, f, r0, rho_b, rho_s, E_b, E_s, nu_b,
  *   nu_s, en (MDR normal COR; default 1 = elastic), spin (initial omega, rad/s),
  *   springs, steps (MDR discretisation), body (finite-body normal constant c,
- *   see below; default 0), fem (1 = also run the FE), ref (a/h), bc
+ *   see below; default 0), arm (1: lever arm R - D/2 in the body variant),
+ *   Iscale (inertia factor of the body variant, e.g. the FE's lumped I / exact I),
+ *   fem (1 = also run the FE), ref (a/h), bc
  *   (fixed|absorbing), dom (L/r0), dtsafety, end (s), threads.
  * Prints one line "key=value ..." with, for each model, R_n, R_t, omega',
  * beta_t = v_c'/v_c (contact-point velocity after/before) and psi1, psi2.
@@ -14,8 +16,10 @@
  * the CM approach D is taken smaller than the local Hertz indentation d by
  * c F / (E* R), F = 4/3 E* R^1/2 d^3/2, i.e. the finite sphere's stiffening
  * measured in the normal FE (fem_notes.md: -19 (a/R) % of the compression,
- * c = 0.14), with the contact radius kept Hertzian (a = sqrt(R d)).  It
- * tests whether that normal effect alone explains the FE's lower R_t. */
+ * c = 0.14), with the contact radius kept Hertzian (a = sqrt(R d)).  With
+ * arm=1 the friction force also acts at R - D/2 from the centre (the boulder's
+ * share of the approach brings the contact closer), and Iscale multiplies I.
+ * It tests how much of the FE's lower R_t these finite-body effects explain. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,7 +32,8 @@
 
 typedef struct {
     rf_impact_input in;
-    double en, spin, body;
+    double en, spin, body, Iscale;
+    int arm;
     rf_mdr_options mo;
     rf_fem_options fo;
     int fem;
@@ -57,6 +62,8 @@ static int parse(config *c, int argc, char **argv)
         else if (KEY("en")) c->en = x;
         else if (KEY("spin")) c->spin = x;
         else if (KEY("body")) c->body = x;
+        else if (KEY("arm")) c->arm = (int)x;
+        else if (KEY("Iscale")) c->Iscale = x;
         else if (KEY("springs")) c->mo.springs = (size_t)x;
         else if (KEY("steps")) c->mo.steps = (size_t)x;
         else if (KEY("fem")) c->fem = (int)x;
@@ -96,20 +103,22 @@ static double local_indentation(double D, double beta)
 }
 
 /* The diagnostic finite-body MDR (elastic): velocity Verlet on the CM approach. */
-static void finite_body_mdr(const rf_mdr_problem *p, double c_body, const rf_mdr_options *o, rf_mdr_result *r)
+static void finite_body_mdr(const rf_mdr_problem *p, double c_body, int arm, const rf_mdr_options *o,
+                            rf_mdr_result *r)
 {
     double d_max = pow(15.0 * p->mass * p->v_n * p->v_n / (16.0 * p->E_star * sqrt(p->radius)), 0.4);
     double dt = 2.94328 * d_max / p->v_n / (double)o->steps, beta = 4.0 * c_body / (3.0 * sqrt(p->radius));
     rf_mdr_contact ct;
     rf_mdr_contact_init(&ct, o->springs, 1.3 * sqrt(p->radius * d_max), p->radius, p->E_star, p->G_star,
                         p->friction, NULL);
-    double D = 0.0, w = p->v_n, vt = p->v_t, om = p->omega, fn = 0.0, ft = 0.0;
+    double D = 0.0, w = p->v_n, vt = p->v_t, om = p->omega, fn = 0.0, ft = 0.0, lever = p->radius;
     for (size_t k = 0; k < 4 * o->steps; k++) {
         w -= fn / p->mass * 0.5 * dt;
         vt -= ft / p->mass * 0.5 * dt;
-        om += ft * p->radius / p->inertia * 0.5 * dt;
-        double du = (vt - om * p->radius) * dt;
+        om += ft * lever / p->inertia * 0.5 * dt;
+        double du = (vt - om * lever) * dt;
         D += w * dt;
+        lever = arm ? p->radius - 0.5 * D : p->radius;
         if (D <= 0.0) {
             fn = ft = 0.0;
             break;
@@ -117,7 +126,7 @@ static void finite_body_mdr(const rf_mdr_problem *p, double c_body, const rf_mdr
         ft = rf_mdr_contact_step(&ct, local_indentation(D, beta), du, 1.0, &fn);
         w -= fn / p->mass * 0.5 * dt;
         vt -= ft / p->mass * 0.5 * dt;
-        om += ft * p->radius / p->inertia * 0.5 * dt;
+        om += ft * lever / p->inertia * 0.5 * dt;
     }
     rf_mdr_contact_free(&ct);
     r->v_n_after = -w;
@@ -133,7 +142,7 @@ static void print_model(const char *tag, const rf_mdr_problem *p, double vn_afte
            p->friction > 0.0 ? ratio * vc1 / (p->friction * p->v_n) : NAN);
 }
 
-static int run_fem(const config *c, double *en)
+static int run_fem(const config *c, double *en, double *inertia)
 {
     rf_impact_output out;
     rf_fem_history h;
@@ -149,6 +158,7 @@ static int run_fem(const config *c, double *en)
     printf(" fe_comp=%.6e fe_F=%.6e fe_tc=%.6e fe_err=%.2e fe_wall=%.2f fe_I=%.6e", out.compression_max,
            out.contact_force_max, out.contact_duration, out.energy_error, out.wall_seconds, rep.inertia_lumped);
     *en = out.R_n;
+    *inertia = rep.inertia_lumped;
     rf_fem_history_free(&h);
     rf_fem3d_report_free(&rep);
     return 1;
@@ -174,17 +184,26 @@ int main(int argc, char **argv)
     printf("chi=%.6f psi1=%.6f hertz_comp=%.6e hertz_a_over_R=%.6f", r.chi, r.psi1, hertz.compression_max,
            hertz.contact_radius / c.in.radius);
     print_model("mdr", &p, r.v_n_after, r.v_t_after, r.omega_after);
-    if (c.body > 0.0) {
+    if (c.body > 0.0 || c.arm || c.Iscale > 0.0) {
         rf_mdr_problem pe = problem(&c, 1.0);
+        if (c.Iscale > 0.0)
+            pe.inertia *= c.Iscale;
         rf_mdr_result rb = {0};
-        finite_body_mdr(&pe, c.body, &c.mo, &rb);
+        finite_body_mdr(&pe, c.body, c.arm, &c.mo, &rb);
         print_model("body", &pe, rb.v_n_after, rb.v_t_after, rb.omega_after);
     }
-    double en_fe = NAN;
-    if (c.fem && run_fem(&c, &en_fe) && en_fe > 0.0) {
+    double en_fe = NAN, inertia_fe = NAN;
+    if (c.fem && run_fem(&c, &en_fe, &inertia_fe) && en_fe > 0.0) {
         rf_mdr_problem pf = problem(&c, en_fe); /* the MDR with the FE's own R_n */
         rf_mdr_impact(&pf, &c.mo, &r, NULL);
         print_model("mdrfe", &pf, r.v_n_after, r.v_t_after, r.omega_after);
+        if (c.body > 0.0) { /* all three finite-body effects, with the FE mesh's inertia */
+            rf_mdr_problem pb = problem(&c, 1.0);
+            pb.inertia = inertia_fe;
+            rf_mdr_result rb = {0};
+            finite_body_mdr(&pb, c.body, 1, &c.mo, &rb);
+            print_model("fbI", &pb, rb.v_n_after, rb.v_t_after, rb.omega_after);
+        }
     }
     printf("\n");
     return 0;
