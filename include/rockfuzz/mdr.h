@@ -50,7 +50,9 @@ typedef struct {
     double *q;       /* tangential force of each spring [N] (one half of the contact) */
 } rf_mdr_contact;
 
-/* Springs covering contact radii up to a_max [m].  Free with rf_mdr_contact_free. */
+/* Springs covering contact radii up to a_max [m] (keep sqrt(R d) <= a_max in
+ * rf_mdr_contact_step: beyond it the bank is cut off).  Free with
+ * rf_mdr_contact_free. */
 rf_status rf_mdr_contact_init(rf_mdr_contact *c, size_t n, double a_max, double R, double E_star,
                               double G_star, double friction, rf_error *err);
 void rf_mdr_contact_free(rf_mdr_contact *c);
