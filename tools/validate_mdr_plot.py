@@ -100,7 +100,9 @@ def plot_published(runs, img):
 def plot_sweep(runs, img):
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
     colors = {30: "tab:blue", 45: "tab:orange", 60: "tab:green"}
-    print("sweep: angle f psi1  R_t FE  R_t MDR  R_t MDR(e_n FE)  dR_t  beta FE  beta MDR  w FE  w MDR")
+    print("| slope | f | psi1 | R_t FE | R_t MDR | R_t MDR, e_n = FE R_n | FE - MDR | finite-body MDR - MDR "
+          "| omega' r/v_t FE / MDR | beta_t FE / MDR |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for a in (30, 45, 60):
         rr = sorted((r for r in runs if r.get("angle") == a and "fe_Rt" in r), key=lambda r: r["f"])
         if not rr:
@@ -119,9 +121,10 @@ def plot_sweep(runs, img):
         axes[2].plot([r["psi1"] for r in pos], [r["mdr_beta"] for r in pos], "x", color=c, ms=8,
                      label="MDR %d deg" % a)
         for r in rr:
-            print("  %2d %5.2f %6.3f  %.4f  %.4f  %.4f  %+.4f  %+.3f  %+.3f  %.3f  %.3f" % (
-                a, r["f"], r["psi1"] if r["f"] > 0 else float("inf"), r["fe_Rt"], r["mdr_Rt"], r["mdrfe_Rt"],
-                r["fe_Rt"] - r["mdr_Rt"], r["fe_beta"], r["mdr_beta"], r["fe_w"], r["mdr_w"]))
+            print("| %d | %g | %s | %.4f | %.4f | %.4f | %+.4f | %+.4f | %.3f / %.3f | %+.3f / %+.3f |" % (
+                a, r["f"], "%.2f" % r["psi1"] if r["f"] > 0 else "inf", r["fe_Rt"], r["mdr_Rt"], r["mdrfe_Rt"],
+                r["fe_Rt"] - r["mdr_Rt"], r.get("fbI_Rt", float("nan")) - r["mdr_Rt"], r["fe_w"] / vt,
+                r["mdr_w"] / vt, r["fe_beta"], r["mdr_beta"]))
     mbf = sorted((r["psi1"], r["mdr_beta"]) for r in read_runs(os.path.join(sys.argv[1], "published.txt"))
                  if r["case"] == "mbf")
     if mbf:
@@ -148,7 +151,9 @@ def plot_sweep(runs, img):
 
 def plot_gap(runs, sweep, img):
     fig, ax = plt.subplots(1, 1, figsize=(7, 4.8))
-    print("gap: case v rho_b f ref a/R  R_t FE  R_t MDR  FE-MDR  body-MDR  comp FE/Hertz-1  R_n FE")
+    print("| case | v [m/s] | rho_b | f | a/h | a/R | R_t FE | R_t MDR | FE - MDR | normal finite-body MDR - MDR "
+          "| all finite-body MDR - MDR | FE compression / Hertz - 1 | R_n FE |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     base = [r for r in sweep if r.get("angle") == 45 and r.get("f") in (0.6, 5.0)]
     allr = runs + base
     for f, mk in ((5.0, "o"), (0.6, "s")):
@@ -158,8 +163,8 @@ def plot_gap(runs, sweep, img):
             x = [r["hertz_a_over_R"] for r in vel]
             ax.plot(x, [r["fe_Rt"] - r["mdr_Rt"] for r in vel], mk + "-", color="tab:red",
                     label="FE - MDR, f = %g (velocity 0.3-30 m/s)" % f)
-            ax.plot(x, [r["body_Rt"] - r["mdr_Rt"] for r in vel if "body_Rt" in r][:len(x)], mk + "--",
-                    color="tab:blue", mfc="none", label="finite-body MDR - MDR, f = %g" % f)
+            ax.plot(x, [r["fbI_Rt"] - r["mdr_Rt"] for r in vel], mk + "--", color="tab:blue", mfc="none",
+                    label="finite-body MDR - MDR, f = %g" % f)
         dens = [r for r in allr if r.get("case") == "dens" and r.get("f") == f]
         for r in dens:
             ax.plot(r["hertz_a_over_R"], r["fe_Rt"] - r["mdr_Rt"], "k" + mk, mfc="none", ms=10)
@@ -175,10 +180,10 @@ def plot_gap(runs, sweep, img):
     for r in sorted(allr, key=lambda r: (r.get("case", ""), r.get("f", 0), r.get("v", 0))):
         if "fe_Rt" not in r or r.get("angle") != 45:
             continue
-        print("  %-5s %6.3g %6g %4.2g %g %.4f  %.4f  %.4f  %+.4f  %+.4f  %+.2f%%  %.5f" % (
+        print("| %s | %.3g | %g | %g | %g | %.3f | %.4f | %.4f | %+.4f | %+.4f | %+.4f | %+.2f %% | %.4f |" % (
             r["case"], r["v"], r.get("rho_b", 2600), r["f"], r.get("ref", 4), r["hertz_a_over_R"], r["fe_Rt"],
             r["mdr_Rt"], r["fe_Rt"] - r["mdr_Rt"], r.get("body_Rt", float("nan")) - r["mdr_Rt"],
-            100 * (r["fe_comp"] / r["hertz_comp"] - 1), r["fe_Rn"]))
+            r.get("fbI_Rt", float("nan")) - r["mdr_Rt"], 100 * (r["fe_comp"] / r["hertz_comp"] - 1), r["fe_Rn"]))
 
 
 def main():
