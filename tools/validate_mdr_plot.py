@@ -134,7 +134,7 @@ def plot_sweep(runs, img):
     axes[0].axhline(5 / 7, color="0.6", lw=1)
     axes[0].set_xlabel("friction f")
     axes[0].set_ylabel("R_t")
-    axes[0].set_title("R_t: FE a/h = 4 (dots), MDR elastic (lines), MDR e_n = FE R_n (dotted)")
+    axes[0].set_title("R_t: FE a/h = 4 (dots), MDR (lines; dotted: e_n = FE R_n)", fontsize=10)
     axes[1].set_xlabel("friction f")
     axes[1].set_ylabel("omega' r / v_t")
     axes[1].set_title("spin after impact")
