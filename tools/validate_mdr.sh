@@ -56,7 +56,7 @@ gap) # what the FE-MDR difference at high f depends on (45 deg)
     for v in 1 3 30; do run gap vel fem=1 v=$v angle=45 f=0.6 body=0.14; done
     for f in 0.3 1 2; do run gap v1 fem=1 v=1 angle=45 f=$f body=0.14; done
     for r in 3 6; do run gap ref fem=1 v=10 angle=45 f=5 ref=$r body=0.14; done
-    run gap ref fem=1 v=10 angle=45 f=0.6 ref=6 body=0.14
+    for f in 0.3 0.6 1 2; do run gap ref fem=1 v=10 angle=45 f=$f ref=6 body=0.14; done
     run gap dt fem=1 v=10 angle=45 f=5 dtsafety=0.45
     run gap dom fem=1 v=10 angle=45 f=5 dom=20
     # same a/R and forces as 10 m/s, slope waves 3.16x slower / faster relative to the contact
