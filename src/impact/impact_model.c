@@ -286,6 +286,11 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
     if (en_solver)
         append(buf, cap, &len, isnan(s->e_n) ? " e_n=hunter" : " e_n=%.17g", s->e_n);
+    if (s->solver == RF_IMPACT_MDR) {
+        rf_mdr_options mo;
+        rf_mdr_options_default(&mo);
+        append(buf, cap, &len, " mdr_springs=%zu mdr_steps=%zu", mo.springs, mo.steps);
+    }
     if (s->solver == RF_IMPACT_FEM)
         append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
                rf_impact_fem_refinement_(s, 0), rf_impact_fem_refinement_(s, 1), s->fem_domain_factor,
