@@ -4,7 +4,7 @@
  * gross sliding equal to the rigid-body formulas (impact_refs.md sec. 4.1);
  * f = 0; the MBF limits (gross slip throughout exactly from psi1 = 4 chi - 1;
  * psi1 -> 0 against an independent no-slip integration); convergence in the
- * number of springs and time steps; the impact-model wiring. */
+ * number of springs and time steps; spin invariance; the impact-model wiring. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -296,6 +296,23 @@ static void test_mirror(void **state)
     assert_true(a.v_n_after == b.v_n_after);
 }
 
+/* Initial spin: the contact sees only the contact-point velocity v_c = v_t -
+ * omega R, so (v_t, omega) and (v_t + s R, omega + s) take the same impulse
+ * (partial slip, 45 deg, f = 0.6): v_t' and omega' shift by s R and s. */
+static void test_spin_invariance(void **state)
+{
+    (void)state;
+    rf_mdr_problem p = granite(45.0, 0.6, 1.0), q;
+    q = p;
+    q.omega = 3.0;
+    q.v_t = p.v_t + 3.0 * p.radius;
+    rf_mdr_result a = run(&p, 0, 0), b = run(&q, 0, 0);
+    assert_abs(b.v_t_after - a.v_t_after, 3.0 * p.radius, 1e-12, "v_t' shift");
+    assert_abs(b.omega_after - a.omega_after, 3.0, 1e-12, "omega' shift");
+    assert_abs(b.psi2, a.psi2, 1e-12, "psi2");
+    assert_true(a.psi1 < 4.0 * a.chi - 1.0); /* partial slip, not gross sliding */
+}
+
 /* The impact model: "mdr" parses; e_n unset = Hunter's; bound parameters. */
 static void test_model_wiring(void **state)
 {
@@ -346,6 +363,7 @@ int main(void)
         cmocka_unit_test(test_no_slip_limit),
         cmocka_unit_test(test_convergence),
         cmocka_unit_test(test_mirror),
+        cmocka_unit_test(test_spin_invariance),
         cmocka_unit_test(test_model_wiring),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
