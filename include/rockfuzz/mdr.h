@@ -48,6 +48,7 @@ typedef struct {
     double friction; /* Coulomb coefficient [-] */
     double a;        /* contact radius of the last step [m] */
     double *q;       /* tangential force of each spring [N] (one half of the contact) */
+    double *w;       /* integral of g(x) = x^2/R over each whole strip [m^2] */
 } rf_mdr_contact;
 
 /* Springs covering contact radii up to a_max [m] (keep sqrt(R d) <= a_max in

@@ -36,11 +36,16 @@ rf_status rf_mdr_contact_init(rf_mdr_contact *c, size_t n, double a_max, double 
         return rf_fail(err, RF_EINVAL, "MDR contact: springs = %zu (2..1e6), a_max = %g m, R = %g m, "
                                        "E* = %g Pa, G* = %g Pa, friction = %g: need positive finite values",
                        n, a_max, R, E_star, G_star, friction);
-    c->q = calloc(n, sizeof *c->q);
+    c->q = calloc(2 * n, sizeof *c->q);
     if (!c->q)
         return rf_fail(err, RF_ENOMEM, "out of memory for %zu MDR springs", n);
+    c->w = c->q + n;
     c->n = n;
     c->dx = a_max / (double)n;
+    for (size_t i = 0; i < n; i++) {
+        double x0 = (double)i * c->dx, x1 = x0 + c->dx;
+        c->w[i] = (x1 * x1 * x1 - x0 * x0 * x0) / (3.0 * R);
+    }
     c->R = R;
     c->E_star = E_star;
     c->G_star = G_star;
@@ -61,13 +66,33 @@ static double contact_length(double a, double x0, double dx)
     return l <= 0.0 ? 0.0 : (l < dx ? l : dx);
 }
 
+/* The springs 0 .. n_inner-1, wholly in contact before and after the step. */
+static void step_inner(rf_mdr_contact *c, size_t n_inner, double d, double du, double scale, double *normal,
+                       double *tangential)
+{
+    double sE = scale * c->E_star, dq = c->G_star * c->dx * du, n_sum = 0.0, t_sum = 0.0;
+    for (size_t i = 0; i < n_inner; i++) {
+        double p = sE * (d * c->dx - c->w[i]), cap = c->friction * p;
+        double q = c->q[i] + dq;
+        q = q > cap ? cap : (q < -cap ? -cap : q);
+        c->q[i] = q;
+        t_sum += q;
+        n_sum += p;
+    }
+    *normal = n_sum;
+    *tangential = t_sum;
+}
+
 double rf_mdr_contact_step(rf_mdr_contact *c, double d, double du, double scale, double *normal_force)
 {
     double a = d > 0.0 ? sqrt(c->R * d) : 0.0;
     double inv3R = 1.0 / (3.0 * c->R), normal = 0.0, tangential = 0.0;
     double reach = (a > c->a ? a : c->a) / c->dx + 1.0; /* springs beyond carry nothing */
     size_t n = reach < (double)c->n ? (size_t)reach : c->n;
-    for (size_t i = 0; i < n; i++) {
+    double inner = (a < c->a ? a : c->a) / c->dx;
+    size_t n_inner = inner < (double)n ? (size_t)inner : n;
+    step_inner(c, n_inner, d, du, scale, &normal, &tangential);
+    for (size_t i = n_inner; i < n; i++) { /* the strips the contact edge crossed */
         double x0 = (double)i * c->dx;
         double l = contact_length(a, x0, c->dx), l_old = contact_length(c->a, x0, c->dx);
         if (l <= 0.0) {
