@@ -9,6 +9,7 @@
  * thread-safe. */
 #include "rockfuzz/impact_model.h"
 #include "core/util.h"
+#include "rockfuzz/mdr.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -27,21 +28,21 @@ const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
 
 const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS] = {"N", "m", "s", "m", "", "", ""};
 
-static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid"};
+static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid", "mdr"};
 
 const char *rf_impact_solver_name(rf_impact_solver s)
 {
-    return (unsigned)s < 4 ? solver_names[s] : "unknown";
+    return (unsigned)s < 5 ? solver_names[s] : "unknown";
 }
 
 rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err)
 {
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < 5; k++)
         if (name && !strcmp(name, solver_names[k])) {
             *s = (rf_impact_solver)k;
             return RF_OK;
         }
-    return rf_fail(err, RF_EINVAL, "solver '%s' is unknown (accepted: fem, hertz, hunter, rigid)",
+    return rf_fail(err, RF_EINVAL, "solver '%s' is unknown (accepted: fem, hertz, hunter, rigid, mdr)",
                    name ? name : "(null)");
 }
 
@@ -73,7 +74,7 @@ static rf_status solve_fem(const rf_impact_model_spec *spec, rf_fem_workspace *w
 
 rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_error *err)
 {
-    if ((unsigned)spec->solver > RF_IMPACT_RIGID)
+    if ((unsigned)spec->solver > RF_IMPACT_MDR)
         return rf_fail(err, RF_EINVAL, "impact solver %d is unknown", (int)spec->solver);
     if (!isnan(spec->e_n) && !(spec->e_n >= 0.0 && spec->e_n <= 1.0))
         return rf_fail(err, RF_EINVAL, "e_n = %g: the normal COR must lie in [0, 1] "
@@ -117,6 +118,7 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
         }
         return rf_impact_rigid(in, e_n, out, err);
     }
+    case RF_IMPACT_MDR: return rf_impact_mdr_hunter(in, spec->e_n, spec->hunter_coefficient, out, err);
     case RF_IMPACT_FEM: return solve_fem(spec, ws, in, out, warning, err);
     }
     return rf_fail(err, RF_EINTERNAL, "unreachable impact solver");
@@ -278,10 +280,16 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
     const rf_impact_input *b = &s->base;
     size_t len = 0;
     append(buf, cap, &len, "impact v1 solver=%s", rf_impact_solver_name(s->solver));
-    if (s->solver == RF_IMPACT_HUNTER || (s->solver == RF_IMPACT_RIGID && isnan(s->e_n)))
+    int en_solver = s->solver == RF_IMPACT_RIGID || s->solver == RF_IMPACT_MDR;
+    if (s->solver == RF_IMPACT_HUNTER || (en_solver && isnan(s->e_n)))
         append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
-    if (s->solver == RF_IMPACT_RIGID)
+    if (en_solver)
         append(buf, cap, &len, isnan(s->e_n) ? " e_n=hunter" : " e_n=%.17g", s->e_n);
+    if (s->solver == RF_IMPACT_MDR) {
+        rf_mdr_options mo;
+        rf_mdr_options_default(&mo);
+        append(buf, cap, &len, " mdr_springs=%zu mdr_steps=%zu", mo.springs, mo.steps);
+    }
     if (s->solver == RF_IMPACT_FEM) {
         if (s->fem.domain_factor > 0)
             append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
