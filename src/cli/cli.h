@@ -7,6 +7,7 @@
 int rf_cli_run(int argc, char **argv);     /* cmd_run.c: run a study file */
 int rf_cli_impact(int argc, char **argv);  /* cmd_impact.c: one impact */
 int rf_cli_status(int argc, char **argv);  /* cmd_status.c: progress of a study run (its result store) */
-int rf_cli_report(int argc, char **argv);  /* cmd_report.c: report.html from a finished run */
+int rf_cli_report(int argc, char **argv);
+int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall trajectories of a trajectory file */  /* cmd_report.c: report.html from a finished run */
 
 #endif
