@@ -23,6 +23,7 @@ const char *rf_study_model_kind_name(rf_study_model_kind k)
     case RF_STUDY_MODEL_FORMULA: return "formula";
     case RF_STUDY_MODEL_PROGRAM: return "program";
     case RF_STUDY_MODEL_IMPACT: return "impact";
+    case RF_STUDY_MODEL_TRAJECTORY: return "trajectory";
     }
     return "unknown";
 }

@@ -57,6 +57,9 @@ rf_status sp_next(sp_ctx *c, sp_iter *it, const char *path, const char **key, st
 /* Build the model of `model:`; study->params are already parsed. */
 rf_status sp_parse_model(sp_ctx *c, struct fy_node *n, rf_study *study);
 
+/* The trajectory model block (src/trajectory/traj_study.c). */
+rf_status rf_traj_study_parse(sp_ctx *c, struct fy_node *n, rf_study *study);
+
 char *sp_strdup(const char *s);
 char *sp_strndup(const char *s, size_t len);
 
