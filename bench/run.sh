@@ -14,3 +14,6 @@ bash bench/fem.sh "$build" 10
 echo "== 3D FE, 10 m/s on 45 deg, f = 0.6 (bench_fem3d, a/h = 4) =="
 for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_fem3d 4 "$t"; done
 echo "(whole studies: bench/bench_study.sh; it takes minutes)"
+echo "== trajectories: 30-segment profile, constant law (bench_trajectory; goal >= 200 000 /s/core) =="
+"$build"/bench_trajectory 200000 1
+echo "(hybrid trajectory study: bench/trajectory_study.sh)"

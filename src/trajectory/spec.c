@@ -117,7 +117,7 @@ double *rf_traj_spec_field(rf_traj_spec *s, const char *path)
             return f[k].field;
     const char *field;
     for (size_t i = 0; i < s->n_materials; i++)
-        if (split_named(path, "materials.", s->materials[i].name, &field))
+        if (split_named(path, "materials.", s->materials[i].name, &field) && material_field(&s->materials[i], field))
             return material_field(&s->materials[i], field);
     for (size_t i = 0; i < s->n_collectors; i++)
         if (split_named(path, "collectors.", s->collectors[i].name, &field)) {
