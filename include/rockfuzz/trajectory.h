@@ -97,6 +97,7 @@ typedef struct {
     char impact_solver[16];     /* "rigid" | "hunter" | "hertz" | "fem" */
     double impact_tolerance;    /* target interpolation error of R_n, R_t [-], default 0.01 */
     double impact_friction;     /* Coulomb coefficient inside the impact model; NaN = tan(friction_angle) of material 0 */
+    double impact_refinement;   /* FE solver: a/h in the fine zone, 0 = the solver's default */
 } rf_traj_spec;
 
 void rf_traj_spec_free(rf_traj_spec *spec);
@@ -191,6 +192,9 @@ typedef struct {
     size_t n_recorded;
     rf_traj_result *recorded;
     double wall_seconds;
+    /* impact_model law: the table built for this run */
+    size_t impact_nodes_vn, impact_nodes_theta, impact_evaluations;
+    double impact_error_estimate;   /* largest |table - model| of R_n, R_t at the cell centres [-] */
 } rf_traj_ensemble;
 
 /* Run spec->samples trajectories on `threads` threads (0 = online cores).

@@ -214,6 +214,8 @@ rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *e
         long c = sysconf(_SC_NPROCESSORS_ONLN);
         threads = c > 0 ? (int)c : 1;
     }
+    traj_impact_table_info(w->impact_table, &ens->impact_nodes_vn, &ens->impact_nodes_theta,
+                           &ens->impact_evaluations, &ens->impact_error_estimate);
     st = run_jobs(spec, w, perm, threads, ens, err);
     free(perm);
     rf_traj_world_free(w);

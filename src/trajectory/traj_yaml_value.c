@@ -122,8 +122,12 @@ static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
                 st = sp_fail(&c->sp, v, p, "must lie in (0, 1)");
         } else if (!strcmp(key, "friction")) {
             st = sp_number(&c->sp, v, p, &c->spec->impact_friction);
+        } else if (!strcmp(key, "refinement")) {
+            st = sp_number(&c->sp, v, p, &c->spec->impact_refinement);
+            if (st == RF_OK && !(c->spec->impact_refinement >= 0))
+                st = sp_fail(&c->sp, v, p, "must be >= 0 (0: the FE solver's default)");
         } else {
-            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction");
+            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement");
         }
     }
     return st;
