@@ -81,11 +81,36 @@ static void test_bounce_uses_table(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* In a study the table is built once and shared by every evaluation; the
+ * model stays a deterministic function of its inputs. */
+static void test_model_shares_table(void **state)
+{
+    (void)state;
+    rf_traj_spec s;
+    rf_error err;
+    assert_int_equal(rf_traj_load_buffer("im.yaml", yaml, strlen(yaml), &s, &err), RF_OK);
+    s.samples = 20;
+    const char *names[1] = {"vx"}, *paths[1] = {"release.vx"};
+    rf_model m;
+    assert_int_equal(rf_traj_model_create(&s, 1, names, paths, &m, &err), RF_OK);
+    double x = 1, y1[32], y2[32];
+    assert_true(m.n_outputs <= 32);
+    assert_int_equal(rf_model_eval(&m, &x, y1, &err), RF_OK);
+    assert_int_equal(rf_model_eval(&m, &x, y2, &err), RF_OK);
+    assert_memory_equal(y1, y2, m.n_outputs * sizeof(double));
+    x = 3;
+    assert_int_equal(rf_model_eval(&m, &x, y2, &err), RF_OK);
+    assert_true(memcmp(y1, y2, m.n_outputs * sizeof(double)) != 0);
+    rf_model_free(&m);
+    rf_traj_spec_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table_accuracy),
         cmocka_unit_test(test_bounce_uses_table),
+        cmocka_unit_test(test_model_shares_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

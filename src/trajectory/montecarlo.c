@@ -191,6 +191,11 @@ static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, cons
 
 rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *ens, rf_error *err)
 {
+    return traj_run_shared(spec, threads, NULL, ens, err);
+}
+
+rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf_traj_ensemble *ens, rf_error *err)
+{
     double t0 = rf_monotonic_seconds();
     rf_status st = rf_traj_spec_validate(spec, err);
     if (st != RF_OK)
@@ -200,7 +205,7 @@ rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *e
         return st;
     }
     rf_traj_world *w = NULL;
-    if ((st = rf_traj_world_create(spec, &w, err)) != RF_OK) {
+    if ((st = traj_world_create_shared(spec, table, &w, err)) != RF_OK) {
         rf_traj_ensemble_free(ens);
         return st;
     }

@@ -106,6 +106,11 @@ static void prepare_segment(const rf_traj_spec *s, size_t i, traj_segment *g)
 
 rf_status rf_traj_world_create(const rf_traj_spec *s, rf_traj_world **out, rf_error *err)
 {
+    return traj_world_create_shared(s, NULL, out, err);
+}
+
+rf_status traj_world_create_shared(const rf_traj_spec *s, void *table, rf_traj_world **out, rf_error *err)
+{
     *out = NULL;
     rf_status st = traj_profile_check(s, err);
     if (st != RF_OK)
@@ -138,7 +143,9 @@ rf_status rf_traj_world_create(const rf_traj_spec *s, rf_traj_world **out, rf_er
                            s->collectors[c].name, s->collectors[c].x, xmin, xmax);
         }
     }
-    if (s->law == RF_BOUNCE_IMPACT_MODEL) {
+    w->impact_table = table;
+    if (s->law == RF_BOUNCE_IMPACT_MODEL && !table) {
+        w->owns_table = 1;
         st = traj_impact_table_build(s, (traj_impact_table **)&w->impact_table, err);
         if (st != RF_OK) {
             rf_traj_world_free(w);
@@ -153,7 +160,8 @@ void rf_traj_world_free(rf_traj_world *w)
 {
     if (!w)
         return;
-    traj_impact_table_free(w->impact_table);
+    if (w->owns_table)
+        traj_impact_table_free(w->impact_table);
     free(w->seg);
     free(w->col);
     free(w);

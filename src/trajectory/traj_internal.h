@@ -30,8 +30,15 @@ struct rf_traj_world {
     size_t ncol;
     traj_collector_geo *col;
     double scale;            /* size of the profile [m], for geometric tolerances */
-    void *impact_table;      /* impact_model law: traj_impact_table (owned) */
+    void *impact_table;      /* impact_model law: traj_impact_table */
+    int owns_table;          /* 0: shared by the caller (traj_world_create_shared) */
 };
+
+/* A world that uses the given impact table (not owned; NULL: built if the law needs it). */
+rf_status traj_world_create_shared(const rf_traj_spec *spec, void *table, rf_traj_world **world, rf_error *err);
+/* montecarlo.c: rf_traj_run with a shared impact table (NULL: the run builds its own). */
+rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf_traj_ensemble *ens,
+                          rf_error *err);
 
 /* profile.c: x sorted, no repeated point, no self-intersection. */
 rf_status traj_profile_check(const rf_traj_spec *s, rf_error *err);

@@ -5,7 +5,10 @@
  * uses the spec's seed, so the TM's points see the same random numbers
  * (common random numbers): differences between points are the fuzzy inputs'
  * effect, not sampling noise.  A collector that no block reaches gets 0 for
- * its energy and height percentiles (no energy passes), so outputs stay finite. */
+ * its energy and height percentiles (no energy passes), so outputs stay finite.
+ * With the impact_model law the impact table is built once for the model and
+ * shared by every evaluation (each impact of the impact model is computed
+ * once per study process), unless a parameter changes it. */
 #include "trajectory/traj_internal.h"
 
 #include <math.h>
@@ -17,6 +20,7 @@ typedef struct {
     rf_traj_spec spec;
     size_t n_params;
     char **paths;
+    void *table;             /* impact_model: built once when no parameter changes it, else NULL */
 } traj_model_ctx;
 
 static const char *const pct_names[4] = {"p50", "p95", "p99", "max"};
@@ -43,7 +47,7 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     s.record = 0;
     rf_traj_ensemble e;
     rf_traj_stats t;
-    if ((st = rf_traj_run(&s, 1, &e, err)) == RF_OK) {
+    if ((st = traj_run_shared(&s, 1, c->table, &e, err)) == RF_OK) {
         if ((st = rf_traj_stats_compute(&e, &t, err)) == RF_OK) {
             size_t nc = s.n_collectors, o = 0;
             for (size_t k = 0; k < nc; k++, o += 9) {
@@ -69,8 +73,22 @@ static void traj_model_destroy(void *vctx)
     for (size_t i = 0; i < c->n_params; i++)
         free(c->paths[i]);
     free(c->paths);
+    traj_impact_table_free(c->table);
     rf_traj_spec_free(&c->spec);
     free(c);
+}
+
+/* The impact table depends on the block's radius and density, the impact
+ * friction and the solver settings: shared by all evaluations unless a
+ * parameter is bound to one of them. */
+static rf_status share_table(traj_model_ctx *c, rf_error *err)
+{
+    if (c->spec.law != RF_BOUNCE_IMPACT_MODEL)
+        return RF_OK;
+    for (size_t i = 0; i < c->n_params; i++)
+        if (!strncmp(c->paths[i], "block.", 6) || strstr(c->paths[i], ".friction_angle"))
+            return RF_OK; /* rebuilt at every evaluation */
+    return traj_impact_table_build(&c->spec, (traj_impact_table **)&c->table, err);
 }
 
 static rf_status init_outputs(rf_model *m, const rf_traj_spec *s, rf_error *err)
@@ -143,6 +161,8 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
     model->destroy = traj_model_destroy;
     model->eval = traj_model_eval;
     model->threads_per_eval = 1;
+    if (st == RF_OK)
+        st = share_table(c, err);
     if (st == RF_OK)
         st = init_outputs(model, &c->spec, err);
     if (st == RF_OK)
