@@ -37,7 +37,7 @@ static void test_table_accuracy(void **state)
     double est, worst = 0;
     traj_impact_table_info(t, &nv, &nt, &evals, &est);
     for (int k = 0; k < 400; k++) {
-        double v = 0.25 * pow(160, rf_traj_uniform(3, 0, (uint64_t)k)), th = 85 * rf_traj_uniform(3, 1, (uint64_t)k) * 3.14159265358979 / 180;
+        double v = 0.25 * pow(160, rf_traj_uniform(3, 0, (uint64_t)k)), th = 80 * rf_traj_uniform(3, 1, (uint64_t)k) * 3.14159265358979 / 180;
         double rn, rt, sp, an, at, as;
         traj_impact_table_eval(t, v, th, &rn, &rt, &sp);
         assert_int_equal(traj_impact_coefficients(&setup, v, th, &an, &at, &as, &err), RF_OK);

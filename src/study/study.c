@@ -555,7 +555,7 @@ static rf_status split_path(const char *path, char **dir, char **stem, rf_error 
 /* YAML text must be UTF-8 without NUL bytes.  Checked before libfyaml sees
  * the text: libfyaml 0.7.12 loops forever on some invalid bytes after '%'
  * (found by fuzz_study: "%\xff\xff\xff\xf8"). */
-static rf_status check_text(const char *name, const char *buf, size_t len, rf_error *err)
+rf_status sp_check_text(const char *name, const char *buf, size_t len, rf_error *err)
 {
     const unsigned char *p = (const unsigned char *)buf;
     int line = 1;
@@ -591,7 +591,7 @@ static rf_status check_text(const char *name, const char *buf, size_t len, rf_er
         k += extra + 1;
         continue;
     bad:
-        return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: byte 0x%02x is not valid UTF-8 (study files are UTF-8 text)",
+        return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: byte 0x%02x is not valid UTF-8 (YAML files are UTF-8 text)",
                        name, line, col, ch);
     }
     return RF_OK;
@@ -619,7 +619,7 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
     }
     s->name = stem;
 
-    if ((st = check_text(name, buf, len, err)) != RF_OK) {
+    if ((st = sp_check_text(name, buf, len, err)) != RF_OK) {
         rf_study_free(s);
         return st;
     }

@@ -1,6 +1,6 @@
 /* traj_impact_table.c - R_n, R_t and the spin ratio of an impact model
  * tabulated over normal speed v_n in [0.25, 40] m/s and incidence theta in
- * [0, 85] deg (from the normal) on a tensor grid refined adaptively: an
+ * [0, 80] deg (from the normal) on a tensor grid refined adaptively: an
  * interval (in v_n or theta) is halved while, at its midpoint, bilinear
  * interpolation from the current nodes misses the model by more than the
  * tolerance (absolute, on R_n and R_t) on any grid line.  After the last
@@ -17,7 +17,7 @@
 #define MAX_NODES 65
 #define VN_MIN 0.25
 #define VN_MAX 40.0
-#define TH_MAX (85.0 * RF_PI / 180)
+#define TH_MAX (80.0 * RF_PI / 180) /* the 3D FE model accepts slopes up to 80 deg */
 
 struct traj_impact_table {
     size_t nv, nt;

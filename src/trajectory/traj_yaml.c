@@ -251,14 +251,25 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spe
         *slash = '\0';
     c.sp = (sp_ctx){name, slash ? dir : ".", err, NULL};
     s->file = rf_strdup(name);
+    struct fy_diag_cfg dc;
+    fy_diag_cfg_default(&dc);
+    dc.fp = NULL;
+    dc.colorize = false;
+    struct fy_diag *diag = fy_diag_create(&dc);
     struct fy_parse_cfg pc;
     memset(&pc, 0, sizeof pc);
-    pc.flags = FYPCF_QUIET | FYPCF_ALLOW_DUPLICATE_KEYS;
-    struct fy_document *doc = fy_document_build_from_string(&pc, len ? buf : "", len);
-    rf_status st;
-    if (!doc)
-        st = rf_fail(err, RF_EPARSE, "%s: not valid YAML (or empty)", name);
-    else
+    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
+    pc.diag = diag;
+    if (diag)
+        fy_diag_set_collect_errors(diag, true);
+    rf_status st = diag ? sp_check_text(name, buf, len, err) : rf_fail(err, RF_ENOMEM, "out of memory");
+    struct fy_document *doc = st == RF_OK ? fy_document_build_from_string(&pc, len ? buf : "", len) : NULL;
+    if (st == RF_OK && !doc) {
+        void *it = NULL;
+        struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
+        st = e ? rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg, e->column)
+               : rf_fail(err, RF_EPARSE, "%s:1: the file holds no YAML document (empty?)", name);
+    } else if (st == RF_OK)
         st = parse_document(&c, fy_document_root(doc));
     if (st == RF_OK && !c.record_given)
         s->record = s->samples < 200 ? s->samples : 200;
@@ -266,6 +277,8 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spe
         st = ty_validate(&c);
     if (doc)
         fy_document_destroy(doc);
+    if (diag)
+        fy_diag_destroy(diag);
     ty_ctx_free(&c);
     free(dir);
     if (st != RF_OK)
