@@ -57,20 +57,45 @@ static double segment_root(const traj_segment *g, double x, double y, double vx,
     return u >= -eps && u <= 1 + eps ? tau : INFINITY;
 }
 
+/* Segments are sorted by x (x non-decreasing) and x moves one way in a
+ * flight, so the candidates are scanned from the current x in the direction
+ * of motion, and the scan stops at the first segment lying beyond the best
+ * hit so far (a later x is a later time).  Equal times go to the lower index. */
 size_t traj_first_impact(const rf_traj_world *w, double x, double y, double vx, double vy, double g,
                          const size_t on[2], double *tau)
 {
-    double best = INFINITY;
-    size_t hit = TRAJ_NONE;
-    double slack = 1e-12 * (w->scale + fabs(x));
-    for (size_t i = 0; i < w->nseg; i++) {
+    double best = INFINITY, slack = 1e-12 * (w->scale + fabs(x));
+    size_t hit = TRAJ_NONE, n = w->nseg;
+    if (vx == 0) {
+        for (size_t i = 0; i < n; i++) {
+            const traj_segment *s = &w->seg[i];
+            if (x < s->xmin - slack || x > s->xmax + slack)
+                continue;
+            double t = segment_root(s, x, y, vx, vy, g, i == on[0] || i == on[1]);
+            if (t < best)
+                best = t, hit = i;
+        }
+        *tau = best;
+        return hit;
+    }
+    size_t lo = 0, hi = n; /* first segment with xmax >= x - slack (vx > 0), last with xmin <= x + slack (vx < 0) */
+    while (lo < hi) {
+        size_t mid = (lo + hi) / 2;
+        if (vx > 0 ? w->seg[mid].xmax < x - slack : w->seg[mid].xmin <= x + slack)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (size_t k = 0; k < n; k++) {
+        size_t i = vx > 0 ? lo + k : lo - 1 - k;
+        if ((vx > 0 && i >= n) || (vx < 0 && k >= lo))
+            break;
         const traj_segment *s = &w->seg[i];
-        /* x-range pruning: the flight only moves one way in x. */
-        if ((vx > 0 && s->xmax < x - slack) || (vx < 0 && s->xmin > x + slack) ||
-            (vx == 0 && (x < s->xmin - slack || x > s->xmax + slack)))
-            continue;
+        double xhit = x + vx * best;
+        if (vx > 0 ? s->xmin > xhit + slack : s->xmax < xhit - slack)
+            break;
         double t = segment_root(s, x, y, vx, vy, g, i == on[0] || i == on[1]);
-        if (t < best)
+        if (t < best || (t == best && t < INFINITY && i < hit))
             best = t, hit = i;
     }
     *tau = best;
