@@ -104,6 +104,12 @@ static void test_binding_errors(void **state)
     assert_int_not_equal(load_study("parameters: {h: {tfn: [5, 1, 1]}}\n"
                                     "model: {trajectory: {file: traj_drop.yaml}}\n", &s, &err), RF_OK);
     assert_non_null(strstr(err.msg, "parameters.h: not bound"));
+    /* a distribution parameter whose support sends random draws under the ground */
+    assert_int_not_equal(load_study("parameters: {h: {tfn: [1, 2, 2]}}\n"
+                                    "model: {trajectory: {file: traj_drop.yaml, bind: {h: release.y.lo}}}\n",
+                                    &s, &err), RF_OK);
+    if (!strstr(err.msg, "traj_study.yaml:1: parameters.h: the value -1") || !strstr(err.msg, "reaches -1"))
+        fail_msg("%s", err.msg);
     /* a distribution parameter can be fuzzy, and an explicit scheme is kept */
     if (load_study("scheme: reduced\nparameters: {h: {tfn: [12, 1, 1]}}\n"
                    "model: {trajectory: {file: traj_drop.yaml, samples: 10, bind: {h: release.y.hi}}}\n",

@@ -191,7 +191,8 @@ static rf_status check_release(const rf_traj_spec *s, const rf_traj_world *w, rf
     return RF_OK;
 }
 
-rf_status rf_traj_spec_validate(const rf_traj_spec *s, rf_error *err)
+/* Everything but the ranges of the random inputs. */
+static rf_status validate_values(const rf_traj_spec *s, rf_error *err)
 {
     rf_status st;
     for (size_t i = 0; i < s->n_materials; i++)
@@ -213,4 +214,46 @@ rf_status rf_traj_spec_validate(const rf_traj_spec *s, rf_error *err)
     st = check_release(s, w, err);
     rf_traj_world_free(w);
     return st;
+}
+
+/* Every end of a random input's range (uniform ends; normal truncation, or
+ * mean +- 6 sd where it is not truncated) must be admissible too. */
+static rf_status check_random_ranges(const rf_traj_spec *s, rf_error *err)
+{
+    rf_traj_spec probe = *s;
+    rf_traj_material mats[64];
+    if (s->n_materials > 64)
+        return RF_OK; /* not checked for very many materials */
+    memcpy(mats, s->materials, s->n_materials * sizeof *mats);
+    probe.materials = mats;
+    for (size_t i = 0; i < s->n_random; i++) {
+        const rf_traj_random *r = &s->random[i];
+        if (r->dist == RF_DIST_UNIFORM && !(r->a <= r->b))
+            return rf_fail(err, RF_EINVAL, "%s: uniform [%g, %g] needs lo <= hi", r->path, r->a, r->b);
+        if (r->dist == RF_DIST_NORMAL && !(r->b >= 0))
+            return rf_fail(err, RF_EINVAL, "%s: normal sd = %g must be >= 0", r->path, r->b);
+        double lo = r->dist == RF_DIST_UNIFORM ? r->a : fmax(r->lo, r->a - 6 * r->b);
+        double hi = r->dist == RF_DIST_UNIFORM ? r->b : fmin(r->hi, r->a + 6 * r->b);
+        double ends[2] = {lo, hi}, *f = rf_traj_spec_field(&probe, r->path);
+        if (!f || f == &probe.px[0] || (f >= probe.px && f < probe.px + probe.n_points) ||
+            (f >= probe.py && f < probe.py + probe.n_points))
+            return rf_fail(err, RF_EINVAL, "%s: this input cannot be random", r->path);
+        double keep = *f;
+        for (int e = 0; e < 2; e++) {
+            *f = ends[e];
+            rf_error tmp;
+            rf_status st = validate_values(&probe, &tmp);
+            *f = keep;
+            if (st != RF_OK)
+                return rf_fail(err, st, "%s: the random value's range reaches %g (%s); narrow it or set min/max",
+                               r->path, ends[e], tmp.msg);
+        }
+    }
+    return RF_OK;
+}
+
+rf_status rf_traj_spec_validate(const rf_traj_spec *s, rf_error *err)
+{
+    rf_status st = validate_values(s, err);
+    return st != RF_OK ? st : check_random_ranges(s, err);
 }

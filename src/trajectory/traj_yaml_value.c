@@ -189,35 +189,8 @@ static rf_status locate(ty_ctx *c, rf_status st)
     return st;
 }
 
-/* Every finite end of a random input's range must be admissible too. */
-static rf_status check_random_ranges(ty_ctx *c)
-{
-    rf_traj_spec *s = c->spec;
-    for (size_t i = 0; i < s->n_random; i++) {
-        const rf_traj_random *r = &s->random[i];
-        double lo = r->dist == RF_DIST_UNIFORM ? r->a : fmax(r->lo, r->a - 6 * r->b);
-        double hi = r->dist == RF_DIST_UNIFORM ? r->b : fmin(r->hi, r->a + 6 * r->b);
-        double ends[2] = {lo, hi};
-        for (int e = 0; e < 2; e++) {
-            double *f = rf_traj_spec_field(s, r->path), keep = *f;
-            *f = ends[e];
-            rf_error tmp;
-            rf_status st = rf_traj_spec_validate(s, &tmp);
-            *f = keep;
-            if (st != RF_OK) {
-                rf_fail(c->sp.err, st, "%s: the random value's range reaches %g (%s); narrow it or set min/max",
-                        r->path, ends[e], tmp.msg);
-                return locate(c, st);
-            }
-        }
-    }
-    return RF_OK;
-}
-
 rf_status ty_validate(ty_ctx *c)
 {
     rf_status st = rf_traj_spec_validate(c->spec, c->sp.err);
-    if (st != RF_OK)
-        return locate(c, st);
-    return check_random_ranges(c);
+    return st != RF_OK ? locate(c, st) : RF_OK;
 }
