@@ -96,7 +96,9 @@ void traj_impact(traj_run *r, size_t k)
         return;
     }
     double vn = g->nx * r->vx + g->ny * r->vy;
-    if (vn < r->s->contact_speed && g->ny > 0) {
+    /* (a rebound of no normal speed at all stays on the ground even with contact_speed = 0:
+     * a flight grazing the segment it starts on would not find it again) */
+    if ((vn < r->s->contact_speed || vn <= 1e-9 * hypot(r->vx, r->vy)) && g->ny > 0) {
         r->phase = TRAJ_CONTACT;
         r->k = k;
         r->u = g->tx * r->vx + g->ty * r->vy;
