@@ -313,8 +313,9 @@ static double energy(const rf_traj_event *e, double m, double I, double g)
     return 0.5 * m * (e->vx * e->vx + e->vy * e->vy) + 0.5 * I * e->omega * e->omega + m * g * e->y;
 }
 
-/* Roughness, spin, kinks: kinetic energy never rises at an impact, and the
- * total energy never rises from one event to the next. */
+/* Roughness, spin, kinks: kinetic energy never rises at an impact, the
+ * total energy never rises from one event to the next, every impact point
+ * lies on its segment and every rest point on the ground. */
 static void test_energy_never_gained(void **state)
 {
     (void)state;
@@ -348,6 +349,22 @@ static void test_energy_never_gained(void **state)
                 double e0 = energy(&r->events[k - 1], m, I, G), e1 = energy(&r->events[k], m, I, G);
                 if (e1 > e0 + 1e-9 * fabs(e0) + 1e-9)
                     fail_msg("%s sample %zu event %zu: energy %.12g -> %.12g", laws[l], i, k, e0, e1);
+            }
+            for (size_t k = 0; k < r->n_impacts; k++) { /* every impact point lies on its segment */
+                const rf_traj_impact *q = &r->impacts[k];
+                double ax = s.px[q->segment], ay = s.py[q->segment], bx = s.px[q->segment + 1], by = s.py[q->segment + 1];
+                double cross = (bx - ax) * (q->y - ay) - (by - ay) * (q->x - ax);
+                assert_true(fabs(cross) / hypot(bx - ax, by - ay) < 1e-9);
+                assert_true(q->x >= fmin(ax, bx) - 1e-9 && q->x <= fmax(ax, bx) + 1e-9);
+            }
+            if (r->state == RF_TRAJ_STOPPED) { /* at rest on the ground, not under it */
+                double gy = NAN;
+                for (size_t k = 0; k + 1 < s.n_points; k++)
+                    if (r->x_end >= s.px[k] && r->x_end <= s.px[k + 1] && s.px[k + 1] > s.px[k])
+                        gy = fmax(isnan(gy) ? -INFINITY : gy,
+                                  s.py[k] + (s.py[k + 1] - s.py[k]) * (r->x_end - s.px[k]) / (s.px[k + 1] - s.px[k]));
+                if (!(fabs(r->y_end - gy) < 1e-9))
+                    fail_msg("%s sample %zu: rest at (%g, %g), ground %g", laws[l], i, r->x_end, r->y_end, gy);
             }
         }
         rf_traj_ensemble_free(&e);
