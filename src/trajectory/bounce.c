@@ -39,6 +39,21 @@ static double roughness_angle(traj_run *r, double sd_deg)
     return rf_traj_normal_quantile(u) * sd_deg * (RF_PI / 180);
 }
 
+/* An interpolated (R_n, R_t, spin) may not be exactly energy-consistent: the
+ * outgoing state is scaled down so that it never carries more kinetic energy
+ * (translation + rotation) than the incoming one. */
+static void cap_energy(const traj_run *r, double vn, double vt, double w_in, double *vn_out, double *vt_out,
+                       double *omega)
+{
+    double k = r->mass > 0 ? r->inertia / r->mass : 0; /* I/m */
+    double e_in = vn * vn + vt * vt + k * w_in * w_in;
+    double e_out = *vn_out * *vn_out + *vt_out * *vt_out + k * *omega * *omega;
+    if (e_out > e_in && e_out > 0) {
+        double f = sqrt(e_in / e_out);
+        *vn_out *= f, *vt_out *= f, *omega *= f;
+    }
+}
+
 static void apply_law(traj_run *r, const rf_traj_material *m, double vn, double vt, double *vn_out,
                       double *vt_out, double *omega)
 {
@@ -62,8 +77,9 @@ static void apply_law(traj_run *r, const rf_traj_material *m, double vn, double 
         traj_impact_table_eval(r->w->impact_table, fabs(vn), atan2(fabs(vt), fabs(vn)), &rn, &rt, &spin);
         *vn_out = rn * fabs(vn);
         *vt_out = rt * vt;
-        if (r->radius > 0)
-            *omega = spin * *vt_out / r->radius;
+        double w_in = *omega;
+        *omega = r->radius > 0 ? spin * *vt_out / r->radius : 0;
+        cap_energy(r, vn, vt, w_in, vn_out, vt_out, omega);
         return;
     }
     }
