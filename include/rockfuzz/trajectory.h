@@ -98,6 +98,7 @@ typedef struct {
     double impact_tolerance;    /* target interpolation error of R_n, R_t [-], default 0.01 */
     double impact_friction;     /* Coulomb coefficient inside the impact model; NaN = tan(friction_angle) of material 0 */
     double impact_refinement;   /* FE solver: a/h in the fine zone, 0 = the solver's default */
+    double impact_speed_min, impact_speed_max; /* normal speeds tabulated [m/s], default 0.25 .. 40 */
 } rf_traj_spec;
 
 void rf_traj_spec_free(rf_traj_spec *spec);

@@ -1,5 +1,5 @@
 /* traj_impact_table.c - R_n, R_t and the spin ratio of an impact model
- * tabulated over normal speed v_n in [0.25, 40] m/s and incidence theta in
+ * tabulated over normal speed v_n in bounce.impact.speeds (default [0.25, 40] m/s) and incidence theta in
  * [0, 80] deg (from the normal) on a tensor grid refined adaptively: an
  * interval (in v_n or theta) is halved while, at its midpoint, bilinear
  * interpolation from the current nodes misses the model by more than the
@@ -15,8 +15,6 @@
 #include <string.h>
 
 #define MAX_NODES 65
-#define VN_MIN 0.25
-#define VN_MAX 40.0
 #define TH_MAX (80.0 * RF_PI / 180) /* the 3D FE model accepts slopes up to 80 deg */
 
 struct traj_impact_table {
@@ -193,7 +191,7 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
     rf_status st = traj_impact_setup_init(&b.setup, spec, err);
     t->nv = t->nt = 5;
     for (size_t i = 0; i < 5; i++) { /* v_n geometric, theta uniform */
-        t->v[i] = VN_MIN * pow(VN_MAX / VN_MIN, (double)i / 4);
+        t->v[i] = spec->impact_speed_min * pow(spec->impact_speed_max / spec->impact_speed_min, (double)i / 4);
         t->th[i] = TH_MAX * (double)i / 4;
     }
     if (st == RF_OK)

@@ -122,12 +122,18 @@ static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
                 st = sp_fail(&c->sp, v, p, "must lie in (0, 1)");
         } else if (!strcmp(key, "friction")) {
             st = sp_number(&c->sp, v, p, &c->spec->impact_friction);
+        } else if (!strcmp(key, "speeds")) {
+            double range[2] = {0, 0};
+            st = sp_numbers(&c->sp, v, p, 2, 2, range, NULL);
+            if (st == RF_OK && !(range[0] > 0 && range[1] > range[0]))
+                st = sp_fail(&c->sp, v, p, "expected [lo, hi] normal speeds [m/s] with 0 < lo < hi");
+            c->spec->impact_speed_min = range[0], c->spec->impact_speed_max = range[1];
         } else if (!strcmp(key, "refinement")) {
             st = sp_number(&c->sp, v, p, &c->spec->impact_refinement);
             if (st == RF_OK && !(c->spec->impact_refinement >= 0))
                 st = sp_fail(&c->sp, v, p, "must be >= 0 (0: the FE solver's default)");
         } else {
-            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement");
+            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement, speeds");
         }
     }
     return st;
