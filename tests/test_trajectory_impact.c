@@ -33,9 +33,9 @@ static void test_table_accuracy(void **state)
     assert_int_equal(traj_impact_table_build(&s, &t, &err), RF_OK);
     traj_impact_setup setup;
     assert_int_equal(traj_impact_setup_init(&setup, &s, &err), RF_OK);
-    size_t nv, nt, evals;
+    size_t nv, nt, evals, cached;
     double est, worst = 0;
-    traj_impact_table_info(t, &nv, &nt, &evals, &est);
+    traj_impact_table_info(t, &nv, &nt, &evals, &cached, &est);
     for (int k = 0; k < 400; k++) {
         double v = 0.25 * pow(160, rf_traj_uniform(3, 0, (uint64_t)k)), th = 80 * rf_traj_uniform(3, 1, (uint64_t)k) * 3.14159265358979 / 180;
         double rn, rt, sp, an, at, as;
@@ -105,12 +105,47 @@ static void test_model_shares_table(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* bounce.impact.cache: the second table reads every impact from the file
+ * the first wrote, computes none, and is the same table. */
+static void test_cache(void **state)
+{
+    (void)state;
+    remove("traj_impact_cache.txt");
+    char buf[2048];
+    snprintf(buf, sizeof buf, "%s", yaml);
+    char *p = strstr(buf, "tolerance: 0.005}");
+    snprintf(p, sizeof buf - (size_t)(p - buf), "tolerance: 0.005, cache: traj_impact_cache.txt}}\n");
+    rf_traj_spec s;
+    rf_error err;
+    if (rf_traj_load_buffer("im.yaml", buf, strlen(buf), &s, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    traj_impact_table *t[2];
+    size_t nv, nt, evals[2], cached[2];
+    double est;
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(traj_impact_table_build(&s, &t[k], &err), RF_OK);
+        traj_impact_table_info(t[k], &nv, &nt, &evals[k], &cached[k], &est);
+    }
+    assert_true(evals[0] > 0 && cached[0] == 0);
+    assert_true(evals[1] == 0 && cached[1] == evals[0]);
+    for (int k = 0; k < 50; k++) {
+        double v = 0.3 + k, th = 0.03 * k, a[3], b[3];
+        traj_impact_table_eval(t[0], v, th, &a[0], &a[1], &a[2]);
+        traj_impact_table_eval(t[1], v, th, &b[0], &b[1], &b[2]);
+        assert_memory_equal(a, b, sizeof a);
+    }
+    traj_impact_table_free(t[0]);
+    traj_impact_table_free(t[1]);
+    rf_traj_spec_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table_accuracy),
         cmocka_unit_test(test_bounce_uses_table),
         cmocka_unit_test(test_model_shares_table),
+        cmocka_unit_test(test_cache),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -99,6 +99,7 @@ typedef struct {
     double impact_friction;     /* Coulomb coefficient inside the impact model; NaN = tan(friction_angle) of material 0 */
     double impact_refinement;   /* FE solver: a/h in the fine zone, 0 = the solver's default */
     double impact_speed_min, impact_speed_max; /* normal speeds tabulated [m/s], default 0.25 .. 40 */
+    char *impact_cache;         /* file of impacts already computed (read, then appended), or NULL */
 } rf_traj_spec;
 
 void rf_traj_spec_free(rf_traj_spec *spec);
@@ -194,7 +195,7 @@ typedef struct {
     rf_traj_result *recorded;
     double wall_seconds;
     /* impact_model law: the table built for this run */
-    size_t impact_nodes_vn, impact_nodes_theta, impact_evaluations;
+    size_t impact_nodes_vn, impact_nodes_theta, impact_evaluations, impact_from_cache;
     double impact_error_estimate;   /* largest |table - model| of R_n, R_t at the cell centres [-] */
 } rf_traj_ensemble;
 

@@ -220,7 +220,7 @@ rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf
         threads = c > 0 ? (int)c : 1;
     }
     traj_impact_table_info(w->impact_table, &ens->impact_nodes_vn, &ens->impact_nodes_theta,
-                           &ens->impact_evaluations, &ens->impact_error_estimate);
+                           &ens->impact_evaluations, &ens->impact_from_cache, &ens->impact_error_estimate);
     st = run_jobs(spec, w, perm, threads, ens, err);
     free(perm);
     rf_traj_world_free(w);

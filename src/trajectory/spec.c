@@ -15,6 +15,7 @@ void rf_traj_spec_free(rf_traj_spec *s)
         return;
     free(s->name);
     free(s->file);
+    free(s->impact_cache);
     free(s->px);
     free(s->py);
     free(s->seg_material);
@@ -43,13 +44,14 @@ rf_status rf_traj_spec_copy(const rf_traj_spec *src, rf_traj_spec *d, rf_error *
     *d = *src;
     d->name = rf_strdup(src->name);
     d->file = rf_strdup(src->file);
+    d->impact_cache = rf_strdup(src->impact_cache);
     d->px = dup_mem(src->px, src->n_points * sizeof *d->px);
     d->py = dup_mem(src->py, src->n_points * sizeof *d->py);
     d->seg_material = dup_mem(src->seg_material, (src->n_points ? src->n_points - 1 : 0) * sizeof *d->seg_material);
     d->materials = dup_mem(src->materials, src->n_materials * sizeof *d->materials);
     d->collectors = dup_mem(src->collectors, src->n_collectors * sizeof *d->collectors);
     d->random = dup_mem(src->random, src->n_random * sizeof *d->random);
-    int ok = d->px && d->py && d->seg_material && d->materials && d->collectors && d->random;
+    int ok = (d->impact_cache || !src->impact_cache) && d->px && d->py && d->seg_material && d->materials && d->collectors && d->random;
     for (size_t i = 0; i < src->n_materials; i++)
         if (d->materials)
             ok &= (d->materials[i].name = rf_strdup(src->materials[i].name)) != NULL;

@@ -17,4 +17,9 @@ rf_status traj_impact_setup_init(traj_impact_setup *s, const rf_traj_spec *spec,
 rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double theta, double *R_n, double *R_t,
                                    double *spin, rf_error *err);
 
+/* traj_impact_cache.c: rows of (v_n, theta, R_n, R_t, spin) for this setup
+ * appended to *memo from the file (returns how many); and appended to it. */
+size_t traj_impact_cache_load(const char *path, const traj_impact_setup *s, double **memo, size_t *n, size_t *cap);
+void traj_impact_cache_append(const char *path, const traj_impact_setup *s, const double *rows, size_t count);
+
 #endif

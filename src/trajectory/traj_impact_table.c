@@ -21,7 +21,8 @@ struct traj_impact_table {
     size_t nv, nt;
     double v[MAX_NODES], th[MAX_NODES];
     double *c;                 /* [(i * nt + j) * 3 + q]: R_n, R_t, spin */
-    size_t evaluations;
+    size_t evaluations;        /* impacts computed by the model for this table */
+    size_t from_cache;         /* impacts read from bounce.impact.cache */
     double error_estimate;
 };
 
@@ -195,11 +196,16 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
         t->th[i] = TH_MAX * (double)i / 4;
     }
     if (st == RF_OK)
+        t->from_cache = traj_impact_cache_load(spec->impact_cache, &b.setup, &b.memo, &b.n_memo, &b.cap_memo);
+    size_t known = b.n_memo;
+    if (st == RF_OK)
         st = fill(&b);
     if (st == RF_OK)
         st = refine(&b, spec->impact_tolerance);
     if (st == RF_OK)
         st = estimate_error(&b);
+    if (b.n_memo > known) /* also after a failure: what was computed is kept */
+        traj_impact_cache_append(spec->impact_cache, &b.setup, b.memo + 5 * known, b.n_memo - known);
     free(b.memo);
     if (st != RF_OK) {
         traj_impact_table_free(t);
@@ -218,9 +224,10 @@ void traj_impact_table_free(traj_impact_table *t)
 }
 
 void traj_impact_table_info(const traj_impact_table *t, size_t *nv, size_t *nt, size_t *evaluations,
-                            double *error_estimate)
+                            size_t *from_cache, double *error_estimate)
 {
     *nv = t ? t->nv : 0, *nt = t ? t->nt : 0;
+    *from_cache = t ? t->from_cache : 0;
     *evaluations = t ? t->evaluations : 0;
     *error_estimate = t ? t->error_estimate : NAN;
 }

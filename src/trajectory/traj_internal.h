@@ -108,6 +108,6 @@ void traj_impact_table_free(traj_impact_table *t);
 void traj_impact_table_eval(const traj_impact_table *t, double vn, double theta, double *R_n, double *R_t,
                             double *spin_ratio);
 void traj_impact_table_info(const traj_impact_table *t, size_t *nv, size_t *nt, size_t *evaluations,
-                            double *error_estimate);
+                            size_t *from_cache, double *error_estimate);
 
 #endif

@@ -126,9 +126,9 @@ void rf_traj_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *
     fputs("}}", f);
     if (s->law == RF_BOUNCE_IMPACT_MODEL) {
         fprintf(f, ",\n \"impact_table\": {\"solver\": \"%s\", \"nodes_normal_speed\": %zu, \"nodes_incidence\": %zu, "
-                   "\"impacts_computed\": %zu, \"tolerance\": %.6g, \"error_estimate\": ",
+                   "\"impacts_computed\": %zu, \"impacts_from_cache\": %zu, \"tolerance\": %.6g, \"error_estimate\": ",
                 s->impact_solver, e->impact_nodes_vn, e->impact_nodes_theta, e->impact_evaluations,
-                s->impact_tolerance);
+                e->impact_from_cache, s->impact_tolerance);
         jnum(f, e->impact_error_estimate);
         fputs("}", f);
     }
@@ -142,9 +142,10 @@ void rf_traj_write_summary(FILE *f, const rf_traj_spec *s, const rf_traj_ensembl
             (unsigned long long)s->seed, e->wall_seconds);
     fprintf(f, "  stopped %zu, exited %zu, step_limit %zu\n", st->stopped, st->exited, st->step_limit);
     if (s->law == RF_BOUNCE_IMPACT_MODEL)
-        fprintf(f, "  impact_model (%s): table of %zu normal speeds x %zu incidences from %zu impacts; estimated "
-                   "interpolation error of R_n, R_t %.3g (tolerance %g)\n", s->impact_solver, e->impact_nodes_vn,
-                e->impact_nodes_theta, e->impact_evaluations, e->impact_error_estimate, s->impact_tolerance);
+        fprintf(f, "  impact_model (%s): table of %zu normal speeds x %zu incidences; %zu impacts computed, %zu from "
+                   "the cache; estimated interpolation error of R_n, R_t %.3g (tolerance %g)\n", s->impact_solver,
+                e->impact_nodes_vn, e->impact_nodes_theta, e->impact_evaluations, e->impact_from_cache,
+                e->impact_error_estimate, s->impact_tolerance);
     if (e->samples == 1 && e->n_recorded) {
         const rf_traj_result *r = &e->recorded[0];
         fprintf(f, "  %s at t = %.6g s, x = %.6g m, y = %.6g m after %zu impact%s\n", rf_traj_state_name(r->state),

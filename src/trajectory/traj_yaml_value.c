@@ -122,6 +122,19 @@ static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
                 st = sp_fail(&c->sp, v, p, "must lie in (0, 1)");
         } else if (!strcmp(key, "friction")) {
             st = sp_number(&c->sp, v, p, &c->spec->impact_friction);
+        } else if (!strcmp(key, "cache")) {
+            char *f = NULL;
+            if ((st = sp_string_dup(&c->sp, v, p, &f)) == RF_OK) {
+                size_t n = strlen(c->sp.dir) + strlen(f) + 2;
+                free(c->spec->impact_cache);
+                c->spec->impact_cache = malloc(n);
+                if (c->spec->impact_cache && (f[0] == '/' || !strcmp(c->sp.dir, ".")))
+                    snprintf(c->spec->impact_cache, n, "%s", f); /* absolute, or relative to the working directory */
+                else if (c->spec->impact_cache)
+                    snprintf(c->spec->impact_cache, n, "%s/%s", c->sp.dir, f); /* relative to the trajectory file */
+                st = c->spec->impact_cache ? RF_OK : rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
+            }
+            free(f);
         } else if (!strcmp(key, "speeds")) {
             double range[2] = {0, 0};
             st = sp_numbers(&c->sp, v, p, 2, 2, range, NULL);
@@ -133,7 +146,7 @@ static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
             if (st == RF_OK && !(c->spec->impact_refinement >= 0))
                 st = sp_fail(&c->sp, v, p, "must be >= 0 (0: the FE solver's default)");
         } else {
-            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement, speeds");
+            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement, speeds, cache");
         }
     }
     return st;
