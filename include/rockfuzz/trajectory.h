@@ -99,6 +99,7 @@ typedef struct {
     double impact_friction;     /* Coulomb coefficient inside the impact model; NaN = tan(friction_angle) of material 0 */
     double impact_refinement;   /* FE solver: a/h in the fine zone, 0 = the solver's default */
     double impact_speed_min, impact_speed_max; /* normal speeds tabulated [m/s], default 0.25 .. 40 */
+    double impact_max_incidence;  /* largest incidence tabulated [deg] from the normal, default 80 */
     char *impact_cache;         /* file of impacts already computed (read, then appended), or NULL */
 } rf_traj_spec;
 

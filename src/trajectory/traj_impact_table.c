@@ -1,6 +1,6 @@
 /* traj_impact_table.c - R_n, R_t and the spin ratio of an impact model
  * tabulated over normal speed v_n in bounce.impact.speeds (default [0.25, 40] m/s) and incidence theta in
- * [0, 80] deg (from the normal) on a tensor grid refined adaptively: an
+ * [0, max_incidence] (default 80 deg, the 3D FE model's limit; from the normal) on a tensor grid refined adaptively: an
  * interval (in v_n or theta) is halved while, at its midpoint, bilinear
  * interpolation from the current nodes misses the model by more than the
  * tolerance (absolute, on R_n and R_t) on any grid line.  After the last
@@ -15,7 +15,6 @@
 #include <string.h>
 
 #define MAX_NODES 65
-#define TH_MAX (80.0 * RF_PI / 180) /* the 3D FE model accepts slopes up to 80 deg */
 
 struct traj_impact_table {
     size_t nv, nt;
@@ -193,7 +192,7 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
     t->nv = t->nt = 5;
     for (size_t i = 0; i < 5; i++) { /* v_n geometric, theta uniform */
         t->v[i] = spec->impact_speed_min * pow(spec->impact_speed_max / spec->impact_speed_min, (double)i / 4);
-        t->th[i] = TH_MAX * (double)i / 4;
+        t->th[i] = spec->impact_max_incidence * (RF_PI / 180) * (double)i / 4;
     }
     if (st == RF_OK)
         t->from_cache = traj_impact_cache_load(spec->impact_cache, &b.setup, &b.memo, &b.n_memo, &b.cap_memo);

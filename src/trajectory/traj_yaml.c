@@ -210,6 +210,7 @@ static void spec_defaults(rf_traj_spec *s)
     s->impact_tolerance = 0.01;
     s->impact_friction = NAN;
     s->impact_speed_min = 0.25, s->impact_speed_max = 40;
+    s->impact_max_incidence = 80;
 }
 
 static rf_status parse_document(ty_ctx *c, struct fy_node *root)

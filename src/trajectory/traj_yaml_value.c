@@ -135,6 +135,10 @@ static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
                 st = c->spec->impact_cache ? RF_OK : rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
             }
             free(f);
+        } else if (!strcmp(key, "max_incidence")) {
+            st = sp_number(&c->sp, v, p, &c->spec->impact_max_incidence);
+            if (st == RF_OK && !(c->spec->impact_max_incidence > 0 && c->spec->impact_max_incidence <= 80))
+                st = sp_fail(&c->sp, v, p, "must lie in (0, 80] degrees");
         } else if (!strcmp(key, "speeds")) {
             double range[2] = {0, 0};
             st = sp_numbers(&c->sp, v, p, 2, 2, range, NULL);
@@ -146,7 +150,7 @@ static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
             if (st == RF_OK && !(c->spec->impact_refinement >= 0))
                 st = sp_fail(&c->sp, v, p, "must be >= 0 (0: the FE solver's default)");
         } else {
-            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement, speeds, cache");
+            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement, speeds, max_incidence, cache");
         }
     }
     return st;
