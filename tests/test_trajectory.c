@@ -372,6 +372,55 @@ static void test_energy_never_gained(void **state)
     }
 }
 
+/* Barriers on the ledge case: the crossing at x = 6 has KE = m (vx^2 + vy^2)/2 = E
+ * at height H.  capacity > E and height > H: held there; capacity < E: passes;
+ * height < H: flies over. */
+static void test_barrier(void **state)
+{
+    (void)state;
+    double tc = 6.5 / 5, vyc = 2 - G * tc, E = 500 * (25 + vyc * vyc), H = 20.5 + 2 * tc - 0.5 * G * tc * tc;
+    struct { double cap, height; int held; } c[3] = {{E * 1.01, H + 1, 1}, {E * 0.99, 0, 0}, {E * 2, H - 1, 0}};
+    for (int k = 0; k < 3; k++) {
+        char yaml[1024];
+        snprintf(yaml, sizeof yaml,
+                 "profile: {points: [[-10, 20], [0, 20], [0, 0], [100, 0]], material: rock}\n"
+                 "materials: {rock: {R_n: 0.4, R_t: 0.7, friction_angle: 30}}\n"
+                 "block: {shape: point, mass: 1000}\n"
+                 "release: {x: -0.5, y: 20.5, vx: 5, vy: 2}\n"
+                 "collectors: [{name: net, x: 6, capacity: %.17g, height: %.17g}]\n", c[k].cap, c[k].height);
+        traj_case t;
+        run_case(&t, yaml);
+        assert_int_equal(t.cross[0].stopped_by_barrier, c[k].held);
+        assert_close(t.cross[0].kinetic_energy, E, 1e-12);
+        if (c[k].held) {
+            assert_int_equal(t.res.state, RF_TRAJ_STOPPED);
+            assert_close(t.res.x_end, 6, 1e-15);
+            assert_close(t.res.t_end, tc, 1e-12);
+            assert_int_equal(t.res.n_impacts, 0);
+        } else {
+            assert_true(t.res.n_impacts > 0 && t.res.x_end > 6);
+        }
+        free_case(&t);
+    }
+}
+
+/* A block that bounces for ever (R_n = 1, no friction loss) ends on the step limit. */
+static void test_step_limit(void **state)
+{
+    (void)state;
+    traj_case c;
+    run_case(&c, "profile: {points: [[-1, 0], [1, 0]], material: m}\n"
+                 "materials: {m: {R_n: 1, R_t: 1, friction_angle: 30}}\n"
+                 "block: {shape: point, mass: 1}\n"
+                 "release: {x: 0, y: 1}\n"
+                 "stop: {max_steps: 50}\n");
+    assert_int_equal(c.res.state, RF_TRAJ_STEP_LIMIT);
+    assert_int_equal(c.res.n_steps, 51);
+    assert_int_equal(c.res.n_impacts, 50);
+    assert_close(c.res.t_end, sqrt(2 / G) * 99, 1e-9); /* 1 fall + 49 round trips of 2 sqrt(2 h / g) */
+    free_case(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -386,6 +435,8 @@ int main(void)
         cmocka_unit_test(test_velocity_scaling),
         cmocka_unit_test(test_rigid_sphere_matches_impact),
         cmocka_unit_test(test_energy_never_gained),
+        cmocka_unit_test(test_barrier),
+        cmocka_unit_test(test_step_limit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
