@@ -8,8 +8,10 @@
  * normal speed v_n at incidence theta (from the normal) is therefore
  * V = v_n / cos theta on a slope inclined at theta.  Returned: R_n, R_t and
  * the spin ratio omega r / v_t' after the impact (0 when not computed).  At
- * normal incidence R_t is undefined (v_t = 0): its limit is taken, by
- * evaluating at theta = 1e-6 rad; a model that gives no R_t (hertz, hunter:
+ * normal incidence R_t is undefined (v_t = 0): incidences below 1 degree are
+ * evaluated at 1 degree (closer to normal, the FE's R_t becomes a ratio of
+ * numerical noise to a vanishing v_t; the rigid model's R_t is constant
+ * there, so nothing is lost); a model that gives no R_t (hertz, hunter:
  * normal impact only) gets R_t = 1 (no tangential loss). */
 #include "trajectory/traj_internal.h"
 #include "trajectory/traj_impact.h"
@@ -46,8 +48,9 @@ rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double
     in.radius = s->radius;
     in.boulder_density = s->density;
     in.friction = s->friction;
-    if (theta < 1e-6)
-        theta = 1e-6;
+    const double min_incidence = RF_PI / 180;
+    if (theta < min_incidence)
+        theta = min_incidence;
     in.velocity = vn / cos(theta);
     in.slope_angle = theta;
     rf_impact_output out;
