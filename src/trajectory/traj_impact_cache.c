@@ -4,8 +4,9 @@
  *   KEY v_n theta R_n R_t spin
  * where KEY names the solver and the inputs that change the result
  * (radius, density, friction, FE refinement); only lines with the current
- * KEY are used.  New impacts are appended after the table is built, one
- * write per line (O_APPEND), so concurrent runs interleave whole lines. */
+ * KEY are used.  Each new impact is appended as soon as it is computed, one
+ * write per line (O_APPEND), so concurrent runs interleave whole lines and an
+ * interrupted build keeps what it computed. */
 #include "trajectory/traj_internal.h"
 #include "trajectory/traj_impact.h"
 

@@ -31,6 +31,7 @@ typedef struct {
     rf_error *err;
     double *memo;             /* (v, theta, R_n, R_t, spin) of every impact computed */
     size_t n_memo, cap_memo;
+    const char *cache;        /* bounce.impact.cache or NULL */
 } builder;
 
 /* One impact of the model, computed once (the grid is refilled after each refinement). */
@@ -54,6 +55,7 @@ static rf_status eval(builder *b, double v, double th, double *c)
     }
     double *m = &b->memo[5 * b->n_memo++];
     m[0] = v, m[1] = th, memcpy(m + 2, c, 3 * sizeof *c);
+    traj_impact_cache_append(b->cache, &b->setup, m, 1); /* at once: an interrupted build keeps its impacts */
     return RF_OK;
 }
 
@@ -187,7 +189,7 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
     traj_impact_table *t = calloc(1, sizeof *t);
     if (!t)
         return rf_fail(err, RF_ENOMEM, "out of memory");
-    builder b = {{0}, t, err, NULL, 0, 0};
+    builder b = {{0}, t, err, NULL, 0, 0, spec->impact_cache};
     rf_status st = traj_impact_setup_init(&b.setup, spec, err);
     t->nv = t->nt = 5;
     for (size_t i = 0; i < 5; i++) { /* v_n geometric, theta uniform */
@@ -196,15 +198,12 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
     }
     if (st == RF_OK)
         t->from_cache = traj_impact_cache_load(spec->impact_cache, &b.setup, &b.memo, &b.n_memo, &b.cap_memo);
-    size_t known = b.n_memo;
     if (st == RF_OK)
         st = fill(&b);
     if (st == RF_OK)
         st = refine(&b, spec->impact_tolerance);
     if (st == RF_OK)
         st = estimate_error(&b);
-    if (b.n_memo > known) /* also after a failure: what was computed is kept */
-        traj_impact_cache_append(spec->impact_cache, &b.setup, b.memo + 5 * known, b.n_memo - known);
     free(b.memo);
     if (st != RF_OK) {
         traj_impact_table_free(t);
