@@ -317,6 +317,21 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         append(buf, cap, &len, "%s%s", i ? "," : "", rf_impact_param_names[c->field[i]]);
 }
 
+/* Whether an FE evaluation of this model may need the 3D solver, so that its
+ * settings are checked against the 3D limits when the model is created
+ * instead of failing at the first 3D evaluation. */
+static int may_run_3d(const impact_ctx *c)
+{
+    if (c->spec.solver != RF_IMPACT_FEM)
+        return 0;
+    if (rf_fem_needs_3d(&c->spec.base))
+        return 1;
+    for (size_t i = 0; i < c->n_params; i++)
+        if (c->field[i] == P_ANGLE || c->field[i] == P_MU)
+            return 1;
+    return 0;
+}
+
 rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *const *param_names,
                                  size_t n_params, rf_model *model, rf_error *err)
 {
@@ -377,6 +392,11 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     if (rf_impact_input_validate(&probe, &local) != RF_OK) {
         ctx_destroy(c);
         return rf_fail(err, RF_EINVAL, "impact model base input: %s", local.msg);
+    }
+    if (may_run_3d(c) && rf_fem_options_validate(&c->spec.fem, 1, &local) != RF_OK) {
+        ctx_destroy(c);
+        return rf_fail(err, RF_EINVAL, "%s (this model can run the 3D solver: the slope is inclined, or the "
+                                       "slope angle or friction is a parameter)", local.msg);
     }
 
     model->n_inputs = n_params;
