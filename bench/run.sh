@@ -16,3 +16,6 @@ for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_fem3d 4 "$t"; done
 echo "== material point updates and energy closure (bench_material) =="
 "$build"/bench_material
 echo "(whole studies: bench/bench_study.sh; it takes minutes)"
+echo "== trajectories: 30-segment profile, constant law (bench_trajectory; goal >= 200 000 /s/core) =="
+"$build"/bench_trajectory 200000 1
+echo "(hybrid trajectory study: bench/trajectory_study.sh)"

@@ -11,11 +11,13 @@ PACKAGES=(
   libplplot-dev plplot-driver-cairo   # PNG/SVG plots
   libcmocka-dev         # C unit-test framework
   libsqlite3-dev        # result store
+  libgdal-dev gdal-bin  # trajectory profiles cut from DEMs (GeoTIFF, ASCII grid); gdal_translate in tests
   libopenmpi-dev openmpi-bin  # optional: studies distributed over MPI ranks (ROCKFUZZ_MPI)
   chromium              # tests: the HTML report is rendered headless and checked
   calculix-ccx          # external FE program used by the cantilever example
   clang libclang-rt-14-dev  # libFuzzer targets
   python3               # validation plotting helpers read JSON only
+  python3-matplotlib    # doc plots of the trajectory validation (tools/, not the library)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

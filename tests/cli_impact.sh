@@ -83,6 +83,7 @@ expect_error 2 "layer_yield = 0" --layer-thickness 0.1 --layer-material von_mise
 expect_error 2 "--layer-E -5" --layer-thickness 0.1 --layer-E -5
 expect_error 2 "--layer-material 'sand'" --layer-material sand
 expect_error 1 "has no layer" --solver hunter --layer-thickness 0.1
+expect_error 1 "the hertz solver is elastic" --solver hertz --slope-material von_mises --slope-yield 1e8
 # a rigid boulder: Hertz with E* = E_s / (1 - nu_s^2) (F = 1.18873e8 N at 10 m/s)
 out=$("$bin" impact --solver hertz --boulder-material rigid --json) || fail "rigid hertz exit"
 echo "$out" | grep -q '"contact_force_max": 11887' || fail "rigid boulder Hertz force: $out"

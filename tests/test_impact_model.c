@@ -228,6 +228,17 @@ static void test_errors(void **state)
     assert_int_equal(rf_impact_model_create(&spec, nu, 1, &model, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "e_n = 1.2"));
 
+    /* an FE refinement inside the axisymmetric limit (400) but beyond the 3D
+     * one (100) is refused at creation when the model can run the 3D solver */
+    spec = spec_for(RF_IMPACT_FEM);
+    spec.fem.refinement = 200;
+    assert_int_equal(rf_impact_model_create(&spec, nu, 1, &model, &err), RF_OK);
+    rf_model_free(&model);
+    const char *angle[] = {"slope_angle"};
+    assert_int_equal(rf_impact_model_create(&spec, angle, 1, &model, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "refinement = 200"));
+    assert_non_null(strstr(err.msg, "3D solver"));
+
 #if !__has_include("rockfuzz/fem.h")
     spec = spec_for(RF_IMPACT_FEM);
     assert_int_equal(rf_impact_model_create(&spec, nu, 1, &model, &err), RF_EINVAL);

@@ -23,10 +23,11 @@ typedef enum {
     RF_IMPACT_FEM = 0,  /* explicit finite elements (rockfuzz/fem.h, rf_fem_solve) */
     RF_IMPACT_HERTZ,    /* elastic Hertz: R_n = 1 */
     RF_IMPACT_HUNTER,   /* Hertz + Hunter wave loss */
-    RF_IMPACT_RIGID     /* rigid-body oblique impact with Coulomb friction, e_n given */
+    RF_IMPACT_RIGID,    /* rigid-body oblique impact with Coulomb friction, e_n given */
+    RF_IMPACT_MDR       /* Hertz + Mindlin-Deresiewicz partial slip (rockfuzz/mdr.h), e_n given */
 } rf_impact_solver;
 
-/* "fem" | "hertz" | "hunter" | "rigid" <-> enum. */
+/* "fem" | "hertz" | "hunter" | "rigid" | "mdr" <-> enum. */
 const char *rf_impact_solver_name(rf_impact_solver s);
 rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err);
 

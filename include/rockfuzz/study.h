@@ -20,7 +20,8 @@ extern "C" {
 typedef enum {
     RF_STUDY_MODEL_FORMULA = 0,  /* model: {formula: {out: "expr", ...}} */
     RF_STUDY_MODEL_PROGRAM,      /* model: {program: {argv: [...], ...}} */
-    RF_STUDY_MODEL_IMPACT        /* model: {impact: {solver: ..., ...}} */
+    RF_STUDY_MODEL_IMPACT,       /* model: {impact: {solver: ..., ...}} */
+    RF_STUDY_MODEL_TRAJECTORY    /* model: {trajectory: {file: ..., bind: ...}} (src/trajectory/traj_study.c) */
 } rf_study_model_kind;
 
 /* Largest accepted `levels` (m); the TM's cost is bounded separately by the cap. */

@@ -12,5 +12,6 @@ int rf_cli_impact(int argc, char **argv);  /* cmd_impact.c: one impact */
 int rf_cli_status(int argc, char **argv);  /* cmd_status.c: progress of a study run (its result store) */
 int rf_cli_report(int argc, char **argv);  /* cmd_report.c: report.html from a finished run */
 int rf_cli_material(int argc, char **argv); /* cmd_material.c: material-point driver */
+int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall trajectories of a trajectory file */
 
 #endif

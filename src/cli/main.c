@@ -15,6 +15,8 @@ static void usage(FILE *f)
         "Commands:\n"
         "  run STUDY.yaml --out DIR   run a fuzzy study; see `rockfuzz run --help`\n"
         "  impact [OPTIONS]           simulate one boulder impact; see `rockfuzz impact --help`\n"
+        "  trajectory FILE.yaml       rockfall trajectories on a slope profile; see\n"
+        "                             `rockfuzz trajectory --help`\n"
         "  status DIR                 progress of a running or stopped study run in DIR\n"
         "  report DIR                 write DIR/report.html again from DIR/result.json\n"
         "  material [OPTIONS]         drive one material point along a strain path; see\n"
@@ -51,6 +53,8 @@ int main(int argc, char **argv)
         return rf_cli_run(argc - 1, argv + 1);
     if (!strcmp(cmd, "impact"))
         return rf_cli_impact(argc - 1, argv + 1);
+    if (!strcmp(cmd, "trajectory"))
+        return rf_cli_trajectory(argc - 1, argv + 1);
     if (!strcmp(cmd, "status"))
         return rf_cli_status(argc - 1, argv + 1);
     if (!strcmp(cmd, "report"))

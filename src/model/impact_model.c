@@ -9,6 +9,7 @@
  * thread-safe. */
 #include "rockfuzz/impact_model.h"
 #include "core/util.h"
+#include "rockfuzz/mdr.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -32,21 +33,21 @@ const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
 
 const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS] = {"N", "m", "s", "m", "", "", "", "", "m", "m", ""};
 
-static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid"};
+static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid", "mdr"};
 
 const char *rf_impact_solver_name(rf_impact_solver s)
 {
-    return (unsigned)s < 4 ? solver_names[s] : "unknown";
+    return (unsigned)s < 5 ? solver_names[s] : "unknown";
 }
 
 rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err)
 {
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < 5; k++)
         if (name && !strcmp(name, solver_names[k])) {
             *s = (rf_impact_solver)k;
             return RF_OK;
         }
-    return rf_fail(err, RF_EINVAL, "solver '%s' is unknown (accepted: fem, hertz, hunter, rigid)",
+    return rf_fail(err, RF_EINVAL, "solver '%s' is unknown (accepted: fem, hertz, hunter, rigid, mdr)",
                    name ? name : "(null)");
 }
 
@@ -78,7 +79,7 @@ static rf_status solve_fem(const rf_impact_model_spec *spec, rf_fem_workspace *w
 
 rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_error *err)
 {
-    if ((unsigned)spec->solver > RF_IMPACT_RIGID)
+    if ((unsigned)spec->solver > RF_IMPACT_MDR)
         return rf_fail(err, RF_EINVAL, "impact solver %d is unknown", (int)spec->solver);
     if (!isnan(spec->e_n) && !(spec->e_n >= 0.0 && spec->e_n <= 1.0))
         return rf_fail(err, RF_EINVAL, "e_n = %g: the normal COR must lie in [0, 1] "
@@ -91,6 +92,28 @@ rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_err
     rf_fem_options o = spec->fem;
     o.vtk_dir = NULL; /* the model ignores it; the 3D model rejects it */
     return rf_fem_options_validate(&o, 0, err); /* the 3D limits are checked when a 3D impact runs */
+}
+
+/* The analytic models are elastic and homogeneous: a plastic body or a layer
+ * needs the FE solver (a rigid boulder is E* = E_s/(1 - nu_s^2) for Hertz,
+ * Hunter and rigid; MDR takes the boulder's own elastic constants). */
+static rf_status analytic_supports(const rf_impact_model_spec *spec, const rf_impact_input *in, rf_error *err)
+{
+    if (spec->solver == RF_IMPACT_FEM)
+        return RF_OK;
+    if (in->layer_thickness > 0)
+        return rf_fail(err, RF_EINVAL, "layer_thickness = %g m: the %s solver has no layer (use solver fem)",
+                       in->layer_thickness, rf_impact_solver_name(spec->solver));
+    if (in->slope_material != RF_MATERIAL_ELASTIC || in->boulder_material == RF_MATERIAL_VON_MISES)
+        return rf_fail(err, RF_EINVAL, "%s = %s: the %s solver is elastic (use solver fem)",
+                       in->slope_material != RF_MATERIAL_ELASTIC ? "slope_material" : "boulder_material",
+                       in->slope_material != RF_MATERIAL_ELASTIC ? rf_material_model_name(in->slope_material)
+                                                                 : "von_mises",
+                       rf_impact_solver_name(spec->solver));
+    if (spec->solver == RF_IMPACT_MDR && in->boulder_material == RF_MATERIAL_RIGID_BODY)
+        return rf_fail(err, RF_EINVAL, "boulder_material = rigid: the mdr solver takes the boulder's elastic "
+                       "constants (its tangential compliance); use hertz, hunter, rigid or fem");
+    return RF_OK;
 }
 
 /* rf_impact_solve with the FE warning (see solve_fem). */
@@ -106,10 +129,9 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
         rf_impact_output_clear(out);
         return st;
     }
-    if (spec->solver != RF_IMPACT_FEM && in->layer_thickness > 0) {
+    if ((st = analytic_supports(spec, in, err)) != RF_OK) {
         rf_impact_output_clear(out);
-        return rf_fail(err, RF_EINVAL, "layer_thickness = %g m: the %s solver has no layer (use solver fem)",
-                       in->layer_thickness, rf_impact_solver_name(spec->solver));
+        return st;
     }
     switch (spec->solver) {
     case RF_IMPACT_HERTZ: return rf_impact_hertz(in, out, err);
@@ -127,6 +149,7 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
         }
         return rf_impact_rigid(in, e_n, out, err);
     }
+    case RF_IMPACT_MDR: return rf_impact_mdr_hunter(in, spec->e_n, spec->hunter_coefficient, out, err);
     case RF_IMPACT_FEM: return solve_fem(spec, ws, in, out, warning, err);
     }
     return rf_fail(err, RF_EINTERNAL, "unreachable impact solver");
@@ -316,10 +339,16 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
     const rf_impact_input *b = &s->base;
     size_t len = 0;
     append(buf, cap, &len, "impact v1 solver=%s", rf_impact_solver_name(s->solver));
-    if (s->solver == RF_IMPACT_HUNTER || (s->solver == RF_IMPACT_RIGID && isnan(s->e_n)))
+    int en_solver = s->solver == RF_IMPACT_RIGID || s->solver == RF_IMPACT_MDR;
+    if (s->solver == RF_IMPACT_HUNTER || (en_solver && isnan(s->e_n)))
         append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
-    if (s->solver == RF_IMPACT_RIGID)
+    if (en_solver)
         append(buf, cap, &len, isnan(s->e_n) ? " e_n=hunter" : " e_n=%.17g", s->e_n);
+    if (s->solver == RF_IMPACT_MDR) {
+        rf_mdr_options mo;
+        rf_mdr_options_default(&mo);
+        append(buf, cap, &len, " mdr_springs=%zu mdr_steps=%zu", mo.springs, mo.steps);
+    }
     if (s->solver == RF_IMPACT_FEM) {
         if (s->fem.domain_factor > 0)
             append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
@@ -365,6 +394,21 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
     append(buf, cap, &len, " params:");
     for (size_t i = 0; i < c->n_params; i++)
         append(buf, cap, &len, "%s%s", i ? "," : "", rf_impact_param_names[c->field[i]]);
+}
+
+/* Whether an FE evaluation of this model may need the 3D solver, so that its
+ * settings are checked against the 3D limits when the model is created
+ * instead of failing at the first 3D evaluation. */
+static int may_run_3d(const impact_ctx *c)
+{
+    if (c->spec.solver != RF_IMPACT_FEM)
+        return 0;
+    if (rf_fem_needs_3d(&c->spec.base))
+        return 1;
+    for (size_t i = 0; i < c->n_params; i++)
+        if (c->field[i] == P_ANGLE || c->field[i] == P_MU)
+            return 1;
+    return 0;
 }
 
 rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *const *param_names,
@@ -433,6 +477,15 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     if (rf_impact_input_validate(&probe, &local) != RF_OK) {
         ctx_destroy(c);
         return rf_fail(err, RF_EINVAL, "impact model base input: %s", local.msg);
+    }
+    if (analytic_supports(&c->spec, &probe, &local) != RF_OK) {
+        ctx_destroy(c);
+        return rf_fail(err, RF_EINVAL, "impact model: %s", local.msg);
+    }
+    if (may_run_3d(c) && rf_fem_options_validate(&c->spec.fem, 1, &local) != RF_OK) {
+        ctx_destroy(c);
+        return rf_fail(err, RF_EINVAL, "%s (this model can run the 3D solver: the slope is inclined, or the "
+                                       "slope angle or friction is a parameter)", local.msg);
     }
 
     model->n_inputs = n_params;

@@ -28,6 +28,7 @@ const char *rf_study_model_kind_name(rf_study_model_kind k)
     case RF_STUDY_MODEL_FORMULA: return "formula";
     case RF_STUDY_MODEL_PROGRAM: return "program";
     case RF_STUDY_MODEL_IMPACT: return "impact";
+    case RF_STUDY_MODEL_TRAJECTORY: return "trajectory";
     }
     return "unknown";
 }
@@ -559,7 +560,7 @@ static rf_status split_path(const char *path, char **dir, char **stem, rf_error 
 /* YAML text must be UTF-8 without NUL bytes.  Checked before libfyaml sees
  * the text: libfyaml 0.7.12 loops forever on some invalid bytes after '%'
  * (found by fuzz_study: "%\xff\xff\xff\xf8"). */
-static rf_status check_text(const char *name, const char *buf, size_t len, rf_error *err)
+rf_status sp_check_text(const char *name, const char *buf, size_t len, rf_error *err)
 {
     const unsigned char *p = (const unsigned char *)buf;
     int line = 1;
@@ -595,7 +596,7 @@ static rf_status check_text(const char *name, const char *buf, size_t len, rf_er
         k += extra + 1;
         continue;
     bad:
-        return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: byte 0x%02x is not valid UTF-8 (study files are UTF-8 text)",
+        return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: byte 0x%02x is not valid UTF-8 (YAML files are UTF-8 text)",
                        name, line, col, ch);
     }
     return RF_OK;
@@ -655,7 +656,7 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
     rf_status st = split_path(name, &s->dir, &stem, err);
     s->name = stem;
     if (st == RF_OK)
-        st = check_text(name, buf, len, err);
+        st = sp_check_text(name, buf, len, err);
     struct fy_diag *diag = NULL;
     if (st == RF_OK) {
         struct fy_diag_cfg dc;

@@ -57,6 +57,13 @@ rf_status sp_next(sp_ctx *c, sp_iter *it, const char *path, const char **key, st
 /* Build the model of `model:`; study->params are already parsed. */
 rf_status sp_parse_model(sp_ctx *c, struct fy_node *n, rf_study *study);
 
+/* The text must be UTF-8 without NUL bytes (checked before libfyaml sees it:
+ * libfyaml 0.7.12 loops forever on some invalid bytes); study.c. */
+rf_status sp_check_text(const char *name, const char *buf, size_t len, rf_error *err);
+
+/* The trajectory model block (src/trajectory/traj_study.c). */
+rf_status rf_traj_study_parse(sp_ctx *c, struct fy_node *n, rf_study *study);
+
 char *sp_strdup(const char *s);
 char *sp_strndup(const char *s, size_t len);
 

@@ -538,7 +538,7 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             rf_error tmp;
             if (len >= 31 || (key[0] == 's' ? rf_impact_solver_parse(buf, &spec.solver, &tmp)
                                             : rf_fem_boundary_parse(buf, &spec.fem.boundary, &tmp)) != RF_OK)
-                return sp_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter or rigid"
+                return sp_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter, rigid or mdr"
                                                       : "unknown boundary; expected fixed or absorbing");
         } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor")) {
             double *d = key[0] == 'r' ? &spec.fem.refinement : &spec.fem.domain_factor;
@@ -654,21 +654,23 @@ rf_status sp_parse_model(sp_ctx *c, struct fy_node *n, rf_study *s)
     if (st != RF_OK)
         return st;
     if (fy_node_mapping_item_count(n) != 1)
-        return sp_fail(c, n, "model", "expected exactly one of formula, program, impact");
+        return sp_fail(c, n, "model", "expected exactly one of formula, program, impact, trajectory");
     sp_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     if ((st = sp_next(c, &it, "model", &key, &k, &v)) != RF_OK)
         return st;
     if (!key)
-        return sp_fail(c, n, "model", "expected exactly one of formula, program, impact");
+        return sp_fail(c, n, "model", "expected exactly one of formula, program, impact, trajectory");
     if (!strcmp(key, "formula"))
         return parse_formula(c, v, s);
     if (!strcmp(key, "program"))
         return parse_program(c, v, s);
     if (!strcmp(key, "impact"))
         return parse_impact(c, v, s);
+    if (!strcmp(key, "trajectory"))
+        return rf_traj_study_parse(c, v, s);
     char p[300];
     sp_pathf(p, sizeof p, "model.%s", key);
-    return sp_fail(c, k, p, "unknown model; expected formula, program or impact");
+    return sp_fail(c, k, p, "unknown model; expected formula, program, impact or trajectory");
 }

@@ -1,0 +1,270 @@
+/* trajectory.h - 2D rockfall trajectories on a slope profile: exact
+ * parabolic flight, bounce laws, sliding/rolling, collectors (barrier lines),
+ * Monte Carlo ensembles, and the trajectory model that `rockfuzz run`
+ * studies bind fuzzy parameters to.  Algorithm and conventions:
+ * docs/trajectories.md.
+ *
+ * Units SI: m, kg, s, m/s, rad/s, J.  Angles in the spec are in DEGREES
+ * (friction_angle, roughness).  Axes: x to the right, y up; the profile is a
+ * polyline with x non-decreasing; segment i joins point i to point i+1, its
+ * tangent t points from i to i+1 and its normal n = (-t_y, t_x) points out of
+ * the ground.  Spin omega is positive when it rolls the block forward along t
+ * of the segment it touches (clockwise for travel to the right).
+ *
+ * The block is its centre point for contact (lumped mass): the radius enters
+ * only the inertia, the rotational energy, rolling and the rigid_sphere law. */
+#ifndef ROCKFUZZ_TRAJECTORY_H
+#define ROCKFUZZ_TRAJECTORY_H
+
+#include <stddef.h>
+#include <stdio.h>
+#include <stdint.h>
+
+#include "rockfuzz/status.h"
+#include "rockfuzz/model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- the trajectory file (spec) ---- */
+
+typedef struct {
+    char *name;
+    double R_n;                 /* normal COR [-], in [0, 1] */
+    double R_t;                 /* tangential COR [-], in [0, 1] */
+    double friction_angle;      /* [deg], sliding mu = tan(phi); also the impact friction of rigid_sphere */
+    double rolling_resistance;  /* [-] rolling resistance coefficient mu_r (force mu_r N) */
+    double roughness;           /* [deg] SD of the slope-angle perturbation at each impact */
+} rf_traj_material;
+
+typedef enum {
+    RF_BOUNCE_CONSTANT = 0,     /* v_n' = -R_n v_n, v_t' = R_t v_t */
+    RF_BOUNCE_VELOCITY_SCALED,  /* R_n / (1 + (|v_n|/K)^2), Pfeiffer & Bowen 1989, K = scale_speed */
+    RF_BOUNCE_RIGID_SPHERE,     /* rigid sphere with spin and Coulomb friction, e_n = R_n */
+    RF_BOUNCE_IMPACT_MODEL      /* R_n, R_t, spin tabulated from a rockfuzz impact model */
+} rf_bounce_law;
+
+/* Pfeiffer & Bowen (1989) / RocFall / CRSP velocity-scaling constant: 30 ft/s. */
+#define RF_TRAJ_PFEIFFER_BOWEN_K 9.144
+
+typedef enum { RF_DIST_FIXED = 0, RF_DIST_UNIFORM, RF_DIST_NORMAL } rf_traj_dist;
+
+/* A random numeric input: `path` (e.g. "release.vx", "materials.rock.R_n")
+ * drawn per trajectory; uniform [a, b] or normal (mean a, SD b) truncated
+ * to [lo, hi] by clamping the probability to the truncated range. */
+typedef struct {
+    char *path;
+    rf_traj_dist dist;
+    double a, b;
+    double lo, hi;              /* truncation (-inf/inf: none) */
+} rf_traj_random;
+
+typedef struct {
+    char *name;
+    double x;                   /* [m] vertical line x = const */
+    double capacity;            /* [J] barrier energy capacity; 0 = a pure collector */
+    double height;              /* [m] barrier height; 0 = unlimited (only with capacity) */
+} rf_traj_collector;
+
+typedef struct {
+    char *name;
+    char *file;                 /* the file it was read from (messages), may be NULL */
+    double gravity;             /* [m/s^2], default 9.81 */
+    size_t n_points;
+    double *px, *py;            /* profile vertices [m] */
+    size_t *seg_material;       /* n_points - 1 material indices */
+    size_t n_materials;
+    rf_traj_material *materials;
+    int sphere;                 /* 0: point block, 1: sphere */
+    double mass;                /* [kg] (point: given; sphere: from radius and density) */
+    double radius, density;     /* [m], [kg/m^3] (sphere) */
+    double x0, y0, vx0, vy0, omega0;  /* release [m], [m/s], [rad/s] */
+    rf_bounce_law law;
+    double scale_speed;         /* K of velocity_scaled [m/s], default RF_TRAJ_PFEIFFER_BOWEN_K */
+    double contact_speed;       /* normal rebound speed below which the block stays on the ground [m/s], default 0.1 */
+    double v_stop;              /* [m/s] default 0.1 */
+    size_t max_steps;           /* events per trajectory, default 10000 */
+    size_t n_collectors;
+    rf_traj_collector *collectors;
+    size_t samples;             /* Monte Carlo samples, default 1 */
+    uint64_t seed;
+    int lhs;                    /* Latin hypercube sampling of the random inputs */
+    size_t record;              /* trajectories kept with their events (default min(samples, 200)) */
+    size_t n_random;
+    rf_traj_random *random;
+    /* impact_model law: settings of the tabulation (traj_impact_table.c) */
+    char impact_solver[16];     /* "rigid" | "hunter" | "hertz" | "fem" */
+    double impact_tolerance;    /* target interpolation error of R_n, R_t [-], default 0.01 */
+    double impact_friction;     /* Coulomb coefficient inside the impact model; NaN = tan(friction_angle) of material 0 */
+    double impact_refinement;   /* FE solver: a/h in the fine zone, 0 = the solver's default */
+    double impact_speed_min, impact_speed_max; /* normal speeds tabulated [m/s], default 0.25 .. 40 */
+    double impact_max_incidence;  /* largest incidence tabulated [deg] from the normal, default 80 */
+    char *impact_cache;         /* file of impacts already computed (read, then appended), or NULL */
+} rf_traj_spec;
+
+void rf_traj_spec_free(rf_traj_spec *spec);
+/* Deep copy (for binding values without touching the original). */
+rf_status rf_traj_spec_copy(const rf_traj_spec *src, rf_traj_spec *dst, rf_error *err);
+
+/* Load a trajectory file (docs/trajectories.md); errors name file:line: field = value. */
+rf_status rf_traj_load(const char *path, rf_traj_spec *spec, rf_error *err);
+rf_status rf_traj_load_buffer(const char *name, const char *buf, size_t len, rf_traj_spec *spec, rf_error *err);
+/* Read "x,y[,material]" lines (a header line is allowed) into the spec's profile. */
+rf_status rf_traj_profile_read_csv(const char *path, rf_traj_spec *spec, rf_error *err);
+
+/* Address of a numeric input by path: gravity, block.mass, block.radius,
+ * block.density, release.x|y|vx|vy|omega, bounce.scale_speed,
+ * bounce.contact_speed, stop.v_stop, materials.NAME.FIELD,
+ * collectors.NAME.x|capacity|height, profile.points.I.x|y, and for a random
+ * input P: P.lo / P.hi (uniform), P.mean / P.sd (normal).  NULL if unknown. */
+double *rf_traj_spec_field(rf_traj_spec *spec, const char *path);
+
+/* Check the spec (profile sorted and not self-intersecting, materials,
+ * release above the ground, ...); the message names the field and value. */
+rf_status rf_traj_spec_validate(const rf_traj_spec *spec, rf_error *err);
+
+/* ---- one trajectory ---- */
+
+typedef enum { RF_TRAJ_STOPPED = 0, RF_TRAJ_EXITED, RF_TRAJ_STEP_LIMIT } rf_traj_state;
+const char *rf_traj_state_name(rf_traj_state s);
+
+typedef struct {
+    double t, x, y;
+    size_t segment;
+    double vx_in, vy_in, vx_out, vy_out, omega_out;
+} rf_traj_impact;
+
+/* Event kinds along a recorded trajectory (the motion between two events is
+ * a parabola (flight) or uniformly accelerated along a segment (contact)). */
+typedef enum { RF_EV_RELEASE = 0, RF_EV_IMPACT, RF_EV_LAUNCH, RF_EV_CONTACT, RF_EV_VERTEX, RF_EV_REST,
+               RF_EV_EXIT, RF_EV_STEP_LIMIT } rf_traj_event_kind;
+
+typedef struct {
+    rf_traj_event_kind kind;
+    int flying;                 /* the motion after this event is a flight */
+    double t, x, y, vx, vy, omega;  /* state after the event */
+    double ax, ay;              /* acceleration after the event [m/s^2] */
+} rf_traj_event;
+
+typedef struct {
+    int reached;                /* crossed the collector line (first crossing recorded) */
+    int stopped_by_barrier;
+    double t, height, normal_height, speed, kinetic_energy, rotational_energy;
+} rf_traj_crossing;
+
+typedef struct {
+    rf_traj_state state;
+    double t_end, x_end, y_end;    /* rest point, exit state or last state */
+    double runout_x;               /* x of the rest point (stopped), else of the last state */
+    double rebound_height;         /* largest apex of a flight starting at an impact, above that impact [m] */
+    size_t n_impacts, n_steps;
+    rf_traj_crossing *crossings;   /* n_collectors, caller-sized */
+    /* Optional records (NULL = not recorded): */
+    rf_traj_impact *impacts; size_t impacts_cap;
+    rf_traj_event *events; size_t n_events, events_cap;
+} rf_traj_result;
+
+/* A prepared profile (segment geometry, collector grounds); read-only while
+ * trajectories run, so any number of threads may share it. */
+typedef struct rf_traj_world rf_traj_world;
+rf_status rf_traj_world_create(const rf_traj_spec *spec, rf_traj_world **world, rf_error *err);
+void rf_traj_world_free(rf_traj_world *world);
+
+/* One trajectory with the spec's crisp values; roughness draws come from the
+ * counter-based stream (seed, sample).  res->crossings must hold
+ * n_collectors entries; impacts/events are filled if their arrays are set
+ * (growing with realloc). */
+rf_status rf_traj_simulate(const rf_traj_world *world, const rf_traj_spec *values, uint64_t seed,
+                           uint64_t sample, rf_traj_result *res, rf_error *err);
+
+/* ---- Monte Carlo ensembles ---- */
+
+typedef struct {
+    double p50, p95, p99, max, mean;
+} rf_traj_percentiles;
+
+typedef struct {
+    size_t samples;
+    size_t n_collectors;
+    /* Per sample (index = sample number): */
+    unsigned char *state;          /* rf_traj_state */
+    double *runout_x, *rebound_height;
+    rf_traj_crossing *crossings;   /* samples * n_collectors, sample-major */
+    /* The first `record` trajectories with their impacts and events: */
+    size_t n_recorded;
+    rf_traj_result *recorded;
+    double wall_seconds;
+    /* impact_model law: the table built for this run */
+    size_t impact_nodes_vn, impact_nodes_theta, impact_evaluations, impact_from_cache;
+    double impact_error_estimate;   /* largest |table - model| of R_n, R_t at the cell centres [-] */
+} rf_traj_ensemble;
+
+/* Run spec->samples trajectories on `threads` threads (0 = online cores).
+ * Results do not depend on the thread count: sample k uses only its own
+ * counter-based random stream. */
+rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *ens, rf_error *err);
+void rf_traj_ensemble_free(rf_traj_ensemble *ens);
+
+/* Percentiles (linear interpolation between order statistics, Hyndman-Fan
+ * type 7) of the finite values among v[0..n-1] (v is not modified); NaN if none. */
+rf_traj_percentiles rf_traj_percentiles_of(const double *v, size_t n);
+
+typedef struct {
+    size_t stopped, exited, step_limit;
+    rf_traj_percentiles runout_x, rebound_height;
+    size_t n_collectors;
+    double *reach_probability;          /* n_collectors */
+    rf_traj_percentiles *kinetic_energy;  /* n_collectors: translational + rotational [J] of the crossings */
+    rf_traj_percentiles *height;          /* n_collectors: vertical passing height [m] */
+    rf_traj_percentiles *speed;           /* n_collectors [m/s] */
+} rf_traj_stats;
+
+rf_status rf_traj_stats_compute(const rf_traj_ensemble *ens, rf_traj_stats *st, rf_error *err);
+void rf_traj_stats_free(rf_traj_stats *st);
+
+/* ---- counter-based random numbers (rng.c) ---- */
+
+/* Uniform in (0, 1): a pure function of (seed, stream, index) (SplitMix64
+ * finaliser over a Weyl sequence), so any thread or rank computes the same
+ * number for the same triple. */
+double rf_traj_uniform(uint64_t seed, uint64_t stream, uint64_t index);
+/* Standard normal quantile (Wichura 1988, AS 241, ~1e-16 relative). */
+double rf_traj_normal_quantile(double p);
+
+/* ---- outputs (traj_output.c) ---- */
+
+/* The JSON document of `rockfuzz trajectory --json` (docs/trajectories.md):
+ * samples, the recorded trajectories (at most max_trajectories), statistics. */
+void rf_traj_write_json(FILE *f, const rf_traj_spec *spec, const rf_traj_ensemble *ens, const rf_traj_stats *st,
+                        size_t max_trajectories);
+/* A readable summary (states, runout, per collector reach/energy/height). */
+void rf_traj_write_summary(FILE *f, const rf_traj_spec *spec, const rf_traj_ensemble *ens, const rf_traj_stats *st);
+/* DIR/trajectories.csv (recorded paths sampled every dt seconds and at every
+ * event), DIR/crossings.csv (every sample's collector crossings),
+ * DIR/statistics.csv (per collector). */
+rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
+                            const rf_traj_stats *st, rf_error *err);
+/* traj_plot.c: DIR/trajectory_profile.{png,svg} (profile, recorded paths,
+ * envelopes of height and energy along x), DIR/trajectory_hist_NAME.{png,svg}
+ * per collector, and DIR/report.html showing them with the statistics. */
+rf_status rf_traj_write_plots(const char *dir, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
+                              const rf_traj_stats *st, rf_error *err);
+/* Position and velocity at time t of the recorded trajectory res (events
+ * interpolated exactly); 0 if t lies outside it. */
+int rf_traj_state_at(const rf_traj_result *res, double t, double *x, double *y, double *vx, double *vy);
+
+/* ---- the study model (traj_model.c) ---- */
+
+/* Output names per collector C: C_ke_p50/p95/p99/max [J], C_height_p50/...
+ * [m], C_reach_probability [-]; then runout_p50/p95/p99/max [m] and
+ * rebound_height_p50/p95/p99/max [m].  param_names[i] is bound to the spec
+ * path bind_paths[i].  Every evaluation uses the same seed: common random
+ * numbers across the TM's points. */
+rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const char *const *param_names,
+                               const char *const *bind_paths, rf_model *model, rf_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

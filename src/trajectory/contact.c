@@ -1,0 +1,193 @@
+/* contact.c - motion in contact with a segment (trajectory_refs.md sec. 2.6).
+ * Along the tangent the acceleration is constant between events, so every
+ * event time is a closed-form root:
+ *   sliding (point block, or a sphere where rolling would need more friction
+ *   than mu N):  a = g_t - sgn(u) mu N,             mu = tan(friction_angle)
+ *   rolling (sphere):  a = (g_t - sgn(u) mu_r N) / (1 + k),  k = I/(m r^2) = 2/5
+ * with g_t = -g t_y the pull of gravity along t and N = g n_y the normal load
+ * per unit mass.  mu_r is the dimensionless rolling-resistance coefficient
+ * (resisting force mu_r N, i.e. a lever arm mu_r r): STONE's and CRSP's
+ * convention, independent of the block size, so one value per material works
+ * for every block.  A sphere that lands with slip is brought to rolling by
+ * the friction impulse that conserves angular momentum about the contact
+ * point: u' = (u + k r omega)/(1 + k) (energy can only drop).
+ * Events: rest (u = 0 and |g_t| within the static resistance), a vertex
+ * (convex: launch along the old tangent; concave: keep the component of the
+ * velocity along the new segment, a plastic kink; a wall that cannot carry
+ * contact: an impact), a collector line, a barrier. */
+#include "trajectory/traj_internal.h"
+
+#include <math.h>
+
+typedef struct {
+    int rolling;
+    double gt, N, resist; /* resist: |acceleration| from friction or rolling resistance */
+    double inv;           /* 1/(1+k) rolling, 1 sliding */
+} contact_law;
+
+static contact_law law_on(const traj_run *r, const traj_segment *g)
+{
+    const rf_traj_material *m = &r->s->materials[g->material];
+    contact_law L;
+    L.gt = -r->g * g->ty;
+    L.N = r->g * g->ny;
+    double mu = tan(m->friction_angle * (RF_PI / 180));
+    double k = r->s->sphere ? r->inertia / (r->mass * r->radius * r->radius) : 0;
+    L.rolling = r->s->sphere && fabs(L.gt) * k / (1 + k) <= mu * L.N;
+    L.inv = L.rolling ? 1 / (1 + k) : 1;
+    L.resist = (L.rolling ? m->rolling_resistance : mu) * L.N;
+    return L;
+}
+
+/* Smallest tau in [0, tmax] with c2 tau^2 + c1 tau + c0 = 0; INFINITY if none. */
+static double first_root(double c2, double c1, double c0, double tmax)
+{
+    double r[2] = {INFINITY, INFINITY};
+    if (c2 == 0) {
+        if (c1 != 0)
+            r[0] = -c0 / c1;
+    } else {
+        double disc = c1 * c1 - 4 * c2 * c0;
+        if (disc >= 0) {
+            double q = -0.5 * (c1 + copysign(sqrt(disc), c1));
+            r[0] = q / c2;
+            r[1] = q != 0 ? c0 / q : r[0];
+        }
+    }
+    double best = INFINITY;
+    for (int i = 0; i < 2; i++)
+        if (r[i] >= 0 && r[i] <= tmax && r[i] < best)
+            best = r[i];
+    return best;
+}
+
+/* Collectors crossed while moving along g over [0, tau]; 1 if a barrier stopped the block. */
+static int contact_collectors(traj_run *r, const traj_segment *g, double a, double tau)
+{
+    for (;;) {
+        size_t first = TRAJ_NONE;
+        double tf = INFINITY;
+        for (size_t c = 0; c < r->w->ncol; c++) {
+            if (r->res->crossings[c].reached)
+                continue;
+            double tc = first_root(0.5 * a * g->tx, r->u * g->tx, r->x - r->w->col[c].x, tau);
+            if (tc < tf)
+                tf = tc, first = c;
+        }
+        if (first == TRAJ_NONE)
+            return 0;
+        double ds = r->u * tf + 0.5 * a * tf * tf, v = r->u + a * tf;
+        double w = r->s->sphere && r->radius > 0 ? (law_on(r, g).rolling ? v / r->radius : r->omega) : 0;
+        int stopped;
+        traj_record_crossing(r, first, r->t + tf, r->x + ds * g->tx, r->y + ds * g->ty, v * g->tx, v * g->ty, w,
+                             &stopped);
+        if (stopped)
+            return 1;
+    }
+}
+
+/* Time to cover distance d >= 0 at speed U >= 0 with acceleration A along the motion. */
+static double time_to_cover(double U, double A, double d)
+{
+    if (A == 0)
+        return U > 0 ? d / U : INFINITY;
+    double disc = U * U + 2 * A * d;
+    if (disc < 0)
+        return INFINITY;
+    double den = U + sqrt(disc);
+    return den > 0 ? 2 * d / den : INFINITY;
+}
+
+/* At the end of segment k moving in direction dir: the next phase. */
+static void at_vertex(traj_run *r, size_t k, int dir)
+{
+    const traj_segment *g = &r->w->seg[k];
+    r->x = dir > 0 ? g->bx : g->ax;
+    r->y = dir > 0 ? g->by : g->ay;
+    r->vx = r->u * g->tx, r->vy = r->u * g->ty;
+    size_t j = dir > 0 ? k + 1 : k - 1;
+    if (dir < 0 && k == 0)
+        j = TRAJ_NONE;
+    if (j == TRAJ_NONE || j >= r->w->nseg) { /* off the end of the profile */
+        traj_launch(r, k, TRAJ_NONE, RF_EV_LAUNCH);
+        return;
+    }
+    const traj_segment *h = &r->w->seg[j];
+    double fx = dir > 0 ? h->bx : h->ax, fy = dir > 0 ? h->by : h->ay;
+    double side = g->nx * (fx - r->x) + g->ny * (fy - r->y);
+    if (side < -1e-12 * r->w->scale) { /* convex: the ground drops away */
+        traj_launch(r, k, j, RF_EV_LAUNCH);
+        return;
+    }
+    if (h->ny <= 0) { /* a wall ahead: it is hit */
+        traj_impact(r, j);
+        return;
+    }
+    double u = r->u * (g->tx * h->tx + g->ty * h->ty); /* concave kink: keep the part along h */
+    double pull = -r->g * h->ty * (u > 0 ? 1 : -1);    /* gravity along the motion on h */
+    r->k = j, r->u = u;
+    r->vx = u * h->tx, r->vy = u * h->ty;
+    if (fabs(u) < r->s->v_stop && pull <= 0) { /* slow in a hollow: it stays there */
+        r->vx = r->vy = r->omega = 0;
+        traj_finish(r, RF_TRAJ_STOPPED, RF_EV_REST);
+        return;
+    }
+    traj_event(r, RF_EV_VERTEX, 0, 0, 0);
+}
+
+void traj_contact_step(traj_run *r)
+{
+    const traj_segment *g = &r->w->seg[r->k];
+    if (g->ny <= 0) { /* cannot carry contact: it falls */
+        r->vx = r->u * g->tx, r->vy = r->u * g->ty;
+        traj_launch(r, r->k, TRAJ_NONE, RF_EV_LAUNCH);
+        return;
+    }
+    contact_law L = law_on(r, g);
+    if (L.rolling && fabs(r->omega * r->radius - r->u) > 0) {
+        double k = r->inertia / (r->mass * r->radius * r->radius);
+        r->u = (r->u + k * r->radius * r->omega) / (1 + k);
+    }
+    int dir = r->u > 0 ? 1 : r->u < 0 ? -1 : 0;
+    if (dir == 0) {
+        if (fabs(L.gt) <= L.resist) { /* static: at rest for good */
+            r->vx = r->vy = r->omega = 0;
+            traj_finish(r, RF_TRAJ_STOPPED, RF_EV_REST);
+            return;
+        }
+        dir = L.gt > 0 ? 1 : -1;
+    }
+    double a = (L.gt - dir * L.resist) * L.inv;
+    double s = g->tx * (r->x - g->ax) + g->ty * (r->y - g->ay);
+    double d = dir > 0 ? g->len - s : s;
+    double U = fabs(r->u), A = a * dir;
+    double tau_v = time_to_cover(U, A, d < 0 ? 0 : d);
+    double tau_s = A < 0 ? U / -A : INFINITY;
+    double tau = fmin(tau_v, tau_s);
+    r->vx = r->u * g->tx, r->vy = r->u * g->ty;
+    if (L.rolling)
+        r->omega = r->u / r->radius;
+    traj_event(r, RF_EV_CONTACT, 0, a * g->tx, a * g->ty);
+    if (!isfinite(tau)) { /* cannot happen with a finite segment; guard anyway */
+        traj_finish(r, RF_TRAJ_STEP_LIMIT, RF_EV_STEP_LIMIT);
+        return;
+    }
+    if (contact_collectors(r, g, a, tau))
+        return;
+    double ds = r->u * tau + 0.5 * a * tau * tau;
+    r->t += tau;
+    r->x += ds * g->tx, r->y += ds * g->ty;
+    if (r->s->sphere && !L.rolling) /* sliding sphere: friction spins it up, dw/dt = mu N m r / I */
+        r->omega += dir * (L.resist * r->mass * r->radius / r->inertia) * tau;
+    if (tau_s <= tau_v) {
+        r->u = 0;
+        r->vx = r->vy = 0;
+        if (L.rolling)
+            r->omega = 0;
+        return; /* next step: the static test */
+    }
+    r->u += a * tau;
+    if (L.rolling)
+        r->omega = r->u / r->radius;
+    at_vertex(r, r->k, dir);
+}

@@ -1,0 +1,231 @@
+/* montecarlo.c - ensembles of trajectories over the random inputs.
+ * Sample i draws input j from the counter-based uniform
+ * U(seed, stream 2i, index j) (roughness: stream 2i + 1), optionally
+ * stratified by a Latin hypercube (u = (perm_j[i] + U) / N, the permutations
+ * also drawn from the seed), and writes its results at index i.  So the
+ * ensemble is the same bits whatever the thread count or the split over MPI
+ * ranks.  Threads take contiguous blocks of samples; each keeps its own deep
+ * copy of the spec into which the draws are written. */
+#include "trajectory/traj_internal.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define LHS_STREAM 0x4000000000000000ULL
+
+typedef struct {
+    const rf_traj_spec *spec;
+    const rf_traj_world *world;
+    rf_traj_ensemble *ens;
+    const size_t *perm;     /* n_random * samples (LHS), or NULL */
+    size_t begin, end;
+    rf_status status;
+    rf_error err;
+} mc_job;
+
+static double normal_cdf(double z) { return 0.5 * erfc(-z / sqrt(2.0)); }
+
+/* Value of random input r for the uniform u in (0, 1). */
+static double draw(const rf_traj_random *r, double u)
+{
+    if (r->dist == RF_DIST_UNIFORM)
+        return r->a + u * (r->b - r->a);
+    if (r->dist == RF_DIST_NORMAL) {
+        if (!(r->b > 0))
+            return r->a;
+        double plo = isfinite(r->lo) ? normal_cdf((r->lo - r->a) / r->b) : 0;
+        double phi = isfinite(r->hi) ? normal_cdf((r->hi - r->a) / r->b) : 1;
+        double x = r->a + r->b * rf_traj_normal_quantile(plo + u * (phi - plo));
+        return fmin(fmax(x, r->lo), r->hi);
+    }
+    return r->a;
+}
+
+static void *mc_worker(void *arg)
+{
+    mc_job *job = arg;
+    const rf_traj_spec *spec = job->spec;
+    rf_traj_ensemble *ens = job->ens;
+    rf_traj_spec local;
+    double **field = calloc(spec->n_random ? spec->n_random : 1, sizeof *field);
+    rf_traj_crossing *cross = calloc(ens->n_collectors ? ens->n_collectors : 1, sizeof *cross);
+    if (!field || !cross || (job->status = rf_traj_spec_copy(spec, &local, &job->err)) != RF_OK) {
+        free(field);
+        free(cross);
+        job->status = rf_fail(&job->err, RF_ENOMEM, "out of memory");
+        return NULL;
+    }
+    for (size_t j = 0; j < spec->n_random; j++)
+        field[j] = rf_traj_spec_field(&local, spec->random[j].path);
+    size_t N = spec->samples;
+    for (size_t i = job->begin; i < job->end && job->status == RF_OK; i++) {
+        for (size_t j = 0; j < spec->n_random; j++) {
+            double u = rf_traj_uniform(spec->seed, 2 * (uint64_t)i, j);
+            if (job->perm)
+                u = ((double)job->perm[j * N + i] + u) / (double)N;
+            if (field[j])
+                *field[j] = draw(&spec->random[j], u);
+        }
+        rf_traj_result tmp = {0}, *res = i < ens->n_recorded ? &ens->recorded[i] : &tmp;
+        res->crossings = i < ens->n_recorded ? res->crossings : cross;
+        job->status = rf_traj_simulate(job->world, &local, spec->seed, i, res, &job->err);
+        ens->state[i] = (unsigned char)res->state;
+        ens->runout_x[i] = res->runout_x;
+        ens->rebound_height[i] = res->rebound_height;
+        if (ens->n_collectors)
+            memcpy(&ens->crossings[i * ens->n_collectors], res->crossings, ens->n_collectors * sizeof *cross);
+    }
+    rf_traj_spec_free(&local);
+    free(field);
+    free(cross);
+    return NULL;
+}
+
+/* Latin hypercube: for each input an independent random permutation of 0..N-1. */
+static size_t *lhs_permutations(const rf_traj_spec *s)
+{
+    size_t N = s->samples, n = s->n_random;
+    size_t *p = malloc((n * N > 0 ? n * N : 1) * sizeof *p);
+    if (!p)
+        return NULL;
+    for (size_t j = 0; j < n; j++) {
+        size_t *q = p + j * N;
+        for (size_t i = 0; i < N; i++)
+            q[i] = i;
+        for (size_t i = N; i > 1; i--) { /* Fisher-Yates */
+            size_t k = (size_t)(rf_traj_uniform(s->seed, LHS_STREAM + j, i) * (double)i);
+            size_t t = q[i - 1];
+            q[i - 1] = q[k < i ? k : i - 1];
+            q[k < i ? k : i - 1] = t;
+        }
+    }
+    return p;
+}
+
+static rf_status ensemble_alloc(const rf_traj_spec *s, rf_traj_ensemble *e, rf_error *err)
+{
+    memset(e, 0, sizeof *e);
+    size_t N = s->samples, nc = s->n_collectors;
+    e->samples = N;
+    e->n_collectors = nc;
+    e->state = malloc(N ? N : 1);
+    e->runout_x = malloc((N ? N : 1) * sizeof(double));
+    e->rebound_height = malloc((N ? N : 1) * sizeof(double));
+    e->crossings = calloc(N * nc > 0 ? N * nc : 1, sizeof *e->crossings);
+    e->n_recorded = s->record < N ? s->record : N;
+    e->recorded = calloc(e->n_recorded ? e->n_recorded : 1, sizeof *e->recorded);
+    if (!e->state || !e->runout_x || !e->rebound_height || !e->crossings || !e->recorded)
+        return rf_fail(err, RF_ENOMEM, "out of memory for %zu samples", N);
+    for (size_t i = 0; i < e->n_recorded; i++) {
+        rf_traj_result *r = &e->recorded[i];
+        r->crossings = calloc(nc ? nc : 1, sizeof *r->crossings);
+        r->impacts = malloc(16 * sizeof *r->impacts);
+        r->events = malloc(16 * sizeof *r->events);
+        r->impacts_cap = r->events_cap = 16;
+        if (!r->crossings || !r->impacts || !r->events)
+            return rf_fail(err, RF_ENOMEM, "out of memory");
+    }
+    return RF_OK;
+}
+
+void rf_traj_ensemble_free(rf_traj_ensemble *e)
+{
+    if (!e)
+        return;
+    for (size_t i = 0; e->recorded && i < e->n_recorded; i++) {
+        free(e->recorded[i].crossings);
+        free(e->recorded[i].impacts);
+        free(e->recorded[i].events);
+    }
+    free(e->recorded);
+    free(e->state);
+    free(e->runout_x);
+    free(e->rebound_height);
+    free(e->crossings);
+    memset(e, 0, sizeof *e);
+}
+
+static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, const size_t *perm, int threads,
+                          rf_traj_ensemble *ens, rf_error *err)
+{
+    size_t N = spec->samples;
+    if ((size_t)threads > N)
+        threads = N ? (int)N : 1;
+    mc_job *jobs = calloc((size_t)threads, sizeof *jobs);
+    pthread_t *tid = calloc((size_t)threads, sizeof *tid);
+    char *started = calloc((size_t)threads, 1);
+    if (!jobs || !tid || !started) {
+        free(jobs);
+        free(tid);
+        free(started);
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    }
+    for (int t = 0; t < threads; t++) {
+        jobs[t] = (mc_job){spec, w, ens, perm, N * (size_t)t / (size_t)threads, N * (size_t)(t + 1) / (size_t)threads,
+                           RF_OK, {RF_OK, ""}};
+        if (t > 0)
+            started[t] = pthread_create(&tid[t], NULL, mc_worker, &jobs[t]) == 0;
+    }
+    mc_worker(&jobs[0]);
+    for (int t = 1; t < threads; t++) {
+        if (started[t])
+            pthread_join(tid[t], NULL);
+        else
+            mc_worker(&jobs[t]); /* could not start a thread: do its share here */
+    }
+    rf_status st = RF_OK;
+    for (int t = 0; t < threads && st == RF_OK; t++)
+        if (jobs[t].status != RF_OK) {
+            st = jobs[t].status;
+            if (err)
+                *err = jobs[t].err;
+        }
+    free(jobs);
+    free(tid);
+    free(started);
+    return st;
+}
+
+rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *ens, rf_error *err)
+{
+    return traj_run_shared(spec, threads, NULL, ens, err);
+}
+
+rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf_traj_ensemble *ens, rf_error *err)
+{
+    double t0 = rf_monotonic_seconds();
+    rf_status st = rf_traj_spec_validate(spec, err);
+    if (st != RF_OK)
+        return st;
+    if ((st = ensemble_alloc(spec, ens, err)) != RF_OK) {
+        rf_traj_ensemble_free(ens);
+        return st;
+    }
+    rf_traj_world *w = NULL;
+    if ((st = traj_world_create_shared(spec, table, &w, err)) != RF_OK) {
+        rf_traj_ensemble_free(ens);
+        return st;
+    }
+    size_t *perm = NULL;
+    if (spec->lhs && spec->n_random && !(perm = lhs_permutations(spec))) {
+        rf_traj_world_free(w);
+        rf_traj_ensemble_free(ens);
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    }
+    if (threads <= 0) {
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = c > 0 ? (int)c : 1;
+    }
+    traj_impact_table_info(w->impact_table, &ens->impact_nodes_vn, &ens->impact_nodes_theta,
+                           &ens->impact_evaluations, &ens->impact_from_cache, &ens->impact_error_estimate);
+    st = run_jobs(spec, w, perm, threads, ens, err);
+    free(perm);
+    rf_traj_world_free(w);
+    ens->wall_seconds = rf_monotonic_seconds() - t0;
+    if (st != RF_OK)
+        rf_traj_ensemble_free(ens);
+    return st;
+}

@@ -1,0 +1,113 @@
+/* traj_internal.h - what the trajectory files share: the prepared profile
+ * (segments with tangent, normal, length, x-range), collector geometry, the
+ * state of one running trajectory, and the functions of each phase
+ * (flight.c, contact.c, bounce.c, simulate.c). */
+#ifndef ROCKFUZZ_TRAJ_INTERNAL_H
+#define ROCKFUZZ_TRAJ_INTERNAL_H
+
+#include "rockfuzz/trajectory.h"
+#include "core/util.h"
+
+#include <stdint.h>
+
+#define TRAJ_NONE ((size_t)-1)
+
+typedef struct {
+    double ax, ay, bx, by;   /* end points A (point i), B (point i+1) */
+    double tx, ty, nx, ny;   /* unit tangent A->B, outward normal (-t_y, t_x) */
+    double len, xmin, xmax;
+    size_t material;
+} traj_segment;
+
+typedef struct {
+    double x, ground_y;      /* ground under the line */
+    size_t segment;          /* the segment carrying that ground */
+} traj_collector_geo;
+
+struct rf_traj_world {
+    size_t nseg;
+    traj_segment *seg;
+    size_t ncol;
+    traj_collector_geo *col;
+    double scale;            /* size of the profile [m], for geometric tolerances */
+    void *impact_table;      /* impact_model law: traj_impact_table */
+    int owns_table;          /* 0: shared by the caller (traj_world_create_shared) */
+};
+
+/* A world that uses the given impact table (not owned; NULL: built if the law needs it). */
+rf_status traj_world_create_shared(const rf_traj_spec *spec, void *table, rf_traj_world **world, rf_error *err);
+/* montecarlo.c: rf_traj_run with a shared impact table (NULL: the run builds its own). */
+rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf_traj_ensemble *ens,
+                          rf_error *err);
+
+/* profile.c: x sorted, no repeated point, no self-intersection. */
+rf_status traj_profile_check(const rf_traj_spec *s, rf_error *err);
+
+/* Ground under x (the highest non-vertical segment covering x); segment
+ * index in *seg (TRAJ_NONE and NaN outside the profile). */
+double traj_ground_y(const rf_traj_world *w, double x, size_t *seg);
+
+/* The state of one running trajectory: a small state machine whose phase
+ * is a flight (from a point on segments on[0], on[1]) or a contact with
+ * segment k at signed speed u along its tangent. */
+typedef enum { TRAJ_FLY = 0, TRAJ_CONTACT, TRAJ_DONE } traj_phase;
+
+typedef struct {
+    const rf_traj_world *w;
+    const rf_traj_spec *s;
+    rf_traj_result *res;
+    uint64_t seed, sample, n_rough;   /* roughness draws: stream 2 sample + 1, index n_rough */
+    double g, mass, inertia, radius;
+    double t, x, y, vx, vy, omega;
+    traj_phase phase;
+    size_t k, on[2];
+    double u;
+    int from_impact;                  /* the current flight starts at an impact (rebound height) */
+} traj_run;
+
+/* flight.c: first impact of the parabola from (x, y) with velocity (vx, vy).
+ * Segments on[0], on[1] contain the start point (TRAJ_NONE: none): their
+ * t = 0 root is never taken unless the block moves into them.  Returns the
+ * segment hit, or TRAJ_NONE (the block leaves the profile); *tau is the
+ * flight time. */
+size_t traj_first_impact(const rf_traj_world *w, double x, double y, double vx, double vy, double g,
+                         const size_t on[2], double *tau);
+/* Record the collector crossings of the current flight over [0, tau_end]
+ * (tau_end may be INFINITY); returns 1 if a barrier stopped the block. */
+int traj_flight_collectors(traj_run *r, double tau_end);
+/* Record the first crossing of collector c; *stopped = 1 if its barrier holds the block. */
+void traj_record_crossing(traj_run *r, size_t c, double t, double x, double y, double vx, double vy,
+                          double omega, int *stopped);
+
+/* bounce.c: velocity and spin after an impact on segment k; returns 1 for a
+ * soft landing (normal speed below contact_speed: only the velocity along the
+ * segment is kept, no bounce law applied), else 0. */
+int traj_bounce(traj_run *r, size_t k, double *vx, double *vy, double *omega);
+
+/* contact.c: one stretch of contact motion on segment r->k until the block
+ * stops, reaches a vertex (then: launch, next segment, or impact) or a barrier. */
+void traj_contact_step(traj_run *r);
+
+/* simulate.c */
+void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay);
+void traj_finish(traj_run *r, rf_traj_state state, rf_traj_event_kind kind);
+/* Launch a flight from the current state (point on segments a, b). */
+void traj_launch(traj_run *r, size_t a, size_t b, rf_traj_event_kind kind);
+/* The block at the current state hits segment k: bounce, stop, or contact. */
+void traj_impact(traj_run *r, size_t k);
+
+/* traj_csv.c: read "x,y[,material]" lines; *named = 1 if the third column was given. */
+rf_status traj_csv_read(const char *path, rf_traj_spec *spec, int *named, rf_error *err);
+
+/* impact adapter (traj_impact_adapter.c + traj_impact_table.c) */
+typedef struct traj_impact_table traj_impact_table;
+rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **table, rf_error *err);
+void traj_impact_table_free(traj_impact_table *t);
+/* R_n, R_t and omega*r/v_t after an impact of normal speed vn (>0), incidence
+ * angle theta [rad] from the normal. */
+void traj_impact_table_eval(const traj_impact_table *t, double vn, double theta, double *R_n, double *R_t,
+                            double *spin_ratio);
+void traj_impact_table_info(const traj_impact_table *t, size_t *nv, size_t *nt, size_t *evaluations,
+                            size_t *from_cache, double *error_estimate);
+
+#endif

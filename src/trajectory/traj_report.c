@@ -1,0 +1,98 @@
+/* traj_report.c - report.html of `rockfuzz trajectory --out DIR`: the run's
+ * settings, states, statistics per collector, and the figures of
+ * traj_plot.c embedded as data: URIs (the file stands alone, like the study
+ * report). */
+#include "trajectory/traj_internal.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+static void html_text(FILE *f, const char *s)
+{
+    for (; s && *s; s++)
+        if (*s == '<') fputs("&lt;", f);
+        else if (*s == '>') fputs("&gt;", f);
+        else if (*s == '&') fputs("&amp;", f);
+        else fputc(*s, f);
+}
+
+/* <img> with the PNG dir/stem.png inlined as base64. */
+static void image(FILE *f, const char *dir, const char *stem)
+{
+    static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s.png", dir, stem);
+    FILE *in = fopen(path, "rb");
+    if (!in) {
+        fprintf(f, "<p>(%s.png missing)</p>", stem);
+        return;
+    }
+    fputs("<img alt=\"", f);
+    html_text(f, stem);
+    fputs("\" src=\"data:image/png;base64,", f);
+    unsigned char b[3];
+    size_t n;
+    while ((n = fread(b, 1, 3, in)) > 0) {
+        unsigned v = (unsigned)b[0] << 16 | (n > 1 ? (unsigned)b[1] << 8 : 0) | (n > 2 ? b[2] : 0);
+        fputc(b64[v >> 18 & 63], f), fputc(b64[v >> 12 & 63], f);
+        fputc(n > 1 ? b64[v >> 6 & 63] : '=', f), fputc(n > 2 ? b64[v & 63] : '=', f);
+    }
+    fclose(in);
+    fputs("\">\n", f);
+}
+
+static void row(FILE *f, const char *what, const char *unit, const rf_traj_percentiles *p, double scale)
+{
+    fprintf(f, "<tr><td>%s</td><td>%s</td><td>%.4g</td><td>%.4g</td><td>%.4g</td><td>%.4g</td></tr>\n", what, unit,
+            p->p50 * scale, p->p95 * scale, p->p99 * scale, p->max * scale);
+}
+
+rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                                 const rf_traj_stats *st, rf_error *err)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/report.html", dir);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
+    static const char *const laws[] = {"constant", "velocity_scaled", "rigid_sphere", "impact_model"};
+    fputs("<!DOCTYPE html><html><head><meta charset=utf-8><title>", f);
+    html_text(f, s->name);
+    fputs("</title><style>body{font-family:sans-serif;max-width:960px;margin:auto}td,th{padding:2px 8px;"
+          "text-align:right}img{max-width:100%}</style></head><body><h1>Trajectories: ", f);
+    html_text(f, s->name);
+    fprintf(f, "</h1><p>%zu trajector%s, %s sampling, seed %llu, bounce law %s, %s block; stopped %zu, exited "
+               "%zu, step_limit %zu; %.3g s.</p>\n", e->samples, e->samples == 1 ? "y" : "ies",
+            s->lhs ? "Latin hypercube" : "random", (unsigned long long)s->seed, laws[s->law],
+            s->sphere ? "sphere" : "point", st->stopped, st->exited, st->step_limit, e->wall_seconds);
+    fputs("<h2>Statistics</h2><table><tr><th>quantity</th><th>unit</th><th>p50</th><th>p95</th><th>p99</th>"
+          "<th>max</th></tr>\n", f);
+    row(f, "runout x", "m", &st->runout_x, 1);
+    row(f, "rebound height", "m", &st->rebound_height, 1);
+    for (size_t c = 0; c < s->n_collectors; c++) {
+        char what[300];
+        fprintf(f, "<tr><td>%s (x = %g m): reach probability</td><td>-</td><td colspan=4>%.4g</td></tr>\n",
+                s->collectors[c].name, s->collectors[c].x, st->reach_probability[c]);
+        snprintf(what, sizeof what, "%s: energy", s->collectors[c].name);
+        row(f, what, "kJ", &st->kinetic_energy[c], 1e-3);
+        snprintf(what, sizeof what, "%s: passing height", s->collectors[c].name);
+        row(f, what, "m", &st->height[c], 1);
+    }
+    fputs("</table><p>Collector statistics are over the trajectories that reach the line; energies include "
+          "rotation. Envelopes use the recorded trajectories.</p>\n<h2>Profile, trajectories, envelopes</h2>"
+          "\n", f);
+    image(f, dir, "trajectory_profile");
+    for (size_t c = 0; c < s->n_collectors; c++) {
+        char stem[300];
+        fputs("<h2>Collector ", f);
+        html_text(f, s->collectors[c].name);
+        fputs("</h2>", f);
+        snprintf(stem, sizeof stem, "trajectory_hist_%s", s->collectors[c].name);
+        image(f, dir, stem);
+    }
+    fputs("</body></html>\n", f);
+    if (fclose(f) != 0)
+        return rf_fail(err, RF_EIO, "cannot write %s", path);
+    return RF_OK;
+}

@@ -1,0 +1,315 @@
+/* traj_yaml.c - the trajectory file (docs/trajectories.md sec. 2): YAML read
+ * with the study parser's located accessors (study/study_internal.h), so a
+ * bad value is reported as "file:line: field = value: reason".  Numbers that
+ * may be random are read by traj_yaml_value.c; the profile by
+ * traj_yaml_profile.c.  After parsing, the spec is validated and a failing
+ * field is located through the lines recorded while reading. */
+#include "trajectory/traj_yaml_internal.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_TRAJ_BYTES (16u << 20)
+
+static rf_status parse_materials(ty_ctx *c, struct fy_node *n)
+{
+    rf_status st = sp_mapping(&c->sp, n, "materials");
+    if (st != RF_OK)
+        return st;
+    int cnt = fy_node_mapping_item_count(n);
+    if (cnt < 1 || cnt > 1000)
+        return sp_fail(&c->sp, n, "materials", "expected 1 to 1000 materials");
+    c->spec->materials = calloc((size_t)cnt, sizeof *c->spec->materials);
+    if (!c->spec->materials)
+        return rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
+    sp_iter it = {n, NULL, 0, {0}};
+    const char *key;
+    struct fy_node *k, *v;
+    for (;;) {
+        if ((st = sp_next(&c->sp, &it, "materials", &key, &k, &v)) != RF_OK || !key)
+            return st;
+        rf_traj_material *m = &c->spec->materials[c->spec->n_materials++];
+        if (!(m->name = rf_strdup(key)))
+            return rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
+        m->R_n = NAN, m->R_t = NAN;
+        char p[300];
+        sp_pathf(p, sizeof p, "materials.%s", key);
+        if ((st = ty_fields(c, v, p, "R_n R_t friction_angle rolling_resistance roughness", 1)) != RF_OK)
+            return st;
+        if (isnan(m->R_n) || isnan(m->R_t))
+            return sp_fail(&c->sp, v, p, "R_n and R_t are required");
+    }
+}
+
+static rf_status parse_block(ty_ctx *c, struct fy_node *n)
+{
+    rf_status st = sp_mapping(&c->sp, n, "block");
+    if (st != RF_OK)
+        return st;
+    struct fy_node *shape = fy_node_mapping_lookup_by_string(n, "shape", FY_NT);
+    rf_traj_spec *s = c->spec;
+    if (shape) {
+        const char *str;
+        size_t len;
+        if ((st = sp_string(&c->sp, shape, "block.shape", &str, &len)) != RF_OK)
+            return st;
+        if (len == 6 && !strncmp(str, "sphere", 6))
+            s->sphere = 1;
+        else if (!(len == 5 && !strncmp(str, "point", 5)))
+            return sp_fail(&c->sp, shape, "block.shape", "expected point or sphere");
+    }
+    if ((st = ty_fields(c, n, "block", s->sphere ? "shape radius density" : "shape mass", 1)) != RF_OK)
+        return st;
+    if (!s->sphere && isnan(s->mass))
+        return sp_fail(&c->sp, n, "block", "a point block needs mass [kg]");
+    if (s->sphere && (isnan(s->radius) || isnan(s->density)))
+        return sp_fail(&c->sp, n, "block", "a sphere needs radius [m] and density [kg/m^3]");
+    return RF_OK;
+}
+
+static rf_status parse_law(ty_ctx *c, struct fy_node *v)
+{
+    static const char *const names[] = {"constant", "velocity_scaled", "rigid_sphere", "impact_model"};
+    const char *str;
+    size_t len;
+    rf_status st = sp_string(&c->sp, v, "bounce.law", &str, &len);
+    if (st != RF_OK)
+        return st;
+    for (int i = 0; i < 4; i++)
+        if (len == strlen(names[i]) && !strncmp(str, names[i], len)) {
+            c->spec->law = (rf_bounce_law)i;
+            return RF_OK;
+        }
+    return sp_fail(&c->sp, v, "bounce.law", "expected constant, velocity_scaled, rigid_sphere or impact_model");
+}
+
+static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
+{
+    size_t cnt;
+    rf_status st = sp_sequence(&c->sp, n, "collectors", 0, 1000, &cnt);
+    if (st != RF_OK)
+        return st;
+    c->spec->collectors = calloc(cnt ? cnt : 1, sizeof *c->spec->collectors);
+    if (!c->spec->collectors)
+        return rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
+    for (size_t i = 0; i < cnt; i++) {
+        struct fy_node *e = fy_node_sequence_get_by_index(n, (int)i);
+        char p[300];
+        sp_pathf(p, sizeof p, "collectors[%zu]", i);
+        if ((st = sp_mapping(&c->sp, e, p)) != RF_OK)
+            return st;
+        struct fy_node *nm = fy_node_mapping_lookup_by_string(e, "name", FY_NT);
+        rf_traj_collector *col = &c->spec->collectors[c->spec->n_collectors++];
+        if (!nm)
+            return sp_fail(&c->sp, e, p, "a collector needs a name");
+        if ((st = sp_string_dup(&c->sp, nm, p, &col->name)) != RF_OK)
+            return st;
+        for (size_t j = 0; j < i; j++)
+            if (!strcmp(c->spec->collectors[j].name, col->name))
+                return sp_fail(&c->sp, nm, p, "a second collector with this name");
+        col->x = NAN;
+        sp_pathf(p, sizeof p, "collectors.%s", col->name);
+        if ((st = ty_fields(c, e, p, "name x capacity height", 0)) != RF_OK)
+            return st;
+        if (isnan(col->x))
+            return sp_fail(&c->sp, e, p, "a collector needs x [m]");
+    }
+    return RF_OK;
+}
+
+static rf_status parse_top_scalar(ty_ctx *c, const char *key, struct fy_node *k, struct fy_node *v)
+{
+    rf_traj_spec *s = c->spec;
+    long long n;
+    rf_status st;
+    if (!strcmp(key, "name")) {
+        free(s->name);
+        s->name = NULL;
+        return sp_string_dup(&c->sp, v, "name", &s->name);
+    }
+    if (!strcmp(key, "description"))
+        return RF_OK;
+    if (!strcmp(key, "gravity"))
+        return ty_value(c, v, "gravity", &s->gravity, 0);
+    if (!strcmp(key, "samples")) {
+        if ((st = sp_integer(&c->sp, v, "samples", 1, 100000000, &n)) == RF_OK)
+            s->samples = (size_t)n;
+        return st;
+    }
+    if (!strcmp(key, "seed")) {
+        if ((st = sp_integer(&c->sp, v, "seed", 0, 9007199254740992LL, &n)) == RF_OK)
+            s->seed = (uint64_t)n;
+        return st;
+    }
+    if (!strcmp(key, "record")) {
+        if ((st = sp_integer(&c->sp, v, "record", 0, 100000, &n)) == RF_OK)
+            s->record = (size_t)n, c->record_given = 1;
+        return st;
+    }
+    if (!strcmp(key, "sampling")) {
+        const char *str;
+        size_t len;
+        if ((st = sp_string(&c->sp, v, "sampling", &str, &len)) != RF_OK)
+            return st;
+        if (len == 3 && !strncmp(str, "lhs", 3))
+            s->lhs = 1;
+        else if (!(len == 6 && !strncmp(str, "random", 6)))
+            return sp_fail(&c->sp, v, "sampling", "expected random or lhs (Latin hypercube)");
+        return RF_OK;
+    }
+    return sp_fail(&c->sp, k, key, "unknown key; a trajectory file takes name, description, gravity, profile, "
+                                   "materials, block, release, bounce, stop, collectors, samples, seed, sampling, "
+                                   "record");
+}
+
+static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct fy_node *v)
+{
+    rf_status st;
+    if (!strcmp(key, "materials"))
+        return parse_materials(c, v);
+    if (!strcmp(key, "block"))
+        return parse_block(c, v);
+    if (!strcmp(key, "release"))
+        return ty_fields(c, v, "release", "x y vx vy omega", 1);
+    if (!strcmp(key, "stop"))
+        return ty_fields(c, v, "stop", "v_stop max_steps", 0);
+    if (!strcmp(key, "collectors"))
+        return parse_collectors(c, v);
+    if (!strcmp(key, "bounce")) {
+        if ((st = sp_mapping(&c->sp, v, "bounce")) != RF_OK)
+            return st;
+        struct fy_node *law = fy_node_mapping_lookup_by_string(v, "law", FY_NT);
+        if (law && (st = parse_law(c, law)) != RF_OK)
+            return st;
+        return ty_fields(c, v, "bounce", "law scale_speed contact_speed impact", 0);
+    }
+    if (!strcmp(key, "profile")) {
+        c->profile = v;
+        return RF_OK; /* after the materials: it names them */
+    }
+    return parse_top_scalar(c, key, k, v);
+}
+
+static void spec_defaults(rf_traj_spec *s)
+{
+    memset(s, 0, sizeof *s);
+    s->gravity = 9.81;
+    s->mass = s->radius = s->density = NAN;
+    s->x0 = s->y0 = NAN;
+    s->law = RF_BOUNCE_CONSTANT;
+    s->scale_speed = RF_TRAJ_PFEIFFER_BOWEN_K;
+    s->contact_speed = 0.1;
+    s->v_stop = 0.1;
+    s->max_steps = 10000;
+    s->samples = 1;
+    s->seed = 1;
+    snprintf(s->impact_solver, sizeof s->impact_solver, "rigid");
+    s->impact_tolerance = 0.01;
+    s->impact_friction = NAN;
+    s->impact_speed_min = 0.25, s->impact_speed_max = 40;
+    s->impact_max_incidence = 80;
+}
+
+static rf_status parse_document(ty_ctx *c, struct fy_node *root)
+{
+    rf_status st = sp_mapping(&c->sp, root, "");
+    if (st != RF_OK)
+        return st;
+    sp_iter it = {root, NULL, 0, {0}};
+    const char *key;
+    struct fy_node *k, *v, *materials = fy_node_mapping_lookup_by_string(root, "materials", FY_NT);
+    if (!materials)
+        return rf_fail(c->sp.err, RF_EINVAL, "%s:1: materials: missing (name: {R_n, R_t, ...})", c->sp.file);
+    for (;;) {
+        if ((st = sp_next(&c->sp, &it, "", &key, &k, &v)) != RF_OK)
+            return st;
+        if (!key)
+            break;
+        if ((st = parse_top(c, key, k, v)) != RF_OK)
+            return st;
+    }
+    const char *need[] = {"profile", "block", "release"};
+    for (int i = 0; i < 3; i++)
+        if (!fy_node_mapping_lookup_by_string(root, need[i], FY_NT))
+            return rf_fail(c->sp.err, RF_EINVAL, "%s:1: %s: missing", c->sp.file, need[i]);
+    if (isnan(c->spec->x0) || isnan(c->spec->y0))
+        return sp_fail(&c->sp, fy_node_mapping_lookup_by_string(root, "release", FY_NT), "release",
+                       "x and y are required");
+    return ty_parse_profile(c, c->profile);
+}
+
+static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spec *s, rf_error *err)
+{
+    spec_defaults(s);
+    ty_ctx c;
+    memset(&c, 0, sizeof c);
+    c.spec = s;
+    char *dir = rf_strdup(name);
+    char *slash = dir ? strrchr(dir, '/') : NULL;
+    if (slash)
+        *slash = '\0';
+    c.sp = (sp_ctx){name, slash ? dir : ".", err, NULL};
+    s->file = rf_strdup(name);
+    struct fy_diag_cfg dc;
+    fy_diag_cfg_default(&dc);
+    dc.fp = NULL;
+    dc.colorize = false;
+    struct fy_diag *diag = fy_diag_create(&dc);
+    struct fy_parse_cfg pc;
+    memset(&pc, 0, sizeof pc);
+    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
+    pc.diag = diag;
+    if (diag)
+        fy_diag_set_collect_errors(diag, true);
+    rf_status st = diag ? sp_check_text(name, buf, len, err) : rf_fail(err, RF_ENOMEM, "out of memory");
+    struct fy_document *doc = st == RF_OK ? fy_document_build_from_string(&pc, len ? buf : "", len) : NULL;
+    if (st == RF_OK && !doc) {
+        void *it = NULL;
+        struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
+        st = e ? rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg, e->column)
+               : rf_fail(err, RF_EPARSE, "%s:1: the file holds no YAML document (empty?)", name);
+    } else if (st == RF_OK)
+        st = parse_document(&c, fy_document_root(doc));
+    if (st == RF_OK && !c.record_given)
+        s->record = s->samples < 200 ? s->samples : 200;
+    if (st == RF_OK)
+        st = ty_validate(&c);
+    if (doc)
+        fy_document_destroy(doc);
+    if (diag)
+        fy_diag_destroy(diag);
+    ty_ctx_free(&c);
+    free(dir);
+    if (st != RF_OK)
+        rf_traj_spec_free(s);
+    return st;
+}
+
+rf_status rf_traj_load_buffer(const char *name, const char *buf, size_t len, rf_traj_spec *s, rf_error *err)
+{
+    return load(name ? name : "<buffer>", buf ? buf : "", buf ? len : 0, s, err);
+}
+
+rf_status rf_traj_load(const char *path, rf_traj_spec *s, rf_error *err)
+{
+    memset(s, 0, sizeof *s);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return rf_fail(err, RF_EIO, "%s: cannot open the trajectory file: %s", path, strerror(errno));
+    char *buf = malloc(MAX_TRAJ_BYTES + 1);
+    size_t len = buf ? fread(buf, 1, MAX_TRAJ_BYTES + 1, f) : 0;
+    int bad = !buf || ferror(f);
+    fclose(f);
+    rf_status st;
+    if (bad)
+        st = rf_fail(err, RF_EIO, "%s: cannot read the trajectory file", path);
+    else if (len > MAX_TRAJ_BYTES)
+        st = rf_fail(err, RF_EINVAL, "%s: larger than %u bytes", path, MAX_TRAJ_BYTES);
+    else
+        st = load(path, buf, len, s, err);
+    free(buf);
+    return st;
+}
