@@ -3,7 +3,7 @@
  * element stable time steps (what multi-time-step subcycling could save),
  * and ns per element-step of the internal-force kernels on 1 and 2 threads:
  *   stored   today's loop (float K_e per element, fem3d_solver.c's element_force)
- *   bmat     hex8_bmat_force on every element (matrix-free, J^-1 stored)
+ *   bmat     hex8_bmat_force on every element (matrix-free, J^-1 stored or recomputed)
  *   hybrid   hex8_shared_force on the slope box cubes + hex8_bmat_force on the rest
  * each with and without the node-ordered gather of element forces that
  * follows in the solver.  The mesh is the real one of the 10 m/s, 45 degree
@@ -227,8 +227,10 @@ static void report_steps(const bench *B)
                 k = nlev[B->mesh.conn[8 * e + a]];
         binned += ldexp(1.0, -k);
     }
-    const double steps = ceil(1.45 * B->t_hertz / (0.9 * dmin));
-    printf("time steps: dt_min = %.4g us (x 0.9 safety), about %.0f steps for 1.45 Hertz durations\n", 1e6 * dmin, steps);
+    const double steps = ceil(1.3 * B->t_hertz / (0.9 * dmin));
+    printf("time steps: smallest element bound %.4g us, step 0.9 x that; %.0f steps to 1.3 Hertz durations "
+           "(the solver's shortest run)\n",
+           1e6 * dmin, steps);
     printf("  dt_e / dt_min in [2^k, 2^(k+1)):  k    fine-box   graded\n");
     for (int k = 0; k < 12; k++)
         if (hist[0][k] || hist[1][k])
@@ -239,7 +241,7 @@ static void report_steps(const bench *B)
 }
 
 typedef struct {
-    hex8_bmat all, rest;
+    hex8_bmat all, rest, lean, lean_rest; /* J stored / J recomputed from x */
     int *cubes;
     long ncubes;
     double Kcube[576];
@@ -280,8 +282,10 @@ static int kernels_init(const bench *B, kernels *k)
     printf("congruent to the slope cube (1e-9 h): %ld slope elements; boulder box: max |K_e - K_0| / max |K_0| = %.2g\n",
            k->ncubes, dK / K0);
     rf_error err = {0};
-    int rc = hex8_bmat_init(&k->all, B->mesh.x, B->mesh.conn, ids, ne, lam, mu, &err) != RF_OK ||
-             hex8_bmat_init(&k->rest, B->mesh.x, B->mesh.conn, rest, nr, lam, mu, &err) != RF_OK;
+    int rc = hex8_bmat_init(&k->all, B->mesh.x, B->mesh.conn, ids, ne, lam, mu, 1, &err) != RF_OK ||
+             hex8_bmat_init(&k->rest, B->mesh.x, B->mesh.conn, rest, nr, lam, mu, 1, &err) != RF_OK ||
+             hex8_bmat_init(&k->lean, B->mesh.x, B->mesh.conn, ids, ne, lam, mu, 0, &err) != RF_OK ||
+             hex8_bmat_init(&k->lean_rest, B->mesh.x, B->mesh.conn, rest, nr, lam, mu, 0, &err) != RF_OK;
     free(ids), free(rest), free(lam), free(mu), free(is_cube);
     return rc ? -1 : 0;
 }
@@ -313,17 +317,34 @@ static void run_variant(const bench *B, const kernels *k, int variant, int threa
 {
     if (variant == 0)
         stored_loop(B, threads);
-    else if (variant == 1)
-        bmat_loop(&k->all, B, threads);
+    else if (variant == 1 || variant == 3)
+        bmat_loop(variant == 1 ? &k->all : &k->lean, B, threads);
     else {
         shared_loop(k, B, threads);
-        bmat_loop(&k->rest, B, threads);
+        bmat_loop(variant == 2 ? &k->rest : &k->lean_rest, B, threads);
     }
     if (gather)
         gather_loop(B, threads);
 }
 
-enum { NVAR = 3, NTHR = 4 };
+enum { NVAR = 5, NTHR = 4 };
+
+/* Bytes each loop moves per element-step if every array streams once per step (a model: u is
+   re-read from cache by neighbouring elements; a written line is read first, so writes count
+   twice).  The bandwidth floor is these bytes over bench_stream's triad rate. */
+static void report_bytes(const bench *B, const kernels *k)
+{
+    const double per_node = (double)B->nn / (double)B->ne;
+    const double u_rd = 24 * per_node, fe_wr = 2 * 24 * 8.0;
+    const double stored = 576 * 4 + 8 * 4 + u_rd + fe_wr;
+    const double bm = (72 + 8 + 2) * 8 + 8 * 4 + 4 + u_rd + fe_wr;
+    const double cube = 8 * 4 + 4 + u_rd + fe_wr, fc = (double)k->ncubes / (double)B->ne;
+    const double lean = 8 * 4 + 4 + 2 * 8 + 2 * u_rd + fe_wr; /* x is gathered like u */
+    const double gather = 8 * 8 + 8 * per_node + 24 * 8 + 2 * 24 * per_node;
+    printf("bytes per element-step (model): stored K_e %.0f; J stored %.0f, with shared K %.0f; J recomputed %.0f, "
+           "with shared K %.0f; node gather %.0f more\n",
+           stored, bm, fc * cube + (1 - fc) * bm, lean, fc * cube + (1 - fc) * lean, gather);
+}
 
 /* ns per element-step, best of reps, the variants interleaved so that a burst of load from
    other processes hits them alike: best[v][t - 1][gather]. */
@@ -349,6 +370,8 @@ static void time_variants(const bench *B, const kernels *k, int tmax, int reps, 
 __attribute__((noinline)) static void count_stored(const bench *B, const kernels *k) { run_variant(B, k, 0, 1, 0); }
 __attribute__((noinline)) static void count_bmat(const bench *B, const kernels *k) { run_variant(B, k, 1, 1, 0); }
 __attribute__((noinline)) static void count_hybrid(const bench *B, const kernels *k) { run_variant(B, k, 2, 1, 0); }
+__attribute__((noinline)) static void count_lean(const bench *B, const kernels *k) { run_variant(B, k, 3, 1, 0); }
+__attribute__((noinline)) static void count_lean_hybrid(const bench *B, const kernels *k) { run_variant(B, k, 4, 1, 0); }
 __attribute__((noinline)) static void count_gather(const bench *B) { gather_loop(B, 1); }
 
 int main(int argc, char **argv)
@@ -369,12 +392,15 @@ int main(int argc, char **argv)
     }
     if (kernels_init(&B, &k) != 0)
         return 1;
+    report_bytes(&B, &k);
     if (count) {
         count_stored(&B, &k), count_bmat(&B, &k), count_hybrid(&B, &k), count_gather(&B);
+        count_lean(&B, &k), count_lean_hybrid(&B, &k);
         printf("counted one pass of each kernel over %ld elements\n", B.ne);
         return 0;
     }
-    static const char *names[NVAR] = {"stored float K_e (today)", "matrix-free (bmat) all", "shared K cubes + bmat rest"};
+    static const char *names[NVAR] = {"stored float K_e (today)", "matrix-free, J stored", "shared K + J stored",
+                                      "matrix-free, J recomputed", "shared K + J recomputed"};
     double best[NVAR][NTHR][2];
     const int tm = tmax < NTHR ? tmax : NTHR;
     time_variants(&B, &k, tm, reps, best);

@@ -85,15 +85,17 @@ static void test_bmat_random_elements(void **state)
         u[i] = 1e-3 * (urand(&s) - 0.5);
     for (int k = 0; k < NE; k++)
         lam[k] = lame_lambda(&GRANITE), mu[k] = lame_mu(&GRANITE);
-    hex8_bmat B;
-    rf_error err = {0};
-    assert_int_equal(hex8_bmat_init(&B, x, conn, elem, NE, lam, mu, &err), RF_OK);
-    assert_int_equal(B.nblk, (NE + HEX8_W - 1) / HEX8_W);
-    hex8_bmat_force(&B, 0, B.nblk, u, NULL, fe);
-    double e = rel_error_vs_stored(x, conn, elem, NE, u, fe);
-    printf("matrix-free vs K_e u_e, random elements: %.2e\n", e);
-    assert_true(e < 1e-12);
-    hex8_bmat_free(&B);
+    for (int store = 0; store < 2; store++) {
+        hex8_bmat B;
+        rf_error err = {0};
+        assert_int_equal(hex8_bmat_init(&B, x, conn, elem, NE, lam, mu, store, &err), RF_OK);
+        assert_int_equal(B.nblk, (NE + HEX8_W - 1) / HEX8_W);
+        hex8_bmat_force(&B, 0, B.nblk, u, NULL, fe);
+        double e = rel_error_vs_stored(x, conn, elem, NE, u, fe);
+        printf("matrix-free (J %s) vs K_e u_e, random elements: %.2e\n", store ? "stored" : "recomputed", e);
+        assert_true(e < 1e-12);
+        hex8_bmat_free(&B);
+    }
     free(x), free(u), free(fe);
 }
 
@@ -168,13 +170,17 @@ static void test_real_mesh(void **state)
         u[i] = 1e-4 * (urand(&s) - 0.5);
     for (long e = 0; e < ne; e++)
         all[e] = (int)e, lam[e] = lame_lambda(&GRANITE), mu[e] = lame_mu(&GRANITE);
-    hex8_bmat B;
     rf_error err = {0};
-    assert_int_equal(hex8_bmat_init(&B, mesh.x, mesh.conn, all, ne, lam, mu, &err), RF_OK);
-    hex8_bmat_force(&B, 0, B.nblk, u, NULL, fe);
-    double e1 = rel_error_vs_stored(mesh.x, mesh.conn, all, ne, u, fe);
-    printf("matrix-free vs K_e u_e, real mesh (%ld elements): %.2e\n", ne, e1);
-    assert_true(e1 < 1e-12);
+    for (int store = 0; store < 2; store++) {
+        hex8_bmat B;
+        assert_int_equal(hex8_bmat_init(&B, mesh.x, mesh.conn, all, ne, lam, mu, store, &err), RF_OK);
+        hex8_bmat_force(&B, 0, B.nblk, u, NULL, fe);
+        double e1 = rel_error_vs_stored(mesh.x, mesh.conn, all, ne, u, fe);
+        printf("matrix-free (J %s) vs K_e u_e, real mesh (%ld elements): %.2e\n", store ? "stored" : "recomputed",
+               ne, e1);
+        assert_true(e1 < 1e-12);
+        hex8_bmat_free(&B);
+    }
     /* the slope's fine box: its first element is a cube of size h; all its cubes share K_e */
     const long first = mesh.boulder_elems, nslope = ne - first;
     const long nbox = (long)(ms.slope.nxm + ms.slope.nxp) * ms.slope.ny * ms.slope.nz;
@@ -191,7 +197,6 @@ static void test_real_mesh(void **state)
     double e2 = rel_error_vs_stored(mesh.x, mesh.conn, cube, m, u, fe);
     printf("shared K vs K_e u_e, slope fine box: %.2e\n", e2);
     assert_true(e2 < 1e-12);
-    hex8_bmat_free(&B);
     f3_mesh_free(&mesh);
     free(all), free(cube), free(lam), free(mu), free(u), free(fe);
 }
@@ -211,19 +216,22 @@ static void test_thread_invariance(void **state)
         u[i] = urand(&s) - 0.5;
     for (int k = 0; k < NE; k++)
         lam[k] = lame_lambda(&GRANITE) * (1 + k % 3), mu[k] = lame_mu(&GRANITE);
-    hex8_bmat B;
-    rf_error err = {0};
-    assert_int_equal(hex8_bmat_init(&B, x, conn, elem, NE, lam, mu, &err), RF_OK);
-    hex8_bmat_force(&B, 0, B.nblk, u, NULL, f1);
-    hex8_bmat_force(&B, 0, 5, u, NULL, f2);
-    hex8_bmat_force(&B, 5, B.nblk, u, NULL, f2);
+    for (int store = 0; store < 2; store++) {
+        hex8_bmat B;
+        rf_error err = {0};
+        assert_int_equal(hex8_bmat_init(&B, x, conn, elem, NE, lam, mu, store, &err), RF_OK);
+        hex8_bmat_force(&B, 0, B.nblk, u, NULL, f1);
+        hex8_bmat_force(&B, 0, 5, u, NULL, f2);
+        hex8_bmat_force(&B, 5, B.nblk, u, NULL, f2);
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static, 3) num_threads(2)
 #endif
-    for (long b = 0; b < B.nblk; b++)
-        hex8_bmat_force(&B, b, b + 1, u, NULL, f3);
-    assert_memory_equal(f1, f2, 24 * NE * sizeof *f1);
-    assert_memory_equal(f1, f3, 24 * NE * sizeof *f1);
+        for (long b = 0; b < B.nblk; b++)
+            hex8_bmat_force(&B, b, b + 1, u, NULL, f3);
+        assert_memory_equal(f1, f2, 24 * NE * sizeof *f1);
+        assert_memory_equal(f1, f3, 24 * NE * sizeof *f1);
+        hex8_bmat_free(&B);
+    }
     double K[576], mass[8], vol;
     f3_hex_matrices(x, &GRANITE, K, mass, &vol);
     memset(f2, 0, 24 * NE * sizeof *f2), memset(f3, 0, 24 * NE * sizeof *f3);
@@ -234,7 +242,6 @@ static void test_thread_invariance(void **state)
     for (long k = 0; k < NE; k++)
         hex8_shared_force(K, conn, elem + k, 1, u, f3);
     assert_memory_equal(f2, f3, 24 * NE * sizeof *f2);
-    hex8_bmat_free(&B);
     free(x), free(u), free(f1), free(f2), free(f3);
 }
 
@@ -271,7 +278,7 @@ static void test_stress_callback(void **state)
         lam[k] = lame_lambda(&GRANITE), mu[k] = lame_mu(&GRANITE);
     hex8_bmat B;
     rf_error err = {0};
-    assert_int_equal(hex8_bmat_init(&B, x, conn, elem, NE, lam, mu, &err), RF_OK);
+    assert_int_equal(hex8_bmat_init(&B, x, conn, elem, NE, lam, mu, 1, &err), RF_OK);
     hex8_bmat_force(&B, 0, B.nblk, u, NULL, f1);
     elastic_ctx c = {lame_lambda(&GRANITE), lame_mu(&GRANITE), 0, 8 * NE, 0};
     hex8_stress st = {elastic_point, &c};
@@ -299,7 +306,7 @@ static void test_bad_element(void **state)
     double lam = 1, mu = 1;
     hex8_bmat B;
     rf_error err = {0};
-    assert_int_equal(hex8_bmat_init(&B, x, conn, &elem, 1, &lam, &mu, &err), RF_EINVAL);
+    assert_int_equal(hex8_bmat_init(&B, x, conn, &elem, 1, &lam, &mu, 0, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "det J"));
 }
 

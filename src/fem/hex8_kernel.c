@@ -117,7 +117,7 @@ void hex8_bmat_free(hex8_bmat *B)
     memset(B, 0, sizeof *B);
 }
 
-static rf_status bmat_alloc(hex8_bmat *B, long n, rf_error *err)
+static rf_status bmat_alloc(hex8_bmat *B, long n, int store, rf_error *err)
 {
     memset(B, 0, sizeof *B);
     B->n = n;
@@ -125,11 +125,13 @@ static rf_status bmat_alloc(hex8_bmat *B, long n, rf_error *err)
     const size_t lanes = (size_t)B->nblk * HEX8_W;
     B->elem = malloc(lanes * sizeof *B->elem);
     B->conn = malloc(lanes * 8 * sizeof *B->conn);
-    B->jinv = malloc(lanes * 72 * sizeof *B->jinv);
-    B->wdet = malloc(lanes * 8 * sizeof *B->wdet);
+    if (store) {
+        B->jinv = malloc(lanes * 72 * sizeof *B->jinv);
+        B->wdet = malloc(lanes * 8 * sizeof *B->wdet);
+    }
     B->lam = malloc(lanes * sizeof *B->lam);
     B->mu = malloc(lanes * sizeof *B->mu);
-    if (n > 0 && (!B->elem || !B->conn || !B->jinv || !B->wdet || !B->lam || !B->mu)) {
+    if (n > 0 && (!B->elem || !B->conn || (store && (!B->jinv || !B->wdet)) || !B->lam || !B->mu)) {
         hex8_bmat_free(B);
         return rf_fail(err, RF_ENOMEM, "hex8 kernel: out of memory for %ld elements", n);
     }
@@ -137,11 +139,12 @@ static rf_status bmat_alloc(hex8_bmat *B, long n, rf_error *err)
 }
 
 rf_status hex8_bmat_init(hex8_bmat *B, const double *x, const int *conn, const int *elem, long n, const double *lam,
-                         const double *mu, rf_error *err)
+                         const double *mu, int store_jacobians, rf_error *err)
 {
-    rf_status st = bmat_alloc(B, n, err);
+    rf_status st = bmat_alloc(B, n, store_jacobians, err);
     if (st != RF_OK)
         return st;
+    B->x = store_jacobians ? NULL : x;
     double dl[8][8][3];
     gauss_derivatives(dl);
     for (long s = 0; s < B->nblk * HEX8_W; s++) {
@@ -163,6 +166,8 @@ rf_status hex8_bmat_init(hex8_bmat *B, const double *x, const int *conn, const i
                 return rf_fail(err, RF_EINVAL, "hex8 kernel: element %d has det J = %g at Gauss point %d",
                                elem[k], det, q);
             }
+            if (!store_jacobians)
+                continue;
             B->wdet[(b * 8 + q) * HEX8_W + l] = s < n ? det : 0;
             for (int r = 0; r < 9; r++)
                 B->jinv[((b * 8 + q) * 9 + r) * HEX8_W + l] = inv[r];
@@ -230,6 +235,25 @@ static inline void point_gradient(const hvec m[24], const double p[3], const hve
         for (int j = 0; j < 3; j++)
             H[3 * c + j] = G0 * ji[3 * j] + G1 * ji[3 * j + 1] + G2 * ji[3 * j + 2];
     }
+}
+
+/* J^-1 (ji[3j + i] = d xi_i / d x_j) and det J at p from the modes mx of the node coordinates:
+   J[i][j] = d x_j / d xi_i is point_gradient's G with x in place of u. */
+static inline void point_jacobian(const hvec mx[24], const double p[3], hvec ji[9], hvec *det)
+{
+    const double x = p[0], y = p[1], z = p[2];
+    hvec J[9];
+    for (int j = 0; j < 3; j++) {
+        J[j] = mx[3 + j] + y * mx[12 + j] + z * mx[18 + j] + (y * z) * mx[21 + j];
+        J[3 + j] = mx[6 + j] + x * mx[12 + j] + z * mx[15 + j] + (x * z) * mx[21 + j];
+        J[6 + j] = mx[9 + j] + y * mx[15 + j] + x * mx[18 + j] + (x * y) * mx[21 + j];
+    }
+    const hvec c0 = J[4] * J[8] - J[5] * J[7], c1 = J[5] * J[6] - J[3] * J[8], c2 = J[3] * J[7] - J[4] * J[6];
+    *det = J[0] * c0 + J[1] * c1 + J[2] * c2;
+    const hvec r = 1 / *det;
+    ji[0] = c0 * r, ji[1] = (J[2] * J[7] - J[1] * J[8]) * r, ji[2] = (J[1] * J[5] - J[2] * J[4]) * r;
+    ji[3] = c1 * r, ji[4] = (J[0] * J[8] - J[2] * J[6]) * r, ji[5] = (J[2] * J[3] - J[0] * J[5]) * r;
+    ji[6] = c2 * r, ji[7] = (J[1] * J[6] - J[0] * J[7]) * r, ji[8] = (J[0] * J[4] - J[1] * J[3]) * r;
 }
 
 /* det J times isotropic linear elastic stress: S = wd (lam tr(eps) I + 2 mu eps), eps = sym(H). */
@@ -310,15 +334,22 @@ HEX8_CLONES
 static void bmat_block(const hex8_bmat *B, long b, const double *u, const hex8_stress *st, const double pts[8][3],
                        double *fe)
 {
-    hvec ue[24], m[24], F[24] = {0}, fa[24], lam, mu;
+    hvec ue[24], m[24], mx[24], F[24] = {0}, fa[24], lam, mu;
     gather_block(B, b, u, ue);
     to_modes(ue, m);
+    if (!B->jinv) {
+        gather_block(B, b, B->x, ue);
+        to_modes(ue, mx);
+    }
     vget(&lam, B->lam + b * HEX8_W), vget(&mu, B->mu + b * HEX8_W);
     for (int q = 0; q < 8; q++) {
         hvec ji[9], H[9], S[9], wd;
-        for (int r = 0; r < 9; r++)
-            vget(&ji[r], B->jinv + ((b * 8 + q) * 9 + r) * HEX8_W);
-        vget(&wd, B->wdet + (b * 8 + q) * HEX8_W);
+        if (B->jinv) {
+            for (int r = 0; r < 9; r++)
+                vget(&ji[r], B->jinv + ((b * 8 + q) * 9 + r) * HEX8_W);
+            vget(&wd, B->wdet + (b * 8 + q) * HEX8_W);
+        } else
+            point_jacobian(mx, pts[q], ji, &wd);
         point_gradient(m, pts[q], ji, H);
         if (!st || !st->fn)
             point_elastic(H, wd * lam, wd * mu, S);

@@ -13,8 +13,9 @@
  *   cubes of the slope's fine box) share one stiffness K_e, which stays in
  *   L1; only displacements stream.
  * - hex8_bmat_*: any element shape, matrix-free: J^-1 and det J at the 8
- *   Gauss points are stored (80 doubles per element instead of 576 floats),
- *   strains and stresses are formed at the points, in blocks of HEX8_W
+ *   Gauss points are stored (80 doubles per element instead of 576 floats)
+ *   or recomputed each call from the node coordinates (nothing stored: fewer
+ *   bytes, more flops), strains and stresses are formed at the points, in blocks of HEX8_W
  *   elements laid out as structure of arrays (the lane loops vectorise).  The
  *   stress at a point comes from isotropic linear elasticity or from a
  *   caller's point-wise routine sig = f(eps, state), so that plastic
@@ -54,17 +55,20 @@ typedef struct {
     long nblk;    /* blocks of HEX8_W lanes, the last one padded */
     int *elem;    /* element id per lane, -1 for padding [nblk W] */
     int *conn;    /* per block [8 nodes][W] node ids */
-    double *jinv; /* per block [8 points][9][W]: (J^-1)[j][i] = d xi_i / d x_j */
-    double *wdet; /* per block [8 points][W]: det J (Gauss weights are 1) */
+    double *jinv; /* per block [8 points][9][W]: (J^-1)[j][i] = d xi_i / d x_j; NULL: recomputed */
+    double *wdet; /* per block [8 points][W]: det J (Gauss weights are 1); NULL with jinv */
+    const double *x; /* node coordinates (3 per node) when jinv is NULL; the caller keeps them */
     double *lam;  /* per block [W]: Lame constants [Pa] */
     double *mu;
 } hex8_bmat;
 
 /* Geometry of the listed elements (x: 3 per node, conn: 8 per element) and
- * their Lame constants lam[k], mu[k] (k = list index).  RF_EINVAL for a
- * non-positive Jacobian at a Gauss point, RF_ENOMEM. */
+ * their Lame constants lam[k], mu[k] (k = list index).  store_jacobians: keep
+ * J^-1 and det J (640 B per element), else keep a pointer to x and recompute
+ * them in every call.  RF_EINVAL for a non-positive Jacobian at a Gauss
+ * point, RF_ENOMEM. */
 rf_status hex8_bmat_init(hex8_bmat *B, const double *x, const int *conn, const int *elem, long n, const double *lam,
-                         const double *mu, rf_error *err);
+                         const double *mu, int store_jacobians, rf_error *err);
 void hex8_bmat_free(hex8_bmat *B);
 /* Element forces of blocks [b0, b1). */
 void hex8_bmat_force(const hex8_bmat *B, long b0, long b1, const double *u, const hex8_stress *stress, double *fe);
