@@ -374,6 +374,14 @@ __attribute__((noinline)) static void count_lean(const bench *B, const kernels *
 __attribute__((noinline)) static void count_lean_hybrid(const bench *B, const kernels *k) { run_variant(B, k, 4, 1, 0); }
 __attribute__((noinline)) static void count_gather(const bench *B) { gather_loop(B, 1); }
 
+static void release(bench *B, kernels *k)
+{
+    hex8_bmat_free(&k->all), hex8_bmat_free(&k->rest), hex8_bmat_free(&k->lean), hex8_bmat_free(&k->lean_rest);
+    free(k->cubes);
+    f3_mesh_free(&B->mesh);
+    free(B->K), free(B->elm), free(B->dt_e), free(B->inc_ptr), free(B->inc), free(B->u), free(B->fe), free(B->f);
+}
+
 int main(int argc, char **argv)
 {
     const double ref = argc > 1 ? atof(argv[1]) : 6;
@@ -397,6 +405,7 @@ int main(int argc, char **argv)
         count_stored(&B, &k), count_bmat(&B, &k), count_hybrid(&B, &k), count_gather(&B);
         count_lean(&B, &k), count_lean_hybrid(&B, &k);
         printf("counted one pass of each kernel over %ld elements\n", B.ne);
+        release(&B, &k);
         return 0;
     }
     static const char *names[NVAR] = {"stored float K_e (today)", "matrix-free, J stored", "shared K + J stored",
@@ -411,5 +420,6 @@ int main(int argc, char **argv)
             printf("  %d thr: %6.1f / %6.1f", t, best[v][t - 1][0], best[v][t - 1][1]);
         printf("\n");
     }
+    release(&B, &k);
     return 0;
 }

@@ -257,9 +257,9 @@ static inline void point_jacobian(const hvec mx[24], const double p[3], hvec ji[
 }
 
 /* det J times isotropic linear elastic stress: S = wd (lam tr(eps) I + 2 mu eps), eps = sym(H). */
-static inline void point_elastic(const hvec H[9], hvec wlam, hvec wmu, hvec S[9])
+static inline void point_elastic(const hvec H[9], const hvec *wl, const hvec *wm, hvec S[9])
 {
-    const hvec tr = wlam * (H[0] + H[4] + H[8]), m2 = 2 * wmu;
+    const hvec wlam = *wl, wmu = *wm, tr = wlam * (H[0] + H[4] + H[8]), m2 = 2 * wmu;
     S[0] = tr + m2 * H[0], S[4] = tr + m2 * H[4], S[8] = tr + m2 * H[8];
     S[1] = S[3] = wmu * (H[1] + H[3]);
     S[2] = S[6] = wmu * (H[2] + H[6]);
@@ -351,8 +351,9 @@ static void bmat_block(const hex8_bmat *B, long b, const double *u, const hex8_s
         } else
             point_jacobian(mx, pts[q], ji, &wd);
         point_gradient(m, pts[q], ji, H);
+        const hvec wlam = wd * lam, wmu = wd * mu;
         if (!st || !st->fn)
-            point_elastic(H, wd * lam, wd * mu, S);
+            point_elastic(H, &wlam, &wmu, S);
         else
             point_callback(B, b, q, st, H, &wd, S);
         point_force(S, pts[q], ji, F);
