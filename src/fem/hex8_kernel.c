@@ -1,16 +1,22 @@
 /* hex8_kernel.c - internal-force kernels for blocks of 8-node hexahedra
  * (hex8_kernel.h): one shared stiffness for congruent elements, and a
  * matrix-free kernel that forms strains and stresses at the 2x2x2 Gauss
- * points from stored J^-1 and det J.
+ * points from J^-1 and det J, stored or recomputed from the coordinates.
  *
- * Why: today's loop streams a stored single-precision K_e, 2.3 KB per
- * element-step (docs/fem-speed.md).  A shared K_e is read from L1; the
- * matrix-free kernel reads 80 doubles per element and does about three
- * times the flops of K_e u_e, in lanes of HEX8_W elements that the compiler
- * vectorises, and it is the form a plastic material needs anyway (stress
- * at integration points).
+ * Why: today's loop streams a stored single-precision K_e, 2.7 KB per
+ * element-step with its other arrays, and runs at the machine's bandwidth
+ * floor (docs/fem-speed.md).  The matrix-free kernel moves 1.1 KB (J
+ * stored) or 0.5 KB (J recomputed) for 2-3 times the instructions, and it
+ * is the form a plastic material needs anyway (stress at the points).
  *
- * Both give, up to round-off, what f3_hex_matrices's K_e times u_e gives:
+ * How: HEX8_W elements per block, one per vector lane (GCC/clang vector
+ * extension, target clones up to AVX-512); the displacement goes to its 8
+ * trilinear modes once per element, so a point's gradient costs 27
+ * multiply-adds, and the force is gathered in the same modes (sum
+ * factorisation).  Vectors cross function calls by pointer only: a vector
+ * passed by value from a clone to a plain function changes the ABI.
+ *
+ * Both kernels give, up to round-off, f3_hex_matrices's K_e times u_e:
  * f_a = sum_q det J_q B_a(q)^T sig(q), sig = lam tr(eps) I + 2 mu eps. */
 #include "hex8_kernel.h"
 
