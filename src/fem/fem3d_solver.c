@@ -77,9 +77,12 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 #undef BAD
 }
 
+/* Meshes up to this many elements keep J^-1 and det J (640 B per element: 8 MB). */
+#define F3_STORE_J_MAX 13000
+
 /* Buffers of the 3D solver in the workspace pool. */
 enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM, Q_DASH, Q_ELM, Q_LAMX, Q_FIXED,
-       Q_OUTER };
+       Q_OUTER, Q_UB };
 
 /* The state of one 3D run. */
 typedef struct {
@@ -184,6 +187,7 @@ static rf_status solid_alloc(solid_run *R, rf_error *err)
     const size_t nn = (size_t)R->nn, ne = (size_t)R->ne, nd = (size_t)R->ndof;
     f3_system *S = &R->S;
     S->fel = fem_pool_get(P, Q_FEL, 3 * (size_t)R->nbn * sizeof(double), 0);
+    S->ub = fem_pool_get(P, Q_UB, 3 * (size_t)R->nbn * sizeof(double), 0);
     R->K = fem_pool_get(P, Q_K, ne * 576 * sizeof(float), 0);
     S->fe = fem_pool_get(P, Q_FE, ne * 24 * sizeof(double), 0);
     S->inc_ptr = fem_pool_get(P, Q_INC_PTR, (nn + 1) * sizeof(long), 1);
@@ -199,7 +203,7 @@ static rf_status solid_alloc(solid_run *R, rf_error *err)
     R->lamx = fem_pool_get(P, Q_LAMX, ne * sizeof(double), 0);
     R->fixed = fem_pool_get(P, Q_FIXED, nd, 1);
     R->outer = fem_pool_get(P, Q_OUTER, nn * sizeof(int), 0);
-    if (!R->K || !S->fe || !S->fel || !S->inc_ptr || !S->inc || !R->u || !R->v || !R->f || !R->fext || !R->mass ||
+    if (!R->K || !S->fe || !S->fel || !S->ub || !S->inc_ptr || !S->inc || !R->u || !R->v || !R->f || !R->fext || !R->mass ||
         !R->invm || !R->dash || !R->elm || !R->lamx || !R->fixed || !R->outer)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->ne);
     return RF_OK;
@@ -397,8 +401,17 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
         return st;
     solid_masses(R);
     const long nbe = R->mesh.boulder_elems;
-    fem_kernel_linear_hex(&S->kernel[F3_BOULDER], 0, nbe, R->K, 1);
-    fem_kernel_linear_hex(&S->kernel[F3_SLOPE], nbe, R->ne - nbe, R->K + 576 * nbe, 1);
+    /* matrix-free kernels (docs/fem-speed.md): J^-1 stored while the mesh is small enough for the
+       640 B per element to stay in cache, recomputed from x beyond (fewer bytes per step) */
+    const int store_j = R->ne <= F3_STORE_J_MAX;
+    for (int b = 0; b < 2; b++) {
+        const f3_material *m = &R->mat[b];
+        const double lam = m->E * m->nu / ((1 + m->nu) * (1 - 2 * m->nu)), mu = m->E / (2 * (1 + m->nu));
+        const long first = b == F3_BOULDER ? 0 : nbe, count = b == F3_BOULDER ? nbe : R->ne - nbe;
+        if ((st = fem_kernel_hex8_matfree(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, lam, mu, store_j,
+                                          err)) != RF_OK)
+            return st;
+    }
     solid_dashpots(R);
     if ((st = solid_contact_setup(R, err)) != RF_OK)
         return st;

@@ -70,7 +70,7 @@ static void points_destroy(fem_kernel *k)
 }
 
 static const fem_kernel_ops points_ops = {"integration points (axisymmetric quad)", points_forces, NULL,
-                                          points_commit, points_destroy};
+                                          points_commit, points_destroy, NULL};
 
 rf_status fem_kernel_points_axi(fem_kernel *k, long first, long count, const double *r, const double *z,
                                 const int *conn, const fem_point_law *law, rf_error *err)

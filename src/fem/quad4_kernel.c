@@ -31,25 +31,41 @@ typedef double qvec __attribute__((vector_size(8 * sizeof(double))));
 #error "quad4_kernel.c needs the GCC/clang vector extension"
 #endif
 
+/* y = K x for one element, as 8 column updates acc += K[:, j] x_j (K symmetric: column j = row j);
+   the one product both entry points use, so the fused and the element-vector paths give the same
+   bits. */
+static inline void quad4_product(const double *k, const double x[8], double y[8])
+{
+    qvec acc = {0}, col;
+    for (int j = 0; j < 8; j++) {
+        memcpy(&col, k + 8 * j, sizeof col);
+        acc += col * x[j];
+    }
+    memcpy(y, &acc, sizeof acc);
+}
+
 QUAD4_CLONES
 void quad4_force(const double *Kg, const int *kidx, const int *conn, long e0, long e1, const double *u, double *f)
 {
     for (long e = e0; e < e1; e++) {
         const int *c = conn + 4 * e;
         const double *k = Kg + 64 * (kidx ? (long)kidx[e] : e);
-        qvec acc = {0}, col;
-        for (int a = 0; a < 4; a++) /* column 2a + d = row 2a + d: K is symmetric */
-            for (int d = 0; d < 2; d++) {
-                memcpy(&col, k + 8 * (2 * a + d), sizeof col);
-                acc += col * u[2 * (long)c[a] + d];
-            }
-        double fe[8];
-        memcpy(fe, &acc, sizeof fe);
+        double x[8], y[8];
+        for (int a = 0; a < 4; a++)
+            x[2 * a] = u[2 * (long)c[a]], x[2 * a + 1] = u[2 * (long)c[a] + 1];
+        quad4_product(k, x, y);
         for (int a = 0; a < 4; a++) {
-            f[2 * (long)c[a]] += fe[2 * a];
-            f[2 * (long)c[a] + 1] += fe[2 * a + 1];
+            f[2 * (long)c[a]] += y[2 * a];
+            f[2 * (long)c[a] + 1] += y[2 * a + 1];
         }
     }
+}
+
+QUAD4_CLONES
+void quad4_force_elements(const double *Kg, long e0, long e1, const double *ue, double *fe)
+{
+    for (long e = e0; e < e1; e++)
+        quad4_product(Kg + 64 * e, ue + 8 * (e - e0), fe + 8 * (e - e0));
 }
 
 typedef struct {

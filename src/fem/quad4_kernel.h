@@ -18,6 +18,11 @@
  * nodes per element; u, f: 2 per node.  kidx NULL means kidx[e] = e. */
 void quad4_force(const double *Kg, const int *kidx, const int *conn, long e0, long e1, const double *u, double *f);
 
+/* fe[8 (e - e0) ..] = K_e ue[8 (e - e0) ..] for e in [e0, e1) (K_e at Kg + 64 e):
+ * element vectors in and out, the same arithmetic as quad4_force (the
+ * multi-thread path of the solver: element forces, then a node gather). */
+void quad4_force_elements(const double *Kg, long e0, long e1, const double *ue, double *fe);
+
 /* Groups elements whose node radii agree within tol [m] and whose node z,
  * relative to node 0, agree within tol (same shape, shifted along z; node
  * order must match too).  Writes kidx[e] (group of e, in an order fixed by
