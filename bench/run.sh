@@ -21,4 +21,7 @@ echo "== 3D mesh zones, element time steps and force kernels (bench_hex8, a/h = 
 OMP_WAIT_POLICY=passive "$build"/bench_hex8 6 100 2
 echo "== axisymmetric force kernel (bench_quad4, a/h = 10) =="
 "$build"/bench_quad4 10 300
+echo "== time to accuracy, 10 m/s (bench_tta; converged values and curves: docs/fem-speed.md) =="
+for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_tta axi "$t" 6 8 10; done
+for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_tta 3d "$t" 4 5 6; done
 echo "(whole studies: bench/bench_study.sh; it takes minutes)"
