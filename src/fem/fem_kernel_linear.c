@@ -74,11 +74,11 @@ static const fem_kernel_ops hex_pooled = {"linear elastic (hexahedron)", hex_for
 void fem_kernel_linear_axi(fem_kernel *k, long first, long count, double *K, int pooled)
 {
     k->ops = pooled ? &axi_pooled : &axi_owned;
-    k->first = first, k->count = count, k->ndofe = 8, k->data = K;
+    k->first = first, k->count = count, k->ndofe = 8, k->units = 0, k->data = K;
 }
 
 void fem_kernel_linear_hex(fem_kernel *k, long first, long count, float *K, int pooled)
 {
     k->ops = pooled ? &hex_pooled : &hex_owned;
-    k->first = first, k->count = count, k->ndofe = 24, k->data = K;
+    k->first = first, k->count = count, k->ndofe = 24, k->units = 0, k->data = K;
 }
