@@ -103,7 +103,8 @@ static void usage(FILE *f)
         "                           wave returns into the contact); --boundary fixed\n"
         "                           --domain-factor 10 is the seed paper's model\n"
         "  --threads N              fem: threads of the solver, 1..1024 (default: all\n"
-        "                           cores; the results are the same bit for bit)\n"
+        "                           cores for the 3D model, 1 for the axisymmetric one;\n"
+        "                           the results are the same bit for bit)\n"
         "  --vtk DIR                fem: write VTK snapshots into DIR\n"
         "\n"
         "Output:\n"
@@ -388,7 +389,10 @@ int rf_cli_impact(int argc, char **argv)
         }
     }
 
-    if (!given[O_THREADS]) { /* one impact on all cores: the solvers give the same bits for any count */
+    /* the 3D model on all cores (the solvers give the same bits for any count); the axisymmetric
+       one on one: its steps (~0.1 ms) are shorter than a thread hand-off, and 2 threads were up to
+       2x slower up to 12 600 elements (docs/fem-speed.md section 5) */
+    if (!given[O_THREADS] && rf_fem_needs_3d(in)) {
         long cores = sysconf(_SC_NPROCESSORS_ONLN);
         spec.fem.threads = cores < 1 ? 1 : cores > RF_CLI_MAX_THREADS ? RF_CLI_MAX_THREADS : (int)cores;
     }
