@@ -15,6 +15,15 @@ echo "== 3D FE, 10 m/s on 45 deg, f = 0.6 (bench_fem3d, a/h = 4) =="
 for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_fem3d 4 "$t"; done
 echo "== material point updates and energy closure (bench_material) =="
 "$build"/bench_material
+echo "== memory bandwidth (bench_stream: triad, 3 / 24 / 192 MB) =="
+"$build"/bench_stream 3 24 192
+echo "== 3D mesh zones, element time steps and force kernels (bench_hex8, a/h = 6; docs/fem-speed.md) =="
+OMP_WAIT_POLICY=passive "$build"/bench_hex8 6 100 2
+echo "== axisymmetric force kernel (bench_quad4, a/h = 10) =="
+"$build"/bench_quad4 10 300
+echo "== time to accuracy, 10 m/s (bench_tta; converged values and curves: docs/fem-speed.md) =="
+for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_tta axi "$t" 6 8 10; done
+for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_tta 3d "$t" 4 5 6; done
 echo "(whole studies: bench/bench_study.sh; it takes minutes)"
 echo "== trajectories: 30-segment profile, constant law (bench_trajectory; goal >= 200 000 /s/core) =="
 "$build"/bench_trajectory 200000 1

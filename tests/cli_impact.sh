@@ -112,6 +112,15 @@ assert 0 < o["indentation_depth"] < o["penetration_max"] and o["equivalent_plast
 assert abs(o["energy_error"]) < 5e-3, o
 PY
     fi
+    # the default uses all cores: the same numbers as one thread (all but the wall time), for the
+    # axisymmetric and the 3D model
+    for args in "--refinement 2 --boundary absorbing" "--refinement 2 --slope-angle 45 --friction 0.6"; do
+        # shellcheck disable=SC2086
+        a=$("$bin" impact --solver fem $args --json | sed 's/, "wall_seconds".*//')
+        # shellcheck disable=SC2086
+        b=$("$bin" impact --solver fem $args --threads 1 --json | sed 's/, "wall_seconds".*//')
+        [ -n "$a" ] && [ "$a" = "$b" ] || fail "fem $args: default threads differ from 1 thread: $a / $b"
+    done
 else
     err=$("$bin" impact --solver fem --refinement 2 2>&1 >/dev/null)
     case "$err" in *"not built"*) echo "cli_impact: FE solver not built, FE check skipped" ;;

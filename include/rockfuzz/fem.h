@@ -42,7 +42,8 @@ rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *
 
 /* Material kernel of a body (src/fem/fem_kernel.h): how its internal force is computed. */
 typedef enum {
-    RF_FEM_KERNEL_STIFFNESS = 0, /* linear elastic, precomputed element stiffness (the fastest; default) */
+    RF_FEM_KERNEL_STIFFNESS = 0, /* linear elastic, the fastest (default): axisymmetric, precomputed element
+                                    stiffness; 3D, matrix-free at the Gauss points (docs/fem-speed.md) */
     RF_FEM_KERNEL_POINTS         /* linear elastic stress update at the integration points: the form
                                     elasto-plastic laws take (axisymmetric model only; ~5x slower) */
 } rf_fem_kernel;

@@ -2,7 +2,9 @@
 #include "cli/cli.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static void usage(FILE *f)
 {
@@ -34,6 +36,27 @@ static void usage(FILE *f)
         ROCKFUZZ_VERSION);
 }
 
+/* `rockfuzz impact` runs one FE impact on all cores.  Its threads meet
+ * several times per time step; with the OpenMP runtime's default waiting
+ * (spinning), a thread that the OS has descheduled on a busy machine costs
+ * its partner whole time slices: measured on a loaded 2-core machine, a 3D
+ * impact took 90-129 s on 2 threads instead of 13 s on 1 (docs/fem-speed.md);
+ * with passive waiting 4.5-11 s.  The runtime reads OMP_WAIT_POLICY when it
+ * is loaded, before main, so when the user has not chosen a policy the
+ * program restarts itself once with OMP_WAIT_POLICY=passive (Linux; the
+ * results do not depend on it). */
+static void passive_openmp_waits(char **argv)
+{
+#if defined(__linux__) && defined(_OPENMP)
+    if (getenv("OMP_WAIT_POLICY"))
+        return;
+    if (setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+        execv("/proc/self/exe", argv); /* returns only on failure: go on with the default policy */
+#else
+    (void)argv;
+#endif
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -51,8 +74,10 @@ int main(int argc, char **argv)
     }
     if (!strcmp(cmd, "run"))
         return rf_cli_run(argc - 1, argv + 1);
-    if (!strcmp(cmd, "impact"))
+    if (!strcmp(cmd, "impact")) {
+        passive_openmp_waits(argv);
         return rf_cli_impact(argc - 1, argv + 1);
+    }
     if (!strcmp(cmd, "trajectory"))
         return rf_cli_trajectory(argc - 1, argv + 1);
     if (!strcmp(cmd, "status"))

@@ -1,11 +1,14 @@
 /* fem3d_force.c - the internal force of the 3D model through the material
- * kernels (fem_kernel.h), with the boulder's elastic part taken in its
- * co-rotational frame (a rigid rotation costs no strain energy), the
- * deterministic node-ordered assembly, and the boulder's strain energy. */
+ * kernels (fem_kernel.h: element-vector or nodal-field kernels), with the
+ * boulder's elastic part taken in its co-rotational frame (a rigid rotation
+ * costs no strain energy), the deterministic node-ordered assembly, and the boulder's strain energy. */
 #include "fem3d_internal.h"
 
 #include <math.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* Boulder CM c and rotation angle theta about y (the axis normal to the plane of motion; the
    motion is planar by symmetry): theta = atan2(A_xz - A_zx, A_xx + A_zz) with
@@ -34,6 +37,68 @@ static void boulder_frame(f3_system *S, const double *u)
     memcpy(S->c, c, sizeof c);
 }
 
+/* Element forces by kernels on element vectors (forces()): u_el formed per element-node. */
+static void element_vector_forces(f3_system *S, const double *u)
+{
+    const int *conn = S->mesh->conn;
+    const double *X = S->mesh->x, *R = S->R, *c = S->c, *c0 = S->c0;
+#ifdef _OPENMP
+#pragma omp for schedule(static)
+#endif
+    for (long e = 0; e < S->ne; e++) {
+        const int *cn = conn + 8 * e;
+        double uel[24];
+        if (e < S->mesh->boulder_elems) { /* elastic part in the boulder's frame */
+            for (int a = 0; a < 8; a++) {
+                const long i = cn[a];
+                const double r[3] = {X[3 * i] + u[3 * i] - c[0], X[3 * i + 1] + u[3 * i + 1] - c[1],
+                                     X[3 * i + 2] + u[3 * i + 2] - c[2]};
+                for (int q = 0; q < 3; q++)
+                    uel[3 * a + q] = R[q] * r[0] + R[3 + q] * r[1] + R[6 + q] * r[2] - (X[3 * i + q] - c0[q]);
+            }
+        } else {
+            for (int a = 0; a < 8; a++) {
+                uel[3 * a] = u[3 * cn[a]];
+                uel[3 * a + 1] = u[3 * cn[a] + 1];
+                uel[3 * a + 2] = u[3 * cn[a] + 2];
+            }
+        }
+        const fem_kernel *k = &S->kernel[e >= S->mesh->boulder_elems];
+        k->ops->forces(k, e, e + 1, uel, S->fe + 24 * e); /* one element per call: 576 multiply-adds each */
+    }
+}
+
+/* Element forces by kernels on the nodal field (forces_field()): the boulder's field in its
+   frame once per node, u_b = R^T (x - c) - (X - c0), then the work units of both bodies as one
+   list split evenly over the threads (each element from one unit: the same bits for any split). */
+static void field_forces(f3_system *S, const double *u)
+{
+    const double *X = S->mesh->x, *R = S->R, *c = S->c, *c0 = S->c0;
+#ifdef _OPENMP
+#pragma omp for schedule(static)
+#endif
+    for (long i = 0; i < S->nbn; i++) {
+        const double r[3] = {X[3 * i] + u[3 * i] - c[0], X[3 * i + 1] + u[3 * i + 1] - c[1],
+                             X[3 * i + 2] + u[3 * i + 2] - c[2]};
+        for (int q = 0; q < 3; q++)
+            S->ub[3 * i + q] = R[q] * r[0] + R[3 + q] * r[1] + R[6 + q] * r[2] - (X[3 * i + q] - c0[q]);
+    }
+    const fem_kernel *kb = &S->kernel[F3_BOULDER], *ks = &S->kernel[F3_SLOPE];
+    const long nb = kb->units, nw = nb + ks->units;
+    long tid = 0, T = 1;
+#ifdef _OPENMP
+    tid = omp_get_thread_num(), T = omp_get_num_threads();
+#endif
+    const long w0 = nw * tid / T, w1 = nw * (tid + 1) / T;
+    if (w0 < nb)
+        kb->ops->forces_field(kb, w0, w1 < nb ? w1 : nb, S->ub, S->fe);
+    if (w1 > nb)
+        ks->ops->forces_field(ks, w0 > nb ? w0 - nb : 0, w1 - nb, u, S->fe);
+#ifdef _OPENMP
+#pragma omp barrier
+#endif
+}
+
 /* f = f_int(u) through the material kernels (fem_kernel.h): for the slope
    the element displacements are u; for the boulder f = dE/dx with E = 1/2 u_el' K u_el,
    u_el = R^T (x - c) - (X - c0): R K u_el plus the term through theta(x), which makes the force
@@ -43,39 +108,19 @@ static void boulder_frame(f3_system *S, const double *u)
    any thread count); the one torque sum runs serially. */
 void f3_internal_force(f3_system *S, const double *u, double *f)
 {
-    const int *conn = S->mesh->conn;
     const double *X = S->mesh->x;
-    const long ne = S->ne, nn = S->nn, nbn = S->nbn;
+    const long nn = S->nn, nbn = S->nbn;
     boulder_frame(S, u);
     const double *R = S->R, *c = S->c, *c0 = S->c0;
+    const int field = S->kernel[F3_BOULDER].ops->forces_field && S->kernel[F3_SLOPE].ops->forces_field;
 #ifdef _OPENMP
 #pragma omp parallel num_threads(S->threads) if (S->threads > 1)
 #endif
     {
-#ifdef _OPENMP
-#pragma omp for schedule(static)
-#endif
-        for (long e = 0; e < ne; e++) {
-            const int *cn = conn + 8 * e;
-            double uel[24];
-            if (e < S->mesh->boulder_elems) { /* elastic part in the boulder's frame */
-                for (int a = 0; a < 8; a++) {
-                    const long i = cn[a];
-                    const double r[3] = {X[3 * i] + u[3 * i] - c[0], X[3 * i + 1] + u[3 * i + 1] - c[1],
-                                         X[3 * i + 2] + u[3 * i + 2] - c[2]};
-                    for (int q = 0; q < 3; q++)
-                        uel[3 * a + q] = R[q] * r[0] + R[3 + q] * r[1] + R[6 + q] * r[2] - (X[3 * i + q] - c0[q]);
-                }
-            } else {
-                for (int a = 0; a < 8; a++) {
-                    uel[3 * a] = u[3 * cn[a]];
-                    uel[3 * a + 1] = u[3 * cn[a] + 1];
-                    uel[3 * a + 2] = u[3 * cn[a] + 2];
-                }
-            }
-            const fem_kernel *k = &S->kernel[e >= S->mesh->boulder_elems];
-            k->ops->forces(k, e, e + 1, uel, S->fe + 24 * e); /* one element per call: 576 multiply-adds each */
-        }
+        if (field)
+            field_forces(S, u);
+        else
+            element_vector_forces(S, u);
 #ifdef _OPENMP
 #pragma omp for schedule(static)
 #endif

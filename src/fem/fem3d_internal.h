@@ -122,6 +122,7 @@ typedef struct {
     double R[9], c[3]; /* boulder rotation and CM of the last internal_force call */
     double p, q;       /* atan2 arguments of the rotation angle */
     double *fel;       /* boulder element forces in the boulder frame, 3 per node */
+    double *ub;        /* boulder displacements in its frame, 3 per node (matrix-free kernels) */
     int threads;
 } f3_system;
 

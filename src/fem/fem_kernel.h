@@ -51,12 +51,23 @@ typedef struct {
     void (*assemble)(const fem_kernel *k, long e0, long e1, const int *conn, const double *u, double *f);
     void (*commit)(fem_kernel *k);
     void (*destroy)(fem_kernel *k);
+    /* (Last, so that positional initialisers of older kernels stay valid.)
+       Optional matrix-free path (NULL if absent): the forces of the work units
+       [w0, w1) of the block (k->units of them; a unit is a fixed group of
+       elements, e.g. one SIMD block of hexahedra) straight from the nodal
+       field u (the solver passes the boulder's field in its own frame),
+       element e's forces written at fe + ndofe e (global numbering).  Each
+       element's forces come from one unit alone: any split of the units over
+       threads gives the same bits.  A kernel with this path may leave
+       forces() NULL; the time loop then calls this one. */
+    void (*forces_field)(const fem_kernel *k, long w0, long w1, const double *u, double *fe);
 } fem_kernel_ops;
 
 struct fem_kernel {
     const fem_kernel_ops *ops;
     long first, count; /* the block: elements [first, first + count) */
     int ndofe;         /* dofs per element: 8 (axisymmetric quad), 24 (hexahedron) */
+    long units;        /* work units of forces_field (0 without it) */
     void *data;        /* the kernel's own data */
 };
 
@@ -95,6 +106,14 @@ void fem_kernel_linear_hex(fem_kernel *k, long first, long count, float *K, int 
 
 /* A rigid body's block: no internal force (fem_kernel_rigid.c). */
 void fem_kernel_rigid(fem_kernel *k, long first, long count, int ndofe);
+/* Linear elasticity of hexahedra, matrix-free (hex8_kernel.h): strains and
+ * stresses at the 2x2x2 Gauss points from J^-1 and det J, in SIMD blocks of
+ * HEX8_W elements; J stored (store_jacobians != 0, 640 B per element) or
+ * recomputed from x each step (x and conn must outlive the kernel).  Full
+ * double precision (the stored-K kernel above keeps K in float).  lam, mu:
+ * the block's Lame constants.  Only forces_field is provided. */
+rf_status fem_kernel_hex8_matfree(fem_kernel *k, long first, long count, const double *x, const int *conn, double lam,
+                                  double mu, int store_jacobians, rf_error *err);
 
 /* Integration-point kernel of the axisymmetric quad (2x2 Gauss): keeps B and
  * the weight at every point, the committed strain, stress and internal

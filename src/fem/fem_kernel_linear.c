@@ -1,7 +1,9 @@
 /* fem_kernel_linear.c - the linear-elastic material kernels (fem_kernel.h):
  * fe = K_e ue with the element stiffness precomputed at set-up, for the
- * axisymmetric quad (double) and the hexahedron (float, symmetric). */
+ * axisymmetric quad (double; the product in quad4_kernel.c) and the
+ * hexahedron (float, symmetric). */
 #include "fem_kernel.h"
+#include "quad4_kernel.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -16,47 +18,19 @@
 #define RF_VECTOR_CLONES
 #endif
 
-/* Local copies: without them the compiler must assume that a store to fe
- * may change ue or K and reloads them (3x slower). */
+/* The axisymmetric quad's K_e u_e as 8 vector column updates (quad4_kernel.c: 108 instead of
+ * 245 instructions per element-step, docs/fem-speed.md); both paths share one product. */
 static void axi_forces(const fem_kernel *k, long e0, long e1, const double *ue, double *fe)
 {
     const double *K = k->data;
-    for (long e = e0; e < e1; e++, ue += 8, fe += 8) {
-        const double *ke = K + 64 * (e - k->first);
-        double x[8], y[8];
-        memcpy(x, ue, sizeof x);
-        for (int a = 0; a < 8; a++) {
-            const double *ka = ke + 8 * a;
-            y[a] = ka[0] * x[0] + ka[1] * x[1] + ka[2] * x[2] + ka[3] * x[3] + ka[4] * x[4] + ka[5] * x[5] +
-                   ka[6] * x[6] + ka[7] * x[7];
-        }
-        memcpy(fe, y, sizeof y);
-    }
+    quad4_force_elements(K, e0 - k->first, e1 - k->first, ue, fe);
 }
 
-/* fe = K_e u_e with K symmetric: fe = sum_j K[j][.] u_j runs over contiguous
- * rows as a vectorisable axpy. */
-/* The fused gather-multiply-scatter of the axisymmetric quads (conn: 4
- * nodes per element, 2 dofs per node): for this 64-multiply-add element the
- * element-vector path (forces + assembly) costs 30 % more instructions. */
-RF_VECTOR_CLONES
+/* The fused gather-multiply-scatter (conn: 4 nodes per element, 2 dofs per
+ * node), element order. */
 static void axi_assemble(const fem_kernel *k, long e0, long e1, const int *conn, const double *u, double *f)
 {
-    const double *K = k->data;
-    for (long e = e0; e < e1; e++) {
-        const int *c = conn + 4 * e;
-        const double *ke = K + 64 * (e - k->first);
-        double x[8], y[8];
-        for (int a = 0; a < 4; a++)
-            x[2 * a] = u[2 * c[a]], x[2 * a + 1] = u[2 * c[a] + 1];
-        for (int a = 0; a < 8; a++) {
-            const double *ka = ke + 8 * a;
-            y[a] = ka[0] * x[0] + ka[1] * x[1] + ka[2] * x[2] + ka[3] * x[3] + ka[4] * x[4] + ka[5] * x[5] +
-                   ka[6] * x[6] + ka[7] * x[7];
-        }
-        for (int a = 0; a < 4; a++)
-            f[2 * c[a]] += y[2 * a], f[2 * c[a] + 1] += y[2 * a + 1];
-    }
+    quad4_force(k->data, NULL, conn + 4 * k->first, e0 - k->first, e1 - k->first, u, f);
 }
 
 RF_VECTOR_CLONES
@@ -91,20 +65,20 @@ static void pooled_destroy(fem_kernel *k)
 }
 
 static const fem_kernel_ops axi_owned = {"linear elastic (axisymmetric quad)", axi_forces, axi_assemble, NULL,
-                                         owned_destroy};
+                                         owned_destroy, NULL};
 static const fem_kernel_ops axi_pooled = {"linear elastic (axisymmetric quad)", axi_forces, axi_assemble, NULL,
-                                          pooled_destroy};
-static const fem_kernel_ops hex_owned = {"linear elastic (hexahedron)", hex_forces, NULL, NULL, owned_destroy};
-static const fem_kernel_ops hex_pooled = {"linear elastic (hexahedron)", hex_forces, NULL, NULL, pooled_destroy};
+                                          pooled_destroy, NULL};
+static const fem_kernel_ops hex_owned = {"linear elastic (hexahedron)", hex_forces, NULL, NULL, owned_destroy, NULL};
+static const fem_kernel_ops hex_pooled = {"linear elastic (hexahedron)", hex_forces, NULL, NULL, pooled_destroy, NULL};
 
 void fem_kernel_linear_axi(fem_kernel *k, long first, long count, double *K, int pooled)
 {
     k->ops = pooled ? &axi_pooled : &axi_owned;
-    k->first = first, k->count = count, k->ndofe = 8, k->data = K;
+    k->first = first, k->count = count, k->ndofe = 8, k->units = 0, k->data = K;
 }
 
 void fem_kernel_linear_hex(fem_kernel *k, long first, long count, float *K, int pooled)
 {
     k->ops = pooled ? &hex_pooled : &hex_owned;
-    k->first = first, k->count = count, k->ndofe = 24, k->data = K;
+    k->first = first, k->count = count, k->ndofe = 24, k->units = 0, k->data = K;
 }

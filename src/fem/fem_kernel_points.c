@@ -88,7 +88,7 @@ static void points_destroy(fem_kernel *k)
 }
 
 static const fem_kernel_ops points_ops = {"integration points (axisymmetric quad)", points_forces, NULL,
-                                          points_commit, points_destroy};
+                                          points_commit, points_destroy, NULL};
 
 int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *plastic_strain)
 {

@@ -18,7 +18,8 @@ static void rigid_assemble(const fem_kernel *k, long e0, long e1, const int *con
     (void)k, (void)e0, (void)e1, (void)conn, (void)u, (void)f;
 }
 
-static const fem_kernel_ops rigid_ops = {"rigid body (no internal force)", rigid_forces, rigid_assemble, NULL, NULL};
+static const fem_kernel_ops rigid_ops = {.name = "rigid body (no internal force)", .forces = rigid_forces,
+                                         .assemble = rigid_assemble};
 
 void fem_kernel_rigid(fem_kernel *k, long first, long count, int ndofe)
 {

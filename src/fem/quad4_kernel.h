@@ -1,0 +1,36 @@
+/* quad4_kernel.h - internal-force kernel for blocks of 4-node axisymmetric
+ * quadrilaterals with a precomputed 8 x 8 stiffness, array in, array out,
+ * for the axisymmetric solver to call (docs/fem-speed.md).
+ *
+ * The axisymmetric element stiffness depends on the radial positions but
+ * not on a shift along z: in the uniform core every element of one column
+ * (and in the graded part every element repeated along z) has the same K_e.
+ * So elements point to a stiffness through an index, kidx[e], into a table
+ * of distinct matrices: with kidx[e] = e this is today's per-element store;
+ * with quad4_group_by_shape the table shrinks to one K per shape and stays
+ * in cache.  Internal header. */
+#ifndef ROCKFUZZ_QUAD4_KERNEL_H
+#define ROCKFUZZ_QUAD4_KERNEL_H
+
+/* f[dofs of e] += K_{kidx[e]} u_e for e in [e0, e1), in element order (the
+ * solver's scatter: one f per thread, summed in thread order afterwards).
+ * Kg: 64 per matrix, row-major and symmetric, dofs r0 z0 r1 z1 ...; conn: 4
+ * nodes per element; u, f: 2 per node.  kidx NULL means kidx[e] = e. */
+void quad4_force(const double *Kg, const int *kidx, const int *conn, long e0, long e1, const double *u, double *f);
+
+/* fe[8 (e - e0) ..] = K_e ue[8 (e - e0) ..] for e in [e0, e1) (K_e at Kg + 64 e):
+ * element vectors in and out, the same arithmetic as quad4_force (the
+ * multi-thread path of the solver: element forces, then a node gather). */
+void quad4_force_elements(const double *Kg, long e0, long e1, const double *ue, double *fe);
+
+/* Groups elements whose node radii agree within tol [m] and whose node z,
+ * relative to node 0, agree within tol (same shape, shifted along z; node
+ * order must match too).  Writes kidx[e] (group of e, in an order fixed by
+ * the shapes) and rep[g] (the lowest element id of group g); returns the
+ * number of groups, or -1 when out of memory.  Shapes that straddle a
+ * rounding boundary of tol may land in separate groups (less sharing, never
+ * a wrong K). */
+long quad4_group_by_shape(const double *r, const double *z, const int *conn, long ne, double tol, int *kidx,
+                          int *rep);
+
+#endif
