@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/util.h"
 #include "fem/fem3d_internal.h"
 #include "fem/fem3d_spec.h"
 #include "fem/hex8_kernel.h"
@@ -139,7 +140,7 @@ static void real_mesh(double refinement, f3_mesh *mesh, f3_mesh_spec *ms)
 {
     rf_impact_input in = {.radius = 1, .boulder_density = 2600, .slope_density = 2600, .boulder_E = 68.2e9,
                           .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10,
-                          .slope_angle = 45 * M_PI / 180, .friction = 0.6};
+                          .slope_angle = 45 * RF_PI / 180, .friction = 0.6};
     rf_fem_options o;
     rf_fem_options_default(&o);
     o.refinement = refinement;

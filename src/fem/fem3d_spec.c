@@ -9,6 +9,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/util.h"
+
 void f3_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *o, const rf_fem3d_options *o3,
                          f3_mesh_spec *ms, double *h_out, double *a_hertz)
 {
@@ -19,7 +21,7 @@ void f3_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *o, con
         c = in->horizontal_axis;
         d = in->vertical_axis > 0 ? in->vertical_axis : in->radius * in->radius * in->radius / (c * c);
     }
-    const double Rc = c * c / d, mass = 4.0 / 3.0 * M_PI * c * c * d * in->boulder_density;
+    const double Rc = c * c / d, mass = 4.0 / 3.0 * RF_PI * c * c * d * in->boulder_density;
     const double Estar = 1 / ((1 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E +
                               (1 - in->slope_poisson * in->slope_poisson) / in->slope_E);
     const double delta_h = pow(15 * mass * Vn * Vn / (16 * Estar * sqrt(Rc)), 0.4);

@@ -8,6 +8,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/util.h"
+
 rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *o, fem_body_spec *bs,
                                fem_body_spec *ss, rf_error *err)
 {
@@ -16,7 +18,7 @@ rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *
         c = in->horizontal_axis;
         d = in->vertical_axis > 0 ? in->vertical_axis : in->radius * in->radius * in->radius / (c * c);
     }
-    const double R = c * c / d, mass = 4.0 / 3.0 * M_PI * c * c * d * in->boulder_density, V = in->velocity;
+    const double R = c * c / d, mass = 4.0 / 3.0 * RF_PI * c * c * d * in->boulder_density, V = in->velocity;
     const double Estar = 1 / ((1 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E +
                               (1 - in->slope_poisson * in->slope_poisson) / in->slope_E);
     const double delta = pow(15 * mass * V * V / (16 * Estar * sqrt(R)), 0.4);
