@@ -10,6 +10,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/util.h"
+
 void f3_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *o, const rf_fem3d_options *o3,
                          f3_mesh_spec *ms, double *h_out, double *a_hertz)
 {

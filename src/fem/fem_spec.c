@@ -9,6 +9,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/util.h"
+
 rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *o, fem_body_spec *bs,
                                fem_body_spec *ss, rf_error *err)
 {

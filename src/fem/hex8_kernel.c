@@ -198,36 +198,42 @@ static inline void vget(hvec *v, const double *p)
 /* Sum factorisation of the trilinear field: u = sum_k m_k s_k(xi, eta, zeta) with the monomials
    s = 1, xi, eta, zeta, xi eta, eta zeta, xi zeta, xi eta zeta and m_k = 1/8 sum_a s_k(node a) u_a.
    Its derivatives at a point need 27 multiply-adds instead of 72, and the force (the transpose)
-   is gathered in the same 8 modes and expanded to the nodes once per element. */
-static double mode_sign(int k, int a)
-{
-    const double s[8] = {1, XI[a], ETA[a], ZETA[a], XI[a] * ETA[a], ETA[a] * ZETA[a], XI[a] * ZETA[a],
-                         XI[a] * ETA[a] * ZETA[a]};
-    return s[k];
-}
+   is gathered in the same 8 modes and expanded to the nodes once per element.  Node order as
+   XI/ETA/ZETA: 0 (-,-,-) 1 (+,-,-) 2 (+,+,-) 3 (-,+,-), 4-7 the same at zeta = +1. */
 
-/* m[3k + c] = 1/8 sum_a s_k(a) ue[3a + c], k = 1..7 (the constant mode carries no strain). */
+/* m[3k + c] = 1/8 sum_a s_k(a) ue[3a + c], k = 1..7 (the constant mode carries no strain): three
+   butterfly stages (xi, eta, zeta pairs of nodes), 23 additions instead of 56 multiply-adds. */
 static inline void to_modes(const hvec ue[24], hvec m[24])
 {
-    for (int k = 1; k < 8; k++)
-        for (int c = 0; c < 3; c++) {
-            hvec acc = {0};
-            for (int a = 0; a < 8; a++)
-                acc += (0.125 * mode_sign(k, a)) * ue[3 * a + c];
-            m[3 * k + c] = acc;
-        }
+    for (int c = 0; c < 3; c++) {
+        const hvec *u0 = &ue[c];
+#define U(a) u0[3 * (a)]
+        const hvec s01 = U(1) + U(0), d01 = U(1) - U(0), s32 = U(2) + U(3), d32 = U(2) - U(3);
+        const hvec s45 = U(5) + U(4), d45 = U(5) - U(4), s76 = U(6) + U(7), d76 = U(6) - U(7);
+#undef U
+        const hvec ssb = s32 + s01, sdb = s32 - s01, sst = s76 + s45, sdt = s76 - s45;
+        const hvec dsb = d32 + d01, ddb = d32 - d01, dst = d76 + d45, ddt = d76 - d45;
+        m[3 + c] = 0.125 * (dst + dsb), m[6 + c] = 0.125 * (sdt + sdb), m[9 + c] = 0.125 * (sst - ssb);
+        m[12 + c] = 0.125 * (ddt + ddb), m[15 + c] = 0.125 * (sdt - sdb), m[18 + c] = 0.125 * (dst - dsb);
+        m[21 + c] = 0.125 * (ddt - ddb);
+    }
 }
 
-/* fe[3a + c] = 1/8 sum_k s_k(a) F[3k + c]. */
+/* fe[3a + c] = 1/8 sum_k s_k(a) F[3k + c]: the transposed butterflies (F_0 = 0). */
 static inline void from_modes(const hvec F[24], hvec fa[24])
 {
-    for (int a = 0; a < 8; a++)
-        for (int c = 0; c < 3; c++) {
-            hvec acc = {0};
-            for (int k = 1; k < 8; k++)
-                acc += (0.125 * mode_sign(k, a)) * F[3 * k + c];
-            fa[3 * a + c] = acc;
-        }
+    for (int c = 0; c < 3; c++) {
+        const hvec F1 = F[3 + c], F2 = F[6 + c], F3 = F[9 + c], F4 = F[12 + c], F5 = F[15 + c], F6 = F[18 + c],
+                   F7 = F[21 + c];
+        const hvec sst = F3, ssb = -F3, sdt = F2 + F5, sdb = F2 - F5;
+        const hvec dst = F1 + F6, dsb = F1 - F6, ddt = F4 + F7, ddb = F4 - F7;
+        const hvec s32 = ssb + sdb, s01 = ssb - sdb, s76 = sst + sdt, s45 = sst - sdt;
+        const hvec d32 = dsb + ddb, d01 = dsb - ddb, d76 = dst + ddt, d45 = dst - ddt;
+        fa[3 + c] = 0.125 * (s01 + d01), fa[c] = 0.125 * (s01 - d01);
+        fa[6 + c] = 0.125 * (s32 + d32), fa[9 + c] = 0.125 * (s32 - d32);
+        fa[15 + c] = 0.125 * (s45 + d45), fa[12 + c] = 0.125 * (s45 - d45);
+        fa[18 + c] = 0.125 * (s76 + d76), fa[21 + c] = 0.125 * (s76 - d76);
+    }
 }
 
 /* H[3c + j] = d u_c / d x_j at reference point p = (xi, eta, zeta), (J^-1)[j][i] = ji[3j + i]. */

@@ -12,14 +12,14 @@
  * - hex8_shared_force: elements congruent up to translation (the uniform
  *   cubes of the slope's fine box) share one stiffness K_e, which stays in
  *   L1; only displacements stream.
- * - hex8_bmat_*: any element shape, matrix-free: J^-1 and det J at the 8
+ * - hex8_bmat_*: any element shape, matrix-free.  J^-1 and det J at the 8
  *   Gauss points are stored (80 doubles per element instead of 576 floats)
- *   or recomputed each call from the node coordinates (nothing stored: fewer
- *   bytes, more flops), strains and stresses are formed at the points, in blocks of HEX8_W
- *   elements laid out as structure of arrays (the lane loops vectorise).  The
- *   stress at a point comes from isotropic linear elasticity or from a
- *   caller's point-wise routine sig = f(eps, state), so that plastic
- *   materials share the kernel.
+ *   or recomputed each call from the node coordinates (nothing stored:
+ *   fewer bytes, more flops).  Strains and stresses are formed at the
+ *   points, in blocks of HEX8_W elements laid out as structure of arrays
+ *   (one element per vector lane).  The stress at a point comes from
+ *   isotropic linear elasticity or from a caller's point-wise routine
+ *   sig = f(eps, state), so that plastic materials share the kernel.
  * Internal header. */
 #ifndef ROCKFUZZ_HEX8_KERNEL_H
 #define ROCKFUZZ_HEX8_KERNEL_H
