@@ -3,7 +3,8 @@
  *
  * PLplot keeps global stream state (plmkstrm/plsstrm are not thread-safe):
  * call these functions from one thread only.  Each figure gets its own
- * stream, created and ended here. */
+ * stream (plot/figure.c). */
+#include "plot/figure.h"
 #include "rockfuzz/report.h"
 
 #include <math.h>
@@ -14,38 +15,6 @@
 #include <sys/stat.h>
 
 #include "study/report_internal.h"
-
-typedef void (*draw_fn)(const void *data);
-
-/* Render one figure to dir/stem.png and dir/stem.svg. */
-static rf_status figure(const char *dir, const char *stem, draw_fn draw, const void *data, rf_error *err)
-{
-    static const char *const devices[2][2] = {{"pngcairo", "png"}, {"svg", "svg"}};
-    for (int d = 0; d < 2; d++) {
-        char path[4096];
-        snprintf(path, sizeof path, "%s/%s.%s", dir, stem, devices[d][1]);
-        PLINT strm = 0;
-        plmkstrm(&strm);
-        if (strm < 0)
-            return rf_fail(err, RF_EIO, "%s: PLplot has no free plot stream", path);
-        plsdev(devices[d][0]);
-        plsfnam(path);
-        plspage(0, 0, 800, 560, 0, 0);
-        plscolbg(255, 255, 255);
-        plscol0(1, 0, 0, 0);        /* axes and text: black */
-        plscol0(2, 31, 119, 180);   /* blue */
-        plscol0(3, 214, 39, 40);    /* red */
-        plscol0(4, 44, 160, 44);    /* green */
-        plscol0(5, 150, 150, 150);  /* grey */
-        plinit();
-        draw(data);
-        plend1();
-        struct stat sb;
-        if (stat(path, &sb) != 0 || sb.st_size == 0)
-            return rf_fail(err, RF_EIO, "%s: the plot was not written (PLplot device %s)", path, devices[d][0]);
-    }
-    return RF_OK;
-}
 
 typedef struct {
     const double *lo, *hi;   /* m+1 cuts */
@@ -185,7 +154,7 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
                  s->param_units[i], s->param_units[i][0] ? "]" : "");
         membership_plot mp = {res->in_lo + i * (m + 1), res->in_hi + i * (m + 1), m, title, xlabel,
                               res->in_nominal[i], &s->inputs[i]};
-        if ((st = figure(dir, stem, draw_membership, &mp, err)) != RF_OK)
+        if ((st = rf_plot_figure(dir, stem, 800, 560, draw_membership, &mp, err)) != RF_OK)
             return st;
     }
     double *tmp = malloc(3 * (n ? n : 1) * sizeof *tmp);
@@ -203,7 +172,7 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
         snprintf(xlabel, sizeof xlabel, "%.100s%s%.50s%s", name, unit[0] ? " [" : "", unit, unit[0] ? "]" : "");
         membership_plot mp = {res->lo + k * (m + 1), res->hi + k * (m + 1), m, title, xlabel, res->nominal[k],
                               NULL};
-        if ((st = figure(dir, stem, draw_membership, &mp, err)) != RF_OK)
+        if ((st = rf_plot_figure(dir, stem, 800, 560, draw_membership, &mp, err)) != RF_OK)
             break;
         for (size_t i = 0; i < n; i++) {
             tmp[i] = an->rho[k * n + i];
@@ -213,13 +182,13 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
         snprintf(stem, sizeof stem, "influence_%s", safe);
         snprintf(title, sizeof title, "relative influence on %.100s (Hanss #gr)", name);
         bar_plot bp = {n, (const char *const *)s->param_names, tmp, NULL, title, "#gr", NULL, NULL};
-        if ((st = figure(dir, stem, draw_bars, &bp, err)) != RF_OK)
+        if ((st = rf_plot_figure(dir, stem, 800, 560, draw_bars, &bp, err)) != RF_OK)
             break;
         snprintf(stem, sizeof stem, "influence_lr_%s", safe);
         snprintf(title, sizeof title, "left/right influence on %.100s", name);
         bar_plot lr = {n, (const char *const *)s->param_names, tmp + n, tmp + 2 * n, title, "#gr",
                        "#gr left (lower side)", "#gr right (upper side)"};
-        st = figure(dir, stem, draw_bars, &lr, err);
+        st = rf_plot_figure(dir, stem, 800, 560, draw_bars, &lr, err);
     }
     free(tmp);
     return st;

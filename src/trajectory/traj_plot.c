@@ -5,6 +5,7 @@
  * bin, every stretch sampled densely from its exact motion), and per
  * collector histograms of energy and height; then report.html.
  * PLplot streams are global: call from one thread (as report_plot.c). */
+#include "plot/figure.h"
 #include "trajectory/traj_internal.h"
 
 #include <errno.h>
@@ -16,34 +17,6 @@
 #include <sys/stat.h>
 
 #define NBIN 160
-
-typedef void (*draw_fn)(const void *data);
-
-static rf_status figure(const char *dir, const char *stem, draw_fn draw, const void *data, rf_error *err)
-{
-    static const char *const devices[2][2] = {{"pngcairo", "png"}, {"svg", "svg"}};
-    for (int d = 0; d < 2; d++) {
-        char path[4096];
-        snprintf(path, sizeof path, "%s/%s.%s", dir, stem, devices[d][1]);
-        PLINT strm = 0;
-        plmkstrm(&strm);
-        if (strm < 0)
-            return rf_fail(err, RF_EIO, "%s: PLplot has no free plot stream", path);
-        plsdev(devices[d][0]);
-        plsfnam(path);
-        plspage(0, 0, 900, 640, 0, 0);
-        plscolbg(255, 255, 255);
-        plscol0(1, 0, 0, 0), plscol0(2, 31, 119, 180), plscol0(3, 214, 39, 40);
-        plscol0(4, 44, 160, 44), plscol0(5, 170, 170, 170);
-        plinit();
-        draw(data);
-        plend1();
-        struct stat sb;
-        if (stat(path, &sb) != 0 || sb.st_size == 0)
-            return rf_fail(err, RF_EIO, "%s: the plot was not written (PLplot device %s)", path, devices[d][0]);
-    }
-    return RF_OK;
-}
 
 typedef struct {
     const rf_traj_spec *s;
@@ -242,12 +215,12 @@ rf_status rf_traj_write_plots(const char *dir, const rf_traj_spec *s, const rf_t
     p->mass = s->sphere ? 4.0 / 3.0 * RF_PI * pow(s->radius, 3) * s->density : s->mass;
     p->inertia = s->sphere ? 0.4 * p->mass * s->radius * s->radius : 0;
     envelopes(p);
-    rc = figure(dir, "trajectory_profile", draw_profile, p, err);
+    rc = rf_plot_figure(dir, "trajectory_profile", 900, 640, draw_profile, p, err);
     for (size_t c = 0; c < s->n_collectors && rc == RF_OK; c++) {
         char stem[300];
         hist_data hd = {p, c};
         snprintf(stem, sizeof stem, "trajectory_hist_%s", s->collectors[c].name);
-        rc = figure(dir, stem, draw_hist, &hd, err);
+        rc = rf_plot_figure(dir, stem, 900, 640, draw_hist, &hd, err);
     }
     if (rc == RF_OK)
         rc = traj_write_report_html(dir, s, e, st, err);

@@ -1,0 +1,17 @@
+/* figure.h - one PLplot figure rendered to PNG (pngcairo) and SVG, with the
+ * project's colour map (1 black, 2 blue, 3 red, 4 green, 5 grey).  Used by
+ * the study reports and the trajectory figures.  PLplot keeps global stream
+ * state (plmkstrm/plsstrm are not thread-safe): call from one thread only.
+ * Each figure gets its own stream, created and ended here. */
+#ifndef ROCKFUZZ_PLOT_FIGURE_H
+#define ROCKFUZZ_PLOT_FIGURE_H
+
+#include "rockfuzz/status.h"
+
+typedef void (*rf_plot_draw_fn)(const void *data);
+
+/* Render draw(data) into dir/stem.png and dir/stem.svg, width x height pixels. */
+rf_status rf_plot_figure(const char *dir, const char *stem, int width, int height, rf_plot_draw_fn draw,
+                         const void *data, rf_error *err);
+
+#endif
