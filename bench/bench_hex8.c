@@ -20,6 +20,7 @@
 #include "fem/fem3d_internal.h"
 #include "fem/fem3d_spec.h"
 #include "fem/hex8_kernel.h"
+#include "fem/hex8_step.h"
 #include "rockfuzz/fem3d.h"
 
 typedef struct {
@@ -161,22 +162,6 @@ static double element_matrices(bench *B)
     return mesh_mass_b;
 }
 
-/* Gershgorin: max over free rows of sum_j |K_ij| / sqrt(m_i m_j) >= max lambda(M^-1 K). */
-static double gershgorin(const double K[576], const double m[8], const unsigned char fr[24])
-{
-    double g = 0;
-    for (int i = 0; i < 24; i++) {
-        if (!fr[i])
-            continue;
-        double s = 0;
-        for (int j = 0; j < 24; j++)
-            if (fr[j])
-                s += fabs(K[24 * i + j]) / sqrt(m[i / 3] * m[j / 3]);
-        g = fmax(g, s);
-    }
-    return g;
-}
-
 /* The eigenvalue bound 2/sqrt(max lambda(M_e^-1 K_e)) with the solver's constraints (symmetry
    plane u_y = 0, fixed outer surface) and boulder mass scaling. */
 static void element_steps(bench *B, double mesh_mass_b)
@@ -199,7 +184,7 @@ static void element_steps(bench *B, double mesh_mass_b)
         for (int q = 0; q < 576; q++)
             Kd[q] = B->K[576 * e + q];
         B->dt_e[e] = 2 / sqrt(f3_hex_lambda_max(Kd, m, fr));
-        B->dt_g[e] = 2 / sqrt(gershgorin(Kd, m, fr));
+        B->dt_g[e] = 2 / sqrt(hex8_gershgorin_bound(Kd, m, fr));
     }
 }
 

@@ -18,6 +18,7 @@
  * is the same bit for bit for any thread count. */
 #include "rockfuzz/fem3d.h"
 #include "core/util.h"
+#include "hex8_step.h"
 #include "fem3d_internal.h"
 #include "fem_core.h"
 #include "fem_kernel.h"
@@ -309,65 +310,20 @@ static void element_free_k(const solid_run *R, long e, unsigned char fr[24], dou
         Kd[q] = R->K[576 * e + q];
 }
 
-typedef struct {
-    double bound;
-    long e;
-} lam_bound;
-
-/* Decreasing bound, then increasing element (a total order: the same sequence every run). */
-static int by_bound_desc(const void *pa, const void *pb)
+/* Element e as hex8_max_eigenvalue takes it (ctx: the run). */
+static void solid_element(void *ctx, long e, double K[576], double m[8], unsigned char fr[24])
 {
-    const lam_bound *a = pa, *b = pb;
-    return a->bound > b->bound ? -1 : a->bound < b->bound ? 1 : (a->e > b->e) - (a->e < b->e);
+    const solid_run *R = ctx;
+    element_free_k(R, e, fr, K);
+    memcpy(m, R->elm + 8 * e, 8 * sizeof *m);
 }
 
-/* max_e lambda_max(M_e^-1 K_e) with the exact eigen-solve pruned (docs/fem-speed.md, plan step 6):
- * the Gershgorin bound G_e = max over free rows of sum_j |K_ij| / sqrt(m_i m_j) >= lambda_max,
- * cheap, for every element; then exact solves in decreasing order of G_e until the next bound
- * is below the largest exact value found.  The same maximum (bit for bit) as solving every
- * element, at ~1 % of the solves (187 of 24 256 at a/h = 6).  Falls back to solving all when
- * out of memory. */
+/* max_e lambda_max(M_e^-1 K_e), with the exact eigen-solve pruned by
+ * Gershgorin bounds (hex8_step.c, docs/fem-speed.md plan step 6): bit for bit
+ * the maximum over every element, at ~1 % of the solves. */
 static double solid_lambda_max(solid_run *R)
 {
-    const long ne = R->ne;
-    lam_bound *order = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *order);
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(R->threads)
-#endif
-    for (long e = 0; e < ne; e++) {
-        unsigned char fr[24];
-        double Kd[576], w[8], g = 0;
-        element_free_k(R, e, fr, Kd);
-        for (int a = 0; a < 8; a++)
-            w[a] = 1 / sqrt(R->elm[8 * e + a]);
-        for (int i = 0; i < 24; i++) {
-            if (!fr[i])
-                continue;
-            double r = 0;
-            for (int j = 0; j < 24; j++)
-                if (fr[j])
-                    r += fabs(Kd[24 * i + j]) * w[j / 3];
-            g = fmax(g, r * w[i / 3]);
-        }
-        if (order)
-            order[e] = (lam_bound){g, e};
-    }
-    double lam_max = 0;
-    if (order)
-        qsort(order, (size_t)ne, sizeof *order, by_bound_desc);
-    for (long k = 0; k < ne; k++) {
-        const long e = order ? order[k].e : k;
-        if (order && order[k].bound * (1 + 1e-9) < lam_max)
-            break; /* every remaining bound is lower: their exact values cannot reach lam_max */
-        unsigned char fr[24];
-        double Kd[576];
-        element_free_k(R, e, fr, Kd);
-        const double l = f3_hex_lambda_max(Kd, R->elm + 8 * e, fr);
-        if (l > lam_max)
-            lam_max = l;
-    }
-    free(order);
-    return lam_max;
+    return hex8_max_eigenvalue(R->ne, solid_element, R, NULL, NULL);
 }
 
 /* Nodal masses (the boulder's density scaled so that the rigid-body mass is
