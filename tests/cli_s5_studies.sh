@@ -1,0 +1,54 @@
+#!/bin/bash
+# cli_s5_studies.sh - guards the study files of S5 (examples/s5_v5/10/20.yaml,
+# docs/studies.md): each must load (every input name known to the impact
+# model, every support admissible for its material) and plan the documented
+# 1 + m * 2^n = 1 + 4 * 2^5 = 129 evaluations.  Nothing is evaluated: the run
+# is stopped by --max-evaluations before the first model call, which happens
+# only after the study and the model have been loaded and checked.  A
+# renamed input is refused (negative control).  One nominal evaluation of
+# s5_v5 checks the energy bound R_n^2 + W_p/KE <= 1 (+ the energy error).
+# Usage: bash cli_s5_studies.sh ROCKFUZZ_BINARY SOURCE_DIR
+set -u
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
+trap 'rm -rf "$tmp"' EXIT
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+
+for v in 5 10 20; do
+    f="$src/examples/s5_v$v.yaml"
+    [ -f "$f" ] || { fail "$f missing"; continue; }
+    "$bin" run "$f" --out "$tmp/o$v" --quiet --no-plots --max-evaluations 128 > /dev/null 2> "$tmp/e$v"
+    rc=$?
+    [ $rc -eq 1 ] || fail "s5_v$v: exit $rc, expected 1 (stopped by the cap): $(cat "$tmp/e$v")"
+    grep -q "needs 129 distinct model evaluations" "$tmp/e$v" \
+        || fail "s5_v$v: did not load and plan 129 evaluations: $(cat "$tmp/e$v")"
+    grep -q "velocity: $v\$" "$f" || fail "s5_v$v: the file's crisp velocity is not $v m/s"
+    [ -f "$tmp/o$v/result.json" ] && fail "s5_v$v: wrote result.json without evaluating"
+done
+
+# negative control: the same file with one input renamed must be refused at load
+sed 's/^  layer_cap_pressure:/  layer_cap_presure:/' "$src/examples/s5_v10.yaml" > "$tmp/bad.yaml"
+"$bin" run "$tmp/bad.yaml" --out "$tmp/bad" --quiet --no-plots --max-evaluations 128 > /dev/null 2> "$tmp/bad.err"
+grep -q "is not an input of the impact model" "$tmp/bad.err" || fail "renamed input not refused: $(cat "$tmp/bad.err")"
+
+# the nominal point of s5_v5 (~1 s): energy cannot be created
+"$bin" impact --boulder-material rigid --radius 0.5 --velocity 5 --layer-thickness 1.0 \
+    --layer-material drucker_prager --layer-density 1900 --layer-E 100e6 --layer-poisson 0.3 \
+    --layer-cohesion 10e3 --layer-friction-angle 40 --layer-dilatancy-angle 5 \
+    --layer-cap-pressure 200e3 --layer-cap-hardening 40e6 --refinement 3 --boundary absorbing \
+    --json > "$tmp/nom.json" 2> "$tmp/nom.err" || fail "nominal s5_v5 impact failed: $(cat "$tmp/nom.err")"
+python3 - "$tmp/nom.json" <<'EOF' || fail "nominal s5_v5 energy bound"
+import json, sys
+d = json.load(open(sys.argv[1]))
+rn, wp, err = d["R_n"], d["plastic_work"], abs(d["energy_error"])
+ok = 0 < rn < 1 and 0 < wp < 1 and rn * rn + wp <= 1 + err + 1e-12
+if not ok:
+    print("R_n = %g, W_p/KE = %g, energy error %g" % (rn, wp, err), file=sys.stderr)
+sys.exit(0 if ok else 1)
+EOF
+
+[ $fails -eq 0 ] && echo "cli_s5_studies: all passed"
+exit $((fails > 0))
