@@ -1,0 +1,157 @@
+#!/usr/bin/python3
+"""tools/s5_summary.py - the tables and figures of study S5 (docs/studies.md)
+from the three runs
+
+    rockfuzz run examples/s5_v5.yaml  --out out/s5_v5  --tolerate-failures
+    rockfuzz run examples/s5_v10.yaml --out out/s5_v10 --tolerate-failures
+    rockfuzz run examples/s5_v20.yaml --out out/s5_v20 --tolerate-failures
+
+Usage: /usr/bin/python3 tools/s5_summary.py [OUT-ROOT [IMG-DIR]]
+(defaults out, docs/img).  Reads each run's result.json (cuts, influence
+measures) and store.sqlite (every evaluation, to classify them), prints
+markdown tables and writes IMG-DIR/studies_s5_outputs.png and
+IMG-DIR/studies_s5_influence.png.
+
+Classification of an evaluation (what the small-strain model can be trusted
+with; r0 = 0.5 m in the S5 files):
+  failed     the solver stopped with an error
+  not-ended  R_n <= 0: the boulder still moves down when the run stops
+  deep       penetration_max >= 0.4 r0 = 0.2 m (small strain not trusted)
+  ok         otherwise
+"""
+import json
+import os
+import sqlite3
+import struct
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+SPEEDS = (5, 10, 20)
+R0 = 0.5
+SHOW = ("R_n", "plastic_work", "penetration_max", "indentation_depth", "contact_force_max", "contact_duration")
+TABLE = SHOW + ("equivalent_plastic_strain_max",)
+UNIT = {"R_n": "-", "plastic_work": "of KE", "penetration_max": "m", "indentation_depth": "m",
+        "contact_force_max": "N", "contact_duration": "s", "equivalent_plastic_strain_max": "-"}
+
+
+def load(root, v):
+    d = os.path.join(root, "s5_v%d" % v)
+    res = json.load(open(os.path.join(d, "result.json")))
+    con = sqlite3.connect("file:%s?mode=ro" % os.path.join(d, "store.sqlite"), uri=True)
+    names = dict(con.execute("select key, value from meta"))["outputs"].split(",")
+    evals = []
+    for x_text, ok, y, err, sec in con.execute("select x_text, ok, y, error, seconds from results"):
+        row = {"x": x_text, "ok": ok, "seconds": sec or 0.0, "error": err}
+        if ok and y is not None:
+            row.update(zip(names, struct.unpack("<%dd" % (len(y) // 8), y)))
+        evals.append(row)
+    con.close()
+    return res, evals
+
+
+def classify(e):
+    if not e["ok"]:
+        return "failed"
+    if not e["R_n"] > 0:
+        return "not-ended"
+    if e["penetration_max"] >= 0.4 * R0:
+        return "deep"
+    return "ok"
+
+
+def fmt(x):
+    return "%.3g" % x
+
+
+def main():
+    root = sys.argv[1] if len(sys.argv) > 1 else "out"
+    img = sys.argv[2] if len(sys.argv) > 2 else "docs/img"
+    runs = {v: load(root, v) for v in SPEEDS}
+
+    print("### evaluations and cost\n")
+    print("| v m/s | evaluations | ok | deep (pen >= 0.4 r0) | not-ended (R_n <= 0) | failed | model s (summed) | wall s |")
+    print("|---|---|---|---|---|---|---|---|")
+    for v, (res, ev) in runs.items():
+        cls = [classify(e) for e in ev]
+        print("| %d | %d | %d | %d | %d | %d | %.0f | %.0f |" % (
+            v, len(ev), cls.count("ok"), cls.count("deep"), cls.count("not-ended"), cls.count("failed"),
+            sum(e["seconds"] for e in ev), res["wall_seconds"]))
+    print()
+    for v, (res, ev) in runs.items():
+        msgs = {}
+        for e in ev:
+            if not e["ok"]:
+                m = (e["error"] or "?").split(": ")[-1].split(" (")[0].split(" at t")[0]
+                msgs.setdefault(m, []).append(e["x"])
+        for m, xs in msgs.items():
+            print("v = %d: %d x '%s', e.g. at (E, c, phi, X0, t) = (%s)" % (v, len(xs), m, xs[0]))
+    print()
+
+    print("### supports (mu = 0), the mu = 0.5 cut and the nominal value (mu = 1)\n")
+    print("| output | unit | " + " | ".join("%d m/s: support; mu=0.5; nominal" % v for v in SPEEDS) + " |")
+    print("|---|---|" + "---|" * len(SPEEDS))
+    for o in TABLE:
+        cells = []
+        for v in SPEEDS:
+            out = runs[v][0]["outputs"][o]
+            lo, up, mu = out["lower"], out["upper"], out["mu"]
+            h = mu.index(0.5) if 0.5 in mu else len(mu) // 2
+            cells.append("[%s, %s]; [%s, %s]; %s" % (fmt(lo[0]), fmt(up[0]), fmt(lo[h]), fmt(up[h]),
+                                                      fmt(out["nominal"])))
+        print("| %s | %s | %s |" % (o, UNIT[o], " | ".join(cells)))
+    print()
+
+    print("### influence rho (Hanss), largest first\n")
+    print("| output | " + " | ".join("%d m/s" % v for v in SPEEDS) + " |")
+    print("|---|" + "---|" * len(SPEEDS))
+    for o in SHOW:
+        cells = []
+        for v in SPEEDS:
+            inf = runs[v][0]["outputs"][o]["influence"]
+            rho = {k: (val["rho"] if val["rho"] is not None else float("nan")) for k, val in inf.items()}
+            order = sorted(rho, key=lambda k: -(rho[k] if rho[k] == rho[k] else -1))
+            cells.append(", ".join("%s %.2f" % (k.replace("layer_", ""), rho[k]) for k in order))
+        print("| %s | %s |" % (o, " | ".join(cells)))
+    print()
+
+    fig, axs = plt.subplots(2, 3, figsize=(12, 6.5))
+    cols = {5: "tab:blue", 10: "tab:green", 20: "tab:red"}
+    for a, o in zip(axs.flat, SHOW):
+        for v in SPEEDS:
+            out = runs[v][0]["outputs"][o]
+            xs = out["lower"] + out["upper"][::-1]
+            ys = out["mu"] + out["mu"][::-1]
+            a.plot(xs, ys, "-o", ms=3, color=cols[v], label="%d m/s" % v)
+        a.set_xlabel("%s [%s]" % (o, UNIT[o]))
+        a.set_ylabel("membership")
+        a.grid(alpha=0.3)
+    axs[0][0].legend(fontsize=8)
+    fig.suptitle("S5: rigid boulder r0 = 0.5 m on a DP-cap colluvium layer over granite (small strain)")
+    fig.tight_layout()
+    os.makedirs(img, exist_ok=True)
+    fig.savefig(os.path.join(img, "studies_s5_outputs.png"), dpi=80)
+
+    names = list(runs[SPEEDS[0]][0]["inputs"].keys())
+    fig, axs = plt.subplots(1, 3, figsize=(12, 3.6))
+    for a, o in zip(axs, ("R_n", "penetration_max", "contact_force_max")):
+        w = 0.25
+        for i, v in enumerate(SPEEDS):
+            inf = runs[v][0]["outputs"][o]["influence"]
+            a.bar([k + (i - 1) * w for k in range(len(names))], [inf[n]["rho"] or 0 for n in names], w,
+                  color=cols[v], label="%d m/s%s" % (v, "" if inf[names[0]]["rho"] is not None else " (rho n/a)"))
+        a.set_xticks(range(len(names)))
+        a.set_xticklabels([n.replace("layer_", "") for n in names], rotation=30, fontsize=8)
+        a.set_title("rho for %s" % o)
+        a.set_ylim(0, 1)
+    axs[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(img, "studies_s5_influence.png"), dpi=80)
+    print("wrote", os.path.join(img, "studies_s5_outputs.png"), os.path.join(img, "studies_s5_influence.png"))
+
+
+if __name__ == "__main__":
+    main()
