@@ -39,7 +39,7 @@ grep -v '^#' "$src/tools/data/drop_tests_cases.txt" | while read -r id group mas
     # shellcheck disable=SC2086
     if res=$(nice "$bin" impact --boulder-material rigid --radius "$radius" --boulder-density "$rho" --velocity "$v" \
             --layer-thickness "$layer" --layer-material drucker_prager $s $b \
-            --refinement 3 --boundary absorbing --json 2> "$out/err.txt"); then
+            --refinement 3 --boundary fixed --json 2> "$out/err.txt"); then
         warn=$(tr '\n' ' ' < "$out/err.txt" | sed 's/"/\\"/g')
         echo "{\"case\": \"$id\", \"group\": \"$group\", \"mass\": $mass, \"radius\": $radius, \"velocity\": $v, \"layer\": $layer, \"soil\": \"$soil\", \"bedrock\": \"$bed\", \"warning\": \"$warn\", \"out\": $res}" >> "$R"
     else

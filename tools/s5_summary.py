@@ -6,8 +6,11 @@ from the three runs
     rockfuzz run examples/s5_v10.yaml --out out/s5_v10 --tolerate-failures
     rockfuzz run examples/s5_v20.yaml --out out/s5_v20 --tolerate-failures
 
-Usage: /usr/bin/python3 tools/s5_summary.py [OUT-ROOT [IMG-DIR]]
-(defaults out, docs/img).  Reads each run's result.json (cuts, influence
+Usage: /usr/bin/python3 tools/s5_summary.py [OUT-ROOT [IMG-DIR [ROCKFUZZ]]]
+(defaults out, docs/img).  With ROCKFUZZ (the binary), also reruns the input
+points where R_n, penetration_max, contact_force_max and plastic_work take
+their level-0 bounds with `rockfuzz impact --json` and prints their energy
+errors (the study outputs do not include it).  Reads each run's result.json (cuts, influence
 measures) and store.sqlite (every evaluation, to classify them), prints
 markdown tables and writes IMG-DIR/studies_s5_outputs.png and
 IMG-DIR/studies_s5_influence.png.
@@ -23,6 +26,7 @@ import json
 import os
 import sqlite3
 import struct
+import subprocess
 import sys
 
 import matplotlib
@@ -61,6 +65,36 @@ def classify(e):
     if e["penetration_max"] >= 0.4 * R0:
         return "deep"
     return "ok"
+
+
+def energy_errors(binary, runs):
+    """Energy error of `rockfuzz impact` at the level-0 bound points of four outputs."""
+    print("### energy error at the level-0 bound points\n")
+    for v, (res, _) in runs.items():
+        crisp = res["model_identity"]
+        pts = set()
+        for o in ("R_n", "penetration_max", "contact_force_max", "plastic_work"):
+            for k in ("x_lower", "x_upper"):
+                x = res["outputs"][o][k][0]
+                pts.add(tuple(x[n] for n in ("layer_E", "layer_cohesion", "layer_friction_angle",
+                                             "layer_cap_pressure", "layer_thickness")))
+        bnd = "fixed" if "boundary=fixed" in crisp else "absorbing"
+        worst = 0.0
+        for E, c, phi, x0, t in sorted(pts):
+            cmd = [binary, "impact", "--boulder-material", "rigid", "--radius", "0.5", "--velocity", str(v),
+                   "--layer-thickness", repr(t), "--layer-material", "drucker_prager", "--layer-density", "1900",
+                   "--layer-E", repr(E), "--layer-poisson", "0.3", "--layer-cohesion", repr(c),
+                   "--layer-friction-angle", repr(phi), "--layer-dilatancy-angle", "5",
+                   "--layer-cap-pressure", repr(x0), "--layer-cap-hardening", "40e6", "--refinement", "3",
+                   "--boundary", bnd, "--json"]
+            r = subprocess.run(cmd, capture_output=True, text=True)
+            if r.returncode != 0:
+                print("v = %d, x = %s: failed: %s" % (v, (E, c, phi, x0, t), r.stderr.strip()[:80]))
+                continue
+            e = abs(json.loads(r.stdout)["energy_error"])
+            worst = max(worst, e)
+        print("v = %d m/s: %d points, largest |energy error| %.2g of KE" % (v, len(pts), worst))
+    print()
 
 
 def fmt(x):
@@ -117,6 +151,9 @@ def main():
             cells.append(", ".join("%s %.2f" % (k.replace("layer_", ""), rho[k]) for k in order))
         print("| %s | %s |" % (o, " | ".join(cells)))
     print()
+
+    if len(sys.argv) > 3:
+        energy_errors(sys.argv[3], runs)
 
     fig, axs = plt.subplots(2, 3, figsize=(12, 6.5))
     cols = {5: "tab:blue", 10: "tab:green", 20: "tab:red"}
