@@ -54,6 +54,12 @@ typedef struct {
 rf_status f3_mesh_build(const f3_mesh_spec *spec, f3_mesh *mesh, long max_elements, rf_error *err);
 void f3_mesh_free(f3_mesh *mesh);
 
+/* Weight the boulder's element-node masses elm (8 per boulder element) so
+ * that their sum is M, their centre of mass is (X0, ., Z0) and their moment
+ * of inertia about the y axis through it is Iyy (fem3d_mass.c).  Returns 0
+ * (elm unchanged) if no positive weighting was found. */
+int f3_boulder_mass_moments(const f3_mesh *mesh, double *elm, double M, double X0, double Z0, double Iyy);
+
 typedef struct {
     double rho, E, nu;
 } f3_material;
