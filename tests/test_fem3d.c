@@ -2,7 +2,8 @@
  * Hertz at low speed, energy closure, frictionless oblique impact, the
  * rigid-body sliding regime, determinism across thread counts, half vs full
  * model, rejected inputs, the rigid-body moments of the lumped boulder
- * masses, and R_n of an oblique frictional impact against the normal one.  Tolerances are loose because the meshes are; the
+ * masses, and R_n of an oblique frictional impact against the normal one.
+ * Tolerances are loose because the meshes are; the
  * converged figures are in docs/validation-3d.md. */
 #include <setjmp.h>
 #include <stdarg.h>
