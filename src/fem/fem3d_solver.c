@@ -382,8 +382,8 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
     C->nslave = (long)ns;
     C->slave = malloc(ns * sizeof *C->slave);
     C->lam = calloc(ns * 3, sizeof *C->lam);
-    C->mnode = malloc(ns * 4 * sizeof *C->mnode);
-    C->N = malloc(ns * 4 * sizeof *C->N);
+    C->mnode = malloc(ns * F3_NM * sizeof *C->mnode);
+    C->N = malloc(ns * F3_NM * sizeof *C->N);
     C->S = calloc(ns * 2, sizeof *C->S);
     C->gap = malloc(ns * sizeof *C->gap);
     C->ds = malloc(ns * 2 * sizeof *C->ds);
@@ -521,8 +521,8 @@ static double solid_contact_account(solid_run *R, double *rad)
         long k = C->cand[q];
         int s = C->slave[k];
         double g = R->mesh.x[3 * s + 2] + u[3 * s + 2];
-        for (int a = 0; a < 4; a++)
-            g -= C->N[4 * k + a] * u[3 * C->mnode[4 * k + a] + 2];
+        for (int a = 0; a < F3_NM; a++)
+            g -= C->N[F3_NM * k + a] * u[3 * C->mnode[F3_NM * k + a] + 2];
         if (-g > R->pen_max)
             R->pen_max = -g;
     }
