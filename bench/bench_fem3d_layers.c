@@ -104,6 +104,9 @@ int main(int argc, char **argv)
                out.omega_after,
                H.vibration_energy / k0, H.slope_energy / k0, rep.friction_work / k0, rep.normal_work / k0,
                H.closure[H.n - 1] / k0);
+        if (!p.axi)
+            printf("  contact: sweeps_max=%d residual_max=%.2e slip_max=%.2e stick=%.3f pen_max=%.2e\n",
+                   rep.pgs_sweeps_max, rep.pgs_residual_max, rep.slip_max, rep.stick_fraction, H.penetration_max);
         fflush(stdout);
         rf_fem_history_free(&H);
         rf_fem3d_report_free(&rep);

@@ -82,10 +82,10 @@ def main():
     ref = read(os.path.join(data, "fem_refinement_10ms.txt"))
     tta = read(os.path.join(data, "fem_tta_10ms.txt"))
     conv = {}
-    # 3D: a/h below 5 carry mesh-topology noise of +-3e-4 in R_n (the fine box's cell counts are rounded
-    # up), so the fits use 5 ... 9; steps against the trend count from a/h = 6 (3D) and 10 (axi) on
+    # 3D: a/h below 4 carry mesh-topology noise of +-3e-4 in R_n (the fine box's cell counts are rounded
+    # up), so the fits use 4 ... 8; steps against the trend count from a/h = 5 (3D) and 10 (axi) on
     for model, keys, triples, a_trend in (
-            ("3d", ("R_n", "R_t", "R_ke"), ((5, 6, 7), (5, 7, 9), (6, 7, 8), (6, 7, 9), (6, 8, 9), (7, 8, 9)), 6),
+            ("3d", ("R_n", "R_t", "R_ke"), ((4, 5, 6), (4, 6, 8), (5, 6, 7), (5, 6, 8), (5, 7, 8), (6, 7, 8)), 5),
             ("axi", ("R_n",), ((10, 20, 40), (15, 20, 40), (20, 30, 40)), 10)):
         for key in keys:
             by, fits = converged(ref, model, key, triples)
