@@ -50,7 +50,7 @@ typedef enum {
 
 /* Refinement (a/h) used when the options leave it at 0: the axisymmetric
  * model is converged to < 0.1 % at 10; the 3D one costs ~50x more per a/h and
- * at 3 is within 2.3e-4 / 5.3e-4 / 4.9e-4 of the converged R_n / R_t / R_ke of
+ * at 3 is within 1.7e-4 / 4.8e-4 / 9.8e-5 of the converged R_n / R_t / R_ke of
  * the 10 m/s, 45 degree, f = 0.6 impact (below 3 its mesh family is not
  * reliable; docs/fem-speed.md section 5, docs/validation*.md). */
 #define RF_FEM_REFINEMENT_AXI 10.0
