@@ -1,45 +1,115 @@
-/* bench_fem3d_layers.c - how the graded layers' aspect (rf_fem3d_options
- * layer_aspect, radial / tangential size, default 1.6) trades elements for
- * accuracy in the 10 m/s, 45 degree, f = 0.6 impact: the layers hold 90 % of
- * the elements (docs/fem-speed.md), so fewer layers is a speed lever if the
- * coefficients of restitution do not move.
- *   bench_fem3d_layers [a/h, default 4] [aspect ...]   default 1.6 3.2 */
+/* bench_fem3d_layers.c - mesh probe of the 3D impact (issue 9,
+ * docs/fem-speed.md section 5): one run per refinement of the 10 m/s,
+ * 45 degree, f = 0.6 impact (or any other given below) with one mesh setting
+ * changed, and the energy balance at the end: boulder vibration, slope
+ * (waves), friction and normal contact work, closure, all / KE0.
+ *   bench_fem3d_layers [key=value ...] A [A ...]
+ * keys: model=3d|axi, v= (m/s), angle= (deg), f=, aspect= (layer_aspect),
+ * inner= (boulder_inner), core= (core_factor), elong= (elongation),
+ * domain= (domain_factor), full=0|1, dt= (dt_safety), ratio= (boulder_mesh_ratio),
+ * threads=. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <time.h>
 
 #include "core/util.h"
 #include "rockfuzz/fem3d.h"
 
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+typedef struct {
+    int axi;
+    rf_impact_input in;
+    rf_fem_options o;
+    rf_fem3d_options o3;
+} probe;
+
+/* 1 if arg was a key=value setting. */
+static int probe_set(probe *p, const char *arg)
+{
+    const char *eq = strchr(arg, '=');
+    if (!eq)
+        return 0;
+    const size_t n = (size_t)(eq - arg);
+    const double x = atof(eq + 1);
+#define KEY(s) (n == strlen(s) && !strncmp(arg, s, n))
+    if (KEY("model"))
+        p->axi = !strcmp(eq + 1, "axi");
+    else if (KEY("v"))
+        p->in.velocity = x;
+    else if (KEY("angle"))
+        p->in.slope_angle = x * RF_PI / 180;
+    else if (KEY("f"))
+        p->in.friction = x;
+    else if (KEY("aspect"))
+        p->o3.layer_aspect = x;
+    else if (KEY("inner"))
+        p->o3.boulder_inner = x;
+    else if (KEY("core"))
+        p->o3.core_factor = x;
+    else if (KEY("elong"))
+        p->o3.elongation = x;
+    else if (KEY("domain"))
+        p->o.domain_factor = x;
+    else if (KEY("full"))
+        p->o3.full_model = (int)x;
+    else if (KEY("dt"))
+        p->o.dt_safety = x;
+    else if (KEY("ratio"))
+        p->o.boulder_mesh_ratio = x;
+    else if (KEY("threads"))
+        p->o.threads = (int)x;
+    else {
+        fprintf(stderr, "bench_fem3d_layers: unknown key in '%s'\n", arg);
+        exit(2);
+    }
+#undef KEY
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
-    const double ref = argc > 1 ? atof(argv[1]) : 4;
-    double aspects[8] = {1.6, 3.2};
-    int na = 2;
-    if (argc > 2)
-        for (na = 0; na < 8 && na + 2 < argc; na++)
-            aspects[na] = atof(argv[na + 2]);
-    rf_impact_input in = {.radius = 1, .boulder_density = 2600, .slope_density = 2600, .boulder_E = 68.2e9,
-                          .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10,
-                          .slope_angle = 45 * RF_PI / 180, .friction = 0.6};
-    printf("a/h = %g\n%8s %9s %7s %10s %10s %10s %8s\n", ref, "aspect", "elements", "steps", "R_n", "R_t", "R_ke",
-           "wall[s]");
-    for (int k = 0; k < na; k++) {
-        rf_fem_options o;
-        rf_fem_options_default(&o);
-        o.refinement = ref;
-        rf_fem3d_options o3;
-        rf_fem3d_options_default(&o3);
-        o3.layer_aspect = aspects[k];
+    probe p = {.in = {.radius = 1, .boulder_density = 2600, .slope_density = 2600, .boulder_E = 68.2e9,
+                      .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10,
+                      .slope_angle = 45 * RF_PI / 180, .friction = 0.6}};
+    rf_fem_options_default(&p.o);
+    rf_fem3d_options_default(&p.o3);
+    for (int i = 1; i < argc; i++) {
+        if (probe_set(&p, argv[i]))
+            continue;
+        p.o.refinement = atof(argv[i]);
         rf_impact_output out;
+        rf_fem_history H;
+        rf_fem3d_report rep = {0};
         rf_error err = {0};
-        if (rf_fem3d_impact_ex(&in, &o, &o3, &out, NULL, NULL, &err) != RF_OK) {
+        const double c0 = cpu_seconds();
+        rf_status st = p.axi ? rf_fem_impact(&p.in, &p.o, &out, &H, &err)
+                             : rf_fem3d_impact_ex(&p.in, &p.o, &p.o3, &out, &H, &rep, &err);
+        if (st != RF_OK) {
             fprintf(stderr, "bench_fem3d_layers: %s\n", err.msg);
             return 1;
         }
-        printf("%8.2f %9.0f %7.0f %10.6f %10.6f %10.6f %8.2f\n", aspects[k], out.elements, out.steps, out.R_n, out.R_t,
-               out.R_ke, out.wall_seconds);
+        const double cpu = cpu_seconds() - c0, k0 = H.ke0;
+        printf("model=%s ref=%g aspect=%g inner=%g core=%g domain=%g elements=%.0f steps=%.0f cpu=%.2f R_n=%.6f "
+               "R_t=%.6f R_ke=%.6f omega=%.5f vib=%.3e slope=%.3e fric=%.3e W_n=%.3e closure=%.3e\n",
+               p.axi ? "axi" : "3d", p.o.refinement, p.o3.layer_aspect, p.o3.boulder_inner, p.o3.core_factor,
+               rf_fem_domain_factor(&p.o, &p.in), out.elements, out.steps, cpu, out.R_n, out.R_t, out.R_ke,
+               out.omega_after,
+               H.vibration_energy / k0, H.slope_energy / k0, rep.friction_work / k0, rep.normal_work / k0,
+               H.closure[H.n - 1] / k0);
+        if (!p.axi)
+            printf("  contact: sweeps_max=%d residual_max=%.2e slip_max=%.2e stick=%.3f pen_max=%.2e\n",
+                   rep.pgs_sweeps_max, rep.pgs_residual_max, rep.slip_max, rep.stick_fraction, H.penetration_max);
         fflush(stdout);
+        rf_fem_history_free(&H);
+        rf_fem3d_report_free(&rep);
     }
     return 0;
 }

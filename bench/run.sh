@@ -23,7 +23,7 @@ echo "== axisymmetric force kernel (bench_quad4, a/h = 10) =="
 "$build"/bench_quad4 10 300
 echo "== time to accuracy, 10 m/s (bench_tta; converged values and curves: docs/fem-speed.md) =="
 for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_tta axi "$t" 6 8 10; done
-for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_tta 3d "$t" 4 5 6; done
+for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_tta 3d "$t" 3 4 6; done  # 3 = the 3D default
 echo "(whole studies: bench/bench_study.sh; it takes minutes)"
 echo "== trajectories: 30-segment profile, constant law (bench_trajectory; goal >= 200 000 /s/core) =="
 "$build"/bench_trajectory 200000 1

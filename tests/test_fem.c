@@ -457,7 +457,7 @@ static void test_options_validate(void **state)
     assert_non_null(strstr(err.msg, "threads = -1"));
     /* defaults resolve: 10 axisymmetric, 6 in 3D; an explicit domain is kept */
     rf_fem_options_default(&o);
-    assert_true(rf_fem_refinement(&o, 0) == 10 && rf_fem_refinement(&o, 1) == 6);
+    assert_true(rf_fem_refinement(&o, 0) == 10 && rf_fem_refinement(&o, 1) == 3);
     rf_impact_input in = granite(10);
     o.domain_factor = 12;
     assert_true(rf_fem_domain_factor(&o, &in) == 12);

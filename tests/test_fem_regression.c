@@ -23,6 +23,22 @@
  * slip) R_t rose by 0.013 and R_n fell by 2.6e-4; at 60 deg, f = 0.2 (gross
  * sliding) R_t stayed (-1.2e-5) and the spin rose by 2.4 %, as
  * omega = 2.5 f (1 + R_n) v_n / r with the exact I predicts.
+ * And a third time for the next defect fix: the lumped boulder's centre of
+ * mass made exact (it lay 2e-3 r down-slope on these a/h = 2 meshes, whose fine
+ * box is elongated down-slope; docs/fem-speed.md section 5).  The frictional
+ * spin had turned that offset into a normal contact-point velocity: R_n rose
+ * by 4.0e-3 (45 deg, f = 0.6) and 2.2e-3 (60 deg, f = 0.2); the normal force's
+ * lever arm about the offset centre had added 1 % to the spin at 60 deg,
+ * f = 0.2 (omega -1.0 %, R_t -2.4e-4); at 45 deg R_t fell by 2.9e-3 and R_ke
+ * rose by 8e-4.  Mesh counts and the boulder mesh mass did not change.
+ * And a fourth time for the contact's C1 (Catmull-Rom) master face, which
+ * replaced the bilinear quad whose secant slope gave a sliding boulder a
+ * spurious tangential force: at 60 deg, f = 0.2 (gross sliding) R_n fell by
+ * 4.1e-3 to 0.99454 (the normal impact at v_n = 5 m/s gives 0.99086 at
+ * converged meshes; a/h = 2 is coarse), R_t rose by 2.7e-3, the spin fell by
+ * 1.2 %; at 45 deg, f = 0.6 R_n rose by 9.3e-4, R_t fell by 1.2e-4, R_ke rose
+ * by 6.7e-4; peak forces moved by -0.15 / -0.26 %, the closure residuals from
+ * 2.9e-5 / 5.2e-5 to 3.4e-5 / 6.0e-5 of KE0.
  *
  * RF_REGRESSION_PRINT=1 prints the table in the layout of `refs` below. */
 #include <setjmp.h>

@@ -352,7 +352,7 @@ static void test_fem_dispatch(void **state)
     assert_int_equal(rf_fem_needs_3d(&in), 1);
     rf_impact_model_spec spec;
     rf_impact_model_spec_default(&spec);
-    assert_true(rf_fem_refinement(&spec.fem, 0) == 10.0 && rf_fem_refinement(&spec.fem, 1) == 6.0);
+    assert_true(rf_fem_refinement(&spec.fem, 0) == 10.0 && rf_fem_refinement(&spec.fem, 1) == 3.0);
     spec.fem.refinement = 4;
     assert_true(rf_fem_refinement(&spec.fem, 0) == 4.0 && rf_fem_refinement(&spec.fem, 1) == 4.0);
 }

@@ -50,9 +50,11 @@ typedef enum {
 
 /* Refinement (a/h) used when the options leave it at 0: the axisymmetric
  * model is converged to < 0.1 % at 10; the 3D one costs ~50x more per a/h and
- * is within 0.3 % on R_t at 6 (docs/validation*.md). */
+ * at 3 is within 1.7e-4 / 4.8e-4 / 9.8e-5 of the converged R_n / R_t / R_ke of
+ * the 10 m/s, 45 degree, f = 0.6 impact (below 3 its mesh family is not
+ * reliable; docs/fem-speed.md section 5, docs/validation*.md). */
 #define RF_FEM_REFINEMENT_AXI 10.0
-#define RF_FEM_REFINEMENT_3D 6.0
+#define RF_FEM_REFINEMENT_3D 3.0
 /* Automatic domain: 2 L / c_p >= RF_FEM_DOMAIN_MARGIN * Hertz t_c, L >= RF_FEM_DOMAIN_MIN r0. */
 #define RF_FEM_DOMAIN_MARGIN 1.25
 #define RF_FEM_DOMAIN_MIN 10.0

@@ -19,11 +19,59 @@
  * pairing is not frozen at the reference configuration: the boulder slides
  * v_t t_c ~ 3 cm, a quarter of the contact radius, which a fixed pairing
  * would turn into a wrong gap (the master's indentation is measured at the
- * wrong place). */
+ * wrong place).
+ * Master face: C1, the Catmull-Rom (cubic Hermite with central-difference
+ * slopes) surface of the 4 x 4 grid nodes around the quad under the slave,
+ * for the gap, the relative tangential displacement and the slope S alike.
+ * With the bilinear quad (C0) S was the quad's secant slope, constant across
+ * the quad in x: a slave at the fraction xi of the quad saw the slope of its
+ * middle, off by (1/2 - xi) h u_z'', and the slaves of the near-matching
+ * meshes share xi, so a sliding boulder met a coherent spurious tangential
+ * force (frictionless 45 deg: R_t 1 +- 1.5e-3 and R_n +- 1.6e-3 at
+ * a/h = 3-5; docs/fem-speed.md section 5).  The Catmull-Rom slope is
+ * continuous and exact to O(h^2), and the normal row is still the gradient
+ * of the gap that is constrained. */
 #include "fem3d_internal.h"
 
 #include <math.h>
 #include <string.h>
+
+/* Catmull-Rom weights of the nodes -1, 0, 1, 2 at t in [0, 1] between nodes 0 and 1, and their
+   derivatives d/dt. */
+static void cr_w(double t, double w[4], double dw[4])
+{
+    w[0] = (-t * t * t + 2 * t * t - t) / 2, w[1] = (3 * t * t * t - 5 * t * t + 2) / 2;
+    w[2] = (-3 * t * t * t + 4 * t * t + t) / 2, w[3] = (t * t * t - t * t) / 2;
+    dw[0] = (-3 * t * t + 4 * t - 1) / 2, dw[1] = (9 * t * t - 10 * t) / 2;
+    dw[2] = (-9 * t * t + 8 * t + 1) / 2, dw[3] = (3 * t * t - 2 * t) / 2;
+}
+
+/* The C1 master face at (xi, eta) in quad (i, j): nodes m and weights N of the 4 x 4 stencil
+   (clamped at the grid's edge, where a repeated node's weight is merged into its first copy)
+   and the slope S of the deformed face. */
+static void catmull_rom(const f3_mesh *mesh, const double *u, int i, int j, double xi, double eta, int *m,
+                        double *N, double S[2])
+{
+    const int nx = mesh->nxt_s, ny = mesh->nyt_s;
+    double wx[4], dwx[4], wy[4], dwy[4];
+    cr_w(xi, wx, dwx), cr_w(eta, wy, dwy);
+    S[0] = S[1] = 0;
+    int q = 0;
+    for (int a = 0; a < 4; a++)
+        for (int b = 0; b < 4; b++, q++) {
+            int ii = i - 1 + a, jj = j - 1 + b;
+            ii = ii < 0 ? 0 : ii > nx - 1 ? nx - 1 : ii;
+            jj = jj < 0 ? 0 : jj > ny - 1 ? ny - 1 : jj;
+            m[q] = mesh->top_s[ii * ny + jj];
+            N[q] = wx[a] * wy[b];
+            const double uz = u[3 * m[q] + 2];
+            S[0] += dwx[a] * wy[b] * uz / mesh->h_s, S[1] += wx[a] * dwy[b] * uz / mesh->h_s;
+        }
+    for (int a = 0; a < F3_NM; a++)
+        for (int b = a + 1; b < F3_NM; b++)
+            if (N[b] != 0 && m[b] == m[a])
+                N[a] += N[b], N[b] = 0;
+}
 
 void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, const double *v, int threads, int repair)
 {
@@ -35,11 +83,12 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
 #endif
     for (long k = 0; k < C->nslave; k++) {
         int s = C->slave[k];
-        int *m = C->mnode + 4 * k;
-        double *N = C->N + 4 * k;
+        int *m = C->mnode + F3_NM * k;
+        double *N = C->N + F3_NM * k;
         if (repair) {
             /* master material point currently under the slave: X_m + u_m(X_m) = x_s + u_s
-               (fixed point; the master's tangential displacement gradient is small) */
+               (fixed point with the bilinear quad; the master's tangential displacement
+               gradient is small), then the C1 face there */
             const double X = mesh->x[3 * s] + u[3 * s], Y = mesh->x[3 * s + 1] + u[3 * s + 1];
             double Xm = X, Ym = Y;
             int out = 0;
@@ -65,19 +114,14 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
                 for (int a = 0; a < 4; a++)
                     umx += N[a] * u[3 * m[a]], umy += N[a] * u[3 * m[a] + 1];
                 Xm = X - umx, Ym = Y - umy;
-                if (it == 3) { /* slope of the deformed master face at the point */
-                    double uz[4];
-                    for (int a = 0; a < 4; a++)
-                        uz[a] = u[3 * m[a] + 2];
-                    C->S[2 * k] = ((1 - eta) * (uz[1] - uz[0]) + eta * (uz[2] - uz[3])) / h;
-                    C->S[2 * k + 1] = ((1 - xi) * (uz[3] - uz[0]) + xi * (uz[2] - uz[1])) / h;
-                }
+                if (it == 3)
+                    catmull_rom(mesh, u, i, j, xi, eta, m, N, C->S + 2 * k);
             }
             C->outside[k] = (unsigned char)out;
         }
         for (int d = 0; d < 2; d++) {
             double gu = u[3 * s + d];
-            for (int a = 0; a < 4; a++)
+            for (int a = 0; a < F3_NM; a++)
                 gu -= N[a] * u[3 * m[a] + d];
             C->s0[2 * k + d] = gu;
         }
@@ -88,12 +132,12 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
 void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3])
 {
     const int s = C->slave[k];
-    const int *m = C->mnode + 4 * k;
-    const double *N = C->N + 4 * k, *S = C->S + 2 * k;
+    const int *m = C->mnode + F3_NM * k;
+    const double *N = C->N + F3_NM * k, *S = C->S + 2 * k;
     double r[3];
     for (int d = 0; d < 3; d++) {
         r[d] = v[3 * s + d];
-        for (int a = 0; a < 4; a++)
+        for (int a = 0; a < F3_NM; a++)
             r[d] -= N[a] * v[3 * m[a] + d];
     }
     g[0] = r[2] - S[0] * r[0] - S[1] * r[1];
@@ -111,14 +155,14 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
 #endif
     for (long k = 0; k < C->nslave; k++) {
         int s = C->slave[k];
-        const int *m = C->mnode + 4 * k;
-        const double *N = C->N + 4 * k;
+        const int *m = C->mnode + F3_NM * k;
+        const double *N = C->N + F3_NM * k;
         double g = mesh->x[3 * s + 2] + u[3 * s + 2]; /* the master face is z = 0 in the reference */
-        for (int a = 0; a < 4; a++)
+        for (int a = 0; a < F3_NM; a++)
             g -= N[a] * (mesh->x[3 * m[a] + 2] + u[3 * m[a] + 2]);
         for (int d = 0; d < 2; d++) {
             double su = u[3 * s + d];
-            for (int a = 0; a < 4; a++)
+            for (int a = 0; a < F3_NM; a++)
                 su -= N[a] * u[3 * m[a] + d];
             C->ds[2 * k + d] = su - C->s0[2 * k + d];
         }
@@ -128,7 +172,7 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
         const double Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
         double an = invm[3 * s + 2] + Sx * Sx * invm[3 * s] + Sy * Sy * invm[3 * s + 1];
         double ax = invm[3 * s], ay = invm[3 * s + 1];
-        for (int q = 0; q < 4; q++) {
+        for (int q = 0; q < F3_NM; q++) {
             const double *im = invm + 3 * m[q];
             an += N[q] * N[q] * (im[2] + Sx * Sx * im[0] + Sy * Sy * im[1]);
             ax += N[q] * N[q] * im[0];
@@ -144,20 +188,20 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
 static inline void spread(f3_contact *C, long k, int c, double delta, const double *invm, double dt2)
 {
     const int s = C->slave[k];
-    const int *m = C->mnode + 4 * k;
-    const double *N = C->N + 4 * k;
+    const int *m = C->mnode + F3_NM * k;
+    const double *N = C->N + F3_NM * k;
     if (c == 0) {
         const double w[3] = {-C->S[2 * k], -C->S[2 * k + 1], 1};
         for (int d = 0; d < 3; d++) {
             C->du[3 * s + d] += dt2 * invm[3 * s + d] * w[d] * delta;
-            for (int a = 0; a < 4; a++)
+            for (int a = 0; a < F3_NM; a++)
                 C->du[3 * m[a] + d] -= dt2 * invm[3 * m[a] + d] * N[a] * w[d] * delta;
         }
         return;
     }
     const int d = c - 1;
     C->du[3 * s + d] += dt2 * invm[3 * s + d] * delta;
-    for (int a = 0; a < 4; a++)
+    for (int a = 0; a < F3_NM; a++)
         C->du[3 * m[a] + d] -= dt2 * invm[3 * m[a] + d] * N[a] * delta;
 }
 
@@ -243,8 +287,11 @@ rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double 
     /* apply the corrections, clear the scratch */
     for (long q = 0; q < C->ncand; q++) {
         long k = C->cand[q];
-        int nodes[5] = {C->slave[k], C->mnode[4 * k], C->mnode[4 * k + 1], C->mnode[4 * k + 2], C->mnode[4 * k + 3]};
-        for (int a = 0; a < 5; a++)
+        int nodes[F3_NM + 1];
+        nodes[0] = C->slave[k];
+        for (int a = 0; a < F3_NM; a++)
+            nodes[a + 1] = C->mnode[F3_NM * k + a];
+        for (int a = 0; a < F3_NM + 1; a++)
             for (int d = 0; d < 3; d++) {
                 double x = C->du[3 * nodes[a] + d];
                 if (x != 0) {

@@ -13,6 +13,9 @@
 #include "fem_kernel.h"
 
 enum { F3_BOULDER = 0, F3_SLOPE = 1 };
+/* Master nodes per contact pair: the 4 x 4 grid nodes of the C1 (Catmull-Rom) master face
+ * around the quad under the slave (fem3d_contact.c). */
+enum { F3_NM = 16 };
 
 /* Node flags */
 enum { F3_SYM = 1, F3_OUTER = 2, F3_SURFACE = 4 };
@@ -54,6 +57,12 @@ typedef struct {
 rf_status f3_mesh_build(const f3_mesh_spec *spec, f3_mesh *mesh, long max_elements, rf_error *err);
 void f3_mesh_free(f3_mesh *mesh);
 
+/* Weight the boulder's element-node masses elm (8 per boulder element) so
+ * that their sum is M, their centre of mass is (X0, ., Z0) and their moment
+ * of inertia about the y axis through it is Iyy (fem3d_mass.c).  Returns 0
+ * (elm unchanged) if no positive weighting was found. */
+int f3_boulder_mass_moments(const f3_mesh *mesh, double *elm, double M, double X0, double Z0, double Iyy);
+
 typedef struct {
     double rho, E, nu;
 } f3_material;
@@ -69,16 +78,17 @@ double f3_hex_lambda_max(const double K[576], const double m[8], const unsigned 
 
 /* Contact of the boulder's fine-box face nodes (slaves) on the slope's
  * fine-box face (a uniform grid of master quads in the plane z = 0): each
- * step, every slave is paired with the master quad under its current
- * tangential position (bilinear weights), the normal is the slope's
- * undeformed normal +z, and the forward-increment multipliers are found by
+ * step, every slave is paired with the master point under its current
+ * tangential position; the master face is the C1 Catmull-Rom surface of the
+ * 4 x 4 grid nodes around that point (F3_NM weights), the normal row carries
+ * its deformed slope, and the forward-increment multipliers are found by
  * projected Gauss-Seidel in slave order (deterministic). */
 typedef struct {
     long nslave;
     int *slave;          /* boulder node ids */
     double *lam;         /* 3 per slave: normal, tangential x, y [N]; the next step's start */
-    int *mnode;          /* 4 master node ids per slave (this step) */
-    double *N;           /* 4 bilinear weights per slave */
+    int *mnode;          /* F3_NM master node ids per slave (this step; a repeated id has weight 0) */
+    double *N;           /* F3_NM Catmull-Rom weights per slave */
     double *S;           /* 2 per slave: slope d u_z / d(x, y) of the deformed master face */
     double *gap;         /* predicted normal gap [m] */
     double *ds;          /* 2 per slave: predicted slip increment of the step [m] */

@@ -96,7 +96,7 @@ typedef struct {
     double V, Vn, Vt, L, h, hb, sym_factor;
     f3_mesh_spec ms;
     f3_mesh mesh;
-    int have_mesh, threads, fixed_outer;
+    int have_mesh, threads, fixed_outer, mass_moments_ok;
     long nn, ne, ndof, nbn;
     f3_system S;
     float *K;
@@ -269,34 +269,12 @@ static rf_status solid_elements(solid_run *R, rf_error *err)
     return RF_OK;
 }
 
-/* The faceted boulder carries its lumped mass a little too far out: I_yy
- * is 0.67 % above the spheroid's M (c^2 + d^2) / 5 at a/h = 4, 0.4 % at 6,
- * worth -0.003 in R_t at a/h = 4 (docs/validation-mdr.md section 5).  Weight
- * the element-node masses by alpha + beta w, w = (x - cx)^2 + (z - cz)^2 the
- * squared distance from the axis of rotation (y, normal to the plane of
- * motion) through the centre of mass, so that both the mass and I_yy are
- * exact. */
+/* The lumped masses of the faceted boulder with the spheroid's mass, centre
+ * (0, ., d) and I_yy (fem3d_mass.c, docs/fem-speed.md section 5). */
 static void boulder_inertia(solid_run *R)
 {
-    const f3_mesh *mesh = &R->mesh;
-    const long n8 = 8 * mesh->boulder_elems;
-    double M = 0, cx = 0, cz = 0, S1 = 0, S2 = 0;
-    for (long k = 0; k < n8; k++) {
-        const double *x = mesh->x + 3 * (long)mesh->conn[k];
-        M += R->elm[k], cx += R->elm[k] * x[0], cz += R->elm[k] * x[2];
-    }
-    cx /= M, cz /= M;
-    for (long k = 0; k < n8; k++) {
-        const double *x = mesh->x + 3 * (long)mesh->conn[k];
-        const double w = (x[0] - cx) * (x[0] - cx) + (x[2] - cz) * (x[2] - cz);
-        S1 += R->elm[k] * w, S2 += R->elm[k] * w * w;
-    }
-    const double I = M * (R->H.c * R->H.c + R->H.d * R->H.d) / 5, det = M * S2 - S1 * S1;
-    const double alpha = (M * S2 - S1 * I) / det, beta = M * (I - S1) / det;
-    for (long k = 0; k < n8; k++) {
-        const double *x = mesh->x + 3 * (long)mesh->conn[k];
-        R->elm[k] *= alpha + beta * ((x[0] - cx) * (x[0] - cx) + (x[2] - cz) * (x[2] - cz));
-    }
+    const double M = R->H.mass / R->sym_factor, I = M * (R->H.c * R->H.c + R->H.d * R->H.d) / 5;
+    R->mass_moments_ok = f3_boulder_mass_moments(&R->mesh, R->elm, M, 0, R->H.d, I);
 }
 
 /* Element e's free dofs and double stiffness (from the stored float K). */
@@ -404,8 +382,8 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
     C->nslave = (long)ns;
     C->slave = malloc(ns * sizeof *C->slave);
     C->lam = calloc(ns * 3, sizeof *C->lam);
-    C->mnode = malloc(ns * 4 * sizeof *C->mnode);
-    C->N = malloc(ns * 4 * sizeof *C->N);
+    C->mnode = malloc(ns * F3_NM * sizeof *C->mnode);
+    C->N = malloc(ns * F3_NM * sizeof *C->N);
     C->S = calloc(ns * 2, sizeof *C->S);
     C->gap = malloc(ns * sizeof *C->gap);
     C->ds = malloc(ns * 2 * sizeof *C->ds);
@@ -443,6 +421,8 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
     if ((st = solid_elements(R, err)) != RF_OK)
         return st;
     solid_masses(R);
+    if (!R->mass_moments_ok)
+        return rf_fail(err, RF_EINTERNAL, "fem3d: no positive boulder mass weighting with the spheroid's moments");
     const long nbe = R->mesh.boulder_elems;
     /* matrix-free kernels (docs/fem-speed.md): J^-1 stored while the mesh is small enough for the
        640 B per element to stay in cache, recomputed from x beyond (fewer bytes per step) */
@@ -541,8 +521,8 @@ static double solid_contact_account(solid_run *R, double *rad)
         long k = C->cand[q];
         int s = C->slave[k];
         double g = R->mesh.x[3 * s + 2] + u[3 * s + 2];
-        for (int a = 0; a < 4; a++)
-            g -= C->N[4 * k + a] * u[3 * C->mnode[4 * k + a] + 2];
+        for (int a = 0; a < F3_NM; a++)
+            g -= C->N[F3_NM * k + a] * u[3 * C->mnode[F3_NM * k + a] + 2];
         if (-g > R->pen_max)
             R->pen_max = -g;
     }

@@ -364,8 +364,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                " duration_threshold=%.17g max_elements=%ld kernels=%d,%d",
                o->boulder_mesh_ratio, o->core_factor, o->grading, o->dt_safety, o->end_time,
                o->duration_threshold, o->max_elements, (int)o->kernel[0], (int)o->kernel[1]);
-        /* 3D results changed with the exact boulder I_yy (issue 9): a store never mixes the two */
-        append(buf, cap, &len, " fem3d_boulder_mass=mass_and_Iyy_exact");
+        /* 3D results changed with the exact boulder I_yy, again with its exact centre of mass and
+           with the C1 master face of the contact (issue 9, docs/fem-speed.md section 5): a store
+           never mixes them */
+        append(buf, cap, &len, " fem3d_boulder_mass=mass_cm_Iyy_exact fem3d_master_face=catmull_rom");
     }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
