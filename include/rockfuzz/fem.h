@@ -48,6 +48,22 @@ typedef enum {
                                     elasto-plastic laws take (axisymmetric model only; ~5x slower) */
 } rf_fem_kernel;
 
+/* Kinematics of the axisymmetric model (docs/validation-plastic.md section 8). */
+typedef enum {
+    RF_FEM_KINEMATICS_AUTO = 0, /* default: large deformation when a body is elasto-plastic, else small strain */
+    RF_FEM_SMALL_STRAIN,        /* strains, B and weights on the reference geometry; contact pairs fixed
+                                   in the reference configuration (vertical gaps, small sliding) */
+    RF_FEM_LARGE_DEFORMATION    /* updated Lagrangian: every deformable body on the integration-point
+                                   kernel with B, 1/r and 2 pi r det J of the current geometry, the strain
+                                   increment on the mid-step geometry, the stress rotated objectively
+                                   (Hughes-Winget) before the return map; contact on the current surfaces,
+                                   normal gaps, pairs found again every step */
+} rf_fem_kinematics;
+
+/* "auto" | "off" | "on" <-> enum. */
+const char *rf_fem_kinematics_name(rf_fem_kinematics k);
+rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_error *err);
+
 /* Refinement (a/h) used when the options leave it at 0: the axisymmetric
  * model is converged to < 0.1 % at 10; the 3D one costs ~50x more per a/h and
  * is within 0.3 % on R_t at 6 (docs/validation*.md). */
@@ -78,9 +94,17 @@ typedef struct {
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */
     double duration_threshold; /* contact counts while force > this * F_max, default 1e-6 */
     rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
+    rf_fem_kinematics large_deformation; /* axisymmetric model: default auto (see rf_fem_kinematics); the
+                                            3D model is small strain and accepts auto or off only */
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);
+
+/* 1 if the axisymmetric model runs in large deformation for this impact:
+ * opt->large_deformation on, or auto with an elasto-plastic body (the boulder,
+ * the slope or a layer); the one rule the solver and the model identity use. */
+int rf_fem_large_deformation(const rf_fem_options *opt, const rf_impact_input *in);
+
 
 /* The one check of the options (three_d: for the 3D model, whose limits
  * differ where noted in fem_options.c); messages name the setting and value. */

@@ -366,6 +366,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                o->duration_threshold, o->max_elements, (int)o->kernel[0], (int)o->kernel[1]);
         /* 3D results changed with the exact boulder I_yy (issue 9): a store never mixes the two */
         append(buf, cap, &len, " fem3d_boulder_mass=mass_and_Iyy_exact");
+        /* updated Lagrangian (on, or auto with a plastic body) is named: a store never mixes it with the
+           small-strain results, whose identity stays as it was */
+        if (rf_fem_large_deformation(o, b))
+            append(buf, cap, &len, " kinematics=updated_lagrangian");
     }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
