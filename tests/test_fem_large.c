@@ -1,5 +1,5 @@
 /* test_fem_large.c - large deformation in the axisymmetric FE model (issue 10
- * point 3; docs/validation-plastic.md section 8): the updated-Lagrangian
+ * point 3; docs/validation-plastic.md section 6e): the updated-Lagrangian
  * integration-point kernel against closed forms (objectivity under a rigid
  * rotation of any size; the hypoelastic uniaxial compression to a large
  * strain), and whole impacts (small speed: the small-strain result within

@@ -48,7 +48,7 @@ typedef enum {
                                     elasto-plastic laws take (axisymmetric model only; ~5x slower) */
 } rf_fem_kernel;
 
-/* Kinematics of the axisymmetric model (docs/validation-plastic.md section 8). */
+/* Kinematics of the axisymmetric model (docs/validation-plastic.md section 6e). */
 typedef enum {
     RF_FEM_KINEMATICS_AUTO = 0, /* default: large deformation when a body is elasto-plastic, else small strain */
     RF_FEM_SMALL_STRAIN,        /* strains, B and weights on the reference geometry; contact pairs fixed

@@ -149,7 +149,7 @@ static void usage(FILE *f)
         "                           a body is elasto-plastic).  on: updated Lagrangian (current\n"
         "                           geometry, objective Hughes-Winget stress rotation, contact on\n"
         "                           the deformed surfaces); off: small strain on the reference\n"
-        "                           geometry (docs/validation-plastic.md section 8)\n"
+        "                           geometry (docs/validation-plastic.md section 6e)\n"
         "  --domain-factor F        fem: slope domain radius / r0 >= 3 (default: sized so that\n"
         "                           2 L / c_p >= 1.25 Hertz t_c, at least 10: no reflected\n"
         "                           wave returns into the contact); --boundary fixed\n"

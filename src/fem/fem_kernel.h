@@ -140,7 +140,7 @@ rf_status fem_kernel_points_axi_two(fem_kernel *k, long first, long count, const
                                     const int *conn, const fem_point_law *law, const fem_point_law *law2,
                                     const unsigned char *use_law2, int bbar, rf_error *err);
 /* Turn an integration-point kernel just made (above) into the updated
- * Lagrangian form (large deformation, docs/validation-plastic.md section 8):
+ * Lagrangian form (large deformation, docs/validation-plastic.md section 6e):
  * at every step the strain increment is B(x_mid) (u_{n+1} - u_n) on the
  * mid-step geometry x_mid = X + (u_n + u_{n+1}) / 2, the committed Cauchy
  * stress is rotated by the Hughes-Winget rotation of the increment's spin
