@@ -11,8 +11,10 @@
  * mesher that puts a node exactly at the first-contact point and sizes the
  * fine zone from the Hertz contact radius.  Time integration: central
  * differences at the element eigenvalue bound; contact: forward-increment
- * Lagrange multipliers (Carpenter, Taylor & Katona 1991), node-to-segment
- * with small sliding, frictionless.  No artificial damping of any kind.
+ * Lagrange multipliers (Carpenter, Taylor & Katona 1991), node-to-segment,
+ * frictionless; small sliding on the reference geometry, or, in large
+ * deformation (rf_fem_options.large_deformation), on the current surfaces
+ * with an updated-Lagrangian material kernel.  No artificial damping of any kind.
  * See docs/validation.md for the measured accuracy.
  *
  * Units: SI.  Thread safety: rf_fem_impact keeps all state in its own
