@@ -212,6 +212,34 @@ static void test_soft_soil_energy(void **state)
     rf_fem_history_free(&hist);
 }
 
+/* The contact's single-pivot fallback (Murty's least-index rule, used when
+ * the block active-set method cycles) against the block method: the
+ * complementarity problem has one solution (G M^-1 G^T is positive
+ * definite), so the whole soft-soil run must agree to round-off. */
+static void test_contact_single_pivot(void **state)
+{
+    (void)state;
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.velocity = 5, in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    in.slope_density = 1800, in.slope_E = 50e6, in.slope_poisson = 0.3;
+    in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 5e3;
+    in.slope_friction_angle = 35 * M_PI / 180, in.slope_dilatancy_angle = 5 * M_PI / 180;
+    in.slope_cap_pressure = 100e3, in.slope_cap_hardening = 20e6;
+    rf_fem_options o = coarse(3, RF_FEM_KINEMATICS_AUTO);
+    o.domain_factor = 0;
+    rf_impact_output a, b;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &a, NULL, &err), RF_OK);
+    fem_contact_block_rounds = 0; /* single pivoting from the start */
+    const rf_status st = rf_fem_impact(&in, &o, &b, NULL, &err);
+    fem_contact_block_rounds = 200;
+    assert_int_equal(st, RF_OK);
+    printf("contact LCP: block R_n %.12f, single pivot %.12f; penetration %.9f / %.9f m\n", a.R_n, b.R_n,
+           a.penetration_max, b.penetration_max);
+    assert_true(fabs(a.R_n - b.R_n) < 1e-9 && fabs(a.penetration_max - b.penetration_max) < 1e-9);
+}
+
 /* The option's names and refusals. */
 static void test_kinematics_option(void **state)
 {
@@ -242,6 +270,7 @@ int main(void)
         cmocka_unit_test(test_kinematics_option),
         cmocka_unit_test(test_small_velocity_agrees),
         cmocka_unit_test(test_soft_soil_energy),
+        cmocka_unit_test(test_contact_single_pivot),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

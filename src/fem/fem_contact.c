@@ -68,7 +68,110 @@ static double pair_gap(const contact_pair *p, const double *u, int nq)
     return g;
 }
 
-/* Solve the contact LCP for the predicted displacements u; writes lambda. */
+/* The multipliers of the active pairs: (G M^-1 G^T dt^2) lambda = -g_pred,
+ * solution in C->rhs.  Returns 0, or -1 for a singular matrix. */
+static int active_solve(fem_contact *C, const double *invm, double dt2, int na)
+{
+    for (int a = 0; a < na; a++) {
+        const contact_pair *pa = C->pair + C->active[a];
+        for (int b = 0; b <= a; b++) {
+            double v = dt2 * pair_aij(pa, C->pair + C->active[b], invm, C->rigid_invm, C->nq);
+            C->A[a * na + b] = C->A[b * na + a] = v;
+        }
+        C->rhs[a] = -C->gpred[C->active[a]];
+    }
+    return cholesky_solve(C->A, C->rhs, na);
+}
+
+/* lambda of the active pairs from C->rhs and their displacement corrections
+ * in the scratch C->du (a rigid boulder's on every candidate slave). */
+static void active_corrections(fem_contact *C, const double *invm, double dt2, int na, int nc)
+{
+    double du_rigid = 0; /* of a rigid boulder (every slave) */
+    const int q0 = C->rigid_invm > 0;
+    for (int a = 0; a < na; a++) {
+        const contact_pair *p = C->pair + C->active[a];
+        C->lambda[C->active[a]] = C->rhs[a];
+        du_rigid += dt2 * C->rigid_invm * p->c[0] * C->rhs[a];
+        for (int q = q0; q < C->nq; q++)
+            C->du[p->dof[q]] += dt2 * invm[p->dof[q]] * p->c[q] * C->rhs[a];
+    }
+    if (q0)
+        for (int k = 0; k < nc; k++)
+            C->du[C->pair[C->cand[k]].dof[0]] = du_rigid;
+}
+
+/* The gap of pair i after the corrections in C->du. */
+static double corrected_gap(const fem_contact *C, int i)
+{
+    const contact_pair *p = C->pair + i;
+    double g = C->gpred[i];
+    for (int q = 0; q < C->nq; q++)
+        g += p->c[q] * C->du[p->dof[q]];
+    return g;
+}
+
+static int is_active(const fem_contact *C, int na, int i)
+{
+    int in = 0;
+    for (int a = 0; a < na; a++)
+        in |= C->active[a] == i;
+    return in;
+}
+
+/* Zero the scratch C->du and the candidates' multipliers. */
+static void clean_scratch(fem_contact *C, int nc)
+{
+    for (int k = 0; k < nc; k++) {
+        const contact_pair *p = C->pair + C->cand[k];
+        for (int q = 0; q < C->nq; q++)
+            C->du[p->dof[q]] = 0;
+    }
+}
+
+/* Fallback when the block active-set method below cycles (seen with a rigid
+ * boulder pressing a squeezed soil layer, many nearly dependent pairs):
+ * Murty's (1974) least-index principal pivoting, which changes one pair per
+ * iteration, the violated one of least number (a negative multiplier, or an
+ * inactive pair that would penetrate) and terminates for a positive-definite
+ * matrix. */
+static rf_status contact_solve_single(fem_contact *C, const double *invm, double dt2, int nc, int na, rf_error *err)
+{
+    for (long iter = 0; iter < 100 + 20L * nc * nc; iter++) {
+        for (int k = 0; k < nc; k++)
+            C->lambda[C->cand[k]] = 0;
+        if (na > 0 && active_solve(C, invm, dt2, na) != 0)
+            return rf_fail(err, RF_EINTERNAL, "fem contact: singular contact matrix (%d pairs)", na);
+        active_corrections(C, invm, dt2, na, nc);
+        int j = -1;
+        for (int k = 0; k < nc; k++) {
+            const int i = C->cand[k];
+            const int bad = is_active(C, na, i) ? C->lambda[i] < 0 : corrected_gap(C, i) < -C->tol;
+            if (bad && (j < 0 || i < j))
+                j = i;
+        }
+        clean_scratch(C, nc);
+        if (j < 0)
+            return RF_OK;
+        if (is_active(C, na, j)) { /* drop it */
+            int k = 0;
+            for (int a = 0; a < na; a++)
+                if (C->active[a] != j)
+                    C->active[k++] = C->active[a];
+            na = k;
+        } else {
+            C->active[na++] = j;
+        }
+    }
+    return rf_fail(err, RF_EINTERNAL, "fem contact: active set did not settle (%d candidate pairs)", nc);
+}
+
+int fem_contact_block_rounds = 200;
+
+/* Solve the contact LCP for the predicted displacements u; writes lambda.
+ * Block active set: drop every pair in tension, add every penetrating one;
+ * after fem_contact_block_rounds rounds without settling, the single-pivot
+ * fallback above. */
 static rf_status contact_solve(fem_contact *C, const double *u, const double *invm, double dt, rf_error *err)
 {
     int nc = 0, na = 0;
@@ -84,16 +187,8 @@ static rf_status contact_solve(fem_contact *C, const double *u, const double *in
         }
     }
     double dt2 = dt * dt;
-    for (int iter = 0; iter < 200 && na > 0; iter++) {
-        for (int a = 0; a < na; a++) {
-            const contact_pair *pa = C->pair + C->active[a];
-            for (int b = 0; b <= a; b++) {
-                double v = dt2 * pair_aij(pa, C->pair + C->active[b], invm, C->rigid_invm, C->nq);
-                C->A[a * na + b] = C->A[b * na + a] = v;
-            }
-            C->rhs[a] = -C->gpred[C->active[a]];
-        }
-        if (cholesky_solve(C->A, C->rhs, na) != 0)
+    for (int iter = 0; iter < fem_contact_block_rounds && na > 0; iter++) {
+        if (active_solve(C, invm, dt2, na) != 0)
             return rf_fail(err, RF_EINTERNAL, "fem contact: singular contact matrix (%d pairs)", na);
         int neg = 0;
         for (int a = 0; a < na; a++)
@@ -108,47 +203,23 @@ static rf_status contact_solve(fem_contact *C, const double *u, const double *in
             continue;
         }
         /* displacement corrections, then check the inactive candidates */
-        double du_rigid = 0; /* of a rigid boulder (every slave) */
-        const int q0 = C->rigid_invm > 0;
-        for (int a = 0; a < na; a++) {
-            const contact_pair *p = C->pair + C->active[a];
-            C->lambda[C->active[a]] = C->rhs[a];
-            du_rigid += dt2 * C->rigid_invm * p->c[0] * C->rhs[a];
-            for (int q = q0; q < C->nq; q++)
-                C->du[p->dof[q]] += dt2 * invm[p->dof[q]] * p->c[q] * C->rhs[a];
-        }
-        if (q0)
-            for (int k = 0; k < nc; k++)
-                C->du[C->pair[C->cand[k]].dof[0]] = du_rigid;
+        active_corrections(C, invm, dt2, na, nc);
         int added = 0;
         for (int k = 0; k < nc; k++) {
             int i = C->cand[k];
             if (C->lambda[i] > 0)
                 continue;
-            const contact_pair *p = C->pair + i;
-            double g = C->gpred[i];
-            for (int q = 0; q < C->nq; q++)
-                g += p->c[q] * C->du[p->dof[q]];
-            if (g < -C->tol) {
-                int in = 0;
-                for (int a = 0; a < na; a++)
-                    in |= C->active[a] == i;
-                if (!in)
-                    C->active[na++] = i, added = 1;
-            }
+            if (corrected_gap(C, i) < -C->tol && !is_active(C, na, i))
+                C->active[na++] = i, added = 1;
         }
-        for (int k = 0; k < nc; k++) { /* clean scratch */
-            const contact_pair *p = C->pair + C->cand[k];
-            for (int q = 0; q < C->nq; q++)
-                C->du[p->dof[q]] = 0;
-        }
+        clean_scratch(C, nc);
         if (!added)
             return RF_OK;
         for (int k = 0; k < nc; k++)
             C->lambda[C->cand[k]] = 0;
     }
     if (na > 0)
-        return rf_fail(err, RF_EINTERNAL, "fem contact: active set did not settle");
+        return contact_solve_single(C, invm, dt2, nc, na, err);
     return RF_OK;
 }
 

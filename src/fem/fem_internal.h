@@ -113,6 +113,10 @@ typedef struct {
     double *vold;         /* v_{n-1/2} kept by fem_contact_begin (large deformation) */
 } fem_contact;
 
+/* Rounds of the block active-set method before the contact solver falls back
+ * to single pivoting (200; a test lowers it to 0 to check that both give the
+ * one solution of the complementarity problem). */
+extern int fem_contact_block_rounds;
 /* Pairs of the boulder surface nodes below height d / 2 (fem_contact.c). */
 rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err);
 /* Switch the pairs to large deformation: after the predictor,
