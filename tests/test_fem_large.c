@@ -174,6 +174,20 @@ static void test_small_velocity_agrees(void **state)
     assert_true(l.energy_error < 1e-3);
 }
 
+/* A rigid boulder (r0 = 1 m) at 5 m/s on the soft soil of section 6 of
+ * docs/validation-plastic.md. */
+static rf_impact_input soft_soil(void)
+{
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.velocity = 5, in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    in.slope_density = 1800, in.slope_E = 50e6, in.slope_poisson = 0.3;
+    in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 5e3;
+    in.slope_friction_angle = 35 * M_PI / 180, in.slope_dilatancy_angle = 5 * M_PI / 180;
+    in.slope_cap_pressure = 100e3, in.slope_cap_hardening = 20e6;
+    return in;
+}
+
 /* A rigid boulder (r0 = 1 m) at 5 m/s on soft Drucker-Prager + cap soil
  * (section 6 of docs/validation-plastic.md): the penetration is over a
  * quarter of the radius; with large deformation the energy still closes
@@ -183,13 +197,7 @@ static void test_small_velocity_agrees(void **state)
 static void test_soft_soil_energy(void **state)
 {
     (void)state;
-    rf_impact_input in;
-    rf_impact_input_default(&in);
-    in.velocity = 5, in.boulder_material = RF_MATERIAL_RIGID_BODY;
-    in.slope_density = 1800, in.slope_E = 50e6, in.slope_poisson = 0.3;
-    in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 5e3;
-    in.slope_friction_angle = 35 * M_PI / 180, in.slope_dilatancy_angle = 5 * M_PI / 180;
-    in.slope_cap_pressure = 100e3, in.slope_cap_hardening = 20e6;
+    rf_impact_input in = soft_soil();
     rf_fem_options o;
     rf_fem_options_default(&o);
     o.refinement = 6;
@@ -219,13 +227,7 @@ static void test_soft_soil_energy(void **state)
 static void test_contact_single_pivot(void **state)
 {
     (void)state;
-    rf_impact_input in;
-    rf_impact_input_default(&in);
-    in.velocity = 5, in.boulder_material = RF_MATERIAL_RIGID_BODY;
-    in.slope_density = 1800, in.slope_E = 50e6, in.slope_poisson = 0.3;
-    in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 5e3;
-    in.slope_friction_angle = 35 * M_PI / 180, in.slope_dilatancy_angle = 5 * M_PI / 180;
-    in.slope_cap_pressure = 100e3, in.slope_cap_hardening = 20e6;
+    rf_impact_input in = soft_soil();
     rf_fem_options o = coarse(3, RF_FEM_KINEMATICS_AUTO);
     o.domain_factor = 0;
     rf_impact_output a, b;
