@@ -19,6 +19,8 @@
 #include "fem/fem_internal.h"
 #include "fem/fem_kernel.h"
 #include "rockfuzz/fem.h"
+#include "rockfuzz/impact_model.h"
+#include "rockfuzz/model.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -242,6 +244,41 @@ static void test_contact_single_pivot(void **state)
     assert_true(fabs(a.R_n - b.R_n) < 1e-9 && fabs(a.penetration_max - b.penetration_max) < 1e-9);
 }
 
+/* The model identity (the key of a study's result store) names the
+ * updated-Lagrangian kinematics whenever an evaluation may run in it, so a
+ * store never mixes it with small-strain results; elastic identities are
+ * unchanged.  A plastic layer counts when its thickness is a parameter. */
+static int identity_says_large(const rf_impact_model_spec *spec, const char *param)
+{
+    rf_model model;
+    rf_error err = {0};
+    const char *names[1] = {param};
+    if (rf_impact_model_create(spec, names, 1, &model, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    const int large = strstr(model.identity, "kinematics=updated_lagrangian") != NULL;
+    rf_model_free(&model);
+    return large;
+}
+
+static void test_identity_names_kinematics(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec;
+    rf_impact_model_spec_default(&spec);
+    spec.solver = RF_IMPACT_FEM;
+    assert_false(identity_says_large(&spec, "velocity")); /* elastic: small strain, as before */
+    spec.fem.large_deformation = RF_FEM_LARGE_DEFORMATION;
+    assert_true(identity_says_large(&spec, "velocity"));
+    spec.fem.large_deformation = RF_FEM_KINEMATICS_AUTO;
+    spec.base.layer_material = RF_MATERIAL_DRUCKER_PRAGER, spec.base.layer_cohesion = 1e6;
+    assert_false(identity_says_large(&spec, "velocity"));   /* no layer anywhere */
+    assert_true(identity_says_large(&spec, "layer_thickness")); /* a plastic layer at some points */
+    spec.base.slope_material = RF_MATERIAL_VON_MISES, spec.base.slope_yield = 2e8;
+    assert_true(identity_says_large(&spec, "velocity"));
+    spec.fem.large_deformation = RF_FEM_SMALL_STRAIN;
+    assert_false(identity_says_large(&spec, "velocity")); /* off: the earlier plastic identity */
+}
+
 /* The option's names and refusals. */
 static void test_kinematics_option(void **state)
 {
@@ -270,6 +307,7 @@ int main(void)
         cmocka_unit_test(test_rigid_rotation_objective),
         cmocka_unit_test(test_uniaxial_large_compression),
         cmocka_unit_test(test_kinematics_option),
+        cmocka_unit_test(test_identity_names_kinematics),
         cmocka_unit_test(test_small_velocity_agrees),
         cmocka_unit_test(test_soft_soil_energy),
         cmocka_unit_test(test_contact_single_pivot),
