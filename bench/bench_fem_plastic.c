@@ -1,7 +1,9 @@
 /* bench_fem_plastic.c - cost of the material kernels of the axisymmetric FE
  * impact (issue 10): nanoseconds per element-step and wall time of a granite
  * sphere at V m/s on a slope that is elastic (precomputed stiffness, and the
- * integration-point kernel), von Mises, or Drucker-Prager with a cap.
+ * integration-point kernel), von Mises, or Drucker-Prager with a cap, the
+ * plastic ones in small strain and in large deformation (updated Lagrangian,
+ * docs/validation-plastic.md section 6e).
  *   bench_fem_plastic [refinement=10] [velocity=10] [repeats=3]
  * Prints the best of `repeats` runs (other jobs share the machine). */
 #include <stdio.h>
@@ -16,7 +18,7 @@ int main(int argc, char **argv)
     printf("# refinement a/h = %g, V = %g m/s, domain factor 10, best of %d\n", ref, V, repeats);
     printf("%-34s %9s %9s %8s %10s %9s %9s\n", "slope material", "elements", "steps", "wall[s]", "ns/el-step", "R_n",
            "W_p/KE");
-    for (int m = 0; m < 4; m++) {
+    for (int m = 0; m < 6; m++) {
         rf_impact_input in;
         rf_impact_input_default(&in);
         in.velocity = V;
@@ -28,15 +30,16 @@ int main(int argc, char **argv)
         if (m == 1) {
             o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_POINTS;
             name = "elastic (integration points, 2x2)";
-        } else if (m == 2) {
+        } else if (m == 2 || m == 4) {
             in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 200e6;
-            name = "von_mises Y 200 MPa (B-bar)";
-        } else if (m == 3) {
+            name = m == 2 ? "von_mises Y 200 MPa (B-bar)" : "von_mises, large deformation";
+        } else if (m == 3 || m == 5) {
             in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 20e6;
             in.slope_friction_angle = 0.6, in.slope_dilatancy_angle = 0.1;
             in.slope_cap_pressure = 300e6, in.slope_cap_hardening = 5e9;
-            name = "drucker_prager + cap (B-bar)";
+            name = m == 3 ? "drucker_prager + cap (B-bar)" : "drucker_prager + cap, large deformation";
         }
+        o.large_deformation = m < 4 ? RF_FEM_SMALL_STRAIN : RF_FEM_LARGE_DEFORMATION;
         double best = 1e300;
         rf_impact_output out = {0};
         for (int r = 0; r < repeats; r++) {

@@ -84,6 +84,11 @@ expect_error 2 "--layer-E -5" --layer-thickness 0.1 --layer-E -5
 expect_error 2 "--layer-material 'sand'" --layer-material sand
 expect_error 1 "has no layer" --solver hunter --layer-thickness 0.1
 expect_error 1 "the hertz solver is elastic" --solver hertz --slope-material von_mises --slope-yield 1e8
+# large deformation: the value named; the 3D model is small strain
+expect_error 2 "large_deformation 'maybe'" --large-deformation maybe
+"$bin" impact --help | grep -q -- '--large-deformation K' || fail "help lacks --large-deformation"
+"$bin" impact --solver fem --large-deformation on --slope-angle 30 --friction 0.5 --refinement 2 >/dev/null 2>&1 &&
+    fail "3D accepted --large-deformation on"
 # a rigid boulder: Hertz with E* = E_s / (1 - nu_s^2) (F = 1.18873e8 N at 10 m/s)
 out=$("$bin" impact --solver hertz --boulder-material rigid --json) || fail "rigid hertz exit"
 echo "$out" | grep -q '"contact_force_max": 11887' || fail "rigid boulder Hertz force: $out"

@@ -268,10 +268,19 @@ static void test_plastic_wave_1d(void **state)
 
 /* --- limit: huge strength = elastic --- */
 
+static void huge_yield_is_elastic(rf_fem_kinematics kin);
+
 static void test_huge_yield_is_elastic(void **state)
 {
     (void)state;
+    for (int kin = RF_FEM_SMALL_STRAIN; kin <= RF_FEM_LARGE_DEFORMATION; kin++) /* the elastic run in the same kinematics */
+        huge_yield_is_elastic((rf_fem_kinematics)kin);
+}
+
+static void huge_yield_is_elastic(rf_fem_kinematics kin)
+{
     rf_fem_options o = coarse(3);
+    o.large_deformation = kin;
     rf_impact_input el = granite(10);
     rf_impact_output ref, out;
     rf_error err = {0};
@@ -291,8 +300,8 @@ static void test_huge_yield_is_elastic(void **state)
         }
         if (rf_fem_impact(&in, &o, &out, NULL, &err) != RF_OK)
             fail_msg("%s", err.msg);
-        printf("huge strength model %d: R_n %.8f vs elastic %.8f, F_max ratio %.6f, energy error %.2e\n", m,
-               out.R_n, ref.R_n, out.contact_force_max / ref.contact_force_max, out.energy_error);
+        printf("huge strength model %d (large deformation %s): R_n %.8f vs elastic %.8f, F_max ratio %.6f, "
+               "energy error %.2e\n", m, rf_fem_kinematics_name(kin), out.R_n, ref.R_n, out.contact_force_max / ref.contact_force_max, out.energy_error);
         if (!(fabs(out.R_n - ref.R_n) < 1e-4))
             fail_msg("model %d: R_n %.8f vs elastic %.8f", m, out.R_n, ref.R_n);
         assert_true(out.plastic_work == 0 && out.equivalent_plastic_strain_max == 0);
@@ -509,12 +518,16 @@ static void test_layer(void **state)
     rf_error err = {0};
     rf_impact_output a, b;
     rf_impact_input in = granite(5);
-    in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 1e15;
-    assert_int_equal(rf_fem_impact(&in, &o, &a, NULL, &err), RF_OK);
-    in.slope_material = RF_MATERIAL_ELASTIC;
-    in.layer_thickness = 0.3; /* granite on granite, elastic */
-    assert_int_equal(rf_fem_impact(&in, &o, &b, NULL, &err), RF_OK);
-    assert_true(a.R_n == b.R_n && a.contact_force_max == b.contact_force_max);
+    for (int kin = RF_FEM_SMALL_STRAIN; kin <= RF_FEM_LARGE_DEFORMATION; kin++) { /* auto would differ */
+        o.large_deformation = (rf_fem_kinematics)kin;
+        in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 1e15, in.layer_thickness = 0;
+        assert_int_equal(rf_fem_impact(&in, &o, &a, NULL, &err), RF_OK);
+        in.slope_material = RF_MATERIAL_ELASTIC;
+        in.layer_thickness = 0.3; /* granite on granite, elastic */
+        assert_int_equal(rf_fem_impact(&in, &o, &b, NULL, &err), RF_OK);
+        assert_true(a.R_n == b.R_n && a.contact_force_max == b.contact_force_max);
+    }
+    o.large_deformation = RF_FEM_KINEMATICS_AUTO;
     /* soft (10 GPa) layer: thin, thick, and a homogeneous soft slope */
     double F[4];
     const double t[3] = {0.0, 0.05, 5.0}; /* h = 2.3 cm at the contact */

@@ -11,8 +11,10 @@
  * mesher that puts a node exactly at the first-contact point and sizes the
  * fine zone from the Hertz contact radius.  Time integration: central
  * differences at the element eigenvalue bound; contact: forward-increment
- * Lagrange multipliers (Carpenter, Taylor & Katona 1991), node-to-segment
- * with small sliding, frictionless.  No artificial damping of any kind.
+ * Lagrange multipliers (Carpenter, Taylor & Katona 1991), node-to-segment,
+ * frictionless; small sliding on the reference geometry, or, in large
+ * deformation (rf_fem_options.large_deformation), on the current surfaces
+ * with an updated-Lagrangian material kernel.  No artificial damping of any kind.
  * See docs/validation.md for the measured accuracy.
  *
  * Units: SI.  Thread safety: rf_fem_impact keeps all state in its own
@@ -48,6 +50,22 @@ typedef enum {
                                     elasto-plastic laws take (axisymmetric model only; ~5x slower) */
 } rf_fem_kernel;
 
+/* Kinematics of the axisymmetric model (docs/validation-plastic.md section 6e). */
+typedef enum {
+    RF_FEM_KINEMATICS_AUTO = 0, /* default: large deformation when a body is elasto-plastic, else small strain */
+    RF_FEM_SMALL_STRAIN,        /* strains, B and weights on the reference geometry; contact pairs fixed
+                                   in the reference configuration (vertical gaps, small sliding) */
+    RF_FEM_LARGE_DEFORMATION    /* updated Lagrangian: every deformable body on the integration-point
+                                   kernel with B, 1/r and 2 pi r det J of the current geometry, the strain
+                                   increment on the mid-step geometry, the stress rotated objectively
+                                   (Hughes-Winget) before the return map; contact on the current surfaces,
+                                   normal gaps, pairs found again every step */
+} rf_fem_kinematics;
+
+/* "auto" | "off" | "on" <-> enum. */
+const char *rf_fem_kinematics_name(rf_fem_kinematics k);
+rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_error *err);
+
 /* Refinement (a/h) used when the options leave it at 0: the axisymmetric
  * model is converged to < 0.1 % at 10; the 3D one costs ~50x more per a/h and
  * at 3 is within 1.7e-4 / 4.8e-4 / 9.8e-5 of the converged R_n / R_t / R_ke of
@@ -80,9 +98,17 @@ typedef struct {
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */
     double duration_threshold; /* contact counts while force > this * F_max, default 1e-6 */
     rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
+    rf_fem_kinematics large_deformation; /* axisymmetric model: default auto (see rf_fem_kinematics); the
+                                            3D model is small strain and accepts auto or off only */
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);
+
+/* 1 if the axisymmetric model runs in large deformation for this impact:
+ * opt->large_deformation on, or auto with an elasto-plastic body (the boulder,
+ * the slope or a layer); the one rule the solver and the model identity use. */
+int rf_fem_large_deformation(const rf_fem_options *opt, const rf_impact_input *in);
+
 
 /* The one check of the options (three_d: for the 3D model, whose limits
  * differ where noted in fem_options.c); messages name the setting and value. */

@@ -22,7 +22,7 @@
 
 typedef enum {
     O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
-    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_DOMAIN, O_THREADS, O_VTK, O_JSON,
+    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_DOMAIN, O_THREADS, O_VTK, O_JSON,
     O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S,
     O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L,
     O_HELP, O_COUNT
@@ -75,6 +75,7 @@ static const struct {
     {O_HUNTER_A, "hunter-A", NULL},
     {O_REFINEMENT, "refinement", NULL},
     {O_BOUNDARY, "boundary", NULL},
+    {O_LARGE, "large-deformation", NULL},
     {O_DOMAIN, "domain-factor", NULL},
     {O_THREADS, "threads", NULL},
     {O_VTK, "vtk", NULL},
@@ -144,6 +145,11 @@ static void usage(FILE *f)
         "  --refinement A_OVER_H    fem: elements across the Hertz contact radius, >= 2\n"
         "                           (default 10 axisymmetric, 6 for the 3D model)\n"
         "  --boundary KIND          fem: fixed | absorbing outer boundary (default fixed)\n"
+        "  --large-deformation K    fem, axisymmetric: auto | on | off (default auto: on when\n"
+        "                           a body is elasto-plastic).  on: updated Lagrangian (current\n"
+        "                           geometry, objective Hughes-Winget stress rotation, contact on\n"
+        "                           the deformed surfaces); off: small strain on the reference\n"
+        "                           geometry (docs/validation-plastic.md section 6e)\n"
         "  --domain-factor F        fem: slope domain radius / r0 >= 3 (default: sized so that\n"
         "                           2 L / c_p >= 1.25 Hertz t_c, at least 10: no reflected\n"
         "                           wave returns into the contact); --boundary fixed\n"
@@ -262,11 +268,12 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     printf("  mass              %.6g kg\n", rf_impact_mass(in));
     if (spec->solver == RF_IMPACT_FEM) {
         int three_d = rf_fem_needs_3d(in);
-        printf("  FE settings       %s, refinement a/h = %g, domain = %g r0%s, boundary %s, threads %d\n",
+        printf("  FE settings       %s, refinement a/h = %g, domain = %g r0%s, boundary %s, threads %d, "
+               "large deformation %s\n",
                three_d ? "3D half model (inclined slope or friction)" : "axisymmetric",
                rf_fem_refinement(&spec->fem, three_d), rf_fem_domain_factor(&spec->fem, in),
                spec->fem.domain_factor > 0 ? "" : " (automatic)", rf_fem_boundary_name(spec->fem.boundary),
-               spec->fem.threads);
+               spec->fem.threads, rf_fem_kinematics_name(spec->fem.large_deformation));
     }
     printf("\nResults\n");
     print_value("max contact force", o->contact_force_max, "N");
@@ -407,6 +414,12 @@ int rf_cli_impact(int argc, char **argv)
         case O_BOUNDARY:
             if (rf_fem_boundary_parse(val, &spec.fem.boundary, &err) != RF_OK) {
                 fprintf(stderr, "rockfuzz impact: --boundary: %s\n", err.msg);
+                return EXIT_USAGE;
+            }
+            break;
+        case O_LARGE:
+            if (rf_fem_kinematics_parse(val, &spec.fem.large_deformation, &err) != RF_OK) {
+                fprintf(stderr, "rockfuzz impact: --large-deformation: %s\n", err.msg);
                 return EXIT_USAGE;
             }
             break;

@@ -1,6 +1,8 @@
 /* fem_contact.c - contact of the axisymmetric solver: node-to-segment pairs
- * (boulder surface nodes on slope surface segments, small sliding, the
- * slope's undeformed normal), forward-increment Lagrange multipliers
+ * (boulder surface nodes on slope surface segments; small strain: small
+ * sliding, vertical gaps in the reference configuration; large deformation:
+ * each slave's segment found again on the current surface at every step,
+ * the gap along the current segment's normal), forward-increment Lagrange multipliers
  * (Carpenter, Taylor & Katona 1991, IJNME 32:103): the multipliers lambda_n
  * >= 0 are the forces at step n that make the predicted gaps at n+1 exactly
  * non-negative, a small linear complementarity problem over the pairs near
@@ -10,6 +12,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Dense Cholesky solve of A x = b (n x n, A overwritten).  Returns 0 on success. */
 static int cholesky_solve(double *A, double *b, int n)
@@ -46,23 +49,135 @@ static int cholesky_solve(double *A, double *b, int n)
 
 /* (G M^-1 G^T)_ab; with a rigid boulder every two slaves are coupled
  * through its mass (slave dofs are the boulder's, masters the slope's). */
-static double pair_aij(const contact_pair *a, const contact_pair *b, const double *invm, double rigid_invm)
+static double pair_aij(const contact_pair *a, const contact_pair *b, const double *invm, double rigid_invm, int nq)
 {
     double s = rigid_invm > 0 ? a->c[0] * b->c[0] * rigid_invm : 0;
-    for (int p = rigid_invm > 0; p < 3; p++)
-        for (int q = rigid_invm > 0; q < 3; q++)
+    for (int p = rigid_invm > 0; p < nq; p++)
+        for (int q = rigid_invm > 0; q < nq; q++)
             if (a->dof[p] == b->dof[q])
                 s += a->c[p] * b->c[q] * invm[a->dof[p]];
     return s;
 }
 
-/* Solve the contact LCP for the predicted displacements u; writes lambda. */
+/* The linear gap g0 + c . u of a pair. */
+static double pair_gap(const contact_pair *p, const double *u, int nq)
+{
+    double g = p->g0;
+    for (int q = 0; q < nq; q++)
+        g += p->c[q] * u[p->dof[q]];
+    return g;
+}
+
+/* The multipliers of the active pairs: (G M^-1 G^T dt^2) lambda = -g_pred,
+ * solution in C->rhs.  Returns 0, or -1 for a singular matrix. */
+static int active_solve(fem_contact *C, const double *invm, double dt2, int na)
+{
+    for (int a = 0; a < na; a++) {
+        const contact_pair *pa = C->pair + C->active[a];
+        for (int b = 0; b <= a; b++) {
+            double v = dt2 * pair_aij(pa, C->pair + C->active[b], invm, C->rigid_invm, C->nq);
+            C->A[a * na + b] = C->A[b * na + a] = v;
+        }
+        C->rhs[a] = -C->gpred[C->active[a]];
+    }
+    return cholesky_solve(C->A, C->rhs, na);
+}
+
+/* lambda of the active pairs from C->rhs and their displacement corrections
+ * in the scratch C->du (a rigid boulder's on every candidate slave). */
+static void active_corrections(fem_contact *C, const double *invm, double dt2, int na, int nc)
+{
+    double du_rigid = 0; /* of a rigid boulder (every slave) */
+    const int q0 = C->rigid_invm > 0;
+    for (int a = 0; a < na; a++) {
+        const contact_pair *p = C->pair + C->active[a];
+        C->lambda[C->active[a]] = C->rhs[a];
+        du_rigid += dt2 * C->rigid_invm * p->c[0] * C->rhs[a];
+        for (int q = q0; q < C->nq; q++)
+            C->du[p->dof[q]] += dt2 * invm[p->dof[q]] * p->c[q] * C->rhs[a];
+    }
+    if (q0)
+        for (int k = 0; k < nc; k++)
+            C->du[C->pair[C->cand[k]].dof[0]] = du_rigid;
+}
+
+/* The gap of pair i after the corrections in C->du. */
+static double corrected_gap(const fem_contact *C, int i)
+{
+    const contact_pair *p = C->pair + i;
+    double g = C->gpred[i];
+    for (int q = 0; q < C->nq; q++)
+        g += p->c[q] * C->du[p->dof[q]];
+    return g;
+}
+
+static int is_active(const fem_contact *C, int na, int i)
+{
+    int in = 0;
+    for (int a = 0; a < na; a++)
+        in |= C->active[a] == i;
+    return in;
+}
+
+/* Zero the scratch C->du and the candidates' multipliers. */
+static void clean_scratch(fem_contact *C, int nc)
+{
+    for (int k = 0; k < nc; k++) {
+        const contact_pair *p = C->pair + C->cand[k];
+        for (int q = 0; q < C->nq; q++)
+            C->du[p->dof[q]] = 0;
+    }
+}
+
+/* Fallback when the block active-set method below cycles (seen with a rigid
+ * boulder pressing a squeezed soil layer, many nearly dependent pairs):
+ * Murty's (1974) least-index principal pivoting, which changes one pair per
+ * iteration, the violated one of least number (a negative multiplier, or an
+ * inactive pair that would penetrate) and terminates for a positive-definite
+ * matrix. */
+static rf_status contact_solve_single(fem_contact *C, const double *invm, double dt2, int nc, int na, rf_error *err)
+{
+    for (long iter = 0; iter < 100 + 20L * nc * nc; iter++) {
+        for (int k = 0; k < nc; k++)
+            C->lambda[C->cand[k]] = 0;
+        if (na > 0 && active_solve(C, invm, dt2, na) != 0)
+            return rf_fail(err, RF_EINTERNAL, "fem contact: singular contact matrix (%d pairs)", na);
+        active_corrections(C, invm, dt2, na, nc);
+        int j = -1;
+        for (int k = 0; k < nc; k++) {
+            const int i = C->cand[k];
+            const int bad = is_active(C, na, i) ? C->lambda[i] < 0 : corrected_gap(C, i) < -C->tol;
+            if (bad && (j < 0 || i < j))
+                j = i;
+        }
+        clean_scratch(C, nc);
+        if (j < 0)
+            return RF_OK;
+        if (is_active(C, na, j)) { /* drop it */
+            int k = 0;
+            for (int a = 0; a < na; a++)
+                if (C->active[a] != j)
+                    C->active[k++] = C->active[a];
+            na = k;
+        } else {
+            C->active[na++] = j;
+        }
+    }
+    return rf_fail(err, RF_EINTERNAL, "fem contact: active set did not settle (%d candidate pairs)", nc);
+}
+
+int fem_contact_block_rounds = 200;
+
+/* Solve the contact LCP for the predicted displacements u; writes lambda.
+ * Block active set: drop every pair in tension, add every penetrating one;
+ * after fem_contact_block_rounds rounds without settling, the single-pivot
+ * fallback above. */
 static rf_status contact_solve(fem_contact *C, const double *u, const double *invm, double dt, rf_error *err)
 {
     int nc = 0, na = 0;
     for (long i = 0; i < C->npairs; i++) {
         const contact_pair *p = C->pair + i;
-        double g = p->g0 + p->c[0] * u[p->dof[0]] + p->c[1] * u[p->dof[1]] + p->c[2] * u[p->dof[2]];
+        double g = pair_gap(p, u, C->nq);
         C->gpred[i] = g;
         C->lambda[i] = 0;
         if (g < C->band) {
@@ -72,16 +187,8 @@ static rf_status contact_solve(fem_contact *C, const double *u, const double *in
         }
     }
     double dt2 = dt * dt;
-    for (int iter = 0; iter < 200 && na > 0; iter++) {
-        for (int a = 0; a < na; a++) {
-            const contact_pair *pa = C->pair + C->active[a];
-            for (int b = 0; b <= a; b++) {
-                double v = dt2 * pair_aij(pa, C->pair + C->active[b], invm, C->rigid_invm);
-                C->A[a * na + b] = C->A[b * na + a] = v;
-            }
-            C->rhs[a] = -C->gpred[C->active[a]];
-        }
-        if (cholesky_solve(C->A, C->rhs, na) != 0)
+    for (int iter = 0; iter < fem_contact_block_rounds && na > 0; iter++) {
+        if (active_solve(C, invm, dt2, na) != 0)
             return rf_fail(err, RF_EINTERNAL, "fem contact: singular contact matrix (%d pairs)", na);
         int neg = 0;
         for (int a = 0; a < na; a++)
@@ -96,53 +203,30 @@ static rf_status contact_solve(fem_contact *C, const double *u, const double *in
             continue;
         }
         /* displacement corrections, then check the inactive candidates */
-        double du_rigid = 0; /* of a rigid boulder (every slave) */
-        const int q0 = C->rigid_invm > 0;
-        for (int a = 0; a < na; a++) {
-            const contact_pair *p = C->pair + C->active[a];
-            C->lambda[C->active[a]] = C->rhs[a];
-            du_rigid += dt2 * C->rigid_invm * p->c[0] * C->rhs[a];
-            for (int q = q0; q < 3; q++)
-                C->du[p->dof[q]] += dt2 * invm[p->dof[q]] * p->c[q] * C->rhs[a];
-        }
-        if (q0)
-            for (int k = 0; k < nc; k++)
-                C->du[C->pair[C->cand[k]].dof[0]] = du_rigid;
+        active_corrections(C, invm, dt2, na, nc);
         int added = 0;
         for (int k = 0; k < nc; k++) {
             int i = C->cand[k];
             if (C->lambda[i] > 0)
                 continue;
-            const contact_pair *p = C->pair + i;
-            double g = C->gpred[i] + p->c[0] * C->du[p->dof[0]] + p->c[1] * C->du[p->dof[1]] +
-                       p->c[2] * C->du[p->dof[2]];
-            if (g < -C->tol) {
-                int in = 0;
-                for (int a = 0; a < na; a++)
-                    in |= C->active[a] == i;
-                if (!in)
-                    C->active[na++] = i, added = 1;
-            }
+            if (corrected_gap(C, i) < -C->tol && !is_active(C, na, i))
+                C->active[na++] = i, added = 1;
         }
-        for (int k = 0; k < nc; k++) { /* clean scratch */
-            const contact_pair *p = C->pair + C->cand[k];
-            for (int q = 0; q < 3; q++)
-                C->du[p->dof[q]] = 0;
-        }
+        clean_scratch(C, nc);
         if (!added)
             return RF_OK;
         for (int k = 0; k < nc; k++)
             C->lambda[C->cand[k]] = 0;
     }
     if (na > 0)
-        return rf_fail(err, RF_EINTERNAL, "fem contact: active set did not settle");
+        return contact_solve_single(C, invm, dt2, nc, na, err);
     return RF_OK;
 }
 
 void fem_contact_free(fem_contact *C)
 {
     free(C->pair), free(C->gpred), free(C->lambda), free(C->active), free(C->cand), free(C->A), free(C->rhs);
-    free(C->du), free(C->gvo);
+    free(C->du), free(C->gvo), free(C->vold);
     *C = (fem_contact){0};
 }
 
@@ -150,6 +234,7 @@ void fem_contact_free(fem_contact *C)
 rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err)
 {
     *C = (fem_contact){0};
+    C->nq = 3;
     const size_t nb = (size_t)mesh->n_bsurf + 1;
     C->pair = malloc(nb * sizeof *C->pair);
     C->gpred = calloc(nb, sizeof *C->gpred);
@@ -174,7 +259,7 @@ rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, dou
         p->rdof[0] = 2 * s, p->rdof[1] = 2 * m1, p->rdof[2] = 2 * m2;
         p->c[0] = 1, p->c[1] = -(1 - xi), p->c[2] = -xi;
         p->g0 = mesh->z[s] - ((1 - xi) * mesh->z[m1] + xi * mesh->z[m2]);
-        p->r = rs;
+        p->r = rs, p->xi = xi, p->seg = j;
     }
     C->A = malloc((size_t)C->npairs * C->npairs * sizeof *C->A + sizeof(double));
     C->rhs = malloc(((size_t)C->npairs + 1) * sizeof *C->rhs);
@@ -187,6 +272,10 @@ rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, dou
 /* G v_{n-1/2} of every pair, kept for the contact work. */
 void fem_contact_begin(fem_contact *C, const double *v)
 {
+    if (C->vold) { /* the pairs change after the predictor: keep v itself */
+        memcpy(C->vold, v, (size_t)(2 * C->mesh->n_nodes) * sizeof *v);
+        return;
+    }
     for (long i = 0; i < C->npairs; i++) {
         const contact_pair *p = C->pair + i;
         C->gvo[i] = p->c[0] * v[p->dof[0]] + p->c[1] * v[p->dof[1]] + p->c[2] * v[p->dof[2]];
@@ -209,12 +298,12 @@ rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double
             continue;
         const contact_pair *p = C->pair + i;
         dv_rigid += dt * C->rigid_invm * p->c[0] * C->lambda[i];
-        for (int q = q0; q < 3; q++) {
+        for (int q = q0; q < C->nq; q++) {
             double dv = dt * invm[p->dof[q]] * p->c[q] * C->lambda[i];
             v[p->dof[q]] += dv;
             u[p->dof[q]] += dt * dv;
         }
-        F += C->lambda[i];
+        F += C->lambda[i] * p->c[0]; /* the vertical force on the boulder (c[0] = 1 in small strain) */
     }
     if (q0 && dv_rigid != 0) /* the whole boulder moves */
         for (long d = 1; d < C->rigid_dofs; d += 2)
@@ -224,7 +313,7 @@ rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double
             continue;
         const contact_pair *p = C->pair + i;
         double gvn = 0;
-        for (int q = 0; q < 3; q++)
+        for (int q = 0; q < C->nq; q++)
             gvn += p->c[q] * v[p->dof[q]];
         C->work += C->lambda[i] * (gvn + C->gvo[i]) * dt / 2;
     }
@@ -269,12 +358,13 @@ double fem_contact_measure(fem_contact *C, const double *u)
     long kout = -1;
     for (long i = 0; i < C->npairs; i++) {
         const contact_pair *p = C->pair + i;
-        double g = p->g0 + p->c[0] * u[p->dof[0]] + p->c[1] * u[p->dof[1]] + p->c[2] * u[p->dof[2]];
+        double g = pair_gap(p, u, C->nq);
         if (-g > C->pen_max)
             C->pen_max = -g;
         C->gpred[i] = g;
         if (C->lambda[i] > 0) {
-            double slip = fabs(u[p->rdof[0]] + p->c[1] * u[p->rdof[1]] + p->c[2] * u[p->rdof[2]]);
+            double slip = C->nq == 3 ? fabs(u[p->rdof[0]] + p->c[1] * u[p->rdof[1]] + p->c[2] * u[p->rdof[2]])
+                                     : fabs(u[p->rdof[0]] - (1 - p->xi) * u[p->rdof[1]] - p->xi * u[p->rdof[2]]);
             if (slip > C->slip_max)
                 C->slip_max = slip;
             if (kout < 0 || p->r > C->pair[kout].r)
@@ -282,4 +372,80 @@ double fem_contact_measure(fem_contact *C, const double *u)
         }
     }
     return kout >= 0 ? contact_radius(C, kout) : 0;
+}
+
+rf_status fem_contact_large(fem_contact *C, const fem_mesh *mesh, long ndof, rf_error *err)
+{
+    C->nq = 6, C->mesh = mesh;
+    if (!(C->vold = calloc((size_t)ndof + 1, sizeof *C->vold)))
+        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+    return RF_OK;
+}
+
+/* Current position of node n. */
+static void node_x(const fem_mesh *m, const double *u, int n, double x[2])
+{
+    x[0] = m->r[n] + u[2 * n], x[1] = m->z[n] + u[2 * n + 1];
+}
+
+/* Current radius of slope surface node j. */
+static double surf_r(const fem_mesh *m, const double *u, long j)
+{
+    return m->r[m->ssurf[j]] + u[2 * m->ssurf[j]];
+}
+
+/* The segment of the current slope surface under radius r (the surface
+ * stays a graph z(r)), walking from the pair's last one. */
+static long find_segment(const fem_mesh *m, const double *u, long j, double r)
+{
+    const long last = m->n_ssurf - 2;
+    while (j < last && surf_r(m, u, j + 1) <= r)
+        j++;
+    while (j > 0 && surf_r(m, u, j) > r)
+        j--;
+    return j;
+}
+
+/* Pair p for the current slave position: the segment under it, the point
+ * x(xi) of the segment below it, the gap g = n . (x_s - x(xi)) along the
+ * segment's normal n, and g0 such that g0 + c . u is g at u.  The gradient
+ * c = n . d(x_s - x(xi)) has no term from xi or n: n is normal to the
+ * segment and of unit length.  Different slaves have different xi, so no two
+ * pairs have the same gradient (as two slaves clamped to one node of a
+ * concave crater would under a normal projection). */
+static void pair_relinearise(fem_contact *C, contact_pair *p, const double *u)
+{
+    const fem_mesh *m = C->mesh;
+    const int s = (p->dof[0] - 1) / 2;
+    double x[2], a[2], b[2];
+    node_x(m, u, s, x);
+    p->seg = find_segment(m, u, p->seg, x[0]);
+    const int m1 = m->ssurf[p->seg], m2 = m->ssurf[p->seg + 1];
+    node_x(m, u, m1, a), node_x(m, u, m2, b);
+    const double len = hypot(b[0] - a[0], b[1] - a[1]);
+    const double nr = -(b[1] - a[1]) / len, nz = (b[0] - a[0]) / len;
+    const double xi = fmin(fmax((x[0] - a[0]) / (b[0] - a[0]), 0), 1);
+    const int rigid = C->rigid_invm > 0;
+    const int dof[6] = {2 * s + 1, 2 * m1 + 1, 2 * m2 + 1, 2 * s, 2 * m1, 2 * m2};
+    const double c[6] = {nz, -(1 - xi) * nz, -xi * nz, rigid ? 0 : nr, -(1 - xi) * nr, -xi * nr};
+    const double g = nr * (x[0] - a[0] - xi * (b[0] - a[0])) + nz * (x[1] - a[1] - xi * (b[1] - a[1]));
+    p->g0 = g;
+    for (int q = 0; q < 6; q++)
+        p->dof[q] = dof[q], p->c[q] = c[q], p->g0 -= c[q] * u[dof[q]];
+    p->rdof[0] = 2 * s, p->rdof[1] = 2 * m1, p->rdof[2] = 2 * m2;
+    p->xi = xi, p->r = x[0];
+}
+
+/* After the predictor (large deformation): every pair linearised about the
+ * predicted u, and G v_{n-1/2} with the new gradients for the contact work. */
+void fem_contact_update(fem_contact *C, const double *u)
+{
+    for (long i = 0; i < C->npairs; i++) {
+        contact_pair *p = C->pair + i;
+        pair_relinearise(C, p, u);
+        double gv = 0;
+        for (int q = 0; q < 6; q++)
+            gv += p->c[q] * C->vold[p->dof[q]];
+        C->gvo[i] = gv;
+    }
 }

@@ -75,13 +75,18 @@ rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *me
                         const struct fem_kernel *kernel, rf_error *err);
 rf_status fem_vtk_index(const char *dir, int frames, const double *times, rf_error *err);
 
-/* One contact pair: boulder node s over slope segment (m1, m2) at coordinate xi. */
+/* One contact pair: boulder node s over slope segment (m1, m2) at coordinate xi.
+ * Small strain: the vertical gap, z dofs only (nq = 3).  Large deformation:
+ * the gap along the current segment's normal n, dofs z then r (nq = 6),
+ * the pair linearised anew at every step about the predicted state. */
 typedef struct {
-    int dof[3];    /* z dofs: slave, master 1, master 2 */
-    double c[3];   /* gap gradient: 1, -(1 - xi), -xi */
+    int dof[6];    /* z dofs: slave, master 1, master 2; then (large deformation) their r dofs */
+    double c[6];   /* gap gradient: small strain 1, -(1 - xi), -xi; large n_z (1, -(1 - xi), -xi), n_r (...) */
     int rdof[3];   /* r dofs, for the slip diagnostic */
-    double g0;     /* reference gap */
-    double r;      /* reference radius of the slave */
+    double g0;     /* gap at u = 0 of the linear form g0 + c . u */
+    double r;      /* radius of the slave: reference (small strain) or current */
+    double xi;     /* position on the segment */
+    long seg;      /* large deformation: the segment, ssurf[seg] to ssurf[seg + 1] */
 } contact_pair;
 
 typedef struct {
@@ -102,10 +107,23 @@ typedef struct {
        the boulder, whose z dofs 1, 3, ..., rigid_dofs - 1 get the correction. */
     double rigid_invm;
     long rigid_dofs;
+    /* Large deformation (fem_contact_large): pairs on the current surfaces. */
+    int nq;               /* gradient entries per pair: 3, or 6 with large deformation */
+    const fem_mesh *mesh; /* reference coordinates and surfaces (large deformation) */
+    double *vold;         /* v_{n-1/2} kept by fem_contact_begin (large deformation) */
 } fem_contact;
 
+/* Rounds of the block active-set method before the contact solver falls back
+ * to single pivoting (200; a test lowers it to 0 to check that both give the
+ * one solution of the complementarity problem). */
+extern int fem_contact_block_rounds;
 /* Pairs of the boulder surface nodes below height d / 2 (fem_contact.c). */
 rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err);
+/* Switch the pairs to large deformation: after the predictor,
+ * fem_contact_update finds each slave's segment on the current slope surface
+ * and linearises its normal gap there (mesh must outlive C). */
+rf_status fem_contact_large(fem_contact *C, const fem_mesh *mesh, long ndof, rf_error *err);
+void fem_contact_update(fem_contact *C, const double *u);
 /* Before the predictor: keep G v_{n-1/2}. */
 void fem_contact_begin(fem_contact *C, const double *v);
 /* After the predictor: multipliers, corrections of u and v, contact work, total force. */

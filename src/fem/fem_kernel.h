@@ -139,6 +139,18 @@ rf_status fem_kernel_points_axi_ex(fem_kernel *k, long first, long count, const 
 rf_status fem_kernel_points_axi_two(fem_kernel *k, long first, long count, const double *r, const double *z,
                                     const int *conn, const fem_point_law *law, const fem_point_law *law2,
                                     const unsigned char *use_law2, int bbar, rf_error *err);
+/* Turn an integration-point kernel just made (above) into the updated
+ * Lagrangian form (large deformation, docs/validation-plastic.md section 6e):
+ * at every step the strain increment is B(x_mid) (u_{n+1} - u_n) on the
+ * mid-step geometry x_mid = X + (u_n + u_{n+1}) / 2, the committed Cauchy
+ * stress is rotated by the Hughes-Winget rotation of the increment's spin
+ * 1/2 (d du_z/dr - d du_r/dz) (rf_material_rotate) before the law's update,
+ * and the force is sum_q w_q B_q^T sigma_q with B, 1/r and w = 2 pi r det J
+ * (and the B-bar average, if chosen) of the current geometry X + u_{n+1}.
+ * Both are exact for a rigid rotation of any size (no strain, the stress
+ * turned with the body).  r, z, conn: the reference mesh (copied). */
+rf_status fem_kernel_points_axi_large(fem_kernel *k, const double *r, const double *z, const int *conn,
+                                      rf_error *err);
 /* sig = sig_n + D deps for an isotropic material (lam, mu = the Lame constants). */
 typedef struct {
     double lam, mu;

@@ -24,7 +24,14 @@ typedef struct {
     double *eps_t, *sig_t, *var_t;    /* trial of the last forces() */
     double plastic_work, plastic_strain_max; /* committed (dissipative laws) */
     long point_max;                          /* the point of plastic_strain_max (-1: none) */
+    /* updated Lagrangian (fem_kernel_points_axi_large): reference node
+       coordinates r0 z0 r1 z1 ... and committed / trial displacements, 8 per
+       element; w then holds the committed current weights, w_t the trial ones */
+    double *X, *ue_c, *ue_t, *w_t;
+    int bbar;
 } points_data;
+
+static void mean_dilatation(double B[NQ][32], const double w[NQ]);
 
 static void points_forces(const fem_kernel *k, long e0, long e1, const double *ue, double *fe)
 {
@@ -53,10 +60,74 @@ static void points_forces(const fem_kernel *k, long e0, long e1, const double *u
     }
 }
 
+/* Spin of the increment at each point, 1/2 (d du_z/dr - d du_r/dz), from the
+ * plain B (before B-bar): row 0 holds dN/dr at the r dofs, row 1 dN/dz at the z dofs. */
+static void point_spins(double B[NQ][32], const double du[8], double spin[NQ])
+{
+    for (int q = 0; q < NQ; q++) {
+        double s = 0;
+        for (int a = 0; a < 4; a++)
+            s += B[q][2 * a] * du[2 * a + 1] - B[q][8 + 2 * a + 1] * du[2 * a];
+        spin[q] = 0.5 * s;
+    }
+}
+
+/* Updated Lagrangian element: the strain increment B(x_mid) du on the
+ * mid-step geometry (exactly zero for a rigid rotation of any size), the
+ * committed stress turned by the Hughes-Winget rotation of the increment's
+ * spin (exact for that rotation), the return map, and the force
+ * sum_q w_q(x) B_q(x)^T sigma_q on the current geometry x = X + u. */
+static void large_element(points_data *d, const fem_point_law *L, long le, const double *ue, double *y)
+{
+    const int ns = L->nstate;
+    const double *X = d->X + 8 * le, *uc = d->ue_c + 8 * le;
+    double xm[8], du[8], xc[8], Bm[NQ][32], wm[NQ], Bc[NQ][32], spin[NQ];
+    for (int j = 0; j < 8; j++)
+        du[j] = ue[j] - uc[j], xm[j] = X[j] + 0.5 * (ue[j] + uc[j]), xc[j] = X[j] + ue[j];
+    const double rm[4] = {xm[0], xm[2], xm[4], xm[6]}, zm[4] = {xm[1], xm[3], xm[5], xm[7]};
+    const double rc[4] = {xc[0], xc[2], xc[4], xc[6]}, zc[4] = {xc[1], xc[3], xc[5], xc[7]};
+    fem_element_points(rm, zm, Bm, wm);
+    point_spins(Bm, du, spin);
+    fem_element_points(rc, zc, Bc, d->w_t + NQ * le);
+    if (d->bbar)
+        mean_dilatation(Bm, wm), mean_dilatation(Bc, d->w_t + NQ * le);
+    memcpy(d->ue_t + 8 * le, ue, 8 * sizeof *ue);
+    for (int q = 0; q < NQ; q++) {
+        const long p = NQ * le + q;
+        const double *B = Bm[q], *w = d->w_t + NQ * le;
+        double deps[NC], s6[6] = {d->sig[NC * p], d->sig[NC * p + 1], d->sig[NC * p + 2], d->sig[NC * p + 3], 0, 0};
+        for (int i = 0; i < NC; i++) {
+            double s = 0;
+            for (int j = 0; j < 8; j++)
+                s += B[8 * i + j] * du[j];
+            deps[i] = s;
+            d->eps_t[NC * p + i] = d->eps[NC * p + i] + s;
+        }
+        rf_material_rotate(s6, (const double[3]){0, 0, spin[q]});
+        double *sig = d->sig_t + NC * p;
+        L->update(L->params, deps, s6, d->var + (size_t)ns * p, sig, d->var_t + (size_t)ns * p);
+        for (int j = 0; j < 8; j++)
+            y[j] += w[q] * (Bc[q][j] * sig[0] + Bc[q][8 + j] * sig[1] + Bc[q][16 + j] * sig[2] + Bc[q][24 + j] * sig[3]);
+    }
+}
+
+static void points_forces_large(const fem_kernel *k, long e0, long e1, const double *ue, double *fe)
+{
+    points_data *d = k->data;
+    for (long e = e0; e < e1; e++, ue += 8, fe += 8) {
+        const long le = e - k->first;
+        double y[8] = {0};
+        large_element(d, d->use2 && d->use2[le] ? &d->law2 : &d->law, le, ue, y);
+        memcpy(fe, y, sizeof y);
+    }
+}
+
 static void points_commit(fem_kernel *k)
 {
     points_data *d = k->data;
     const size_t np = (size_t)NQ * (size_t)k->count, ns = (size_t)d->law.nstate;
+    if (d->X) /* the current geometry of the accepted state */
+        memcpy(d->ue_c, d->ue_t, (size_t)k->count * 8 * sizeof(double)), memcpy(d->w, d->w_t, np * sizeof(double));
     memcpy(d->eps, d->eps_t, np * NC * sizeof(double));
     memcpy(d->sig, d->sig_t, np * NC * sizeof(double));
     if (ns)
@@ -81,7 +152,7 @@ static void points_destroy(fem_kernel *k)
     points_data *d = k->data;
     if (d) {
         free(d->B), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t), free(d->sig_t);
-        free(d->var_t), free(d->use2);
+        free(d->var_t), free(d->use2), free(d->X), free(d->ue_c), free(d->ue_t), free(d->w_t);
     }
     free(d);
     k->data = NULL;
@@ -89,10 +160,37 @@ static void points_destroy(fem_kernel *k)
 
 static const fem_kernel_ops points_ops = {"integration points (axisymmetric quad)", points_forces, NULL,
                                           points_commit, points_destroy, NULL};
+static const fem_kernel_ops points_large_ops = {"integration points (axisymmetric quad, updated Lagrangian)",
+                                                points_forces_large, NULL, points_commit, points_destroy, NULL};
+
+static int is_points(const fem_kernel *k)
+{
+    return k->ops == &points_ops || k->ops == &points_large_ops;
+}
+
+rf_status fem_kernel_points_axi_large(fem_kernel *k, const double *r, const double *z, const int *conn, rf_error *err)
+{
+    if (!is_points(k) || !k->data)
+        return rf_fail(err, RF_EINVAL, "fem: updated Lagrangian needs an integration-point kernel");
+    points_data *d = k->data;
+    const size_t ne = (size_t)k->count, np = NQ * ne;
+    d->X = malloc((ne + 1) * 8 * sizeof *d->X), d->ue_c = calloc(ne + 1, 8 * sizeof *d->ue_c);
+    d->ue_t = calloc(ne + 1, 8 * sizeof *d->ue_t), d->w_t = malloc((np + 1) * sizeof *d->w_t);
+    if (!d->X || !d->ue_c || !d->ue_t || !d->w_t)
+        return rf_fail(err, RF_ENOMEM, "fem: out of memory for %ld elements", k->count);
+    for (size_t e = 0; e < ne; e++)
+        for (int a = 0; a < 4; a++) {
+            const int n = conn[4 * (k->first + (long)e) + a];
+            d->X[8 * e + 2 * a] = r[n], d->X[8 * e + 2 * a + 1] = z[n];
+        }
+    memcpy(d->w_t, d->w, np * sizeof *d->w);
+    k->ops = &points_large_ops;
+    return RF_OK;
+}
 
 int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *plastic_strain)
 {
-    if (k->ops != &points_ops || !k->data || e < k->first || e >= k->first + k->count)
+    if (!is_points(k) || !k->data || e < k->first || e >= k->first + k->count)
         return 0;
     const points_data *d = k->data;
     const size_t p0 = (size_t)NQ * (size_t)(e - k->first), ns = (size_t)d->law.nstate;
@@ -111,7 +209,7 @@ int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *pl
 
 double fem_kernel_elastic_energy(const fem_kernel *k)
 {
-    if (k->ops != &points_ops || !k->data)
+    if (!is_points(k) || !k->data)
         return -1;
     const points_data *d = k->data;
     if (!d->law.energy || (d->use2 && !d->law2.energy))
@@ -127,7 +225,7 @@ double fem_kernel_elastic_energy(const fem_kernel *k)
 void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r)
 {
     r->plastic_work = r->plastic_strain_max = 0, r->element_max = -1;
-    if (k->ops != &points_ops || !k->data)
+    if (!is_points(k) || !k->data)
         return;
     const points_data *d = k->data;
     r->plastic_work = d->plastic_work, r->plastic_strain_max = d->plastic_strain_max;
@@ -182,7 +280,7 @@ rf_status fem_kernel_points_axi_two(fem_kernel *k, long first, long count, const
     if (!d)
         return rf_fail(err, RF_ENOMEM, "fem: out of memory");
     d->law = *law;
-    d->point_max = -1;
+    d->point_max = -1, d->bbar = bbar;
     if (use_law2) {
         d->law2 = *law2;
         if (!(d->use2 = malloc((size_t)count > 0 ? (size_t)count : 1)))

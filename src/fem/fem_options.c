@@ -55,6 +55,33 @@ rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *
     return rf_fail(err, RF_EINVAL, "boundary '%s' is unknown (accepted: fixed, absorbing)", name ? name : "(null)");
 }
 
+static const char *const kinematics_names[] = {"auto", "off", "on"};
+
+const char *rf_fem_kinematics_name(rf_fem_kinematics k)
+{
+    return (unsigned)k < 3 ? kinematics_names[k] : "unknown";
+}
+
+rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_error *err)
+{
+    for (int i = 0; i < 3; i++)
+        if (name && !strcmp(name, kinematics_names[i])) {
+            *k = (rf_fem_kinematics)i;
+            return RF_OK;
+        }
+    return rf_fail(err, RF_EINVAL, "large_deformation '%s' is unknown (accepted: auto, off, on)",
+                   name ? name : "(null)");
+}
+
+int rf_fem_large_deformation(const rf_fem_options *opt, const rf_impact_input *in)
+{
+    if (opt->large_deformation != RF_FEM_KINEMATICS_AUTO)
+        return opt->large_deformation == RF_FEM_LARGE_DEFORMATION;
+    const int boulder = in->boulder_material != RF_MATERIAL_ELASTIC && in->boulder_material != RF_MATERIAL_RIGID_BODY;
+    const int layer = in->layer_thickness > 0 && in->layer_material != RF_MATERIAL_ELASTIC;
+    return boulder || in->slope_material != RF_MATERIAL_ELASTIC || layer;
+}
+
 /* Closed ranges of the real-valued settings; lo3/hi3 are the 3D limits. */
 static const struct {
     const char *name;
@@ -92,6 +119,10 @@ rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error
     }
     if (isinf(o->end_time))
         return rf_fail(err, RF_EINVAL, "fem: end_time = %g must be finite [s]", o->end_time);
+    if ((unsigned)o->large_deformation > RF_FEM_LARGE_DEFORMATION || (three_d && o->large_deformation == RF_FEM_LARGE_DEFORMATION))
+        return rf_fail(err, RF_EINVAL, "fem%s: large_deformation = %d (%s) is not available%s", three_d ? "3d" : "",
+                       (int)o->large_deformation, rf_fem_kinematics_name(o->large_deformation),
+                       three_d ? " in 3D (small strain only: auto or off)" : "");
     if ((unsigned)o->boundary > RF_FEM_BOUNDARY_ABSORBING)
         return rf_fail(err, RF_EINVAL, "fem: unknown boundary kind %d", (int)o->boundary);
     if (o->threads < 0)

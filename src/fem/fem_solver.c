@@ -71,7 +71,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the axisymmetric solver in the workspace pool. */
 enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DASH, P_OUTER, P_ELM, P_FIXED, P_VTK,
-       P_EMAT, P_USE2 };
+       P_EMAT, P_USE2, P_DTE };
 
 /* The state of one axisymmetric run. */
 typedef struct {
@@ -92,6 +92,10 @@ typedef struct {
     rf_material matl[3];  /* constitutive law of each body (plastic[b] != 0: not elastic) */
     int plastic[3], work_account; /* work_account: energy from the internal work (a plastic body) */
     int rigid;            /* a rigid boulder: no internal force, one vertical velocity */
+    int large;            /* updated Lagrangian kernels and contact on the current surfaces */
+    double *dte;          /* large deformation: each element's step bound 2/sqrt(lambda_e) per unit of
+                             its size L_e = area / longest diagonal (0: not checked) */
+    long unstable;        /* large deformation: an element whose current step bound fell below dt (-1: none) */
     double W_int[2];      /* internal work of each body so far [J] */
     double pen_max;       /* deepest position of the boulder's lowest point below z = 0 [m] */
     double *K, *fe, *invm, *mass, *u, *v, *f, *fext, *dash;
@@ -221,6 +225,31 @@ static rf_status axi_elements(axi_run *S, double *elm, rf_error *err)
     return RF_OK;
 }
 
+/* The size L = area / longest diagonal of element e at the reference
+ * (u == NULL) or the current geometry X + u: the explicit step bound of a
+ * quad scales with it (0 for an inverted element). */
+static double element_size(const fem_mesh *mesh, long e, const double *u)
+{
+    const int *c = mesh->conn + 4 * e;
+    double r[4], z[4];
+    for (int a = 0; a < 4; a++)
+        r[a] = mesh->r[c[a]] + (u ? u[2 * c[a]] : 0), z[a] = mesh->z[c[a]] + (u ? u[2 * c[a] + 1] : 0);
+    const double area = 0.5 * ((r[2] - r[0]) * (z[3] - z[1]) - (r[3] - r[1]) * (z[2] - z[0]));
+    const double diag = fmax(hypot(r[2] - r[0], z[2] - z[0]), hypot(r[3] - r[1], z[3] - z[1]));
+    return area > 0 ? area / diag : 0;
+}
+
+/* Large deformation: the central-difference step must stay below every
+ * element's bound as the elements are compressed; the bound is scaled with
+ * the element's current size.  Returns the first element that violates it, -1 if none. */
+static long axi_step_violation(const axi_run *S)
+{
+    for (long e = 0; e < S->ne; e++)
+        if (S->dte[e] > 0 && S->dt > S->dte[e] * element_size(&S->mesh, e, S->u))
+            return e;
+    return -1;
+}
+
 /* Constraints (u_r = 0 on the axis; the outer surface if fixed), nodal
  * masses, the largest element eigenvalue, the time step. */
 static void axi_masses(axi_run *S, const double *elm, unsigned char *fixed)
@@ -253,6 +282,8 @@ static void axi_masses(axi_run *S, const double *elm, unsigned char *fixed)
         if (S->rigid && e < mesh->boulder_elems)
             continue; /* a rigid boulder has no stiffness: the slope sets the step */
         double lm = fem_element_lambda_max(S->K + 64 * e, me, freed);
+        if (S->dte)
+            S->dte[e] = 2 / sqrt(lm) / element_size(mesh, e, NULL);
         if (lm > lam_max)
             lam_max = lm;
     }
@@ -310,11 +341,13 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
             }
             rf_status st = fem_kernel_points_axi_two(&S->kernel[b], first[b], count[b], S->mesh.r, S->mesh.z,
                                                      S->mesh.conn, &law, &law2, use2, 1, err);
+            if (st == RF_OK && S->large)
+                st = fem_kernel_points_axi_large(&S->kernel[b], S->mesh.r, S->mesh.z, S->mesh.conn, err);
             if (st != RF_OK)
                 return st;
             continue;
         }
-        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS) {
+        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS && !S->large) {
             fem_kernel_linear_axi(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], 1);
             continue;
         }
@@ -323,6 +356,8 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
         fem_point_law law = fem_point_law_linear(&S->lame[b]);
         rf_status st = fem_kernel_points_axi(&S->kernel[b], first[b], count[b], S->mesh.r, S->mesh.z, S->mesh.conn,
                                              &law, err);
+        if (st == RF_OK && S->large) /* a linear (hypoelastic) law on the current geometry */
+            st = fem_kernel_points_axi_large(&S->kernel[b], S->mesh.r, S->mesh.z, S->mesh.conn, err);
         if (st != RF_OK)
             return st;
     }
@@ -359,11 +394,15 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
     st = axi_elements(S, elm, err);
     if (st != RF_OK)
         return st;
+    if (S->large && !(S->dte = fem_pool_get(S->pool, P_DTE, (size_t)S->ne * sizeof(double), 1)))
+        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
     axi_masses(S, elm, fixed);
     if ((st = axi_kernels(S, err)) != RF_OK)
         return st;
     axi_dashpots(S);
     st = fem_contact_setup(&S->C, &S->mesh, S->ndof, S->H.d, err);
+    if (st == RF_OK && S->large)
+        st = fem_contact_large(&S->C, &S->mesh, S->ndof, err);
     if (st != RF_OK)
         return st;
     S->C.tol = 1e-9 * S->h;
@@ -507,6 +546,8 @@ static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
         int i = S->outer[k];
         W_abs_inc -= 0.5 * dt * (S->fext[2 * i] * v[2 * i] + S->fext[2 * i + 1] * v[2 * i + 1]);
     }
+    if (S->large) /* the pairs on the predicted surfaces */
+        fem_contact_update(&S->C, u);
     rf_status st = fem_contact_step(&S->C, S->invm, dt, u, v, Fc, err);
     if (st != RF_OK)
         return st;
@@ -584,6 +625,9 @@ static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
         double Fc, rad, row[12], comp, closure;
         if ((st = axi_step(S, &Fc, &rad, err)) != RF_OK)
             return st;
+        if (S->large && (S->unstable = axi_step_violation(S)) >= 0)
+            return rf_fail(err, RF_EMODEL, "fem: element %ld was compressed below the stability bound of the time "
+                           "step dt = %g s (dt_safety = %g) at t = %g s", S->unstable, S->dt, o->dt_safety, t);
         axi_energy(S, t, Fc, rad, row, &comp, &closure);
         if ((st = fem_run_account(R, n, Fc, rad, comp, closure, S->ke0, row, err)) != RF_OK)
             return st;
@@ -712,20 +756,22 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
     }
     S->rigid = in->boulder_material == RF_MATERIAL_RIGID_BODY;
     S->work_account = S->plastic[0] || S->plastic[1] || S->plastic[2];
+    S->large = rf_fem_large_deformation(&S->o, in);
+    S->work_account |= S->large; /* the energy from the internal work: no K in updated Lagrangian */
     return RF_OK;
 }
 
-rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
-                           rf_impact_output *out, rf_fem_history *hist, rf_error *err)
+/* One run with the options opt (may be NULL); *unstable >= 0 if an element
+ * of a large-deformation run outgrew the time step (axi_step_violation). */
+static rf_status axi_attempt(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                            rf_impact_output *out, rf_fem_history *hist, long *unstable, rf_error *err)
 {
     const double wall0 = rf_monotonic_seconds();
     if (hist)
         memset(hist, 0, sizeof *hist);
-    if (!out || !ws)
-        return rf_fail(err, RF_EINVAL, "fem: NULL output or workspace");
     axi_run S;
     memset(&S, 0, sizeof S);
-    S.pool = &ws->axi;
+    S.pool = &ws->axi, S.unstable = -1;
     fem_run R;
     memset(&R, 0, sizeof R);
     rf_status st = axi_prepare(&S, in, opt, err);
@@ -744,6 +790,7 @@ rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, cons
             fem_run_history(&R, hist);
         out->wall_seconds = rf_monotonic_seconds() - wall0;
     }
+    *unstable = S.unstable;
     fem_run_free(&R);
     fem_contact_free(&S.C);
     fem_kernel_release(&S.kernel[0]);
@@ -753,6 +800,34 @@ rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, cons
     if (st != RF_OK && hist)
         rf_fem_history_free(hist);
     return st;
+}
+
+/* Large deformation: elements compressed under the contact lower their
+ * explicit step bound; a run whose step outgrows it is made again from the
+ * start with half the step (up to FEM_STEP_HALVINGS times), so that every
+ * result comes from a uniform step that stayed stable throughout. */
+#define FEM_STEP_HALVINGS 4
+
+rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                           rf_impact_output *out, rf_fem_history *hist, rf_error *err)
+{
+    if (!out || !ws)
+        return rf_fail(err, RF_EINVAL, "fem: NULL output or workspace");
+    rf_fem_options o;
+    if (opt)
+        o = *opt;
+    else
+        rf_fem_options_default(&o);
+    const double wall0 = rf_monotonic_seconds();
+    for (int k = 0;; k++) {
+        long unstable = -1;
+        rf_status st = axi_attempt(ws, in, &o, out, hist, &unstable, err);
+        if (st == RF_OK)
+            out->wall_seconds = rf_monotonic_seconds() - wall0;
+        if (unstable < 0 || k == FEM_STEP_HALVINGS)
+            return st;
+        o.dt_safety *= 0.5;
+    }
 }
 
 rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,

@@ -333,6 +333,25 @@ static void append(char *buf, size_t cap, size_t *len, const char *fmt, ...)
         *len += (size_t)n;
 }
 
+/* A layer in the base input, or its thickness bound: a layer may appear at some points. */
+static int layer_possible(const impact_ctx *c)
+{
+    int layer = c->spec.base.layer_thickness > 0;
+    for (size_t i = 0; i < c->n_params; i++)
+        layer |= c->field[i] == P_L_T;
+    return layer;
+}
+
+/* 1 if some evaluation may run in large deformation (rf_fem_large_deformation
+ * with the layer present wherever it may be). */
+static int large_possible(const impact_ctx *c)
+{
+    rf_impact_input probe = c->spec.base;
+    if (layer_possible(c) && !(probe.layer_thickness > 0))
+        probe.layer_thickness = 1;
+    return rf_fem_large_deformation(&c->spec.fem, &probe);
+}
+
 static void make_identity(const impact_ctx *c, char *buf, size_t cap)
 {
     const rf_impact_model_spec *s = &c->spec;
@@ -368,6 +387,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            with the C1 master face of the contact (issue 9, docs/fem-speed.md section 5): a store
            never mixes them */
         append(buf, cap, &len, " fem3d_boulder_mass=mass_cm_Iyy_exact fem3d_master_face=catmull_rom");
+        /* updated Lagrangian (on, or auto with a plastic body) is named: a store never mixes it with the
+           small-strain results, whose identity stays as it was */
+        if (large_possible(c))
+            append(buf, cap, &len, " kinematics=updated_lagrangian");
     }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
@@ -384,10 +407,7 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                rf_impact_material_name(b->boulder_material), b->boulder_yield, b->boulder_hardening,
                rf_material_model_name(b->slope_material), b->slope_yield, b->slope_hardening, b->slope_cohesion,
                b->slope_friction_angle, b->slope_dilatancy_angle, b->slope_cap_pressure, b->slope_cap_hardening);
-    int layer = b->layer_thickness > 0; /* or bound: a layer may appear at some points */
-    for (size_t i = 0; i < c->n_params; i++)
-        layer |= c->field[i] == P_L_T;
-    if (layer)
+    if (layer_possible(c))
         append(buf, cap, &len,
                " layer_thickness=%.17g layer_density=%.17g layer_E=%.17g layer_poisson=%.17g layer_material=%s"
                " layer_yield=%.17g layer_hardening=%.17g layer_cohesion=%.17g layer_friction_angle_rad=%.17g"

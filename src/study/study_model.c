@@ -540,6 +540,13 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                                             : rf_fem_boundary_parse(buf, &spec.fem.boundary, &tmp)) != RF_OK)
                 return sp_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter, rigid or mdr"
                                                       : "unknown boundary; expected fixed or absorbing");
+        } else if (!strcmp(key, "large_deformation")) {
+            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+                return st;
+            snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
+            rf_error tmp;
+            if (len >= 31 || rf_fem_kinematics_parse(buf, &spec.fem.large_deformation, &tmp) != RF_OK)
+                return sp_fail(c, v, p, "unknown large_deformation; expected auto, on or off");
         } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor")) {
             double *d = key[0] == 'r' ? &spec.fem.refinement : &spec.fem.domain_factor;
             if ((st = sp_number(c, v, p, d)) != RF_OK)
@@ -564,8 +571,8 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                 return sp_fail(c, v, p, "must be >= 0");
         } else {
             return sp_fail(c, k, p,
-                           "unknown key; the impact model takes solver, boundary, refinement, domain_factor, "
-                           "threads, e_n, hunter_coefficient, boulder_material, slope_material, layer_material and "
+                           "unknown key; the impact model takes solver, boundary, large_deformation, refinement, "
+                           "domain_factor, threads, e_n, hunter_coefficient, boulder_material, slope_material, layer_material and "
                            "crisp inputs "
                            "(radius, horizontal_axis, vertical_axis, boulder_density, slope_density, boulder_E, "
                            "slope_E, boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction, "
