@@ -61,6 +61,9 @@ typedef struct {
 /* Element stiffness (24 x 24, row-major, dofs x0 y0 z0 x1 ...), lumped nodal
  * masses (row sums of the consistent mass) and volume; 2x2x2 Gauss. */
 void f3_hex_matrices(const double x[24], const f3_material *mat, double K[576], double m[8], double *volume);
+/* dN_a/dx_j at the 8 Gauss points (dN[q][a][j], points ordered as the nodes,
+ * xi = XI[q] / sqrt 3 ...) and their weights det J (Gauss weights are 1). */
+void f3_hex_gradients(const double x[24], double dN[8][8][3], double w[8]);
 /* Jacobian determinant at the element centre (orientation check). */
 double f3_hex_center_jacobian(const double x[24]);
 /* Largest eigenvalue of M_e^-1 K_e over the free dofs (Householder + Sturm
