@@ -135,4 +135,11 @@ void f3_internal_force(f3_system *S, const double *u, double *f);
 /* Strain energy of the boulder, 1/2 f_el(n)' u_el(n+1) in the frame of the last f3_internal_force. */
 double f3_boulder_strain(const f3_system *S, const double *u);
 
+/* One VTK frame (fem3d_vtk.c): dir/fem_NNNN.vtu of the mesh with u, v, the
+ * cell stresses and plastic strains of the kernels (elastic kernels: from u,
+ * the boulder's from S->ub, its co-rotated field of the last
+ * f3_internal_force); the .pvd index is fem_vtk_index (fem_internal.h). */
+rf_status f3_vtk_frame(const char *dir, int frame, double t, const f3_system *S, const double *u, const double *v,
+                       const f3_material mat[2], rf_error *err);
+
 #endif

@@ -21,6 +21,7 @@
 #include "hex8_step.h"
 #include "fem3d_internal.h"
 #include "fem_core.h"
+#include "fem_internal.h"
 #include "fem_kernel.h"
 
 #include <float.h>
@@ -87,7 +88,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the 3D solver in the workspace pool. */
 enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM, Q_DASH, Q_ELM, Q_LAMX, Q_FIXED,
-       Q_OUTER, Q_UB };
+       Q_OUTER, Q_UB, Q_VTK };
 
 /* The state of one 3D run. */
 typedef struct {
@@ -705,12 +706,35 @@ static void solid_energy(solid_run *R, double t, double Fc, double rad, double r
     memcpy(row, r, sizeof r);
 }
 
+/* VTK frame of the state u_n (the kernels' committed state is that of u_{n-1}). */
+static rf_status solid_vtk(solid_run *R, int frame, double t, rf_error *err)
+{
+    f3_internal_force(&R->S, R->u, R->f); /* the boulder's co-rotated field of u_n, for its elastic stresses */
+    return f3_vtk_frame(R->o.vtk_dir, frame, t, &R->S, R->u, R->v, R->mat, err);
+}
+
+/* The time loop, with VTK frames if asked (about vtk_frames of them, and the
+ * final state: its committed plastic strains are the reported ones).  The
+ * frames change no result: the extra internal force at u_n only recomputes
+ * the trial state that the step computes again. */
 static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *err)
 {
+    const rf_fem_options *o = &R->o;
+    const long vtk_every = (long)(run->steps_estimate / (o->vtk_frames > 0 ? o->vtk_frames : 60) + 1);
+    const int vtk_cap = 4 * (o->vtk_frames + 8);
+    int vtk_n = 0;
+    double *vtk_times = NULL;
+    if (o->vtk_dir && !(vtk_times = fem_pool_get(R->pool, Q_VTK, (size_t)vtk_cap * sizeof(double), 0)))
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
     rf_status st = RF_OK;
     long n = 0;
     for (;; n++) {
         const double t = (double)n * R->dt;
+        if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap - 1) {
+            if ((st = solid_vtk(R, vtk_n, t, err)) != RF_OK)
+                return st;
+            vtk_times[vtk_n++] = t;
+        }
         double Fc, rad, row[13], comp, closure;
         if ((st = solid_step(R, &Fc, &rad, err)) != RF_OK)
             return st;
@@ -721,7 +745,13 @@ static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *
             break;
     }
     *nsteps = n + 1;
-    return RF_OK;
+    if (!o->vtk_dir)
+        return RF_OK;
+    const double t_end = (double)(n + 1) * R->dt;
+    if ((st = solid_vtk(R, vtk_n, t_end, err)) != RF_OK)
+        return st;
+    vtk_times[vtk_n++] = t_end;
+    return fem_vtk_index(o->vtk_dir, vtk_n, vtk_times, err);
 }
 
 /* Rigid-body state of the boulder after the impact: CM velocity P, angular
