@@ -20,6 +20,8 @@
 #include <unistd.h>
 
 #include "rockfuzz/fem3d.h"
+#include "rockfuzz/impact_model.h"
+#include "rockfuzz/model.h"
 
 #define DEG (3.14159265358979323846 / 180)
 
@@ -287,6 +289,31 @@ static void test_refusals(void **state)
     o.kernel[1] = (rf_fem_kernel)7;
     assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "kernel[1] = 7"));
+    o.kernel[1] = RF_FEM_KERNEL_STIFFNESS;
+    o.vtk_dir = "/nonexistent/rockfuzz";
+    assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EIO);
+    assert_non_null(strstr(err.msg, "/nonexistent/rockfuzz/fem_0000.vtu"));
+}
+
+/* The model identity (result stores) tells a model that may run the 3D solver, which now takes
+   plastic bodies and measures the crater, from the older one; the axisymmetric identity keeps. */
+static void test_identity(void **state)
+{
+    (void)state;
+    const char *names[1] = {"slope_angle"};
+    for (int k = 0; k < 3; k++) {
+        rf_impact_model_spec spec;
+        rf_impact_model_spec_default(&spec);
+        spec.solver = RF_IMPACT_FEM;
+        if (k == 1)
+            spec.base.slope_angle = 30 * DEG;
+        rf_model m;
+        rf_error err = {0};
+        assert_int_equal(rf_impact_model_create(&spec, names, k == 2 ? 1 : 0, &m, &err), RF_OK);
+        const int tagged = strstr(m.identity, "fem3d_materials=plastic_b_bar") != NULL;
+        assert_int_equal(tagged, k > 0);
+        rf_model_free(&m);
+    }
 }
 
 int main(void)
@@ -295,7 +322,7 @@ int main(void)
         cmocka_unit_test(test_refusals),        cmocka_unit_test(test_huge_yield_is_elastic),
         cmocka_unit_test(test_normal_vs_axisymmetric), cmocka_unit_test(test_plastic_boulder),
         cmocka_unit_test(test_oblique_ploughing), cmocka_unit_test(test_threads),
-        cmocka_unit_test(test_vtk),
+        cmocka_unit_test(test_vtk),             cmocka_unit_test(test_identity),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -333,6 +333,8 @@ static void append(char *buf, size_t cap, size_t *len, const char *fmt, ...)
         *len += (size_t)n;
 }
 
+static int may_run_3d(const impact_ctx *c);
+
 static void make_identity(const impact_ctx *c, char *buf, size_t cap)
 {
     const rf_impact_model_spec *s = &c->spec;
@@ -366,6 +368,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                o->duration_threshold, o->max_elements, (int)o->kernel[0], (int)o->kernel[1]);
         /* 3D results changed with the exact boulder I_yy (issue 9): a store never mixes the two */
         append(buf, cap, &len, " fem3d_boulder_mass=mass_and_Iyy_exact");
+        /* the 3D model takes plastic bodies and measures penetration_max and indentation_depth (NaN
+           before, issue 10): a store never mixes results from before and after */
+        if (may_run_3d(c))
+            append(buf, cap, &len, " fem3d_materials=plastic_b_bar");
     }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
