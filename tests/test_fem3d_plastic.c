@@ -92,6 +92,11 @@ static void test_normal_vs_axisymmetric(void **state)
     run3d(&in, &o, &o3, &h3, NULL);
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &ax, NULL, &err), RF_OK);
+    print_message("3D R_n %.4f W_p %.4f crater %.3f mm pen %.3f mm | axi %.4f %.4f %.3f %.3f | elastic energy "
+                  "%.5f (stresses) %.5f (work - dissipation) of KE0\n", o3.R_n, o3.plastic_work,
+                  1e3 * o3.indentation_depth, 1e3 * o3.penetration_max, ax.R_n, ax.plastic_work,
+                  1e3 * ax.indentation_depth, 1e3 * ax.penetration_max, h3.elastic_energy_stress / h3.ke0,
+                  h3.elastic_energy_work / h3.ke0);
     assert_true(fabs(o3.R_n - ax.R_n) < 0.05 * ax.R_n);
     assert_true(fabs(o3.plastic_work - ax.plastic_work) < 0.03 * ax.plastic_work);
     assert_true(fabs(o3.indentation_depth - ax.indentation_depth) < 0.05 * ax.indentation_depth);
@@ -101,7 +106,7 @@ static void test_normal_vs_axisymmetric(void **state)
     assert_true(fabs(o3.energy_error) < 5e-3);
     assert_true(h3.plastic_work_boulder == 0 && h3.plastic_work_slope > 0);
     assert_true(fabs(h3.plastic_work_slope - o3.plastic_work * h3.ke0) < 1e-9 * h3.ke0);
-    assert_true(fabs(h3.elastic_energy_stress - h3.elastic_energy_work) < 0.01 * h3.elastic_energy_stress + 1e-3 * h3.ke0);
+    assert_true(fabs(h3.elastic_energy_stress - h3.elastic_energy_work) < 2e-3 * h3.elastic_energy_stress);
     assert_int_equal(h3.plastic_strain_max_in, 2);
     assert_true(h3.plastic_strain_max_z < 0 && h3.plastic_strain_max_r < 2 * h3.hertz_radius);
     rf_fem_history_free(&h3);
