@@ -168,7 +168,9 @@ double fem_kernel_elastic_energy(const fem_kernel *k);
  * the elements with use_law2[i] != 0 (NULL: law everywhere); mean-dilatation
  * B-bar when bbar != 0 (as fem_kernel_points_axi_ex).  x: node coordinates,
  * conn: 8 nodes per element (global numbering; conn must outlive the
- * kernel).  Provides forces() and forces_field() (units of 8 elements).
+ * kernel).  Provides forces_field() only: work units are blocks of HEX8_W
+ * elements, one per vector lane (the kinematics in SIMD, the laws lane by
+ * lane); any split of the units gives the same bits.
  * With the linear law and bbar = 0 it reproduces the matrix-free elastic
  * kernel to round-off (test_fem3d_plastic).  In the 3D solver the boulder's
  * field is co-rotated first: a plastic boulder's committed stresses live in

@@ -15,25 +15,48 @@
  * are the element mean of those of B), so the force is the usual gradient
  * product with the pressure replaced by its element mean.
  *
- * Layout: per element 192 gradients and 8 weights (1.6 kB), per point 6
- * committed strains and stresses, their trial copies and the law's state;
- * one scalar element at a time (not yet in SIMD blocks like hex8_kernel.c). */
+ * Layout: blocks of HEX8_W elements, one per vector lane, as hex8_kernel.c
+ * (structure of arrays): per element 192 gradients and 8 weights (1.6 kB),
+ * the strains and forces as vector multiply-adds over the lanes (GCC/clang
+ * vector extension, target clones up to AVX-512), the point laws lane by
+ * lane (a return map branches); per point 6 committed strains and stresses,
+ * their trial copies and the law's state.  Vectors cross function calls by
+ * pointer only. */
 #include "fem3d_internal.h"
 #include "fem_kernel.h"
+#include "hex8_kernel.h"
+
+/* The multiply-adds of the kinematics fused into FMA, as in hex8_kernel.c (round-off only). */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC optimize("fp-contract=fast")
+#elif defined(__clang__)
+#pragma clang fp contract(fast)
+#endif
 
 #include <stdlib.h>
 #include <string.h>
 
 #define NQ 8 /* Gauss points per element */
 #define NC 6 /* strain components: xx yy zz xy yz zx */
-#define P3_UNIT 8 /* elements per work unit of forces_field */
+enum { PW = HEX8_W }; /* elements per block (one vector lane each) = per work unit of forces_field */
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#define P3_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define P3_CLONES
+#endif
+
+typedef double pvec __attribute__((vector_size(PW * sizeof(double))));
 
 typedef struct {
     fem_point_law law, law2;
     unsigned char *use2;  /* per element: law2 (NULL: law everywhere) */
-    const int *conn;      /* 8 nodes per element (global numbering), the caller's */
-    double *G;            /* per element [8 points][8 nodes][3]: dN/dx */
-    double *w;            /* per element [8]: det J */
+    long nblk;
+    int *conn;            /* per block [8 nodes][PW] node ids */
+    long *lane;           /* per block [PW]: local element number, -1 for padding */
+    double *G;            /* per block [8 points][8 nodes][3][PW]: dN/dx (0 in padding) */
+    double *wb;           /* per block [8 points][PW]: det J (1 in padding) */
+    double *w;            /* per point (8 le + q): det J */
     int bbar;
     double *eps, *sig, *var;       /* committed, per point */
     double *eps_t, *sig_t, *var_t; /* trial of the last forces() */
@@ -41,92 +64,119 @@ typedef struct {
     long point_max;
 } p3_data;
 
-/* Strains at the points (engineering shear), with the volume-averaged dilatation if bbar. */
-static void element_strains(const double *G, const double *w, const double ue[24], int bbar, double eps[NQ][NC])
+static inline void vget(pvec *v, const double *p)
 {
-    double W = 0, th = 0;
+    memcpy(v, p, sizeof *v);
+}
+
+/* Strains of the block's points (engineering shear), the dilatation replaced by its element mean if bbar. */
+P3_CLONES
+static void block_strains(const double *G, const double *wb, const pvec ue[24], int bbar, pvec eps[NQ][NC])
+{
+    pvec W = {0}, th = {0};
     for (int q = 0; q < NQ; q++) {
-        double H[3][3] = {{0}}; /* H[c][j] = d u_c / d x_j */
+        pvec H[9] = {{0}}, w; /* H[3c + j] = d u_c / d x_j */
         for (int a = 0; a < 8; a++) {
-            const double *g = G + 3 * (8 * q + a);
+            pvec g[3];
+            for (int j = 0; j < 3; j++)
+                vget(&g[j], G + ((q * 8 + a) * 3 + j) * PW);
             for (int c = 0; c < 3; c++)
                 for (int j = 0; j < 3; j++)
-                    H[c][j] += ue[3 * a + c] * g[j];
+                    H[3 * c + j] += ue[3 * a + c] * g[j];
         }
-        eps[q][0] = H[0][0], eps[q][1] = H[1][1], eps[q][2] = H[2][2];
-        eps[q][3] = H[0][1] + H[1][0], eps[q][4] = H[1][2] + H[2][1], eps[q][5] = H[2][0] + H[0][2];
-        W += w[q], th += w[q] * (H[0][0] + H[1][1] + H[2][2]);
+        eps[q][0] = H[0], eps[q][1] = H[4], eps[q][2] = H[8];
+        eps[q][3] = H[1] + H[3], eps[q][4] = H[5] + H[7], eps[q][5] = H[6] + H[2];
+        vget(&w, wb + q * PW);
+        W += w, th += w * (H[0] + H[4] + H[8]);
     }
     if (!bbar)
         return;
+    const pvec m = th / W;
     for (int q = 0; q < NQ; q++) {
-        const double c = (th / W - (eps[q][0] + eps[q][1] + eps[q][2])) / 3;
+        const pvec c = (m - (eps[q][0] + eps[q][1] + eps[q][2])) / 3;
         eps[q][0] += c, eps[q][1] += c, eps[q][2] += c;
     }
 }
 
-/* fe = sum_q w_q B_q^T s_q, s_q = sigma_q with the pressure replaced by its element mean if bbar. */
-static void element_force(const double *G, const double *w, const double sig[NQ][NC], int bbar, double fe[24])
+/* F = sum_q w_q B_q^T s_q, s_q = sigma_q with the pressure replaced by its element mean if bbar. */
+P3_CLONES
+static void block_force(const double *G, const double *wb, const pvec sig[NQ][NC], int bbar, pvec F[24])
 {
-    double W = 0, pbar = 0;
-    for (int q = 0; q < NQ; q++)
-        W += w[q], pbar += w[q] * (sig[q][0] + sig[q][1] + sig[q][2]) / 3;
-    pbar /= W;
-    memset(fe, 0, 24 * sizeof *fe);
+    pvec W = {0}, pbar = {0};
     for (int q = 0; q < NQ; q++) {
-        const double *s = sig[q], dp = bbar ? pbar - (s[0] + s[1] + s[2]) / 3 : 0;
-        const double S[3][3] = {{w[q] * (s[0] + dp), w[q] * s[3], w[q] * s[5]},
-                                {w[q] * s[3], w[q] * (s[1] + dp), w[q] * s[4]},
-                                {w[q] * s[5], w[q] * s[4], w[q] * (s[2] + dp)}};
+        pvec w;
+        vget(&w, wb + q * PW);
+        W += w, pbar += w * (sig[q][0] + sig[q][1] + sig[q][2]) / 3;
+    }
+    pbar /= W;
+    for (int r = 0; r < 24; r++)
+        F[r] = (pvec){0};
+    for (int q = 0; q < NQ; q++) {
+        const pvec *s = sig[q], dp = bbar ? pbar - (s[0] + s[1] + s[2]) / 3 : (pvec){0};
+        pvec w;
+        vget(&w, wb + q * PW);
+        const pvec S[9] = {w * (s[0] + dp), w * s[3], w * s[5], w * s[3], w * (s[1] + dp),
+                           w * s[4], w * s[5], w * s[4], w * (s[2] + dp)};
         for (int a = 0; a < 8; a++) {
-            const double *g = G + 3 * (8 * q + a);
+            pvec g[3];
+            for (int j = 0; j < 3; j++)
+                vget(&g[j], G + ((q * 8 + a) * 3 + j) * PW);
             for (int c = 0; c < 3; c++)
-                fe[3 * a + c] += S[c][0] * g[0] + S[c][1] * g[1] + S[c][2] * g[2];
+                F[3 * a + c] += S[3 * c] * g[0] + S[3 * c + 1] * g[1] + S[3 * c + 2] * g[2];
         }
     }
 }
 
-/* One element (local number le): strains, point updates (trial state), forces. */
-static void p3_element(const fem_kernel *k, long le, const double ue[24], double fe[24])
+/* The point laws, lane by lane (a return map branches): trial stress and state of block b. */
+static void block_laws(const p3_data *d, long b, const pvec eps[NQ][NC], pvec sig[NQ][NC])
 {
-    p3_data *d = k->data;
-    const fem_point_law *L = d->use2 && d->use2[le] ? &d->law2 : &d->law;
-    const size_t ns = (size_t)d->law.nstate, p0 = (size_t)NQ * (size_t)le;
-    const double *G = d->G + 192 * le, *w = d->w + NQ * le;
-    double eps[NQ][NC], sig[NQ][NC];
-    element_strains(G, w, ue, d->bbar, eps);
-    for (int q = 0; q < NQ; q++) {
-        const size_t p = p0 + (size_t)q;
-        double deps[NC];
-        for (int i = 0; i < NC; i++)
-            deps[i] = eps[q][i] - d->eps[NC * p + i];
-        L->update(L->params, deps, d->sig + NC * p, d->var + ns * p, sig[q], d->var_t + ns * p);
-        memcpy(d->eps_t + NC * p, eps[q], sizeof eps[q]);
-        memcpy(d->sig_t + NC * p, sig[q], sizeof sig[q]);
+    double e[NQ][NC][PW], s[NQ][NC][PW];
+    memcpy(e, eps, sizeof e);
+    memset(s, 0, sizeof s);
+    const size_t ns = (size_t)d->law.nstate;
+    for (int l = 0; l < PW; l++) {
+        const long le = d->lane[b * PW + l];
+        if (le < 0)
+            continue;
+        const fem_point_law *L = d->use2 && d->use2[le] ? &d->law2 : &d->law;
+        for (int q = 0; q < NQ; q++) {
+            const size_t p = (size_t)NQ * (size_t)le + (size_t)q;
+            double deps[NC], *et = d->eps_t + NC * p, *st = d->sig_t + NC * p;
+            for (int i = 0; i < NC; i++)
+                et[i] = e[q][i][l], deps[i] = et[i] - d->eps[NC * p + i];
+            L->update(L->params, deps, d->sig + NC * p, d->var + ns * p, st, d->var_t + ns * p);
+            for (int i = 0; i < NC; i++)
+                s[q][i][l] = st[i];
+        }
     }
-    element_force(G, w, (const double(*)[NC])sig, d->bbar, fe);
+    memcpy(sig, s, sizeof s);
 }
 
-static void p3_forces(const fem_kernel *k, long e0, long e1, const double *ue, double *fe)
-{
-    for (long e = e0; e < e1; e++, ue += 24, fe += 24)
-        p3_element(k, e - k->first, ue, fe);
-}
-
-/* Work units of P3_UNIT elements straight from the nodal field; element e's forces at fe + 24 e. */
-static void p3_field(const fem_kernel *k, long w0, long w1, const double *u, double *fe)
+/* Work units = blocks of PW elements, straight from the nodal field; element e's forces at fe + 24 e. */
+static void p3_field(const fem_kernel *k, long b0, long b1, const double *u, double *fe)
 {
     const p3_data *d = k->data;
-    for (long w = w0; w < w1; w++)
-        for (long le = w * P3_UNIT; le < (w + 1) * P3_UNIT && le < k->count; le++) {
-            const long e = k->first + le;
-            const int *cn = d->conn + 8 * e;
-            double ue[24];
-            for (int a = 0; a < 8; a++)
-                for (int c = 0; c < 3; c++)
-                    ue[3 * a + c] = u[3 * (long)cn[a] + c];
-            p3_element(k, le, ue, fe + 24 * e);
+    for (long b = b0; b < b1; b++) {
+        double ul[24][PW], fl[24][PW];
+        for (int a = 0; a < 8; a++)
+            for (int l = 0; l < PW; l++) {
+                const double *un = u + 3 * (long)d->conn[(b * 8 + a) * PW + l];
+                ul[3 * a][l] = un[0], ul[3 * a + 1][l] = un[1], ul[3 * a + 2][l] = un[2];
+            }
+        pvec ue[24], eps[NQ][NC], sig[NQ][NC], F[24];
+        memcpy(ue, ul, sizeof ul);
+        const double *G = d->G + (size_t)b * NQ * 24 * PW, *wb = d->wb + (size_t)b * NQ * PW;
+        block_strains(G, wb, ue, d->bbar, eps);
+        block_laws(d, b, (const pvec(*)[NC])eps, sig);
+        block_force(G, wb, (const pvec(*)[NC])sig, d->bbar, F);
+        memcpy(fl, F, sizeof fl);
+        for (int l = 0; l < PW; l++) {
+            const long le = d->lane[b * PW + l];
+            if (le >= 0)
+                for (int r = 0; r < 24; r++)
+                    fe[24 * (k->first + le) + r] = fl[r][l];
         }
+    }
 }
 
 static void p3_commit(fem_kernel *k)
@@ -154,15 +204,15 @@ static void p3_destroy(fem_kernel *k)
 {
     p3_data *d = k->data;
     if (d) {
-        free(d->G), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t), free(d->sig_t);
+        free(d->conn), free(d->lane), free(d->G), free(d->wb), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t), free(d->sig_t);
         free(d->var_t), free(d->use2);
     }
     free(d);
     k->data = NULL;
 }
 
-static const fem_kernel_ops p3_ops = {"integration points (hexahedron)", p3_forces, NULL, p3_commit, p3_destroy,
-                                      p3_field};
+static const fem_kernel_ops p3_ops = {"integration points (hexahedron, SIMD blocks)", NULL, NULL, p3_commit,
+                                      p3_destroy, p3_field};
 
 static rf_status p3_check(const fem_point_law *law, const fem_point_law *law2, const unsigned char *use2,
                           rf_error *err)
@@ -186,12 +236,46 @@ static rf_status p3_alloc(p3_data *d, long count, size_t ns, const unsigned char
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
     if (use2)
         memcpy(d->use2, use2, (size_t)count);
-    d->G = malloc(ne * 192 * sizeof *d->G), d->w = malloc(ne * NQ * sizeof *d->w);
+    d->nblk = (count + PW - 1) / PW;
+    const size_t lanes = (size_t)(d->nblk > 0 ? d->nblk : 1) * PW;
+    d->conn = malloc(lanes * 8 * sizeof *d->conn), d->lane = malloc(lanes * sizeof *d->lane);
+    d->G = calloc(lanes * NQ * 24, sizeof *d->G), d->wb = malloc(lanes * NQ * sizeof *d->wb);
+    d->w = malloc(ne * NQ * sizeof *d->w);
     d->eps = calloc(np * NC + 1, sizeof *d->eps), d->sig = calloc(np * NC + 1, sizeof *d->sig);
     d->eps_t = calloc(np * NC + 1, sizeof *d->eps_t), d->sig_t = calloc(np * NC + 1, sizeof *d->sig_t);
     d->var = calloc(np * ns + 1, sizeof *d->var), d->var_t = calloc(np * ns + 1, sizeof *d->var_t);
-    if (!d->G || !d->w || !d->eps || !d->sig || !d->eps_t || !d->sig_t || !d->var || !d->var_t)
+    if (!d->conn || !d->lane || !d->G || !d->wb || !d->w || !d->eps || !d->sig || !d->eps_t || !d->sig_t || !d->var || !d->var_t)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld integration points", (long)np);
+    return RF_OK;
+}
+
+/* Lane s (block s / PW, lane s % PW): the element's nodes, gradients and weights; padding repeats
+   element 0's nodes with zero gradients and unit weights (zero strain, no law call). */
+static rf_status p3_lane(p3_data *d, long s, long first, long count, const double *x, const int *conn,
+                         rf_error *err)
+{
+    const long b = s / PW, l = s % PW, le = s < count ? s : -1;
+    const int *cn = conn + 8 * (first + (le < 0 ? 0 : le));
+    d->lane[s] = le;
+    for (int a = 0; a < 8; a++)
+        d->conn[(b * 8 + a) * PW + l] = cn[a];
+    for (int q = 0; q < NQ; q++)
+        d->wb[(b * NQ + q) * PW + l] = 1;
+    if (le < 0)
+        return RF_OK;
+    double xe[24], dN[8][8][3], *w = d->w + NQ * le;
+    for (int a = 0; a < 8; a++)
+        for (int c = 0; c < 3; c++)
+            xe[3 * a + c] = x[3 * (long)cn[a] + c];
+    f3_hex_gradients(xe, dN, w);
+    for (int q = 0; q < NQ; q++) {
+        if (!(w[q] > 0))
+            return rf_fail(err, RF_EINVAL, "fem3d: element %ld has det J = %g at Gauss point %d", first + le, w[q], q);
+        d->wb[(b * NQ + q) * PW + l] = w[q];
+        for (int a = 0; a < 8; a++)
+            for (int j = 0; j < 3; j++)
+                d->G[(((b * NQ + q) * 8 + a) * 3 + j) * PW + l] = dN[q][a][j];
+    }
     return RF_OK;
 }
 
@@ -207,22 +291,13 @@ rf_status fem_kernel_points_hex(fem_kernel *k, long first, long count, const dou
     if (!d)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
     k->ops = &p3_ops, k->first = first, k->count = count, k->ndofe = 24, k->data = d;
-    k->units = (count + P3_UNIT - 1) / P3_UNIT;
-    d->law = *law, d->law2 = use_law2 ? *law2 : *law, d->conn = conn, d->bbar = bbar, d->point_max = -1;
+    d->law = *law, d->law2 = use_law2 ? *law2 : *law, d->bbar = bbar, d->point_max = -1;
     if ((st = p3_alloc(d, count, (size_t)law->nstate, use_law2, err)) != RF_OK)
         return st;
-    for (long le = 0; le < count; le++) {
-        const int *cn = conn + 8 * (first + le);
-        double xe[24];
-        for (int a = 0; a < 8; a++)
-            for (int c = 0; c < 3; c++)
-                xe[3 * a + c] = x[3 * (long)cn[a] + c];
-        f3_hex_gradients(xe, (double(*)[8][3])(d->G + 192 * le), d->w + NQ * le);
-        for (int q = 0; q < NQ; q++)
-            if (!(d->w[NQ * le + q] > 0))
-                return rf_fail(err, RF_EINVAL, "fem3d: element %ld has det J = %g at Gauss point %d", first + le,
-                               d->w[NQ * le + q], q);
-    }
+    k->units = d->nblk;
+    for (long s = 0; s < d->nblk * PW; s++)
+        if ((st = p3_lane(d, s, first, count, x, conn, err)) != RF_OK)
+            return st;
     return RF_OK;
 }
 
