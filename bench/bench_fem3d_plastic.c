@@ -55,7 +55,8 @@ static int kernels_alone(void)
                     u1[3 * n + c] = (double)(s >> 11) / 9007199254740992.0 - 0.5;
                 }
             }
-    static const int off[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    static const int off[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                  {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
     long ne = 0;
     for (int k = 0; k < G; k++)
         for (int j = 0; j < G; j++)
@@ -86,7 +87,8 @@ static int kernels_alone(void)
             if (fem_kernel_points_hex(&k, 0, ne, x, conn, &laws[l], NULL, NULL, l > 0, &err) != RF_OK)
                 return 1;
             char name[80];
-            snprintf(name, sizeof name, "points, %s%s", names[l], l ? (plastic ? ", plastic (B-bar)" : ", elastic (B-bar)") : "");
+            const char *regime = l ? (plastic ? ", plastic (B-bar)" : ", elastic (B-bar)") : "";
+            snprintf(name, sizeof name, "points, %s%s", names[l], regime);
             printf("%-44s %8.1f\n", name, kernel_ns(&k, u1, plastic ? 1e-3 : 1e-7, ne, 3, fe));
             fem_kernel_release(&k);
         }

@@ -41,7 +41,8 @@ static void write_points(FILE *fp, const f3_mesh *mesh)
     fprintf(fp, "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
     for (long i = 0; i < mesh->n_nodes; i++)
         fprintf(fp, "%.9g %.9g %.9g\n", mesh->x[3 * i], mesh->x[3 * i + 1], mesh->x[3 * i + 2]);
-    fprintf(fp, "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
+    fprintf(fp, "</DataArray>\n</Points>\n<Cells>\n"
+                "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
     for (long e = 0; e < mesh->n_elems; e++) {
         const int *c = mesh->conn + 8 * e;
         fprintf(fp, "%d %d %d %d %d %d %d %d\n", c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]);

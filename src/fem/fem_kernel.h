@@ -167,9 +167,8 @@ double fem_kernel_elastic_energy(const fem_kernel *k);
  * point; `law` (ncomp = 6) at every point each step, law2 (same shape) for
  * the elements with use_law2[i] != 0 (NULL: law everywhere); mean-dilatation
  * B-bar when bbar != 0 (as fem_kernel_points_axi_ex).  x: node coordinates,
- * conn: 8 nodes per element (global numbering; conn must outlive the
- * kernel).  Provides forces_field() only: work units are blocks of HEX8_W
- * elements, one per vector lane (the kinematics in SIMD, the laws lane by
+ * conn: 8 nodes per element (global numbering; copied).  Provides
+ * forces_field() only: work units are blocks of HEX8_W elements, one per vector lane (the kinematics in SIMD, the laws lane by
  * lane); any split of the units gives the same bits.
  * With the linear law and bbar = 0 it reproduces the matrix-free elastic
  * kernel to round-off (test_fem3d_plastic).  In the 3D solver the boulder's

@@ -204,8 +204,8 @@ static void p3_destroy(fem_kernel *k)
 {
     p3_data *d = k->data;
     if (d) {
-        free(d->conn), free(d->lane), free(d->G), free(d->wb), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t), free(d->sig_t);
-        free(d->var_t), free(d->use2);
+        free(d->conn), free(d->lane), free(d->G), free(d->wb), free(d->w), free(d->eps), free(d->sig);
+        free(d->var), free(d->eps_t), free(d->sig_t), free(d->var_t), free(d->use2);
     }
     free(d);
     k->data = NULL;
@@ -244,7 +244,8 @@ static rf_status p3_alloc(p3_data *d, long count, size_t ns, const unsigned char
     d->eps = calloc(np * NC + 1, sizeof *d->eps), d->sig = calloc(np * NC + 1, sizeof *d->sig);
     d->eps_t = calloc(np * NC + 1, sizeof *d->eps_t), d->sig_t = calloc(np * NC + 1, sizeof *d->sig_t);
     d->var = calloc(np * ns + 1, sizeof *d->var), d->var_t = calloc(np * ns + 1, sizeof *d->var_t);
-    if (!d->conn || !d->lane || !d->G || !d->wb || !d->w || !d->eps || !d->sig || !d->eps_t || !d->sig_t || !d->var || !d->var_t)
+    if (!d->conn || !d->lane || !d->G || !d->wb || !d->w || !d->eps || !d->sig || !d->eps_t || !d->sig_t ||
+        !d->var || !d->var_t)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld integration points", (long)np);
     return RF_OK;
 }
