@@ -6,7 +6,7 @@
  * and carries one mean pressure per element; the material point law with a
  * huge yield stress equals the linear one; a J2 point driven into plastic
  * flow reports a dissipation equal to the work sum_q w_q sigma : deps less
- * the stored elastic energy. */
+ * the stored elastic energy; two laws in one block act element by element. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -208,6 +208,45 @@ static void test_material_law(void **state)
     fem_kernel_release(&km);
 }
 
+/* Two laws in one block: each element's forces are those of a block with its own law alone. */
+static void test_two_laws(void **state)
+{
+    (void)state;
+    double x[24 * NE], u[24 * NE], fa[24 * NE], fb[24 * NE], f2[24 * NE];
+    int conn[8 * NE];
+    unsigned char use2[NE];
+    random_elements(NE, 23, x, conn);
+    unsigned long long s = 5;
+    for (int i = 0; i < 24 * NE; i++)
+        u[i] = 1e-4 * (urand(&s) - 0.5);
+    for (int e = 0; e < NE; e++)
+        use2[e] = (unsigned char)(e % 3 == 1);
+    const fem_lame lb = {1e9, 2e9};
+    const fem_point_law la = fem_point_law_linear3d(&LAME), l2 = fem_point_law_linear3d(&lb);
+    fem_kernel ka, kb, k2;
+    rf_error err;
+    assert_int_equal(fem_kernel_points_hex(&ka, 0, NE, x, conn, &la, NULL, NULL, 1, &err), RF_OK);
+    assert_int_equal(fem_kernel_points_hex(&kb, 0, NE, x, conn, &l2, NULL, NULL, 1, &err), RF_OK);
+    assert_int_equal(fem_kernel_points_hex(&k2, 0, NE, x, conn, &la, &l2, use2, 1, &err), RF_OK);
+    field_forces(&ka, u, fa);
+    field_forces(&kb, u, fb);
+    field_forces(&k2, u, f2);
+    for (int e = 0; e < NE; e++)
+        for (int r = 0; r < 24; r++)
+            assert_true(f2[24 * e + r] == (use2[e] ? fb : fa)[24 * e + r]);
+    fem_kernel_release(&ka);
+    fem_kernel_release(&kb);
+    fem_kernel_release(&k2);
+    rf_material_params p;
+    rf_material_params_default(&p);
+    rf_material m;
+    assert_int_equal(rf_material_init(&m, &p, &err), RF_OK);
+    const fem_point_law lm = fem_point_law_material3d(&m); /* 4 state variables: not the linear law's shape */
+    assert_int_equal(fem_kernel_points_hex(&k2, 0, NE, x, conn, &la, &lm, use2, 1, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "same shape"));
+    fem_kernel_release(&k2);
+}
+
 static void test_bad_law(void **state)
 {
     (void)state;
@@ -237,6 +276,7 @@ int main(void)
         cmocka_unit_test(test_linear_equals_matfree),
         cmocka_unit_test(test_bbar),
         cmocka_unit_test(test_material_law),
+        cmocka_unit_test(test_two_laws),
         cmocka_unit_test(test_bad_law),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
