@@ -1,7 +1,8 @@
 /* test_fem3d_plastic.c - elasto-plastic bodies and VTK output in the 3D FE
  * model, on coarse meshes, against independent references: the elastic 3D
  * model (a J2 slope of huge yield stress; the linear point law), the
- * axisymmetric J2 model at a comparable resolution (normal impact), the
+ * axisymmetric J2 and Drucker-Prager models at a comparable resolution
+ * (normal impact), the
  * energy balance (closure, and the elastic energy of the committed stresses
  * against the internal work less the dissipation), the physics of an oblique
  * impact on a yielding slope (ploughing lowers R_t without friction), thread
@@ -110,6 +111,29 @@ static void test_normal_vs_axisymmetric(void **state)
     assert_int_equal(h3.plastic_strain_max_in, 2);
     assert_true(h3.plastic_strain_max_z < 0 && h3.plastic_strain_max_r < 2 * h3.hertz_radius);
     rf_fem_history_free(&h3);
+}
+
+/* The same for a Drucker-Prager slope with a cap (c = 20 MPa, phi = 0.6 rad, psi = 0.1 rad,
+   X0 = 300 MPa, H_c = 5 GPa): the axisymmetric model moves over 0.623-0.628 in R_n, 0.569-0.577 in
+   W_p/KE, 1.6 % in the crater, 1 % in the penetration between a/h = 2.5 and 10
+   (docs/validation-plastic.md section 8); the 3D crater sat 2-6 % off in the J2 case. */
+static void test_dp_vs_axisymmetric(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(0, 0);
+    in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 20e6;
+    in.slope_friction_angle = 0.6, in.slope_dilatancy_angle = 0.1;
+    in.slope_cap_pressure = 300e6, in.slope_cap_hardening = 5e9;
+    rf_fem_options o = coarse(3);
+    rf_impact_output o3, ax;
+    run3d(&in, &o, &o3, NULL, NULL);
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &ax, NULL, &err), RF_OK);
+    assert_true(fabs(o3.R_n - ax.R_n) < 0.03 * ax.R_n);
+    assert_true(fabs(o3.plastic_work - ax.plastic_work) < 0.03 * ax.plastic_work);
+    assert_true(fabs(o3.indentation_depth - ax.indentation_depth) < 0.05 * ax.indentation_depth);
+    assert_true(fabs(o3.penetration_max - ax.penetration_max) < 0.05 * ax.penetration_max);
+    assert_true(fabs(o3.energy_error) < 5e-3);
 }
 
 /* A J2 boulder (Y = 200 MPa) on elastic granite: the boulder dissipates, in its co-rotated frame;
@@ -325,7 +349,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_refusals),        cmocka_unit_test(test_huge_yield_is_elastic),
-        cmocka_unit_test(test_normal_vs_axisymmetric), cmocka_unit_test(test_plastic_boulder),
+        cmocka_unit_test(test_normal_vs_axisymmetric), cmocka_unit_test(test_dp_vs_axisymmetric),
+        cmocka_unit_test(test_plastic_boulder),
         cmocka_unit_test(test_oblique_ploughing), cmocka_unit_test(test_threads),
         cmocka_unit_test(test_vtk),             cmocka_unit_test(test_identity),
     };
