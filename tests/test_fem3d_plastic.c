@@ -2,9 +2,9 @@
  * model, on coarse meshes, against independent references: the elastic 3D
  * model (a J2 slope of huge yield stress; the linear point law), the
  * axisymmetric J2 and Drucker-Prager models at a comparable resolution
- * (normal impact), the
- * energy balance (closure, and the elastic energy of the committed stresses
- * against the internal work less the dissipation), the physics of an oblique
+ * (normal impact), the energy balance (closure, and the elastic energy of
+ * the committed stresses against the internal work less the dissipation),
+ * the physics of an oblique
  * impact on a yielding slope (ploughing lowers R_t without friction), thread
  * independence, the VTK files (sizes, fields, plastic strain = the reported
  * output), and the refusals. */

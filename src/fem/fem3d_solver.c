@@ -12,7 +12,10 @@
  * changes only by the work f_n' (u_{n+1} - u_{n-1}) / 2 of the forces applied at
  * step n.  The tangential contact work is the frictional dissipation and
  * enters the closure; the normal contact work (ideally 0) and round-off are
- * the closure error.
+ * the closure error.  With a plastic body (fem_kernel_points3d.c, committed
+ * after each internal force) the strain energy is replaced by the internal
+ * work dt/2 f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) summed over the steps, as in
+ * the axisymmetric solver, and the kernels book the plastic dissipation.
  * Determinism: every element writes its own 24 forces; every node then sums
  * its elements in element order; sums over nodes run serially.  The result
  * is the same bit for bit for any thread count. */

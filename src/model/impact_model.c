@@ -90,7 +90,7 @@ rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_err
     if (spec->solver != RF_IMPACT_FEM)
         return RF_OK;
     rf_fem_options o = spec->fem;
-    o.vtk_dir = NULL; /* the model ignores it; the 3D model rejects it */
+    o.vtk_dir = NULL; /* the model ignores it (a study writes no VTK frames) */
     return rf_fem_options_validate(&o, 0, err); /* the 3D limits are checked when a 3D impact runs */
 }
 
