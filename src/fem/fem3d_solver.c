@@ -61,12 +61,14 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(in->slope_angle <= 80 * RF_PI / 180), "fem3d: slope_angle must be in [0, 80] degrees, got %g rad",
         in->slope_angle);
     BAD(!(in->friction <= 5), "fem3d: friction must be in [0, 5], got %g", in->friction);
+    /* (the 3D model runs for an inclined slope or friction between dissimilar bodies: rf_fem_needs_3d) */
     BAD(in->boulder_material == RF_MATERIAL_RIGID_BODY,
-        "fem3d: boulder_material = rigid is available in the axisymmetric model only; the 3D model takes an "
-        "elastic or von_mises boulder");
+        "fem3d: boulder_material = rigid is available in the axisymmetric model only (normal impact, slope_angle "
+        "= 0, no friction between dissimilar bodies); the 3D model takes an elastic or von_mises boulder");
     BAD(in->layer_thickness > 0,
-        "fem3d: a layer (layer_thickness = %g m) is available in the axisymmetric model only; the 3D model has a "
-        "homogeneous slope", in->layer_thickness);
+        "fem3d: a layer (layer_thickness = %g m) is available in the axisymmetric model only (normal impact, "
+        "slope_angle = 0, no friction between dissimilar bodies); the 3D model has a homogeneous slope",
+        in->layer_thickness);
     BAD(in->horizontal_axis > 0 && in->slope_angle != 0,
         "fem3d: a spheroid on an inclined slope is not supported (its contact point is not a pole); got "
         "horizontal_axis = %g m, slope_angle = %g rad",
