@@ -300,6 +300,37 @@ static void test_vtk(void **state)
     rmdir(dir);
 }
 
+/* rf_fem_solve (the CLI's and the impact model's entry) passes vtk_dir on to the 3D model. */
+static void test_solve_vtk(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/rf_fem3d_solve_XXXXXX", path[512];
+    assert_non_null(mkdtemp(dir));
+    rf_impact_input in = granite(45, 0);
+    in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 200e6;
+    rf_fem_options o = coarse(2.5);
+    o.end_time = 5e-4, o.vtk_dir = dir, o.vtk_frames = 2;
+    rf_impact_output out;
+    rf_error err = {0};
+    int three_d = 0;
+    assert_int_equal(rf_fem_solve(&in, &o, &out, NULL, NULL, &three_d, &err), RF_OK);
+    assert_int_equal(three_d, 1);
+    snprintf(path, sizeof path, "%s/fem.pvd", dir);
+    char *pvd = slurp(path);
+    assert_non_null(pvd);
+    int frames = 0;
+    for (const char *p = pvd; (p = strstr(p, "<DataSet")); p++)
+        frames++;
+    free(pvd);
+    assert_true(frames >= 2);
+    unlink(path);
+    for (int f = 0; f < frames; f++) {
+        snprintf(path, sizeof path, "%s/fem_%04d.vtu", dir, f);
+        assert_int_equal(unlink(path), 0);
+    }
+    rmdir(dir);
+}
+
 static void test_refusals(void **state)
 {
     (void)state;
@@ -352,7 +383,8 @@ int main(void)
         cmocka_unit_test(test_normal_vs_axisymmetric), cmocka_unit_test(test_dp_vs_axisymmetric),
         cmocka_unit_test(test_plastic_boulder),
         cmocka_unit_test(test_oblique_ploughing), cmocka_unit_test(test_threads),
-        cmocka_unit_test(test_vtk),             cmocka_unit_test(test_identity),
+        cmocka_unit_test(test_vtk),             cmocka_unit_test(test_solve_vtk),
+        cmocka_unit_test(test_identity),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
