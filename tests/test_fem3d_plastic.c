@@ -81,7 +81,7 @@ static void test_huge_yield_is_elastic(void **state)
 /* 10 m/s normal impact on a J2 slope (Y = 200 MPa): 3D at a/h = 3 against the axisymmetric model
    at a/h = 3.  The axisymmetric model itself moves, between a/h = 2.5 and 20, over 0.480-0.520 in
    R_n (8 %), 0.645-0.686 in W_p/KE (6 %), 1.3 % in the crater and the penetration
-   (docs/validation-plastic.md section 8): the tolerances below stay inside that spread. */
+   (docs/validation-plastic.md section 9): the tolerances below stay inside that spread. */
 static void test_normal_vs_axisymmetric(void **state)
 {
     (void)state;
@@ -116,7 +116,7 @@ static void test_normal_vs_axisymmetric(void **state)
 /* The same for a Drucker-Prager slope with a cap (c = 20 MPa, phi = 0.6 rad, psi = 0.1 rad,
    X0 = 300 MPa, H_c = 5 GPa): the axisymmetric model moves over 0.623-0.628 in R_n, 0.569-0.577 in
    W_p/KE, 1.6 % in the crater, 1 % in the penetration between a/h = 2.5 and 10
-   (docs/validation-plastic.md section 8); the 3D crater sat 2-6 % off in the J2 case. */
+   (docs/validation-plastic.md section 9); the 3D crater sat 2-6 % off in the J2 case. */
 static void test_dp_vs_axisymmetric(void **state)
 {
     (void)state;
@@ -139,7 +139,7 @@ static void test_dp_vs_axisymmetric(void **state)
 /* A J2 boulder (Y = 200 MPa) on elastic granite: the boulder dissipates, in its co-rotated frame;
    the axisymmetric J2 boulder at the same a/h as the reference.  That reference is itself mesh
    sensitive: R_n 0.496 at a/h = 2.5, 0.444 at 4, 0.467 at 10 (11 %), W_p/KE 0.700, 0.752, 0.734
-   (7 %) (docs/validation-plastic.md section 8): tolerances 8 % and 6 %. */
+   (7 %) (docs/validation-plastic.md section 9): tolerances 8 % and 6 %. */
 static void test_plastic_boulder(void **state)
 {
     (void)state;

@@ -2,7 +2,7 @@
  * spheroid on a horizontal slope) falling vertically onto an inclined slope
  * with Coulomb friction (study S4).  Bodies elastic by default; the slope may
  * be von_mises or drucker_prager, the boulder von_mises (integration-point
- * kernel with B-bar, docs/validation-plastic.md section 8); a rigid boulder
+ * kernel with B-bar, docs/validation-plastic.md section 9); a rigid boulder
  * and a layer are refused.
  *
  * Same design as the axisymmetric solver (fem.h), in the slope's frame
