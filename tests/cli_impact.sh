@@ -75,7 +75,8 @@ expect_error 2 "--slope-dilatancy-angle 40" --slope-material drucker_prager --sl
 expect_error 2 "--slope-cap-pressure -1" --slope-material drucker_prager --slope-cohesion 1e4 \
     --slope-friction-angle 30 --slope-cap-pressure -1
 expect_error 2 "--boulder-hardening -1" --boulder-material von_mises --boulder-yield 1e8 --boulder-hardening -1
-expect_error 1 "axisymmetric model only" --slope-material von_mises --slope-yield 2e8 --slope-angle 30
+expect_error 1 "axisymmetric model only" --boulder-material rigid --slope-angle 30
+expect_error 1 "axisymmetric model only" --layer-thickness 0.1 --slope-angle 30
 "$bin" impact --help | grep -q -- '--slope-cap-pressure PA' || fail "help lacks --slope-cap-pressure"
 # a layer: its inputs named, FE only
 expect_error 2 "--layer-thickness -1" --layer-thickness -1

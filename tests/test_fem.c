@@ -417,7 +417,9 @@ static void test_point_kernel(void **state)
     assert_true(fabs(b.compression_max / a.compression_max - 1) < 1e-10);
     assert_true(fabs(b.v_n_after / a.v_n_after - 1) < 1e-10);
     assert_true(fabs(b.energy_error - a.energy_error) < 1e-10);
-    rf_error err = {0}; /* 3D has only the stiffness kernel */
+    rf_error err = {0}; /* 3D has the point kernel too (test_fem3d_plastic); an unknown kernel is refused */
+    assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_OK);
+    o.kernel[0] = (rf_fem_kernel)5;
     assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "kernel[0]"));
 }

@@ -47,7 +47,8 @@ typedef enum {
     RF_FEM_KERNEL_STIFFNESS = 0, /* linear elastic, the fastest (default): axisymmetric, precomputed element
                                     stiffness; 3D, matrix-free at the Gauss points (docs/fem-speed.md) */
     RF_FEM_KERNEL_POINTS         /* linear elastic stress update at the integration points: the form
-                                    elasto-plastic laws take (axisymmetric model only; ~5x slower) */
+                                    elasto-plastic laws take (~5x slower; in 3D the hexahedron's
+                                    point kernel, without B-bar: the elastic results to round-off) */
 } rf_fem_kernel;
 
 /* Kinematics of the axisymmetric model (docs/validation-plastic.md section 6e). */
@@ -153,7 +154,7 @@ typedef struct {
     double vibration_energy;      /* boulder KE + strain energy - rigid KE at the end [J] */
     double slope_energy;          /* slope KE + strain energy at the end [J] */
     double ke0;                   /* initial kinetic energy [J] */
-    /* plasticity (axisymmetric model; zeros from the 3D model) */
+    /* plasticity (both models; the 3D model's as full-body values, r = distance from the impact axis) */
     double plastic_work_boulder, plastic_work_slope; /* plastic dissipation of each body at the end [J] */
     double elastic_energy_stress; /* plastic bodies: elastic energy of the committed stresses [J] ... */
     double elastic_energy_work;   /* ... and their internal work less the plastic work (should agree) [J] */
@@ -187,8 +188,8 @@ rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, cons
 /* Run the FE model the impact needs (rf_fem_needs_3d): the axisymmetric one
  * or the 3D half model with default 3D settings.  hist may be NULL;
  * friction_work (may be NULL) receives the Coulomb dissipation [J] (0 for the
- * axisymmetric model); *three_d (may be NULL) says which model ran.  The 3D
- * model writes no VTK: opt->vtk_dir is ignored there. */
+ * axisymmetric model); *three_d (may be NULL) says which model ran.  VTK
+ * frames (opt->vtk_dir) in both models (the 3D model's half model). */
 rf_status rf_fem_solve(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,
                        rf_fem_history *hist, double *friction_work, int *three_d, rf_error *err);
 /* The same in a caller's workspace (NULL = a fresh one). */

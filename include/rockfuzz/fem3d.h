@@ -1,14 +1,18 @@
 /* fem3d.h - 3D explicit finite-element model of a boulder (sphere, or
- * spheroid on a horizontal slope) falling vertically onto an inclined elastic
- * slope with Coulomb friction (study S4).
+ * spheroid on a horizontal slope) falling vertically onto an inclined slope
+ * with Coulomb friction (study S4).  Bodies elastic by default; the slope may
+ * be von_mises or drucker_prager, the boulder von_mises (integration-point
+ * kernel with B-bar, docs/validation-plastic.md section 9); a rigid boulder
+ * and a layer are refused.
  *
  * Same design as the axisymmetric solver (fem.h), in the slope's frame
  * (x down-slope, z the outward slope normal, y normal to the plane of
  * motion): the slope is a hemisphere of radius domain_factor * r0 whose flat
  * face is the slope, its curved surface fixed or absorbing; the boulder
  * approaches with v_n = -V cos(alpha), v_t = V sin(alpha), no spin, no
- * gravity.  8-node hexahedra, full 2x2x2 integration, precomputed element
- * stiffness (linear, small strain), lumped mass, central differences at the
+ * gravity.  8-node hexahedra, full 2x2x2 integration (elastic: matrix-free
+ * linear kernel; plastic: return maps at the points with B-bar; small
+ * strain, the boulder co-rotational), lumped mass, central differences at the
  * element eigenvalue bound, no damping.  Contact: forward-increment Lagrange
  * multipliers (Carpenter, Taylor & Katona 1991) node-to-segment, boulder
  * nodes on the slope's undeformed face, with Coulomb friction as a

@@ -11,7 +11,7 @@
  * of the sphere of radius `radius`).  The slope is a half-space, elastic by
  * default; each body may be elasto-plastic (material.h: von Mises for the
  * boulder and the slope, Drucker-Prager with an optional compaction cap for
- * the slope; the FE solvers only, axisymmetric model only for now).
+ * the slope; the FE solvers only, axisymmetric and 3D models).
  * Velocity is the vertical impact speed; slope_angle tilts the slope. */
 #ifndef ROCKFUZZ_IMPACT_H
 #define ROCKFUZZ_IMPACT_H
@@ -49,7 +49,8 @@ typedef struct {
     double slope_cap_hardening;         /* drucker_prager: compaction modulus H_c [Pa] */
     /* A layer over the slope's material (the bedrock): 0 = homogeneous slope.
        Its own density, elasticity and material, named as the slope's
-       (defaults: the nominal granite, elastic).  FE axisymmetric model only. */
+       (defaults: the nominal granite, elastic).  FE axisymmetric model only
+       (the 3D model refuses it). */
     double layer_thickness;             /* [m], >= 0 */
     double layer_density, layer_E, layer_poisson;
     rf_material_model layer_material;

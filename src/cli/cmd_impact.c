@@ -108,9 +108,10 @@ static void usage(FILE *f)
         "  --slope-angle DEG        slope inclination [degrees] in [0, 90) (default 0)\n"
         "  --friction MU            Coulomb coefficient >= 0, static = kinetic (default 0)\n"
         "\n"
-        "Materials (docs/materials.md; fem solver, axisymmetric model only when not elastic):\n"
+        "Materials (docs/materials.md; fem solver only when not elastic; axisymmetric and 3D):\n"
         "  --boulder-material M     elastic | von_mises | rigid (default elastic; rigid: exact\n"
-        "                           mass, no deformation, E* from the slope alone)\n"
+        "                           mass, no deformation, E* from the slope alone;\n"
+        "                           rigid: axisymmetric model only)\n"
         "  --boulder-yield PA       von_mises: initial yield stress Y [Pa]\n"
         "  --boulder-hardening PA   von_mises: hardening modulus H >= 0 [Pa] (default 0)\n"
         "  --slope-material M       elastic | von_mises | drucker_prager (default elastic)\n"
@@ -157,7 +158,8 @@ static void usage(FILE *f)
         "  --threads N              fem: threads of the solver, 1..1024 (default: all\n"
         "                           cores for the 3D model, 1 for the axisymmetric one;\n"
         "                           the results are the same bit for bit)\n"
-        "  --vtk DIR                fem: write VTK snapshots into DIR\n"
+        "  --vtk DIR                fem: write VTK snapshots into DIR (fem.pvd + fem_NNNN.vtu;\n"
+        "                           the 3D model writes its half model)\n"
         "\n"
         "Output:\n"
         "  --json                   print one JSON object: contact_force_max [N],\n"
@@ -320,8 +322,6 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
     rf_error err = {0};
     double friction_work = 0.0;
     int three_d = 0;
-    if (spec->fem.vtk_dir && rf_fem_needs_3d(&spec->base))
-        fprintf(stderr, "warning: the 3D model writes no VTK files; --vtk is ignored\n");
     if (rf_fem_solve(&spec->base, &spec->fem, out, &hist, &friction_work, &three_d, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz impact: fem solver failed: %s\n", err.msg);
         rf_fem_history_free(&hist);

@@ -51,6 +51,15 @@ double f3_hex_center_jacobian(const double x[24])
     return shape(x, 0, 0, 0, N, dN);
 }
 
+void f3_hex_gradients(const double x[24], double dN[8][8][3], double w[8])
+{
+    const double g = 1 / sqrt(3.0);
+    for (int q = 0; q < 8; q++) {
+        double N[8];
+        w[q] = shape(x, XI[q] * g, ETA[q] * g, ZETA[q] * g, N, dN[q]);
+    }
+}
+
 void f3_hex_matrices(const double x[24], const f3_material *mat, double K[576], double m[8], double *volume)
 {
     const double lam = mat->E * mat->nu / ((1 + mat->nu) * (1 - 2 * mat->nu));

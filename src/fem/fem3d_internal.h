@@ -70,6 +70,9 @@ typedef struct {
 /* Element stiffness (24 x 24, row-major, dofs x0 y0 z0 x1 ...), lumped nodal
  * masses (row sums of the consistent mass) and volume; 2x2x2 Gauss. */
 void f3_hex_matrices(const double x[24], const f3_material *mat, double K[576], double m[8], double *volume);
+/* dN_a/dx_j at the 8 Gauss points (dN[q][a][j], points ordered as the nodes,
+ * xi = XI[q] / sqrt 3 ...) and their weights det J (Gauss weights are 1). */
+void f3_hex_gradients(const double x[24], double dN[8][8][3], double w[8]);
 /* Jacobian determinant at the element centre (orientation check). */
 double f3_hex_center_jacobian(const double x[24]);
 /* Largest eigenvalue of M_e^-1 K_e over the free dofs (Householder + Sturm
@@ -141,5 +144,12 @@ typedef struct {
 void f3_internal_force(f3_system *S, const double *u, double *f);
 /* Strain energy of the boulder, 1/2 f_el(n)' u_el(n+1) in the frame of the last f3_internal_force. */
 double f3_boulder_strain(const f3_system *S, const double *u);
+
+/* One VTK frame (fem3d_vtk.c): dir/fem_NNNN.vtu of the mesh with u, v, the
+ * cell stresses and plastic strains of the kernels (elastic kernels: from u,
+ * the boulder's from S->ub, its co-rotated field of the last
+ * f3_internal_force); the .pvd index is fem_vtk_index (fem_internal.h). */
+rf_status f3_vtk_frame(const char *dir, int frame, double t, const f3_system *S, const double *u, const double *v,
+                       const f3_material mat[2], rf_error *err);
 
 #endif

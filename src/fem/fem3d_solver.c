@@ -12,7 +12,10 @@
  * changes only by the work f_n' (u_{n+1} - u_{n-1}) / 2 of the forces applied at
  * step n.  The tangential contact work is the frictional dissipation and
  * enters the closure; the normal contact work (ideally 0) and round-off are
- * the closure error.
+ * the closure error.  With a plastic body (fem_kernel_points3d.c, committed
+ * after each internal force) the strain energy is replaced by the internal
+ * work dt/2 f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) summed over the steps, as in
+ * the axisymmetric solver, and the kernels book the plastic dissipation.
  * Determinism: every element writes its own 24 forces; every node then sums
  * its elements in element order; sums over nodes run serially.  The result
  * is the same bit for bit for any thread count. */
@@ -21,6 +24,7 @@
 #include "hex8_step.h"
 #include "fem3d_internal.h"
 #include "fem_core.h"
+#include "fem_internal.h"
 #include "fem_kernel.h"
 
 #include <float.h>
@@ -40,8 +44,6 @@ void rf_fem3d_report_free(rf_fem3d_report *rep)
 
 /* What the 3D model can do beyond the ranges every impact model shares
  * (rf_impact_input_validate) and the option rules (rf_fem_options_validate). */
-/* What the 3D model can do beyond the ranges every impact model shares
- * (rf_impact_input_validate) and the option rules (rf_fem_options_validate). */
 static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o, const rf_fem3d_options *o3,
                              rf_error *err)
 {
@@ -59,6 +61,14 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(in->slope_angle <= 80 * RF_PI / 180), "fem3d: slope_angle must be in [0, 80] degrees, got %g rad",
         in->slope_angle);
     BAD(!(in->friction <= 5), "fem3d: friction must be in [0, 5], got %g", in->friction);
+    /* (the 3D model runs for an inclined slope or friction between dissimilar bodies: rf_fem_needs_3d) */
+    BAD(in->boulder_material == RF_MATERIAL_RIGID_BODY,
+        "fem3d: boulder_material = rigid is available in the axisymmetric model only (normal impact, slope_angle "
+        "= 0, no friction between dissimilar bodies); the 3D model takes an elastic or von_mises boulder");
+    BAD(in->layer_thickness > 0,
+        "fem3d: a layer (layer_thickness = %g m) is available in the axisymmetric model only (normal impact, "
+        "slope_angle = 0, no friction between dissimilar bodies); the 3D model has a homogeneous slope",
+        in->layer_thickness);
     BAD(in->horizontal_axis > 0 && in->slope_angle != 0,
         "fem3d: a spheroid on an inclined slope is not supported (its contact point is not a pole); got "
         "horizontal_axis = %g m, slope_angle = %g rad",
@@ -83,7 +93,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the 3D solver in the workspace pool. */
 enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM, Q_DASH, Q_ELM, Q_LAMX, Q_FIXED,
-       Q_OUTER, Q_UB };
+       Q_OUTER, Q_UB, Q_VTK };
 
 /* The state of one 3D run. */
 typedef struct {
@@ -93,6 +103,12 @@ typedef struct {
     rf_hertz_reference H;
     f3_material mat[2];
     rf_wave_speeds w[2];
+    rf_material matl[2];  /* constitutive law of each body (plastic[b] != 0: not elastic) */
+    fem_lame lame[2];     /* parameters of the linear point laws (kernel = points) */
+    int plastic[2], work_account; /* work_account: energies from the internal work (a plastic body) */
+    double W_int[2];      /* internal work of each body so far [J] (model, not full body) */
+    double depth_max;     /* deepest position of the boulder's lowest point below z = 0 [m] */
+    long crater_node;     /* the slope's surface node at the first-contact point */
     double V, Vn, Vt, L, h, hb, sym_factor;
     f3_mesh_spec ms;
     f3_mesh mesh;
@@ -144,6 +160,14 @@ static rf_status solid_prepare(solid_run *R, const rf_impact_input *in, const rf
     R->threads = 1;
 #endif
     R->fixed_outer = R->o.boundary == RF_FEM_BOUNDARY_FIXED;
+    for (int b = 0; b < 2; b++) {
+        rf_material_params p;
+        rf_impact_material_params(in, b, &p);
+        if ((st = rf_material_init(&R->matl[b], &p, err)) != RF_OK) /* validated above: cannot fail */
+            return rf_error_prefix(err, "fem3d");
+        R->plastic[b] = p.model != RF_MATERIAL_ELASTIC;
+    }
+    R->work_account = R->plastic[0] || R->plastic[1];
     return RF_OK;
 }
 
@@ -401,11 +425,51 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
     C->tol = 1e-9 * R->h;
     C->band = 0.5 * fmin(R->h, R->hb) + 2 * R->V * R->dt;
     C->max_sweeps = 2000;
+    /* the first-contact point is the slope frame's origin: the nearest node of the slope's top grid */
+    const double hs = R->mesh.h_s;
+    long i = lround(-R->mesh.x0_s / hs), j = lround(-R->mesh.y0_s / hs);
+    i = i < 0 ? 0 : i >= R->mesh.nxt_s ? R->mesh.nxt_s - 1 : i;
+    j = j < 0 ? 0 : j >= R->mesh.nyt_s ? R->mesh.nyt_s - 1 : j;
+    R->crater_node = R->mesh.top_s[i * R->mesh.nyt_s + j];
+    return RF_OK;
+}
+
+/* The material kernel of each body, one block per body: an elasto-plastic
+ * body's return maps at the integration points with B-bar
+ * (fem_kernel_points3d.c); an elastic body matrix-free (docs/fem-speed.md:
+ * J^-1 stored while the mesh is small enough for the 640 B per element to
+ * stay in cache, recomputed from x beyond), or with the linear point law if
+ * its kernel option is `points`. */
+static rf_status solid_kernels(solid_run *R, rf_error *err)
+{
+    f3_system *S = &R->S;
+    const long nbe = R->mesh.boulder_elems;
+    const int store_j = R->ne <= F3_STORE_J_MAX;
+    for (int b = 0; b < 2; b++) {
+        const f3_material *m = &R->mat[b];
+        const double lam = m->E * m->nu / ((1 + m->nu) * (1 - 2 * m->nu)), mu = m->E / (2 * (1 + m->nu));
+        const long first = b == F3_BOULDER ? 0 : nbe, count = b == F3_BOULDER ? nbe : R->ne - nbe;
+        rf_status st;
+        if (R->plastic[b]) {
+            const fem_point_law law = fem_point_law_material3d(&R->matl[b]);
+            st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 1,
+                                       err);
+        } else if (R->o.kernel[b] == RF_FEM_KERNEL_POINTS) {
+            R->lame[b] = (fem_lame){lam, mu};
+            const fem_point_law law = fem_point_law_linear3d(&R->lame[b]);
+            st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 0,
+                                       err);
+        } else
+            st = fem_kernel_hex8_matfree(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, lam, mu, store_j,
+                                         err);
+        if (st != RF_OK)
+            return st;
+    }
     return RF_OK;
 }
 
 /* Assembly: arrays, topology, elements, masses and time step, material
- * kernels (linear elastic, one block per body), dashpots, contact, and the
+ * kernels (one block per body), dashpots, contact, and the
  * initial state (boulder translating at (V sin alpha, 0, -V cos alpha) in the
  * slope frame). */
 static rf_status solid_assemble(solid_run *R, rf_error *err)
@@ -423,18 +487,8 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
     solid_masses(R);
     if (!R->mass_moments_ok)
         return rf_fail(err, RF_EINTERNAL, "fem3d: no positive boulder mass weighting with the spheroid's moments");
-    const long nbe = R->mesh.boulder_elems;
-    /* matrix-free kernels (docs/fem-speed.md): J^-1 stored while the mesh is small enough for the
-       640 B per element to stay in cache, recomputed from x beyond (fewer bytes per step) */
-    const int store_j = R->ne <= F3_STORE_J_MAX;
-    for (int b = 0; b < 2; b++) {
-        const f3_material *m = &R->mat[b];
-        const double lam = m->E * m->nu / ((1 + m->nu) * (1 - 2 * m->nu)), mu = m->E / (2 * (1 + m->nu));
-        const long first = b == F3_BOULDER ? 0 : nbe, count = b == F3_BOULDER ? nbe : R->ne - nbe;
-        if ((st = fem_kernel_hex8_matfree(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, lam, mu, store_j,
-                                          err)) != RF_OK)
-            return st;
-    }
+    if ((st = solid_kernels(R, err)) != RF_OK)
+        return st;
     solid_dashpots(R);
     if ((st = solid_contact_setup(R, err)) != RF_OK)
         return st;
@@ -529,13 +583,48 @@ static double solid_contact_account(solid_run *R, double *rad)
     return Fc;
 }
 
+/* f_int' v of each body (boulder dofs first). */
+static void solid_power(const solid_run *R, double fv[2])
+{
+    const long nb3 = 3 * R->nbn;
+    for (long dd = 0; dd < nb3; dd++)
+        fv[0] += R->f[dd] * R->v[dd];
+    for (long dd = nb3; dd < R->ndof; dd++)
+        fv[1] += R->f[dd] * R->v[dd];
+}
+
+/* The boulder's lowest point (its contact-face nodes) below the undeformed slope surface z = 0. */
+static void solid_depth(solid_run *R)
+{
+    for (long k = 0; k < R->C.nslave; k++) {
+        const long s = R->C.slave[k];
+        const double d = -(R->mesh.x[3 * s + 2] + R->u[3 * s + 2]);
+        if (d > R->depth_max)
+            R->depth_max = d;
+    }
+}
+
+/* Plastic dissipation of body b so far [J] (model). */
+static double solid_plastic_work(const solid_run *R, int b)
+{
+    fem_kernel_report r;
+    fem_kernel_points_hex_report(&R->S.kernel[b], &r);
+    return r.plastic_work;
+}
+
 /* One step: internal force -> dashpots -> pairing -> predictor -> contact. */
 static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err)
 {
     const double dt = R->dt;
     double *u = R->u, *v = R->v;
     f3_internal_force(&R->S, u, R->f);
+    for (int b = 0; b < 2; b++) /* the state at u_n is accepted */
+        if (R->S.kernel[b].ops->commit)
+            R->S.kernel[b].ops->commit(&R->S.kernel[b]);
     double W_abs_inc = solid_dashpot_forces(R);
+    double fv[2] = {0, 0};
+    if (R->work_account)
+        solid_power(R, fv);
     f3_contact_locate(&R->C, &R->mesh, u, v, R->threads, 1); /* pairing at step n, G v_{n-1/2} */
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(R->threads) if (R->threads > 1)
@@ -560,6 +649,12 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
         R->pgs_res_max = R->C.residual;
     *Fc = solid_contact_account(R, rad);
     R->W_abs += W_abs_inc;
+    if (R->work_account) { /* f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
+        double fv1[2] = {0, 0};
+        solid_power(R, fv1);
+        R->W_int[0] += 0.5 * dt * (fv[0] + fv1[0]), R->W_int[1] += 0.5 * dt * (fv[1] + fv1[1]);
+    }
+    solid_depth(R);
     return RF_OK;
 }
 
@@ -583,20 +678,48 @@ static void solid_energy(solid_run *R, double t, double Fc, double rad, double r
         se[1] += f[dd] * u[dd];
     }
     ke[0] *= 0.5, ke[1] *= 0.5, se[0] *= 0.5, se[1] *= 0.5;
+    if (R->work_account) /* stored elastically: the internal work less the dissipation */
+        for (int b = 0; b < 2; b++)
+            se[b] = R->W_int[b] - solid_plastic_work(R, b);
     *comp = -uz / R->Mb;
     *closure = ke[0] + ke[1] + se[0] + se[1] + R->W_abs + R->W_fric - R->ke0;
+    if (R->work_account)
+        *closure = ke[0] + ke[1] + R->W_int[0] + R->W_int[1] + R->W_abs + R->W_fric - R->ke0;
     const double sf = R->sym_factor;
     const double r[13] = {t,          Fc * sf,      *comp,        rad,        ke[0] * sf,   se[0] * sf, ke[1] * sf,
                           se[1] * sf, R->W_n * sf, R->W_abs * sf, *closure * sf, pz / R->Mb, R->W_fric * sf};
     memcpy(row, r, sizeof r);
 }
 
+/* VTK frame of the state u_n (the kernels' committed state is that of u_{n-1}). */
+static rf_status solid_vtk(solid_run *R, int frame, double t, rf_error *err)
+{
+    f3_internal_force(&R->S, R->u, R->f); /* the boulder's co-rotated field of u_n, for its elastic stresses */
+    return f3_vtk_frame(R->o.vtk_dir, frame, t, &R->S, R->u, R->v, R->mat, err);
+}
+
+/* The time loop, with VTK frames if asked (about vtk_frames of them, and the
+ * final state: its committed plastic strains are the reported ones).  The
+ * frames change no result: the extra internal force at u_n only recomputes
+ * the trial state that the step computes again. */
 static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *err)
 {
+    const rf_fem_options *o = &R->o;
+    const long vtk_every = (long)(run->steps_estimate / (o->vtk_frames > 0 ? o->vtk_frames : 60) + 1);
+    const int vtk_cap = 4 * (o->vtk_frames + 8);
+    int vtk_n = 0;
+    double *vtk_times = NULL;
+    if (o->vtk_dir && !(vtk_times = fem_pool_get(R->pool, Q_VTK, (size_t)vtk_cap * sizeof(double), 0)))
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
     rf_status st = RF_OK;
     long n = 0;
     for (;; n++) {
         const double t = (double)n * R->dt;
+        if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap - 1) {
+            if ((st = solid_vtk(R, vtk_n, t, err)) != RF_OK)
+                return st;
+            vtk_times[vtk_n++] = t;
+        }
         double Fc, rad, row[13], comp, closure;
         if ((st = solid_step(R, &Fc, &rad, err)) != RF_OK)
             return st;
@@ -607,7 +730,13 @@ static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *
             break;
     }
     *nsteps = n + 1;
-    return RF_OK;
+    if (!o->vtk_dir)
+        return RF_OK;
+    const double t_end = (double)(n + 1) * R->dt;
+    if ((st = solid_vtk(R, vtk_n, t_end, err)) != RF_OK)
+        return st;
+    vtk_times[vtk_n++] = t_end;
+    return fem_vtk_index(o->vtk_dir, vtk_n, vtk_times, err);
 }
 
 /* Rigid-body state of the boulder after the impact: CM velocity P, angular
@@ -659,6 +788,35 @@ static void solid_rigid_state(const solid_run *R, double P[3], double omega[3], 
     *Iyy = I[1][1];
 }
 
+/* The plastic diagnostics of hist (full body): dissipation per body, the
+ * elastic energy of the committed stresses against the internal work less
+ * the dissipation, and where the largest plastic strain is (r: distance
+ * from the impact axis). */
+static void solid_history_plastic(const solid_run *R, rf_fem_history *hist)
+{
+    const double sf = R->sym_factor;
+    fem_kernel_report rep[2];
+    for (int b = 0; b < 2; b++) {
+        fem_kernel_points_hex_report(&R->S.kernel[b], &rep[b]);
+        const double Ee = R->plastic[b] ? fem_kernel_points_hex_energy(&R->S.kernel[b]) : -1;
+        if (Ee >= 0) {
+            hist->elastic_energy_stress += Ee * sf;
+            hist->elastic_energy_work += (R->W_int[b] - rep[b].plastic_work) * sf;
+        }
+    }
+    hist->plastic_work_boulder = rep[0].plastic_work * sf, hist->plastic_work_slope = rep[1].plastic_work * sf;
+    const int bm = rep[1].plastic_strain_max > rep[0].plastic_strain_max ? 1 : 0;
+    hist->plastic_strain_max_in = rep[bm].element_max < 0 ? 0 : 1 + bm;
+    if (rep[bm].element_max < 0)
+        return;
+    const int *c = R->mesh.conn + 8 * rep[bm].element_max;
+    double xc[3] = {0, 0, 0};
+    for (int a = 0; a < 8; a++)
+        for (int q = 0; q < 3; q++)
+            xc[q] += R->mesh.x[3 * c[a] + q] / 8;
+    hist->plastic_strain_max_r = hypot(xc[0], xc[1]), hist->plastic_strain_max_z = xc[2];
+}
+
 /* Diagnostics of the final state into hist (energies of the full body). */
 static void solid_history(solid_run *R, const fem_run *run, double K_after, rf_fem_history *hist)
 {
@@ -669,6 +827,8 @@ static void solid_history(solid_run *R, const fem_run *run, double K_after, rf_f
     seb = f3_boulder_strain(&R->S, u);
     for (long dd = 3 * R->nbn; dd < R->ndof; dd++)
         ses += 0.5 * R->f[dd] * u[dd], eks += 0.5 * m[dd] * v[dd] * v[dd];
+    if (R->work_account) /* stored elastic energy: internal work less dissipation */
+        seb = R->W_int[0] - solid_plastic_work(R, 0), ses = R->W_int[1] - solid_plastic_work(R, 1);
     hist->dt = R->dt, hist->dt_bound = R->dt_bound, hist->dt_edge = R->dt_edge;
     hist->h_contact = R->h;
     hist->hertz_radius = R->H.contact_radius, hist->hertz_duration = R->H.duration;
@@ -684,6 +844,7 @@ static void solid_history(solid_run *R, const fem_run *run, double K_after, rf_f
                                 (size_t)R->ndof * sizeof *v);
     fem_run_warnings(run, R->fixed_outer, R->L, R->w[1].p, R->in->radius, hist->warning, sizeof hist->warning,
                      R->outside_contact ? "Contact reached the edge of the fine zone: raise core_factor. " : NULL);
+    solid_history_plastic(R, hist);
 }
 
 static void solid_report(solid_run *R, fem_run *run, const double P[3], double w_after, double Iyy,
@@ -707,6 +868,20 @@ static void solid_report(solid_run *R, fem_run *run, const double P[3], double w
     run->series.col[12] = NULL;
 }
 
+/* plastic_work (/ KE0), the largest equivalent plastic strain, the deepest
+ * position of the boulder's lowest point and the permanent depth of the slope
+ * surface at the first-contact point (both normal to the slope). */
+static void solid_plastic_outputs(const solid_run *R, rf_impact_output *out)
+{
+    fem_kernel_report rep[2];
+    for (int b = 0; b < 2; b++)
+        fem_kernel_points_hex_report(&R->S.kernel[b], &rep[b]);
+    out->plastic_work = (rep[0].plastic_work + rep[1].plastic_work) / R->ke0;
+    out->equivalent_plastic_strain_max = fmax(rep[0].plastic_strain_max, rep[1].plastic_strain_max);
+    out->penetration_max = R->depth_max;
+    out->indentation_depth = -R->u[3 * R->crater_node + 2];
+}
+
 /* Outputs, diagnostics and report of the final state. */
 static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_output *out, rf_fem_history *hist,
                           rf_fem3d_report *rep)
@@ -716,7 +891,7 @@ static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_out
     const double vn_after = P[2], vt_after = P[0], w_after = omega[1];
     const double K_after = 0.5 * R->Mb * (vn_after * vn_after + vt_after * vt_after) + 0.5 * Iyy * w_after * w_after;
     fem_run_outputs(run, nsteps, R->o.duration_threshold, R->ke0, R->sym_factor, R->nn, R->ne, out);
-    out->penetration_max = out->indentation_depth = NAN; /* not measured by the 3D model yet (elastic bodies only) */
+    solid_plastic_outputs(R, out);
     out->v_n_before = -R->Vn;
     out->v_t_before = R->Vt;
     out->v_n_after = vn_after;

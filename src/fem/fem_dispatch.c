@@ -22,15 +22,7 @@ rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const
         *three_d = want_3d;
     if (friction_work)
         *friction_work = 0.0;
-    if (want_3d && (in->boulder_material != RF_MATERIAL_ELASTIC || in->slope_material != RF_MATERIAL_ELASTIC))
-        return rf_fail(err, RF_EINVAL,
-                       "fem: plastic materials (boulder_material = %s, slope_material = %s) are available in the "
-                       "axisymmetric model only (normal impact, slope_angle = 0, no friction between dissimilar "
-                       "bodies); the 3D model is elastic for now",
-                       rf_impact_material_name(in->boulder_material), rf_material_model_name(in->slope_material));
-    if (want_3d && in->layer_thickness > 0)
-        return rf_fail(err, RF_EINVAL, "fem: a layer (layer_thickness = %g m) is available in the axisymmetric model "
-                       "only (normal impact); the 3D model has a homogeneous slope", in->layer_thickness);
+    /* the 3D model refuses what it cannot do (a rigid boulder, a layer) with its own message */
     if (!want_3d)
         return ws ? rf_fem_impact_ws(ws, in, opt, out, hist, err) : rf_fem_impact(in, opt, out, hist, err);
     rf_fem_options o;
@@ -38,7 +30,6 @@ rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const
         o = *opt;
     else
         rf_fem_options_default(&o);
-    o.vtk_dir = NULL; /* the 3D model writes no VTK */
     rf_fem3d_report rep = {0};
     rf_fem3d_report *r = friction_work ? &rep : NULL;
     rf_status st = ws ? rf_fem3d_impact_ws(ws, in, &o, NULL, out, hist, r, err)

@@ -173,6 +173,35 @@ int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *pl
  * integration-point kernel whose law gives psi; -1 otherwise. */
 double fem_kernel_elastic_energy(const fem_kernel *k);
 
+/* Integration-point kernel of the 8-node hexahedron (fem_kernel_points3d.c):
+ * 2x2x2 Gauss, the x-gradients of the shape functions and det J stored per
+ * point (1.6 kB per element), the committed strain, stress and law state per
+ * point; `law` (ncomp = 6) at every point each step, law2 (same shape) for
+ * the elements with use_law2[i] != 0 (NULL: law everywhere); mean-dilatation
+ * B-bar when bbar != 0 (as fem_kernel_points_axi_ex).  x: node coordinates,
+ * conn: 8 nodes per element (global numbering; copied).  Provides
+ * forces_field() only: work units are blocks of HEX8_W elements, one per vector lane (the kinematics in SIMD, the laws lane by
+ * lane); any split of the units gives the same bits.
+ * With the linear law and bbar = 0 it reproduces the matrix-free elastic
+ * kernel to round-off (test_fem3d_plastic).  In the 3D solver the boulder's
+ * field is co-rotated first: a plastic boulder's committed stresses live in
+ * its co-rotated frame. */
+rf_status fem_kernel_points_hex(fem_kernel *k, long first, long count, const double *x, const int *conn,
+                                const fem_point_law *law, const fem_point_law *law2, const unsigned char *use_law2,
+                                int bbar, rf_error *err);
+/* fem_kernel_report_get, fem_kernel_cell_state (6 components xx yy zz xy yz
+ * zx) and fem_kernel_elastic_energy for the hexahedron kernel above (zeros,
+ * 0 and -1 for other kernels). */
+void fem_kernel_points_hex_report(const fem_kernel *k, fem_kernel_report *r);
+int fem_kernel_points_hex_cell(const fem_kernel *k, long e, double sig[6], double *plastic_strain);
+double fem_kernel_points_hex_energy(const fem_kernel *k);
+/* sig = sig_n + D deps in 3D (xx yy zz xy yz zx, engineering shear strains),
+ * with its elastic energy density. */
+fem_point_law fem_point_law_linear3d(const fem_lame *lame);
+/* The material library's return maps as a 3D point law (ncomp = 6, the
+ * Voigt order of rockfuzz/material.h); state as fem_point_law_material. */
+fem_point_law fem_point_law_material3d(const rf_material *m);
+
 static inline void fem_kernel_release(fem_kernel *k)
 {
     if (k->ops && k->ops->destroy)

@@ -130,11 +130,9 @@ rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error
     if (o->max_elements < 1)
         return rf_fail(err, RF_EINVAL, "fem: max_elements = %ld must be >= 1", o->max_elements);
     for (int b = 0; b < 2; b++)
-        if ((unsigned)o->kernel[b] > RF_FEM_KERNEL_POINTS || (three_d && o->kernel[b] != RF_FEM_KERNEL_STIFFNESS))
-            return rf_fail(err, RF_EINVAL, "fem%s: kernel[%d] = %d is not available%s", three_d ? "3d" : "", b,
-                           (int)o->kernel[b], three_d ? " in 3D (stiffness only)" : "");
-    if (three_d && o->vtk_dir)
-        return rf_fail(err, RF_EINVAL, "fem3d: VTK output is not implemented in 3D yet");
+        if ((unsigned)o->kernel[b] > RF_FEM_KERNEL_POINTS)
+            return rf_fail(err, RF_EINVAL, "fem%s: kernel[%d] = %d is not available (0 stiffness, 1 points)",
+                           three_d ? "3d" : "", b, (int)o->kernel[b]);
     return RF_OK;
 }
 

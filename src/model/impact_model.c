@@ -90,7 +90,7 @@ rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_err
     if (spec->solver != RF_IMPACT_FEM)
         return RF_OK;
     rf_fem_options o = spec->fem;
-    o.vtk_dir = NULL; /* the model ignores it; the 3D model rejects it */
+    o.vtk_dir = NULL; /* the model ignores it (a study writes no VTK frames) */
     return rf_fem_options_validate(&o, 0, err); /* the 3D limits are checked when a 3D impact runs */
 }
 
@@ -351,6 +351,7 @@ static int large_possible(const impact_ctx *c)
         probe.layer_thickness = 1;
     return rf_fem_large_deformation(&c->spec.fem, &probe);
 }
+static int may_run_3d(const impact_ctx *c);
 
 static void make_identity(const impact_ctx *c, char *buf, size_t cap)
 {
@@ -391,6 +392,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            small-strain results, whose identity stays as it was */
         if (large_possible(c))
             append(buf, cap, &len, " kinematics=updated_lagrangian");
+        /* the 3D model takes plastic bodies and measures penetration_max and indentation_depth (NaN
+           before, issue 10): a store never mixes results from before and after */
+        if (may_run_3d(c))
+            append(buf, cap, &len, " fem3d_materials=plastic_b_bar");
     }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
