@@ -447,9 +447,9 @@ static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t 
         }
         double *x = xb + xc * n;
         unsigned char *tp = tb + np * rowlen;
-        copy_head(x, cur, n * sizeof(double));
+        copy_head(x, cur, head * sizeof(double)); /* the head, then the tail over what spills */
         copy_head(x + head, tx + t * L, L * sizeof(double));
-        copy_head(tp, tup, rowlen);
+        copy_head(tp, tup, head * tw);
         copy_head(tp + head * tw, ttup + t * L * tw, L * tw);
         ids[t] = (uint32_t)np++;
         if (++xc == xcap && chunked) {
