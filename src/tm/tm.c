@@ -377,34 +377,39 @@ static void set_cut(const struct rf_tm_data *d, rf_tm_result *res, size_t at, in
     }
 }
 
-/* First positions of the smallest and the largest of z[0..count-1] (NaN
- * never; SIZE_MAX if all are NaN): where a scan with strict comparisons
- * would leave them.  LANES interleaved lanes keep the first extremum of
- * their own points; of the lanes with equal extrema the earliest wins. */
-static void grid_extremes(const double *z, size_t count, size_t *pmin, size_t *pmax)
+/* Smallest and largest of z[0..count-1] (NaN never; +-INFINITY if all
+ * are NaN), as running extrema of LANES interleaved lanes, merged. */
+static void grid_extremes(const double *z, size_t count, double *zlo, double *zhi)
 {
     double lo[LANES], hi[LANES];
-    size_t plo[LANES], phi[LANES];
     for (size_t q = 0; q < LANES; q++)
-        lo[q] = INFINITY, hi[q] = -INFINITY, plo[q] = phi[q] = SIZE_MAX;
-    for (size_t p0 = 0; p0 < count; p0 += LANES)
+        lo[q] = INFINITY, hi[q] = -INFINITY;
+    size_t p0 = 0;
+    for (; p0 + LANES <= count; p0 += LANES)
         for (size_t q = 0; q < LANES; q++) { /* unrolled: the lanes stay in registers */
-            size_t p = p0 + q;
-            double v = p < count ? z[p] : NAN; /* past the end: a NaN, never taken */
-            plo[q] = v < lo[q] ? p : plo[q];
+            double v = z[p0 + q];
             lo[q] = v < lo[q] ? v : lo[q];
-            phi[q] = v > hi[q] ? p : phi[q];
             hi[q] = v > hi[q] ? v : hi[q];
         }
-    *pmin = *pmax = SIZE_MAX;
-    for (size_t q = 0; q < LANES; q++) {
-        if (plo[q] != SIZE_MAX && (*pmin == SIZE_MAX || z[plo[q]] < z[*pmin] ||
-                                   (z[plo[q]] == z[*pmin] && plo[q] < *pmin)))
-            *pmin = plo[q];
-        if (phi[q] != SIZE_MAX && (*pmax == SIZE_MAX || z[phi[q]] > z[*pmax] ||
-                                   (z[phi[q]] == z[*pmax] && phi[q] < *pmax)))
-            *pmax = phi[q];
+    for (; p0 < count; p0++) {
+        lo[0] = z[p0] < lo[0] ? z[p0] : lo[0];
+        hi[0] = z[p0] > hi[0] ? z[p0] : hi[0];
     }
+    for (size_t q = 1; q < LANES; q++) {
+        lo[0] = lo[q] < lo[0] ? lo[q] : lo[0];
+        hi[0] = hi[q] > hi[0] ? hi[q] : hi[0];
+    }
+    *zlo = lo[0];
+    *zhi = hi[0];
+}
+
+/* First position of a value equal to v (which z holds). */
+static size_t first_equal(const double *z, double v)
+{
+    size_t p = 0;
+    while (z[p] != v)
+        p++;
+    return p;
 }
 
 /* Recursive retransformation (s.2.4), output by output: each level starts
@@ -425,15 +430,19 @@ static int retransform(const tm_ctx *c, rf_tm_result *res)
         for (size_t jj = m + 1; jj-- > 0;) {
             const rf_grid *g = &d->main[jj];
             const double *z = rf_tm_outputs(d, g, k, scratch);
-            size_t pmin, pmax;
-            grid_extremes(z, g->count, &pmin, &pmax);
-            if (pmin != SIZE_MAX && z[pmin] < zmin) {
-                zmin = z[pmin];
-                amin = g->ids[pmin];
+            /* a strict sequential scan stops at the first point holding a
+             * new extremum: the same point, found after the extremum */
+            double glo, ghi;
+            grid_extremes(z, g->count, &glo, &ghi);
+            if (glo < zmin) {
+                size_t p = first_equal(z, glo);
+                zmin = z[p];
+                amin = g->ids[p];
             }
-            if (pmax != SIZE_MAX && z[pmax] > zmax) {
-                zmax = z[pmax];
-                amax = g->ids[pmax];
+            if (ghi > zmax) {
+                size_t p = first_equal(z, ghi);
+                zmax = z[p];
+                amax = g->ids[p];
             }
             /* tolerate_failures: every point of the cut was NaN so far */
             set_cut(d, res, k * (m + 1) + jj, res->output_undefined[k] || zmin > zmax, amin, amax, zmin, zmax);
