@@ -821,6 +821,38 @@ static void test_lanes_match_sequential(void **state)
     }
 }
 
+/* ---- every evaluated point is the point its tuple names: outputs echo the
+ * inputs, so output i of point id must be the value its tuple indexes (rows
+ * written at once, rows with repeated points, buffer flushes in between) */
+static size_t echo_n; /* inputs = outputs of f_echo (serial test only) */
+static void f_echo(const double *x, double *y) { memcpy(y, x, echo_n * sizeof(double)); }
+
+static void test_points_match_tuples(void **state)
+{
+    (void)state;
+    rf_fuzzy in[8];
+    for (size_t i = 0; i < 8; i++)
+        rf_fuzzy_tfn(&in[i], 1 + (double)i, 0.3, 0.2 + 0.1 * (double)i, NULL);
+    const struct {
+        rf_tm_scheme scheme;
+        size_t n, m;
+        int lr;
+    } cases[] = {{RF_TM_REDUCED, 8, 7, 0}, {RF_TM_REDUCED, 8, 5, 1}, {RF_TM_GENERAL, 3, 6, 1}, {RF_TM_EXTENDED, 4, 4, 1}};
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        size_t n = echo_n = cases[c].n;
+        rf_model model = test_model(n, n, f_echo);
+        rf_tm_result r = run(in, n, &model, cases[c].scheme, cases[c].m, cases[c].lr);
+        const struct rf_tm_data *d = r.data;
+        assert_int_equal(d->npoints, r.distinct);
+        assert_int_equal(test_model_calls(&model), r.distinct);
+        for (size_t id = 0; id < d->npoints; id++)
+            for (size_t i = 0; i < n; i++)
+                assert_true(rf_tm_y(d, id, i) == d->values[i][rf_tm_tuple(d, id, i)]);
+        rf_tm_result_free(&r);
+        rf_model_free(&model);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -832,7 +864,7 @@ int main(void)
         cmocka_unit_test(test_cap_and_failure), cmocka_unit_test(test_cap_before_allocating),
         cmocka_unit_test(test_shapes_and_crisp),
         cmocka_unit_test(test_nan_outputs),      cmocka_unit_test(test_noise_is_not_influence),
-        cmocka_unit_test(test_lanes_match_sequential),
+        cmocka_unit_test(test_lanes_match_sequential), cmocka_unit_test(test_points_match_tuples),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
