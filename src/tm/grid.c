@@ -164,7 +164,7 @@ typedef struct {
      * (2 corners) would otherwise make every row a couple of points. */
     size_t head, tail_count;
     uint64_t *tmask;      /* [t * words]: AND of the tail inputs' masks at tail digit t */
-    uint64_t *tany;       /* [words]: OR of tmask over t (earlier grids holding some tail) */
+    uint64_t *tany;       /* [words] after tmask: OR of tmask over t (earlier grids holding some tail) */
     double *tx;           /* [t * (n - head)] tail input values */
     unsigned char *ttup;  /* [t * (n - head) * tw] tail tuple bytes */
 } odometer;
@@ -184,7 +184,6 @@ static void set_tuple(unsigned char *t, size_t tw, size_t i, uint32_t v)
 static void odometer_free(odometer *o)
 {
     free(o->tmask);
-    free(o->tany);
     free(o->tx);
     free(o->ttup);
     free(o->digit);
@@ -249,12 +248,13 @@ static rf_status odometer_tail(odometer *o, const struct rf_tm_data *d, const rf
     size_t L = n - head;
     o->head = head;
     o->tail_count = R;
-    o->tmask = malloc(R * W * sizeof *o->tmask);
-    o->tany = calloc(W, sizeof *o->tany);
+    o->tmask = malloc((R + 1) * W * sizeof *o->tmask);
+    o->tany = o->tmask ? o->tmask + R * W : NULL;
     o->tx = calloc(R * L + 16, sizeof *o->tx); /* slack: rows are copied as fixed blocks */
     o->ttup = calloc(R * L * tw + 128, 1);
-    if (!o->tmask || !o->tany || !o->tx || !o->ttup)
+    if (!o->tmask || !o->tx || !o->ttup)
         return rf_fail(err, RF_ENOMEM, "out of memory for the TM grid");
+    memset(o->tany, 0, W * sizeof *o->tany);
     for (size_t t = 0; t < R; t++) {
         tail_digits(o, g, t);
         for (size_t w = 0; w < W; w++)
