@@ -12,7 +12,9 @@
  * Each case line ends with a checksum (FNV-1a) of the bits of every cut,
  * bound input, monotonicity verdict and influence measure: a change to the
  * TM's code must leave it unchanged.
- * Usage: bench_tm [repeats] [case: general|reduced|extended|lr|threads|all]
+ * The general and reduced cases run again through the runner (1 and 2
+ * threads): the path of `rockfuzz run`, whose runner times every evaluation.
+ * Usage: bench_tm [repeats] [case: general|reduced|extended|lr|runner|threads|all]
  * (one case alone, e.g. under callgrind). */
 #include <stdint.h>
 #include <stdio.h>
@@ -74,7 +76,10 @@ static rf_status cheap_eval(void *ctx, const double *x, double *y, rf_error *err
     return RF_OK;
 }
 
-static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t m, int lr, int repeats)
+/* jobs = 0: the serial path (no evaluator); otherwise through the runner
+ * with that many threads, as `rockfuzz run` evaluates (it also times every
+ * evaluation).  The model alone is always timed on one thread. */
+static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t m, int lr, int jobs, int repeats)
 {
     rf_fuzzy in[16];
     for (size_t i = 0; i < n; i++)
@@ -91,6 +96,11 @@ static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t 
     opt.scheme = scheme;
     opt.levels = m;
     opt.left_right = lr;
+    rf_runner runner;
+    rf_runner_init(&runner);
+    runner.jobs = jobs;
+    rf_evaluator ev = rf_runner_evaluator(&runner);
+    opt.evaluator = jobs ? &ev : NULL;
     double best_run = 1e30, best_an = 1e30, best_model = 1e30;
     size_t requested = 0, distinct = 0;
     uint64_t sum = 0;
@@ -199,13 +209,19 @@ int main(int argc, char **argv)
     const char *only = argc > 2 ? argv[2] : "all";
     int all = !strcmp(only, "all");
     if (all || !strcmp(only, "general"))
-        bench_case("general n=4 m=10", RF_TM_GENERAL, 4, 10, 0, repeats);
+        bench_case("general n=4 m=10", RF_TM_GENERAL, 4, 10, 0, 0, repeats);
     if (all || !strcmp(only, "reduced"))
-        bench_case("reduced n=10 m=10", RF_TM_REDUCED, 10, 10, 0, repeats);
+        bench_case("reduced n=10 m=10", RF_TM_REDUCED, 10, 10, 0, 0, repeats);
     if (all || !strcmp(only, "extended"))
-        bench_case("extended n=4 m=10 (probe)", RF_TM_EXTENDED, 4, 10, 0, repeats);
+        bench_case("extended n=4 m=10 (probe)", RF_TM_EXTENDED, 4, 10, 0, 0, repeats);
     if (all || !strcmp(only, "lr"))
-        bench_case("reduced n=6 m=10 + LR grid", RF_TM_REDUCED, 6, 10, 1, repeats);
+        bench_case("reduced n=6 m=10 + LR grid", RF_TM_REDUCED, 6, 10, 1, 0, repeats);
+    for (int jobs = 1; jobs <= 2 && (all || !strcmp(only, "runner")); jobs++) {
+        bench_case(jobs == 1 ? "general, runner 1 thread" : "general, runner 2 threads", RF_TM_GENERAL, 4, 10, 0,
+                   jobs, repeats);
+        bench_case(jobs == 1 ? "reduced, runner 1 thread" : "reduced, runner 2 threads", RF_TM_REDUCED, 10, 10, 0,
+                   jobs, repeats);
+    }
     if (all || !strcmp(only, "threads"))
         bench_threads(repeats);
     struct rusage ru;
