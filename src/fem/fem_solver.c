@@ -23,6 +23,7 @@
 #include "fem_core.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
+#include "quad4_kernel.h"
 
 #include <float.h>
 #include <math.h>
@@ -71,7 +72,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the axisymmetric solver in the workspace pool. */
 enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DASH, P_OUTER, P_ELM, P_FIXED, P_VTK,
-       P_EMAT, P_USE2 };
+       P_EMAT, P_USE2, P_PACK0, P_PACK1 };
 
 /* The state of one axisymmetric run. */
 typedef struct {
@@ -314,8 +315,12 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
                 return st;
             continue;
         }
-        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS) {
-            fem_kernel_linear_axi(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], 1);
+        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS) { /* packed (less memory), else per element */
+            double *pk = fem_pool_get(S->pool, P_PACK0 + b, (size_t)quad4_packed_size(count[b]) * sizeof *pk, 0);
+            if (!pk)
+                return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+            if (fem_kernel_linear_axi_packed(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], pk) != 0)
+                fem_kernel_linear_axi(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], 1);
             continue;
         }
         const double E = S->mat[b].E, nu = S->mat[b].nu;

@@ -24,6 +24,14 @@
 #define QUAD4_CLONES
 #endif
 
+/* Helpers of the cloned entry points must be inlined into each clone (an out-of-line copy would be
+   compiled for the default target: no FMA, other bits). */
+#if defined(__GNUC__) || defined(__clang__)
+#define QUAD4_INLINE static inline __attribute__((always_inline))
+#else
+#define QUAD4_INLINE static inline
+#endif
+
 /* Eight doubles: one element's 8 forces in one AVX-512 register (two AVX2, four SSE2). */
 #if defined(__GNUC__) || defined(__clang__)
 typedef double qvec __attribute__((vector_size(8 * sizeof(double))));
@@ -34,7 +42,7 @@ typedef double qvec __attribute__((vector_size(8 * sizeof(double))));
 /* y = K x for one element, as 8 column updates acc += K[:, j] x_j (K symmetric: column j = row j);
    the one product both entry points use, so the fused and the element-vector paths give the same
    bits. */
-static inline void quad4_product(const double *k, const double x[8], double y[8])
+QUAD4_INLINE void quad4_product(const double *k, const double x[8], double y[8])
 {
     qvec acc = {0}, col;
     for (int j = 0; j < 8; j++) {
@@ -66,6 +74,121 @@ void quad4_force_elements(const double *Kg, long e0, long e1, const double *ue, 
 {
     for (long e = e0; e < e1; e++)
         quad4_product(Kg + 64 * e, ue + 8 * (e - e0), fe + 8 * (e - e0));
+}
+
+/* Index of K[i][j] = K[j][i] among the 36 entries of the upper triangle (row by row). */
+#define QUAD4_TRI(i, j) ((i) <= (j) ? 8 * (i) - (i) * ((i) - 1) / 2 + (j) - (i) : 8 * (j) - (j) * ((j) - 1) / 2 + (i) - (j))
+
+long quad4_packed_size(long ne)
+{
+    return 288 * ((ne + 7) / 8);
+}
+
+int quad4_pack(const double *Kg, long ne, double *pk)
+{
+    memset(pk, 0, (size_t)quad4_packed_size(ne) * sizeof *pk);
+    for (long e = 0; e < ne; e++) {
+        const double *k = Kg + 64 * e;
+        for (int i = 0; i < 8; i++)
+            for (int j = i; j < 8; j++) {
+                if (memcmp(k + 8 * i + j, k + 8 * j + i, sizeof *k) != 0)
+                    return -1;
+                pk[288 * (e / 8) + 8 * QUAD4_TRI(i, j) + e % 8] = k[8 * i + j];
+            }
+    }
+    return 0;
+}
+
+/* y_i = K_e x for the 8 elements of one packed group, element in the lane: for every i the chain
+   acc_i += K[j][i] x_j, j = 0..7, of quad4_product (K[j][i] = K[i][j] bit for bit). */
+QUAD4_INLINE void packed_product(const double *pb, const qvec x[8], qvec y[8])
+{
+    qvec acc[8] = {{0}}, k;
+    for (int j = 0; j < 8; j++)
+        for (int i = 0; i < 8; i++) {
+            memcpy(&k, pb + 8 * QUAD4_TRI(i, j), sizeof k);
+            acc[i] += k * x[j];
+        }
+    memcpy(y, acc, sizeof acc);
+}
+
+/* The lanes [l0, l1) of group g: x[j][l] = dof j of element 8 g + l (other lanes 0). */
+QUAD4_INLINE void packed_gather(const int *conn, long g, int l0, int l1, const double *u, double xs[8][8])
+{
+    memset(xs, 0, 64 * sizeof(double));
+    for (int l = l0; l < l1; l++) {
+        const int *c = conn + 4 * (8 * g + l);
+        for (int a = 0; a < 4; a++)
+            xs[2 * a][l] = u[2 * (long)c[a]], xs[2 * a + 1][l] = u[2 * (long)c[a] + 1];
+    }
+}
+
+/* A whole group (8 elements from 8 g): gather, product, scatter in element order, fixed bounds. */
+QUAD4_INLINE void packed_group_full(const double *pk, const int *conn, long g, const double *u, double *f)
+{
+    const int *c = conn + 32 * g;
+    double xs[8][8], ys[8][8];
+    qvec x[8], y[8];
+    for (int l = 0; l < 8; l++)
+        for (int a = 0; a < 4; a++)
+            xs[2 * a][l] = u[2 * (long)c[4 * l + a]], xs[2 * a + 1][l] = u[2 * (long)c[4 * l + a] + 1];
+    memcpy(x, xs, sizeof x);
+    packed_product(pk + 288 * g, x, y);
+    memcpy(ys, y, sizeof ys);
+    for (int l = 0; l < 8; l++)
+        for (int a = 0; a < 4; a++) {
+            f[2 * (long)c[4 * l + a]] += ys[2 * a][l];
+            f[2 * (long)c[4 * l + a] + 1] += ys[2 * a + 1][l];
+        }
+}
+
+/* Lanes [l0, l1) of group g (a range that starts or ends inside it). */
+QUAD4_INLINE void packed_group_part(const double *pk, const int *conn, long g, int l0, int l1, const double *u, double *f)
+{
+    double xs[8][8], ys[8][8];
+    qvec x[8], y[8];
+    packed_gather(conn, g, l0, l1, u, xs);
+    memcpy(x, xs, sizeof x);
+    packed_product(pk + 288 * g, x, y);
+    memcpy(ys, y, sizeof ys);
+    for (int l = l0; l < l1; l++) { /* element order */
+        const int *c = conn + 4 * (8 * g + l);
+        for (int a = 0; a < 4; a++) {
+            f[2 * (long)c[a]] += ys[2 * a][l];
+            f[2 * (long)c[a] + 1] += ys[2 * a + 1][l];
+        }
+    }
+}
+
+QUAD4_CLONES
+void quad4_force_packed(const double *pk, const int *conn, long e0, long e1, const double *u, double *f)
+{
+    for (long g = e0 / 8; 8 * g < e1; g++) {
+        if (8 * g >= e0 && 8 * g + 8 <= e1)
+            packed_group_full(pk, conn, g, u, f);
+        else
+            packed_group_part(pk, conn, g, 8 * g < e0 ? (int)(e0 - 8 * g) : 0,
+                              8 * g + 8 > e1 ? (int)(e1 - 8 * g) : 8, u, f);
+    }
+}
+
+QUAD4_CLONES
+void quad4_force_packed_elements(const double *pk, long e0, long e1, const double *ue, double *fe)
+{
+    for (long g = e0 / 8; 8 * g < e1; g++) {
+        const int l0 = 8 * g < e0 ? (int)(e0 - 8 * g) : 0, l1 = 8 * g + 8 > e1 ? (int)(e1 - 8 * g) : 8;
+        double xs[8][8] = {{0}}, ys[8][8];
+        qvec x[8], y[8];
+        for (int l = l0; l < l1; l++)
+            for (int j = 0; j < 8; j++)
+                xs[j][l] = ue[8 * (8 * g + l - e0) + j];
+        memcpy(x, xs, sizeof x);
+        packed_product(pk + 288 * g, x, y);
+        memcpy(ys, y, sizeof ys);
+        for (int l = l0; l < l1; l++)
+            for (int j = 0; j < 8; j++)
+                fe[8 * (8 * g + l - e0) + j] = ys[j][l];
+    }
 }
 
 typedef struct {
