@@ -315,11 +315,12 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
                 return st;
             continue;
         }
-        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS) { /* packed (less memory), else per element */
-            double *pk = fem_pool_get(S->pool, P_PACK0 + b, (size_t)quad4_packed_size(count[b]) * sizeof *pk, 0);
-            if (!pk)
+        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS) { /* packed if it pays (the same bits), else per element */
+            double *pk = NULL;
+            if (quad4_packed_pays(S->ne) &&
+                !(pk = fem_pool_get(S->pool, P_PACK0 + b, (size_t)quad4_packed_size(count[b]) * sizeof *pk, 0)))
                 return rf_fail(err, RF_ENOMEM, "fem: out of memory");
-            if (fem_kernel_linear_axi_packed(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], pk) != 0)
+            if (!pk || fem_kernel_linear_axi_packed(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], pk) != 0)
                 fem_kernel_linear_axi(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], 1);
             continue;
         }

@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC optimize("fp-contract=fast")
@@ -82,6 +83,17 @@ void quad4_force_elements(const double *Kg, long e0, long e1, const double *ue, 
 long quad4_packed_size(long ne)
 {
     return 288 * ((ne + 7) / 8);
+}
+
+int quad4_packed_pays(long ne)
+{
+    long l2 = 0;
+#ifdef _SC_LEVEL2_CACHE_SIZE
+    l2 = sysconf(_SC_LEVEL2_CACHE_SIZE);
+#endif
+    if (l2 <= 0)
+        l2 = 2L << 20;
+    return 512.0 * (double)ne > 0.75 * (double)l2;
 }
 
 int quad4_pack(const double *Kg, long ne, double *pk)

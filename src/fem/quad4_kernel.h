@@ -31,6 +31,12 @@ void quad4_force_elements(const double *Kg, long e0, long e1, const double *ue, 
  * Each product is the same chain of operations as quad4_product, so the same
  * bits as quad4_force. */
 long quad4_packed_size(long ne); /* doubles of the packed table of ne elements */
+/* 1 when the packed table pays for ne elements: the per-element table
+ * (512 B each) would fill more than 3/4 of the L2 cache (sysconf; 2 MB if
+ * unknown).  Below, the per-element product is faster: its gather and scatter
+ * take fewer instructions and its table is read from L2 either way (measured
+ * in docs/fem-speed.md, section 5).  Either choice gives the same bits. */
+int quad4_packed_pays(long ne);
 /* Packs ne matrices (Kg, 64 each) into pk; -1 (pk partly written) if one is
  * not exactly symmetric. */
 int quad4_pack(const double *Kg, long ne, double *pk);
