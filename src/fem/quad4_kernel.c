@@ -135,6 +135,65 @@ QUAD4_INLINE void packed_gather(const int *conn, long g, int l0, int l1, const d
     }
 }
 
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
+#define QUAD4_SHUFFLE 1
+#endif
+#endif
+
+#ifdef QUAD4_SHUFFLE
+typedef double qpair __attribute__((vector_size(2 * sizeof(double))));
+typedef double qquad __attribute__((vector_size(4 * sizeof(double))));
+#define SV __builtin_shufflevector
+
+/* in[l][j] -> out[j][l] for 8 x 8 doubles, in 24 two-register shuffles (exact: moves only). */
+QUAD4_INLINE void transpose8(const qvec in[8], qvec out[8])
+{
+    qvec t[8], w[8];
+    for (int p = 0; p < 4; p++) {
+        t[2 * p] = SV(in[2 * p], in[2 * p + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+        t[2 * p + 1] = SV(in[2 * p], in[2 * p + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+    }
+    for (int h = 0; h < 2; h++) /* rows 4 h .. 4 h + 3: w[4 h + q] holds columns (q', q' + 4) */
+        for (int q = 0; q < 2; q++) {
+            w[4 * h + 2 * q] = SV(t[4 * h + q], t[4 * h + q + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+            w[4 * h + 2 * q + 1] = SV(t[4 * h + q], t[4 * h + q + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+        }
+    static const int col[4] = {0, 2, 1, 3}; /* w[q] holds columns col[q] and col[q] + 4 */
+    for (int q = 0; q < 4; q++) {
+        out[col[q]] = SV(w[q], w[4 + q], 0, 1, 2, 3, 8, 9, 10, 11);
+        out[col[q] + 4] = SV(w[q], w[4 + q], 4, 5, 6, 7, 12, 13, 14, 15);
+    }
+}
+
+/* A whole group (8 elements from 8 g): gather each element's 4 node pairs, transpose to one vector
+   per dof, the product, transpose back, add each node pair to f in element order. */
+QUAD4_INLINE void packed_group_full(const double *pk, const int *conn, long g, const double *u, double *f)
+{
+    const int *c = conn + 32 * g;
+    qvec r[8], x[8], y[8];
+    for (int l = 0; l < 8; l++) {
+        qpair p[4];
+        for (int a = 0; a < 4; a++)
+            memcpy(&p[a], u + 2 * (long)c[4 * l + a], sizeof p[a]);
+        qquad lo = SV(p[0], p[1], 0, 1, 2, 3), hi = SV(p[2], p[3], 0, 1, 2, 3);
+        r[l] = SV(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+    }
+    transpose8(r, x);
+    packed_product(pk + 288 * g, x, y);
+    transpose8(y, r);
+    for (int l = 0; l < 8; l++) {
+        const qpair ya[4] = {SV(r[l], r[l], 0, 1), SV(r[l], r[l], 2, 3), SV(r[l], r[l], 4, 5), SV(r[l], r[l], 6, 7)};
+        for (int a = 0; a < 4; a++) {
+            double *fa = f + 2 * (long)c[4 * l + a];
+            qpair s;
+            memcpy(&s, fa, sizeof s);
+            s += ya[a];
+            memcpy(fa, &s, sizeof s);
+        }
+    }
+}
+#else
 /* A whole group (8 elements from 8 g): gather, product, scatter in element order, fixed bounds. */
 QUAD4_INLINE void packed_group_full(const double *pk, const int *conn, long g, const double *u, double *f)
 {
@@ -153,6 +212,8 @@ QUAD4_INLINE void packed_group_full(const double *pk, const int *conn, long g, c
             f[2 * (long)c[4 * l + a] + 1] += ys[2 * a + 1][l];
         }
 }
+
+#endif
 
 /* Lanes [l0, l1) of group g (a range that starts or ends inside it). */
 QUAD4_INLINE void packed_group_part(const double *pk, const int *conn, long g, int l0, int l1, const double *u, double *f)
