@@ -87,6 +87,12 @@ long quad4_packed_size(long ne)
 
 int quad4_packed_pays(long ne)
 {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+    if (!__builtin_cpu_supports("x86-64-v4")) /* the AVX2 clone splits the 8-wide shuffles: 3.5x the instructions */
+        return 0;
+#else
+    return 0; /* no AVX-512 clone */
+#endif
     long l2 = 0;
 #ifdef _SC_LEVEL2_CACHE_SIZE
     l2 = sysconf(_SC_LEVEL2_CACHE_SIZE);

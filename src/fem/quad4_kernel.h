@@ -31,7 +31,9 @@ void quad4_force_elements(const double *Kg, long e0, long e1, const double *ue, 
  * Each product is the same chain of operations as quad4_product, so the same
  * bits as quad4_force. */
 long quad4_packed_size(long ne); /* doubles of the packed table of ne elements */
-/* 1 when the packed table pays for ne elements: the per-element table
+/* 1 when the packed table pays for ne elements: the process runs the
+ * AVX-512 clone (x86-64-v4; the AVX2 clone's 8 x 8 transposes take 3.5x the
+ * per-element product's instructions, callgrind) and the per-element table
  * (512 B each) would fill more than 3/4 of the L2 cache (sysconf; 2 MB if
  * unknown).  Below, the per-element product is faster: its gather and scatter
  * take fewer instructions and its table is read from L2 either way (measured
