@@ -3,6 +3,8 @@
  *   today    fem_solver.c's force_kernel (64 scalar products per element)
  *   quad4    quad4_force with per-element K_e (column updates, FMA, clones)
  *   shared   quad4_force with K_e shared by shape (quad4_group_by_shape)
+ *   packed   quad4_force_packed: the 36 entries of each symmetric K_e, 8
+ *            elements per vector (the solver's path; the same bits as quad4)
  * one thread (the solver's 2-thread scheme adds per-thread force buffers).
  *   bench_quad4 [a/h, default 10] [repetitions, default 200] [count]
  * "count" runs each loop once, for valgrind --tool=callgrind. */
@@ -19,7 +21,7 @@
 
 typedef struct {
     fem_mesh mesh;
-    double *K, *Kg, *u, *f;
+    double *K, *Kg, *u, *f, *pk;
     int *kidx, *rep;
     long ng;
 } bench;
@@ -65,7 +67,8 @@ static int setup(bench *B, double refinement)
     B->f = calloc((size_t)nn * 2, sizeof *B->f);
     B->kidx = malloc((size_t)ne * sizeof *B->kidx);
     B->rep = malloc((size_t)ne * sizeof *B->rep);
-    if (!B->K || !B->Kg || !B->u || !B->f || !B->kidx || !B->rep)
+    B->pk = malloc((size_t)quad4_packed_size(ne) * sizeof *B->pk);
+    if (!B->K || !B->Kg || !B->u || !B->f || !B->kidx || !B->rep || !B->pk)
         return -1;
     const fem_material mat = {2600, 68.2e9, 0.25};
     for (long e = 0; e < ne; e++) {
@@ -77,7 +80,7 @@ static int setup(bench *B, double refinement)
     for (long i = 0; i < 2 * nn; i++)
         B->u[i] = 1e-5 * sin(0.37 * (double)i);
     B->ng = quad4_group_by_shape(B->mesh.r, B->mesh.z, B->mesh.conn, ne, 1e-12, B->kidx, B->rep);
-    if (B->ng < 0)
+    if (B->ng < 0 || quad4_pack(B->K, ne, B->pk) != 0)
         return -1;
     for (long g = 0; g < B->ng; g++)
         memcpy(B->Kg + 64 * g, B->K + 64 * (long)B->rep[g], 64 * sizeof *B->Kg);
@@ -91,13 +94,16 @@ static void run(const bench *B, int v)
         today_force(B);
     else if (v == 1)
         quad4_force(B->K, NULL, B->mesh.conn, 0, B->mesh.n_elems, B->u, B->f);
-    else
+    else if (v == 2)
         quad4_force(B->Kg, B->kidx, B->mesh.conn, 0, B->mesh.n_elems, B->u, B->f);
+    else
+        quad4_force_packed(B->pk, B->mesh.conn, 0, B->mesh.n_elems, B->u, B->f);
 }
 
 __attribute__((noinline)) static void count_today(const bench *B) { run(B, 0); }
 __attribute__((noinline)) static void count_quad4(const bench *B) { run(B, 1); }
 __attribute__((noinline)) static void count_shared(const bench *B) { run(B, 2); }
+__attribute__((noinline)) static void count_packed(const bench *B) { run(B, 3); }
 
 int main(int argc, char **argv)
 {
@@ -107,25 +113,27 @@ int main(int argc, char **argv)
     if (setup(&B, ref) != 0)
         return 1;
     const long ne = B.mesh.n_elems;
-    printf("axisymmetric mesh a/h = %g: %ld elements, %ld distinct shapes (K table %.2f MB instead of %.2f MB)\n", ref,
-           ne, B.ng, B.ng * 512e-6, ne * 512e-6);
+    printf("axisymmetric mesh a/h = %g: %ld elements, %ld distinct shapes (K table %.2f MB by shape, %.2f MB per "
+           "element, %.2f MB packed)\n",
+           ref, ne, B.ng, B.ng * 512e-6, ne * 512e-6, (double)quad4_packed_size(ne) * 8e-6);
     if (count) {
-        count_today(&B), count_quad4(&B), count_shared(&B);
+        count_today(&B), count_quad4(&B), count_shared(&B), count_packed(&B);
     } else {
-        static const char *names[3] = {"today (scalar rows)", "quad4_force, K per element", "quad4_force, K by shape"};
-        double best[3] = {1e30, 1e30, 1e30};
+        static const char *names[4] = {"today (scalar rows)", "quad4_force, K per element", "quad4_force, K by shape",
+                                       "quad4_force_packed"};
+        double best[4] = {1e30, 1e30, 1e30, 1e30};
         for (int r = 0; r <= reps; r++)
-            for (int v = 0; v < 3; v++) {
+            for (int v = 0; v < 4; v++) {
                 const double t0 = rf_monotonic_seconds();
                 run(&B, v);
                 const double ns = 1e9 * (rf_monotonic_seconds() - t0) / (double)ne;
                 if (r > 0 && ns < best[v])
                     best[v] = ns;
             }
-        for (int v = 0; v < 3; v++)
+        for (int v = 0; v < 4; v++)
             printf("  %-28s %6.1f ns per element-step (best of %d, incl. zeroing f)\n", names[v], best[v], reps);
     }
     fem_mesh_free(&B.mesh);
-    free(B.K), free(B.Kg), free(B.u), free(B.f), free(B.kidx), free(B.rep);
+    free(B.K), free(B.Kg), free(B.u), free(B.f), free(B.kidx), free(B.rep), free(B.pk);
     return 0;
 }

@@ -9,7 +9,14 @@
  * runner's speed-up from 1 to 2 workers on a ~1 us model, and the peak RSS.
  * Wall times on a shared machine are noisy: compare within one run, and use
  * callgrind instruction counts for small changes (docs/architecture.md).
- * Usage: bench_tm [repeats] */
+ * Each case line ends with a checksum (FNV-1a) of the bits of every cut,
+ * bound input, monotonicity verdict and influence measure: a change to the
+ * TM's code must leave it unchanged.
+ * The general and reduced cases run again through the runner (1 and 2
+ * threads): the path of `rockfuzz run`, whose runner times every evaluation.
+ * Usage: bench_tm [repeats] [case: general|reduced|extended|lr|runner|threads|all]
+ * (one case alone, e.g. under callgrind). */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +33,35 @@ typedef struct {
     size_t n;
 } cheap_ctx;
 
+static uint64_t fnv(uint64_t h, const void *p, size_t bytes)
+{
+    const unsigned char *b = p;
+    for (size_t k = 0; k < bytes; k++)
+        h = (h ^ b[k]) * UINT64_C(0x100000001b3);
+    return h;
+}
+
+/* Bits of every result and influence measure (see the header). */
+static uint64_t checksum(const rf_tm_result *r, const rf_analysis *a)
+{
+    size_t n = r->n_inputs, no = r->n_outputs, m = r->levels, c = no * (m + 1), nk = n * no;
+    uint64_t h = UINT64_C(0xcbf29ce484222325);
+    h = fnv(h, r->lo, c * sizeof(double));
+    h = fnv(h, r->hi, c * sizeof(double));
+    h = fnv(h, r->x_lo, c * n * sizeof(double));
+    h = fnv(h, r->x_hi, c * n * sizeof(double));
+    h = fnv(h, r->nominal, no * sizeof(double));
+    h = fnv(h, r->monotonicity, nk * sizeof *r->monotonicity);
+    h = fnv(h, r->input_class, n * sizeof *r->input_class);
+    h = fnv(h, a->gain, nk * m * sizeof(double));
+    const double *per_input[] = {a->mean_gain, a->std_gain, a->kappa, a->rho,
+                                 a->kappa_left, a->kappa_right, a->rho_left, a->rho_right};
+    for (size_t k = 0; k < sizeof per_input / sizeof *per_input; k++)
+        h = fnv(h, per_input[k], nk * sizeof(double));
+    h = fnv(h, a->degree_of_uncertainty, no * sizeof(double));
+    return fnv(h, a->interaction, no * sizeof(double));
+}
+
 static rf_status cheap_eval(void *ctx, const double *x, double *y, rf_error *err)
 {
     (void)err;
@@ -40,7 +76,10 @@ static rf_status cheap_eval(void *ctx, const double *x, double *y, rf_error *err
     return RF_OK;
 }
 
-static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t m, int lr, int repeats)
+/* jobs = 0: the serial path (no evaluator); otherwise through the runner
+ * with that many threads, as `rockfuzz run` evaluates (it also times every
+ * evaluation).  The model alone is always timed on one thread. */
+static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t m, int lr, int jobs, int repeats)
 {
     rf_fuzzy in[16];
     for (size_t i = 0; i < n; i++)
@@ -57,8 +96,14 @@ static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t 
     opt.scheme = scheme;
     opt.levels = m;
     opt.left_right = lr;
+    rf_runner runner;
+    rf_runner_init(&runner);
+    runner.jobs = jobs;
+    rf_evaluator ev = rf_runner_evaluator(&runner);
+    opt.evaluator = jobs ? &ev : NULL;
     double best_run = 1e30, best_an = 1e30, best_model = 1e30;
     size_t requested = 0, distinct = 0;
+    uint64_t sum = 0;
     for (int r = 0; r < repeats; r++) {
         rf_tm_result res;
         rf_error err;
@@ -71,6 +116,7 @@ static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t 
         rf_analysis an;
         rf_analysis_compute(&res, &an, NULL);
         double t2 = rf_monotonic_seconds();
+        sum = checksum(&res, &an);
         requested = res.requested;
         distinct = res.distinct;
         /* the model's own cost on the same number of points */
@@ -93,9 +139,9 @@ static void bench_case(const char *label, rf_tm_scheme scheme, size_t n, size_t 
     }
     double overhead = (best_run - best_model) / (double)requested * 1e9;
     printf("%-28s requested %7zu distinct %7zu | TM run %8.3f ms  analysis %7.3f ms  model alone %7.3f ms | "
-           "TM overhead %5.1f ns/requested evaluation (%5.1f ns incl. analysis)\n",
+           "TM overhead %5.1f ns/requested evaluation (%5.1f ns incl. analysis) | checksum %016llx\n",
            label, requested, distinct, best_run * 1e3, best_an * 1e3, best_model * 1e3, overhead,
-           (best_run + best_an - best_model) / (double)requested * 1e9);
+           (best_run + best_an - best_model) / (double)requested * 1e9, (unsigned long long)sum);
     rf_model_free(&model);
 }
 
@@ -160,11 +206,24 @@ static void bench_threads(int repeats)
 int main(int argc, char **argv)
 {
     int repeats = argc > 1 ? atoi(argv[1]) : 5;
-    bench_case("general n=4 m=10", RF_TM_GENERAL, 4, 10, 0, repeats);
-    bench_case("reduced n=10 m=10", RF_TM_REDUCED, 10, 10, 0, repeats);
-    bench_case("extended n=4 m=10 (probe)", RF_TM_EXTENDED, 4, 10, 0, repeats);
-    bench_case("reduced n=6 m=10 + LR grid", RF_TM_REDUCED, 6, 10, 1, repeats);
-    bench_threads(repeats);
+    const char *only = argc > 2 ? argv[2] : "all";
+    int all = !strcmp(only, "all");
+    if (all || !strcmp(only, "general"))
+        bench_case("general n=4 m=10", RF_TM_GENERAL, 4, 10, 0, 0, repeats);
+    if (all || !strcmp(only, "reduced"))
+        bench_case("reduced n=10 m=10", RF_TM_REDUCED, 10, 10, 0, 0, repeats);
+    if (all || !strcmp(only, "extended"))
+        bench_case("extended n=4 m=10 (probe)", RF_TM_EXTENDED, 4, 10, 0, 0, repeats);
+    if (all || !strcmp(only, "lr"))
+        bench_case("reduced n=6 m=10 + LR grid", RF_TM_REDUCED, 6, 10, 1, 0, repeats);
+    for (int jobs = 1; jobs <= 2 && (all || !strcmp(only, "runner")); jobs++) {
+        bench_case(jobs == 1 ? "general, runner 1 thread" : "general, runner 2 threads", RF_TM_GENERAL, 4, 10, 0,
+                   jobs, repeats);
+        bench_case(jobs == 1 ? "reduced, runner 1 thread" : "reduced, runner 2 threads", RF_TM_REDUCED, 10, 10, 0,
+                   jobs, repeats);
+    }
+    if (all || !strcmp(only, "threads"))
+        bench_threads(repeats);
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
     printf("peak RSS %.1f MiB\n", (double)ru.ru_maxrss / 1024.0);

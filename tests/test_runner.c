@@ -85,6 +85,41 @@ static void test_same_outputs_any_thread_count(void **state)
     rf_model_free(&m);
 }
 
+/* Without a store and JSONL lines the workers take chunks of points (one clock pair and one lock
+ * per chunk): the same y as the model's point by point, every point counted once, the
+ * failures tolerated and counted, their rows NaN, and the evaluation time accounted. */
+static void test_chunks_same_results_and_counts(void **state)
+{
+    (void)state;
+    enum { N = 20000 };
+    runner_ctx ctx = {15.0, NULL, 0}; /* x0 = 0.001 k fails from k = 15000 on */
+    rf_model m = runner_model(&ctx);
+    double *x = malloc(2 * N * sizeof *x), *y0 = calloc(2 * N, sizeof(double)), *y1 = calloc(2 * N, sizeof(double));
+    for (size_t k = 0; k < N; k++) {
+        x[2 * k] = 0.001 * (double)k;
+        x[2 * k + 1] = 0.25 + 0.0001 * (double)k;
+    }
+    for (size_t k = 0; k < N; k++) /* the serial values */
+        assert_int_equal(runner_eval(&ctx, x + 2 * k, y0 + 2 * k, &(rf_error){0}), k < 15000 ? RF_OK : RF_EMODEL);
+    for (int jobs = 1; jobs <= 2; jobs++) {
+        rf_runner r;
+        rf_runner_init(&r);
+        r.jobs = jobs;
+        r.tolerate_failures = 1;
+        rf_error err;
+        memset(&err, 0, sizeof err);
+        assert_int_equal(rf_runner_evaluate(&r, &m, N, x, y1, NULL, &err), RF_OK);
+        assert_int_equal(r.evaluated, 15000);
+        assert_int_equal(r.failed, N - 15000);
+        assert_true(r.eval_seconds > 0 && r.eval_seconds <= jobs * r.wall_seconds * 1.01 + 1e-3);
+        assert_memory_equal(y0, y1, 2 * 15000 * sizeof(double));
+        for (size_t k = 15000; k < N; k++)
+            assert_true(isnan(y1[2 * k]) && isnan(y1[2 * k + 1]));
+    }
+    free(x), free(y0), free(y1);
+    rf_model_free(&m);
+}
+
 /* An interruption (the caller's signal handler raising the flag) stops the
  * hand-out: the batch returns RF_EINTERRUPTED, not a model failure, and every
  * evaluation that finished is in the store. */
@@ -270,6 +305,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_outputs_any_thread_count),
         cmocka_unit_test(test_failure_reports_lowest_index),
+        cmocka_unit_test(test_chunks_same_results_and_counts),
         cmocka_unit_test(test_interrupt_stops_and_keeps_finished),
         cmocka_unit_test(test_tm_through_runner),
         cmocka_unit_test(test_default_jobs),

@@ -712,6 +712,147 @@ static void test_noise_is_not_influence(void **state)
     rf_model_free(&model);
 }
 
+/* ---- bounds and gains bit for bit against plain sequential scans (the
+ * retransformation and the analysis run several running extrema and line
+ * sums side by side; their results must not depend on it).  The model has
+ * ties, -0 and +0, and NaN points (tolerated) among values that differ. */
+static void f_ties(const double *x, double *y)
+{
+    y[0] = floor(2 * x[1]) + (x[0] > 1.5 ? -0.0 : 0.0); /* plateaus, both zeros */
+    y[1] = x[0] * x[1] - sin(3 * x[2]);
+    y[2] = x[0] > 2.2 && x[2] < 3 ? NAN : x[1] - x[2];   /* fails at some points */
+    y[3] = x[2] > 2.9 ? 0.0 : -0.0;
+}
+
+static int same_bits(double a, double b) { return (isnan(a) && isnan(b)) || !memcmp(&a, &b, sizeof a); }
+
+static double *scratch_for(const struct rf_tm_data *d)
+{
+    size_t maxc = 1;
+    for (size_t j = 0; j <= d->m; j++)
+        maxc = d->main[j].count > maxc ? d->main[j].count : maxc;
+    return malloc(maxc * sizeof(double));
+}
+
+/* Retransformation as one strict scan per level grid, level m down to 0. */
+static void check_bounds_sequential(const rf_tm_result *r)
+{
+    const struct rf_tm_data *d = r->data;
+    size_t m = r->levels, n = r->n_inputs;
+    double *z = scratch_for(d);
+    for (size_t k = 0; k < r->n_outputs; k++) {
+        double zmin = INFINITY, zmax = -INFINITY;
+        size_t amin = 0, amax = 0;
+        for (size_t jj = m + 1; jj-- > 0;) {
+            const rf_grid *g = &d->main[jj];
+            const double *zk = rf_tm_outputs(d, g, k, z);
+            for (size_t p = 0; p < g->count; p++) {
+                if (zk[p] < zmin)
+                    zmin = zk[p], amin = g->ids[p];
+                if (zk[p] > zmax)
+                    zmax = zk[p], amax = g->ids[p];
+            }
+            size_t at = k * (m + 1) + jj;
+            assert_true(same_bits(r->lo[at], zmin > zmax ? NAN : zmin));
+            assert_true(same_bits(r->hi[at], zmin > zmax ? NAN : zmax));
+            for (size_t i = 0; zmin <= zmax && i < n; i++) {
+                assert_true(same_bits(r->x_lo[at * n + i], d->values[i][rf_tm_tuple(d, amin, i)]));
+                assert_true(same_bits(r->x_hi[at * n + i], d->values[i][rf_tm_tuple(d, amax, i)]));
+            }
+        }
+    }
+    free(z);
+}
+
+/* Gain factors from one sequential sum per line family (s.5.1). */
+static void check_gains_sequential(const rf_tm_result *r, const rf_analysis *an)
+{
+    const struct rf_tm_data *d = r->data;
+    size_t m = r->levels, n = r->n_inputs;
+    double *z = scratch_for(d);
+    for (size_t k = 0; k < r->n_outputs; k++) {
+        double zbar = r->nominal[k], lo0 = r->lo[k * (m + 1)], hi0 = r->hi[k * (m + 1)];
+        double noise = 1e-12 * fmax(fabs(zbar), fmax(fabs(lo0), fabs(hi0)));
+        for (size_t j = 0; j < m; j++) {
+            const rf_grid *g = &d->main[j];
+            const double *zk = rf_tm_outputs(d, g, k, z);
+            for (size_t i = 0; i < n; i++) {
+                size_t rdx = g->radix[i], s = g->stride[i], last = rdx - 1;
+                double sum = 0, w = r->in_hi[i * (m + 1) + j] - r->in_lo[i * (m + 1) + j], eta = NAN;
+                for (size_t outer = 0; outer < g->count; outer += rdx * s)
+                    for (size_t inner = 0; inner < s; inner++)
+                        sum += zk[outer + last * s + inner] - zk[outer + inner];
+                double dz = last >= 1 ? sum / (double)(g->count / rdx) : NAN;
+                if (!isnan(dz) && w > 0 && !r->output_undefined[k])
+                    eta = (fabs(dz) <= noise ? 0.0 : dz) / w;
+                assert_true(same_bits(an->gain[(k * n + i) * m + j], eta));
+            }
+        }
+    }
+    free(z);
+}
+
+static void test_lanes_match_sequential(void **state)
+{
+    (void)state;
+    rf_fuzzy in[3];
+    rf_fuzzy_tfn(&in[0], 2, 1, 0.5, NULL);
+    rf_fuzzy_tfn(&in[1], 1, 0.6, 0.9, NULL);
+    rf_fuzzy_trapezoid(&in[2], 2, 2.4, 2.7, 3.2, NULL); /* a flat core */
+    const rf_tm_scheme schemes[] = {RF_TM_REDUCED, RF_TM_GENERAL, RF_TM_EXTENDED};
+    for (size_t c = 0; c < 3; c++) {
+        rf_model model = test_model(3, 4, f_ties);
+        rf_tm_options opt;
+        rf_tm_options_default(&opt);
+        opt.scheme = schemes[c];
+        opt.levels = 5 + c;
+        opt.tolerate_failures = 1;
+        rf_tm_result r;
+        rf_error err;
+        assert_int_equal(rf_tm_run(in, 3, &model, &opt, &r, &err), RF_OK);
+        assert_true(r.nan_points[2] > 0);
+        check_bounds_sequential(&r);
+        rf_analysis an;
+        assert_int_equal(rf_analysis_compute(&r, &an, NULL), RF_OK);
+        check_gains_sequential(&r, &an);
+        rf_analysis_free(&an);
+        rf_tm_result_free(&r);
+        rf_model_free(&model);
+    }
+}
+
+/* ---- every evaluated point is the point its tuple names: outputs echo the
+ * inputs, so output i of point id must be the value its tuple indexes (rows
+ * written at once, rows with repeated points, buffer flushes in between) */
+static size_t echo_n; /* inputs = outputs of f_echo (serial test only) */
+static void f_echo(const double *x, double *y) { memcpy(y, x, echo_n * sizeof(double)); }
+
+static void test_points_match_tuples(void **state)
+{
+    (void)state;
+    rf_fuzzy in[8];
+    for (size_t i = 0; i < 8; i++)
+        rf_fuzzy_tfn(&in[i], 1 + (double)i, 0.3, 0.2 + 0.1 * (double)i, NULL);
+    const struct {
+        rf_tm_scheme scheme;
+        size_t n, m;
+        int lr;
+    } cases[] = {{RF_TM_REDUCED, 8, 7, 0}, {RF_TM_REDUCED, 8, 5, 1}, {RF_TM_GENERAL, 3, 6, 1}, {RF_TM_EXTENDED, 4, 4, 1}};
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        size_t n = echo_n = cases[c].n;
+        rf_model model = test_model(n, n, f_echo);
+        rf_tm_result r = run(in, n, &model, cases[c].scheme, cases[c].m, cases[c].lr);
+        const struct rf_tm_data *d = r.data;
+        assert_int_equal(d->npoints, r.distinct);
+        assert_int_equal(test_model_calls(&model), r.distinct);
+        for (size_t id = 0; id < d->npoints; id++)
+            for (size_t i = 0; i < n; i++)
+                assert_true(rf_tm_y(d, id, i) == d->values[i][rf_tm_tuple(d, id, i)]);
+        rf_tm_result_free(&r);
+        rf_model_free(&model);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -723,6 +864,7 @@ int main(void)
         cmocka_unit_test(test_cap_and_failure), cmocka_unit_test(test_cap_before_allocating),
         cmocka_unit_test(test_shapes_and_crisp),
         cmocka_unit_test(test_nan_outputs),      cmocka_unit_test(test_noise_is_not_influence),
+        cmocka_unit_test(test_lanes_match_sequential), cmocka_unit_test(test_points_match_tuples),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -103,6 +103,11 @@ typedef struct {
  * The kernel takes ownership of K (freed by destroy unless pooled != 0). */
 void fem_kernel_linear_axi(fem_kernel *k, long first, long count, double *K, int pooled);
 void fem_kernel_linear_hex(fem_kernel *k, long first, long count, float *K, int pooled);
+/* The axisymmetric one from a packed copy of K (quad4_kernel.h: 36 of the 64
+ * entries, the same products to the last bit, 44 % less memory traffic): K
+ * (count matrices) is packed into pk (quad4_packed_size(count) doubles, the
+ * caller's, kept); returns -1 if a K_e is not exactly symmetric (k untouched). */
+int fem_kernel_linear_axi_packed(fem_kernel *k, long first, long count, const double *K, double *pk);
 
 /* A rigid body's block: no internal force (fem_kernel_rigid.c). */
 void fem_kernel_rigid(fem_kernel *k, long first, long count, int ndofe);

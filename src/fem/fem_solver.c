@@ -23,6 +23,7 @@
 #include "fem_core.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
+#include "quad4_kernel.h"
 
 #include <float.h>
 #include <math.h>
@@ -71,7 +72,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the axisymmetric solver in the workspace pool. */
 enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DASH, P_OUTER, P_ELM, P_FIXED, P_VTK,
-       P_EMAT, P_USE2, P_DTE };
+       P_EMAT, P_USE2, P_DTE, P_PACK0, P_PACK1 };
 
 /* The state of one axisymmetric run. */
 typedef struct {
@@ -347,8 +348,13 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
                 return st;
             continue;
         }
-        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS && !S->large) {
-            fem_kernel_linear_axi(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], 1);
+        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS && !S->large) { /* packed if it pays (the same bits), else per element */
+            double *pk = NULL;
+            if (quad4_packed_pays(S->ne) &&
+                !(pk = fem_pool_get(S->pool, P_PACK0 + b, (size_t)quad4_packed_size(count[b]) * sizeof *pk, 0)))
+                return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+            if (!pk || fem_kernel_linear_axi_packed(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], pk) != 0)
+                fem_kernel_linear_axi(&S->kernel[b], first[b], count[b], S->K + 64 * first[b], 1);
             continue;
         }
         const double E = S->mat[b].E, nu = S->mat[b].nu;
@@ -573,25 +579,50 @@ static double axi_plastic_work(const axi_run *S, int b)
     return r.plastic_work;
 }
 
+/* A body's running sums: kinetic (m v v), strain (f u), and for the boulder the z momentum and the
+ * mass-weighted z displacement; each accumulates its dofs in dof order. */
+typedef struct {
+    double ke, se, pz, uz;
+} axi_sums;
+
+static inline void axi_sums_node(const axi_run *S, long i, int boulder, axi_sums *s)
+{
+    const double *u = S->u, *v = S->v, *f = S->f, *m = S->mass;
+    for (long d = 2 * i; d < 2 * i + 2; d++) {
+        s->ke += m[d] * v[d] * v[d];
+        s->se += f[d] * u[d];
+    }
+    if (boulder) {
+        s->pz += m[2 * i + 1] * v[2 * i + 1];
+        s->uz += m[2 * i + 1] * u[2 * i + 1];
+    }
+}
+
+/* The sums of both bodies, their nodes interleaved: six independent dependency chains instead of
+ * two after two (the time was the latency of the additions), each in the same order as before, so
+ * the same bits. */
+static void axi_body_sums(const axi_run *S, axi_sums *b, axi_sums *sl)
+{
+    const long nb = S->nbd / 2, ns = S->nn - nb, common = nb < ns ? nb : ns;
+    *b = *sl = (axi_sums){0, 0, 0, 0};
+    for (long k = 0; k < common; k++) {
+        axi_sums_node(S, k, 1, b);
+        axi_sums_node(S, nb + k, 0, sl);
+    }
+    for (long k = common; k < nb; k++)
+        axi_sums_node(S, k, 1, b);
+    for (long k = common; k < ns; k++)
+        axi_sums_node(S, nb + k, 0, sl);
+}
+
 /* Energies at t_{n+1/2} (KE with v_{n+1/2}, strain 1/2 u_n' f_int(u_n) ...
  * with u_{n+1}), the history row, the compression and the closure error. */
 static void axi_energy(const axi_run *S, double t, double Fc, double rad, double row[12], double *comp,
                        double *closure)
 {
-    const double *u = S->u, *v = S->v, *f = S->f, *m = S->mass;
-    double ke[2] = {0, 0}, se[2] = {0, 0}, pz = 0, uz = 0;
-    for (long d = 0; d < S->nbd; d++) {
-        ke[0] += m[d] * v[d] * v[d];
-        se[0] += f[d] * u[d];
-    }
-    for (long d = 1; d < S->nbd; d += 2) {
-        pz += m[d] * v[d];
-        uz += m[d] * u[d];
-    }
-    for (long d = S->nbd; d < S->ndof; d++) {
-        ke[1] += m[d] * v[d] * v[d];
-        se[1] += f[d] * u[d];
-    }
+    axi_sums sb, ss;
+    axi_body_sums(S, &sb, &ss);
+    double ke[2] = {sb.ke, ss.ke}, se[2] = {sb.se, ss.se}, pz = sb.pz, uz = sb.uz;
     ke[0] *= 0.5, ke[1] *= 0.5, se[0] *= 0.5, se[1] *= 0.5;
     if (S->work_account) /* stored elastically: the internal work less the dissipation */
         for (int b = 0; b < 2; b++)

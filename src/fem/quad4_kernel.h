@@ -23,6 +23,30 @@ void quad4_force(const double *Kg, const int *kidx, const int *conn, long e0, lo
  * multi-thread path of the solver: element forces, then a node gather). */
 void quad4_force_elements(const double *Kg, long e0, long e1, const double *ue, double *fe);
 
+/* The packed table: K_e is exactly symmetric, so only its 36 entries K[i][j],
+ * i <= j, are stored, for 8 consecutive elements at a time with the element
+ * in the vector lane: entry t of element e at pk[288 (e / 8) + 8 t + e % 8].
+ * 288 instead of 512 doubles per 8 elements: the default a/h = 10 table is
+ * 1.2 MB instead of 2.1 MB and fits the 2 MB L2 (docs/fem-speed.md, section 5).
+ * Each product is the same chain of operations as quad4_product, so the same
+ * bits as quad4_force. */
+long quad4_packed_size(long ne); /* doubles of the packed table of ne elements */
+/* 1 when the packed table pays for ne elements: the process runs the
+ * AVX-512 clone (x86-64-v4; the AVX2 clone's 8 x 8 transposes take 3.5x the
+ * per-element product's instructions, callgrind) and the per-element table
+ * (512 B each) would fill more than 3/4 of the L2 cache (sysconf; 2 MB if
+ * unknown).  Below, the per-element product is faster: its gather and scatter
+ * take fewer instructions and its table is read from L2 either way (measured
+ * in docs/fem-speed.md, section 5).  Either choice gives the same bits. */
+int quad4_packed_pays(long ne);
+/* Packs ne matrices (Kg, 64 each) into pk; -1 (pk partly written) if one is
+ * not exactly symmetric. */
+int quad4_pack(const double *Kg, long ne, double *pk);
+/* quad4_force (kidx NULL) from the packed table; element e uses entry e of pk. */
+void quad4_force_packed(const double *pk, const int *conn, long e0, long e1, const double *u, double *f);
+/* quad4_force_elements from the packed table. */
+void quad4_force_packed_elements(const double *pk, long e0, long e1, const double *ue, double *fe);
+
 /* Groups elements whose node radii agree within tol [m] and whose node z,
  * relative to node 0, agree within tol (same shape, shifted along z; node
  * order must match too).  Writes kidx[e] (group of e, in an order fixed by

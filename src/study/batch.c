@@ -20,6 +20,26 @@ int rf_batch_take(rf_batch *b, size_t *pos)
     return 1;
 }
 
+int rf_batch_take_chunk(rf_batch *b, size_t want, size_t *pos, size_t *got)
+{
+    if (atomic_load(&b->stop) || (b->runner->interrupt && atomic_load(b->runner->interrupt)))
+        return 0;
+    size_t k = atomic_fetch_add(&b->next, want);
+    if (k >= b->ntodo)
+        return 0;
+    *pos = k;
+    *got = b->ntodo - k < want ? b->ntodo - k : want;
+    return 1;
+}
+
+void rf_batch_finish_ok(rf_batch *b, size_t n, double seconds)
+{
+    pthread_mutex_lock(&b->lock);
+    b->eval_seconds += seconds;
+    pthread_mutex_unlock(&b->lock);
+    atomic_fetch_add(&b->done, n);
+}
+
 static void format_duration(double s, char *buf, size_t size)
 {
     if (!(s >= 0) || s > 1e8)

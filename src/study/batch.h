@@ -37,6 +37,13 @@ typedef struct {
 /* Take the next todo position, or return 0 when there is none or the batch stops. */
 int rf_batch_take(rf_batch *b, size_t *pos);
 
+/* Take up to want consecutive todo positions [*pos, *pos + *got), or return 0 as rf_batch_take. */
+int rf_batch_take_chunk(rf_batch *b, size_t want, size_t *pos, size_t *got);
+
+/* Record n successful evaluations (y rows written) that took seconds in all: one lock, no store
+ * write, no JSONL line (for a batch without a store and without JSONL progress). */
+void rf_batch_finish_ok(rf_batch *b, size_t n, double seconds);
+
 /* Mark todo[pos] as started in the store (before evaluating it). */
 void rf_batch_start(rf_batch *b, size_t pos);
 

@@ -37,12 +37,50 @@ int rf_runner_default_jobs(const rf_model *model)
     return jobs < 1 ? 1 : (int)jobs;
 }
 
+/* Chunks of points for a batch that needs no per-point record (no store, no JSONL line): one pair
+ * of clock reads and one lock per chunk instead of per point.  A worker's chunk doubles while it
+ * takes under CHUNK_SECONDS / 2, halves above 2 CHUNK_SECONDS, at most CHUNK_MAX points: a
+ * chunk of a slow model is one point.  A chunk is evaluated to its end, as a taken point is: every
+ * point below a taken one is evaluated, so the lowest failing index stays the lowest. */
+#define CHUNK_MAX 64
+#define CHUNK_SECONDS 1e-3
+
+static void worker_chunks(rf_batch *b)
+{
+    size_t nin = b->model->n_inputs, nout = b->model->n_outputs, want = 1, pos, got;
+    rf_error err;
+    while (rf_batch_take_chunk(b, want, &pos, &got)) {
+        double t0 = rf_monotonic_seconds();
+        size_t ok = 0;
+        for (size_t i = pos; i < pos + got; i++) {
+            size_t k = b->todo[i];
+            memset(&err, 0, sizeof err);
+            rf_status st = rf_model_eval(b->model, b->x + k * nin, b->y + k * nout, &err);
+            if (st == RF_OK)
+                ok++;
+            else
+                rf_batch_finish(b, i, st, &err, 0); /* its time is in the chunk's */
+        }
+        double dt = rf_monotonic_seconds() - t0;
+        rf_batch_finish_ok(b, ok, dt);
+        if (dt < 0.5 * CHUNK_SECONDS && want < CHUNK_MAX)
+            want *= 2;
+        else if (dt > 2 * CHUNK_SECONDS && want > 1)
+            want /= 2;
+    }
+}
+
 static void *worker(void *arg)
 {
     rf_batch *b = arg;
     size_t nin = b->model->n_inputs, nout = b->model->n_outputs;
     rf_error err;
     size_t pos;
+    if (!b->runner->store && b->runner->progress != RF_PROGRESS_JSONL) {
+        worker_chunks(b);
+        atomic_fetch_sub(&b->workers_left, 1);
+        return NULL;
+    }
     while (rf_batch_take(b, &pos)) {
         size_t k = b->todo[pos];
         rf_batch_start(b, pos);

@@ -52,24 +52,95 @@ void rf_analysis_free(rf_analysis *an)
     memset(an, 0, sizeof *an);
 }
 
-/* Mean over the lines parallel to axis i of z(pb) - z(pa), z being one
- * output of every point of g in grid order. */
-static double mean_difference(const double *z, const rf_grid *g, size_t i, size_t pa, size_t pb)
+#define LANES 4 /* line sums computed side by side */
+
+/* Which difference of a line: first to last, first to nominal, nominal to last. */
+typedef enum { SPAN, LEFT, RIGHT } line_part;
+
+/* The shape of the line sums along axis i of a grid: points, radix and
+ * stride of i, the two positions differenced.  Grids with equal shapes
+ * (every level of the reduced form, as a rule) are summed together. */
+typedef struct {
+    size_t count, r, s, pa, pb;
+} line_shape;
+
+/* Shape of `part` along axis i of g; returns 0 when that difference is not
+ * defined there (one value on the axis, or the nominal at that end). */
+static int shape_of(const rf_grid *g, size_t i, line_part part, line_shape *sh)
 {
-    size_t r = g->radix[i], s = g->stride[i], lines = 0;
-    double sum = 0;
-    if (s == 1) { /* the last input: one line per block, the same order */
-        for (size_t outer = 0; outer < g->count; outer += r)
-            sum += z[outer + pb] - z[outer + pa];
-        return sum / (double)(g->count / r);
+    size_t last = g->radix[i] - 1, pn = g->nominal_pos[i];
+    *sh = (line_shape){g->count, g->radix[i], g->stride[i], part == RIGHT ? pn : 0, part == LEFT ? pn : last};
+    return sh->pb > sh->pa;
+}
+
+static int same_shape(const line_shape *a, const line_shape *b)
+{
+    return a->count == b->count && a->r == b->r && a->s == b->s && a->pa == b->pa && a->pb == b->pb;
+}
+
+/* Mean over the lines of shape sh of z[q](pb) - z[q](pa), for the `lanes`
+ * outputs z[q] of grids of that shape.  Each lane is one chain of additions
+ * in the order of a sum taken alone (blocks, then the lines of a block), so
+ * its result is the same to the bit; side by side, the chains' latencies
+ * overlap (a single chain is bound by the latency of one addition).  Called
+ * with a constant `lanes`, for which it is unrolled. */
+static inline void lane_sums(const double *const *z, const line_shape *sh, size_t lanes, double *out)
+{
+    size_t r = sh->r, s = sh->s, da = sh->pa * s, db = sh->pb * s;
+    double sum[LANES] = {0};
+    if (s == 1) { /* the last input: one line per block */
+        for (size_t outer = 0; outer < sh->count; outer += r)
+            for (size_t q = 0; q < lanes; q++)
+                sum[q] += z[q][outer + db] - z[q][outer + da];
+    } else {
+        for (size_t outer = 0; outer < sh->count; outer += r * s)
+            for (size_t at = outer; at < outer + s; at++)
+                for (size_t q = 0; q < lanes; q++)
+                    sum[q] += z[q][at + db] - z[q][at + da];
     }
-    for (size_t outer = 0; outer < g->count; outer += r * s) {
-        const double *za = z + outer + pa * s, *zb = z + outer + pb * s;
-        for (size_t inner = 0; inner < s; inner++)
-            sum += zb[inner] - za[inner];
-        lines += s;
+    for (size_t q = 0; q < lanes; q++)
+        out[q] = sum[q] / (double)(sh->count / r);
+}
+
+/* lane_sums for 1..LANES lanes (3 runs as 4, the last lane repeating one). */
+static void mean_differences(const double *z[LANES], const line_shape *sh, size_t nl, double out[LANES])
+{
+    if (nl == 1)
+        lane_sums(z, sh, 1, out);
+    else if (nl == 2)
+        lane_sums(z, sh, 2, out);
+    else
+        lane_sums(z, sh, LANES, out);
+}
+
+/* `part` along axis i of the nj grids g[0..nj-1] (outputs z[q]) into
+ * out[q]; where not defined, `none`.  Grids of equal shape share one pass;
+ * lanes beyond those are not summed or repeat a used one. */
+static void axis_differences(const rf_grid *g, const double *const *z, size_t nj, size_t i, line_part part,
+                             double none, double *out)
+{
+    line_shape sh[LANES];
+    int todo[LANES];
+    for (size_t q = 0; q < nj; q++)
+        if (!(todo[q] = shape_of(&g[q], i, part, &sh[q])))
+            out[q] = none;
+    for (size_t q0 = 0; q0 < nj; q0++) {
+        if (!todo[q0])
+            continue;
+        size_t lane[LANES], nl = 0;
+        const double *zz[LANES];
+        for (size_t q = q0; q < nj; q++)
+            if (todo[q] && same_shape(&sh[q], &sh[q0])) {
+                todo[q] = 0;
+                lane[nl++] = q;
+            }
+        for (size_t l = 0; l < LANES; l++)
+            zz[l] = z[lane[l < nl ? l : 0]];
+        double res[LANES];
+        mean_differences(zz, &sh[q0], nl, res);
+        for (size_t l = 0; l < nl; l++)
+            out[lane[l]] = res[l];
     }
-    return sum / (double)lines;
 }
 
 /* Differences of the output below this are rounding, not influence: a
@@ -90,9 +161,9 @@ static double integrate_levels(const double *g, size_t m)
 }
 
 /* Mean differences along every input of every output on a family of grids
- * (levels 0..nlev-1), each grid's outputs gathered once:
- * first-to-last into span[(k*n + i)*nlev + j] (NaN if the input has one
- * value there); with left != NULL also first-to-nominal into left and
+ * (levels 0..nlev-1), LANES levels at a time, each grid's outputs gathered
+ * once: first-to-last into span[(k*n + i)*nlev + j] (NaN if the input has
+ * one value there); with left != NULL also first-to-nominal into left and
  * nominal-to-last into right (0 where the nominal is an end). */
 static int grid_differences(const struct rf_tm_data *d, const rf_grid *grids, size_t nlev, double *span,
                             double *left, double *right)
@@ -100,25 +171,27 @@ static int grid_differences(const struct rf_tm_data *d, const rf_grid *grids, si
     size_t n = d->n, no = d->n_out, maxc = 1;
     for (size_t j = 0; j < nlev; j++)
         maxc = grids[j].count > maxc ? grids[j].count : maxc;
-    double *z = malloc(no * maxc * sizeof(double)); /* outputs of a grid whose ids are not consecutive */
-    if (!z)
+    double *scratch = malloc(LANES * maxc * sizeof(double)); /* outputs of grids whose ids are not consecutive */
+    if (!scratch)
         return -1;
-    for (size_t j = 0; j < nlev; j++) {
-        const rf_grid *g = &grids[j];
-        for (size_t k = 0; k < no; k++) {
-            const double *zk = rf_tm_outputs(d, g, k, z + k * g->count);
+    for (size_t k = 0; k < no; k++)
+        for (size_t j0 = 0; j0 < nlev; j0 += LANES) {
+            const rf_grid *g = &grids[j0];
+            size_t nj = nlev - j0 < LANES ? nlev - j0 : LANES;
+            const double *z[LANES];
+            for (size_t q = 0; q < nj; q++)
+                z[q] = rf_tm_outputs(d, &g[q], k, scratch + q * maxc);
             for (size_t i = 0; i < n; i++) {
-                size_t at = (k * n + i) * nlev + j, last = g->radix[i] - 1, pn = g->nominal_pos[i];
+                size_t at = (k * n + i) * nlev + j0;
                 if (span)
-                    span[at] = last >= 1 ? mean_difference(zk, g, i, 0, last) : NAN;
+                    axis_differences(g, z, nj, i, SPAN, NAN, span + at);
                 if (left) {
-                    left[at] = pn > 0 ? mean_difference(zk, g, i, 0, pn) : 0;
-                    right[at] = pn < last ? mean_difference(zk, g, i, pn, last) : 0;
+                    axis_differences(g, z, nj, i, LEFT, 0, left + at);
+                    axis_differences(g, z, nj, i, RIGHT, 0, right + at);
                 }
             }
         }
-    }
-    free(z);
+    free(scratch);
     return 0;
 }
 

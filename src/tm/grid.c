@@ -164,6 +164,7 @@ typedef struct {
      * (2 corners) would otherwise make every row a couple of points. */
     size_t head, tail_count;
     uint64_t *tmask;      /* [t * words]: AND of the tail inputs' masks at tail digit t */
+    uint64_t *tany;       /* [words] after tmask: OR of tmask over t (earlier grids holding some tail) */
     double *tx;           /* [t * (n - head)] tail input values */
     unsigned char *ttup;  /* [t * (n - head) * tw] tail tuple bytes */
 } odometer;
@@ -247,11 +248,13 @@ static rf_status odometer_tail(odometer *o, const struct rf_tm_data *d, const rf
     size_t L = n - head;
     o->head = head;
     o->tail_count = R;
-    o->tmask = malloc(R * W * sizeof *o->tmask);
+    o->tmask = malloc((R + 1) * W * sizeof *o->tmask);
+    o->tany = o->tmask ? o->tmask + R * W : NULL;
     o->tx = calloc(R * L + 16, sizeof *o->tx); /* slack: rows are copied as fixed blocks */
     o->ttup = calloc(R * L * tw + 128, 1);
     if (!o->tmask || !o->tx || !o->ttup)
         return rf_fail(err, RF_ENOMEM, "out of memory for the TM grid");
+    memset(o->tany, 0, W * sizeof *o->tany);
     for (size_t t = 0; t < R; t++) {
         tail_digits(o, g, t);
         for (size_t w = 0; w < W; w++)
@@ -263,6 +266,8 @@ static rf_status odometer_tail(odometer *o, const struct rf_tm_data *d, const rf
             o->tx[t * L + (i - head)] = d->values[i][v];
             set_tuple(o->ttup + t * L * tw, tw, i - head, v);
         }
+        for (size_t w = 0; w < W; w++)
+            o->tany[w] |= o->tmask[t * W + w];
     }
     tail_digits(o, g, 0);
     return RF_OK;
@@ -412,6 +417,27 @@ static inline int in_earlier(size_t W, const uint64_t *pre, const uint64_t *mask
     return any != 0;
 }
 
+/* A row none of whose points an earlier grid holds, written at once: the
+ * ids, tuples and input vectors of R new points (room checked by the caller). */
+static void new_row(struct rf_tm_data *d, const odometer *o, uint32_t *ids)
+{
+    const size_t n = d->n, head = o->head, L = n - head, R = o->tail_count, tw = d->tw, rowlen = n * tw;
+    const double *cur = o->cur, *tx = o->tx;
+    const unsigned char *tup = o->tup, *ttup = o->ttup;
+    const size_t np = d->npoints;
+    double *x = d->xbuf + d->xcount * n;
+    unsigned char *tp = (unsigned char *)d->tuples + np * rowlen;
+    for (size_t t = 0; t < R; t++, x += n, tp += rowlen) {
+        copy_head(x, cur, head * sizeof(double)); /* the head, then the tail over what spills */
+        copy_head(x + head, tx + t * L, L * sizeof(double));
+        copy_head(tp, tup, head * tw);
+        copy_head(tp + head * tw, ttup + t * L * tw, L * tw);
+        ids[t] = (uint32_t)(np + t);
+    }
+    d->npoints = np + R;
+    d->xcount += R;
+}
+
 /* One row of the grid: the tail sweeps its tail_count values, the head is
  * fixed (its AND of earlier-grid sets is o->prefix[head]).  *p is the
  * position of the row's first point in the grid.  A new point gets the next
@@ -431,6 +457,11 @@ static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t 
     double *xb = d->xbuf;
     unsigned char *tb = d->tuples;
     rf_status st = RF_OK;
+    if (with_ids && !in_earlier(W, pre, o->tany, 0) && np + R <= limit && xc + R <= xcap) {
+        new_row(d, o, ids); /* the common case: every point new, no test per point */
+        *p += R;
+        return chunked && d->xcount == xcap ? d->flush(d->flush_user, err) : RF_OK;
+    }
     for (size_t t = 0; t < R; t++) {
         if (in_earlier(W, pre, tmask, t)) {
             if (with_ids)
@@ -447,9 +478,9 @@ static rf_status grid_row(struct rf_tm_data *d, rf_grid *g, odometer *o, size_t 
         }
         double *x = xb + xc * n;
         unsigned char *tp = tb + np * rowlen;
-        copy_head(x, cur, n * sizeof(double));
+        copy_head(x, cur, head * sizeof(double)); /* the head, then the tail over what spills */
         copy_head(x + head, tx + t * L, L * sizeof(double));
-        copy_head(tp, tup, rowlen);
+        copy_head(tp, tup, head * tw);
         copy_head(tp + head * tw, ttup + t * L * tw, L * tw);
         ids[t] = (uint32_t)np++;
         if (++xc == xcap && chunked) {

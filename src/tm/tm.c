@@ -283,6 +283,34 @@ typedef struct {
     size_t failed;
 } output_scan;
 
+#define LANES 4 /* independent running extrema: their latencies overlap */
+
+/* NaN count and range (0 if none or constant) of col[0..np-1].  The
+ * running minima and maxima of LANES interleaved lanes are merged at the
+ * end: a minimum is the same whatever the order (NaN is never taken; -0 and
+ * +0 may trade places, which changes no difference taken of them). */
+static double column_range(const double *col, size_t np, size_t *nan)
+{
+    double lo[LANES], hi[LANES];
+    size_t cnt[LANES] = {0};
+    for (size_t q = 0; q < LANES; q++)
+        lo[q] = INFINITY, hi[q] = -INFINITY;
+    for (size_t p0 = 0; p0 < np; p0 += LANES)
+        for (size_t q = 0; q < LANES; q++) { /* unrolled: the lanes stay in registers */
+            double v = p0 + q < np ? col[p0 + q] : NAN;
+            cnt[q] += p0 + q < np && isnan(v);
+            lo[q] = v < lo[q] ? v : lo[q];
+            hi[q] = v > hi[q] ? v : hi[q];
+        }
+    for (size_t q = 1; q < LANES; q++) {
+        lo[0] = lo[q] < lo[0] ? lo[q] : lo[0];
+        hi[0] = hi[q] > hi[0] ? hi[q] : hi[0];
+        cnt[0] += cnt[q];
+    }
+    *nan = cnt[0];
+    return hi[0] > lo[0] ? hi[0] - lo[0] : 0;
+}
+
 static int scan_outputs(const struct rf_tm_data *d, output_scan *s)
 {
     size_t no = d->n_out, np = d->npoints;
@@ -295,14 +323,8 @@ static int scan_outputs(const struct rf_tm_data *d, output_scan *s)
     int any_nan = 0;
     for (size_t k = 0; k < no; k++) {
         const double *col = d->y + k * d->cap_points;
-        double lo = INFINITY, hi = -INFINITY;
         size_t nan = 0;
-        for (size_t p = 0; p < np; p++) {
-            double v = col[p];
-            nan += isnan(v) != 0;
-            lo = v < lo ? v : lo;
-            hi = v > hi ? v : hi;
-        }
+        s->range[k] = column_range(col, np, &nan);
         for (size_t p = 0; nan && p < np; p++)
             if (isnan(col[p])) {
                 s->first_nan[k] = p;
@@ -310,7 +332,6 @@ static int scan_outputs(const struct rf_tm_data *d, output_scan *s)
             }
         s->nan[k] = nan;
         any_nan |= nan > 0;
-        s->range[k] = hi > lo ? hi - lo : 0;
     }
     for (size_t p = 0; any_nan && p < np; p++) {
         size_t k = 0;
@@ -356,8 +377,44 @@ static void set_cut(const struct rf_tm_data *d, rf_tm_result *res, size_t at, in
     }
 }
 
+/* Smallest and largest of z[0..count-1] (NaN never; +-INFINITY if all
+ * are NaN), as running extrema of LANES interleaved lanes, merged. */
+static void grid_extremes(const double *z, size_t count, double *zlo, double *zhi)
+{
+    double lo[LANES], hi[LANES];
+    for (size_t q = 0; q < LANES; q++)
+        lo[q] = INFINITY, hi[q] = -INFINITY;
+    size_t p0 = 0;
+    for (; p0 + LANES <= count; p0 += LANES)
+        for (size_t q = 0; q < LANES; q++) { /* unrolled: the lanes stay in registers */
+            double v = z[p0 + q];
+            lo[q] = v < lo[q] ? v : lo[q];
+            hi[q] = v > hi[q] ? v : hi[q];
+        }
+    for (; p0 < count; p0++) {
+        lo[0] = z[p0] < lo[0] ? z[p0] : lo[0];
+        hi[0] = z[p0] > hi[0] ? z[p0] : hi[0];
+    }
+    for (size_t q = 1; q < LANES; q++) {
+        lo[0] = lo[q] < lo[0] ? lo[q] : lo[0];
+        hi[0] = hi[q] > hi[0] ? hi[q] : hi[0];
+    }
+    *zlo = lo[0];
+    *zhi = hi[0];
+}
+
+/* First position of a value equal to v (which z holds). */
+static size_t first_equal(const double *z, double v)
+{
+    size_t p = 0;
+    while (z[p] != v)
+        p++;
+    return p;
+}
+
 /* Recursive retransformation (s.2.4), output by output: each level starts
- * from the bounds of level j+1.  A NaN never becomes a bound. */
+ * from the bounds of level j+1 and moves only to a strictly smaller
+ * (larger) value, the first point holding it.  A NaN never becomes a bound. */
 static int retransform(const tm_ctx *c, rf_tm_result *res)
 {
     const struct rf_tm_data *d = c->d;
@@ -373,19 +430,20 @@ static int retransform(const tm_ctx *c, rf_tm_result *res)
         for (size_t jj = m + 1; jj-- > 0;) {
             const rf_grid *g = &d->main[jj];
             const double *z = rf_tm_outputs(d, g, k, scratch);
-            size_t pmin = SIZE_MAX, pmax = SIZE_MAX;
-            for (size_t p = 0; p < g->count; p++) {
-                if (z[p] < zmin) {
-                    zmin = z[p];
-                    pmin = p;
-                }
-                if (z[p] > zmax) {
-                    zmax = z[p];
-                    pmax = p;
-                }
+            /* a strict sequential scan stops at the first point holding a
+             * new extremum: the same point, found after the extremum */
+            double glo, ghi;
+            grid_extremes(z, g->count, &glo, &ghi);
+            if (glo < zmin) {
+                size_t p = first_equal(z, glo);
+                zmin = z[p];
+                amin = g->ids[p];
             }
-            amin = pmin == SIZE_MAX ? amin : g->ids[pmin];
-            amax = pmax == SIZE_MAX ? amax : g->ids[pmax];
+            if (ghi > zmax) {
+                size_t p = first_equal(z, ghi);
+                zmax = z[p];
+                amax = g->ids[p];
+            }
             /* tolerate_failures: every point of the cut was NaN so far */
             set_cut(d, res, k * (m + 1) + jj, res->output_undefined[k] || zmin > zmax, amin, amax, zmin, zmax);
         }
