@@ -207,6 +207,30 @@ fem_point_law fem_point_law_linear3d(const fem_lame *lame);
  * Voigt order of rockfuzz/material.h); state as fem_point_law_material. */
 fem_point_law fem_point_law_material3d(const rf_material *m);
 
+/* The points of an integration-point kernel as the shared helpers below see
+ * them (fem_points_state.c): np points, nq per element, nc stress
+ * components, the law (law2 where use2[element] != 0), the weights and the
+ * committed and trial strain, stress and state arrays. */
+typedef struct {
+    size_t np;
+    int nq, nc;
+    const fem_point_law *law, *law2;
+    const unsigned char *use2;
+    const double *w;
+    double *eps, *sig, *var;
+    const double *eps_t, *sig_t, *var_t;
+} fem_points_view;
+/* Trial state becomes committed; a dissipative law's plastic work of the
+ * increment, sum_p w_p var_p[nstate - 1], is added to *work and the largest
+ * equivalent plastic strain var_p[0] (and its point) tracked. */
+void fem_points_accept(const fem_points_view *v, double *work, double *strain_max, long *point_max);
+/* Mean committed stress over the points of local element le and their
+ * largest equivalent plastic strain (0 for a law without one). */
+void fem_points_cell(const fem_points_view *v, long le, double *sig, double *plastic_strain);
+/* Elastic energy of the committed stresses, sum_p w_p psi(sigma_p) [J]; -1
+ * if a law has no energy density. */
+double fem_points_energy(const fem_points_view *v);
+
 static inline void fem_kernel_release(fem_kernel *k)
 {
     if (k->ops && k->ops->destroy)

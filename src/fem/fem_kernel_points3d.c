@@ -179,25 +179,19 @@ static void p3_field(const fem_kernel *k, long b0, long b1, const double *u, dou
     }
 }
 
+/* The kernel's points as fem_points_state.c sees them. */
+static fem_points_view p3_view(const fem_kernel *k)
+{
+    p3_data *d = k->data;
+    return (fem_points_view){(size_t)NQ * (size_t)k->count, NQ, NC, &d->law, &d->law2, d->use2, d->w,
+                             d->eps, d->sig, d->var, d->eps_t, d->sig_t, d->var_t};
+}
+
 static void p3_commit(fem_kernel *k)
 {
     p3_data *d = k->data;
-    const size_t np = (size_t)NQ * (size_t)k->count, ns = (size_t)d->law.nstate;
-    memcpy(d->eps, d->eps_t, np * NC * sizeof(double));
-    memcpy(d->sig, d->sig_t, np * NC * sizeof(double));
-    if (ns)
-        memcpy(d->var, d->var_t, np * ns * sizeof(double));
-    if (!d->law.dissipative)
-        return;
-    double W = 0, emax = d->plastic_strain_max;
-    long pmax = d->point_max;
-    for (size_t p = 0; p < np; p++) {
-        const double *v = d->var + ns * p;
-        W += d->w[p] * v[ns - 1];
-        if (v[0] > emax)
-            emax = v[0], pmax = (long)p;
-    }
-    d->plastic_work += W, d->plastic_strain_max = emax, d->point_max = pmax;
+    const fem_points_view v = p3_view(k);
+    fem_points_accept(&v, &d->plastic_work, &d->plastic_strain_max, &d->point_max);
 }
 
 static void p3_destroy(fem_kernel *k)
@@ -316,18 +310,8 @@ int fem_kernel_points_hex_cell(const fem_kernel *k, long e, double sig[6], doubl
 {
     if (k->ops != &p3_ops || !k->data || e < k->first || e >= k->first + k->count)
         return 0;
-    const p3_data *d = k->data;
-    const size_t p0 = (size_t)NQ * (size_t)(e - k->first), ns = (size_t)d->law.nstate;
-    double emax = 0;
-    for (int i = 0; i < NC; i++)
-        sig[i] = 0;
-    for (size_t p = p0; p < p0 + NQ; p++) {
-        for (int i = 0; i < NC; i++)
-            sig[i] += d->sig[NC * p + i] / NQ;
-        if (d->law.dissipative && d->var[ns * p] > emax)
-            emax = d->var[ns * p];
-    }
-    *plastic_strain = emax;
+    const fem_points_view v = p3_view(k);
+    fem_points_cell(&v, e - k->first, sig, plastic_strain);
     return 1;
 }
 
@@ -335,15 +319,8 @@ double fem_kernel_points_hex_energy(const fem_kernel *k)
 {
     if (k->ops != &p3_ops || !k->data)
         return -1;
-    const p3_data *d = k->data;
-    if (!d->law.energy || !d->law2.energy)
-        return -1;
-    double E = 0;
-    for (size_t p = 0; p < (size_t)NQ * (size_t)k->count; p++) {
-        const fem_point_law *L = d->use2 && d->use2[p / NQ] ? &d->law2 : &d->law;
-        E += d->w[p] * L->energy(L->params, d->sig + NC * p);
-    }
-    return E;
+    const fem_points_view v = p3_view(k);
+    return fem_points_energy(&v);
 }
 
 static void linear3d_update(const void *params, const double *deps, const double *sig_n, const double *state_n,
