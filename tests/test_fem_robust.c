@@ -21,6 +21,10 @@
 #include "fem/fem_internal.h"
 #include "rockfuzz/fem.h"
 
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
 /* A boulder of speed V (v = -V at t = 0) decelerated by a constant force
  * of a (per unit mass) up to t_slow, then by a_late; once at rest an elastic
  * unloading pushes it to +v_out over t_un, then the contact opens.  The run
@@ -98,6 +102,40 @@ static void test_stalled_contact_fails(void **state)
     assert_true(fabs(t_end - 20 * t_h) < 3 * dt);
     assert_non_null(strstr(err.msg, "has not ended"));
     assert_non_null(strstr(err.msg, "end_time"));
+}
+
+/* A whole FE run: a rigid boulder at 5 m/s sinks into a weak soft soil
+ * (Drucker-Prager, c = 1 kPa, phi 30 deg, cap 30 kPa; small strain, a/h =
+ * 3) for about 6 Hertz durations.  The old end stopped it at 3 t_h with the
+ * boulder still sinking; now the run ends with the contact open and the
+ * boulder moving away (R_n > 0), and the kinetic energy left plus the
+ * dissipation do not exceed the initial energy. */
+static void test_soil_run_to_the_end(void **state)
+{
+    (void)state;
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.velocity = 5, in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    in.slope_density = 1800, in.slope_E = 50e6, in.slope_poisson = 0.3;
+    in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 1e3;
+    in.slope_friction_angle = 30 * M_PI / 180, in.slope_dilatancy_angle = 0;
+    in.slope_cap_pressure = 30e3, in.slope_cap_hardening = 5e6;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 3, o.large_deformation = RF_FEM_SMALL_STRAIN;
+    rf_impact_output out;
+    rf_fem_history h;
+    rf_error err = {0};
+    if (rf_fem_impact(&in, &o, &out, &h, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    const double t_end = h.t[h.n - 1];
+    printf("soil: contact %.3f s = %.2f t_h, run to %.2f t_h, R_n %.4f, W_p %.4f KE0, energy error %.3f\n",
+           out.contact_duration, out.contact_duration / h.hertz_duration, t_end / h.hertz_duration, out.R_n,
+           out.plastic_work, out.energy_error);
+    assert_true(out.contact_duration > 3 * h.hertz_duration);
+    assert_true(out.R_n > 0 && h.boulder_velocity[h.n - 1] > 0 && h.contact_force[h.n - 1] == 0);
+    assert_true(out.R_ke + out.plastic_work < 1);
+    rf_fem_history_free(&h);
 }
 
 /* A right-running Gaussian pulse in a lumped-mass bar (E, rho, element h,
@@ -253,6 +291,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stop_after_long_contact),
         cmocka_unit_test(test_stalled_contact_fails),
+        cmocka_unit_test(test_soil_run_to_the_end),
         cmocka_unit_test(test_dashpot_plane_wave),
         cmocka_unit_test(test_layered_absorbing),
         cmocka_unit_test(test_rigid_dependent_pairs),
