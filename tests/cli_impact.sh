@@ -90,6 +90,10 @@ expect_error 2 "large_deformation 'maybe'" --large-deformation maybe
 "$bin" impact --help | grep -q -- '--large-deformation K' || fail "help lacks --large-deformation"
 "$bin" impact --solver fem --large-deformation on --slope-angle 30 --friction 0.5 --refinement 2 >/dev/null 2>&1 &&
     fail "3D accepted --large-deformation on"
+# the simulated time [s]: named with its value and unit; in the help
+expect_error 2 "end_time = -1" --end-time -1
+expect_error 2 "--end-time 'soon'" --end-time soon
+"$bin" impact --help | grep -q -- '--end-time S' || fail "help lacks --end-time"
 # a rigid boulder: Hertz with E* = E_s / (1 - nu_s^2) (F = 1.18873e8 N at 10 m/s)
 out=$("$bin" impact --solver hertz --boulder-material rigid --json) || fail "rigid hertz exit"
 echo "$out" | grep -q '"contact_force_max": 11887' || fail "rigid boulder Hertz force: $out"

@@ -248,6 +248,27 @@ static void test_errors(void **state)
 
 #if __has_include("rockfuzz/fem.h")
 #include "rockfuzz/fem.h"
+/* The identity names the automatic end of section 10a (docs/validation-plastic.md) when a body may be
+ * plastic (a study store never mixes results of the old fixed end), not
+ * with a given end_time, not for elastic bodies. */
+static void test_fem_identity_end(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
+    spec.base.slope_material = RF_MATERIAL_VON_MISES, spec.base.slope_yield = 2e8;
+    const char *names[] = {"velocity"};
+    rf_model model;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
+    assert_non_null(strstr(model.identity, " end=impact_ended"));
+    rf_model_free(&model);
+    spec.fem.end_time = 0.01;
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
+    assert_null(strstr(model.identity, " end=impact_ended"));
+    assert_non_null(strstr(model.identity, "end_time=0.01"));
+    rf_model_free(&model);
+}
+
 /* The FE model on the coarsest mesh (a/h = 2): same numbers as a direct
  * rf_fem_impact call with the same options, and near Hertz. */
 static void test_fem_model(void **state)
@@ -262,6 +283,8 @@ static void test_fem_model(void **state)
     assert_int_equal(rf_impact_model_create(&spec, names, 2, &model, &err), RF_OK);
     assert_non_null(strstr(model.identity, "refinement_axi=2 refinement_3d=2 "));
     assert_non_null(strstr(model.identity, "boundary=absorbing"));
+    assert_non_null(strstr(model.identity, "dashpots=face_impedance_semi_implicit"));
+    assert_null(strstr(model.identity, "end=impact_ended")); /* elastic: the end as it was */
     double x[2] = {10.0, 0.0}, y[RF_IMPACT_N_OUTPUTS], want[RF_IMPACT_N_OUTPUTS];
     if (rf_model_eval(&model, x, y, &err) != RF_OK)
         fail_msg("FE eval: %s", err.msg);
@@ -463,6 +486,7 @@ int main(void)
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_concurrent),
         cmocka_unit_test(test_fem_model),
+        cmocka_unit_test(test_fem_identity_end),
         cmocka_unit_test(test_plastic_parameters),
         cmocka_unit_test(test_fem_dispatch),
         cmocka_unit_test(test_fem_warnings),

@@ -301,6 +301,9 @@ static const bad_case bad_cases[] = {
      "levels: 4\nparameters:\n  slope_friction_angle: {tfn: [30, 10, 70]}\nmodel:\n"
      "  impact: {slope_material: drucker_prager, slope_cohesion: 1e4}\n",
      3, "parameters.slope_friction_angle", "100 deg"},
+    {"negative FE end time",
+     "levels: 4\nparameters:\n  velocity: {tfn: [10, 1, 1]}\nmodel:\n  impact: {solver: fem, end_time: -0.01}\n", 5,
+     "model.impact.end_time = -0.01", "end_time = -0.01 must lie in [0, inf] [s]"},
     {"not YAML", "levels: 4\nparameters: [1, 2\n", 3, "not valid YAML", "column"},
     {"missing model", "levels: 4\nparameters:\n  x1: {tfn: [2, 1, 1]}\n", 1, "model", "missing"},
     {"top level is a list", "- 1\n- 2\n", 1, "(top level)", "expected a mapping"},

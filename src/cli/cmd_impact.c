@@ -22,7 +22,7 @@
 
 typedef enum {
     O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
-    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_DOMAIN, O_THREADS, O_VTK, O_JSON,
+    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_DOMAIN, O_END_TIME, O_THREADS, O_VTK, O_JSON,
     O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S,
     O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L,
     O_HELP, O_COUNT
@@ -77,6 +77,7 @@ static const struct {
     {O_BOUNDARY, "boundary", NULL},
     {O_LARGE, "large-deformation", NULL},
     {O_DOMAIN, "domain-factor", NULL},
+    {O_END_TIME, "end-time", NULL},
     {O_THREADS, "threads", NULL},
     {O_VTK, "vtk", NULL},
     {O_JSON, "json", NULL},
@@ -155,6 +156,12 @@ static void usage(FILE *f)
         "                           2 L / c_p >= 1.25 Hertz t_c, at least 10: no reflected\n"
         "                           wave returns into the contact); --boundary fixed\n"
         "                           --domain-factor 10 is the seed paper's model\n"
+        "  --end-time S             fem: simulated time [s] (default 0 = automatic: until the\n"
+        "                           contact is open and the boulder moves away, at least 1.3\n"
+        "                           Hertz durations; past 3 durations up to a bound scaled by\n"
+        "                           the contact's progress, then the run fails rather than\n"
+        "                           report an unfinished rebound).  A given end time stops there\n"
+        "                           (a warning if the impact has not ended)\n"
         "  --threads N              fem: threads of the solver, 1..1024 (default: all\n"
         "                           cores for the 3D model, 1 for the axisymmetric one;\n"
         "                           the results are the same bit for bit)\n"
@@ -494,7 +501,9 @@ int rf_cli_impact(int argc, char **argv)
                 break;
             case O_REFINEMENT:
             case O_DOMAIN:
-                *(id == O_REFINEMENT ? &spec.fem.refinement : &spec.fem.domain_factor) = x;
+            case O_END_TIME:
+                *(id == O_REFINEMENT ? &spec.fem.refinement : id == O_DOMAIN ? &spec.fem.domain_factor
+                                                                             : &spec.fem.end_time) = x;
                 if (rf_fem_options_validate(&spec.fem, 0, &err) != RF_OK) { /* the solvers' own rule */
                     fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", oname, val, err.msg);
                     return EXIT_USAGE;

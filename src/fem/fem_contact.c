@@ -14,14 +14,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Dense Cholesky solve of A x = b (n x n, A overwritten).  Returns 0 on success. */
+/* Dense Cholesky solve of A x = b (n x n, A overwritten).  Returns 0 on
+ * success, -1 when a pivot falls to round-off (below 1e-12 of its diagonal
+ * entry): a row dependent on the ones before it. */
 static int cholesky_solve(double *A, double *b, int n)
 {
     for (int j = 0; j < n; j++) {
         double d = A[j * n + j];
+        const double djj = d;
         for (int k = 0; k < j; k++)
             d -= A[j * n + k] * A[j * n + k];
-        if (!(d > 0))
+        if (!(d > 1e-12 * djj))
             return -1;
         d = sqrt(d);
         A[j * n + j] = d;
@@ -68,9 +71,8 @@ static double pair_gap(const contact_pair *p, const double *u, int nq)
     return g;
 }
 
-/* The multipliers of the active pairs: (G M^-1 G^T dt^2) lambda = -g_pred,
- * solution in C->rhs.  Returns 0, or -1 for a singular matrix. */
-static int active_solve(fem_contact *C, const double *invm, double dt2, int na)
+/* The active pairs' matrix dt^2 G M^-1 G^T + shift I and right-hand side -g_pred. */
+static void active_matrix(fem_contact *C, const double *invm, double dt2, int na, double shift)
 {
     for (int a = 0; a < na; a++) {
         const contact_pair *pa = C->pair + C->active[a];
@@ -78,8 +80,31 @@ static int active_solve(fem_contact *C, const double *invm, double dt2, int na)
             double v = dt2 * pair_aij(pa, C->pair + C->active[b], invm, C->rigid_invm, C->nq);
             C->A[a * na + b] = C->A[b * na + a] = v;
         }
+        C->A[a * na + a] += shift;
         C->rhs[a] = -C->gpred[C->active[a]];
     }
+}
+
+/* The multipliers of the active pairs: (G M^-1 G^T dt^2) lambda = -g_pred,
+ * solution in C->rhs.  The matrix is only semi-definite when rows depend on
+ * each other: with a rigid boulder every row sums to zero over the boulder
+ * and its masters, so the rank is at most the number of slope master nodes
+ * in contact (two segments carrying two boulder nodes each: 4 rows, rank 3).
+ * The multipliers are then not unique, but the corrections G^T lambda (the
+ * impulses, the gaps) are: the solve is repeated with the matrix shifted by
+ * 1e-9 of its largest diagonal entry (Tikhonov: the least-norm multipliers
+ * as the shift goes to zero; the gaps close to 1e-9 of their size).
+ * Returns 0, or -1 if even that fails. */
+static int active_solve(fem_contact *C, const double *invm, double dt2, int na)
+{
+    active_matrix(C, invm, dt2, na, 0);
+    if (cholesky_solve(C->A, C->rhs, na) == 0)
+        return 0;
+    active_matrix(C, invm, dt2, na, 0);
+    double dmax = 0;
+    for (int a = 0; a < na; a++)
+        dmax = fmax(dmax, C->A[a * na + a]);
+    active_matrix(C, invm, dt2, na, 1e-9 * dmax);
     return cholesky_solve(C->A, C->rhs, na);
 }
 

@@ -102,12 +102,25 @@ static int series_push(fem_series *s, const double *v)
     return 0;
 }
 
+/* The automatic end's bound past t_max, in Hertz durations at most. */
+#define FEM_RUN_BOUND_MAX 100.0
+
+/* The impact has ended: the contact is open and the boulder does not move
+ * toward the slope (a boulder still moving in meets it again). */
+static int run_ended(const fem_run *r)
+{
+    return !r->in_contact && r->v_now >= 0;
+}
+
 rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
                           const double *row, rf_error *err)
 {
     const double t = (double)n * r->dt;
     if (force_record(r, n, Fc))
         return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
+    if (n == 0)
+        r->v_start = row[11];
+    r->v_now = row[11];
     if (Fc > 0) {
         if (!r->in_contact)
             r->episodes++;
@@ -127,17 +140,36 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
         r->closure_max = fabs(closure);
     if (r->record && n % r->stride == 0 && series_push(&r->series, row) != 0)
         return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
-    return RF_OK;
+    const double tn = (double)(n + 1) * r->dt;
+    if (r->end_time > 0 || tn < r->t_max || run_ended(r))
+        return RF_OK;
+    /* Past t_max = 3 t_h the impact has not ended (a plastic contact lasts
+       longer than the elastic one): the run goes on.  Its bound: at t_max a
+       share p of the incoming momentum has been reversed (p = 1: the boulder
+       is at rest); at that mean rate the approach ends at t_max / p; allowed:
+       4 times that (the resisting force may fall to a quarter of its mean
+       before the boulder stops), at most FEM_RUN_BOUND_MAX t_h. */
+    const double p = r->v_start < 0 ? (r->v_now - r->v_start) / -r->v_start : 1;
+    if (r->t_bound == 0)
+        r->t_bound = fmin(FEM_RUN_BOUND_MAX * r->t_h, 4 * r->t_max / fmax(fmin(p, 1), 1e-3));
+    if (tn < r->t_bound)
+        return RF_OK;
+    return rf_fail(err, RF_EMODEL,
+                   "%s: the impact has not ended at t = %.4g s (%.1f Hertz durations, the bound of the automatic "
+                   "end): the boulder is %s (normal velocity %.3g m/s, %.0f %% of the incoming momentum reversed); "
+                   "no rebound velocity exists yet: set end_time [s] to see the state at a given time",
+                   r->who, tn, tn / r->t_h, r->in_contact ? "still in contact" : "moving toward the slope", r->v_now,
+                   100 * p);
 }
 
 int fem_run_stop(const fem_run *r, long n)
 {
     const double tn = (double)(n + 1) * r->dt;
-    if (tn >= r->t_max)
-        return 1;
     if (r->end_time > 0)
         return tn >= r->end_time;
-    return tn >= r->t_min && !r->in_contact && tn - r->t_last_contact > 0.1 * r->t_h;
+    if (tn >= r->t_max && run_ended(r) && r->t_bound == 0) /* ended by t_max: the old fixed end */
+        return 1;
+    return tn >= r->t_min && run_ended(r) && tn - r->t_last_contact > 0.1 * r->t_h;
 }
 
 void fem_contact_window(const double *force, long nsteps, double dt, double threshold, double *t_first,
@@ -204,8 +236,9 @@ void fem_run_warnings(const fem_run *r, int fixed_outer, double L, double c_p, d
                                r->episodes);
     if (extra && extra[0] && wl < size)
         wl += (size_t)snprintf(buf + wl, size - wl, "%s", extra);
-    if (r->end_time > 0 && r->in_contact && wl < size)
-        snprintf(buf + wl, size - wl, "Still in contact at end_time: rebound velocity is not final. ");
+    if (r->end_time > 0 && !run_ended(r) && wl < size)
+        snprintf(buf + wl, size - wl, "%s at end_time: rebound velocity is not final. ",
+                 r->in_contact ? "Still in contact" : "Boulder moving toward the slope");
 }
 
 void fem_run_free(fem_run *r)

@@ -65,6 +65,10 @@ typedef struct {
     /* maxima and contact episodes */
     double F_max, a_at_Fmax, comp_max, closure_max, t_last_contact;
     int episodes, in_contact;
+    /* the boulder's normal velocity (history column 11; < 0: toward the slope):
+       at the start, now; t_bound: the automatic end's bound, set at t_max when
+       the impact has not ended (0: not yet) */
+    double v_start, v_now, t_bound;
     fem_series series;
 } fem_run;
 
@@ -73,10 +77,16 @@ rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, do
                         int ncol, rf_error *err);
 /* Step n (time t = n dt) done: total contact force Fc, contact radius rad,
  * boulder compression comp, energy closure error (absolute, J) against ke0;
- * row (ncol values) is sampled into the history.  Fails on divergence. */
+ * row (ncol values, row[11] the boulder's normal velocity) is sampled into
+ * the history.  Fails on divergence, and (automatic end) when the impact has
+ * not ended by the bound of fem_run_stop. */
 rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
                           const double *row, rf_error *err);
-/* 1 when the run ends after step n. */
+/* 1 when the run ends after step n.  end_time > 0: at end_time.  Automatic:
+ * the impact has ended (the contact open for 0.1 t_h and the boulder not
+ * moving toward the slope) after t_min = 1.3 t_h; past t_max = 3 t_h it must
+ * also have ended, else the run goes on up to a bound scaled by the contact's
+ * progress at t_max (fem_run_account fails there). */
 int fem_run_stop(const fem_run *r, long n);
 /* Fill the outputs every FE model defines; nsteps steps were made. */
 void fem_run_outputs(const fem_run *r, long nsteps, double duration_threshold, double ke0, double force_factor,

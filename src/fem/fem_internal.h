@@ -75,6 +75,15 @@ rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *me
                         const struct fem_kernel *kernel, rf_error *err);
 rf_status fem_vtk_index(const char *dir, int frames, const double *times, rf_error *err);
 
+/* Semi-implicit dashpot (fem_solver.c): the velocity v_{n+1/2} of a node
+ * of lumped mass m and velocity v = v_{n-1/2} along one direction, under
+ * the other forces g and a dashpot -C v_{n+1/2}:
+ * (m + dt C) v_{n+1/2} = m v + dt g.  Stable for any dt C / m. */
+static inline double fem_dashpot_velocity(double m, double C, double v, double g, double dt)
+{
+    return (m * v + dt * g) / (m + dt * C);
+}
+
 /* One contact pair: boulder node s over slope segment (m1, m2) at coordinate xi.
  * Small strain: the vertical gap, z dofs only (nq = 3).  Large deformation:
  * the gap along the current segment's normal n, dofs z then r (nq = 6),

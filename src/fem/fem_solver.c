@@ -293,23 +293,29 @@ static void axi_masses(axi_run *S, const double *elm, unsigned char *fixed)
     S->dt = fem_time_step(lam_max, S->o.dt_safety, &S->dt_bound);
 }
 
-/* Dashpots on the outer surface (Lysmer & Kuhlemeyer 1969): tributary areas
- * of the outer nodes (in the even entries of dash). */
+/* Dashpots on the outer surface (Lysmer & Kuhlemeyer 1969): each outer face
+ * gives its two nodes their tributary shares of rho c_p A and rho c_s A with
+ * the impedances of the element that owns the face (a layer's face its own,
+ * not the bedrock's); normal in the even, tangential in the odd entries of dash. */
 static void axi_dashpots(axi_run *S)
 {
     const fem_mesh *mesh = &S->mesh;
     S->nouter = 0;
     if (S->fixed_outer)
         return;
-    double *trib = S->dash;
+    double *C = S->dash;
     for (long e = mesh->boulder_elems; e < S->ne; e++) {
         const int *c = mesh->conn + 4 * e;
+        const int mb = S->emat[e];
+        const double zp = S->mat[mb].rho * S->w[mb].p, zs = S->mat[mb].rho * S->w[mb].s;
         for (int a = 0; a < 4; a++) {
             int p = c[a], q = c[(a + 1) % 4];
             if (p != q && (mesh->flags[p] & FEM_OUTER) && (mesh->flags[q] & FEM_OUTER)) {
                 double l = hypot(mesh->r[q] - mesh->r[p], mesh->z[q] - mesh->z[p]);
-                trib[2 * p] += 2 * RF_PI * l * (mesh->r[p] / 3 + mesh->r[q] / 6);
-                trib[2 * q] += 2 * RF_PI * l * (mesh->r[p] / 6 + mesh->r[q] / 3);
+                double Ap = 2 * RF_PI * l * (mesh->r[p] / 3 + mesh->r[q] / 6);
+                double Aq = 2 * RF_PI * l * (mesh->r[p] / 6 + mesh->r[q] / 3);
+                C[2 * p] += Ap * zp, C[2 * p + 1] += Ap * zs;
+                C[2 * q] += Aq * zp, C[2 * q + 1] += Aq * zs;
             }
         }
     }
@@ -498,19 +504,36 @@ static void axi_internal_force(const axi_run *S, const double *u, double *f)
 #endif
 }
 
-/* Dashpot forces from v_{n-1/2} into fext; returns half of their work with v_{n-1/2}. */
+/* Dashpot forces into fext, semi-implicit: the force -C v_{n+1/2} with the
+ * velocity the node reaches under it and the internal force, from the lumped
+ * mass m: (m + dt C) v_{n+1/2} = m v_{n-1/2} - dt f_int, solved in the
+ * normal and tangential directions (C = C_p n n' + C_s (1 - n n')).  Stable
+ * for any dt C / m (the explicit form, -C v_{n-1/2}, needs dt C / m < 2,
+ * which a light layer's outer nodes exceed); the predictor then gives the
+ * node that velocity.  An axis node (u_r = 0) solves for v_z alone.  Returns
+ * half of their work with v_{n-1/2}. */
 static double axi_dashpot_forces(axi_run *S)
 {
     double W = 0;
-    const double rho = S->mat[1].rho, cp = S->w[1].p, cs = S->w[1].s;
+    const double dt = S->dt;
     for (long k = 0; k < S->nouter; k++) {
         int i = S->outer[k];
         double nr = S->mesh.r[i] / S->L, nz = S->mesh.z[i] / S->L, len = hypot(nr, nz);
         nr /= len, nz /= len;
-        double vr = S->v[2 * i], vz = S->v[2 * i + 1], vn = vr * nr + vz * nz;
-        double A = S->dash[2 * i];
-        double fr = -A * rho * (cp * vn * nr + cs * (vr - vn * nr));
-        double fz = -A * rho * (cp * vn * nz + cs * (vz - vn * nz));
+        const double m = S->mass[2 * i + 1], Cp = S->dash[2 * i], Cs = S->dash[2 * i + 1];
+        const double vr = S->v[2 * i], vz = S->v[2 * i + 1];
+        double fr, fz;
+        if (S->invm[2 * i] == 0) { /* on the axis: v_r = 0 */
+            const double Czz = Cp * nz * nz + Cs * nr * nr;
+            const double wz = fem_dashpot_velocity(m, Czz, vz, -S->f[2 * i + 1], dt);
+            fr = -(Cp - Cs) * nr * nz * wz, fz = -Czz * wz;
+        } else {
+            const double gr = -S->f[2 * i], gz = -S->f[2 * i + 1];
+            const double vn = vr * nr + vz * nz, vt = -vr * nz + vz * nr;
+            const double gn = gr * nr + gz * nz, gt = -gr * nz + gz * nr;
+            const double wn = fem_dashpot_velocity(m, Cp, vn, gn, dt), wt = fem_dashpot_velocity(m, Cs, vt, gt, dt);
+            fr = -(Cp * wn * nr - Cs * wt * nz), fz = -(Cp * wn * nz + Cs * wt * nr);
+        }
         S->fext[2 * i] = fr, S->fext[2 * i + 1] = fz;
     }
     for (long k = 0; k < S->nouter; k++) {

@@ -353,6 +353,18 @@ static int large_possible(const impact_ctx *c)
 }
 static int may_run_3d(const impact_ctx *c);
 
+/* 1 if some evaluation may have an elasto-plastic body (the auto rule of
+ * rf_fem_large_deformation, whatever the kinematics option). */
+static int plastic_possible(const impact_ctx *c)
+{
+    rf_impact_input probe = c->spec.base;
+    if (layer_possible(c) && !(probe.layer_thickness > 0))
+        probe.layer_thickness = 1;
+    rf_fem_options o = c->spec.fem;
+    o.large_deformation = RF_FEM_KINEMATICS_AUTO;
+    return rf_fem_large_deformation(&o, &probe);
+}
+
 static void make_identity(const impact_ctx *c, char *buf, size_t cap)
 {
     const rf_impact_model_spec *s = &c->spec;
@@ -396,6 +408,13 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            before, issue 10): a store never mixes results from before and after */
         if (may_run_3d(c))
             append(buf, cap, &len, " fem3d_materials=plastic_b_bar");
+        /* results that changed with the solver robustness for soils (docs/validation-plastic.md
+           section 10) are named, the others keep their identity: the automatic end waits for the
+           impact to end (plastic runs), the dashpots take each face's impedance, semi-implicitly */
+        if (o->end_time == 0 && plastic_possible(c))
+            append(buf, cap, &len, " end=impact_ended");
+        if (o->boundary == RF_FEM_BOUNDARY_ABSORBING)
+            append(buf, cap, &len, " dashpots=face_impedance_semi_implicit");
     }
     append(buf, cap, &len,
            " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"

@@ -547,8 +547,9 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             rf_error tmp;
             if (len >= 31 || rf_fem_kinematics_parse(buf, &spec.fem.large_deformation, &tmp) != RF_OK)
                 return sp_fail(c, v, p, "unknown large_deformation; expected auto, on or off");
-        } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor")) {
-            double *d = key[0] == 'r' ? &spec.fem.refinement : &spec.fem.domain_factor;
+        } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor") || !strcmp(key, "end_time")) {
+            double *d = key[0] == 'r' ? &spec.fem.refinement : key[0] == 'd' ? &spec.fem.domain_factor
+                                                                             : &spec.fem.end_time;
             if ((st = sp_number(c, v, p, d)) != RF_OK)
                 return st;
             rf_error tmp; /* the FE solvers' own rule (fem_options.c) */
@@ -572,7 +573,7 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
         } else {
             return sp_fail(c, k, p,
                            "unknown key; the impact model takes solver, boundary, large_deformation, refinement, "
-                           "domain_factor, threads, e_n, hunter_coefficient, boulder_material, slope_material, layer_material and "
+                           "domain_factor, end_time [s], threads, e_n, hunter_coefficient, boulder_material, slope_material, layer_material and "
                            "crisp inputs "
                            "(radius, horizontal_axis, vertical_axis, boulder_density, slope_density, boulder_E, "
                            "slope_E, boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction, "
