@@ -113,7 +113,11 @@ def fmt(x):
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else "out"
     img = sys.argv[2] if len(sys.argv) > 2 else "docs/img"
-    runs = {v: load(root, v) for v in SPEEDS}
+    speeds = [v for v in SPEEDS if os.path.exists(os.path.join(root, "s5_v%d" % v, "result.json"))]
+    for v in SPEEDS:
+        if v not in speeds:
+            print("note: %s has no result.json (run unfinished): %d m/s left out\n" % (os.path.join(root, "s5_v%d" % v), v))
+    runs = {v: load(root, v) for v in speeds}
 
     print("### evaluations and cost\n")
     print("| v m/s | evaluations | ok | deep (pen >= 0.4 r0) | no rebound (R_n <= 0) | not ended (failed at the bound)"
@@ -139,11 +143,11 @@ def main():
     print()
 
     print("### supports (mu = 0), the mu = 0.5 cut and the nominal value (mu = 1)\n")
-    print("| output | unit | " + " | ".join("%d m/s: support; mu=0.5; nominal" % v for v in SPEEDS) + " |")
-    print("|---|---|" + "---|" * len(SPEEDS))
+    print("| output | unit | " + " | ".join("%d m/s: support; mu=0.5; nominal" % v for v in speeds) + " |")
+    print("|---|---|" + "---|" * len(speeds))
     for o in TABLE:
         cells = []
-        for v in SPEEDS:
+        for v in speeds:
             out = runs[v][0]["outputs"][o]
             lo, up, mu = out["lower"], out["upper"], out["mu"]
             h = mu.index(0.5) if 0.5 in mu else len(mu) // 2
@@ -153,11 +157,11 @@ def main():
     print()
 
     print("### influence rho (Hanss), largest first\n")
-    print("| output | " + " | ".join("%d m/s" % v for v in SPEEDS) + " |")
-    print("|---|" + "---|" * len(SPEEDS))
+    print("| output | " + " | ".join("%d m/s" % v for v in speeds) + " |")
+    print("|---|" + "---|" * len(speeds))
     for o in SHOW:
         cells = []
-        for v in SPEEDS:
+        for v in speeds:
             inf = runs[v][0]["outputs"][o]["influence"]
             rho = {k: (val["rho"] if val["rho"] is not None else float("nan")) for k, val in inf.items()}
             order = sorted(rho, key=lambda k: -(rho[k] if rho[k] == rho[k] else -1))
@@ -171,7 +175,7 @@ def main():
     fig, axs = plt.subplots(2, 3, figsize=(12, 6.5))
     cols = {5: "tab:blue", 10: "tab:green", 20: "tab:red"}
     for a, o in zip(axs.flat, SHOW):
-        for v in SPEEDS:
+        for v in speeds:
             out = runs[v][0]["outputs"][o]
             xs = out["lower"] + out["upper"][::-1]
             ys = out["mu"] + out["mu"][::-1]
@@ -185,13 +189,13 @@ def main():
     os.makedirs(img, exist_ok=True)
     fig.savefig(os.path.join(img, "studies_s5_outputs.png"), dpi=80)
 
-    names = list(runs[SPEEDS[0]][0]["inputs"].keys())
+    names = list(runs[speeds[0]][0]["inputs"].keys())
     fig, axs = plt.subplots(1, 3, figsize=(12, 3.6))
     for a, o in zip(axs, ("R_n", "penetration_max", "contact_force_max")):
-        w = 0.25
-        for i, v in enumerate(SPEEDS):
+        w = 0.75 / len(speeds)
+        for i, v in enumerate(speeds):
             inf = runs[v][0]["outputs"][o]["influence"]
-            a.bar([k + (i - 1) * w for k in range(len(names))], [inf[n]["rho"] or 0 for n in names], w,
+            a.bar([k + (i - (len(speeds) - 1) / 2) * w for k in range(len(names))], [inf[n]["rho"] or 0 for n in names], w,
                   color=cols[v], label="%d m/s%s" % (v, "" if inf[names[0]]["rho"] is not None else " (rho n/a)"))
         a.set_xticks(range(len(names)))
         a.set_xticklabels([n.replace("layer_", "") for n in names], rotation=30, fontsize=8)
