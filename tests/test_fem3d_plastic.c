@@ -338,14 +338,7 @@ static void test_refusals(void **state)
     rf_fem_options o = coarse(2.5);
     rf_impact_output out;
     rf_error err = {0};
-    in.boulder_material = RF_MATERIAL_RIGID_BODY;
-    assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
-    assert_non_null(strstr(err.msg, "rigid"));
-    in = granite(30, 0);
-    in.layer_thickness = 0.05;
-    assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
-    assert_non_null(strstr(err.msg, "layer_thickness = 0.05"));
-    in = granite(30, 0);
+    /* (a rigid boulder and a layer run in 3D now: test_fem3d_layer) */
     o.kernel[1] = (rf_fem_kernel)7;
     assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "kernel[1] = 7"));

@@ -2,8 +2,10 @@
  * spheroid on a horizontal slope) falling vertically onto an inclined slope
  * with Coulomb friction (study S4).  Bodies elastic by default; the slope may
  * be von_mises or drucker_prager, the boulder von_mises (integration-point
- * kernel with B-bar, docs/validation-plastic.md section 9); a rigid boulder
- * and a layer are refused.
+ * kernel with B-bar, docs/validation-plastic.md section 9) or rigid (planar
+ * rigid motion, exact mass and I_yy, fem3d_rigid.c); a layer of
+ * layer_thickness over the slope with its own density, E, nu and law, on a
+ * mesh with a node plane at its bottom (fem3d_layer.c).
  *
  * Same design as the axisymmetric solver (fem.h), in the slope's frame
  * (x down-slope, z the outward slope normal, y normal to the plane of
@@ -41,6 +43,8 @@ typedef struct {
     double elongation;      /* extra fine box length down-slope / (v_t * Hertz duration), default 1 */
     double layer_aspect;    /* radial / tangential element size in the graded layers, default 1.6 */
     double boulder_inner;   /* boulder: radius (/ r0) of the contact-side half-space image, default 4 */
+    int layered_mesh;       /* 1: the slope as the extruded mesh a layer uses (horizontal node planes, a
+                               cylinder of radius and depth domain) even without a layer; for checks, default 0 */
 } rf_fem3d_options;
 
 void rf_fem3d_options_default(rf_fem3d_options *o3);

@@ -178,8 +178,24 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
             ax += N[q] * N[q] * im[0];
             ay += N[q] * N[q] * im[1];
         }
+        if (C->rigid_invm > 0) { /* the slave's response is the rigid body's: 1/M + (r x e)_y^2 / I */
+            const double rx = mesh->x[3 * s] + u[3 * s] - C->rigid_c[0], rz = mesh->x[3 * s + 2] + u[3 * s + 2] - C->rigid_c[1];
+            C->rr[2 * k] = rx, C->rr[2 * k + 1] = rz;
+            const double tn = rz * (-Sx) - rx;
+            an += C->rigid_invm * (Sx * Sx + 1) + C->rigid_invi * tn * tn;
+            ax += C->rigid_invm + C->rigid_invi * rz * rz;
+        }
         C->A[3 * k] = dt2 * an, C->A[3 * k + 1] = dt2 * ax, C->A[3 * k + 2] = dt2 * ay;
     }
+}
+
+/* A rigid boulder's part of spread(): the force F of the multiplier increment on the rigid dofs. */
+static inline void spread_rigid(f3_contact *C, long k, const double F[3], double dt2)
+{
+    const double rx = C->rr[2 * k], rz = C->rr[2 * k + 1];
+    C->rigid_du[0] += dt2 * C->rigid_invm * F[0];
+    C->rigid_du[1] += dt2 * C->rigid_invm * F[2];
+    C->rigid_du[2] += dt2 * C->rigid_invi * (rz * F[0] - rx * F[2]);
 }
 
 /* Add dt^2 M^-1 G_c^T delta of pair k (component c: 0 normal, 1 x, 2 y) to du.  The normal row
@@ -192,6 +208,10 @@ static inline void spread(f3_contact *C, long k, int c, double delta, const doub
     const double *N = C->N + F3_NM * k;
     if (c == 0) {
         const double w[3] = {-C->S[2 * k], -C->S[2 * k + 1], 1};
+        if (C->rigid_invm > 0) {
+            const double F[3] = {w[0] * delta, w[1] * delta, w[2] * delta};
+            spread_rigid(C, k, F, dt2);
+        }
         for (int d = 0; d < 3; d++) {
             C->du[3 * s + d] += dt2 * invm[3 * s + d] * w[d] * delta;
             for (int a = 0; a < F3_NM; a++)
@@ -200,6 +220,10 @@ static inline void spread(f3_contact *C, long k, int c, double delta, const doub
         return;
     }
     const int d = c - 1;
+    if (C->rigid_invm > 0 && d == 0) {
+        const double F[3] = {delta, 0, 0};
+        spread_rigid(C, k, F, dt2);
+    }
     C->du[3 * s + d] += dt2 * invm[3 * s + d] * delta;
     for (int a = 0; a < F3_NM; a++)
         C->du[3 * m[a] + d] -= dt2 * invm[3 * m[a] + d] * N[a] * delta;
@@ -209,6 +233,12 @@ static inline double gdu(const f3_contact *C, long k, int c)
 {
     double g[3];
     f3_contact_gv(C, k, C->du, g);
+    if (C->rigid_invm > 0) { /* the slave's displacement is the rigid body's */
+        const double *d = C->rigid_du, rx = C->rr[2 * k], rz = C->rr[2 * k + 1];
+        const double dx = d[0] + d[2] * rz, dz = d[1] - d[2] * rx;
+        g[0] += dz - C->S[2 * k] * dx;
+        g[1] += dx;
+    }
     return g[c];
 }
 

@@ -42,6 +42,7 @@ typedef struct {
     /* outer surface quads of the slope (dashpots) */
     long n_outer_quads;
     int *outer_quads;      /* 4 per quad */
+    int extruded;          /* the slope is the extruded mesh of fem3d_layer.c (a cylinder, not a hemisphere) */
 } f3_mesh;
 
 typedef struct {
@@ -52,10 +53,17 @@ typedef struct {
     double boulder_inner;  /* radius of the boulder's half-space image / radius */
     double domain;         /* slope hemisphere radius [m] */
     double layer_aspect;   /* radial/tangential size ratio of the layers */
+    int extruded;          /* slope as the extruded mesh with horizontal node planes (fem3d_layer.c) */
+    double layer_depth;    /* > 0: a node plane at z = -layer_depth (extruded mesh) [m] */
 } f3_mesh_spec;
 
 rf_status f3_mesh_build(const f3_mesh_spec *spec, f3_mesh *mesh, long max_elements, rf_error *err);
 void f3_mesh_free(f3_mesh *mesh);
+/* The extruded slope (fem3d_layer.c): its node, element and outer-quad
+ * counts, and the fill of nodes [n0, ...) and elements [e0, ...) of m (also
+ * top_s, nxt_s, nyt_s and the outer quads). */
+void f3_slab_counts(const f3_mesh_spec *spec, long *nodes, long *elems, long *outer_quads);
+rf_status f3_slab_fill(const f3_mesh_spec *spec, f3_mesh *m, long n0, long e0, rf_error *err);
 
 /* Weight the boulder's element-node masses elm (8 per boulder element) so
  * that their sum is M, their centre of mass is (X0, ., Z0) and their moment
@@ -102,6 +110,13 @@ typedef struct {
     int *cand;
     long ncand;
     double *du;          /* 3 per node scratch, zero between calls */
+    /* A rigid boulder (rigid_invm > 0; its nodes' invm are 0): every slave moves with
+       its CM (x, z) and rotation about y; the corrections of a solve accumulate in
+       rigid_du (the solver applies and zeroes them, f3_rigid_correct). */
+    double rigid_invm, rigid_invi; /* 1 / M, 1 / I_yy (model) */
+    double rigid_c[2];   /* its CM (x, z) in the predicted state [m]; set before f3_contact_predict */
+    double rigid_du[3];  /* CM displacement (x, z) [m] and rotation [rad] of the corrections */
+    double *rr;          /* 2 per slave: (x, z) from the CM in the predicted state [m] */
     double friction, tol, band;
     int max_sweeps;
     int sweeps;          /* statistics of the last solve */
@@ -120,6 +135,27 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
                         int threads);
 /* Multipliers for the predicted state; adds the corrections to u and v. */
 rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double *u, double *v, rf_error *err);
+
+/* A rigid boulder (fem3d_rigid.c): planar rigid motion, CM translation
+ * (x, z) and rotation theta about y (v = V + omega x r, omega = (0, w, 0)). */
+typedef struct {
+    int on;
+    double M, I;      /* model mass [kg] and I_yy about the CM [kg m^2] */
+    double c0[3];     /* reference CM [m] */
+    double X[2], th;  /* CM displacement (x, z) [m] and rotation [rad] at step n */
+    double V[2], w;   /* CM velocity (x, z) [m/s] and angular velocity [rad/s] at n - 1/2 */
+} f3_rigid;
+
+/* The rigid boulder's kernel: no internal force (zeroes its elements' fe once). */
+void f3_rigid_kernel(fem_kernel *k, long first, long count, double *fe);
+/* Boulder nodes [0, nbn) placed from the rigid state: u (of X0) and v. */
+void f3_rigid_place(const f3_rigid *B, const f3_mesh *mesh, long nbn, double *u, double *v);
+/* Predictor X += dt V, theta += dt w; the contact's correction du = (dX, dZ,
+ * dtheta) applied to position and velocity (du / dt), du zeroed. */
+void f3_rigid_predict(f3_rigid *B, double dt);
+void f3_rigid_correct(f3_rigid *B, double du[3], double dt);
+/* Kinetic energy 1/2 M V^2 + 1/2 I w^2 [J]. */
+double f3_rigid_energy(const f3_rigid *B);
 
 /* The internal-force system of the 3D model (fem3d_force.c). */
 typedef struct {

@@ -231,7 +231,9 @@ rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, r
         (st = ogrid_init(&gs, &sp->slope, sp->full, sp->domain, Ks, err)) != RF_OK)
         goto fail;
     long nb = g1.n + g2.n - g2.nsurf, ns = gs.n;
-    long neb = g1.ne + g2.ne, nes = gs.ne;
+    long neb = g1.ne + g2.ne, nes = gs.ne, noq = gs.nquad;
+    if (sp->extruded) /* a layered slope: horizontal node planes (fem3d_layer.c) */
+        f3_slab_counts(sp, &ns, &nes, &noq);
     if (neb + nes > max_elements) {
         st = rf_fail(err, RF_ECAP, "fem3d mesh: %ld elements exceed max_elements = %ld; lower the refinement",
                      neb + nes, max_elements);
@@ -244,9 +246,11 @@ rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, r
     m->conn = malloc((size_t)m->n_elems * 8 * sizeof *m->conn);
     m->nxt_b = g1.NX + 1, m->nyt_b = g1.NY + 1, m->nxt_s = gs.NX + 1, m->nyt_s = gs.NY + 1;
     m->top_b = malloc((size_t)m->nxt_b * m->nyt_b * sizeof *m->top_b);
+    if (sp->extruded)
+        m->nxt_s = sp->slope.nxm + sp->slope.nxp + 1, m->nyt_s = (sp->full ? 2 : 1) * sp->slope.ny + 1;
     m->top_s = malloc((size_t)m->nxt_s * m->nyt_s * sizeof *m->top_s);
-    m->n_outer_quads = gs.nquad;
-    m->outer_quads = malloc((size_t)gs.nquad * 4 * sizeof *m->outer_quads);
+    m->n_outer_quads = noq;
+    m->outer_quads = malloc((size_t)noq * 4 * sizeof *m->outer_quads);
     if (!m->x || !m->flags || !m->conn || !m->top_b || !m->top_s || !m->outer_quads) {
         st = rf_fail(err, RF_ENOMEM, "fem3d mesh: out of memory for %ld elements", m->n_elems);
         goto fail;
@@ -313,6 +317,11 @@ rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, r
     for (int i = 0; i <= g1.NX; i++)
         for (int j = 0; j <= g1.NY; j++)
             m->top_b[i * m->nyt_b + j] = (int)core_id(&g1, i, j, g1.NZ);
+    if (sp->extruded) {
+        if ((st = f3_slab_fill(sp, m, nb, e, err)) != RF_OK)
+            goto fail;
+        goto done;
+    }
     /* slope: the O-grid itself */
     for (long id = 0; id < gs.n; id++) {
         ogrid_point(&gs, id, m->x + 3 * (nb + id));
@@ -331,6 +340,7 @@ rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, r
     for (long q = 0; q < gs.nquad; q++)
         for (int a = 0; a < 4; a++)
             m->outer_quads[4 * q + a] = (int)(nb + layer_id(&gs, gs.quad[4 * q + a], gs.K));
+done:
     m->h_s = sp->slope.h;
     m->x0_s = -sp->slope.nxm * sp->slope.h;
     m->y0_s = sp->full ? -sp->slope.ny * sp->slope.h : 0;

@@ -62,13 +62,6 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
         in->slope_angle);
     BAD(!(in->friction <= 5), "fem3d: friction must be in [0, 5], got %g", in->friction);
     /* (the 3D model runs for an inclined slope or friction between dissimilar bodies: rf_fem_needs_3d) */
-    BAD(in->boulder_material == RF_MATERIAL_RIGID_BODY,
-        "fem3d: boulder_material = rigid is available in the axisymmetric model only (normal impact, slope_angle "
-        "= 0, no friction between dissimilar bodies); the 3D model takes an elastic or von_mises boulder");
-    BAD(in->layer_thickness > 0,
-        "fem3d: a layer (layer_thickness = %g m) is available in the axisymmetric model only (normal impact, "
-        "slope_angle = 0, no friction between dissimilar bodies); the 3D model has a homogeneous slope",
-        in->layer_thickness);
     BAD(in->horizontal_axis > 0 && in->slope_angle != 0,
         "fem3d: a spheroid on an inclined slope is not supported (its contact point is not a pole); got "
         "horizontal_axis = %g m, slope_angle = %g rad",
@@ -93,7 +86,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the 3D solver in the workspace pool. */
 enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM, Q_DASH, Q_ELM, Q_LAMX, Q_FIXED,
-       Q_OUTER, Q_UB, Q_VTK };
+       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM };
 
 /* The state of one 3D run. */
 typedef struct {
@@ -101,11 +94,17 @@ typedef struct {
     rf_fem_options o;
     rf_fem3d_options o3;
     rf_hertz_reference H;
-    f3_material mat[2];
-    rf_wave_speeds w[2];
-    rf_material matl[2];  /* constitutive law of each body (plastic[b] != 0: not elastic) */
-    fem_lame lame[2];     /* parameters of the linear point laws (kernel = points) */
-    int plastic[2], work_account; /* work_account: energies from the internal work (a plastic body) */
+    f3_material mat[3];   /* boulder, slope (the bedrock under a layer), layer */
+    rf_wave_speeds w[3];
+    rf_material matl[3];  /* constitutive law of each (plastic[b] != 0: not elastic) */
+    fem_lame lame[3];     /* parameters of the linear point laws (kernel = points) */
+    int plastic[3], work_account; /* work_account: energies from the internal work (a plastic body) */
+    int layer, rigid;     /* a layer over the slope (fem3d_layer.c); a rigid boulder (fem3d_rigid.c) */
+    double a_box;         /* contact radius the fine boxes cover (the larger of slope and layer) [m] */
+    unsigned char *emat;  /* material of each element: 0 boulder, 1 slope, 2 layer */
+    double *dashl, *dnrm; /* layer faces' dashpot areas; outer normals (extruded mesh) */
+    double dash_ratio;    /* largest dt C / m of an explicit dashpot (stable below 2) */
+    f3_rigid B;
     double W_int[2];      /* internal work of each body so far [J] (model, not full body) */
     double depth_max;     /* deepest position of the boulder's lowest point below z = 0 [m] */
     long crater_node;     /* the slope's surface node at the first-contact point */
@@ -128,6 +127,31 @@ typedef struct {
     int pgs_sweeps_max, outside_contact;
     fem_pool *pool;
 } solid_run;
+
+/* A layer over the slope (as the axisymmetric solver, fem_solver.c): the
+ * mesh sized for the finer of the two contacts (slope's and layer's Hertz
+ * radius), its fine boxes covering the larger, the run as long as the longer
+ * Hertz duration; the layer's wave speeds. */
+static rf_status solid_prepare_layer(solid_run *R, rf_error *err)
+{
+    const rf_impact_input *in = R->in;
+    R->layer = in->layer_thickness > 0;
+    if (!R->layer)
+        return RF_OK;
+    if (!(in->layer_thickness < 0.5 * R->L))
+        return rf_fail(err, RF_EINVAL,
+                       "fem3d: layer_thickness = %g m must be below half the domain radius (%g m): raise domain_factor",
+                       in->layer_thickness, R->L);
+    rf_impact_input lay = *in;
+    lay.slope_density = in->layer_density, lay.slope_E = in->layer_E, lay.slope_poisson = in->layer_poisson;
+    rf_hertz_reference HL;
+    rf_impact_hertz_reference(&lay, &HL);
+    R->a_box = fmax(R->H.contact_radius, HL.contact_radius);
+    R->H.contact_radius = fmin(R->H.contact_radius, HL.contact_radius);
+    R->H.duration = fmax(R->H.duration, HL.duration);
+    rf_impact_wave_speeds(&lay, 1, &R->w[2]);
+    return RF_OK;
+}
 
 /* Check, resolve the automatic settings, Hertz reference with the normal
  * velocity component. */
@@ -153,21 +177,31 @@ static rf_status solid_prepare(solid_run *R, const rf_impact_input *in, const rf
     R->L = R->o.domain_factor * in->radius;
     R->mat[0] = (f3_material){in->boulder_density, in->boulder_E, in->boulder_poisson};
     R->mat[1] = (f3_material){in->slope_density, in->slope_E, in->slope_poisson};
+    R->mat[2] = (f3_material){in->layer_density, in->layer_E, in->layer_poisson};
     rf_impact_wave_speeds(in, 0, &R->w[0]);
     rf_impact_wave_speeds(in, 1, &R->w[1]);
+    R->w[2] = R->w[1];
+    R->rigid = in->boulder_material == RF_MATERIAL_RIGID_BODY;
+    R->a_box = R->H.contact_radius;
+    if ((st = solid_prepare_layer(R, err)) != RF_OK)
+        return st;
     R->threads = R->o.threads > 0 ? R->o.threads : 1;
 #ifndef _OPENMP
     R->threads = 1;
 #endif
     R->fixed_outer = R->o.boundary == RF_FEM_BOUNDARY_FIXED;
-    for (int b = 0; b < 2; b++) {
+    for (int b = 0; b < 3; b++) {
         rf_material_params p;
+        if (b == 2 && !R->layer) { /* no layer: its (unchecked) inputs are not used */
+            R->matl[2] = R->matl[1], R->plastic[2] = 0;
+            continue;
+        }
         rf_impact_material_params(in, b, &p);
         if ((st = rf_material_init(&R->matl[b], &p, err)) != RF_OK) /* validated above: cannot fail */
             return rf_error_prefix(err, "fem3d");
-        R->plastic[b] = p.model != RF_MATERIAL_ELASTIC;
+        R->plastic[b] = p.model != RF_MATERIAL_ELASTIC && !(b == 0 && R->rigid);
     }
-    R->work_account = R->plastic[0] || R->plastic[1];
+    R->work_account = R->plastic[0] || R->plastic[1] || R->plastic[2];
     return RF_OK;
 }
 
@@ -183,8 +217,15 @@ static rf_status solid_mesh(solid_run *R, rf_error *err)
     f3_mesh_spec *ms = &R->ms;
     memset(ms, 0, sizeof *ms);
     ms->full = o3->full_model != 0;
-    int n_s = (int)ceil(o3->core_factor * a_h / h - 1e-9), n_b = (int)ceil(o3->core_factor * a_h / hb - 1e-9);
+    const double a_x = R->a_box; /* = a_h without a layer */
+    int n_s = (int)ceil(o3->core_factor * a_x / h - 1e-9), n_b = (int)ceil(o3->core_factor * a_x / hb - 1e-9);
     ms->slope = (f3_box){n_s, n_s + (int)ceil(travel / h - 1e-9), n_s, n_s, h};
+    ms->extruded = R->layer || o3->layered_mesh;
+    ms->layer_depth = R->layer ? R->in->layer_thickness : 0;
+    if (R->layer && R->in->layer_thickness < h)
+        return rf_fail(err, RF_EINVAL,
+                       "fem3d: layer_thickness = %g m is thinner than the element at the contact (h = %g m): raise "
+                       "refinement or the thickness", R->in->layer_thickness, h);
     /* the boulder's half-space image is scaled by c (x, y) and d (z) afterwards */
     const double sxy = c / r0, sz = d / r0, hb0 = hb / sxy;
     ms->boulder = (f3_box){n_b, n_b + (int)ceil(travel / hb - 1e-9), n_b, n_b, hb0};
@@ -197,8 +238,8 @@ static rf_status solid_mesh(solid_run *R, rf_error *err)
     if (box_b > 0.6 * r0)
         return rf_fail(err, RF_EINVAL,
                        "fem3d: the fine zone (%.3g m) does not fit the boulder (r0 = %g m): the Hertz contact radius "
-                       "%.3g m is too large; lower core_factor or the impact speed",
-                       box_b, r0, a_h);
+                       "%.3g m%s is too large; lower core_factor or the impact speed",
+                       box_b, r0, a_x, R->layer ? " (the larger of the slope's and the layer's)" : "");
     if ((ms->slope.nxm + ms->slope.nxp) * h * 4 > R->L)
         return rf_fail(err, RF_EINVAL, "fem3d: domain radius %g m is too small for the fine zone", R->L);
     rf_status st = f3_mesh_build(ms, &R->mesh, o->max_elements, err);
@@ -228,6 +269,11 @@ static rf_status solid_alloc(solid_run *R, rf_error *err)
     R->lamx = fem_pool_get(P, Q_LAMX, ne * sizeof(double), 0);
     R->fixed = fem_pool_get(P, Q_FIXED, nd, 1);
     R->outer = fem_pool_get(P, Q_OUTER, nn * sizeof(int), 0);
+    R->emat = fem_pool_get(P, Q_EMAT, ne, 0);
+    R->dashl = fem_pool_get(P, Q_DASHL, nn * sizeof(double), 1);
+    R->dnrm = fem_pool_get(P, Q_DNRM, 3 * nn * sizeof(double), 1);
+    if (!R->emat || !R->dashl || !R->dnrm)
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->ne);
     if (!R->K || !S->fe || !S->fel || !S->ub || !S->inc_ptr || !S->inc || !R->u || !R->v || !R->f || !R->fext || !R->mass ||
         !R->invm || !R->dash || !R->elm || !R->lamx || !R->fixed || !R->outer)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->ne);
@@ -279,9 +325,8 @@ static rf_status solid_elements(solid_run *R, rf_error *err)
         for (int a = 0; a < 8; a++)
             for (int q = 0; q < 3; q++)
                 xe[3 * a + q] = mesh->x[3 * cn[a] + q];
-        int b = e < mesh->boulder_elems ? F3_BOULDER : F3_SLOPE;
         double Kd[576];
-        f3_hex_matrices(xe, &R->mat[b], Kd, R->elm + 8 * e, &vols[e]);
+        f3_hex_matrices(xe, &R->mat[R->emat[e]], Kd, R->elm + 8 * e, &vols[e]);
         for (int q = 0; q < 576; q++)
             R->K[576 * e + q] = (float)Kd[q];
         for (int a = 0; a < 8; a++)
@@ -317,6 +362,8 @@ static void solid_element(void *ctx, long e, double K[576], double m[8], unsigne
 {
     const solid_run *R = ctx;
     element_free_k(R, e, fr, K);
+    if (R->rigid && e < R->mesh.boulder_elems) /* no stiffness: the slope alone sets the step */
+        memset(K, 0, 576 * sizeof *K);
     memcpy(m, R->elm + 8 * e, 8 * sizeof *m);
 }
 
@@ -358,7 +405,9 @@ static void solid_masses(solid_run *R)
                                   {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
     for (long e = 0; e < R->ne; e++) {
         const int *cn = mesh->conn + 8 * e;
-        int b = e < mesh->boulder_elems ? 0 : 1;
+        const int b = R->emat[e];
+        if (R->rigid && b == 0)
+            continue;
         for (int k = 0; k < 12; k++) {
             const double *p = mesh->x + 3 * cn[ed[k][0]], *q = mesh->x + 3 * cn[ed[k][1]];
             double l = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
@@ -369,7 +418,22 @@ static void solid_masses(solid_run *R)
     R->dt = fem_time_step(lam_max, R->o.dt_safety, &R->dt_bound);
 }
 
-/* Dashpots on the outer surface (Lysmer & Kuhlemeyer 1969): tributary areas. */
+/* The largest dt C / m of the explicit dashpots (stable below 2): C = the
+ * node's tributary area times rho c_p of its faces' material. */
+static void solid_dashpot_check(solid_run *R)
+{
+    R->dash_ratio = 0;
+    for (long k = 0; k < R->nouter; k++) {
+        const int i = R->outer[k];
+        const double C = R->dash[i] * R->mat[1].rho * R->w[1].p + R->dashl[i] * R->mat[2].rho * R->w[2].p;
+        if (R->dt * C / R->mass[3 * i] > R->dash_ratio)
+            R->dash_ratio = R->dt * C / R->mass[3 * i];
+    }
+}
+
+/* Dashpots on the outer surface (Lysmer & Kuhlemeyer 1969): tributary areas
+ * (a layer's faces apart, with its own impedance), and the outer normals of
+ * the extruded mesh (summed face normals). */
 static void solid_dashpots(solid_run *R)
 {
     if (R->fixed_outer)
@@ -377,6 +441,11 @@ static void solid_dashpots(solid_run *R)
     const f3_mesh *mesh = &R->mesh;
     for (long q = 0; q < mesh->n_outer_quads; q++) {
         const int *qn = mesh->outer_quads + 4 * q;
+        /* a quad whose 4 nodes lie in the layer (z >= -thickness) has the layer's impedance */
+        int in_layer = R->layer;
+        for (int a = 0; a < 4 && in_layer; a++)
+            in_layer = mesh->x[3 * qn[a] + 2] >= -R->in->layer_thickness * (1 + 1e-12);
+        double *area_to = in_layer ? R->dashl : R->dash;
         const double *p0 = mesh->x + 3 * qn[0], *p1 = mesh->x + 3 * qn[1], *p2 = mesh->x + 3 * qn[2],
                      *p3 = mesh->x + 3 * qn[3];
         double d1[3], d2[3], cr[3];
@@ -386,15 +455,19 @@ static void solid_dashpots(solid_run *R)
         cr[1] = d1[2] * d2[0] - d1[0] * d2[2];
         cr[2] = d1[0] * d2[1] - d1[1] * d2[0];
         double area = 0.5 * sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
-        for (int a = 0; a < 4; a++)
-            R->dash[qn[a]] += 0.25 * area;
+        for (int a = 0; a < 4; a++) {
+            area_to[qn[a]] += 0.25 * area;
+            for (int d = 0; d < 3; d++) /* outward: away from the contact point at the origin */
+                R->dnrm[3 * qn[a] + d] += (cr[0] * p0[0] + cr[1] * p0[1] + cr[2] * p0[2] > 0 ? 0.5 : -0.5) * cr[d];
+        }
     }
+    solid_dashpot_check(R);
 }
 
 static void contact_release(f3_contact *C)
 {
     free(C->slave), free(C->lam), free(C->mnode), free(C->N), free(C->S), free(C->gap), free(C->ds), free(C->s0);
-    free(C->A), free(C->gvo), free(C->outside), free(C->cand), free(C->du);
+    free(C->A), free(C->gvo), free(C->outside), free(C->cand), free(C->du), free(C->rr);
     memset(C, 0, sizeof *C);
 }
 
@@ -434,6 +507,77 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
     return RF_OK;
 }
 
+/* The linear point law of material b (0 boulder, 1 slope, 2 layer; lame[b] filled). */
+static fem_point_law solid_point_law(solid_run *R, int b)
+{
+    const f3_material *m = &R->mat[b];
+    R->lame[b] = (fem_lame){m->E * m->nu / ((1 + m->nu) * (1 - 2 * m->nu)), m->E / (2 * (1 + m->nu))};
+    return fem_point_law_linear3d(&R->lame[b]);
+}
+
+/* The slope block under a layer: the integration-point kernel with the
+ * layer's law in its elements and the bedrock's below (B-bar if either is
+ * plastic; an elastic pair takes the linear law without B-bar, the form of
+ * kernel = points, so that a layer of the slope's own material gives the
+ * homogeneous run's bits). */
+static rf_status solid_layer_kernel(solid_run *R, long first, long count, rf_error *err)
+{
+    unsigned char *use2 = fem_pool_get(R->pool, Q_USE2, (size_t)count + 1, 0);
+    if (!use2)
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
+    for (long e = 0; e < count; e++)
+        use2[e] = R->emat[first + e] == 2;
+    const int plastic = R->plastic[1] || R->plastic[2];
+    /* one shape for both laws: the material library's return maps (an elastic one among them) if either
+       is plastic, else the linear law */
+    const fem_point_law law = plastic ? fem_point_law_material3d(&R->matl[1]) : solid_point_law(R, 1);
+    const fem_point_law law2 = plastic ? fem_point_law_material3d(&R->matl[2]) : solid_point_law(R, 2);
+    return fem_kernel_points_hex(&R->S.kernel[F3_SLOPE], first, count, R->mesh.x, R->mesh.conn, &law, &law2, use2,
+                                 plastic, err);
+}
+
+/* The material of each element (0 boulder, 1 slope, 2 layer: a slope
+ * element above the layer's node plane); fails if no element is in the layer. */
+static rf_status solid_materials(solid_run *R, rf_error *err)
+{
+    long nlayer = 0;
+    for (long e = 0; e < R->ne; e++) {
+        const int *c = R->mesh.conn + 8 * e;
+        double zc = 0;
+        for (int a = 0; a < 8; a++)
+            zc += R->mesh.x[3 * c[a] + 2] / 8;
+        R->emat[e] = e < R->mesh.boulder_elems ? 0 : R->layer && zc > -R->in->layer_thickness ? 2 : 1;
+        nlayer += R->emat[e] == 2;
+    }
+    if (R->layer && nlayer == 0)
+        return rf_fail(err, RF_EINVAL, "fem3d: layer_thickness = %g m has no element (h = %g m)",
+                       R->in->layer_thickness, R->h);
+    return RF_OK;
+}
+
+/* The rigid boulder's state (at rest relative to its initial translation)
+ * and its coupling into the contact: exact model mass and I_yy, no inverse
+ * mass of its own nodes. */
+static rf_status solid_rigid_setup(solid_run *R, rf_error *err)
+{
+    if (!R->rigid)
+        return RF_OK;
+    f3_rigid *B = &R->B;
+    B->on = 1;
+    B->M = R->H.mass / R->sym_factor;
+    B->I = B->M * (R->H.c * R->H.c + R->H.d * R->H.d) / 5;
+    memcpy(B->c0, R->S.c0, sizeof B->c0);
+    B->V[0] = R->Vt, B->V[1] = -R->Vn;
+    for (long dd = 0; dd < 3 * R->nbn; dd++)
+        R->invm[dd] = 0;
+    f3_contact *C = &R->C;
+    C->rigid_invm = 1 / B->M, C->rigid_invi = 1 / B->I;
+    if (!(C->rr = calloc((size_t)C->nslave * 2, sizeof *C->rr)))
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
+    f3_rigid_place(B, &R->mesh, R->nbn, R->u, R->v);
+    return RF_OK;
+}
+
 /* The material kernel of each body, one block per body: an elasto-plastic
  * body's return maps at the integration points with B-bar
  * (fem_kernel_points3d.c); an elastic body matrix-free (docs/fem-speed.md:
@@ -450,7 +594,13 @@ static rf_status solid_kernels(solid_run *R, rf_error *err)
         const double lam = m->E * m->nu / ((1 + m->nu) * (1 - 2 * m->nu)), mu = m->E / (2 * (1 + m->nu));
         const long first = b == F3_BOULDER ? 0 : nbe, count = b == F3_BOULDER ? nbe : R->ne - nbe;
         rf_status st;
-        if (R->plastic[b]) {
+        if (b == F3_BOULDER && R->rigid) {
+            f3_rigid_kernel(&S->kernel[b], first, count, S->fe);
+            continue;
+        }
+        if (b == F3_SLOPE && R->layer)
+            st = solid_layer_kernel(R, first, count, err);
+        else if (R->plastic[b]) {
             const fem_point_law law = fem_point_law_material3d(&R->matl[b]);
             st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 1,
                                        err);
@@ -482,7 +632,7 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
     if (st != RF_OK)
         return st;
     solid_topology(R);
-    if ((st = solid_elements(R, err)) != RF_OK)
+    if ((st = solid_materials(R, err)) != RF_OK || (st = solid_elements(R, err)) != RF_OK)
         return st;
     solid_masses(R);
     if (!R->mass_moments_ok)
@@ -490,6 +640,10 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
     if ((st = solid_kernels(R, err)) != RF_OK)
         return st;
     solid_dashpots(R);
+    if (R->dash_ratio >= 2)
+        return rf_fail(err, RF_EINVAL,
+                       "fem3d: the absorbing boundary is unstable here (dt C / m = %.3g >= 2 on an outer node of a "
+                       "light layer); use boundary: fixed", R->dash_ratio);
     if ((st = solid_contact_setup(R, err)) != RF_OK)
         return st;
     for (long i = 0; i < R->nbn; i++)
@@ -505,7 +659,7 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
             S->c0[q] += R->mass[3 * i] * R->mesh.x[3 * i + q] / Mb;
     if (!R->ms.full)
         S->c0[1] = 0;
-    return RF_OK;
+    return solid_rigid_setup(R, err);
 }
 
 /* Dashpot forces from v_{n-1/2}: normal rho c_p v_n, shear rho c_s v_s,
@@ -516,15 +670,19 @@ static double solid_dashpot_forces(solid_run *R)
     if (R->fixed_outer)
         return 0;
     const double rho = R->mat[1].rho, cp = R->w[1].p, cs = R->w[1].s;
+    const double rl = R->mat[2].rho, cpl = R->w[2].p, csl = R->w[2].s;
     for (long k = 0; k < R->nouter; k++) {
         int i = R->outer[k];
-        const double *x = R->mesh.x + 3 * i, *v = R->v + 3 * i;
+        const double *x = R->mesh.extruded ? R->dnrm + 3 * i : R->mesh.x + 3 * i, *v = R->v + 3 * i;
         double *fx = R->fext + 3 * i;
         double rr = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
         double nv[3] = {x[0] / rr, x[1] / rr, x[2] / rr};
         double vn = v[0] * nv[0] + v[1] * nv[1] + v[2] * nv[2];
         for (int q = 0; q < 3; q++)
             fx[q] = -R->dash[i] * rho * (cp * vn * nv[q] + cs * (v[q] - vn * nv[q]));
+        if (R->layer)
+            for (int q = 0; q < 3; q++)
+                fx[q] -= R->dashl[i] * rl * (cpl * vn * nv[q] + csl * (v[q] - vn * nv[q]));
         for (int q = 0; q < 3; q++)
             if (R->fixed[3 * i + q])
                 fx[q] = 0;
@@ -639,10 +797,19 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
             for (int q = 0; q < 3; q++)
                 W_abs_inc -= 0.5 * dt * R->fext[3 * i + q] * v[3 * i + q];
         }
+    if (R->rigid) { /* the boulder's predicted rigid state (its nodes moved along straight lines above) */
+        f3_rigid_predict(&R->B, dt);
+        f3_rigid_place(&R->B, &R->mesh, R->nbn, u, v);
+        R->C.rigid_c[0] = R->B.c0[0] + R->B.X[0], R->C.rigid_c[1] = R->B.c0[2] + R->B.X[1];
+    }
     f3_contact_predict(&R->C, &R->mesh, u, R->invm, dt, R->threads);
     rf_status st = f3_contact_solve(&R->C, R->invm, dt, u, v, err);
     if (st != RF_OK)
         return st;
+    if (R->rigid) { /* the contact's impulse on the rigid dofs */
+        f3_rigid_correct(&R->B, R->C.rigid_du, dt);
+        f3_rigid_place(&R->B, &R->mesh, R->nbn, u, v);
+    }
     if (R->C.sweeps > R->pgs_sweeps_max)
         R->pgs_sweeps_max = R->C.sweeps;
     if (R->C.residual > R->pgs_res_max)
@@ -678,6 +845,8 @@ static void solid_energy(solid_run *R, double t, double Fc, double rad, double r
         se[1] += f[dd] * u[dd];
     }
     ke[0] *= 0.5, ke[1] *= 0.5, se[0] *= 0.5, se[1] *= 0.5;
+    if (R->rigid)
+        ke[0] = f3_rigid_energy(&R->B);
     if (R->work_account) /* stored elastically: the internal work less the dissipation */
         for (int b = 0; b < 2; b++)
             se[b] = R->W_int[b] - solid_plastic_work(R, b);
@@ -798,7 +967,7 @@ static void solid_history_plastic(const solid_run *R, rf_fem_history *hist)
     fem_kernel_report rep[2];
     for (int b = 0; b < 2; b++) {
         fem_kernel_points_hex_report(&R->S.kernel[b], &rep[b]);
-        const double Ee = R->plastic[b] ? fem_kernel_points_hex_energy(&R->S.kernel[b]) : -1;
+        const double Ee = R->plastic[b] || (b == 1 && R->plastic[2]) ? fem_kernel_points_hex_energy(&R->S.kernel[b]) : -1;
         if (Ee >= 0) {
             hist->elastic_energy_stress += Ee * sf;
             hist->elastic_energy_work += (R->W_int[b] - rep[b].plastic_work) * sf;
@@ -825,6 +994,8 @@ static void solid_history(solid_run *R, const fem_run *run, double K_after, rf_f
     for (long dd = 0; dd < 3 * R->nbn; dd++)
         ekb += 0.5 * m[dd] * v[dd] * v[dd];
     seb = f3_boulder_strain(&R->S, u);
+    if (R->rigid)
+        ekb = K_after;
     for (long dd = 3 * R->nbn; dd < R->ndof; dd++)
         ses += 0.5 * R->f[dd] * u[dd], eks += 0.5 * m[dd] * v[dd] * v[dd];
     if (R->work_account) /* stored elastic energy: internal work less dissipation */
@@ -888,6 +1059,10 @@ static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_out
 {
     double P[3], omega[3], Iyy;
     solid_rigid_state(R, P, omega, &Iyy);
+    if (R->rigid) { /* the rigid dofs themselves */
+        P[0] = R->B.V[0], P[1] = 0, P[2] = R->B.V[1];
+        omega[0] = omega[2] = 0, omega[1] = R->B.w, Iyy = R->B.I;
+    }
     const double vn_after = P[2], vt_after = P[0], w_after = omega[1];
     const double K_after = 0.5 * R->Mb * (vn_after * vn_after + vt_after * vt_after) + 0.5 * Iyy * w_after * w_after;
     fem_run_outputs(run, nsteps, R->o.duration_threshold, R->ke0, R->sym_factor, R->nn, R->ne, out);
