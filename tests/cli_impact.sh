@@ -75,8 +75,10 @@ expect_error 2 "--slope-dilatancy-angle 40" --slope-material drucker_prager --sl
 expect_error 2 "--slope-cap-pressure -1" --slope-material drucker_prager --slope-cohesion 1e4 \
     --slope-friction-angle 30 --slope-cap-pressure -1
 expect_error 2 "--boulder-hardening -1" --boulder-material von_mises --boulder-yield 1e8 --boulder-hardening -1
-expect_error 1 "axisymmetric model only" --boulder-material rigid --slope-angle 30
-expect_error 1 "axisymmetric model only" --layer-thickness 0.1 --slope-angle 30
+# the 3D model takes a rigid boulder and a layer (test_fem3d_layer); a layer thinner than its contact element is refused
+expect_error 1 "layer_thickness = 0.001 m is thinner than the element" --layer-thickness 0.001 --slope-angle 30
+"$bin" impact --boulder-material rigid --slope-angle 30 --friction 0.5 --refinement 2 >/dev/null 2>&1 ||
+    fail "3D refused a rigid boulder"
 "$bin" impact --help | grep -q -- '--slope-cap-pressure PA' || fail "help lacks --slope-cap-pressure"
 # a layer: its inputs named, FE only
 expect_error 2 "--layer-thickness -1" --layer-thickness -1
