@@ -30,7 +30,13 @@
  * force (frictionless 45 deg: R_t 1 +- 1.5e-3 and R_n +- 1.6e-3 at
  * a/h = 3-5; docs/fem-speed.md section 5).  The Catmull-Rom slope is
  * continuous and exact to O(h^2), and the normal row is still the gradient
- * of the gap that is constrained. */
+ * of the gap that is constrained.
+ * A rigid boulder (rigid_invm > 0, fem3d_rigid.c): its nodes have no inverse
+ * mass; each multiplier's force and torque go to the rigid dofs (CM x, z and
+ * the rotation about y), so every pair couples with every other through the
+ * body.  Gauss-Seidel never factors the matrix: the dependent rows that made
+ * the axisymmetric direct solve singular (validation-plastic.md 10c) only make
+ * the multipliers non-unique, not the impulses. */
 #include "fem3d_internal.h"
 
 #include <math.h>

@@ -16,6 +16,10 @@
  * after each internal force) the strain energy is replaced by the internal
  * work dt/2 f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) summed over the steps, as in
  * the axisymmetric solver, and the kernels book the plastic dissipation.
+ * A layer (fem3d_layer.c mesh) is a second law in the slope's point kernel,
+ * its elements found by their centres above the node plane at its bottom; a
+ * rigid boulder (fem3d_rigid.c) has no force, no part in the time step, and
+ * takes the contact's impulses on its three planar dofs.
  * Determinism: every element writes its own 24 forces; every node then sums
  * its elements in element order; sums over nodes run serially.  The result
  * is the same bit for bit for any thread count. */
