@@ -144,6 +144,14 @@ typedef struct {
 void f3_internal_force(f3_system *S, const double *u, double *f);
 /* Strain energy of the boulder, 1/2 f_el(n)' u_el(n+1) in the frame of the last f3_internal_force. */
 double f3_boulder_strain(const f3_system *S, const double *u);
+/* The sums of the energy account, each in a fixed order (the same bits for any thread count):
+ * per body sum m v^2 (boulder dofs first), the boulder's sum m v_z and m u_z, the slope's
+ * sum f . u, and f3_boulder_strain (the only one computed when v or f is NULL). */
+typedef struct {
+    double mv2[2], boulder_pz, boulder_uz, slope_fu, boulder_strain;
+} f3_state_sums;
+void f3_state_sums_compute(const f3_system *S, const double *u, const double *v, const double *f,
+                           f3_state_sums *out);
 
 /* One VTK frame (fem3d_vtk.c): dir/fem_NNNN.vtu of the mesh with u, v, the
  * cell stresses and plastic strains of the kernels (elastic kernels: from u,

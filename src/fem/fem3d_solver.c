@@ -23,6 +23,7 @@
 #include "core/util.h"
 #include "hex8_step.h"
 #include "fem3d_internal.h"
+#include "fem3d_prof.h"
 #include "fem_core.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
@@ -612,35 +613,57 @@ static double solid_plastic_work(const solid_run *R, int b)
     return r.plastic_work;
 }
 
+/* Pairing at step n (u_n, G v_{n-1/2}), then the contact-free predictor; one parallel region
+   (f3_contact_locate's loop is shared among its threads and ends with a barrier). */
+static void solid_locate_update(solid_run *R)
+{
+    const double dt = R->dt, *invm = R->invm, *fext = R->fext, *f = R->f;
+    double *u = R->u, *v = R->v;
+    const long nd = R->ndof;
+#ifdef _OPENMP
+#pragma omp parallel num_threads(R->threads) if (R->threads > 1)
+#endif
+    {
+        f3_contact_locate(&R->C, &R->mesh, u, v, R->threads, 1);
+#ifdef _OPENMP
+#pragma omp for schedule(static) nowait
+#endif
+        for (long dd = 0; dd < nd; dd++) {
+            v[dd] += dt * invm[dd] * (fext[dd] - f[dd]);
+            u[dd] += dt * v[dd];
+        }
+    }
+}
+
 /* One step: internal force -> dashpots -> pairing -> predictor -> contact. */
 static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err)
 {
     const double dt = R->dt;
     double *u = R->u, *v = R->v;
     f3_internal_force(&R->S, u, R->f);
+    F3P_MARK(m);
     for (int b = 0; b < 2; b++) /* the state at u_n is accepted */
         if (R->S.kernel[b].ops->commit)
             R->S.kernel[b].ops->commit(&R->S.kernel[b]);
+    F3P_LAP(F3P_COMMIT, m);
     double W_abs_inc = solid_dashpot_forces(R);
     double fv[2] = {0, 0};
     if (R->work_account)
         solid_power(R, fv);
-    f3_contact_locate(&R->C, &R->mesh, u, v, R->threads, 1); /* pairing at step n, G v_{n-1/2} */
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(R->threads) if (R->threads > 1)
-#endif
-    for (long dd = 0; dd < R->ndof; dd++) {
-        v[dd] += dt * R->invm[dd] * (R->fext[dd] - R->f[dd]);
-        u[dd] += dt * v[dd];
-    }
+    F3P_LAP(F3P_DASH, m);
+    solid_locate_update(R);
+    F3P_LAP(F3P_LOCATE, m);
     if (!R->fixed_outer)
         for (long k = 0; k < R->nouter; k++) {
             int i = R->outer[k];
             for (int q = 0; q < 3; q++)
                 W_abs_inc -= 0.5 * dt * R->fext[3 * i + q] * v[3 * i + q];
         }
+    F3P_LAP(F3P_UPDATE, m);
     f3_contact_predict(&R->C, &R->mesh, u, R->invm, dt, R->threads);
+    F3P_LAP(F3P_PREDICT, m);
     rf_status st = f3_contact_solve(&R->C, R->invm, dt, u, v, err);
+    F3P_LAP(F3P_SOLVE, m);
     if (st != RF_OK)
         return st;
     if (R->C.sweeps > R->pgs_sweeps_max)
@@ -655,6 +678,7 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
         R->W_int[0] += 0.5 * dt * (fv[0] + fv1[0]), R->W_int[1] += 0.5 * dt * (fv[1] + fv1[1]);
     }
     solid_depth(R);
+    F3P_LAP(F3P_ACCOUNT, m);
     return RF_OK;
 }
 
@@ -663,20 +687,11 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
 static void solid_energy(solid_run *R, double t, double Fc, double rad, double row[13], double *comp,
                          double *closure)
 {
-    const double *u = R->u, *v = R->v, *m = R->mass, *f = R->f;
-    const long nb3 = 3 * R->nbn;
-    double ke[2] = {0, 0}, se[2] = {0, 0}, pz = 0, uz = 0;
-    for (long dd = 0; dd < nb3; dd++)
-        ke[0] += m[dd] * v[dd] * v[dd];
-    se[0] = 2 * f3_boulder_strain(&R->S, u);
-    for (long dd = 2; dd < nb3; dd += 3) {
-        pz += m[dd] * v[dd];
-        uz += m[dd] * u[dd];
-    }
-    for (long dd = nb3; dd < R->ndof; dd++) {
-        ke[1] += m[dd] * v[dd] * v[dd];
-        se[1] += f[dd] * u[dd];
-    }
+    const double *u = R->u, *v = R->v, *f = R->f;
+    f3_state_sums sum; /* in parallel, fixed order */
+    f3_state_sums_compute(&R->S, u, v, f, &sum);
+    double ke[2] = {sum.mv2[0], sum.mv2[1]}, se[2] = {2 * sum.boulder_strain, sum.slope_fu};
+    const double pz = sum.boulder_pz, uz = sum.boulder_uz;
     ke[0] *= 0.5, ke[1] *= 0.5, se[0] *= 0.5, se[1] *= 0.5;
     if (R->work_account) /* stored elastically: the internal work less the dissipation */
         for (int b = 0; b < 2; b++)
@@ -723,13 +738,18 @@ static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *
         double Fc, rad, row[13], comp, closure;
         if ((st = solid_step(R, &Fc, &rad, err)) != RF_OK)
             return st;
+        F3P_MARK(m);
         solid_energy(R, t, Fc, rad, row, &comp, &closure);
+        F3P_LAP(F3P_ENERGY, m);
         if ((st = fem_run_account(run, n, Fc, rad, comp, closure, R->ke0, row, err)) != RF_OK)
             return st;
-        if (fem_run_stop(run, n))
+        const int stop = fem_run_stop(run, n);
+        F3P_LAP(F3P_RUN, m);
+        if (stop)
             break;
     }
     *nsteps = n + 1;
+    F3P_REPORT(*nsteps, R->ne);
     if (!o->vtk_dir)
         return RF_OK;
     const double t_end = (double)(n + 1) * R->dt;
