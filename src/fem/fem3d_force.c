@@ -211,8 +211,13 @@ static void torque_term(const f3_system *S, double *f, const boulder_frame *F, d
    energy, whereas with linear small strain a spinning sphere inflates by r theta^2 / 2 and
    pushes on the slope).  One parallel region: frame sums, element forces, node-ordered gather
    with the torque sums, torque term; every sum in a fixed order (no races, the same bits for
-   any thread count). */
+   any thread count).  The hooks share the region (fewer thread meetings per step). */
 void f3_internal_force(f3_system *S, const double *u, double *f)
+{
+    f3_internal_force_hooked(S, u, f, NULL);
+}
+
+void f3_internal_force_hooked(f3_system *S, const double *u, double *f, const f3_force_hooks *hooks)
 {
     const int field = S->kernel[F3_BOULDER].ops->forces_field && S->kernel[F3_SLOPE].ops->forces_field;
     _Alignas(64) double part[CHUNKS][PART];
@@ -226,6 +231,8 @@ void f3_internal_force(f3_system *S, const double *u, double *f)
         if (omp_get_thread_num() == 0)
 #endif
             F3P_LAP(F3P_FORK, m0);
+        if (hooks && hooks->first)
+            hooks->first(hooks->ctx);
         F3P_MARK(m);
         boulder_frame F;
         frame_partials(S, u, part);
@@ -240,12 +247,18 @@ void f3_internal_force(f3_system *S, const double *u, double *f)
         F3P_LAP(F3P_GATHER, mg);
         torque_term(S, f, &F, part);
         F3P_LAP(F3P_TORQUE, mg);
+        if (hooks && hooks->last) {
+#ifdef _OPENMP
+#pragma omp barrier
+#endif
+            hooks->last(hooks->ctx);
+        }
 #ifdef _OPENMP
         if (omp_get_thread_num() == 0)
 #endif
         {
             F0 = F;
-            F3P_SET(m0, mg);
+            F3P_SET(m0, f3p_now());
         }
     }
     F3P_LAP(F3P_JOIN, m0);
@@ -254,52 +267,51 @@ void f3_internal_force(f3_system *S, const double *u, double *f)
     S->p = F0.p, S->q = F0.q;
 }
 
-/* Chunk k of the boulder's sum m x into part[k][0..2], x = X + u (as frame_partials). */
-static void cm_partials(const f3_system *S, const double *u, double (*part)[PART])
-{
-    const double *X = S->mesh->x;
-#ifdef _OPENMP
-#pragma omp for schedule(static)
-#endif
-    for (int k = 0; k < CHUNKS; k++) {
-        double s[3] = {0, 0, 0};
-        for (long i = chunk_begin(S->nbn, k); i < chunk_begin(S->nbn, k + 1); i++)
-            for (int q = 0; q < 3; q++)
-                s[q] += S->mass[3 * i] * (X[3 * i + q] + u[3 * i + q]);
-        memcpy(part[k], s, sizeof s);
-    }
-}
-
-/* Chunk k of the boulder's strain energy sum f_el . (R^T (x - c) - (X - c0)) into part[k][10]. */
-static void strain_partials(const f3_system *S, const double *u, const double c[3], double (*part)[PART])
+/* Chunk k of the boulder's strain sums, x = X + u, r = R^T (x - c0) - (X - c0) in the frame R
+   of the last f3_internal_force: sum m x into part[k][0..2], sum f_el into [3..5] and
+   sum f_el . r into [10].  With c the CM, f_el . (R^T (x - c) - (X - c0)) summed over the nodes
+   is sum f_el . r - (sum f_el) . R^T (c - c0): one pass, no wait for c. */
+static void strain_partials(const f3_system *S, const double *u, double (*part)[PART])
 {
     const double *X = S->mesh->x, *R = S->R, *c0 = S->c0;
 #ifdef _OPENMP
 #pragma omp for schedule(static) nowait
 #endif
     for (int k = 0; k < CHUNKS; k++) {
-        double e = 0;
+        double s[6] = {0, 0, 0, 0, 0, 0}, e = 0;
         for (long i = chunk_begin(S->nbn, k); i < chunk_begin(S->nbn, k + 1); i++) {
-            double r[3] = {X[3 * i] + u[3 * i] - c[0], X[3 * i + 1] + u[3 * i + 1] - c[1],
-                           X[3 * i + 2] + u[3 * i + 2] - c[2]};
+            double d[3];
+            for (int q = 0; q < 3; q++) {
+                const double x = X[3 * i + q] + u[3 * i + q];
+                s[q] += S->mass[3 * i] * x;
+                s[3 + q] += S->fel[3 * i + q];
+                d[q] = x - c0[q];
+            }
             for (int a = 0; a < 3; a++)
-                e += S->fel[3 * i + a] * (R[a] * r[0] + R[3 + a] * r[1] + R[6 + a] * r[2] - (X[3 * i + a] - c0[a]));
+                e += S->fel[3 * i + a] * (R[a] * d[0] + R[3 + a] * d[1] + R[6 + a] * d[2] - (X[3 * i + a] - c0[a]));
         }
+        memcpy(part[k], s, sizeof s);
         part[k][10] = e;
     }
 }
 
-/* The boulder's CM from the partials of cm_partials (sum m x / Mb, y = 0 in the half model). */
-static void boulder_cm(const f3_system *S, double (*part)[PART], double c[3])
+/* The boulder's strain energy 1/2 f_el . (R^T (x - c) - (X - c0)) from the chunks of strain_partials. */
+static double strain_combine(const f3_system *S, double (*part)[PART])
 {
-    double s[3] = {0, 0, 0};
-    for (int k = 0; k < CHUNKS; k++)
-        for (int q = 0; q < 3; q++)
-            s[q] += part[k][q];
+    double s[6] = {0, 0, 0, 0, 0, 0}, e = 0, c[3];
+    for (int k = 0; k < CHUNKS; k++) {
+        for (int j = 0; j < 6; j++)
+            s[j] += part[k][j];
+        e += part[k][10];
+    }
     for (int q = 0; q < 3; q++)
-        c[q] = s[q] / S->Mb;
+        c[q] = s[q] / S->Mb - S->c0[q];
     if (!S->full)
         c[1] = 0;
+    const double *R = S->R;
+    for (int a = 0; a < 3; a++)
+        e -= s[3 + a] * (R[a] * c[0] + R[3 + a] * c[1] + R[6 + a] * c[2]);
+    return 0.5 * e;
 }
 
 /* Chunk k of the energy sums: boulder chunks (k < CHUNKS) sum m v^2, m v_z and m u_z into
@@ -344,20 +356,14 @@ void f3_state_sums_compute(const f3_system *S, const double *u, const double *v,
 #pragma omp parallel num_threads(S->threads) if (S->threads > 1)
 #endif
     {
-        cm_partials(S, u, part); /* (ends with a barrier) */
-        double c[3];
-        boulder_cm(S, part, c);
+        strain_partials(S, u, part);
         if (v && f)
             state_partials(S, u, v, f, part);
-        strain_partials(S, u, c, part);
     }
     memset(out, 0, sizeof *out);
-    for (int k = 0; k < CHUNKS; k++) {
-        out->boulder_strain += part[k][10];
-        if (!v || !f)
-            continue;
+    out->boulder_strain = strain_combine(S, part);
+    for (int k = 0; k < CHUNKS && v && f; k++) {
         out->mv2[0] += part[k][11], out->boulder_pz += part[k][12], out->boulder_uz += part[k][13];
         out->mv2[1] += part[k][14], out->slope_fu += part[k][15];
     }
-    out->boulder_strain *= 0.5;
 }

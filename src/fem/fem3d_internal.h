@@ -110,7 +110,8 @@ typedef struct {
 
 /* Pair every slave with the master quad under its position x + u (u at step
  * n) if repair (else keep the pairing); store G u_n (tangential) and
- * G v_{n-1/2}. */
+ * G v_{n-1/2}.  Inside a parallel region its threads share the slaves, with
+ * no barrier at the end (synchronise before u or v change). */
 void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, const double *v, int threads,
                        int repair);
 /* G v of pair k: (normal, x, y) relative velocity (or any per-dof field). */
@@ -142,6 +143,14 @@ typedef struct {
 /* f = f_int(u) (element forces by the kernels, node-ordered gather; the
  * boulder co-rotational); keeps the boulder frame of u for f3_boulder_strain. */
 void f3_internal_force(f3_system *S, const double *u, double *f);
+/* The same with work run by every thread of its parallel region (ctx shared): first at the
+ * start (it must not change u; orphaned `omp for nowait` loops are the way to share it), last
+ * after f is complete (with a barrier before it). */
+typedef struct {
+    void (*first)(void *ctx), (*last)(void *ctx);
+    void *ctx;
+} f3_force_hooks;
+void f3_internal_force_hooked(f3_system *S, const double *u, double *f, const f3_force_hooks *hooks);
 /* Strain energy of the boulder, 1/2 f_el(n)' u_el(n+1) in the frame of the last f3_internal_force. */
 double f3_boulder_strain(const f3_system *S, const double *u);
 /* The sums of the energy account, each in a fixed order (the same bits for any thread count):

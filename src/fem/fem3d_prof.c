@@ -13,7 +13,7 @@ enum { F3P_THREADS = 4 };
 static double acc_wall[F3P_N][F3P_THREADS], acc_cpu[F3P_N][F3P_THREADS];
 static const char *const names[F3P_N] = {"boulder frame", "fork",     "ub transform", "element kernel",
                                          "kernel barrier", "gather",  "join",         "torque",
-                                         "commit",         "dashpots", "locate+update", "dashpot work",
+                                         "commit",         "dashpots", "contact locate", "predictor",
                                          "contact predict", "contact solve", "contact account", "energy",
                                          "step account"};
 

@@ -613,53 +613,69 @@ static double solid_plastic_work(const solid_run *R, int b)
     return r.plastic_work;
 }
 
-/* Pairing at step n (u_n, G v_{n-1/2}), then the contact-free predictor; one parallel region
-   (f3_contact_locate's loop is shared among its threads and ends with a barrier). */
-static void solid_locate_update(solid_run *R)
+/* Pairing at step n (u_n, G v_{n-1/2}): the slaves shared among the force's threads. */
+static void pairing_share(void *ctx)
 {
+    solid_run *R = ctx;
+    F3P_MARK(m);
+    f3_contact_locate(&R->C, &R->mesh, R->u, R->v, R->threads, 1);
+    F3P_LAP(F3P_LOCATE, m);
+}
+
+/* The contact-free predictor v += dt M^-1 (f_ext - f_int), u += dt v: the dofs shared among the threads. */
+static void predictor_share(void *ctx)
+{
+    solid_run *R = ctx;
     const double dt = R->dt, *invm = R->invm, *fext = R->fext, *f = R->f;
     double *u = R->u, *v = R->v;
     const long nd = R->ndof;
-#ifdef _OPENMP
-#pragma omp parallel num_threads(R->threads) if (R->threads > 1)
-#endif
-    {
-        f3_contact_locate(&R->C, &R->mesh, u, v, R->threads, 1);
+    F3P_MARK(m);
 #ifdef _OPENMP
 #pragma omp for schedule(static) nowait
 #endif
-        for (long dd = 0; dd < nd; dd++) {
-            v[dd] += dt * invm[dd] * (fext[dd] - f[dd]);
-            u[dd] += dt * v[dd];
-        }
+    for (long dd = 0; dd < nd; dd++) {
+        v[dd] += dt * invm[dd] * (fext[dd] - f[dd]);
+        u[dd] += dt * v[dd];
     }
+    F3P_LAP(F3P_UPDATE, m);
 }
 
-/* One step: internal force -> dashpots -> pairing -> predictor -> contact. */
+/* Internal force at u_n, pairing and predictor in the force's parallel region; with a plastic
+   body the power f_int(u_n)' v_{n-1/2} is summed (serially) before the predictor. */
+static void solid_force_predict(solid_run *R, double fv[2])
+{
+    const f3_force_hooks hooks = {pairing_share, R->work_account ? NULL : predictor_share, R};
+    f3_internal_force_hooked(&R->S, R->u, R->f, &hooks);
+    if (!R->work_account)
+        return;
+    solid_power(R, fv);
+#ifdef _OPENMP
+#pragma omp parallel num_threads(R->threads) if (R->threads > 1)
+#endif
+    predictor_share(R);
+}
+
+/* One step: dashpots (v_{n-1/2}) -> internal force, pairing, predictor -> contact. */
 static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err)
 {
     const double dt = R->dt;
     double *u = R->u, *v = R->v;
-    f3_internal_force(&R->S, u, R->f);
     F3P_MARK(m);
+    double W_abs_inc = solid_dashpot_forces(R);
+    F3P_LAP(F3P_DASH, m);
+    double fv[2] = {0, 0};
+    solid_force_predict(R, fv);
+    F3P_SET(m, f3p_now()); /* (its phases are timed inside) */
     for (int b = 0; b < 2; b++) /* the state at u_n is accepted */
         if (R->S.kernel[b].ops->commit)
             R->S.kernel[b].ops->commit(&R->S.kernel[b]);
     F3P_LAP(F3P_COMMIT, m);
-    double W_abs_inc = solid_dashpot_forces(R);
-    double fv[2] = {0, 0};
-    if (R->work_account)
-        solid_power(R, fv);
-    F3P_LAP(F3P_DASH, m);
-    solid_locate_update(R);
-    F3P_LAP(F3P_LOCATE, m);
     if (!R->fixed_outer)
         for (long k = 0; k < R->nouter; k++) {
             int i = R->outer[k];
             for (int q = 0; q < 3; q++)
                 W_abs_inc -= 0.5 * dt * R->fext[3 * i + q] * v[3 * i + q];
         }
-    F3P_LAP(F3P_UPDATE, m);
     f3_contact_predict(&R->C, &R->mesh, u, R->invm, dt, R->threads);
     F3P_LAP(F3P_PREDICT, m);
     rf_status st = f3_contact_solve(&R->C, R->invm, dt, u, v, err);
