@@ -765,7 +765,7 @@ static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *
             break;
     }
     *nsteps = n + 1;
-    F3P_REPORT(*nsteps, R->ne);
+    F3P_REPORT(*nsteps, R->ne, R->nn, R->nbn);
     if (!o->vtk_dir)
         return RF_OK;
     const double t_end = (double)(n + 1) * R->dt;
@@ -963,9 +963,11 @@ rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, co
         memset(rep, 0, sizeof *rep);
     fem_run run;
     memset(&run, 0, sizeof run);
+    F3P_MARK(m);
     st = solid_mesh(&R, err);
     if (st == RF_OK)
         st = solid_assemble(&R, err);
+    F3P_LAP(F3P_SETUP, m);
     if (st == RF_OK)
         st = fem_run_begin(&run, "fem3d", &R.o, R.dt, R.H.duration, hist || rep, 13, err);
     long nsteps = 0;
