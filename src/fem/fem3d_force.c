@@ -186,7 +186,8 @@ static void gather(f3_system *S, const double *u, double *f, const boulder_frame
 }
 
 /* The term through theta(x): dE/dtheta = -(sum r x f_el)_y, dtheta/dx_i from atan2(p, q).  After
-   the gather's barrier; every thread sums the torque chunks in the same order. */
+   the gather's barrier; every thread sums the torque chunks in the same order.  The loop's form
+   (static over [0, nbn), nowait) is part of f3_force_hooks's contract. */
 static void torque_term(const f3_system *S, double *f, const boulder_frame *F, double (*part)[PART])
 {
     const double *X = S->mesh->x, *c0 = S->c0;
@@ -247,12 +248,8 @@ void f3_internal_force_hooked(f3_system *S, const double *u, double *f, const f3
         F3P_LAP(F3P_GATHER, mg);
         torque_term(S, f, &F, part);
         F3P_LAP(F3P_TORQUE, mg);
-        if (hooks && hooks->last) {
-#ifdef _OPENMP
-#pragma omp barrier
-#endif
+        if (hooks && hooks->last) /* (no barrier: see f3_force_hooks) */
             hooks->last(hooks->ctx);
-        }
 #ifdef _OPENMP
         if (omp_get_thread_num() == 0)
 #endif

@@ -145,7 +145,9 @@ typedef struct {
 void f3_internal_force(f3_system *S, const double *u, double *f);
 /* The same with work run by every thread of its parallel region (ctx shared): first at the
  * start (it must not change u; orphaned `omp for nowait` loops are the way to share it), last
- * after f is complete (with a barrier before it). */
+ * at the end, with no barrier before it: f is complete at the slope's nodes, and at boulder
+ * node i once `#pragma omp for schedule(static)` over i in [0, nbn) reaches it (that loop
+ * form gives each thread the nodes whose last term it added itself). */
 typedef struct {
     void (*first)(void *ctx), (*last)(void *ctx);
     void *ctx;

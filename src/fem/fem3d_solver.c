@@ -622,21 +622,34 @@ static void pairing_share(void *ctx)
     F3P_LAP(F3P_LOCATE, m);
 }
 
-/* The contact-free predictor v += dt M^-1 (f_ext - f_int), u += dt v: the dofs shared among the threads. */
+/* The contact-free predictor v += dt M^-1 (f_ext - f_int), u += dt v of dofs [d0, d1). */
+static inline void predict_dofs(solid_run *R, long d0, long d1)
+{
+    const double dt = R->dt, *invm = R->invm, *fext = R->fext, *f = R->f;
+    double *u = R->u, *v = R->v;
+    for (long dd = d0; dd < d1; dd++) {
+        v[dd] += dt * invm[dd] * (fext[dd] - f[dd]);
+        u[dd] += dt * v[dd];
+    }
+}
+
+/* The predictor shared among the threads: the boulder by nodes in the loop form that
+   f3_force_hooks asks for (no barrier after the force), then the slope's dofs. */
 static void predictor_share(void *ctx)
 {
     solid_run *R = ctx;
-    const double dt = R->dt, *invm = R->invm, *fext = R->fext, *f = R->f;
-    double *u = R->u, *v = R->v;
-    const long nd = R->ndof;
+    const long nbn = R->nbn, nd = R->ndof;
     F3P_MARK(m);
 #ifdef _OPENMP
 #pragma omp for schedule(static) nowait
 #endif
-    for (long dd = 0; dd < nd; dd++) {
-        v[dd] += dt * invm[dd] * (fext[dd] - f[dd]);
-        u[dd] += dt * v[dd];
-    }
+    for (long i = 0; i < nbn; i++)
+        predict_dofs(R, 3 * i, 3 * i + 3);
+#ifdef _OPENMP
+#pragma omp for schedule(static) nowait
+#endif
+    for (long dd = 3 * nbn; dd < nd; dd++)
+        predict_dofs(R, dd, dd + 1);
     F3P_LAP(F3P_UPDATE, m);
 }
 
