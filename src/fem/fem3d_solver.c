@@ -1,10 +1,10 @@
 /* fem3d_solver.c - rf_fem3d_impact: the 3D impact run, as the stages of
  * fem_core.h applied to this geometry: check, sizing and meshing
  * (fem3d_mesh.c), assembly of masses, constraints, dashpots and the material
- * kernels (fem_kernel.h), the time step, the time loop (internal force ->
- * dashpots -> predictor -> contact with friction (fem3d_contact.c) ->
- * energy account -> stop test), and the rigid-body outputs of an oblique
- * impact.
+ * kernels (fem_kernel.h), the time step, the time loop (dashpots ->
+ * internal force, pairing and predictor in one parallel region -> contact
+ * with friction (fem3d_contact.c) -> energy account -> stop test), and the
+ * rigid-body outputs of an oblique impact.
  *
  * Time integration (lumped mass M, internal force f_int, forces f):
  *   v_{n+1/2} = v_{n-1/2} + dt M^-1 (f_n - f_int(u_n) + G^T lambda_n),  u_{n+1} = u_n + dt v_{n+1/2}.
@@ -17,8 +17,9 @@
  * work dt/2 f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) summed over the steps, as in
  * the axisymmetric solver, and the kernels book the plastic dissipation.
  * Determinism: every element writes its own 24 forces; every node then sums
- * its elements in element order; sums over nodes run serially.  The result
- * is the same bit for bit for any thread count. */
+ * its elements in element order; sums over nodes run in fixed chunks added in
+ * a fixed order (fem3d_force.c).  The result is the same bit for bit for any
+ * thread count (test_fem3d_threads). */
 #include "rockfuzz/fem3d.h"
 #include "core/util.h"
 #include "hex8_step.h"
