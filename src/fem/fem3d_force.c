@@ -1,7 +1,10 @@
 /* fem3d_force.c - the internal force of the 3D model through the material
  * kernels (fem_kernel.h: element-vector or nodal-field kernels), with the
  * boulder's elastic part taken in its co-rotational frame (a rigid rotation
- * costs no strain energy), the deterministic node-ordered assembly, and the boulder's strain energy. */
+ * costs no strain energy), the deterministic node-ordered assembly, and the
+ * sums of the energy account (the boulder's strain energy among them).  One
+ * parallel region per call; every sum over nodes in fixed chunks, so the bits
+ * do not depend on the thread count (docs/fem-speed.md, "Threads"). */
 #include "fem3d_internal.h"
 #include "fem3d_prof.h"
 
