@@ -14,14 +14,14 @@
 #include <omp.h>
 #endif
 
-/* Sums over nodes run in CHUNKS fixed chunks of a node range, each summed in node order, then
-   the chunk sums in chunk order: the same bits for any thread count, and the threads share the
-   chunks.  A chunk's partial sums take PART doubles (two cache lines: no false sharing). */
-enum { CHUNKS = 64, PART = 16 };
+/* Sums over nodes run in F3_CHUNKS fixed chunks of a node range, each summed in node order,
+   then the chunk sums in chunk order: the same bits for any thread count, and the threads share
+   the chunks.  A chunk's partial sums take PART doubles (two cache lines: no false sharing). */
+enum { CHUNKS = F3_CHUNKS, PART = 16 };
 
 static long chunk_begin(long n, int k)
 {
-    return n * k / CHUNKS;
+    return f3_chunk_begin(n, k);
 }
 
 /* The boulder's frame: CM c, rotation R about y and the atan2 arguments p, q. */
@@ -190,7 +190,7 @@ static void gather(f3_system *S, const double *u, double *f, const boulder_frame
 
 /* The term through theta(x): dE/dtheta = -(sum r x f_el)_y, dtheta/dx_i from atan2(p, q).  After
    the gather's barrier; every thread sums the torque chunks in the same order.  The loop's form
-   (static over [0, nbn), nowait) is part of f3_force_hooks's contract. */
+   (static over the F3_CHUNKS chunks of [0, nbn), nowait) is part of f3_force_hooks's contract. */
 static void torque_term(const f3_system *S, double *f, const boulder_frame *F, double (*part)[PART])
 {
     const double *X = S->mesh->x, *c0 = S->c0;
@@ -201,11 +201,12 @@ static void torque_term(const f3_system *S, double *f, const boulder_frame *F, d
 #ifdef _OPENMP
 #pragma omp for schedule(static) nowait
 #endif
-    for (long i = 0; i < S->nbn; i++) {
-        double m = S->mass[3 * i], dx = X[3 * i] - c0[0], dz = X[3 * i + 2] - c0[2];
-        f[3 * i] += dEdth * m * (F->q * dz - F->p * dx) / pq;
-        f[3 * i + 2] += dEdth * m * (-F->q * dx - F->p * dz) / pq;
-    }
+    for (int k = 0; k < CHUNKS; k++)
+        for (long i = chunk_begin(S->nbn, k); i < chunk_begin(S->nbn, k + 1); i++) {
+            double m = S->mass[3 * i], dx = X[3 * i] - c0[0], dz = X[3 * i + 2] - c0[2];
+            f[3 * i] += dEdth * m * (F->q * dz - F->p * dx) / pq;
+            f[3 * i + 2] += dEdth * m * (-F->q * dx - F->p * dz) / pq;
+        }
 }
 
 /* f = f_int(u) through the material kernels (fem_kernel.h): for the slope

@@ -143,11 +143,19 @@ typedef struct {
 /* f = f_int(u) (element forces by the kernels, node-ordered gather; the
  * boulder co-rotational); keeps the boulder frame of u for f3_boulder_strain. */
 void f3_internal_force(f3_system *S, const double *u, double *f);
+/* Loops and sums over n nodes run in F3_CHUNKS fixed chunks, chunk k being nodes
+ * [f3_chunk_begin(n, k), f3_chunk_begin(n, k + 1)). */
+enum { F3_CHUNKS = 64 };
+static inline long f3_chunk_begin(long n, int k)
+{
+    return n * k / F3_CHUNKS;
+}
 /* The same with work run by every thread of its parallel region (ctx shared): first at the
  * start (it must not change u; orphaned `omp for nowait` loops are the way to share it), last
- * at the end, with no barrier before it: f is complete at the slope's nodes, and at boulder
- * node i once `#pragma omp for schedule(static)` over i in [0, nbn) reaches it (that loop
- * form gives each thread the nodes whose last term it added itself). */
+ * at the end, with no barrier before it: f is complete at the slope's nodes, and at the
+ * boulder's nodes of chunk k (of nbn) once `#pragma omp for schedule(static)` over k in
+ * [0, F3_CHUNKS) reaches it (that loop form gives each thread the chunks whose last term it
+ * added itself). */
 typedef struct {
     void (*first)(void *ctx), (*last)(void *ctx);
     void *ctx;

@@ -634,8 +634,8 @@ static inline void predict_dofs(solid_run *R, long d0, long d1)
     }
 }
 
-/* The predictor shared among the threads: the boulder by nodes in the loop form that
-   f3_force_hooks asks for (no barrier after the force), then the slope's dofs. */
+/* The predictor shared among the threads: the boulder's node chunks in the loop form that
+   f3_force_hooks asks for (no barrier after the force), then the slope's. */
 static void predictor_share(void *ctx)
 {
     solid_run *R = ctx;
@@ -644,13 +644,14 @@ static void predictor_share(void *ctx)
 #ifdef _OPENMP
 #pragma omp for schedule(static) nowait
 #endif
-    for (long i = 0; i < nbn; i++)
-        predict_dofs(R, 3 * i, 3 * i + 3);
+    for (int k = 0; k < F3_CHUNKS; k++)
+        predict_dofs(R, 3 * f3_chunk_begin(nbn, k), 3 * f3_chunk_begin(nbn, k + 1));
+    const long ns = nd / 3 - nbn;
 #ifdef _OPENMP
 #pragma omp for schedule(static) nowait
 #endif
-    for (long dd = 3 * nbn; dd < nd; dd++)
-        predict_dofs(R, dd, dd + 1);
+    for (int k = 0; k < F3_CHUNKS; k++)
+        predict_dofs(R, 3 * (nbn + f3_chunk_begin(ns, k)), 3 * (nbn + f3_chunk_begin(ns, k + 1)));
     F3P_LAP(F3P_UPDATE, m);
 }
 
