@@ -85,7 +85,7 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
     const double h = mesh->h_s;
     const int nx = mesh->nxt_s, ny = mesh->nyt_s;
 #ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(threads) if (C->nslave > 4096)
+#pragma omp for schedule(static) nowait /* orphaned: shared by the caller's parallel region, if any */
 #endif
     for (long k = 0; k < C->nslave; k++) {
         int s = C->slave[k];

@@ -125,7 +125,8 @@ typedef struct {
 
 /* Pair every slave with the master quad under its position x + u (u at step
  * n) if repair (else keep the pairing); store G u_n (tangential) and
- * G v_{n-1/2}. */
+ * G v_{n-1/2}.  Inside a parallel region its threads share the slaves, with
+ * no barrier at the end (synchronise before u or v change). */
 void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, const double *v, int threads,
                        int repair);
 /* G v of pair k: (normal, x, y) relative velocity (or any per-dof field). */
@@ -178,8 +179,34 @@ typedef struct {
 /* f = f_int(u) (element forces by the kernels, node-ordered gather; the
  * boulder co-rotational); keeps the boulder frame of u for f3_boulder_strain. */
 void f3_internal_force(f3_system *S, const double *u, double *f);
+/* Loops and sums over n nodes run in F3_CHUNKS fixed chunks, chunk k being nodes
+ * [f3_chunk_begin(n, k), f3_chunk_begin(n, k + 1)). */
+enum { F3_CHUNKS = 64 };
+static inline long f3_chunk_begin(long n, int k)
+{
+    return n * k / F3_CHUNKS;
+}
+/* The same with work run by every thread of its parallel region (ctx shared): first at the
+ * start (it must not change u; orphaned `omp for nowait` loops are the way to share it), last
+ * at the end, with no barrier before it: f is complete at the slope's nodes, and at the
+ * boulder's nodes of chunk k (of nbn) once `#pragma omp for schedule(static)` over k in
+ * [0, F3_CHUNKS) reaches it (that loop form gives each thread the chunks whose last term it
+ * added itself). */
+typedef struct {
+    void (*first)(void *ctx), (*last)(void *ctx);
+    void *ctx;
+} f3_force_hooks;
+void f3_internal_force_hooked(f3_system *S, const double *u, double *f, const f3_force_hooks *hooks);
 /* Strain energy of the boulder, 1/2 f_el(n)' u_el(n+1) in the frame of the last f3_internal_force. */
 double f3_boulder_strain(const f3_system *S, const double *u);
+/* The sums of the energy account, each in a fixed order (the same bits for any thread count):
+ * per body sum m v^2 (boulder dofs first), the boulder's sum m v_z and m u_z, the slope's
+ * sum f . u, and f3_boulder_strain (the only one computed when v or f is NULL). */
+typedef struct {
+    double mv2[2], boulder_pz, boulder_uz, slope_fu, boulder_strain;
+} f3_state_sums;
+void f3_state_sums_compute(const f3_system *S, const double *u, const double *v, const double *f,
+                           f3_state_sums *out);
 
 /* One VTK frame (fem3d_vtk.c): dir/fem_NNNN.vtu of the mesh with u, v, the
  * cell stresses and plastic strains of the kernels (elastic kernels: from u,

@@ -1,10 +1,10 @@
 /* fem3d_solver.c - rf_fem3d_impact: the 3D impact run, as the stages of
  * fem_core.h applied to this geometry: check, sizing and meshing
  * (fem3d_mesh.c), assembly of masses, constraints, dashpots and the material
- * kernels (fem_kernel.h), the time step, the time loop (internal force ->
- * dashpots -> predictor -> contact with friction (fem3d_contact.c) ->
- * energy account -> stop test), and the rigid-body outputs of an oblique
- * impact.
+ * kernels (fem_kernel.h), the time step, the time loop (dashpots ->
+ * internal force, pairing and predictor in one parallel region -> contact
+ * with friction (fem3d_contact.c) -> energy account -> stop test), and the
+ * rigid-body outputs of an oblique impact.
  *
  * Time integration (lumped mass M, internal force f_int, forces f):
  *   v_{n+1/2} = v_{n-1/2} + dt M^-1 (f_n - f_int(u_n) + G^T lambda_n),  u_{n+1} = u_n + dt v_{n+1/2}.
@@ -21,12 +21,14 @@
  * rigid boulder (fem3d_rigid.c) has no force, no part in the time step, and
  * takes the contact's impulses on its three planar dofs.
  * Determinism: every element writes its own 24 forces; every node then sums
- * its elements in element order; sums over nodes run serially.  The result
- * is the same bit for bit for any thread count. */
+ * its elements in element order; sums over nodes run in fixed chunks added in
+ * a fixed order (fem3d_force.c).  The result is the same bit for bit for any
+ * thread count (test_fem3d_threads). */
 #include "rockfuzz/fem3d.h"
 #include "core/util.h"
 #include "hex8_step.h"
 #include "fem3d_internal.h"
+#include "fem3d_prof.h"
 #include "fem_core.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
@@ -774,27 +776,77 @@ static double solid_plastic_work(const solid_run *R, int b)
     return r.plastic_work;
 }
 
-/* One step: internal force -> dashpots -> pairing -> predictor -> contact. */
+/* Pairing at step n (u_n, G v_{n-1/2}): the slaves shared among the force's threads. */
+static void pairing_share(void *ctx)
+{
+    solid_run *R = ctx;
+    F3P_MARK(m);
+    f3_contact_locate(&R->C, &R->mesh, R->u, R->v, R->threads, 1);
+    F3P_LAP(F3P_LOCATE, m);
+}
+
+/* The contact-free predictor v += dt M^-1 (f_ext - f_int), u += dt v of dofs [d0, d1). */
+static inline void predict_dofs(solid_run *R, long d0, long d1)
+{
+    const double dt = R->dt, *invm = R->invm, *fext = R->fext, *f = R->f;
+    double *u = R->u, *v = R->v;
+    for (long dd = d0; dd < d1; dd++) {
+        v[dd] += dt * invm[dd] * (fext[dd] - f[dd]);
+        u[dd] += dt * v[dd];
+    }
+}
+
+/* The predictor shared among the threads: the boulder's node chunks in the loop form that
+   f3_force_hooks asks for (no barrier after the force), then the slope's. */
+static void predictor_share(void *ctx)
+{
+    solid_run *R = ctx;
+    const long nbn = R->nbn, nd = R->ndof;
+    F3P_MARK(m);
+#ifdef _OPENMP
+#pragma omp for schedule(static) nowait
+#endif
+    for (int k = 0; k < F3_CHUNKS; k++)
+        predict_dofs(R, 3 * f3_chunk_begin(nbn, k), 3 * f3_chunk_begin(nbn, k + 1));
+    const long ns = nd / 3 - nbn;
+#ifdef _OPENMP
+#pragma omp for schedule(static) nowait
+#endif
+    for (int k = 0; k < F3_CHUNKS; k++)
+        predict_dofs(R, 3 * (nbn + f3_chunk_begin(ns, k)), 3 * (nbn + f3_chunk_begin(ns, k + 1)));
+    F3P_LAP(F3P_UPDATE, m);
+}
+
+/* Internal force at u_n, pairing and predictor in the force's parallel region; with a plastic
+   body the power f_int(u_n)' v_{n-1/2} is summed (serially) before the predictor. */
+static void solid_force_predict(solid_run *R, double fv[2])
+{
+    const f3_force_hooks hooks = {pairing_share, R->work_account ? NULL : predictor_share, R};
+    f3_internal_force_hooked(&R->S, R->u, R->f, &hooks);
+    if (!R->work_account)
+        return;
+    solid_power(R, fv);
+#ifdef _OPENMP
+#pragma omp parallel num_threads(R->threads) if (R->threads > 1)
+#endif
+    predictor_share(R);
+}
+
+/* One step: dashpots (v_{n-1/2}) -> internal force, pairing, predictor -> contact. */
 static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err)
 {
     const double dt = R->dt;
     double *u = R->u, *v = R->v;
-    f3_internal_force(&R->S, u, R->f);
+    F3P_MARK(m);
+    double W_abs_inc = solid_dashpot_forces(R);
+    F3P_LAP(F3P_DASH, m);
+    double fv[2] = {0, 0};
+    solid_force_predict(R, fv);
+    F3P_SET(m, f3p_now()); /* (its phases are timed inside) */
     for (int b = 0; b < 2; b++) /* the state at u_n is accepted */
         if (R->S.kernel[b].ops->commit)
             R->S.kernel[b].ops->commit(&R->S.kernel[b]);
-    double W_abs_inc = solid_dashpot_forces(R);
-    double fv[2] = {0, 0};
-    if (R->work_account)
-        solid_power(R, fv);
-    f3_contact_locate(&R->C, &R->mesh, u, v, R->threads, 1); /* pairing at step n, G v_{n-1/2} */
-#ifdef _OPENMP
-#pragma omp parallel for schedule(static) num_threads(R->threads) if (R->threads > 1)
-#endif
-    for (long dd = 0; dd < R->ndof; dd++) {
-        v[dd] += dt * R->invm[dd] * (R->fext[dd] - R->f[dd]);
-        u[dd] += dt * v[dd];
-    }
+    F3P_LAP(F3P_COMMIT, m);
     if (!R->fixed_outer)
         for (long k = 0; k < R->nouter; k++) {
             int i = R->outer[k];
@@ -807,7 +859,9 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
         R->C.rigid_c[0] = R->B.c0[0] + R->B.X[0], R->C.rigid_c[1] = R->B.c0[2] + R->B.X[1];
     }
     f3_contact_predict(&R->C, &R->mesh, u, R->invm, dt, R->threads);
+    F3P_LAP(F3P_PREDICT, m);
     rf_status st = f3_contact_solve(&R->C, R->invm, dt, u, v, err);
+    F3P_LAP(F3P_SOLVE, m);
     if (st != RF_OK)
         return st;
     if (R->rigid) { /* the contact's impulse on the rigid dofs */
@@ -826,6 +880,7 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
         R->W_int[0] += 0.5 * dt * (fv[0] + fv1[0]), R->W_int[1] += 0.5 * dt * (fv[1] + fv1[1]);
     }
     solid_depth(R);
+    F3P_LAP(F3P_ACCOUNT, m);
     return RF_OK;
 }
 
@@ -834,20 +889,11 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
 static void solid_energy(solid_run *R, double t, double Fc, double rad, double row[13], double *comp,
                          double *closure)
 {
-    const double *u = R->u, *v = R->v, *m = R->mass, *f = R->f;
-    const long nb3 = 3 * R->nbn;
-    double ke[2] = {0, 0}, se[2] = {0, 0}, pz = 0, uz = 0;
-    for (long dd = 0; dd < nb3; dd++)
-        ke[0] += m[dd] * v[dd] * v[dd];
-    se[0] = 2 * f3_boulder_strain(&R->S, u);
-    for (long dd = 2; dd < nb3; dd += 3) {
-        pz += m[dd] * v[dd];
-        uz += m[dd] * u[dd];
-    }
-    for (long dd = nb3; dd < R->ndof; dd++) {
-        ke[1] += m[dd] * v[dd] * v[dd];
-        se[1] += f[dd] * u[dd];
-    }
+    const double *u = R->u, *v = R->v, *f = R->f;
+    f3_state_sums sum; /* in parallel, fixed order */
+    f3_state_sums_compute(&R->S, u, v, f, &sum);
+    double ke[2] = {sum.mv2[0], sum.mv2[1]}, se[2] = {2 * sum.boulder_strain, sum.slope_fu};
+    const double pz = sum.boulder_pz, uz = sum.boulder_uz;
     ke[0] *= 0.5, ke[1] *= 0.5, se[0] *= 0.5, se[1] *= 0.5;
     if (R->rigid)
         ke[0] = f3_rigid_energy(&R->B);
@@ -896,13 +942,18 @@ static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *
         double Fc, rad, row[13], comp, closure;
         if ((st = solid_step(R, &Fc, &rad, err)) != RF_OK)
             return st;
+        F3P_MARK(m);
         solid_energy(R, t, Fc, rad, row, &comp, &closure);
+        F3P_LAP(F3P_ENERGY, m);
         if ((st = fem_run_account(run, n, Fc, rad, comp, closure, R->ke0, row, err)) != RF_OK)
             return st;
-        if (fem_run_stop(run, n))
+        const int stop = fem_run_stop(run, n);
+        F3P_LAP(F3P_RUN, m);
+        if (stop)
             break;
     }
     *nsteps = n + 1;
+    F3P_REPORT(*nsteps, R->ne, R->nn, R->nbn);
     if (!o->vtk_dir)
         return RF_OK;
     const double t_end = (double)(n + 1) * R->dt;
@@ -1106,9 +1157,11 @@ rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, co
         memset(rep, 0, sizeof *rep);
     fem_run run;
     memset(&run, 0, sizeof run);
+    F3P_MARK(m);
     st = solid_mesh(&R, err);
     if (st == RF_OK)
         st = solid_assemble(&R, err);
+    F3P_LAP(F3P_SETUP, m);
     if (st == RF_OK)
         st = fem_run_begin(&run, "fem3d", &R.o, R.dt, R.H.duration, hist || rep, 13, err);
     long nsteps = 0;
