@@ -235,10 +235,11 @@ static void test_contact_single_pivot(void **state)
     rf_impact_output a, b;
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &a, NULL, &err), RF_OK);
-    fem_contact_block_rounds = 0; /* single pivoting from the start */
-    const rf_status st = rf_fem_impact(&in, &o, &b, NULL, &err);
-    fem_contact_block_rounds = 200;
-    assert_int_equal(st, RF_OK);
+    o.contact_single_pivot = 2; /* an option, not a global: checked, per call */
+    assert_int_equal(rf_fem_impact(&in, &o, &b, NULL, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "contact_single_pivot = 2"));
+    o.contact_single_pivot = 1; /* single pivoting from the start */
+    assert_int_equal(rf_fem_impact(&in, &o, &b, NULL, &err), RF_OK);
     printf("contact LCP: block R_n %.12f, single pivot %.12f; penetration %.9f / %.9f m\n", a.R_n, b.R_n,
            a.penetration_max, b.penetration_max);
     assert_true(fabs(a.R_n - b.R_n) < 1e-9 && fabs(a.penetration_max - b.penetration_max) < 1e-9);

@@ -103,6 +103,9 @@ typedef struct {
     rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
     rf_fem_kinematics large_deformation; /* axisymmetric model: default auto (see rf_fem_kinematics); the
                                             3D model is small strain and accepts auto or off only */
+    int contact_single_pivot;  /* axisymmetric contact: 1 solves the complementarity problem by single
+                                  pivoting alone (slower; the check of the default block active-set
+                                  method, which falls back to it after 200 rounds), default 0 */
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);
