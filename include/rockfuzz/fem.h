@@ -89,7 +89,8 @@ typedef struct {
                                   moves away; past 3 durations up to a bound scaled by the
                                   contact's progress, where the run fails (RF_EMODEL) */
     int threads;               /* OpenMP threads for one impact, default 1 (0 = 1) */
-    const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (existing dir) */
+    const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (an existing dir:
+                                  the CLI's --vtk creates it) */
     double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 (matching);
                                   [0.25, 1.25]: the boulder nodes are the contact slaves */
     /* --- expert settings (defaults are the validated ones) --- */
