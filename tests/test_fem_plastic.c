@@ -251,15 +251,15 @@ static void test_plastic_wave_1d(void **state)
 /* --- the logic of tests/test_fem_plastic_accuracy.c on coarse, short runs --- */
 
 /* A huge yield stress (or cohesion) never yields, whatever the mesh: every plastic
-   model in both kinematics (a/h = 2, the loading half of the impact). */
+   model in small strain, J2 in large deformation (a/h = 2, the loading part of the impact). */
 static void test_huge_strength_never_yields(void **state)
 {
     (void)state;
     for (int kin = RF_FEM_SMALL_STRAIN; kin <= RF_FEM_LARGE_DEFORMATION; kin++)
-        for (int m = 0; m < 3; m++) {
+        for (int m = 0; m < (kin == RF_FEM_SMALL_STRAIN ? 3 : 1); m++) { /* DP in large deformation: test_fem_large */
             rf_fem_options o = coarse(2);
             o.large_deformation = (rf_fem_kinematics)kin;
-            o.end_time = 2.5e-3; /* the peak force is at 2.2 ms */
+            o.end_time = 1.5e-3; /* the loading (peak force at 2.2 ms) */
             rf_impact_input in = granite(10);
             if (m == 0) {
                 in.boulder_material = in.slope_material = RF_MATERIAL_VON_MISES;
@@ -286,7 +286,7 @@ static void test_layer_logic(void **state)
 {
     (void)state;
     rf_fem_options o = coarse(2);
-    o.end_time = 2.5e-3;
+    o.end_time = 1.5e-3;
     rf_error err = {0};
     rf_impact_output a, b;
     rf_impact_input in = granite(10);
