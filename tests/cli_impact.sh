@@ -139,5 +139,24 @@ else
         *) fail "fem run exited $status: $err" ;; esac
 fi
 
+# --- --vtk DIR: a missing DIR (and its parents) is created, for both geometries; a DIR that
+# cannot be created is named, with a non-zero exit ---
+if [ "$status" -eq 0 ]; then # the FE solver is built
+    tmp=$(mktemp -d)
+    for args in "" "--slope-angle 45"; do
+        # shellcheck disable=SC2086
+        "$bin" impact --solver fem --refinement 2 --end-time 5e-4 $args --vtk "$tmp/new/vtk" --json >/dev/null \
+            || fail "--vtk into a missing directory ($args): exit $?"
+        [ -s "$tmp/new/vtk/fem.pvd" ] && [ -s "$tmp/new/vtk/fem_0000.vtu" ] \
+            || fail "--vtk ($args): no fem.pvd / fem_0000.vtu in the created directory"
+        rm -rf "$tmp/new"
+    done
+    : >"$tmp/file"
+    msg=$("$bin" impact --solver fem --refinement 2 --end-time 5e-4 --vtk "$tmp/file/vtk" 2>&1 >/dev/null) \
+        && fail "--vtk under a regular file: exit 0"
+    case "$msg" in *"--vtk"*"$tmp/file/vtk"*) ;; *) fail "--vtk under a regular file: message '$msg'" ;; esac
+    rm -rf "$tmp"
+fi
+
 [ "$fails" -eq 0 ] && echo "cli_impact: all checks passed"
 exit $((fails > 0))

@@ -318,7 +318,7 @@ static void test_thread_safety(void **state)
     for (int i = 0; i < 3; i++) {
         jobs[i].in = granite(v[i]);
         rf_fem_options_default(&jobs[i].o);
-        jobs[i].o.refinement = 3;
+        jobs[i].o.refinement = 2; /* bits compared: any mesh shows a race */
     }
     pthread_t th[3];
     for (int i = 0; i < 3; i++)
@@ -378,7 +378,7 @@ static void test_workspace_reuse(void **state)
     assert_non_null(ws);
     rf_fem_options o;
     rf_fem_options_default(&o);
-    o.refinement = 3;
+    o.refinement = 2; /* bits compared: any mesh shows leftover state */
     const double speeds[3] = {10, 30, 10};
     for (int k = 0; k < 3; k++) {
         rf_impact_input in = granite(speeds[k]);

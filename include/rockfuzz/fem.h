@@ -89,7 +89,8 @@ typedef struct {
                                   moves away; past 3 durations up to a bound scaled by the
                                   contact's progress, where the run fails (RF_EMODEL) */
     int threads;               /* OpenMP threads for one impact, default 1 (0 = 1) */
-    const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (existing dir) */
+    const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (an existing dir:
+                                  the CLI's --vtk creates it) */
     double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 (matching);
                                   [0.25, 1.25]: the boulder nodes are the contact slaves */
     /* --- expert settings (defaults are the validated ones) --- */
@@ -103,6 +104,9 @@ typedef struct {
     rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
     rf_fem_kinematics large_deformation; /* axisymmetric model: default auto (see rf_fem_kinematics); the
                                             3D model is small strain and accepts auto or off only */
+    int contact_single_pivot;  /* axisymmetric contact: 1 solves the complementarity problem by single
+                                  pivoting alone (slower; the check of the default block active-set
+                                  method, which falls back to it after 200 rounds), default 0 */
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);

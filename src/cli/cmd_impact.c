@@ -8,6 +8,7 @@
 #include "cli/cli.h"
 #include "core/util.h"
 #include "rockfuzz/impact_model.h"
+#include "rockfuzz/report.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -167,7 +168,8 @@ static void usage(FILE *f)
         "                           cores for the 3D model, 1 for the axisymmetric one;\n"
         "                           the results are the same bit for bit)\n"
         "  --vtk DIR                fem: write VTK snapshots into DIR (fem.pvd + fem_NNNN.vtu;\n"
-        "                           the 3D model writes its half model)\n"
+        "                           the 3D model writes its half model); DIR and its\n"
+        "                           parents are created if missing\n"
         "\n"
         "Output:\n"
         "  --json                   print one JSON object: contact_force_max [N],\n"
@@ -330,6 +332,11 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
     rf_error err = {0};
     double friction_work = 0.0;
     int three_d = 0;
+    /* --vtk DIR: created with its parents if missing (mkdir -p), for either geometry */
+    if (spec->fem.vtk_dir && rf_report_make_dir(spec->fem.vtk_dir, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz impact: --vtk: %s\n", err.msg);
+        return EXIT_FAILED;
+    }
     if (rf_fem_solve(&spec->base, &spec->fem, out, &hist, &friction_work, &three_d, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz impact: fem solver failed: %s\n", err.msg);
         rf_fem_history_free(&hist);

@@ -772,7 +772,7 @@ static void solid_depth(solid_run *R)
 static double solid_plastic_work(const solid_run *R, int b)
 {
     fem_kernel_report r;
-    fem_kernel_points_hex_report(&R->S.kernel[b], &r);
+    fem_kernel_report_get(&R->S.kernel[b], &r);
     return r.plastic_work;
 }
 
@@ -1021,7 +1021,7 @@ static void solid_history_plastic(const solid_run *R, rf_fem_history *hist)
     const double sf = R->sym_factor;
     fem_kernel_report rep[2];
     for (int b = 0; b < 2; b++) {
-        fem_kernel_points_hex_report(&R->S.kernel[b], &rep[b]);
+        fem_kernel_report_get(&R->S.kernel[b], &rep[b]);
         const double Ee = R->plastic[b] || (b == 1 && R->plastic[2]) ? fem_kernel_points_hex_energy(&R->S.kernel[b]) : -1;
         if (Ee >= 0) {
             hist->elastic_energy_stress += Ee * sf;
@@ -1101,7 +1101,7 @@ static void solid_plastic_outputs(const solid_run *R, rf_impact_output *out)
 {
     fem_kernel_report rep[2];
     for (int b = 0; b < 2; b++)
-        fem_kernel_points_hex_report(&R->S.kernel[b], &rep[b]);
+        fem_kernel_report_get(&R->S.kernel[b], &rep[b]);
     out->plastic_work = (rep[0].plastic_work + rep[1].plastic_work) / R->ke0;
     out->equivalent_plastic_strain_max = fmax(rep[0].plastic_strain_max, rep[1].plastic_strain_max);
     out->penetration_max = R->depth_max;

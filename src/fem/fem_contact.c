@@ -191,11 +191,9 @@ static rf_status contact_solve_single(fem_contact *C, const double *invm, double
     return rf_fail(err, RF_EINTERNAL, "fem contact: active set did not settle (%d candidate pairs)", nc);
 }
 
-int fem_contact_block_rounds = 200;
-
 /* Solve the contact LCP for the predicted displacements u; writes lambda.
  * Block active set: drop every pair in tension, add every penetrating one;
- * after fem_contact_block_rounds rounds without settling, the single-pivot
+ * after C->block_rounds rounds without settling, the single-pivot
  * fallback above. */
 static rf_status contact_solve(fem_contact *C, const double *u, const double *invm, double dt, rf_error *err)
 {
@@ -212,7 +210,7 @@ static rf_status contact_solve(fem_contact *C, const double *u, const double *in
         }
     }
     double dt2 = dt * dt;
-    for (int iter = 0; iter < fem_contact_block_rounds && na > 0; iter++) {
+    for (int iter = 0; iter < C->block_rounds && na > 0; iter++) {
         if (active_solve(C, invm, dt2, na) != 0)
             return rf_fail(err, RF_EINTERNAL, "fem contact: singular contact matrix (%d pairs)", na);
         int neg = 0;
@@ -259,7 +257,7 @@ void fem_contact_free(fem_contact *C)
 rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err)
 {
     *C = (fem_contact){0};
-    C->nq = 3;
+    C->nq = 3, C->block_rounds = FEM_CONTACT_BLOCK_ROUNDS;
     const size_t nb = (size_t)mesh->n_bsurf + 1;
     C->pair = malloc(nb * sizeof *C->pair);
     C->gpred = calloc(nb, sizeof *C->gpred);

@@ -120,12 +120,14 @@ typedef struct {
     int nq;               /* gradient entries per pair: 3, or 6 with large deformation */
     const fem_mesh *mesh; /* reference coordinates and surfaces (large deformation) */
     double *vold;         /* v_{n-1/2} kept by fem_contact_begin (large deformation) */
+    int block_rounds;     /* block active-set rounds before single pivoting (FEM_CONTACT_BLOCK_ROUNDS) */
 } fem_contact;
 
 /* Rounds of the block active-set method before the contact solver falls back
- * to single pivoting (200; a test lowers it to 0 to check that both give the
- * one solution of the complementarity problem). */
-extern int fem_contact_block_rounds;
+ * to single pivoting (fem_contact.block_rounds: 0 with the option
+ * contact_single_pivot, whose test checks that both give the one solution of
+ * the complementarity problem). */
+#define FEM_CONTACT_BLOCK_ROUNDS 200
 /* Pairs of the boulder surface nodes below height d / 2 (fem_contact.c). */
 rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err);
 /* Switch the pairs to large deformation: after the predictor,

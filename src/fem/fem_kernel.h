@@ -61,6 +61,9 @@ typedef struct {
        threads gives the same bits.  A kernel with this path may leave
        forces() NULL; the time loop then calls this one. */
     void (*forces_field)(const fem_kernel *k, long w0, long w1, const double *u, double *fe);
+    /* Optional (NULL: nothing dissipates): the dissipation account of the
+       committed state, for fem_kernel_report_get (which has zeroed r). */
+    void (*report)(const fem_kernel *k, fem_kernel_report *r);
 } fem_kernel_ops;
 
 struct fem_kernel {
@@ -166,8 +169,9 @@ fem_point_law fem_point_law_linear(const fem_lame *lame);
  * zz, xy with zero yz, zx; state = {eps_p_eq, eps_p_vol, compaction,
  * dissipation of the increment}.  m must outlive the kernel. */
 fem_point_law fem_point_law_material(const rf_material *m);
-/* The dissipation account of a kernel's committed state: zeros for any
- * kernel that is not an integration-point kernel with a dissipative law. */
+/* The dissipation account of a kernel's committed state (its ops->report):
+ * zeros for any kernel that is not an integration-point kernel with a
+ * dissipative law, axisymmetric or hexahedral. */
 void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r);
 /* The committed state of element e (global number) of an integration-point
  * kernel: mean stress components over its points (rr, zz, tt, rz) and the
@@ -194,10 +198,9 @@ double fem_kernel_elastic_energy(const fem_kernel *k);
 rf_status fem_kernel_points_hex(fem_kernel *k, long first, long count, const double *x, const int *conn,
                                 const fem_point_law *law, const fem_point_law *law2, const unsigned char *use_law2,
                                 int bbar, rf_error *err);
-/* fem_kernel_report_get, fem_kernel_cell_state (6 components xx yy zz xy yz
- * zx) and fem_kernel_elastic_energy for the hexahedron kernel above (zeros,
- * 0 and -1 for other kernels). */
-void fem_kernel_points_hex_report(const fem_kernel *k, fem_kernel_report *r);
+/* fem_kernel_cell_state (6 components xx yy zz xy yz zx) and
+ * fem_kernel_elastic_energy for the hexahedron kernel above (0 and -1 for
+ * other kernels); its dissipation account is fem_kernel_report_get's. */
 int fem_kernel_points_hex_cell(const fem_kernel *k, long e, double sig[6], double *plastic_strain);
 double fem_kernel_points_hex_energy(const fem_kernel *k);
 /* sig = sig_n + D deps in 3D (xx yy zz xy yz zx, engineering shear strains),

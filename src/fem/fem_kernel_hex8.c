@@ -21,7 +21,7 @@ static void matfree_destroy(fem_kernel *k)
 }
 
 static const fem_kernel_ops matfree_ops = {"linear elastic (hexahedron, matrix-free)", NULL, NULL, NULL,
-                                           matfree_destroy, matfree_field};
+                                           matfree_destroy, matfree_field, NULL};
 
 rf_status fem_kernel_hex8_matfree(fem_kernel *k, long first, long count, const double *x, const int *conn, double lam,
                                   double mu, int store_jacobians, rf_error *err)

@@ -77,13 +77,13 @@ static void pooled_destroy(fem_kernel *k)
 }
 
 static const fem_kernel_ops axi_owned = {"linear elastic (axisymmetric quad)", axi_forces, axi_assemble, NULL,
-                                         owned_destroy, NULL};
+                                         owned_destroy, NULL, NULL};
 static const fem_kernel_ops axi_pooled = {"linear elastic (axisymmetric quad)", axi_forces, axi_assemble, NULL,
-                                          pooled_destroy, NULL};
+                                          pooled_destroy, NULL, NULL};
 static const fem_kernel_ops axi_packed = {"linear elastic (axisymmetric quad)", axi_packed_forces,
-                                          axi_packed_assemble, NULL, pooled_destroy, NULL};
-static const fem_kernel_ops hex_owned = {"linear elastic (hexahedron)", hex_forces, NULL, NULL, owned_destroy, NULL};
-static const fem_kernel_ops hex_pooled = {"linear elastic (hexahedron)", hex_forces, NULL, NULL, pooled_destroy, NULL};
+                                          axi_packed_assemble, NULL, pooled_destroy, NULL, NULL};
+static const fem_kernel_ops hex_owned = {"linear elastic (hexahedron)", hex_forces, NULL, NULL, owned_destroy, NULL, NULL};
+static const fem_kernel_ops hex_pooled = {"linear elastic (hexahedron)", hex_forces, NULL, NULL, pooled_destroy, NULL, NULL};
 
 void fem_kernel_linear_axi(fem_kernel *k, long first, long count, double *K, int pooled)
 {

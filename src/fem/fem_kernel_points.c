@@ -151,10 +151,18 @@ static void points_destroy(fem_kernel *k)
     k->data = NULL;
 }
 
+static void points_report(const fem_kernel *k, fem_kernel_report *r)
+{
+    const points_data *d = k->data;
+    r->plastic_work = d->plastic_work, r->plastic_strain_max = d->plastic_strain_max;
+    r->element_max = d->point_max < 0 ? -1 : k->first + d->point_max / NQ;
+}
+
 static const fem_kernel_ops points_ops = {"integration points (axisymmetric quad)", points_forces, NULL,
-                                          points_commit, points_destroy, NULL};
+                                          points_commit, points_destroy, NULL, points_report};
 static const fem_kernel_ops points_large_ops = {"integration points (axisymmetric quad, updated Lagrangian)",
-                                                points_forces_large, NULL, points_commit, points_destroy, NULL};
+                                                points_forces_large, NULL, points_commit, points_destroy, NULL,
+                                                points_report};
 
 static int is_points(const fem_kernel *k)
 {
@@ -201,11 +209,8 @@ double fem_kernel_elastic_energy(const fem_kernel *k)
 void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r)
 {
     r->plastic_work = r->plastic_strain_max = 0, r->element_max = -1;
-    if (!is_points(k) || !k->data)
-        return;
-    const points_data *d = k->data;
-    r->plastic_work = d->plastic_work, r->plastic_strain_max = d->plastic_strain_max;
-    r->element_max = d->point_max < 0 ? -1 : k->first + d->point_max / NQ;
+    if (k->ops && k->ops->report && k->data)
+        k->ops->report(k, r);
 }
 
 /* Mean dilatation: B_q rows rr, zz, tt get (bbar - b_q) / 3 with b_q the

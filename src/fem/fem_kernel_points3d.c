@@ -205,8 +205,15 @@ static void p3_destroy(fem_kernel *k)
     k->data = NULL;
 }
 
+static void p3_report(const fem_kernel *k, fem_kernel_report *r)
+{
+    const p3_data *d = k->data;
+    r->plastic_work = d->plastic_work, r->plastic_strain_max = d->plastic_strain_max;
+    r->element_max = d->point_max < 0 ? -1 : k->first + d->point_max / NQ;
+}
+
 static const fem_kernel_ops p3_ops = {"integration points (hexahedron, SIMD blocks)", NULL, NULL, p3_commit,
-                                      p3_destroy, p3_field};
+                                      p3_destroy, p3_field, p3_report};
 
 static rf_status p3_check(const fem_point_law *law, const fem_point_law *law2, const unsigned char *use2,
                           rf_error *err)
@@ -294,16 +301,6 @@ rf_status fem_kernel_points_hex(fem_kernel *k, long first, long count, const dou
         if ((st = p3_lane(d, s, first, count, x, conn, err)) != RF_OK)
             return st;
     return RF_OK;
-}
-
-void fem_kernel_points_hex_report(const fem_kernel *k, fem_kernel_report *r)
-{
-    r->plastic_work = r->plastic_strain_max = 0, r->element_max = -1;
-    if (k->ops != &p3_ops || !k->data)
-        return;
-    const p3_data *d = k->data;
-    r->plastic_work = d->plastic_work, r->plastic_strain_max = d->plastic_strain_max;
-    r->element_max = d->point_max < 0 ? -1 : k->first + d->point_max / NQ;
 }
 
 int fem_kernel_points_hex_cell(const fem_kernel *k, long e, double sig[6], double *plastic_strain)

@@ -127,6 +127,8 @@ rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error
         return rf_fail(err, RF_EINVAL, "fem: unknown boundary kind %d", (int)o->boundary);
     if (o->threads < 0)
         return rf_fail(err, RF_EINVAL, "fem: threads = %d must be >= 0", o->threads);
+    if (o->contact_single_pivot != 0 && o->contact_single_pivot != 1)
+        return rf_fail(err, RF_EINVAL, "fem: contact_single_pivot = %d must be 0 or 1", o->contact_single_pivot);
     if (o->max_elements < 1)
         return rf_fail(err, RF_EINVAL, "fem: max_elements = %ld must be >= 1", o->max_elements);
     for (int b = 0; b < 2; b++)

@@ -417,6 +417,8 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
         st = fem_contact_large(&S->C, &S->mesh, S->ndof, err);
     if (st != RF_OK)
         return st;
+    if (S->o.contact_single_pivot)
+        S->C.block_rounds = 0;
     S->C.tol = 1e-9 * S->h;
     S->C.band = 0.5 * fmin(S->h, S->hb) + 2 * S->V * S->dt;
     for (long i = 0; i < S->mesh.boulder_nodes; i++)
