@@ -17,21 +17,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "rockfuzz/fem3d.h"
-
-static rf_impact_input granite(double v, double angle_deg, double f)
-{
-    rf_impact_input in;
-    memset(&in, 0, sizeof in);
-    in.radius = 1;
-    in.boulder_density = in.slope_density = 2600;
-    in.boulder_E = in.slope_E = 68.2e9;
-    in.boulder_poisson = in.slope_poisson = 0.25;
-    in.velocity = v;
-    in.slope_angle = angle_deg * 3.14159265358979323846 / 180;
-    in.friction = f;
-    return in;
-}
+#include "fem3d_inputs.h" /* granite() */
 
 typedef struct {
     rf_impact_output out;
@@ -39,7 +25,7 @@ typedef struct {
     uint64_t hash;
 } result;
 
-static void run(const rf_impact_input *in, int full, int threads, result *r)
+static void run_case(const rf_impact_input *in, int full, int threads, result *r)
 {
     rf_fem_options o;
     rf_fem_options_default(&o);
@@ -72,7 +58,7 @@ static void check_threads(const rf_impact_input *in, int full, const char *what)
 {
     result r[3];
     for (int t = 0; t < 3; t++)
-        run(in, full, t + 1, &r[t]);
+        run_case(in, full, t + 1, &r[t]);
     printf("# %s: hash %016llx, R_n %.12f, energy error %.3e\n", what, (unsigned long long)r[0].hash, r[0].out.R_n,
            r[0].out.energy_error);
     assert_true(r[0].out.steps > 10);

@@ -137,19 +137,6 @@ void f3_slab_counts(const f3_mesh_spec *sp, long *nodes, long *elems, long *oute
     *outer_quads = (long)s.nseg * (s.nl - 1) + s.q2;
 }
 
-static void orient(const double *x, int *c)
-{
-    double xe[24];
-    for (int a = 0; a < 8; a++)
-        for (int d = 0; d < 3; d++)
-            xe[3 * a + d] = x[3 * c[a] + d];
-    if (f3_hex_center_jacobian(xe) < 0)
-        for (int a = 0; a < 4; a++) {
-            int t = c[a];
-            c[a] = c[a + 4], c[a + 4] = t;
-        }
-}
-
 rf_status f3_slab_fill(const f3_mesh_spec *sp, f3_mesh *m, long n0, long e0, rf_error *err)
 {
     slab s;
@@ -184,7 +171,7 @@ rf_status f3_slab_fill(const f3_mesh_spec *sp, f3_mesh *m, long n0, long e0, rf_
             int *cn = m->conn + 8 * (e0 + (long)k * s.q2 + q);
             for (int a = 0; a < 4; a++)
                 cn[a] = (int)(n0 + (long)k * s.n2 + c[a]), cn[4 + a] = (int)(n0 + (long)(k + 1) * s.n2 + c[a]);
-            orient(m->x, cn);
+            f3_hex_orient(m->x, cn);
         }
     for (int i = 0; i <= s.NX; i++)
         for (int j = 0; j <= s.NY; j++)

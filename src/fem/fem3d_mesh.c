@@ -198,7 +198,8 @@ void f3_mesh_free(f3_mesh *m)
     memset(m, 0, sizeof *m);
 }
 
-static void fix_orientation(double *x, int *c)
+/* Swaps the hexahedron's two faces when its centre Jacobian is negative. */
+void f3_hex_orient(const double *x, int *c)
 {
     double xe[24];
     for (int a = 0; a < 8; a++)
@@ -304,14 +305,14 @@ rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, r
         ogrid_elem(&g1, q, c);
         for (int a = 0; a < 8; a++)
             m->conn[8 * e + a] = (int)c[a];
-        fix_orientation(m->x, m->conn + 8 * e);
+        f3_hex_orient(m->x, m->conn + 8 * e);
     }
     for (long q = 0; q < g2.ne; q++, e++) {
         long c[8];
         ogrid_elem(&g2, q, c);
         for (int a = 0; a < 8; a++)
             m->conn[8 * e + a] = (int)map2[c[a]];
-        fix_orientation(m->x, m->conn + 8 * e);
+        f3_hex_orient(m->x, m->conn + 8 * e);
     }
     free(map2);
     for (int i = 0; i <= g1.NX; i++)
@@ -332,7 +333,7 @@ rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, r
         ogrid_elem(&gs, q, c);
         for (int a = 0; a < 8; a++)
             m->conn[8 * e + a] = (int)(nb + c[a]);
-        fix_orientation(m->x, m->conn + 8 * e);
+        f3_hex_orient(m->x, m->conn + 8 * e);
     }
     for (int i = 0; i <= gs.NX; i++)
         for (int j = 0; j <= gs.NY; j++)
