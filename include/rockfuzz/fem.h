@@ -164,6 +164,11 @@ typedef struct {
     double plastic_strain_max_r, plastic_strain_max_z; /* centre of its element (reference coordinates,
                                                             z = 0 on the slope surface) [m] */
     long boulder_nodes, boulder_elements, slope_nodes, slope_elements;
+    /* gravity (rf_impact_gravity; docs/validation-plastic.md "Gravity") */
+    double gravity;               /* [m/s^2] the run used */
+    double gravity_work;          /* work of gravity on both bodies at the end (the loss of potential energy) [J] */
+    long geostatic_outside;       /* integration points whose geostatic state the law does not admit (0 expected) */
+    int at_rest;                  /* 1: the run ended by the rest rule (the boulder at rest in contact: R_n = 0) */
     uint64_t state_hash;          /* FNV-1a over the bytes of the final u and v (determinism checks) */
     char warning[512];            /* "" or a human-readable warning */
 } rf_fem_history;

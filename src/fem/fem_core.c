@@ -112,6 +112,19 @@ static int run_ended(const fem_run *r)
     return !r->in_contact && r->v_now >= 0;
 }
 
+/* The rest rule (fem_core.h) at time t. */
+static void rest_check(fem_run *r, double t)
+{
+    const int slow = r->episodes > 0 && t - r->t_last_contact <= 0.1 * r->t_h &&
+                     fabs(r->v_now) < FEM_REST_SPEED * fabs(r->v_start);
+    if (!slow)
+        r->rest_since = -1;
+    else if (r->rest_since < 0)
+        r->rest_since = t;
+    if (slow && t - r->rest_since >= FEM_REST_WINDOW * r->t_h)
+        r->at_rest = 1;
+}
+
 rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
                           const double *row, rf_error *err)
 {
@@ -119,8 +132,10 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
     if (force_record(r, n, Fc))
         return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
     if (n == 0)
-        r->v_start = row[11];
+        r->v_start = row[11], r->rest_since = -1;
     r->v_now = row[11];
+    if (r->gravity > 0 && !(Fc > 0) && r->in_contact)
+        r->v_sep = row[11];
     if (Fc > 0) {
         if (!r->in_contact)
             r->episodes++;
@@ -140,8 +155,10 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
         r->closure_max = fabs(closure);
     if (r->record && n % r->stride == 0 && series_push(&r->series, row) != 0)
         return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
+    if (r->gravity > 0 && r->end_time == 0)
+        rest_check(r, t);
     const double tn = (double)(n + 1) * r->dt;
-    if (r->end_time > 0 || tn < r->t_max || run_ended(r))
+    if (r->end_time > 0 || tn < r->t_max || run_ended(r) || r->at_rest)
         return RF_OK;
     /* Past t_max = 3 t_h the impact has not ended (a plastic contact lasts
        longer than the elastic one): the run goes on.  Its bound: at t_max a
@@ -167,6 +184,8 @@ int fem_run_stop(const fem_run *r, long n)
     const double tn = (double)(n + 1) * r->dt;
     if (r->end_time > 0)
         return tn >= r->end_time;
+    if (r->at_rest)
+        return 1;
     if (tn >= r->t_max && run_ended(r) && r->t_bound == 0) /* ended by t_max: the old fixed end */
         return 1;
     return tn >= r->t_min && run_ended(r) && tn - r->t_last_contact > 0.1 * r->t_h;
@@ -236,6 +255,10 @@ void fem_run_warnings(const fem_run *r, int fixed_outer, double L, double c_p, d
                                r->episodes);
     if (extra && extra[0] && wl < size)
         wl += (size_t)snprintf(buf + wl, size - wl, "%s", extra);
+    if (r->at_rest && wl < size)
+        wl += (size_t)snprintf(buf + wl, size - wl, "The boulder came to rest in contact (normal speed below %g %% of "
+                               "the incoming one for %g Hertz durations): R_n = 0. ", 100 * FEM_REST_SPEED,
+                               FEM_REST_WINDOW);
     if (r->end_time > 0 && !run_ended(r) && wl < size)
         snprintf(buf + wl, size - wl, "%s at end_time: rebound velocity is not final. ",
                  r->in_contact ? "Still in contact" : "Boulder moving toward the slope");

@@ -69,6 +69,11 @@ typedef struct {
        at the start, now; t_bound: the automatic end's bound, set at t_max when
        the impact has not ended (0: not yet) */
     double v_start, v_now, t_bound;
+    /* gravity > 0 (set after fem_run_begin; 0 keeps the gravity-free rules): the
+       normal velocity when the contact last opened (R_n with gravity), the start
+       of the current slow spell in contact (-1: none) and the rest flag */
+    double gravity, v_sep, rest_since;
+    int at_rest;
     fem_series series;
 } fem_run;
 
@@ -88,6 +93,12 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
  * also have ended, else the run goes on up to a bound scaled by the contact's
  * progress at t_max (fem_run_account fails there). */
 int fem_run_stop(const fem_run *r, long n);
+/* The rest rule (gravity > 0, automatic end): the boulder has come to rest in
+ * its crater when, for FEM_REST_WINDOW Hertz durations, it has been in contact
+ * (closed within the last 0.1 t_h) with a normal speed below FEM_REST_SPEED
+ * times the incoming one; the run then ends (R_n = 0), without failing. */
+#define FEM_REST_SPEED 0.02
+#define FEM_REST_WINDOW 2.0
 /* Fill the outputs every FE model defines; nsteps steps were made. */
 void fem_run_outputs(const fem_run *r, long nsteps, double duration_threshold, double ke0, double force_factor,
                      long nodes, long elements, rf_impact_output *out);
