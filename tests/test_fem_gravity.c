@@ -82,6 +82,8 @@ static void check_at_rest(const rf_impact_input *in, rf_fem_kinematics kin, rf_f
            "(K0 %.6f)\n", kin == RF_FEM_SMALL_STRAIN ? "small strain" : "updated Lagrangian",
            bnd == RF_FEM_BOUNDARY_FIXED ? "fixed" : "absorbing", isfinite(t) ? ", layer" : "", c.elements, steps, c.v_max,
            gt, c.u_max, c.layer_elem ? "layer" : "slope", c.depth, c.sig[1], sv, c.sig[0] / c.sig[1], k0);
+    printf("  body load / lumped weight: interior nodes %.4f .. %.4f, sum over the free nodes %.4f\n",
+           c.load_ratio_min, c.load_ratio_max, c.load_sum / c.weight_sum);
     assert_true(c.v_max <= 1e-12 * gt);
     assert_true(c.u_max <= 1e-12 * gt * (double)steps * c.dt);
     assert_true(fabs(c.sig[1] - sv) <= 1e-12 * fabs(sv));

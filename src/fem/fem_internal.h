@@ -156,6 +156,10 @@ typedef struct {
     int layer_elem;           /* 1: that element is in the layer */
     double plastic_strain_max;
     long elements, outside;
+    /* the slope's body load against its lumped weight -m_a g: the range of
+       the ratio at the interior nodes (off the surface, axis and outer
+       boundary), and the sums over all free slope dofs */
+    double load_ratio_min, load_ratio_max, load_sum, weight_sum;
 } fem_rest_check;
 rf_status fem_axi_slope_at_rest(const rf_impact_input *in, const rf_fem_options *opt, long steps,
                                 fem_rest_check *chk, rf_error *err);

@@ -1007,6 +1007,15 @@ rf_status fem_axi_slope_at_rest(const rf_impact_input *in, const rf_fem_options 
                 chk->u_max = fmax(chk->u_max, fabs(S.u[2 * i + c]));
             }
         chk->elements = S.ne - S.mesh.boulder_elems, chk->outside = S.geo_outside;
+        chk->load_ratio_min = INFINITY, chk->load_ratio_max = -INFINITY;
+        for (long i = S.mesh.boulder_nodes; S.fgrav && i < S.nn; i++) {
+            if (S.invm[2 * i + 1] > 0)
+                chk->load_sum += S.fgrav[2 * i + 1], chk->weight_sum -= S.mass[2 * i + 1] * S.g;
+            if (S.mesh.flags[i] || S.mass[2 * i + 1] == 0)
+                continue;
+            const double ratio = S.fgrav[2 * i + 1] / (-S.mass[2 * i + 1] * S.g);
+            chk->load_ratio_min = fmin(chk->load_ratio_min, ratio), chk->load_ratio_max = fmax(chk->load_ratio_max, ratio);
+        }
         chk->dt = S.dt;
         for (long e = S.mesh.boulder_elems; e < S.ne; e++) {
             double sig[4], ep = 0, depth = 0;
