@@ -115,7 +115,7 @@ static void usage(FILE *f)
         "                           geostatic stress of the slope and layer (K0 = 1 - sin phi\n"
         "                           for drucker_prager, nu/(1 - nu) otherwise); R_n is the\n"
         "                           velocity at separation, 0 when the boulder comes to rest\n"
-        "                           (docs/validation-plastic.md \"Gravity\")\n"
+        "                           (docs/validation-plastic.md section 11)\n"
         "\n"
         "Materials (docs/materials.md; fem solver only when not elastic; axisymmetric and 3D):\n"
         "  --boulder-material M     elastic | von_mises | rigid (default elastic; rigid: exact\n"
