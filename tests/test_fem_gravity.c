@@ -154,9 +154,10 @@ static void test_cohesionless_strength(void **state)
  * (no rebound): with gravity the run ends 2 t_h after its speed fell below
  * 2 % of V, at rest (no failure); without gravity the same motion fails at
  * the automatic end's bound (the old behaviour). */
-static rf_status feed_rest(double g, double *t_end, int *at_rest, rf_error *err)
+static rf_status feed_motion(double g, double V, double v_sep, double *t_end, int *at_rest, double *v_end,
+                             rf_error *err)
 {
-    const double t_h = 1e-3, dt = 1e-6, V = 1;
+    const double t_h = 1e-3, dt = 1e-6;
     rf_fem_options o;
     rf_fem_options_default(&o);
     fem_run R;
@@ -166,14 +167,37 @@ static rf_status feed_rest(double g, double *t_end, int *at_rest, rf_error *err)
     for (long n = 0;; n++) {
         const double t = (double)n * dt;
         double row[12] = {0};
-        row[11] = t < 3 * t_h ? -V * (1 - t / (3 * t_h)) : 0;
+        row[11] = t < 3 * t_h ? -V * (1 - t / (3 * t_h)) : v_sep > 0 ? v_sep - g * (t - 3 * t_h) : 0;
         *t_end = (double)(n + 1) * dt;
-        if ((st = fem_run_account(&R, n, 1.0, 0, 0, 0, 1, row, err)) != RF_OK || fem_run_stop(&R, n))
+        const double Fc = t < 3 * t_h || !(v_sep > 0) ? 1.0 : 0.0; /* v_sep > 0: the contact opens at 3 t_h */
+        if ((st = fem_run_account(&R, n, Fc, 0, 0, 0, 1, row, err)) != RF_OK || fem_run_stop(&R, n))
             break;
     }
-    *at_rest = R.at_rest;
+    *at_rest = R.at_rest, *v_end = R.v_now;
     fem_run_free(&R);
     return st;
+}
+
+static rf_status feed_rest(double g, double *t_end, int *at_rest, rf_error *err)
+{
+    double v_end;
+    return feed_motion(g, 1, 0, t_end, at_rest, &v_end, err);
+}
+
+/* A slow boulder (V = 1 cm/s) that separates at 3 t_h with v_sep = 5 mm/s
+ * (above the rest resolution 2 % V) is turned by its weight within 0.05 t_h:
+ * the impact has ended (a later fall is a new impact): the run ends 0.1 t_h
+ * after the separation, not at rest, with the boulder already falling. */
+static void test_bounce_then_fall(void **state)
+{
+    (void)state;
+    double t_end, v_end;
+    int rest;
+    rf_error err = {0};
+    assert_int_equal(feed_motion(9.81, 0.01, 5e-4, &t_end, &rest, &v_end, &err), RF_OK);
+    printf("bounce: the run ends at %.4f t_h, velocity then %.2e m/s, at rest %d\n", t_end / 1e-3, v_end, rest);
+    assert_false(rest);
+    assert_true(v_end < 0 && fabs(t_end - 3.1e-3) < 3e-6);
 }
 
 static void test_rest_rule(void **state)
@@ -278,7 +302,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_slope_at_rest),        cmocka_unit_test(test_cohesionless_strength),
-        cmocka_unit_test(test_rest_rule),            cmocka_unit_test(test_slow_block_on_sand),
+        cmocka_unit_test(test_rest_rule),            cmocka_unit_test(test_bounce_then_fall),
+        cmocka_unit_test(test_slow_block_on_sand),
         cmocka_unit_test(test_gravity_zero_is_old_model), cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -106,9 +106,15 @@ static int series_push(fem_series *s, const double *v)
 #define FEM_RUN_BOUND_MAX 100.0
 
 /* The impact has ended: the contact is open and the boulder does not move
- * toward the slope (a boulder still moving in meets it again). */
+ * toward the slope (a boulder still moving in meets it again).  With gravity:
+ * the contact opened with the boulder moving away faster than the rest
+ * rule's resolution (v_sep > FEM_REST_SPEED V), even if its weight has
+ * turned it since (it falls back later: a new impact); a slower separation is
+ * the block settling in its crater (the rest rule decides). */
 static int run_ended(const fem_run *r)
 {
+    if (r->gravity > 0)
+        return !r->in_contact && r->v_sep > FEM_REST_SPEED * fabs(r->v_start);
     return !r->in_contact && r->v_now >= 0;
 }
 

@@ -87,7 +87,9 @@ rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, do
  * not ended by the bound of fem_run_stop. */
 rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
                           const double *row, rf_error *err);
-/* 1 when the run ends after step n.  end_time > 0: at end_time.  Automatic:
+/* 1 when the run ends after step n (with gravity the impact has ended when
+ * the contact opened with the boulder moving away at v_sep > FEM_REST_SPEED V;
+ * else it ends by the rest rule).  end_time > 0: at end_time.  Automatic:
  * the impact has ended (the contact open for 0.1 t_h and the boulder not
  * moving toward the slope) after t_min = 1.3 t_h; past t_max = 3 t_h it must
  * also have ended, else the run goes on up to a bound scaled by the contact's
