@@ -11,12 +11,15 @@
 #   /usr/bin/python3 tools/drop_tests_plot.py OUT docs/img
 # draws docs/img/drop_tests.png and prints the tables of the section.
 # ~1 min of CPU on one core.
-# Usage: [GRAVITY=auto|G] tools/drop_tests.sh [build-dir] [out-dir]
+# Usage: [GRAVITY=auto|G] [CASES=file] tools/drop_tests.sh [build-dir] [out-dir]
+# (CASES: another case list of the same columns, e.g. a part of the default
+# one to run parts in parallel and concatenate their drop_tests.jsonl)
 set -e
 src=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$src/build}
 out=${2:-$build/drop-tests}
 grav=${GRAVITY:-auto}
+cases=${CASES:-$src/tools/data/drop_tests_cases.txt}
 mkdir -p "$out"
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j2 --target rockfuzz_cli >/dev/null
@@ -24,7 +27,7 @@ bin="$build/rockfuzz"
 R="$out/drop_tests.jsonl"
 : > "$R"
 # columns: case group mass_kg radius_m v_ms layer_m soil bedrock
-grep -v '^#' "$src/tools/data/drop_tests_cases.txt" | while read -r id group mass radius v layer soil bed; do
+grep -v '^#' "$cases" | while read -r id group mass radius v layer soil bed; do
     [ -n "$id" ] || continue
     rho=$(python3 -c "import math; print('%.6g' % ($mass / (4 / 3 * math.pi * $radius ** 3)))")
     case $soil in # docs/materials.md rows (nominal = middle of each range); the cap from its oedometer table
