@@ -87,7 +87,8 @@ typedef struct {
     double end_time;           /* [s]; 0 = automatic: >= 1.3 Hertz durations and until the
                                   contact has stayed open for 0.1 of one while the boulder
                                   moves away; past 3 durations up to a bound scaled by the
-                                  contact's progress, where the run fails (RF_EMODEL) */
+                                  contact's progress (with gravity: 100 durations; the block
+                                  may come to rest, R_n = 0), where the run fails (RF_EMODEL) */
     int threads;               /* OpenMP threads for one impact, default 1 (0 = 1) */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (existing dir) */
     double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 (matching);

@@ -173,8 +173,9 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
        4 times that (the resisting force may fall to a quarter of its mean
        before the boulder stops), at most FEM_RUN_BOUND_MAX t_h. */
     const double p = r->v_start < 0 ? (r->v_now - r->v_start) / -r->v_start : 1;
-    if (r->t_bound == 0)
-        r->t_bound = fmin(FEM_RUN_BOUND_MAX * r->t_h, 4 * r->t_max / fmax(fmin(p, 1), 1e-3));
+    if (r->t_bound == 0) /* with gravity a block settles by small bounces and oscillations: the full bound */
+        r->t_bound = r->gravity > 0 ? FEM_RUN_BOUND_MAX * r->t_h
+                                    : fmin(FEM_RUN_BOUND_MAX * r->t_h, 4 * r->t_max / fmax(fmin(p, 1), 1e-3));
     if (tn < r->t_bound)
         return RF_OK;
     return rf_fail(err, RF_EMODEL,

@@ -93,7 +93,9 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
  * the impact has ended (the contact open for 0.1 t_h and the boulder not
  * moving toward the slope) after t_min = 1.3 t_h; past t_max = 3 t_h it must
  * also have ended, else the run goes on up to a bound scaled by the contact's
- * progress at t_max (fem_run_account fails there). */
+ * progress at t_max (fem_run_account fails there; with gravity the bound is
+ * FEM_RUN_BOUND_MAX t_h: a block settles by small bounces and oscillations,
+ * and the rest rule below ends it). */
 int fem_run_stop(const fem_run *r, long n);
 /* The rest rule (gravity > 0, automatic end): the boulder has come to rest in
  * its crater when, for FEM_REST_WINDOW Hertz durations, it has been in contact
