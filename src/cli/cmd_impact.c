@@ -182,7 +182,9 @@ static void usage(FILE *f)
         "                           contact_radius [m], R_n, R_t, R_ke, energy_error [-],\n"
         "                           plastic_work [-, of the initial KE], penetration_max [m],\n"
         "                           indentation_depth [m], equivalent_plastic_strain_max [-],\n"
-        "                           nodes, elements, steps, wall_seconds [s]; NaN -> null\n"
+        "                           nodes, elements, steps, gravity [m/s^2, the value used],\n"
+        "                           at_rest (1: the block came to rest, R_n = 0),\n"
+        "                           wall_seconds [s]; NaN -> null\n"
         "  -h, --help               show this help\n"
         "\n"
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
