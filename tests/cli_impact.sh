@@ -19,7 +19,7 @@ want = dict(zip(["contact_force_max", "compression_max", "contact_duration", "co
                 map(float, sys.argv[3:7])))
 keys = ["contact_force_max", "compression_max", "contact_duration", "contact_radius", "R_n", "R_t",
         "R_ke", "energy_error", "plastic_work", "penetration_max", "indentation_depth",
-        "equivalent_plastic_strain_max", "nodes", "elements", "steps", "wall_seconds"]
+        "equivalent_plastic_strain_max", "nodes", "elements", "steps", "gravity", "at_rest", "wall_seconds"]
 assert list(o) == keys, list(o)
 for k, w in want.items():
     assert abs(o[k] / w - 1) < 1e-3, (k, o[k], w)

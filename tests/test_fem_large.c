@@ -163,6 +163,7 @@ static rf_impact_input soft_soil(void)
     in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 5e3;
     in.slope_friction_angle = 35 * M_PI / 180, in.slope_dilatancy_angle = 5 * M_PI / 180;
     in.slope_cap_pressure = 100e3, in.slope_cap_hardening = 20e6;
+    in.gravity = 0; /* the gravity-free figures of validation-plastic.md 6e (with gravity W_p counts its work too) */
     return in;
 }
 

@@ -292,6 +292,7 @@ static void test_layer_logic(void **state)
     rf_impact_input in = granite(10);
     for (int kin = RF_FEM_SMALL_STRAIN; kin <= RF_FEM_LARGE_DEFORMATION; kin++) {
         o.large_deformation = (rf_fem_kinematics)kin;
+        in.gravity = 0; /* auto would give the plastic slope gravity and not the elastic layer */
         in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 1e15, in.layer_thickness = 0;
         assert_int_equal(rf_fem_impact(&in, &o, &a, NULL, &err), RF_OK);
         in.slope_material = RF_MATERIAL_ELASTIC;
@@ -388,7 +389,7 @@ static void test_vtk_plastic_fields(void **state)
     remove(path);
     rmdir(dir);
     printf("VTK: largest plastic strain of the frames %.4f, output %.4f\n", vmax, out.equivalent_plastic_strain_max);
-    assert_true(vmax > 0 && vmax <= out.equivalent_plastic_strain_max);
+    assert_true(vmax > 0 && vmax <= out.equivalent_plastic_strain_max * (1 + 5e-7)); /* the cell fields are written %.7g */
     assert_true(vmax > 0.5 * out.equivalent_plastic_strain_max); /* the last frames are after the loading */
 }
 

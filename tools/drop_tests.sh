@@ -1,7 +1,8 @@
 #!/bin/sh
 # tools/drop_tests.sh - the model runs of docs/validation-plastic.md section 8
-# ("Against drop tests"): `rockfuzz impact` (axisymmetric FE, small strain,
-# rigid block, Drucker-Prager + cap soil layer) for the published test
+# ("Against drop tests"): `rockfuzz impact` (axisymmetric FE, default
+# kinematics, rigid block, Drucker-Prager + cap soil layer, gravity
+# $GRAVITY: default auto = 9.81 m/s^2 with the plastic layer) for the published test
 # set-ups that could be read (the cases and their sources are listed in
 # tools/data/drop_tests_cases.txt, one case a line).  No parameter is fitted:
 # the soil values are the nominal ones of the docs/materials.md rows named in
@@ -10,11 +11,15 @@
 #   /usr/bin/python3 tools/drop_tests_plot.py OUT docs/img
 # draws docs/img/drop_tests.png and prints the tables of the section.
 # ~1 min of CPU on one core.
-# Usage: tools/drop_tests.sh [build-dir] [out-dir]
+# Usage: [GRAVITY=auto|G] [CASES=file] tools/drop_tests.sh [build-dir] [out-dir]
+# (CASES: another case list of the same columns, e.g. a part of the default
+# one to run parts in parallel and concatenate their drop_tests.jsonl)
 set -e
 src=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$src/build}
 out=${2:-$build/drop-tests}
+grav=${GRAVITY:-auto}
+cases=${CASES:-$src/tools/data/drop_tests_cases.txt}
 mkdir -p "$out"
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j2 --target rockfuzz_cli >/dev/null
@@ -22,7 +27,7 @@ bin="$build/rockfuzz"
 R="$out/drop_tests.jsonl"
 : > "$R"
 # columns: case group mass_kg radius_m v_ms layer_m soil bedrock
-grep -v '^#' "$src/tools/data/drop_tests_cases.txt" | while read -r id group mass radius v layer soil bed; do
+grep -v '^#' "$cases" | while read -r id group mass radius v layer soil bed; do
     [ -n "$id" ] || continue
     rho=$(python3 -c "import math; print('%.6g' % ($mass / (4 / 3 * math.pi * $radius ** 3)))")
     case $soil in # docs/materials.md rows (nominal = middle of each range); the cap from its oedometer table
@@ -39,7 +44,7 @@ grep -v '^#' "$src/tools/data/drop_tests_cases.txt" | while read -r id group mas
     # shellcheck disable=SC2086
     if res=$(nice "$bin" impact --boulder-material rigid --radius "$radius" --boulder-density "$rho" --velocity "$v" \
             --layer-thickness "$layer" --layer-material drucker_prager $s $b \
-            --refinement 3 --boundary fixed --json 2> "$out/err.txt"); then
+            --refinement 3 --boundary fixed --gravity "$grav" --json 2> "$out/err.txt"); then
         warn=$(tr '\n' ' ' < "$out/err.txt" | sed 's/"/\\"/g')
         echo "{\"case\": \"$id\", \"group\": \"$group\", \"mass\": $mass, \"radius\": $radius, \"velocity\": $v, \"layer\": $layer, \"soil\": \"$soil\", \"bedrock\": \"$bed\", \"warning\": \"$warn\", \"out\": $res}" >> "$R"
     else

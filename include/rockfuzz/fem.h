@@ -87,7 +87,8 @@ typedef struct {
     double end_time;           /* [s]; 0 = automatic: >= 1.3 Hertz durations and until the
                                   contact has stayed open for 0.1 of one while the boulder
                                   moves away; past 3 durations up to a bound scaled by the
-                                  contact's progress, where the run fails (RF_EMODEL) */
+                                  contact's progress (with gravity: 100 durations; the block
+                                  may come to rest, R_n = 0), where the run fails (RF_EMODEL) */
     int threads;               /* OpenMP threads for one impact, default 1 (0 = 1) */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (an existing dir:
                                   the CLI's --vtk creates it) */
@@ -168,6 +169,11 @@ typedef struct {
     double plastic_strain_max_r, plastic_strain_max_z; /* centre of its element (reference coordinates,
                                                             z = 0 on the slope surface) [m] */
     long boulder_nodes, boulder_elements, slope_nodes, slope_elements;
+    /* gravity (rf_impact_gravity; docs/validation-plastic.md "Gravity") */
+    double gravity;               /* [m/s^2] the run used */
+    double gravity_work;          /* work of gravity on both bodies at the end (the loss of potential energy) [J] */
+    long geostatic_outside;       /* integration points whose geostatic state the law does not admit (0 expected) */
+    int at_rest;                  /* 1: the run ended by the rest rule (the boulder at rest in contact: R_n = 0) */
     uint64_t state_hash;          /* FNV-1a over the bytes of the final u and v (determinism checks) */
     char warning[512];            /* "" or a human-readable warning */
 } rf_fem_history;

@@ -57,7 +57,24 @@ typedef struct {
     double layer_yield, layer_hardening, layer_cohesion;
     double layer_friction_angle, layer_dilatancy_angle; /* [rad] (degrees in the CLI and studies) */
     double layer_cap_pressure, layer_cap_hardening;
+    /* Gravity [m/s^2] along -z (the slope normal of a normal impact): the
+       boulder's weight and the geostatic stress of the slope and layer
+       (docs/validation-plastic.md "Gravity").  RF_GRAVITY_AUTO (the default,
+       any negative value) = RF_GRAVITY_STANDARD when a body is elasto-plastic,
+       0 for elastic bodies (the seed paper's model and the Hertz
+       validations); an explicit value >= 0 overrides.  FE axisymmetric model
+       only (the 3D model refuses gravity > 0; auto is 0 there). */
+    double gravity;
 } rf_impact_input;
+
+#define RF_GRAVITY_AUTO (-1.0)
+#define RF_GRAVITY_STANDARD 9.81
+/* The gravity [m/s^2] an impact runs with: in->gravity if >= 0, else (auto)
+ * RF_GRAVITY_STANDARD when the boulder, the slope or a layer is
+ * elasto-plastic and the model is axisymmetric (three_d == 0), else 0. */
+double rf_impact_gravity(const rf_impact_input *in, int three_d);
+/* "auto" or a value >= 0 [m/s^2] -> in->gravity (RF_EINVAL otherwise). */
+rf_status rf_impact_gravity_parse(const char *text, double *gravity, rf_error *err);
 
 /* boulder_material value of a rigid boulder ("rigid"; not a material of
  * material.h): exact mass, no deformation (boulder_E and boulder_poisson are

@@ -26,7 +26,7 @@ typedef enum {
     O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_DOMAIN, O_END_TIME, O_THREADS, O_VTK, O_JSON,
     O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S,
     O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L,
-    O_HELP, O_COUNT
+    O_G, O_HELP, O_COUNT
 } opt_id;
 
 static const struct {
@@ -71,6 +71,7 @@ static const struct {
     {O_PSI_L, "layer-dilatancy-angle", "layer_dilatancy_angle"},
     {O_CAP_L, "layer-cap-pressure", "layer_cap_pressure"},
     {O_CAPH_L, "layer-cap-hardening", "layer_cap_hardening"},
+    {O_G, "gravity", "gravity"},
     {O_SOLVER, "solver", NULL},
     {O_EN, "e-n", NULL},
     {O_HUNTER_A, "hunter-A", NULL},
@@ -109,6 +110,13 @@ static void usage(FILE *f)
         "  --velocity MS            vertical impact speed [m/s] (default 10)\n"
         "  --slope-angle DEG        slope inclination [degrees] in [0, 90) (default 0)\n"
         "  --friction MU            Coulomb coefficient >= 0, static = kinetic (default 0)\n"
+        "  --gravity G              auto | value >= 0 [m/s^2] (default auto: 9.81 when a body\n"
+        "                           is elasto-plastic, 0 for elastic bodies, the Hertz model).\n"
+        "                           fem axisymmetric only: the boulder's weight and the\n"
+        "                           geostatic stress of the slope and layer (K0 = 1 - sin phi\n"
+        "                           for drucker_prager, nu/(1 - nu) otherwise); R_n is the\n"
+        "                           velocity at separation, 0 when the boulder comes to rest\n"
+        "                           (docs/validation-plastic.md section 11)\n"
         "\n"
         "Materials (docs/materials.md; fem solver only when not elastic; axisymmetric and 3D):\n"
         "  --boulder-material M     elastic | von_mises | rigid (default elastic; rigid: exact\n"
@@ -177,7 +185,9 @@ static void usage(FILE *f)
         "                           contact_radius [m], R_n, R_t, R_ke, energy_error [-],\n"
         "                           plastic_work [-, of the initial KE], penetration_max [m],\n"
         "                           indentation_depth [m], equivalent_plastic_strain_max [-],\n"
-        "                           nodes, elements, steps, wall_seconds [s]; NaN -> null\n"
+        "                           nodes, elements, steps, gravity [m/s^2, the value used],\n"
+        "                           at_rest (1: the block came to rest, R_n = 0),\n"
+        "                           wall_seconds [s]; NaN -> null\n"
         "  -h, --help               show this help\n"
         "\n"
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
@@ -217,7 +227,7 @@ static void json_number(const char *key, double x, int last)
         printf("\"%s\": null%s", key, last ? "" : ", ");
 }
 
-static void print_json(const rf_impact_output *o)
+static void print_json(const rf_impact_output *o, double gravity, int at_rest)
 {
     printf("{");
     json_number("contact_force_max", o->contact_force_max, 0);
@@ -235,6 +245,8 @@ static void print_json(const rf_impact_output *o)
     json_number("nodes", o->nodes, 0);
     json_number("elements", o->elements, 0);
     json_number("steps", o->steps, 0);
+    json_number("gravity", gravity, 0);
+    printf("\"at_rest\": %d, ", at_rest);
     json_number("wall_seconds", o->wall_seconds, 1);
     printf("}\n");
 }
@@ -278,6 +290,8 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     printf("  impact            V = %g m/s vertical, slope angle = %g deg, friction = %g\n",
            in->velocity, in->slope_angle * 180.0 / RF_PI, in->friction);
     printf("  mass              %.6g kg\n", rf_impact_mass(in));
+    printf("  gravity           %g m/s^2%s\n", spec->solver == RF_IMPACT_FEM ? rf_impact_gravity(in, rf_fem_needs_3d(in)) : 0.0,
+           in->gravity < 0 ? " (auto)" : "");
     if (spec->solver == RF_IMPACT_FEM) {
         int three_d = rf_fem_needs_3d(in);
         printf("  FE settings       %s, refinement a/h = %g, domain = %g r0%s, boundary %s, threads %d, "
@@ -343,7 +357,7 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
         return EXIT_FAILED;
     }
     if (json) {
-        print_json(out);
+        print_json(out, hist.gravity, hist.at_rest);
     } else {
         print_summary(spec, &spec->base, out);
         printf("  FE mesh               boulder %ld nodes / %ld elements, slope %ld / %ld; "
@@ -444,6 +458,12 @@ int rf_cli_impact(int argc, char **argv)
             break;
         case O_VTK:
             spec.fem.vtk_dir = val;
+            break;
+        case O_G:
+            if (rf_impact_gravity_parse(val, &spec.base.gravity, &err) != RF_OK) {
+                fprintf(stderr, "rockfuzz impact: --gravity: %s\n", err.msg);
+                return EXIT_USAGE;
+            }
             break;
         case O_MAT_B:
         case O_MAT_S:
@@ -554,7 +574,7 @@ int rf_cli_impact(int argc, char **argv)
         return EXIT_FAILED;
     }
     if (json) {
-        print_json(&out);
+        print_json(&out, 0.0, 0);
     } else {
         print_summary(&spec, in, &out);
         print_references(&spec, in);

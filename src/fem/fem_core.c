@@ -106,10 +106,29 @@ static int series_push(fem_series *s, const double *v)
 #define FEM_RUN_BOUND_MAX 100.0
 
 /* The impact has ended: the contact is open and the boulder does not move
- * toward the slope (a boulder still moving in meets it again). */
+ * toward the slope (a boulder still moving in meets it again).  With gravity:
+ * the contact opened with the boulder moving away faster than the rest
+ * rule's resolution (v_sep > FEM_REST_SPEED V), even if its weight has
+ * turned it since (it falls back later: a new impact); a slower separation is
+ * the block settling in its crater (the rest rule decides). */
 static int run_ended(const fem_run *r)
 {
+    if (r->gravity > 0)
+        return !r->in_contact && r->v_sep > FEM_REST_SPEED * fabs(r->v_start);
     return !r->in_contact && r->v_now >= 0;
+}
+
+/* The rest rule (fem_core.h) at time t. */
+static void rest_check(fem_run *r, double t)
+{
+    const int slow = r->episodes > 0 && t - r->t_last_contact <= 0.1 * r->t_h &&
+                     fabs(r->v_now) < FEM_REST_SPEED * fabs(r->v_start);
+    if (!slow)
+        r->rest_since = -1;
+    else if (r->rest_since < 0)
+        r->rest_since = t;
+    if (slow && t - r->rest_since >= FEM_REST_WINDOW * r->t_h)
+        r->at_rest = 1;
 }
 
 rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
@@ -119,8 +138,10 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
     if (force_record(r, n, Fc))
         return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
     if (n == 0)
-        r->v_start = row[11];
+        r->v_start = row[11], r->rest_since = -1;
     r->v_now = row[11];
+    if (r->gravity > 0 && !(Fc > 0) && r->in_contact)
+        r->v_sep = row[11];
     if (Fc > 0) {
         if (!r->in_contact)
             r->episodes++;
@@ -140,8 +161,10 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
         r->closure_max = fabs(closure);
     if (r->record && n % r->stride == 0 && series_push(&r->series, row) != 0)
         return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
+    if (r->gravity > 0 && r->end_time == 0)
+        rest_check(r, t);
     const double tn = (double)(n + 1) * r->dt;
-    if (r->end_time > 0 || tn < r->t_max || run_ended(r))
+    if (r->end_time > 0 || tn < r->t_max || run_ended(r) || r->at_rest)
         return RF_OK;
     /* Past t_max = 3 t_h the impact has not ended (a plastic contact lasts
        longer than the elastic one): the run goes on.  Its bound: at t_max a
@@ -150,8 +173,9 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
        4 times that (the resisting force may fall to a quarter of its mean
        before the boulder stops), at most FEM_RUN_BOUND_MAX t_h. */
     const double p = r->v_start < 0 ? (r->v_now - r->v_start) / -r->v_start : 1;
-    if (r->t_bound == 0)
-        r->t_bound = fmin(FEM_RUN_BOUND_MAX * r->t_h, 4 * r->t_max / fmax(fmin(p, 1), 1e-3));
+    if (r->t_bound == 0) /* with gravity a block settles by small bounces and oscillations: the full bound */
+        r->t_bound = r->gravity > 0 ? FEM_RUN_BOUND_MAX * r->t_h
+                                    : fmin(FEM_RUN_BOUND_MAX * r->t_h, 4 * r->t_max / fmax(fmin(p, 1), 1e-3));
     if (tn < r->t_bound)
         return RF_OK;
     return rf_fail(err, RF_EMODEL,
@@ -167,6 +191,8 @@ int fem_run_stop(const fem_run *r, long n)
     const double tn = (double)(n + 1) * r->dt;
     if (r->end_time > 0)
         return tn >= r->end_time;
+    if (r->at_rest)
+        return 1;
     if (tn >= r->t_max && run_ended(r) && r->t_bound == 0) /* ended by t_max: the old fixed end */
         return 1;
     return tn >= r->t_min && run_ended(r) && tn - r->t_last_contact > 0.1 * r->t_h;
@@ -236,6 +262,10 @@ void fem_run_warnings(const fem_run *r, int fixed_outer, double L, double c_p, d
                                r->episodes);
     if (extra && extra[0] && wl < size)
         wl += (size_t)snprintf(buf + wl, size - wl, "%s", extra);
+    if (r->at_rest && wl < size)
+        wl += (size_t)snprintf(buf + wl, size - wl, "The boulder came to rest in contact (normal speed below %g %% of "
+                               "the incoming one for %g Hertz durations): R_n = 0. ", 100 * FEM_REST_SPEED,
+                               FEM_REST_WINDOW);
     if (r->end_time > 0 && !run_ended(r) && wl < size)
         snprintf(buf + wl, size - wl, "%s at end_time: rebound velocity is not final. ",
                  r->in_contact ? "Still in contact" : "Boulder moving toward the slope");

@@ -69,6 +69,11 @@ typedef struct {
        at the start, now; t_bound: the automatic end's bound, set at t_max when
        the impact has not ended (0: not yet) */
     double v_start, v_now, t_bound;
+    /* gravity > 0 (set after fem_run_begin; 0 keeps the gravity-free rules): the
+       normal velocity when the contact last opened (R_n with gravity), the start
+       of the current slow spell in contact (-1: none) and the rest flag */
+    double gravity, v_sep, rest_since;
+    int at_rest;
     fem_series series;
 } fem_run;
 
@@ -82,12 +87,22 @@ rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, do
  * not ended by the bound of fem_run_stop. */
 rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
                           const double *row, rf_error *err);
-/* 1 when the run ends after step n.  end_time > 0: at end_time.  Automatic:
+/* 1 when the run ends after step n (with gravity the impact has ended when
+ * the contact opened with the boulder moving away at v_sep > FEM_REST_SPEED V;
+ * else it ends by the rest rule).  end_time > 0: at end_time.  Automatic:
  * the impact has ended (the contact open for 0.1 t_h and the boulder not
  * moving toward the slope) after t_min = 1.3 t_h; past t_max = 3 t_h it must
  * also have ended, else the run goes on up to a bound scaled by the contact's
- * progress at t_max (fem_run_account fails there). */
+ * progress at t_max (fem_run_account fails there; with gravity the bound is
+ * FEM_RUN_BOUND_MAX t_h: a block settles by small bounces and oscillations,
+ * and the rest rule below ends it). */
 int fem_run_stop(const fem_run *r, long n);
+/* The rest rule (gravity > 0, automatic end): the boulder has come to rest in
+ * its crater when, for FEM_REST_WINDOW Hertz durations, it has been in contact
+ * (closed within the last 0.1 t_h) with a normal speed below FEM_REST_SPEED
+ * times the incoming one; the run then ends (R_n = 0), without failing. */
+#define FEM_REST_SPEED 0.02
+#define FEM_REST_WINDOW 2.0
 /* Fill the outputs every FE model defines; nsteps steps were made. */
 void fem_run_outputs(const fem_run *r, long nsteps, double duration_threshold, double ke0, double force_factor,
                      long nodes, long elements, rf_impact_output *out);

@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 
+#include "rockfuzz/fem.h"
 #include "rockfuzz/status.h"
 
 #include "core/util.h"
@@ -143,5 +144,26 @@ rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double
 /* Gaps at n+1: penetration and slip maxima; returns the contact radius [m]. */
 double fem_contact_measure(fem_contact *C, const double *u);
 void fem_contact_free(fem_contact *C);
+
+/* Test hook (tests/test_fem_gravity.c): the slope of an impact alone under
+ * gravity for `steps` steps of the solver's own assembly and time step,
+ * without the contact (the boulder falls freely, out of the picture): the
+ * largest slope node speed and displacement, and the mean stress of the
+ * deepest layer element (of the deepest element without a layer) with its
+ * centre depth, to compare with the closed form. */
+typedef struct {
+    double v_max, u_max, dt;
+    double depth, sig[4];     /* centre depth [m] and mean point stress (rr zz tt rz) [Pa] */
+    double zn[4];             /* its node heights [m] */
+    int layer_elem;           /* 1: that element is in the layer */
+    double plastic_strain_max;
+    long elements, outside;
+    /* the slope's body load against its lumped weight -m_a g: the range of
+       the ratio at the interior nodes (off the surface, axis and outer
+       boundary), and the sums over all free slope dofs */
+    double load_ratio_min, load_ratio_max, load_sum, weight_sum;
+} fem_rest_check;
+rf_status fem_axi_slope_at_rest(const rf_impact_input *in, const rf_fem_options *opt, long steps,
+                                fem_rest_check *chk, rf_error *err);
 
 #endif

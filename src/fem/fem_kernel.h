@@ -234,6 +234,35 @@ void fem_points_cell(const fem_points_view *v, long le, double *sig, double *pla
  * if a law has no energy density. */
 double fem_points_energy(const fem_points_view *v);
 
+/* The geostatic state of a body under gravity (docs/validation-plastic.md
+ * "Gravity"): at depth d below the surface z = 0 the vertical stress is
+ * sigma_v = -g (rho_layer min(d, t) + rho_base max(d - t, 0)) (t: the layer
+ * thickness, 0 for none), the horizontal ones K0 sigma_v, no shear; K0 of
+ * the point's law (k0[0] for law, k0[1] for law2).  mat[i] (NULL for a
+ * linear law): the law's material, whose compaction cap (if any) is put
+ * through the geostatic mean stress (normally consolidated under its own
+ * weight: eps_c = (p - X0) / H_c when p > X0). */
+typedef struct {
+    double g;                  /* [m/s^2] */
+    double thickness;          /* [m] */
+    double rho_layer, rho_base; /* [kg/m^3] */
+    double k0[2];
+    const rf_material *mat[2];
+} fem_geostatic;
+/* K0 of a material: Jaky's 1 - sin(phi) for Drucker-Prager (normally
+ * consolidated soil), nu / (1 - nu) (uniaxial strain) for elastic and von Mises. */
+double fem_geostatic_k0(const rf_material_params *p);
+/* Vertical geostatic stress at depth d [Pa] (<= 0). */
+double fem_geostatic_vertical(const fem_geostatic *g, double depth);
+/* Committed and trial stresses (and a cap's compaction) of every point set to
+ * the geostatic state at its depth depth[p]; returns the number of points
+ * whose state the law does not admit (a yield or cap function > 0). */
+long fem_points_geostatic(const fem_points_view *v, const double *depth, const fem_geostatic *g);
+/* The same for the axisymmetric integration-point kernel (the point depths
+ * -z at its 2x2 Gauss points, the reference mesh r, z, conn); -1 for another kernel. */
+long fem_kernel_points_axi_geostatic(fem_kernel *k, const double *r, const double *z, const int *conn,
+                                     const fem_geostatic *g);
+
 static inline void fem_kernel_release(fem_kernel *k)
 {
     if (k->ops && k->ops->destroy)

@@ -9,6 +9,7 @@
 #include "fem_internal.h"
 #include "fem_kernel.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -324,4 +325,32 @@ fem_point_law fem_point_law_material(const rf_material *m)
 {
     fem_point_law law = {rf_material_model_name(m->model), NC, 4, material_update, m, 1, material_energy};
     return law;
+}
+
+long fem_kernel_points_axi_geostatic(fem_kernel *k, const double *r, const double *z, const int *conn,
+                                     const fem_geostatic *g)
+{
+    if (!is_points(k) || !k->data)
+        return -1;
+    (void)r;
+    /* the Gauss points in the order of fem_element_points (fem_element.c) */
+    static const double XI[4] = {-1, 1, 1, -1}, ETA[4] = {-1, -1, 1, 1};
+    const double gp = 1 / sqrt(3.0);
+    const size_t np = (size_t)NQ * (size_t)k->count;
+    double *depth = malloc((np + 1) * sizeof *depth);
+    if (!depth)
+        return -1;
+    for (long e = 0; e < k->count; e++) {
+        const int *c = conn + 4 * (k->first + e);
+        for (int q = 0; q < NQ; q++) {
+            double zq = 0;
+            for (int a = 0; a < 4; a++)
+                zq += 0.25 * (1 + XI[a] * XI[q] * gp) * (1 + ETA[a] * ETA[q] * gp) * z[c[a]];
+            depth[NQ * e + q] = -zq;
+        }
+    }
+    const fem_points_view v = points_view(k);
+    const long outside = fem_points_geostatic(&v, depth, g);
+    free(depth);
+    return outside;
 }

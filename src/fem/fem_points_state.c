@@ -3,9 +3,11 @@
  * alike with the state of their points once a step is accepted: trial
  * values become committed and a dissipative law's plastic work is
  * integrated; and what the solvers read of it: the element means for the VTK
- * frames and the elastic energy of the committed stresses. */
+ * frames and the elastic energy of the committed stresses; and the
+ * geostatic pre-stress under gravity. */
 #include "fem_kernel.h"
 
+#include <math.h>
 #include <string.h>
 
 void fem_points_accept(const fem_points_view *v, double *work, double *strain_max, long *point_max)
@@ -53,4 +55,52 @@ double fem_points_energy(const fem_points_view *v)
         E += v->w[p] * L->energy(L->params, v->sig + (size_t)v->nc * p);
     }
     return E;
+}
+
+double fem_geostatic_k0(const rf_material_params *p)
+{
+    if (p->model == RF_MATERIAL_DRUCKER_PRAGER)
+        return 1 - sin(p->friction_angle);
+    return p->poisson / (1 - p->poisson);
+}
+
+double fem_geostatic_vertical(const fem_geostatic *g, double depth)
+{
+    const double d = fmax(depth, 0), t = g->thickness;
+    return -g->g * (g->rho_layer * fmin(d, t) + g->rho_base * fmax(d - t, 0));
+}
+
+/* A cap through the mean stress p (compression > 0): its compaction. */
+static double cap_consolidation(const rf_material *m, double p)
+{
+    if (!m || !m->cap || !(p > m->cap_pressure) || !(m->cap_hardening > 0))
+        return 0;
+    return (p - m->cap_pressure) / m->cap_hardening;
+}
+
+long fem_points_geostatic(const fem_points_view *v, const double *depth, const fem_geostatic *g)
+{
+    const size_t ns = (size_t)v->law->nstate, nc = (size_t)v->nc;
+    long outside = 0;
+    for (size_t p = 0; p < v->np; p++) {
+        const int two = v->use2 && v->use2[p / (size_t)v->nq];
+        const double sv = fem_geostatic_vertical(g, depth[p]), sh = g->k0[two] * sv;
+        double *s = v->sig + nc * p, *st = (double *)v->sig_t + nc * p;
+        for (size_t i = 0; i < nc; i++)
+            s[i] = 0;
+        if (nc == 4) /* rr zz tt rz: z vertical */
+            s[0] = sh, s[1] = sv, s[2] = sh;
+        else /* xx yy zz xy yz zx: z vertical */
+            s[0] = sh, s[1] = sh, s[2] = sv;
+        memcpy(st, s, nc * sizeof *s);
+        const rf_material *m = g->mat[two];
+        if (!m)
+            continue;
+        rf_material_state ms = {0, 0, cap_consolidation(m, -(sv + 2 * sh) / 3)};
+        if (ns >= 3)
+            v->var[ns * p + 2] = ((double *)v->var_t)[ns * p + 2] = ms.compaction;
+        const double s6[6] = {s[0], s[1], s[2], s[3], nc == 6 ? s[4] : 0, nc == 6 ? s[5] : 0};
+        outside += !rf_material_admissible(m, s6, &ms, 1e-9);
+    }
+    return outside;
 }

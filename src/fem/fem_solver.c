@@ -72,7 +72,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the axisymmetric solver in the workspace pool. */
 enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DASH, P_OUTER, P_ELM, P_FIXED, P_VTK,
-       P_EMAT, P_USE2, P_DTE, P_PACK0, P_PACK1 };
+       P_EMAT, P_USE2, P_DTE, P_PACK0, P_PACK1, P_FGRAV };
 
 /* The state of one axisymmetric run. */
 typedef struct {
@@ -104,6 +104,13 @@ typedef struct {
     int *outer;
     long nouter;
     double dt, dt_bound, dt_edge, mesh_mass_b, Mb, ke0, W_abs;
+    /* gravity (docs/validation-plastic.md "Gravity"): g > 0 gives the body load fgrav
+       (the boulder's lumped weight, the slope's geostatic internal force at u = 0),
+       its work W_grav, the elastic energy E0 of the geostatic stress and the
+       count of points whose geostatic state the law does not admit */
+    double g, *fgrav, W_grav, E0;
+    long geo_outside;
+    int no_contact;       /* fem_axi_slope_at_rest: the slope alone (no contact step) */
     fem_contact C;
     fem_pool *pool;
 } axi_run;
@@ -376,6 +383,8 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
     return RF_OK;
 }
 
+static rf_status axi_gravity(axi_run *S, rf_error *err);
+
 /* Assembly: arrays, incidence, element matrices, masses and time step,
  * material kernels (linear elastic, one block per body), dashpots, contact
  * pairs, and the initial state (boulder translating down at V). */
@@ -430,6 +439,44 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
     S->ke0 = 0.5 * Mb * S->V * S->V;
     if (S->rigid)
         S->C.rigid_invm = 1 / Mb, S->C.rigid_dofs = S->nbd;
+    return S->g > 0 ? axi_gravity(S, err) : RF_OK;
+}
+
+static void axi_internal_force(const axi_run *S, const double *u, double *f);
+
+/* Gravity g along -z (docs/validation-plastic.md "Gravity").  The boulder
+ * falls freely at the start (no stress): its load is the lumped weight
+ * m_a g of every node (its sum the exact weight M g).  The slope is at rest
+ * under its own weight: an integration-point kernel gets the geostatic
+ * stress at its points, and the slope's body load is the internal force of
+ * that stress at u = 0, computed by the same kernel, so that the slope
+ * starts in equilibrium to the last bit (the load the discrete stress
+ * balances: m_a g at the nodes to the discretisation error, plus the
+ * geostatic traction that the removed far field exerts on a free outer
+ * surface).  A precomputed-stiffness slope (linear, small strain) needs
+ * neither: its response to gravity superposes and cancels exactly. */
+static rf_status axi_gravity(axi_run *S, rf_error *err)
+{
+    if (!(S->fgrav = fem_pool_get(S->pool, P_FGRAV, (size_t)S->ndof * sizeof(double), 1)))
+        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+    rf_material_params p[2];
+    rf_impact_material_params(S->in, 1, &p[0]);
+    rf_impact_material_params(S->in, S->layer ? 2 : 1, &p[1]);
+    const fem_geostatic geo = {S->g, S->layer ? S->in->layer_thickness : 0, S->mat[2].rho, S->mat[1].rho,
+                               {fem_geostatic_k0(&p[0]), fem_geostatic_k0(&p[1])},
+                               {S->plastic[1] ? &S->matl[1] : NULL, S->plastic[2] ? &S->matl[2] : NULL}};
+    fem_kernel *k = &S->kernel[FEM_SLOPE];
+    S->geo_outside = fem_kernel_points_axi_geostatic(k, S->mesh.r, S->mesh.z, S->mesh.conn, &geo);
+    if (S->geo_outside >= 0) {
+        S->E0 = fmax(fem_kernel_elastic_energy(k), 0);
+        axi_internal_force(S, S->u, S->fgrav); /* u = 0 */
+        for (int b = 0; b < 2; b++)
+            if (S->kernel[b].ops->commit)
+                S->kernel[b].ops->commit(&S->kernel[b]);
+    } else
+        S->geo_outside = 0;
+    for (long i = 0; i < S->mesh.boulder_nodes; i++)
+        S->fgrav[2 * i] = 0, S->fgrav[2 * i + 1] = -S->mass[2 * i + 1] * S->g;
     return RF_OK;
 }
 
@@ -514,6 +561,11 @@ static void axi_internal_force(const axi_run *S, const double *u, double *f)
  * which a light layer's outer nodes exceed); the predictor then gives the
  * node that velocity.  An axis node (u_r = 0) solves for v_z alone.  Returns
  * half of their work with v_{n-1/2}. */
+static inline double other_force(const axi_run *S, long d)
+{
+    return S->fgrav ? S->fgrav[d] - S->f[d] : -S->f[d];
+}
+
 static double axi_dashpot_forces(axi_run *S)
 {
     double W = 0;
@@ -527,10 +579,10 @@ static double axi_dashpot_forces(axi_run *S)
         double fr, fz;
         if (S->invm[2 * i] == 0) { /* on the axis: v_r = 0 */
             const double Czz = Cp * nz * nz + Cs * nr * nr;
-            const double wz = fem_dashpot_velocity(m, Czz, vz, -S->f[2 * i + 1], dt);
+            const double wz = fem_dashpot_velocity(m, Czz, vz, other_force(S, 2 * i + 1), dt);
             fr = -(Cp - Cs) * nr * nz * wz, fz = -Czz * wz;
         } else {
-            const double gr = -S->f[2 * i], gz = -S->f[2 * i + 1];
+            const double gr = other_force(S, 2 * i), gz = other_force(S, 2 * i + 1);
             const double vn = vr * nr + vz * nz, vt = -vr * nz + vz * nr;
             const double gn = gr * nr + gz * nz, gt = -gr * nz + gz * nr;
             const double wn = fem_dashpot_velocity(m, Cp, vn, gn, dt), wt = fem_dashpot_velocity(m, Cs, vt, gt, dt);
@@ -554,6 +606,15 @@ static void axi_power(const axi_run *S, double fv[2])
         fv[1] += S->f[d] * S->v[d];
 }
 
+/* fgrav' v: the power of gravity. */
+static double axi_gravity_power(const axi_run *S)
+{
+    double p = 0;
+    for (long d = 0; d < S->ndof; d++)
+        p += S->fgrav[d] * S->v[d];
+    return p;
+}
+
 /* One step: internal force -> dashpots -> predictor -> contact.  Returns the
  * total contact force in *Fc and the contact radius in *rad. */
 static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
@@ -568,21 +629,30 @@ static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
     double fv[2] = {0, 0};
     if (S->work_account)
         axi_power(S, fv);
+    const double gv0 = S->fgrav ? axi_gravity_power(S) : 0;
     fem_contact_begin(&S->C, v);
-    for (long d = 0; d < S->ndof; d++) {
-        v[d] += dt * S->invm[d] * (S->fext[d] - S->f[d]);
-        u[d] += dt * v[d];
-    }
+    if (S->fgrav)
+        for (long d = 0; d < S->ndof; d++) {
+            v[d] += dt * S->invm[d] * (S->fext[d] + S->fgrav[d] - S->f[d]);
+            u[d] += dt * v[d];
+        }
+    else
+        for (long d = 0; d < S->ndof; d++) {
+            v[d] += dt * S->invm[d] * (S->fext[d] - S->f[d]);
+            u[d] += dt * v[d];
+        }
     for (long k = 0; k < S->nouter; k++) { /* the other half of the dashpot work, with v_{n+1/2} */
         int i = S->outer[k];
         W_abs_inc -= 0.5 * dt * (S->fext[2 * i] * v[2 * i] + S->fext[2 * i + 1] * v[2 * i + 1]);
     }
     if (S->large) /* the pairs on the predicted surfaces */
         fem_contact_update(&S->C, u);
-    rf_status st = fem_contact_step(&S->C, S->invm, dt, u, v, Fc, err);
+    rf_status st = S->no_contact ? (*Fc = 0, RF_OK) : fem_contact_step(&S->C, S->invm, dt, u, v, Fc, err);
     if (st != RF_OK)
         return st;
     S->W_abs += W_abs_inc;
+    if (S->fgrav) /* fgrav' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
+        S->W_grav += 0.5 * dt * (gv0 + axi_gravity_power(S));
     if (S->work_account) { /* f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
         double fv1[2] = {0, 0};
         axi_power(S, fv1);
@@ -656,6 +726,8 @@ static void axi_energy(const axi_run *S, double t, double Fc, double rad, double
     *closure = ke[0] + ke[1] + se[0] + se[1] + S->W_abs - S->ke0;
     if (S->work_account)
         *closure = ke[0] + ke[1] + S->W_int[0] + S->W_int[1] + S->W_abs - S->ke0;
+    if (S->fgrav) /* gravity's work: the potential energy released */
+        *closure -= S->W_grav;
     const double r[12] = {t, Fc, *comp, rad, ke[0], se[0], ke[1], se[1], S->C.work, S->W_abs, *closure, pz / S->Mb};
     memcpy(row, r, sizeof r);
 }
@@ -714,7 +786,10 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
         for (long d = S->nbd; d < S->ndof; d++)
             ses += 0.5 * S->f[d] * u[d];
     }
-    const double V = S->V, v_after = pz / S->Mb;
+    const double V = S->V;
+    double v_after = pz / S->Mb;
+    if (S->g > 0) /* with gravity: the velocity at separation (0 at rest) */
+        v_after = R->at_rest ? 0 : !R->in_contact && R->episodes > 0 ? R->v_sep : v_after;
     fem_run_outputs(R, nsteps, S->o.duration_threshold, S->ke0, 1.0, S->nn, S->ne, out);
     out->v_n_before = -V;
     out->v_n_after = v_after;
@@ -737,14 +812,14 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     hist->boulder_mass = S->H.mass, hist->boulder_mesh_mass = S->mesh_mass_b;
     hist->penetration_max = S->C.pen_max, hist->slip_max = S->C.slip_max;
     hist->reflection_time = 2 * S->L / S->w[1].p;
-    hist->vibration_energy = ekb + seb - 0.5 * S->Mb * v_after * v_after;
+    hist->vibration_energy = ekb + seb - 0.5 * pz * pz / S->Mb; /* about the final rigid motion */
     hist->slope_energy = eks + ses;
     hist->ke0 = S->ke0;
     hist->plastic_work_boulder = rep[0].plastic_work, hist->plastic_work_slope = rep[1].plastic_work;
     for (int b = 0; b < 2; b++) {
         const double Ee = S->plastic[b] || (b == FEM_SLOPE && S->plastic[2]) ? fem_kernel_elastic_energy(&S->kernel[b]) : -1;
-        if (Ee >= 0) {
-            hist->elastic_energy_stress += Ee;
+        if (Ee >= 0) { /* less the geostatic stress's energy (0 without gravity) */
+            hist->elastic_energy_stress += b == FEM_SLOPE ? Ee - S->E0 : Ee;
             hist->elastic_energy_work += S->W_int[b] - rep[b].plastic_work;
         }
     }
@@ -757,11 +832,17 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
             hist->plastic_strain_max_z += 0.25 * S->mesh.z[c[a]];
         }
     }
+    hist->gravity = S->g, hist->gravity_work = S->W_grav, hist->geostatic_outside = S->geo_outside;
+    hist->at_rest = R->at_rest;
     hist->boulder_nodes = S->mesh.boulder_nodes, hist->boulder_elements = S->mesh.boulder_elems;
     hist->slope_nodes = S->nn - S->mesh.boulder_nodes, hist->slope_elements = S->ne - S->mesh.boulder_elems;
     hist->state_hash = fem_hash(fem_hash(FEM_HASH_SEED, u, (size_t)S->ndof * sizeof *u), v,
                                 (size_t)S->ndof * sizeof *v);
-    fem_run_warnings(R, S->fixed_outer, S->L, S->w[1].p, S->in->radius, hist->warning, sizeof hist->warning, NULL);
+    char extra[160] = "";
+    if (S->geo_outside > 0)
+        snprintf(extra, sizeof extra, "%ld integration points of the geostatic state lie outside the yield surface "
+                 "(returned to it at the first step). ", S->geo_outside);
+    fem_run_warnings(R, S->fixed_outer, S->L, S->w[1].p, S->in->radius, hist->warning, sizeof hist->warning, extra);
 }
 
 /* Check, resolve the automatic settings, take the Hertz reference. */
@@ -813,6 +894,7 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
     S->rigid = in->boulder_material == RF_MATERIAL_RIGID_BODY;
     S->work_account = S->plastic[0] || S->plastic[1] || S->plastic[2];
     S->large = rf_fem_large_deformation(&S->o, in);
+    S->g = rf_impact_gravity(in, 0);
     S->work_account |= S->large; /* the energy from the internal work: no K in updated Lagrangian */
     return RF_OK;
 }
@@ -837,6 +919,7 @@ static rf_status axi_attempt(rf_fem_workspace *ws, const rf_impact_input *in, co
         st = axi_assemble(&S, err);
     if (st == RF_OK)
         st = fem_run_begin(&R, "fem", &S.o, S.dt, S.H.duration, hist != NULL, 12, err);
+    R.gravity = S.g;
     long nsteps = 0;
     if (st == RF_OK)
         st = axi_loop(&S, &R, &nsteps, err);
@@ -893,6 +976,68 @@ rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf
     if (!ws)
         return rf_fail(err, RF_ENOMEM, "fem: out of memory");
     rf_status st = rf_fem_impact_ws(ws, in, opt, out, hist, err);
+    rf_fem_workspace_free(ws);
+    return st;
+}
+
+/* The slope alone under gravity (fem_internal.h): the run's own assembly and
+ * steps without the contact. */
+rf_status fem_axi_slope_at_rest(const rf_impact_input *in, const rf_fem_options *opt, long steps,
+                                fem_rest_check *chk, rf_error *err)
+{
+    rf_fem_workspace *ws = rf_fem_workspace_alloc();
+    if (!ws)
+        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+    axi_run S;
+    memset(&S, 0, sizeof S);
+    memset(chk, 0, sizeof *chk);
+    S.pool = &ws->axi, S.unstable = -1, S.no_contact = 1;
+    rf_status st = axi_prepare(&S, in, opt, err);
+    if (st == RF_OK)
+        st = axi_mesh(&S, err);
+    if (st == RF_OK)
+        st = axi_assemble(&S, err);
+    for (long n = 0; st == RF_OK && n < steps; n++) {
+        double Fc, rad;
+        st = axi_step(&S, &Fc, &rad, err);
+    }
+    if (st == RF_OK) {
+        const double *z = S.mesh.z;
+        for (long i = S.mesh.boulder_nodes; i < S.nn; i++)
+            for (int c = 0; c < 2; c++) {
+                chk->v_max = fmax(chk->v_max, fabs(S.v[2 * i + c]));
+                chk->u_max = fmax(chk->u_max, fabs(S.u[2 * i + c]));
+            }
+        chk->elements = S.ne - S.mesh.boulder_elems, chk->outside = S.geo_outside;
+        chk->load_ratio_min = INFINITY, chk->load_ratio_max = -INFINITY;
+        for (long i = S.mesh.boulder_nodes; S.fgrav && i < S.nn; i++) {
+            if (S.invm[2 * i + 1] > 0)
+                chk->load_sum += S.fgrav[2 * i + 1], chk->weight_sum -= S.mass[2 * i + 1] * S.g;
+            if (S.mesh.flags[i] || S.mass[2 * i + 1] == 0)
+                continue;
+            const double ratio = S.fgrav[2 * i + 1] / (-S.mass[2 * i + 1] * S.g);
+            chk->load_ratio_min = fmin(chk->load_ratio_min, ratio), chk->load_ratio_max = fmax(chk->load_ratio_max, ratio);
+        }
+        chk->dt = S.dt;
+        for (long e = S.mesh.boulder_elems; e < S.ne; e++) {
+            double sig[4], ep = 0, depth = 0;
+            if (!fem_kernel_cell_state(&S.kernel[FEM_SLOPE], e, sig, &ep))
+                break;
+            for (int a = 0; a < 4; a++)
+                depth -= 0.25 * z[S.mesh.conn[4 * e + a]];
+            if (depth > chk->depth && (S.emat[e] == 2 || !S.layer)) {
+                chk->depth = depth, memcpy(chk->sig, sig, sizeof sig), chk->layer_elem = S.emat[e] == 2;
+                for (int a = 0; a < 4; a++)
+                    chk->zn[a] = z[S.mesh.conn[4 * e + a]];
+            }
+            chk->plastic_strain_max = fmax(chk->plastic_strain_max, ep);
+        }
+    }
+    fem_contact_free(&S.C);
+    fem_kernel_release(&S.kernel[0]);
+    fem_kernel_release(&S.kernel[1]);
+    if (S.have_mesh)
+        fem_mesh_free(&S.mesh);
     rf_fem_workspace_free(ws);
     return st;
 }

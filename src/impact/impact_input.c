@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 void rf_impact_input_default(rf_impact_input *in)
@@ -35,6 +36,31 @@ void rf_impact_input_default(rf_impact_input *in)
     in->layer_yield = in->layer_hardening = in->layer_cohesion = 0.0;
     in->layer_friction_angle = in->layer_dilatancy_angle = 0.0;
     in->layer_cap_pressure = in->layer_cap_hardening = 0.0;
+    in->gravity = RF_GRAVITY_AUTO;
+}
+
+double rf_impact_gravity(const rf_impact_input *in, int three_d)
+{
+    if (in->gravity >= 0.0)
+        return in->gravity;
+    const int boulder = in->boulder_material != RF_MATERIAL_ELASTIC && in->boulder_material != RF_MATERIAL_RIGID_BODY;
+    const int layer = in->layer_thickness > 0.0 && in->layer_material != RF_MATERIAL_ELASTIC;
+    return !three_d && (boulder || layer || in->slope_material != RF_MATERIAL_ELASTIC) ? RF_GRAVITY_STANDARD : 0.0;
+}
+
+rf_status rf_impact_gravity_parse(const char *text, double *gravity, rf_error *err)
+{
+    if (text && !strcmp(text, "auto")) {
+        *gravity = RF_GRAVITY_AUTO;
+        return RF_OK;
+    }
+    char *end = NULL;
+    double g = text ? strtod(text, &end) : NAN;
+    if (!text || end == text || *end || !isfinite(g) || g < 0.0)
+        return rf_fail(err, RF_EINVAL, "gravity '%s' must be auto or a finite value >= 0 [m/s^2]",
+                       text ? text : "(null)");
+    *gravity = g;
+    return RF_OK;
 }
 
 rf_status rf_impact_boulder_material_parse(const char *name, rf_material_model *m, rf_error *err)
@@ -144,7 +170,7 @@ static int positive(double x) { return isfinite(x) && x > 0.0; }
 static int poisson_ok(double x) { return isfinite(x) && x > -1.0 && x < 0.5; }
 
 /* One table drives both rf_impact_input_first_invalid and the messages. */
-enum { CHECK_POSITIVE, CHECK_POISSON, CHECK_AXIS, CHECK_FRICTION, CHECK_ANGLE };
+enum { CHECK_POSITIVE, CHECK_POISSON, CHECK_AXIS, CHECK_FRICTION, CHECK_ANGLE, CHECK_GRAVITY };
 static const struct {
     const char *name;
     size_t offset;
@@ -172,6 +198,8 @@ static const struct {
     {"friction", offsetof(rf_impact_input, friction), CHECK_FRICTION, "must be finite and >= 0"},
     {"layer_thickness", offsetof(rf_impact_input, layer_thickness), CHECK_AXIS,
      "must be finite and >= 0 [m] (0 = homogeneous slope)"},
+    {"gravity", offsetof(rf_impact_input, gravity), CHECK_GRAVITY,
+     "must be finite: >= 0 [m/s^2], or negative for auto (9.81 with a plastic body, else 0)"},
 };
 #define N_FIELDS (sizeof fields / sizeof fields[0])
 
@@ -188,6 +216,7 @@ static int field_ok(double x, int check)
     case CHECK_AXIS: return isfinite(x) && x >= 0.0;
     case CHECK_FRICTION: return isfinite(x) && x >= 0.0;
     case CHECK_ANGLE: return isfinite(x) && x >= 0.0 && x < 0.5 * RF_PI;
+    case CHECK_GRAVITY: return isfinite(x);
     }
     return 0;
 }

@@ -24,7 +24,7 @@ const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS] = {
     "boulder_yield", "boulder_hardening", "slope_yield", "slope_hardening", "slope_cohesion",
     "slope_friction_angle", "slope_dilatancy_angle", "slope_cap_pressure", "slope_cap_hardening",
     "layer_thickness", "layer_density", "layer_E", "layer_poisson", "layer_yield", "layer_hardening",
-    "layer_cohesion", "layer_friction_angle", "layer_dilatancy_angle", "layer_cap_pressure", "layer_cap_hardening"};
+    "layer_cohesion", "layer_friction_angle", "layer_dilatancy_angle", "layer_cap_pressure", "layer_cap_hardening", "gravity"};
 
 const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
     "contact_force_max", "compression_max", "contact_duration", "contact_radius",
@@ -110,6 +110,9 @@ static rf_status analytic_supports(const rf_impact_model_spec *spec, const rf_im
                        in->slope_material != RF_MATERIAL_ELASTIC ? rf_material_model_name(in->slope_material)
                                                                  : "von_mises",
                        rf_impact_solver_name(spec->solver));
+    if (in->gravity > 0)
+        return rf_fail(err, RF_EINVAL, "gravity = %g m/s^2: the %s solver has no gravity (use solver fem, or "
+                       "gravity auto or 0)", in->gravity, rf_impact_solver_name(spec->solver));
     if (spec->solver == RF_IMPACT_MDR && in->boulder_material == RF_MATERIAL_RIGID_BODY)
         return rf_fail(err, RF_EINVAL, "boulder_material = rigid: the mdr solver takes the boulder's elastic "
                        "constants (its tangential compliance); use hertz, hunter, rigid or fem");
@@ -240,7 +243,7 @@ static size_t impact_warnings(void *p, char *buf, size_t size)
 enum {
     P_RADIUS, P_C, P_RHO_B, P_RHO_S, P_E_B, P_E_S, P_NU_B, P_NU_S, P_V, P_ANGLE, P_MU,
     P_Y_B, P_H_B, P_Y_S, P_H_S, P_COH_S, P_PHI_S, P_PSI_S, P_CAP_S, P_CAPH_S,
-    P_L_T, P_L_RHO, P_L_E, P_L_NU, P_Y_L, P_H_L, P_COH_L, P_PHI_L, P_PSI_L, P_CAP_L, P_CAPH_L
+    P_L_T, P_L_RHO, P_L_E, P_L_NU, P_Y_L, P_H_L, P_COH_L, P_PHI_L, P_PSI_L, P_CAP_L, P_CAPH_L, P_G
 };
 
 static void bind(rf_impact_input *in, int field, double x)
@@ -280,6 +283,7 @@ static void bind(rf_impact_input *in, int field, double x)
     case P_PSI_L: in->layer_dilatancy_angle = x * RF_PI / 180.0; break;
     case P_CAP_L: in->layer_cap_pressure = x; break;
     case P_CAPH_L: in->layer_cap_hardening = x; break;
+    case P_G: in->gravity = x; break;
     }
 }
 
@@ -439,6 +443,13 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                b->layer_thickness, b->layer_density, b->layer_E, b->layer_poisson,
                rf_material_model_name(b->layer_material), b->layer_yield, b->layer_hardening, b->layer_cohesion,
                b->layer_friction_angle, b->layer_dilatancy_angle, b->layer_cap_pressure, b->layer_cap_hardening);
+    /* gravity (docs/validation-plastic.md "Gravity") is named when an evaluation may run with it: the
+       gravity-free identities stay as they were */
+    int gravity_fuzzy = 0;
+    for (size_t i = 0; i < c->n_params; i++)
+        gravity_fuzzy |= c->field[i] == P_G;
+    if (gravity_fuzzy || b->gravity > 0 || (b->gravity < 0 && s->solver == RF_IMPACT_FEM && plastic_possible(c)))
+        append(buf, cap, &len, " gravity=%.17g", b->gravity < 0 ? RF_GRAVITY_STANDARD : b->gravity);
     append(buf, cap, &len, " params:");
     for (size_t i = 0; i < c->n_params; i++)
         append(buf, cap, &len, "%s%s", i ? "," : "", rf_impact_param_names[c->field[i]]);
@@ -492,7 +503,7 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
                            "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
                            "slope_cap_hardening, layer_thickness, layer_density, layer_E, layer_poisson, "
                            "layer_yield, layer_hardening, layer_cohesion, layer_friction_angle [deg], "
-                           "layer_dilatancy_angle [deg], layer_cap_pressure, layer_cap_hardening)",
+                           "layer_dilatancy_angle [deg], layer_cap_pressure, layer_cap_hardening, gravity)",
                            param_names[i] ? param_names[i] : "(null)");
         }
         for (size_t j = 0; j < i; j++)

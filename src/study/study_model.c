@@ -470,6 +470,7 @@ static double *impact_field(rf_impact_input *in, const char *name)
         {"layer_dilatancy_angle", &in->layer_dilatancy_angle},
         {"layer_cap_pressure", &in->layer_cap_pressure},
         {"layer_cap_hardening", &in->layer_cap_hardening},
+        {"gravity", &in->gravity}, /* [m/s^2]; negative = auto */
     };
     for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
         if (!strcmp(name, f[k].name))
