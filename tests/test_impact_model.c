@@ -373,6 +373,15 @@ static void test_fem_dispatch(void **state)
     assert_int_equal(rf_fem_needs_3d(&in), 0);
     in.slope_angle = 0.5;
     assert_int_equal(rf_fem_needs_3d(&in), 1);
+    in.slope_angle = 0, in.slope_E = in.boulder_E, in.friction = 0.6;
+    in.boulder_material = RF_MATERIAL_RIGID_BODY; /* beta = (1 - 2 nu) / (2 (1 - nu)) = 1/3 at nu = 0.25 */
+    assert_int_equal(rf_fem_needs_3d(&in), 1);
+    in.boulder_material = RF_MATERIAL_ELASTIC, in.layer_thickness = 0.2, in.layer_E = 1e8;
+    assert_int_equal(rf_fem_needs_3d(&in), 1); /* granite on a soft elastic layer */
+    in.layer_E = in.boulder_E;
+    assert_int_equal(rf_fem_needs_3d(&in), 0); /* the layer is the boulder's material */
+    in.layer_material = RF_MATERIAL_DRUCKER_PRAGER;
+    assert_int_equal(rf_fem_needs_3d(&in), 0); /* plastic: axisymmetric, frictionless */
     rf_impact_model_spec spec;
     rf_impact_model_spec_default(&spec);
     assert_true(rf_fem_refinement(&spec.fem, 0) == 10.0 && rf_fem_refinement(&spec.fem, 1) == 3.0);

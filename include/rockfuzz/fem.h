@@ -127,9 +127,13 @@ double rf_fem_refinement(const rf_fem_options *opt, int three_d);
 double rf_fem_domain_factor(const rf_fem_options *opt, const rf_impact_input *in);
 
 /* 1 if the impact needs the 3D model: an inclined slope, or a normal impact
- * with friction between elastically dissimilar bodies (Dundurs beta != 0:
- * the two surfaces would slip radially against each other); else the
- * axisymmetric model is exact. */
+ * with friction between elastically dissimilar bodies (Dundurs beta != 0 of
+ * the boulder and the surface it meets, the layer's if any; a rigid boulder
+ * is the limit of an infinitely stiff one: the two surfaces would slip
+ * radially against each other); else the axisymmetric model is exact.  A
+ * normal impact with any elasto-plastic body runs the axisymmetric model
+ * (large deformation, gravity) without interface friction: the radial slip
+ * of a yielding crater is not modelled (docs/impact.md). */
 int rf_fem_needs_3d(const rf_impact_input *in);
 
 /* Time series and diagnostics of one impact.  Energies in J. */

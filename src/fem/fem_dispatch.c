@@ -22,7 +22,7 @@ rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const
         *three_d = want_3d;
     if (friction_work)
         *friction_work = 0.0;
-    /* the 3D model refuses what it cannot do (a rigid boulder, a layer) with its own message */
+    /* the 3D model refuses what it cannot do (gravity, a spheroid on a slope, ...) with its own message */
     if (!want_3d)
         return ws ? rf_fem_impact_ws(ws, in, opt, out, hist, err) : rf_fem_impact(in, opt, out, hist, err);
     if (in->gravity > 0) /* auto is 0 in 3D (rf_impact_gravity) */
