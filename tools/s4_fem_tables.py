@@ -3,9 +3,10 @@
 
 Usage: tools/s4_fem_tables.py OUT_DIR_30 OUT_DIR_45 OUT_DIR_60 (a missing dir is skipped)
 Prints markdown rows: results (nominal, support at mu = 0, cut at mu = 1/3), the rho
-rankings, the contact outputs and the cost (from OUT_DIR/../logs/time_s4_A.txt, GNU time -v,
-if present).  Every number comes from result.json; nothing is computed but unit changes.
+rankings, the contact outputs and the cost (the sum of OUT_DIR/../logs/time_s4_A*.txt,
+GNU time -v, if present; per run over all 289 requested points).  Every number comes from result.json; nothing is computed but unit changes.
 """
+import glob
 import json
 import os
 import re
@@ -39,15 +40,19 @@ def angle(d):
 
 
 def cost(outdir, n):
-    tf = os.path.join(os.path.dirname(outdir.rstrip("/")), "logs",
-                      f"time_{os.path.basename(outdir.rstrip('/')).replace('_fem_slope', '_')}.txt")
-    if not os.path.exists(tf):
+    """Sum of the GNU time -v logs logs/time_s4_A*.txt (a resumed run has several)."""
+    stem = os.path.basename(outdir.rstrip("/")).replace("_fem_slope", "_")
+    files = sorted(glob.glob(os.path.join(os.path.dirname(outdir.rstrip("/")), "logs",
+                                          f"time_{stem}*.txt")))
+    if not files:
         return None
-    t = open(tf).read()
-    user = float(re.search(r"User time \(seconds\): ([\d.]+)", t).group(1))
-    sys_ = float(re.search(r"System time \(seconds\): ([\d.]+)", t).group(1))
-    w = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", t)
-    wall = int(w.group(1) or 0) * 3600 + int(w.group(2)) * 60 + float(w.group(3))
+    wall = user = sys_ = 0.0
+    for tf in files:
+        t = open(tf).read()
+        user += float(re.search(r"User time \(seconds\): ([\d.]+)", t).group(1))
+        sys_ += float(re.search(r"System time \(seconds\): ([\d.]+)", t).group(1))
+        w = re.search(r"Elapsed \(wall clock\) time.*: (?:(\d+):)?(\d+):([\d.]+)", t)
+        wall += int(w.group(1) or 0) * 3600 + int(w.group(2)) * 60 + float(w.group(3))
     return wall, user, sys_, (user + sys_) / n
 
 
@@ -96,7 +101,7 @@ def main(dirs):
     print("|---|---|---|---|---|---|")
     for d, r in runs:
         e = r["evaluations"]
-        c = cost(d, e["evaluated"])
+        c = cost(d, e["requested"])
         cs = f"{c[0]:.0f} | {c[1]:.0f} + {c[2]:.0f} | {c[3]:.2f}" if c else f"{r['wall_seconds']:.0f} | ? | ?"
         print(f"| {angle(r)}° | {e['evaluated']} ({e['failed']}; {e['from_store']} from store) | {cs} | {len(r['warnings'])} |")
 
