@@ -1,0 +1,65 @@
+/* fem3d_layer_inputs.h - shared by tests/test_fem3d_layer.c (logic, coarse
+ * and short) and tests/test_fem3d_layer_accuracy.c (against Hertz, a very
+ * stiff boulder and the axisymmetric model): granite inputs, coarse options,
+ * one 3D run, and the Drucker-Prager layer.  Include after cmocka.h. */
+#ifndef ROCKFUZZ_FEM3D_LAYER_INPUTS_H
+#define ROCKFUZZ_FEM3D_LAYER_INPUTS_H
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "rockfuzz/fem3d.h"
+#include "rockfuzz/impact_model.h"
+
+#define DEG (3.14159265358979323846 / 180)
+
+static inline rf_impact_input granite(double angle_deg, double f)
+{
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.velocity = 10, in.slope_angle = angle_deg * DEG, in.friction = f;
+    return in;
+}
+
+static inline rf_fem_options coarse(double ref)
+{
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = ref, o.domain_factor = 10, o.threads = 1;
+    return o;
+}
+
+static inline void run3d(const rf_impact_input *in, const rf_fem_options *o, const rf_fem3d_options *o3,
+                  rf_impact_output *out, rf_fem_history *hist, uint64_t *hash)
+{
+    rf_error err = {0};
+    rf_fem3d_report rep = {0};
+    rf_status st = rf_fem3d_impact_ex(in, o, o3, out, hist, &rep, &err);
+    if (st != RF_OK)
+        print_error("fem3d: %s\n", err.msg);
+    assert_int_equal(st, RF_OK);
+    if (hash)
+        *hash = rep.state_hash;
+    rf_fem3d_report_free(&rep);
+}
+
+static inline void show(const char *name, const rf_impact_output *o)
+{
+    print_message("%-28s R_n %.5f R_t %.5f R_ke %.5f F_max %.4g N t_c %.4g s W_p %.4f pen %.3f mm crater %.3f mm "
+                  "err %.2e (%.2f s)\n", name, o->R_n, o->R_t, o->R_ke, o->contact_force_max, o->contact_duration,
+                  o->plastic_work, 1e3 * o->penetration_max, 1e3 * o->indentation_depth, o->energy_error,
+                  o->wall_seconds);
+}
+
+/* A Drucker-Prager layer with a cap (E 20 GPa, c 5 MPa, phi 0.6, psi 0.1, X0 50 MPa, H_c 1 GPa,
+   2000 kg/m^3) of thickness t over elastic granite. */
+static inline void dp_layer(rf_impact_input *in, double t)
+{
+    in->layer_thickness = t, in->layer_density = 2000, in->layer_E = 20e9, in->layer_poisson = 0.3;
+    in->layer_material = RF_MATERIAL_DRUCKER_PRAGER, in->layer_cohesion = 5e6;
+    in->layer_friction_angle = 0.6, in->layer_dilatancy_angle = 0.1;
+    in->layer_cap_pressure = 50e6, in->layer_cap_hardening = 1e9;
+}
+
+#endif
