@@ -156,6 +156,16 @@ def main():
             print("v = %d: %d x '%s', e.g. at (E, c, phi, X0, t) = (%s)" % (v, len(xs), m, xs[0]))
     print()
 
+    print("### energy balance over the stores: R_n^2 + W_p/KE0 (<= 1 + W_g/KE0; W_g, gravity's work, is not\n"
+          "an output: m g penetration_max / KE0 = 2 g pen / V^2 is the block's part, an estimate)\n")
+    for v, (res, ev) in runs.items():
+        g = float(res["model_identity"].split("gravity=")[1].split()[0]) if "gravity=" in res["model_identity"] else 0.0
+        bal = [e["R_n"] ** 2 + e["plastic_work"] for e in ev if e["ok"]]
+        net = [e["R_n"] ** 2 + e["plastic_work"] - 2 * g * e["penetration_max"] / v ** 2 for e in ev if e["ok"]]
+        print("v = %d m/s (g = %g): R_n^2 + W_p/KE0 in [%.3f, %.3f]; less 2 g pen / V^2: [%.3f, %.3f]"
+              % (v, g, min(bal), max(bal), min(net), max(net)))
+    print()
+
     print("### supports (mu = 0), the mu = 0.5 cut and the nominal value (mu = 1)\n")
     print("| output | unit | " + " | ".join("%d m/s: support; mu=0.5; nominal" % v for v in speeds) + " |")
     print("|---|---|" + "---|" * len(speeds))
@@ -198,7 +208,10 @@ def main():
         a.set_ylabel("membership")
         a.grid(alpha=0.3)
     axs[0][0].legend(fontsize=8)
-    fig.suptitle("S5: rigid boulder r0 = 0.5 m on a DP-cap colluvium layer over granite (large deformation)")
+    grav = " ".join(sorted({"gravity=" + r[0]["model_identity"].split("gravity=")[1].split()[0][:4]
+                            for r in runs.values() if "gravity=" in r[0]["model_identity"]}))
+    fig.suptitle("S5: rigid boulder r0 = 0.5 m on a DP-cap colluvium layer over granite (large deformation%s)"
+                 % (", " + grav if grav else ""))
     fig.tight_layout()
     os.makedirs(img, exist_ok=True)
     fig.savefig(os.path.join(img, "studies_s5%s_outputs.png" % suffix), dpi=80)
