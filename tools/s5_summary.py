@@ -6,8 +6,9 @@ from the three runs
     rockfuzz run examples/s5_v10.yaml --out out/s5_v10 --tolerate-failures
     rockfuzz run examples/s5_v20.yaml --out out/s5_v20 --tolerate-failures
 
-Usage: /usr/bin/python3 tools/s5_summary.py [OUT-ROOT [IMG-DIR [ROCKFUZZ]]]
-(defaults out, docs/img).  With ROCKFUZZ (the binary), also reruns the input
+Usage: /usr/bin/python3 tools/s5_summary.py [--suffix=S] [OUT-ROOT [IMG-DIR [ROCKFUZZ]]]
+(defaults out, docs/img).  --suffix=S reads OUT-ROOT/s5_v<v>S (e.g. --suffix=_g for the
+runs with gravity, out/s5_v5_g) and names the figures studies_s5S_*.png.  With ROCKFUZZ (the binary), also reruns the input
 points where R_n, penetration_max, contact_force_max and plastic_work take
 their level-0 bounds with `rockfuzz impact --json` and prints their energy
 errors (the study outputs do not include it).  Reads each run's result.json (cuts, influence
@@ -22,7 +23,10 @@ end that waits for the impact to end (docs/validation-plastic.md sections 6e, 10
              not ended"): the boulder is still in contact or still moving
              toward the slope; no R_n exists
   failed     the solver stopped with any other error
-  no-rebound the run ended but R_n <= 0 (should not happen with the new end
+  at-rest    R_n = 0 exactly: the run ended by the rest rule of gravity (the
+             block came to rest in its crater, docs/validation-plastic.md
+             section 11); only with gravity
+  no-rebound the run ended but R_n < 0 (should not happen with the new end
              rule; kept to catch it)
   deep       penetration_max >= 0.4 r0 = 0.2 m: a deep-penetration marker (the
              soil squeezed between block and granite, plastic strains of several
@@ -51,8 +55,8 @@ UNIT = {"R_n": "-", "plastic_work": "of KE", "penetration_max": "m", "indentatio
         "contact_force_max": "N", "contact_duration": "s", "equivalent_plastic_strain_max": "-"}
 
 
-def load(root, v):
-    d = os.path.join(root, "s5_v%d" % v)
+def load(root, v, suffix=""):
+    d = os.path.join(root, "s5_v%d%s" % (v, suffix))
     res = json.load(open(os.path.join(d, "result.json")))
     con = sqlite3.connect("file:%s?mode=ro" % os.path.join(d, "store.sqlite"), uri=True)
     names = dict(con.execute("select key, value from meta"))["outputs"].split(",")
@@ -69,6 +73,8 @@ def load(root, v):
 def classify(e):
     if not e["ok"]:
         return "not-ended" if "has not ended" in (e["error"] or "") else "failed"
+    if e["R_n"] == 0:
+        return "at-rest"
     if not e["R_n"] > 0:
         return "no-rebound"
     if e["penetration_max"] >= 0.4 * R0:
@@ -88,6 +94,7 @@ def energy_errors(binary, runs):
                 pts.add(tuple(x[n] for n in ("layer_E", "layer_cohesion", "layer_friction_angle",
                                              "layer_cap_pressure", "layer_thickness")))
         bnd = "fixed" if "boundary=fixed" in crisp else "absorbing"
+        grav = crisp.split("gravity=")[1].split(",")[0].split(";")[0].split(" ")[0] if "gravity=" in crisp else "0"
         worst = 0.0
         for E, c, phi, x0, t in sorted(pts):
             cmd = [binary, "impact", "--boulder-material", "rigid", "--radius", "0.5", "--velocity", str(v),
@@ -95,7 +102,7 @@ def energy_errors(binary, runs):
                    "--layer-E", repr(E), "--layer-poisson", "0.3", "--layer-cohesion", repr(c),
                    "--layer-friction-angle", repr(phi), "--layer-dilatancy-angle", "5",
                    "--layer-cap-pressure", repr(x0), "--layer-cap-hardening", "40e6", "--refinement", "3",
-                   "--boundary", bnd, "--json"]
+                   "--boundary", bnd, "--gravity", grav, "--json"]
             r = subprocess.run(cmd, capture_output=True, text=True)
             if r.returncode != 0:
                 print("v = %d, x = %s: failed: %s" % (v, (E, c, phi, x0, t), r.stderr.strip()[:80]))
@@ -111,22 +118,29 @@ def fmt(x):
 
 
 def main():
-    root = sys.argv[1] if len(sys.argv) > 1 else "out"
-    img = sys.argv[2] if len(sys.argv) > 2 else "docs/img"
-    speeds = [v for v in SPEEDS if os.path.exists(os.path.join(root, "s5_v%d" % v, "result.json"))]
+    suffix = ""
+    args = sys.argv[1:]
+    if args and args[0].startswith("--suffix="):
+        suffix = args.pop(0)[len("--suffix="):]
+    root = args[0] if len(args) > 0 else "out"
+    img = args[1] if len(args) > 1 else "docs/img"
+    binary = args[2] if len(args) > 2 else None
+    speeds = [v for v in SPEEDS if os.path.exists(os.path.join(root, "s5_v%d%s" % (v, suffix), "result.json"))]
     for v in SPEEDS:
         if v not in speeds:
-            print("note: %s has no result.json (run unfinished): %d m/s left out\n" % (os.path.join(root, "s5_v%d" % v), v))
-    runs = {v: load(root, v) for v in speeds}
+            print("note: %s has no result.json (run unfinished): %d m/s left out\n"
+                  % (os.path.join(root, "s5_v%d%s" % (v, suffix)), v))
+    runs = {v: load(root, v, suffix) for v in speeds}
 
     print("### evaluations and cost\n")
-    print("| v m/s | evaluations | ok | deep (pen >= 0.4 r0) | no rebound (R_n <= 0) | not ended (failed at the bound)"
-          " | failed (other) | model s (summed) | wall s |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| v m/s | evaluations | ok | deep (pen >= 0.4 r0) | at rest (R_n = 0) | no rebound (R_n < 0)"
+          " | not ended (failed at the bound) | failed (other) | model s (summed) | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for v, (res, ev) in runs.items():
         cls = [classify(e) for e in ev]
-        print("| %d | %d | %d | %d | %d | %d | %d | %.0f | %.0f |" % (
-            v, len(ev), cls.count("ok"), cls.count("deep"), cls.count("no-rebound"), cls.count("not-ended"),
+        print("| %d | %d | %d | %d | %d | %d | %d | %d | %.0f | %.0f |" % (
+            v, len(ev), cls.count("ok"), cls.count("deep"), cls.count("at-rest"), cls.count("no-rebound"),
+            cls.count("not-ended"),
             cls.count("failed"),
             sum(e["seconds"] for e in ev), res["wall_seconds"]))
     print()
@@ -140,6 +154,16 @@ def main():
                 msgs.setdefault(m, []).append(e["x"])
         for m, xs in msgs.items():
             print("v = %d: %d x '%s', e.g. at (E, c, phi, X0, t) = (%s)" % (v, len(xs), m, xs[0]))
+    print()
+
+    print("### energy balance over the stores: R_n^2 + W_p/KE0 (<= 1 + W_g/KE0; W_g, gravity's work, is not\n"
+          "an output: m g penetration_max / KE0 = 2 g pen / V^2 is the block's part, an estimate)\n")
+    for v, (res, ev) in runs.items():
+        g = float(res["model_identity"].split("gravity=")[1].split()[0]) if "gravity=" in res["model_identity"] else 0.0
+        bal = [e["R_n"] ** 2 + e["plastic_work"] for e in ev if e["ok"]]
+        net = [e["R_n"] ** 2 + e["plastic_work"] - 2 * g * e["penetration_max"] / v ** 2 for e in ev if e["ok"]]
+        print("v = %d m/s (g = %g): R_n^2 + W_p/KE0 in [%.3f, %.3f]; less 2 g pen / V^2: [%.3f, %.3f]"
+              % (v, g, min(bal), max(bal), min(net), max(net)))
     print()
 
     print("### supports (mu = 0), the mu = 0.5 cut and the nominal value (mu = 1)\n")
@@ -169,8 +193,8 @@ def main():
         print("| %s | %s |" % (o, " | ".join(cells)))
     print()
 
-    if len(sys.argv) > 3:
-        energy_errors(sys.argv[3], runs)
+    if binary:
+        energy_errors(binary, runs)
 
     fig, axs = plt.subplots(2, 3, figsize=(12, 6.5))
     cols = {5: "tab:blue", 10: "tab:green", 20: "tab:red"}
@@ -184,10 +208,13 @@ def main():
         a.set_ylabel("membership")
         a.grid(alpha=0.3)
     axs[0][0].legend(fontsize=8)
-    fig.suptitle("S5: rigid boulder r0 = 0.5 m on a DP-cap colluvium layer over granite (large deformation)")
+    grav = " ".join(sorted({"gravity=" + r[0]["model_identity"].split("gravity=")[1].split()[0][:4]
+                            for r in runs.values() if "gravity=" in r[0]["model_identity"]}))
+    fig.suptitle("S5: rigid boulder r0 = 0.5 m on a DP-cap colluvium layer over granite (large deformation%s)"
+                 % (", " + grav if grav else ""))
     fig.tight_layout()
     os.makedirs(img, exist_ok=True)
-    fig.savefig(os.path.join(img, "studies_s5_outputs.png"), dpi=80)
+    fig.savefig(os.path.join(img, "studies_s5%s_outputs.png" % suffix), dpi=80)
 
     names = list(runs[speeds[0]][0]["inputs"].keys())
     fig, axs = plt.subplots(1, 3, figsize=(12, 3.6))
@@ -203,8 +230,9 @@ def main():
         a.set_ylim(0, 1)
     axs[0].legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(img, "studies_s5_influence.png"), dpi=80)
-    print("wrote", os.path.join(img, "studies_s5_outputs.png"), os.path.join(img, "studies_s5_influence.png"))
+    fig.savefig(os.path.join(img, "studies_s5%s_influence.png" % suffix), dpi=80)
+    print("wrote", os.path.join(img, "studies_s5%s_outputs.png" % suffix),
+          os.path.join(img, "studies_s5%s_influence.png" % suffix))
 
 
 if __name__ == "__main__":
