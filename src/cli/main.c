@@ -37,20 +37,27 @@ static void usage(FILE *f)
 }
 
 /* `rockfuzz impact` runs one FE impact on all cores.  Its threads meet
- * several times per time step; with the OpenMP runtime's default waiting
- * (spinning), a thread that the OS has descheduled on a busy machine costs
- * its partner whole time slices: measured on a loaded 2-core machine, a 3D
- * impact took 90-129 s on 2 threads instead of 13 s on 1 (docs/fem-speed.md);
- * with passive waiting 4.5-11 s.  The runtime reads OMP_WAIT_POLICY when it
- * is loaded, before main, so when the user has not chosen a policy the
- * program restarts itself once with OMP_WAIT_POLICY=passive (Linux; the
- * results do not depend on it). */
-static void passive_openmp_waits(char **argv)
+ * several times per time step (8 at a/h = 3: ~200 us per step on 2 threads).
+ * How a waiting thread waits decides whether the second core pays:
+ * - the runtime's default (libgomp: spin ~300 000 times, then sleep): a
+ *   thread that the OS has descheduled on a busy machine costs its partner
+ *   whole time slices (a loaded 2-core machine: 90-129 s on 2 threads
+ *   instead of 13 s on 1, docs/fem-speed.md);
+ * - passive (sleep at once): safe under load, but every meeting is a futex
+ *   wake-up: on the idle machine the default 3D impact (a/h = 3) took 0.97 s
+ *   on 2 threads against 0.66 s on 1, and a/h = 6 reached only 1.6x;
+ * - a short spin (GOMP_SPINCOUNT = 10 000, some 10 us) then sleep: idle,
+ *   1.61x at a/h = 3 and 1.86x at a/h = 6; under load about as bad as
+ *   passive (docs/fem-speed.md, "Threads").
+ * The runtime reads these variables when it is loaded, before main, so when
+ * the user has chosen neither, the program restarts itself once with the short
+ * spin (Linux; the results do not depend on it). */
+static void short_openmp_waits(char **argv)
 {
 #if defined(__linux__) && defined(_OPENMP)
-    if (getenv("OMP_WAIT_POLICY"))
+    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT"))
         return;
-    if (setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+    if (setenv("GOMP_SPINCOUNT", "10000", 1) == 0)
         execv("/proc/self/exe", argv); /* returns only on failure: go on with the default policy */
 #else
     (void)argv;
@@ -75,7 +82,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "run"))
         return rf_cli_run(argc - 1, argv + 1);
     if (!strcmp(cmd, "impact")) {
-        passive_openmp_waits(argv);
+        short_openmp_waits(argv);
         return rf_cli_impact(argc - 1, argv + 1);
     }
     if (!strcmp(cmd, "trajectory"))
