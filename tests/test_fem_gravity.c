@@ -22,6 +22,7 @@
 #include "fem/fem_core.h"
 #include "fem/fem_internal.h"
 #include "rockfuzz/fem.h"
+#include "rockfuzz/fem3d.h"
 #include "rockfuzz/impact_model.h"
 #include "rockfuzz/material.h"
 
@@ -286,6 +287,9 @@ static void test_refusals(void **state)
     rf_error err = {0};
     assert_int_equal(rf_fem_solve(&in, NULL, &out, NULL, NULL, NULL, &err), RF_EINVAL);
     printf("3D: %s\n", err.msg);
+    assert_non_null(strstr(err.msg, "gravity = 9.81"));
+    err.msg[0] = 0; /* the 3D solver itself refuses it too (a direct library call, not only the dispatch) */
+    assert_int_equal(rf_fem3d_impact(&in, NULL, &out, NULL, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "gravity = 9.81"));
     in.slope_angle = 0;
     rf_impact_model_spec spec;

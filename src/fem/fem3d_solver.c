@@ -67,6 +67,11 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(in->slope_angle <= 80 * RF_PI / 180), "fem3d: slope_angle must be in [0, 80] degrees, got %g rad",
         in->slope_angle);
     BAD(!(in->friction <= 5), "fem3d: friction must be in [0, 5], got %g", in->friction);
+    BAD(in->gravity > 0, /* auto is 0 in 3D (rf_impact_gravity) */
+        "fem3d: gravity = %g m/s^2 is available in the axisymmetric model only (normal impact on a horizontal "
+        "slope, without friction between dissimilar bodies); the 3D model runs without gravity: set gravity 0 "
+        "or auto (docs/validation-plastic.md section 11)",
+        in->gravity);
     /* (the 3D model runs for an inclined slope or friction between dissimilar bodies: rf_fem_needs_3d) */
     BAD(in->horizontal_axis > 0 && in->slope_angle != 0,
         "fem3d: a spheroid on an inclined slope is not supported (its contact point is not a pole); got "

@@ -25,11 +25,6 @@ rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const
     /* the 3D model refuses what it cannot do (gravity, a spheroid on a slope, ...) with its own message */
     if (!want_3d)
         return ws ? rf_fem_impact_ws(ws, in, opt, out, hist, err) : rf_fem_impact(in, opt, out, hist, err);
-    if (in->gravity > 0) /* auto is 0 in 3D (rf_impact_gravity) */
-        return rf_fail(err, RF_EINVAL, "fem3d: gravity = %g m/s^2 is available in the axisymmetric model only "
-                       "(normal impact on a horizontal slope, without friction between dissimilar bodies); the 3D "
-                       "model runs without gravity: set gravity 0 or auto (docs/validation-plastic.md section 11)",
-                       in->gravity);
     rf_fem_options o;
     if (opt)
         o = *opt;
