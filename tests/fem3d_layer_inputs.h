@@ -1,7 +1,8 @@
 /* fem3d_layer_inputs.h - shared by tests/test_fem3d_layer.c (logic, coarse
  * and short) and tests/test_fem3d_layer_accuracy.c (against Hertz, a very
- * stiff boulder and the axisymmetric model): granite inputs, coarse options,
- * one 3D run, and the Drucker-Prager layer.  Include after cmocka.h. */
+ * stiff boulder and the axisymmetric model): a result line and the
+ * Drucker-Prager layer, over fem3d_plastic_inputs.h's granite inputs, coarse
+ * options and 3D run.  Include after cmocka.h. */
 #ifndef ROCKFUZZ_FEM3D_LAYER_INPUTS_H
 #define ROCKFUZZ_FEM3D_LAYER_INPUTS_H
 
@@ -9,40 +10,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "rockfuzz/fem3d.h"
 #include "rockfuzz/impact_model.h"
 
-#define DEG (3.14159265358979323846 / 180)
-
-static inline rf_impact_input granite(double angle_deg, double f)
-{
-    rf_impact_input in;
-    rf_impact_input_default(&in);
-    in.velocity = 10, in.slope_angle = angle_deg * DEG, in.friction = f;
-    return in;
-}
-
-static inline rf_fem_options coarse(double ref)
-{
-    rf_fem_options o;
-    rf_fem_options_default(&o);
-    o.refinement = ref, o.domain_factor = 10, o.threads = 1;
-    return o;
-}
-
-static inline void run3d(const rf_impact_input *in, const rf_fem_options *o, const rf_fem3d_options *o3,
-                  rf_impact_output *out, rf_fem_history *hist, uint64_t *hash)
-{
-    rf_error err = {0};
-    rf_fem3d_report rep = {0};
-    rf_status st = rf_fem3d_impact_ex(in, o, o3, out, hist, &rep, &err);
-    if (st != RF_OK)
-        print_error("fem3d: %s\n", err.msg);
-    assert_int_equal(st, RF_OK);
-    if (hash)
-        *hash = rep.state_hash;
-    rf_fem3d_report_free(&rep);
-}
+#include "fem3d_plastic_inputs.h" /* granite, coarse, run3d_ex */
 
 static inline void show(const char *name, const rf_impact_output *o)
 {

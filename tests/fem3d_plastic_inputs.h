@@ -1,6 +1,7 @@
 /* fem3d_plastic_inputs.h - shared by tests/test_fem3d_plastic.c (logic, coarse
  * meshes, short runs) and tests/test_fem3d_plastic_accuracy.c (against the
- * axisymmetric model and the elastic one): granite, options, one 3D run.
+ * axisymmetric model and the elastic one), and by fem3d_layer_inputs.h:
+ * granite, options, one 3D run.
  * Include after cmocka.h. */
 #ifndef ROCKFUZZ_FEM3D_PLASTIC_INPUTS_H
 #define ROCKFUZZ_FEM3D_PLASTIC_INPUTS_H
@@ -25,18 +26,25 @@ static inline rf_fem_options coarse(double ref)
     return o;
 }
 
-static inline void run3d(const rf_impact_input *in, const rf_fem_options *o, rf_impact_output *out,
-                         rf_fem_history *hist, uint64_t *hash)
+/* One 3D run with explicit 3D options (NULL: the defaults); hash may be NULL. */
+static inline void run3d_ex(const rf_impact_input *in, const rf_fem_options *o, const rf_fem3d_options *o3,
+                            rf_impact_output *out, rf_fem_history *hist, uint64_t *hash)
 {
     rf_error err = {0};
     rf_fem3d_report rep = {0};
-    rf_status st = rf_fem3d_impact_ex(in, o, NULL, out, hist, &rep, &err);
+    rf_status st = rf_fem3d_impact_ex(in, o, o3, out, hist, &rep, &err);
     if (st != RF_OK)
         print_error("fem3d: %s\n", err.msg);
     assert_int_equal(st, RF_OK);
     if (hash)
         *hash = rep.state_hash;
     rf_fem3d_report_free(&rep);
+}
+
+static inline void run3d(const rf_impact_input *in, const rf_fem_options *o, rf_impact_output *out,
+                         rf_fem_history *hist, uint64_t *hash)
+{
+    run3d_ex(in, o, NULL, out, hist, hash);
 }
 
 #endif

@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fem3d_layer_inputs.h" /* granite, coarse, run3d, show, dp_layer */
+#include "fem3d_layer_inputs.h" /* granite, coarse, run3d_ex, show, dp_layer */
 
 /* (a) A layer of the slope's own material is the homogeneous slope on the same (extruded) mesh, bit
    for bit (both through the linear point law; layered_mesh forces that mesh without a layer). */
@@ -33,18 +33,18 @@ static void test_layer_of_slope_material(void **state)
     rf_impact_output hom, lay, og;
     rf_fem_history hh = {0};
     uint64_t h1, h2;
-    run3d(&in, &o, &o3, &hom, &hh, &h1);
+    run3d_ex(&in, &o, &o3, &hom, &hh, &h1);
     /* the interface on the second node plane (z = -2 h): the same mesh */
     in.layer_thickness = 2 * hh.h_contact, in.layer_density = in.slope_density, in.layer_E = in.slope_E;
     in.layer_poisson = in.slope_poisson, in.layer_material = RF_MATERIAL_ELASTIC;
-    run3d(&in, &o, NULL, &lay, NULL, &h2);
+    run3d_ex(&in, &o, NULL, &lay, NULL, &h2);
     show("homogeneous, extruded mesh", &hom);
     show("layer = slope", &lay);
     assert_true(h1 == h2);
     assert_true(hom.R_n == lay.R_n && hom.contact_force_max == lay.contact_force_max);
     /* the hemispherical O-grid: another mesh of the same problem */
     in.layer_thickness = 0;
-    run3d(&in, &o, NULL, &og, NULL, NULL);
+    run3d_ex(&in, &o, NULL, &og, NULL, NULL);
     show("homogeneous, O-grid", &og);
     rf_fem_history_free(&hh);
     assert_true(fabs(og.R_n - hom.R_n) < 0.01 && fabs(og.contact_force_max / hom.contact_force_max - 1) < 0.02);
@@ -66,9 +66,9 @@ static void test_threads(void **state)
     o.domain_factor = 3, o.end_time = 2e-3; /* the loading half of the impact is enough */
     rf_impact_output a, b;
     uint64_t ha, hb;
-    run3d(&in, &o, NULL, &a, NULL, &ha);
+    run3d_ex(&in, &o, NULL, &a, NULL, &ha);
     o.threads = 2;
-    run3d(&in, &o, NULL, &b, NULL, &hb);
+    run3d_ex(&in, &o, NULL, &b, NULL, &hb);
     assert_true(ha == hb);
     assert_true(a.contact_force_max == b.contact_force_max);
 }
@@ -83,7 +83,7 @@ static void test_rigid_oblique_layer(void **state)
     rf_fem_options o = coarse(2);
     o.domain_factor = 3;
     rf_impact_output el, dp;
-    run3d(&in, &o, NULL, &el, NULL, NULL);
+    run3d_ex(&in, &o, NULL, &el, NULL, NULL);
     dp_layer(&in, 0.1);
     rf_fem3d_report rep = {0};
     rf_error err = {0};

@@ -27,7 +27,7 @@ static void test_rigid_normal(void **state)
     rf_fem_options o = coarse(2);
     rf_impact_output r3, ax;
     rf_fem_history h3 = {0};
-    run3d(&in, &o, NULL, &r3, &h3, NULL);
+    run3d_ex(&in, &o, NULL, &r3, &h3, NULL);
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &ax, NULL, &err), RF_OK);
     rf_hertz_reference H;
@@ -68,11 +68,11 @@ static void test_rigid_vs_stiff(void **state)
     o3.core_factor = 1;
     rf_impact_output rg, s100, s1000;
     in.boulder_material = RF_MATERIAL_RIGID_BODY;
-    run3d(&in, &o, &o3, &rg, NULL, NULL);
+    run3d_ex(&in, &o, &o3, &rg, NULL, NULL);
     in.boulder_material = RF_MATERIAL_ELASTIC, in.boulder_E *= 100;
-    run3d(&in, &o, &o3, &s100, NULL, NULL);
+    run3d_ex(&in, &o, &o3, &s100, NULL, NULL);
     in.boulder_E *= 10;
-    run3d(&in, &o, &o3, &s1000, NULL, NULL);
+    run3d_ex(&in, &o, &o3, &s1000, NULL, NULL);
     show("rigid 45 deg f 0.6", &rg);
     show("elastic E x 100", &s100);
     show("elastic E x 1000", &s1000);
@@ -99,7 +99,7 @@ static void test_layer_vs_axisymmetric(void **state)
     o.domain_factor = 3, o.boundary = RF_FEM_BOUNDARY_ABSORBING, o.large_deformation = RF_FEM_SMALL_STRAIN;
     rf_impact_output l3, ax;
     rf_fem_history h3 = {0};
-    run3d(&in, &o, NULL, &l3, &h3, NULL);
+    run3d_ex(&in, &o, NULL, &l3, &h3, NULL);
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &ax, NULL, &err), RF_OK);
     show("rigid on DP layer, 3D", &l3);
