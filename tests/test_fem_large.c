@@ -19,6 +19,7 @@
 
 #include "fem/fem_internal.h"
 #include "fem/fem_kernel.h"
+#include "fem_plastic_inputs.h" /* axi_options */
 #include "rockfuzz/fem.h"
 #include "rockfuzz/impact_model.h"
 #include "rockfuzz/model.h"
@@ -141,17 +142,6 @@ static void test_uniaxial_large_compression(void **state)
     }
 }
 
-static rf_fem_options coarse(double refinement, rf_fem_kinematics kin)
-{
-    rf_fem_options o;
-    rf_fem_options_default(&o);
-    o.refinement = refinement;
-    o.domain_factor = 10;
-    o.large_deformation = kin;
-    return o;
-}
-
-
 /* A rigid boulder (r0 = 1 m) at 5 m/s on the soft soil of section 6 of
  * docs/validation-plastic.md. */
 static rf_impact_input soft_soil(void)
@@ -207,7 +197,7 @@ static void test_contact_single_pivot(void **state)
 {
     (void)state;
     rf_impact_input in = soft_soil();
-    rf_fem_options o = coarse(3, RF_FEM_KINEMATICS_AUTO);
+    rf_fem_options o = axi_options(3, RF_FEM_KINEMATICS_AUTO);
     o.domain_factor = 0;
     rf_impact_output a, b;
     rf_error err = {0};

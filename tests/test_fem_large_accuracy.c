@@ -14,17 +14,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "fem_plastic_inputs.h" /* axi_options */
 #include "rockfuzz/fem.h"
-
-static rf_fem_options coarse(double refinement, rf_fem_kinematics kin)
-{
-    rf_fem_options o;
-    rf_fem_options_default(&o);
-    o.refinement = refinement;
-    o.domain_factor = 10;
-    o.large_deformation = kin;
-    return o;
-}
 
 /* Elastic granite on granite at 1 m/s: the contact strain delta_max / a
  * (= a / R in Hertz) is 5e-2, the material strain p0 / E 2e-2.  The geometric
@@ -39,7 +30,7 @@ static void test_small_velocity_agrees(void **state)
     in.velocity = 1;
     rf_impact_output s, l;
     rf_error err = {0};
-    rf_fem_options os = coarse(3, RF_FEM_KINEMATICS_AUTO), ol = coarse(3, RF_FEM_LARGE_DEFORMATION);
+    rf_fem_options os = axi_options(3, RF_FEM_KINEMATICS_AUTO), ol = axi_options(3, RF_FEM_LARGE_DEFORMATION);
     assert_int_equal(rf_fem_large_deformation(&os, &in), 0); /* auto: elastic = small strain */
     assert_int_equal(rf_fem_impact(&in, &os, &s, NULL, &err), RF_OK);
     assert_int_equal(rf_fem_impact(&in, &ol, &l, NULL, &err), RF_OK);
