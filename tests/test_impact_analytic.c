@@ -328,6 +328,19 @@ static void test_validation(void **state)
     assert_non_null(strstr(err.msg, "lambda"));
 }
 
+/* Dundurs' beta: zero for identical bodies, odd under exchange of the
+ * bodies, and a rigid first body is the limit of an ever stiffer one:
+ * (1 - 2 nu) / (2 (1 - nu)) = 1/3 at nu = 0.25 (Johnson 1985, ch. 5). */
+static void test_dundurs_beta(void **state)
+{
+    (void)state;
+    assert_true(rf_dundurs_beta(68.2e9, 0.25, 68.2e9, 0.25) == 0.0);
+    const double b = rf_dundurs_beta(68.2e9, 0.25, 30e9, 0.3);
+    assert_true(b > 0 && fabs(b + rf_dundurs_beta(30e9, 0.3, 68.2e9, 0.25)) < 1e-15);
+    assert_true(fabs(rf_dundurs_beta(INFINITY, 0.2, 68.2e9, 0.25) - 1.0 / 3.0) < 1e-15);
+    assert_true(fabs(rf_dundurs_beta(68.2e15, 0.2, 68.2e9, 0.25) - 1.0 / 3.0) < 1e-5);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -335,6 +348,7 @@ int main(void)
         cmocka_unit_test(test_hertz_scaling),  cmocka_unit_test(test_hunter_table),
         cmocka_unit_test(test_rigid_table),    cmocka_unit_test(test_energy_identity),
         cmocka_unit_test(test_spheroid),       cmocka_unit_test(test_validation),
+        cmocka_unit_test(test_dundurs_beta),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

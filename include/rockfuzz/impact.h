@@ -120,6 +120,10 @@ void rf_impact_output_clear(rf_impact_output *out);
 
 /* Effective modulus 1/E* = (1-nu_b^2)/E_b + (1-nu_s^2)/E_s [Pa]. */
 double rf_impact_effective_modulus(const rf_impact_input *in);
+/* Dundurs' second parameter [-] of two bodies (E [Pa], nu): 0 when a normal
+ * contact causes no tangential traction (identical constants, among others);
+ * E1 = INFINITY is the rigid-body limit (1 - 2 nu2) / (2 (1 - nu2)). */
+double rf_dundurs_beta(double E1, double nu1, double E2, double nu2);
 /* Boulder mass [kg], and curvature radius at the contact point [m]
  * (r0 for a sphere, c^2/d at the pole of a spheroid). */
 double rf_impact_mass(const rf_impact_input *in);

@@ -171,16 +171,9 @@ int rf_fem_needs_3d(const rf_impact_input *in)
         return 0; /* plastic: the axisymmetric model (large deformation, gravity), frictionless */
     if (in->slope_material != RF_MATERIAL_ELASTIC || (layer && in->layer_material != RF_MATERIAL_ELASTIC))
         return 0;
-    /* Dundurs' second parameter of the boulder and the surface it meets (the
-     * layer's when there is one): zero when a normal contact causes no
-     * tangential traction (identical elastic constants, among others); a
-     * rigid boulder is the limit G1 -> infinity. */
+    /* Dundurs' beta of the boulder (a rigid one: E -> infinity) and the
+     * surface it meets, the layer's when there is one */
+    const double Eb = in->boulder_material == RF_MATERIAL_RIGID_BODY ? INFINITY : in->boulder_E;
     const double Es = layer ? in->layer_E : in->slope_E, nus = layer ? in->layer_poisson : in->slope_poisson;
-    const double g2 = Es / (2.0 * (1.0 + nus));
-    if (in->boulder_material == RF_MATERIAL_RIGID_BODY)
-        return fabs((1.0 - 2.0 * nus) / (2.0 * (1.0 - nus))) > 1e-12;
-    double g1 = in->boulder_E / (2.0 * (1.0 + in->boulder_poisson));
-    double num = g1 * (1.0 - 2.0 * nus) - g2 * (1.0 - 2.0 * in->boulder_poisson);
-    double den = 2.0 * g1 * (1.0 - nus) + 2.0 * g2 * (1.0 - in->boulder_poisson);
-    return fabs(num / den) > 1e-12;
+    return fabs(rf_dundurs_beta(Eb, in->boulder_poisson, Es, nus)) > 1e-12;
 }

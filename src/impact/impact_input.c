@@ -259,6 +259,14 @@ rf_status rf_impact_input_validate(const rf_impact_input *in, rf_error *err)
     return rf_fail(err, RF_EINVAL, "%s = %g: %s", fields[k].name, x, fields[k].rule);
 }
 
+double rf_dundurs_beta(double E1, double nu1, double E2, double nu2)
+{
+    if (isinf(E1))
+        return (1.0 - 2.0 * nu2) / (2.0 * (1.0 - nu2));
+    const double G1 = E1 / (2.0 * (1.0 + nu1)), G2 = E2 / (2.0 * (1.0 + nu2));
+    return (G1 * (1.0 - 2.0 * nu2) - G2 * (1.0 - 2.0 * nu1)) / (2.0 * (G1 * (1.0 - nu2) + G2 * (1.0 - nu1)));
+}
+
 double rf_impact_effective_modulus(const rf_impact_input *in)
 {
     double xb = in->boulder_material == RF_MATERIAL_RIGID_BODY

@@ -255,10 +255,7 @@ double rf_mdr_tangential_modulus(const rf_impact_input *in)
 /* Dundurs (1969): beta = [G_b (1-2nu_s) - G_s (1-2nu_b)] / [2 (G_b (1-nu_s) + G_s (1-nu_b))]. */
 double rf_mdr_dundurs_beta(const rf_impact_input *in)
 {
-    double Gb = shear_modulus(in->boulder_E, in->boulder_poisson);
-    double Gs = shear_modulus(in->slope_E, in->slope_poisson);
-    double nb = in->boulder_poisson, ns = in->slope_poisson;
-    return (Gb * (1.0 - 2.0 * ns) - Gs * (1.0 - 2.0 * nb)) / (2.0 * (Gb * (1.0 - ns) + Gs * (1.0 - nb)));
+    return rf_dundurs_beta(in->boulder_E, in->boulder_poisson, in->slope_E, in->slope_poisson);
 }
 
 static void fill_output(const rf_impact_input *in, const rf_mdr_problem *p, const rf_mdr_result *r,
