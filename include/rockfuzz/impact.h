@@ -67,6 +67,10 @@ typedef struct {
     double gravity;
 } rf_impact_input;
 
+/* 1 if the boulder (unless rigid), the slope or a layer (thickness > 0) is
+ * elasto-plastic: what the automatic settings of gravity, large deformation
+ * and the FE model choice look at. */
+int rf_impact_has_plastic_body(const rf_impact_input *in);
 #define RF_GRAVITY_AUTO (-1.0)
 #define RF_GRAVITY_STANDARD 9.81
 /* The gravity [m/s^2] an impact runs with: in->gravity if >= 0, else (auto)

@@ -77,9 +77,7 @@ int rf_fem_large_deformation(const rf_fem_options *opt, const rf_impact_input *i
 {
     if (opt->large_deformation != RF_FEM_KINEMATICS_AUTO)
         return opt->large_deformation == RF_FEM_LARGE_DEFORMATION;
-    const int boulder = in->boulder_material != RF_MATERIAL_ELASTIC && in->boulder_material != RF_MATERIAL_RIGID_BODY;
-    const int layer = in->layer_thickness > 0 && in->layer_material != RF_MATERIAL_ELASTIC;
-    return boulder || in->slope_material != RF_MATERIAL_ELASTIC || layer;
+    return rf_impact_has_plastic_body(in);
 }
 
 /* Closed ranges of the real-valued settings; lo3/hi3 are the 3D limits. */
@@ -166,11 +164,9 @@ int rf_fem_needs_3d(const rf_impact_input *in)
         return 1;
     if (!(in->friction > 0.0))
         return 0;
+    if (rf_impact_has_plastic_body(in))
+        return 0; /* the axisymmetric model (large deformation, gravity), frictionless */
     const int layer = in->layer_thickness > 0;
-    if (in->boulder_material != RF_MATERIAL_ELASTIC && in->boulder_material != RF_MATERIAL_RIGID_BODY)
-        return 0; /* plastic: the axisymmetric model (large deformation, gravity), frictionless */
-    if (in->slope_material != RF_MATERIAL_ELASTIC || (layer && in->layer_material != RF_MATERIAL_ELASTIC))
-        return 0;
     /* Dundurs' beta of the boulder (a rigid one: E -> infinity) and the
      * surface it meets, the layer's when there is one */
     const double Eb = in->boulder_material == RF_MATERIAL_RIGID_BODY ? INFINITY : in->boulder_E;

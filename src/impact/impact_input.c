@@ -43,9 +43,14 @@ double rf_impact_gravity(const rf_impact_input *in, int three_d)
 {
     if (in->gravity >= 0.0)
         return in->gravity;
+    return !three_d && rf_impact_has_plastic_body(in) ? RF_GRAVITY_STANDARD : 0.0;
+}
+
+int rf_impact_has_plastic_body(const rf_impact_input *in)
+{
     const int boulder = in->boulder_material != RF_MATERIAL_ELASTIC && in->boulder_material != RF_MATERIAL_RIGID_BODY;
     const int layer = in->layer_thickness > 0.0 && in->layer_material != RF_MATERIAL_ELASTIC;
-    return !three_d && (boulder || layer || in->slope_material != RF_MATERIAL_ELASTIC) ? RF_GRAVITY_STANDARD : 0.0;
+    return boulder || layer || in->slope_material != RF_MATERIAL_ELASTIC;
 }
 
 rf_status rf_impact_gravity_parse(const char *text, double *gravity, rf_error *err)
