@@ -300,6 +300,11 @@ static void test_refusals(void **state)
     in.gravity = NAN;
     assert_int_equal(rf_impact_input_validate(&in, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "gravity"));
+    in.gravity = -9.81; /* a signed component is not a magnitude, and not auto either */
+    assert_int_equal(rf_impact_input_validate(&in, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "gravity"));
+    in.gravity = RF_GRAVITY_AUTO;
+    assert_int_equal(rf_impact_input_validate(&in, &err), RF_OK);
 }
 
 int main(void)

@@ -59,8 +59,8 @@ typedef struct {
     double layer_cap_pressure, layer_cap_hardening;
     /* Gravity [m/s^2] along -z (the slope normal of a normal impact): the
        boulder's weight and the geostatic stress of the slope and layer
-       (docs/validation-plastic.md "Gravity").  RF_GRAVITY_AUTO (the default,
-       any negative value) = RF_GRAVITY_STANDARD when a body is elasto-plastic,
+       (docs/validation-plastic.md "Gravity"), a magnitude >= 0.  RF_GRAVITY_AUTO
+       (the default; other negative values are invalid) = RF_GRAVITY_STANDARD when a body is elasto-plastic,
        0 for elastic bodies (the seed paper's model and the Hertz
        validations); an explicit value >= 0 overrides.  FE axisymmetric model
        only (the 3D model refuses gravity > 0; auto is 0 there). */

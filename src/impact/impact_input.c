@@ -204,7 +204,8 @@ static const struct {
     {"layer_thickness", offsetof(rf_impact_input, layer_thickness), CHECK_AXIS,
      "must be finite and >= 0 [m] (0 = homogeneous slope)"},
     {"gravity", offsetof(rf_impact_input, gravity), CHECK_GRAVITY,
-     "must be finite: >= 0 [m/s^2], or negative for auto (9.81 with a plastic body, else 0)"},
+     "must be >= 0 [m/s^2] (its magnitude: it acts along -z), or RF_GRAVITY_AUTO (-1) for auto (9.81 with a "
+     "plastic body, else 0)"},
 };
 #define N_FIELDS (sizeof fields / sizeof fields[0])
 
@@ -221,7 +222,7 @@ static int field_ok(double x, int check)
     case CHECK_AXIS: return isfinite(x) && x >= 0.0;
     case CHECK_FRICTION: return isfinite(x) && x >= 0.0;
     case CHECK_ANGLE: return isfinite(x) && x >= 0.0 && x < 0.5 * RF_PI;
-    case CHECK_GRAVITY: return isfinite(x);
+    case CHECK_GRAVITY: return (isfinite(x) && x >= 0.0) || x == RF_GRAVITY_AUTO;
     }
     return 0;
 }

@@ -470,7 +470,7 @@ static double *impact_field(rf_impact_input *in, const char *name)
         {"layer_dilatancy_angle", &in->layer_dilatancy_angle},
         {"layer_cap_pressure", &in->layer_cap_pressure},
         {"layer_cap_hardening", &in->layer_cap_hardening},
-        {"gravity", &in->gravity}, /* [m/s^2]; negative = auto */
+        {"gravity", &in->gravity}, /* [m/s^2] >= 0, or auto (parse_impact) */
     };
     for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
         if (!strcmp(name, f[k].name))
@@ -487,6 +487,23 @@ static double impact_unit(const rf_impact_input *in, const double *field)
                    field == &in->layer_friction_angle || field == &in->layer_dilatancy_angle
                ? deg
                : 1.0;
+}
+
+/* gravity: auto, or its magnitude [m/s^2] >= 0 (a negative value, say -9.81 for
+   "downward", is refused rather than read as anything). */
+static rf_status parse_gravity(sp_ctx *c, struct fy_node *v, const char *path, double *g)
+{
+    const char *str;
+    size_t len;
+    rf_status st = sp_string(c, v, path, &str, &len);
+    if (st != RF_OK)
+        return st;
+    char buf[64];
+    snprintf(buf, sizeof buf, "%.*s", (int)(len < 63 ? len : 63), str);
+    rf_error tmp;
+    if (len >= 63 || rf_impact_gravity_parse(buf, g, &tmp) != RF_OK)
+        return sp_fail(c, v, path, "expected auto or a magnitude >= 0 [m/s^2] (gravity acts along -z)");
+    return RF_OK;
 }
 
 static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
@@ -516,7 +533,10 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                 if (!strcmp(s->param_names[i], key))
                     return sp_fail(c, v, p, "'%s' is already a fuzzy parameter (line %d); give it in one place",
                                    key, s->param_line[i]);
-            if ((st = sp_number(c, v, p, field)) != RF_OK)
+            if (field == &spec.base.gravity) {
+                if ((st = parse_gravity(c, v, p, field)) != RF_OK)
+                    return st;
+            } else if ((st = sp_number(c, v, p, field)) != RF_OK)
                 return st;
             *field *= impact_unit(&spec.base, field);
         } else if (!strcmp(key, "boulder_material") || !strcmp(key, "slope_material") ||
