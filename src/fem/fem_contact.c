@@ -253,7 +253,14 @@ void fem_contact_free(fem_contact *C)
     *C = (fem_contact){0};
 }
 
-/* Pair every boulder surface node below d/2 with the slope segment under it. */
+/* Pair every boulder surface node of the lower half (below its equator,
+ * height d above the lowest point: the whole list mesh->bsurf) with the
+ * slope segment under it.  Penetrations up to about r0 (sand, section 8 of
+ * docs/validation-plastic.md) need the steep sides: a set ending at d/2 let
+ * the soil pass the sides of a block sunk deeper than that.  The upper half
+ * is not paired: with the vertical pairing its nodes would face the soil
+ * under the lower half, and soil folding over the top of the block cannot
+ * be represented by a slope surface that stays a graph z(r). */
 rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err)
 {
     *C = (fem_contact){0};
@@ -270,7 +277,7 @@ rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, dou
     for (long k = 0; k < mesh->n_bsurf; k++) {
         int s = mesh->bsurf[k];
         double rs = mesh->r[s];
-        if (mesh->z[s] > 0.5 * d || rs >= mesh->r[mesh->ssurf[mesh->n_ssurf - 1]])
+        if (mesh->z[s] > d || rs >= mesh->r[mesh->ssurf[mesh->n_ssurf - 1]])
             continue;
         long j = 0;
         while (j + 2 < mesh->n_ssurf && mesh->r[mesh->ssurf[j + 1]] <= rs)

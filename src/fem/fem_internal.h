@@ -129,7 +129,7 @@ typedef struct {
  * contact_single_pivot, whose test checks that both give the one solution of
  * the complementarity problem). */
 #define FEM_CONTACT_BLOCK_ROUNDS 200
-/* Pairs of the boulder surface nodes below height d / 2 (fem_contact.c). */
+/* Pairs of the boulder surface nodes below its equator, height d (fem_contact.c). */
 rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err);
 /* Switch the pairs to large deformation: after the predictor,
  * fem_contact_update finds each slave's segment on the current slope surface
