@@ -114,7 +114,7 @@ def main():
         mk, col = marks[verdict(d)]
         a.plot(i, d["out"]["penetration_max"] / d["radius"], mk, color=col)
     a.axhline(1.0, color="0.5", ls="--", lw=1)
-    a.text(0, 1.02, "r0: the block's equator (edge of the paired surface) below the original surface", fontsize=7, color="0.4")
+    a.text(0, 1.02, "r0: equator below the surface", fontsize=7, color="0.4")
     a.set_xticks(range(len(rows)))
     a.set_xticklabels([d["case"] for d in rows], rotation=90, fontsize=7)
     a.set_ylabel("penetration_max / r0 [-]")
