@@ -755,7 +755,9 @@ static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
             return st;
         if (S->large && (S->unstable = axi_step_violation(S)) >= 0)
             return rf_fail(err, RF_EMODEL, "fem: element %ld was compressed below the stability bound of the time "
-                           "step dt = %g s (dt_safety = %g) at t = %g s", S->unstable, S->dt, o->dt_safety, t);
+                           "step dt = %g s (dt_safety = %g) at t = %g s: a mesh that follows the material cannot "
+                           "follow this deformation (docs/validation-plastic.md section 8, JGGE24-L1)",
+                           S->unstable, S->dt, o->dt_safety, t);
         axi_energy(S, t, Fc, rad, row, &comp, &closure);
         if ((st = fem_run_account(R, n, Fc, rad, comp, closure, S->ke0, row, err)) != RF_OK)
             return st;
