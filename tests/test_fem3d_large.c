@@ -202,6 +202,27 @@ static void test_soft_soil_vs_axisymmetric(void **state)
     assert_true(r3.penetration_max > 0.04 * in.radius);
 }
 
+/* (d) coarse, on a layer (the code path; the comparison with the
+ * axisymmetric model is in the accuracy file): section 9b's layer case
+ * (rigid boulder, 10 m/s, a 0.1 m DP + cap layer over granite) in large
+ * deformation at a/h = 2, its first 1.5 ms (of 5 ms): the layer's law and
+ * the bedrock's in one UL block; the energy closes to 5e-3 of KE0, the layer
+ * alone dissipates. */
+static void test_layer_large(void **state)
+{
+    (void)state;
+    const rf_impact_input in = dp_layer_case();
+    rf_fem_options o = large_options(2, RF_FEM_KINEMATICS_AUTO);
+    o.end_time = 1.5e-3;
+    rf_impact_output l3;
+    rf_fem_history h3 = {0};
+    run3d_ex(&in, &o, NULL, &l3, &h3, NULL);
+    show("DP layer 3D, large, 1.5 ms", &l3);
+    assert_true(fabs(l3.energy_error) < 5e-3);
+    assert_true(h3.plastic_work_boulder == 0 && h3.plastic_work_slope > 0 && h3.plastic_strain_max_in == 2);
+    rf_fem_history_free(&h3);
+}
+
 /* The UL kernel writes only its own blocks' state: the soft-soil run gives
  * the same bits with 1 and 2 threads. */
 static void test_threads_same_bits(void **state)
@@ -394,6 +415,7 @@ int main(void)
         cmocka_unit_test(test_kinematics_option_3d),
         cmocka_unit_test(test_identity_names_3d_kinematics),
         cmocka_unit_test(test_soft_soil_vs_axisymmetric),
+        cmocka_unit_test(test_layer_large),
         cmocka_unit_test(test_all_bodies_updated_lagrangian),
         cmocka_unit_test(test_threads_same_bits),
         cmocka_unit_test(test_step_check),
