@@ -301,8 +301,10 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
                "large deformation %s\n",
                three_d ? "3D half model (inclined slope or friction)" : "axisymmetric",
                rf_fem_refinement(&spec->fem, three_d), rf_fem_domain_factor(&spec->fem, in),
-               spec->fem.domain_factor > 0 ? "" : " (automatic)", rf_fem_boundary_name(rf_fem_boundary_resolve(spec->fem.boundary, in)),
-               spec->fem.boundary == RF_FEM_BOUNDARY_AUTO ? " (automatic)" : "", spec->fem.threads, rf_fem_kinematics_name(spec->fem.large_deformation));
+               spec->fem.domain_factor > 0 ? "" : " (automatic)",
+               rf_fem_boundary_name(rf_fem_boundary_resolve(spec->fem.boundary, in)),
+               spec->fem.boundary == RF_FEM_BOUNDARY_AUTO ? " (automatic)" : "", spec->fem.threads,
+               rf_fem_kinematics_name(spec->fem.large_deformation));
     }
     printf("\nResults\n");
     print_value("max contact force", o->contact_force_max, "N");
