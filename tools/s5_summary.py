@@ -130,7 +130,7 @@ def partial(root, suffix, speeds):
         cls = [classify(e) if e["ok"] != -1 else "unfinished" for e in ev]
         done = [e for e, c in zip(ev, cls) if c != "unfinished"]
         print("### %d m/s, unfinished run: its store\n" % v)
-        print("%d evaluations stored (%d of them started, never finished): ok %d, deep %d, at rest %d, "
+        print("%d evaluations stored, %d more started and not finished (running, or killed): ok %d, deep %d, at rest %d, "
               "no rebound %d, not ended %d, failed %d; model seconds summed %.0f" % (
                   len(done), cls.count("unfinished"), cls.count("ok"), cls.count("deep"), cls.count("at-rest"),
                   cls.count("no-rebound"), cls.count("not-ended"), cls.count("failed"),
