@@ -81,7 +81,7 @@ static void check_at_rest(const rf_impact_input *in, rf_fem_kinematics kin, rf_f
     printf("at rest (%s, %s%s): %ld elements, %ld steps, max |v| = %.2e m/s (g t = %.2e), max |u| = %.2e m; "
            "deepest %s element (centre %.3f m): sigma_zz %.6g Pa (closed form %.6g), sigma_rr/sigma_zz %.6f "
            "(K0 %.6f)\n", kin == RF_FEM_SMALL_STRAIN ? "small strain" : "updated Lagrangian",
-           bnd == RF_FEM_BOUNDARY_FIXED ? "fixed" : "absorbing", isfinite(t) ? ", layer" : "", c.elements, steps, c.v_max,
+           rf_fem_boundary_name(bnd), isfinite(t) ? ", layer" : "", c.elements, steps, c.v_max,
            gt, c.u_max, c.layer_elem ? "layer" : "slope", c.depth, c.sig[1], sv, c.sig[0] / c.sig[1], k0);
     printf("  body load / lumped weight: interior nodes %.4f .. %.4f, sum over the free nodes %.4f\n",
            c.load_ratio_min, c.load_ratio_max, c.load_sum / c.weight_sum);
@@ -112,6 +112,9 @@ static void test_slope_at_rest(void **state)
     lay.layer_friction_angle = 39 * DEG, lay.layer_dilatancy_angle = 9 * DEG;
     lay.layer_cap_pressure = 20e3, lay.layer_cap_hardening = 37e6; /* the cap goes through the geostatic p */
     check_at_rest(&lay, RF_FEM_LARGE_DEFORMATION, RF_FEM_BOUNDARY_ABSORBING, k0, 1850, 1, 2600);
+    /* the defaults (auto: large deformation, absorbing dashpots for the layer) */
+    assert_int_equal(rf_fem_boundary_resolve(RF_FEM_BOUNDARY_AUTO, &lay), RF_FEM_BOUNDARY_ABSORBING);
+    check_at_rest(&lay, RF_FEM_KINEMATICS_AUTO, RF_FEM_BOUNDARY_AUTO, k0, 1850, 1, 2600);
 }
 
 /* (b) The geostatic state of a cohesionless Drucker-Prager soil at depth d
@@ -259,6 +262,7 @@ static void test_gravity_zero_is_old_model(void **state)
     rf_fem_options o;
     rf_fem_options_default(&o);
     o.refinement = 3, o.large_deformation = RF_FEM_SMALL_STRAIN;
+    o.boundary = RF_FEM_BOUNDARY_FIXED; /* the default of the code before gravity (now auto: absorbing here) */
     rf_impact_output out;
     rf_fem_history h;
     rf_error err = {0};

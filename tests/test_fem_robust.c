@@ -222,6 +222,72 @@ static void test_layered_absorbing(void **state)
     rf_fem_history_free(&h);
 }
 
+/* The default boundary (auto, docs/validation-plastic.md section 10b).  The
+ * nominal point of study S5 (rigid boulder, r0 = 0.5 m, 5 m/s, on 1 m of
+ * Drucker-Prager colluvium over granite), coarse (a/h = 2), all else default:
+ * the soil contact lasts ~10x the P wave's round trip in the automatic domain,
+ * which is sized from the elastic Hertz duration.  With the fixed boundary the
+ * run warns that the reflected P waves return into the contact (the defect of
+ * the old default); the default takes the absorbing dashpots (energy leaves
+ * through them, the same numbers as boundary absorbing given explicitly) and
+ * does not warn.  Elastic bodies on the half-space keep the fixed boundary:
+ * their default run is bit-identical to boundary fixed (the seed paper's
+ * validated model, test_fem_regression). */
+static void soil_s5(rf_impact_input *in)
+{
+    rf_impact_input_default(in);
+    in->boulder_material = RF_MATERIAL_RIGID_BODY, in->radius = 0.5, in->velocity = 5;
+    in->layer_thickness = 1, in->layer_material = RF_MATERIAL_DRUCKER_PRAGER, in->layer_density = 1900;
+    in->layer_E = 100e6, in->layer_poisson = 0.3, in->layer_cohesion = 10e3;
+    in->layer_friction_angle = 40 * M_PI / 180, in->layer_dilatancy_angle = 5 * M_PI / 180;
+    in->layer_cap_pressure = 200e3, in->layer_cap_hardening = 40e6;
+}
+
+static void run_boundary(const rf_impact_input *in, double refinement, rf_fem_boundary b, rf_impact_output *out,
+                         rf_fem_history *h)
+{
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = refinement;
+    if (b != RF_FEM_BOUNDARY_AUTO)
+        o.boundary = b;
+    rf_error err = {0};
+    if (rf_fem_impact(in, &o, out, h, &err) != RF_OK)
+        fail_msg("%s: %s", rf_fem_boundary_name(b), err.msg);
+}
+
+static void test_default_boundary(void **state)
+{
+    (void)state;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    assert_int_equal(o.boundary, RF_FEM_BOUNDARY_AUTO);
+    rf_impact_input in, el;
+    soil_s5(&in);
+    rf_impact_input_default(&el);
+    assert_int_equal(rf_fem_boundary_resolve(RF_FEM_BOUNDARY_AUTO, &in), RF_FEM_BOUNDARY_ABSORBING);
+    assert_int_equal(rf_fem_boundary_resolve(RF_FEM_BOUNDARY_AUTO, &el), RF_FEM_BOUNDARY_FIXED);
+    assert_int_equal(rf_fem_boundary_resolve(RF_FEM_BOUNDARY_FIXED, &in), RF_FEM_BOUNDARY_FIXED);
+    rf_impact_output a, f, x;
+    rf_fem_history ha, hf, hx;
+    run_boundary(&in, 2, RF_FEM_BOUNDARY_AUTO, &a, &ha);
+    run_boundary(&in, 2, RF_FEM_BOUNDARY_FIXED, &f, &hf);
+    run_boundary(&in, 2, RF_FEM_BOUNDARY_ABSORBING, &x, &hx);
+    printf("S5 nominal, a/h = 2: default R_n %.4f, absorbed %.4f KE0, warning '%s'\n"
+           "                     fixed   R_n %.4f, warning '%s'\n",
+           a.R_n, ha.absorbed[ha.n - 1] / ha.ke0, ha.warning, f.R_n, hf.warning);
+    assert_non_null(strstr(hf.warning, "reflected")); /* the old default's defect */
+    assert_null(strstr(ha.warning, "reflected"));
+    assert_true(ha.absorbed[ha.n - 1] > 0 && hf.absorbed[hf.n - 1] == 0);
+    assert_true(a.R_n == x.R_n && a.penetration_max == x.penetration_max && a.plastic_work == x.plastic_work &&
+                a.energy_error == x.energy_error && a.steps == x.steps);
+    rf_fem_history_free(&ha), rf_fem_history_free(&hf), rf_fem_history_free(&hx);
+    run_boundary(&el, 3, RF_FEM_BOUNDARY_AUTO, &a, NULL);
+    run_boundary(&el, 3, RF_FEM_BOUNDARY_FIXED, &f, NULL);
+    assert_true(a.R_n == f.R_n && a.contact_force_max == f.contact_force_max && a.energy_error == f.energy_error &&
+                a.contact_duration == f.contact_duration && a.steps == f.steps);
+}
+
 /* A rigid boulder (mass Mb, 4 surface nodes at z = -delta after the
  * predictor, a flat bottom) over a flat slope surface of 3 master nodes
  * (mass m each) at z = 0: two segments each carry two boulder nodes (xi =
@@ -295,6 +361,7 @@ int main(void)
         cmocka_unit_test(test_soil_run_to_the_end),
         cmocka_unit_test(test_dashpot_plane_wave),
         cmocka_unit_test(test_layered_absorbing),
+        cmocka_unit_test(test_default_boundary),
         cmocka_unit_test(test_rigid_dependent_pairs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

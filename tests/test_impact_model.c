@@ -57,7 +57,7 @@ static void test_spec_default(void **state)
     assert_true(isnan(spec.e_n));
     assert_true(spec.hunter_coefficient == 1.04);
     assert_true(spec.fem.refinement == 0.0 && spec.fem.domain_factor == 0.0); /* 0 = automatic */
-    assert_int_equal(spec.fem.boundary, RF_FEM_BOUNDARY_FIXED);
+    assert_int_equal(spec.fem.boundary, RF_FEM_BOUNDARY_AUTO); /* fixed for elastic bodies, absorbing otherwise */
     assert_int_equal(spec.fem.threads, 1);
     assert_true(spec.base.boulder_E == 68.2e9 && spec.base.radius == 1.0);
     rf_impact_solver s;
@@ -71,6 +71,9 @@ static void test_spec_default(void **state)
     assert_int_equal(rf_fem_boundary_parse("absorbing", &b, &err), RF_OK);
     assert_int_equal(b, RF_FEM_BOUNDARY_ABSORBING);
     assert_int_equal(rf_fem_boundary_parse("open", &b, &err), RF_EINVAL);
+    assert_int_equal(rf_fem_boundary_parse("auto", &b, &err), RF_OK);
+    assert_int_equal(b, RF_FEM_BOUNDARY_AUTO);
+    assert_string_equal(rf_fem_boundary_name(RF_FEM_BOUNDARY_AUTO), "auto");
 }
 
 /* All eleven names, in a shuffled order, against direct calls. */
@@ -267,6 +270,39 @@ static void test_fem_identity_end(void **state)
     assert_null(strstr(model.identity, " end=impact_ended"));
     assert_non_null(strstr(model.identity, "end_time=0.01"));
     rf_model_free(&model);
+}
+
+/* The default boundary (auto) in the identity: elastic bodies without a layer
+ * resolve it to fixed everywhere and keep the identity of the old default
+ * (fixed) to the byte; with a plastic body or a possible layer (the absorbing
+ * dashpots) it is named by its rule, so that a store never mixes it with
+ * results of the fixed boundary. */
+static void test_fem_identity_boundary(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
+    const char *names[] = {"velocity", "layer_thickness"};
+    rf_model a, b;
+    rf_error err = {0};
+    assert_int_equal(spec.fem.boundary, RF_FEM_BOUNDARY_AUTO);
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &a, &err), RF_OK);
+    spec.fem.boundary = RF_FEM_BOUNDARY_FIXED;
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &b, &err), RF_OK);
+    assert_string_equal(a.identity, b.identity); /* elastic: auto is fixed */
+    assert_null(strstr(a.identity, "dashpots="));
+    rf_model_free(&a), rf_model_free(&b);
+    for (int k = 0; k < 2; k++) { /* a plastic slope; an elastic layer that some point may have */
+        spec = spec_for(RF_IMPACT_FEM);
+        if (k == 0)
+            spec.base.slope_material = RF_MATERIAL_VON_MISES, spec.base.slope_yield = 2e8;
+        assert_int_equal(rf_impact_model_create(&spec, names, 1 + k, &a, &err), RF_OK);
+        spec.fem.boundary = RF_FEM_BOUNDARY_FIXED;
+        assert_int_equal(rf_impact_model_create(&spec, names, 1 + k, &b, &err), RF_OK);
+        assert_non_null(strstr(a.identity, "boundary=auto_absorbing_if_layer_or_plastic"));
+        assert_non_null(strstr(a.identity, "dashpots=face_impedance_semi_implicit"));
+        assert_string_not_equal(a.identity, b.identity);
+        rf_model_free(&a), rf_model_free(&b);
+    }
 }
 
 /* The FE model on the coarsest mesh (a/h = 2): same numbers as a direct
@@ -498,6 +534,7 @@ int main(void)
         cmocka_unit_test(test_concurrent),
         cmocka_unit_test(test_fem_model),
         cmocka_unit_test(test_fem_identity_end),
+        cmocka_unit_test(test_fem_identity_boundary),
         cmocka_unit_test(test_plastic_parameters),
         cmocka_unit_test(test_fem_dispatch),
         cmocka_unit_test(test_fem_warnings),

@@ -58,6 +58,10 @@ UNIT = {"R_n": "-", "plastic_work": "of KE", "penetration_max": "m", "indentatio
 def load(root, v, suffix=""):
     d = os.path.join(root, "s5_v%d%s" % (v, suffix))
     res = json.load(open(os.path.join(d, "result.json")))
+    return res, load_store(d)
+
+
+def load_store(d):
     con = sqlite3.connect("file:%s?mode=ro" % os.path.join(d, "store.sqlite"), uri=True)
     names = dict(con.execute("select key, value from meta"))["outputs"].split(",")
     evals = []
@@ -67,7 +71,7 @@ def load(root, v, suffix=""):
             row.update(zip(names, struct.unpack("<%dd" % (len(y) // 8), y)))
         evals.append(row)
     con.close()
-    return res, evals
+    return evals
 
 
 def classify(e):
@@ -113,6 +117,41 @@ def energy_errors(binary, runs):
     print()
 
 
+NOMINAL = "100000000, 10000, 40, 200000, 1"  # x_text of the nominal point (E, c, phi, X0, t)
+
+
+def partial(root, suffix, speeds):
+    """A run stopped before its end (no result.json): what its store holds."""
+    for v in speeds:
+        d = os.path.join(root, "s5_v%d%s" % (v, suffix))
+        if not os.path.exists(os.path.join(d, "store.sqlite")):
+            continue
+        ev = load_store(d)
+        cls = [classify(e) if e["ok"] != -1 else "unfinished" for e in ev]
+        done = [e for e, c in zip(ev, cls) if c != "unfinished"]
+        print("### %d m/s, unfinished run: its store\n" % v)
+        print("%d evaluations stored, %d more started and not finished (running, or killed): ok %d, deep %d, at rest %d, "
+              "no rebound %d, not ended %d, failed %d; model seconds summed %.0f" % (
+                  len(done), cls.count("unfinished"), cls.count("ok"), cls.count("deep"), cls.count("at-rest"),
+                  cls.count("no-rebound"), cls.count("not-ended"), cls.count("failed"),
+                  sum(e["seconds"] for e in done)))
+        okv = [e for e in done if e["ok"] == 1]
+        if okv:
+            print("over the %d ended points: R_n in [%.3g, %.3g], penetration_max in [%.3g, %.3g] m, "
+                  "W_p/KE0 in [%.3g, %.3g], F_max in [%.3g, %.3g] N" % (
+                      len(okv), min(e["R_n"] for e in okv), max(e["R_n"] for e in okv),
+                      min(e["penetration_max"] for e in okv), max(e["penetration_max"] for e in okv),
+                      min(e["plastic_work"] for e in okv), max(e["plastic_work"] for e in okv),
+                      min(e["contact_force_max"] for e in okv), max(e["contact_force_max"] for e in okv)))
+        for e in done:
+            if e["x"] == NOMINAL and e["ok"] == 1:
+                print("nominal point: " + ", ".join("%s %s" % (o, fmt(e[o])) for o in TABLE))
+        for e in done:
+            if e["ok"] != 1:
+                print("failed at (E, c, phi, X0, t) = (%s): %s" % (e["x"], (e["error"] or "?")[:160]))
+        print()
+
+
 def fmt(x):
     return "%.3g" % x
 
@@ -131,6 +170,7 @@ def main():
             print("note: %s has no result.json (run unfinished): %d m/s left out\n"
                   % (os.path.join(root, "s5_v%d%s" % (v, suffix)), v))
     runs = {v: load(root, v, suffix) for v in speeds}
+    partial(root, suffix, [v for v in SPEEDS if v not in speeds])
 
     print("### evaluations and cost\n")
     print("| v m/s | evaluations | ok | deep (pen >= 0.4 r0) | at rest (R_n = 0) | no rebound (R_n < 0)"

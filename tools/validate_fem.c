@@ -77,7 +77,7 @@ int main(int argc, char **argv)
            "Rn=%.7f Rke=%.7f eerr=%.3e pen_rel=%.3e slip_rel_h=%.3e vib=%.4e slope_E=%.4e lost=%.4e "
            "mesh_mass_rel=%.5f nodes=%.0f elems=%.0f steps=%.0f dt=%.4e dt_bound=%.4e dt_edge=%.4e wall=%.3f "
            "ns_per_es=%.2f warning=\"%s\"\n",
-           V, rf_fem_refinement(&o, 0), rf_fem_domain_factor(&o, &in), o.domain_factor == 0, o.boundary ? "absorbing" : "fixed", o.boulder_mesh_ratio, c, d,
+           V, rf_fem_refinement(&o, 0), rf_fem_domain_factor(&o, &in), o.domain_factor == 0, rf_fem_boundary_name(rf_fem_boundary_resolve(o.boundary, &in)), o.boulder_mesh_ratio, c, d,
            in.radius, aH / R, out.contact_force_max, out.contact_force_max / FH - 1, out.compression_max,
            out.compression_max / dH - 1, out.contact_duration, out.contact_duration / tH - 1, out.contact_radius,
            out.contact_radius / aH - 1, out.R_n, out.R_ke, out.energy_error,

@@ -35,12 +35,23 @@ extern "C" {
 
 typedef enum {
     RF_FEM_BOUNDARY_FIXED = 0,  /* fixed outer surface of the slope domain */
-    RF_FEM_BOUNDARY_ABSORBING   /* viscous (Lysmer-Kuhlemeyer) dashpots */
+    RF_FEM_BOUNDARY_ABSORBING,  /* viscous (Lysmer-Kuhlemeyer) dashpots */
+    RF_FEM_BOUNDARY_AUTO        /* default: rf_fem_boundary_resolve */
 } rf_fem_boundary;
 
-/* "fixed" | "absorbing" <-> enum. */
+/* "fixed" | "absorbing" | "auto" <-> enum. */
 const char *rf_fem_boundary_name(rf_fem_boundary b);
 rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *err);
+
+/* The boundary a run uses: b itself unless it is RF_FEM_BOUNDARY_AUTO, which
+ * is absorbing when the impact has a layer or an elasto-plastic body (their
+ * contact lasts many times the P wave's round trip 2 L / c_p in the automatic
+ * domain, which is sized from the elastic Hertz duration: a fixed boundary
+ * would reflect waves back into it), and fixed otherwise (elastic bodies on
+ * the half-space: the seed paper's validated model, results unchanged).  The
+ * 3D model takes the same rule; its dashpots are explicit and a run refuses
+ * them where dt C / m >= 2 (docs/validation-plastic.md section 10b). */
+rf_fem_boundary rf_fem_boundary_resolve(rf_fem_boundary b, const rf_impact_input *in);
 
 /* Material kernel of a body (src/fem/fem_kernel.h): how its internal force is computed. */
 typedef enum {
@@ -83,7 +94,8 @@ typedef struct {
                                   default 0 = RF_FEM_REFINEMENT_AXI / RF_FEM_REFINEMENT_3D */
     double domain_factor;      /* hemisphere radius / r0, >= 3; default 0 = automatic (see above);
                                   10 with a fixed boundary is the seed paper's model */
-    rf_fem_boundary boundary;  /* outer curved surface of the half-space, default fixed */
+    rf_fem_boundary boundary;  /* outer curved surface of the half-space, default auto
+                                  (rf_fem_boundary_resolve) */
     double end_time;           /* [s]; 0 = automatic: >= 1.3 Hertz durations and until the
                                   contact has stayed open for 0.1 of one while the boulder
                                   moves away; past 3 durations up to a bound scaled by the

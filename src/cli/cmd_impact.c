@@ -155,8 +155,11 @@ static void usage(FILE *f)
         "                           e_n; --e-n 1 makes the mdr impact purely elastic)\n"
         "  --hunter-A A             Hunter coefficient A (default 1.04; band 1.112-1.171)\n"
         "  --refinement A_OVER_H    fem: elements across the Hertz contact radius, >= 2\n"
-        "                           (default 10 axisymmetric, 6 for the 3D model)\n"
-        "  --boundary KIND          fem: fixed | absorbing outer boundary (default fixed)\n"
+        "                           (default 10 axisymmetric, 3 for the 3D model)\n"
+        "  --boundary KIND          fem: auto | fixed | absorbing outer boundary (default\n"
+        "                           auto: absorbing dashpots with a layer or a plastic body,\n"
+        "                           whose contact outlasts the P wave's round trip in the\n"
+        "                           automatic domain; fixed for elastic bodies)\n"
         "  --large-deformation K    fem: auto | on | off (default auto: on when a body is\n"
         "                           elasto-plastic).  on: updated Lagrangian (current\n"
         "                           geometry, objective Hughes-Winget stress rotation, contact on\n"
@@ -164,7 +167,7 @@ static void usage(FILE *f)
         "                           geometry (docs/validation-plastic.md sections 6e, 9c)\n"
         "  --domain-factor F        fem: slope domain radius / r0 >= 3 (default: sized so that\n"
         "                           2 L / c_p >= 1.25 Hertz t_c, at least 10: no reflected\n"
-        "                           wave returns into the contact); --boundary fixed\n"
+        "                           wave returns into the elastic contact); --boundary fixed\n"
         "                           --domain-factor 10 is the seed paper's model\n"
         "  --end-time S             fem: simulated time [s] (default 0 = automatic: until the\n"
         "                           contact is open and the boulder moves away, at least 1.3\n"
@@ -294,12 +297,14 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
            in->gravity < 0 ? " (auto)" : "");
     if (spec->solver == RF_IMPACT_FEM) {
         int three_d = rf_fem_needs_3d(in);
-        printf("  FE settings       %s, refinement a/h = %g, domain = %g r0%s, boundary %s, threads %d, "
+        printf("  FE settings       %s, refinement a/h = %g, domain = %g r0%s, boundary %s%s, threads %d, "
                "large deformation %s\n",
                three_d ? "3D half model (inclined slope or friction)" : "axisymmetric",
                rf_fem_refinement(&spec->fem, three_d), rf_fem_domain_factor(&spec->fem, in),
-               spec->fem.domain_factor > 0 ? "" : " (automatic)", rf_fem_boundary_name(spec->fem.boundary),
-               spec->fem.threads, rf_fem_kinematics_name(spec->fem.large_deformation));
+               spec->fem.domain_factor > 0 ? "" : " (automatic)",
+               rf_fem_boundary_name(rf_fem_boundary_resolve(spec->fem.boundary, in)),
+               spec->fem.boundary == RF_FEM_BOUNDARY_AUTO ? " (automatic)" : "", spec->fem.threads,
+               rf_fem_kinematics_name(spec->fem.large_deformation));
     }
     printf("\nResults\n");
     print_value("max contact force", o->contact_force_max, "N");

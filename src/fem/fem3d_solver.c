@@ -212,6 +212,7 @@ static rf_status solid_prepare(solid_run *R, const rf_impact_input *in, const rf
 #ifndef _OPENMP
     R->threads = 1;
 #endif
+    R->o.boundary = rf_fem_boundary_resolve(R->o.boundary, in); /* the axisymmetric model's rule */
     R->fixed_outer = R->o.boundary == RF_FEM_BOUNDARY_FIXED;
     for (int b = 0; b < 3; b++) {
         rf_material_params p;

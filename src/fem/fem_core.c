@@ -265,8 +265,9 @@ void fem_run_warnings(const fem_run *r, int fixed_outer, double L, double c_p, d
     if (fixed_outer && 2 * L / c_p < r->t_h)
         wl += (size_t)snprintf(buf + wl, size - wl,
                                "P waves reflected by the fixed boundary return after 2L/c_p = %.3g ms, before the "
-                               "Hertz contact ends (%.3g ms): R_n includes reflected energy; use the automatic "
-                               "domain (domain_factor 0, here %.0f), or absorbing boundaries. ",
+                               "Hertz contact ends (%.3g ms): R_n includes reflected energy; use the absorbing "
+                               "boundary (boundary auto, the default, takes it for a layer or a plastic body) "
+                               "or a domain_factor of at least %.0f. ",
                                2e3 * L / c_p, 1e3 * r->t_h,
                                fmax(RF_FEM_DOMAIN_MIN, ceil(0.5 * RF_FEM_DOMAIN_MARGIN * c_p * r->t_h / r0)));
     if (r->episodes > 1 && wl < size)

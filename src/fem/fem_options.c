@@ -14,7 +14,7 @@ void rf_fem_options_default(rf_fem_options *opt)
     memset(opt, 0, sizeof *opt);
     opt->refinement = 0;     /* automatic: RF_FEM_REFINEMENT_AXI / _3D */
     opt->domain_factor = 0;  /* automatic: no reflection into the contact */
-    opt->boundary = RF_FEM_BOUNDARY_FIXED;
+    opt->boundary = RF_FEM_BOUNDARY_AUTO; /* rf_fem_boundary_resolve */
     opt->end_time = 0;
     opt->threads = 1;
     opt->vtk_dir = NULL;
@@ -38,21 +38,36 @@ void rf_fem3d_options_default(rf_fem3d_options *o3)
     o3->boulder_inner = 4.0;
 }
 
-static const char *const boundary_names[] = {"fixed", "absorbing"};
+static const char *const boundary_names[] = {"fixed", "absorbing", "auto"};
 
 const char *rf_fem_boundary_name(rf_fem_boundary b)
 {
-    return (unsigned)b < 2 ? boundary_names[b] : "unknown";
+    return (unsigned)b < 3 ? boundary_names[b] : "unknown";
 }
 
 rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *err)
 {
-    for (int k = 0; k < 2; k++)
+    for (int k = 0; k < 3; k++)
         if (name && !strcmp(name, boundary_names[k])) {
             *b = (rf_fem_boundary)k;
             return RF_OK;
         }
-    return rf_fail(err, RF_EINVAL, "boundary '%s' is unknown (accepted: fixed, absorbing)", name ? name : "(null)");
+    return rf_fail(err, RF_EINVAL, "boundary '%s' is unknown (accepted: auto, fixed, absorbing)",
+                   name ? name : "(null)");
+}
+
+/* A layer or a plastic body makes the contact last many times the P wave's
+ * round trip in the automatic domain (sized from the elastic Hertz duration of
+ * boulder and bedrock: S5's soil contact 26 ms against 2.5 ms); only the
+ * dashpots keep the reflections out of it.  Elastic bodies on the half-space
+ * keep the fixed boundary of the seed paper (docs/validation-plastic.md
+ * section 10b). */
+rf_fem_boundary rf_fem_boundary_resolve(rf_fem_boundary b, const rf_impact_input *in)
+{
+    if (b != RF_FEM_BOUNDARY_AUTO)
+        return b;
+    return in->layer_thickness > 0 || rf_impact_has_plastic_body(in) ? RF_FEM_BOUNDARY_ABSORBING
+                                                                      : RF_FEM_BOUNDARY_FIXED;
 }
 
 static const char *const kinematics_names[] = {"auto", "off", "on"};
@@ -120,7 +135,7 @@ rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error
     if ((unsigned)o->large_deformation > RF_FEM_LARGE_DEFORMATION)
         return rf_fail(err, RF_EINVAL, "fem%s: large_deformation = %d is unknown (accepted: auto, off, on)",
                        three_d ? "3d" : "", (int)o->large_deformation);
-    if ((unsigned)o->boundary > RF_FEM_BOUNDARY_ABSORBING)
+    if ((unsigned)o->boundary > RF_FEM_BOUNDARY_AUTO)
         return rf_fail(err, RF_EINVAL, "fem: unknown boundary kind %d", (int)o->boundary);
     if (o->threads < 0)
         return rf_fail(err, RF_EINVAL, "fem: threads = %d must be >= 0", o->threads);

@@ -881,6 +881,7 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
 #ifndef _OPENMP
     S->threads = 1;
 #endif
+    S->o.boundary = rf_fem_boundary_resolve(S->o.boundary, in);
     S->fixed_outer = S->o.boundary == RF_FEM_BOUNDARY_FIXED;
     for (int b = 0; b < 3; b++) {
         rf_material_params p;

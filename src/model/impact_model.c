@@ -369,6 +369,18 @@ static int plastic_possible(const impact_ctx *c)
     return rf_fem_large_deformation(&o, &probe);
 }
 
+/* The boundary in the identity: auto is named by its rule where some evaluation
+ * may resolve it to absorbing (a layer or a plastic body), and as "fixed"
+ * otherwise, where its results are those of the old default (fixed): the
+ * elastic identities stay as they were, and a soil study's store never mixes
+ * results of the old fixed default with the new one. */
+static const char *boundary_identity(const impact_ctx *c)
+{
+    if (c->spec.fem.boundary != RF_FEM_BOUNDARY_AUTO)
+        return rf_fem_boundary_name(c->spec.fem.boundary);
+    return layer_possible(c) || plastic_possible(c) ? "auto_absorbing_if_layer_or_plastic" : "fixed";
+}
+
 static void make_identity(const impact_ctx *c, char *buf, size_t cap)
 {
     const rf_impact_model_spec *s = &c->spec;
@@ -389,11 +401,11 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         if (s->fem.domain_factor > 0)
             append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
                    rf_fem_refinement(&s->fem, 0), rf_fem_refinement(&s->fem, 1), s->fem.domain_factor,
-                   rf_fem_boundary_name(s->fem.boundary), s->fem.threads);
+                   boundary_identity(c), s->fem.threads);
         else
             append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=auto domain_margin=%.17g domain_min=%.17g boundary=%s threads=%d",
                    rf_fem_refinement(&s->fem, 0), rf_fem_refinement(&s->fem, 1), RF_FEM_DOMAIN_MARGIN,
-                   RF_FEM_DOMAIN_MIN, rf_fem_boundary_name(s->fem.boundary), s->fem.threads);
+                   RF_FEM_DOMAIN_MIN, boundary_identity(c), s->fem.threads);
         const rf_fem_options *o = &s->fem;
         append(buf, cap, &len,
                " boulder_mesh_ratio=%.17g core_factor=%.17g grading=%.17g dt_safety=%.17g end_time=%.17g"
@@ -421,7 +433,7 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            impact to end (plastic runs), the dashpots take each face's impedance, semi-implicitly */
         if (o->end_time == 0 && plastic_possible(c))
             append(buf, cap, &len, " end=impact_ended");
-        if (o->boundary == RF_FEM_BOUNDARY_ABSORBING)
+        if (strcmp(boundary_identity(c), "fixed") != 0) /* some evaluation may have dashpots */
             append(buf, cap, &len, " dashpots=face_impedance_semi_implicit");
     }
     append(buf, cap, &len,

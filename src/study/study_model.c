@@ -560,7 +560,7 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             if (len >= 31 || (key[0] == 's' ? rf_impact_solver_parse(buf, &spec.solver, &tmp)
                                             : rf_fem_boundary_parse(buf, &spec.fem.boundary, &tmp)) != RF_OK)
                 return sp_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter, rigid or mdr"
-                                                      : "unknown boundary; expected fixed or absorbing");
+                                                      : "unknown boundary; expected auto, fixed or absorbing");
         } else if (!strcmp(key, "large_deformation")) {
             if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
                 return st;
