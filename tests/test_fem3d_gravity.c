@@ -88,7 +88,10 @@ static void check_at_rest(rf_fem_boundary bnd)
     c.ctx = &cf, c.cell = cell_check;
     rf_error err = {0};
     const long steps = 30;
-    if (fem3d_gravity_free_run(&in, &o, NULL, steps, &c, &err) != RF_OK)
+    rf_fem3d_options o3; /* a coarse mesh: the logic, not the accuracy */
+    rf_fem3d_options_default(&o3);
+    o3.core_factor = 1, o3.layer_aspect = 3;
+    if (fem3d_gravity_free_run(&in, &o, &o3, steps, &c, &err) != RF_OK)
         fail_msg("%s", err.msg);
     const double gt = in.gravity * (double)steps * c.dt; /* an unbalanced weight moves the slope at g t */
     printf("at rest, 45 deg, layer (%s): %ld cells (%ld in the layer), %ld steps: max |v| %.2e m/s (g t = %.2e), "

@@ -950,11 +950,13 @@ static void solid_rigid_state(const solid_run *R, double P[3], double omega[3], 
  * (the rebound's R_n, R_t, R_ke, before its weight turns it). */
 static void solid_separation(solid_run *R)
 {
+    if (R->rigid) { /* its own dofs */
+        R->sep_v[0] = R->B.V[0], R->sep_v[1] = 0, R->sep_v[2] = R->B.V[1], R->sep_w = R->B.w;
+        return;
+    }
     double omega[3], Iyy;
     solid_rigid_state(R, R->sep_v, omega, &Iyy);
     R->sep_w = omega[1];
-    if (R->rigid)
-        R->sep_v[0] = R->B.V[0], R->sep_v[1] = 0, R->sep_v[2] = R->B.V[1], R->sep_w = R->B.w;
 }
 
 /* The time loop, with VTK frames if asked (about vtk_frames of them, and the
