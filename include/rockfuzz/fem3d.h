@@ -11,8 +11,10 @@
  * (x down-slope, z the outward slope normal, y normal to the plane of
  * motion): the slope is a hemisphere of radius domain_factor * r0 whose flat
  * face is the slope, its curved surface fixed or absorbing; the boulder
- * approaches with v_n = -V cos(alpha), v_t = V sin(alpha), no spin, no
- * gravity.  8-node hexahedra, full 2x2x2 integration (elastic: matrix-free
+ * approaches with v_n = -V cos(alpha), v_t = V sin(alpha), no spin; gravity
+ * (rf_impact_gravity) along the fall, g (sin alpha, 0, -cos alpha): the
+ * boulder's weight, the slope's inclined geostatic state, a layer that cannot
+ * stand on the slope refused (docs/validation-plastic.md section 11b).  8-node hexahedra, full 2x2x2 integration (elastic: matrix-free
  * linear kernel; plastic: return maps at the points with B-bar; small
  * strain, the boulder co-rotational), lumped mass, central differences at the
  * element eigenvalue bound, no damping.  Contact: forward-increment Lagrange

@@ -62,8 +62,8 @@ typedef struct {
        (docs/validation-plastic.md "Gravity"), a magnitude >= 0.  RF_GRAVITY_AUTO
        (the default; other negative values are invalid) = RF_GRAVITY_STANDARD when a body is elasto-plastic,
        0 for elastic bodies (the seed paper's model and the Hertz
-       validations); an explicit value >= 0 overrides.  FE axisymmetric model
-       only (the 3D model refuses gravity > 0; auto is 0 there). */
+       validations); an explicit value >= 0 overrides.  Both FE models (the
+       3D one in the slope frame, g (sin theta, 0, -cos theta)). */
     double gravity;
 } rf_impact_input;
 
@@ -75,7 +75,7 @@ int rf_impact_has_plastic_body(const rf_impact_input *in);
 #define RF_GRAVITY_STANDARD 9.81
 /* The gravity [m/s^2] an impact runs with: in->gravity if >= 0, else (auto)
  * RF_GRAVITY_STANDARD when the boulder, the slope or a layer is
- * elasto-plastic and the model is axisymmetric (three_d == 0), else 0. */
+ * elasto-plastic, else 0; the same for both FE models (three_d is ignored). */
 double rf_impact_gravity(const rf_impact_input *in, int three_d);
 /* "auto" or a value >= 0 [m/s^2] -> in->gravity (RF_EINVAL otherwise). */
 rf_status rf_impact_gravity_parse(const char *text, double *gravity, rf_error *err);

@@ -32,6 +32,7 @@
 #include "rockfuzz/fem3d.h"
 #include "core/util.h"
 #include "hex8_step.h"
+#include "fem3d_gravity.h"
 #include "fem3d_internal.h"
 #include "fem3d_large.h"
 #include "fem3d_prof.h"
@@ -73,11 +74,6 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(in->slope_angle <= 80 * RF_PI / 180), "fem3d: slope_angle must be in [0, 80] degrees, got %g rad",
         in->slope_angle);
     BAD(!(in->friction <= 5), "fem3d: friction must be in [0, 5], got %g", in->friction);
-    BAD(in->gravity > 0, /* auto is 0 in 3D (rf_impact_gravity) */
-        "fem3d: gravity = %g m/s^2 is available in the axisymmetric model only (normal impact on a horizontal "
-        "slope, without friction between dissimilar bodies); the 3D model runs without gravity: set gravity 0 "
-        "or auto (docs/validation-plastic.md section 11)",
-        in->gravity);
     /* (the 3D model runs for an inclined slope or friction between dissimilar bodies: rf_fem_needs_3d) */
     BAD(in->horizontal_axis > 0 && in->slope_angle != 0,
         "fem3d: a spheroid on an inclined slope is not supported (its contact point is not a pole); got "
@@ -103,7 +99,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the 3D solver in the workspace pool. */
 enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM, Q_DASH, Q_ELM, Q_LAMX, Q_FIXED,
-       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM, Q_LAMU, Q_ULE };
+       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM, Q_LAMU, Q_ULE, Q_FGRAV };
 
 /* The state of one 3D run. */
 typedef struct {
@@ -128,6 +124,8 @@ typedef struct {
     double *dashl, *dnrm; /* layer faces' dashpot areas; outer normals (extruded mesh) */
     double dash_ratio;    /* largest dt C / m of an explicit dashpot (stable below 2) */
     f3_rigid B;
+    f3_gravity grav;      /* gravity (fem3d_gravity.c); grav.g = 0: none */
+    double sep_v[3], sep_w; /* with gravity: CM velocity (x, y, z) and spin when the contact last opened */
     double W_int[2];      /* internal work of each body so far [J] (model, not full body) */
     double depth_max;     /* deepest position of the boulder's lowest point below z = 0 [m] */
     long crater_node;     /* the slope's surface node at the first-contact point */
@@ -135,6 +133,7 @@ typedef struct {
     f3_mesh_spec ms;
     f3_mesh mesh;
     int have_mesh, threads, fixed_outer, mass_moments_ok;
+    int no_contact;       /* fem3d_gravity_free_run: no contact step */
     long nn, ne, ndof, nbn;
     f3_system S;
     float *K;
@@ -232,7 +231,11 @@ static rf_status solid_prepare(solid_run *R, const rf_impact_input *in, const rf
     const int all = R->o.large_deformation == RF_FEM_LARGE_DEFORMATION;
     R->ul[0] = R->large && !R->rigid && (all || R->plastic[0]);
     R->ul[1] = R->large && (all || R->plastic[1] || R->plastic[2]);
-    return RF_OK;
+    /* gravity: the energy from the internal work (the slope's geostatic pre-stress is not in 1/2 u' K u) */
+    R->grav.g = rf_impact_gravity(in, 1);
+    R->work_account |= R->grav.g > 0;
+    double fs;
+    return R->grav.g > 0 ? f3_gravity_stability(in, R->grav.g, R->L, &fs, err) : RF_OK;
 }
 
 /* Sizing and meshing: fine boxes of uniform cubes over core_factor * a,
@@ -708,7 +711,12 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
             S->c0[q] += R->mass[3 * i] * R->mesh.x[3 * i + q] / Mb;
     if (!R->ms.full)
         S->c0[1] = 0;
-    return solid_rigid_setup(R, err);
+    if ((st = solid_rigid_setup(R, err)) != RF_OK || !(R->grav.g > 0))
+        return st;
+    double *fgrav = fem_pool_get(R->pool, Q_FGRAV, (size_t)R->ndof * sizeof(double), 1);
+    if (!fgrav)
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
+    return f3_gravity_setup(&R->grav, S, R->in, R->matl, R->plastic, R->u, fgrav, err);
 }
 
 /* Dashpot forces from v_{n-1/2}: normal rho c_p v_n, shear rho c_s v_s,
@@ -831,12 +839,18 @@ static void pairing_share(void *ctx)
 /* The contact-free predictor v += dt M^-1 (f_ext - f_int), u += dt v of dofs [d0, d1). */
 static inline void predict_dofs(solid_run *R, long d0, long d1)
 {
-    const double dt = R->dt, *invm = R->invm, *fext = R->fext, *f = R->f;
+    const double dt = R->dt, *invm = R->invm, *fext = R->fext, *f = R->f, *fg = R->grav.fgrav;
     double *u = R->u, *v = R->v;
-    for (long dd = d0; dd < d1; dd++) {
-        v[dd] += dt * invm[dd] * (fext[dd] - f[dd]);
-        u[dd] += dt * v[dd];
-    }
+    if (fg) /* gravity's body load */
+        for (long dd = d0; dd < d1; dd++) {
+            v[dd] += dt * invm[dd] * (fext[dd] + fg[dd] - f[dd]);
+            u[dd] += dt * v[dd];
+        }
+    else
+        for (long dd = d0; dd < d1; dd++) {
+            v[dd] += dt * invm[dd] * (fext[dd] - f[dd]);
+            u[dd] += dt * v[dd];
+        }
 }
 
 /* The predictor shared among the threads: the boulder's node chunks in the loop form that
@@ -884,6 +898,7 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
     double W_abs_inc = solid_dashpot_forces(R);
     F3P_LAP(F3P_DASH, m);
     double fv[2] = {0, 0};
+    const double gv0 = R->grav.fgrav ? f3_gravity_power(&R->grav, &R->B, v, R->nbn, R->ndof) : 0;
     solid_force_predict(R, fv);
     F3P_SET(m, f3p_now()); /* (its phases are timed inside) */
     for (int b = 0; b < 2; b++) /* the state at u_n is accepted */
@@ -897,13 +912,18 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
                 W_abs_inc -= 0.5 * dt * R->fext[3 * i + q] * v[3 * i + q];
         }
     if (R->rigid) { /* the boulder's predicted rigid state (its nodes moved along straight lines above) */
+        if (R->grav.fgrav) /* its weight M g at the centre of mass */
+            R->B.V[0] += dt * R->grav.g * R->grav.dir[0], R->B.V[1] += dt * R->grav.g * R->grav.dir[2];
         f3_rigid_predict(&R->B, dt);
         f3_rigid_place(&R->B, &R->mesh, R->nbn, u, v);
         R->C.rigid_c[0] = R->B.c0[0] + R->B.X[0], R->C.rigid_c[1] = R->B.c0[2] + R->B.X[1];
     }
-    f3_contact_predict(&R->C, &R->mesh, u, R->invm, dt, R->threads);
+    if (R->no_contact)
+        R->C.ncand = 0;
+    else
+        f3_contact_predict(&R->C, &R->mesh, u, R->invm, dt, R->threads);
     F3P_LAP(F3P_PREDICT, m);
-    rf_status st = f3_contact_solve(&R->C, R->invm, dt, u, v, err);
+    rf_status st = R->no_contact ? RF_OK : f3_contact_solve(&R->C, R->invm, dt, u, v, err);
     F3P_LAP(F3P_SOLVE, m);
     if (st != RF_OK)
         return st;
@@ -917,6 +937,8 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
         R->pgs_res_max = R->C.residual;
     *Fc = solid_contact_account(R, rad);
     R->W_abs += W_abs_inc;
+    if (R->grav.fgrav) /* fgrav' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
+        R->grav.W += 0.5 * dt * (gv0 + f3_gravity_power(&R->grav, &R->B, v, R->nbn, R->ndof));
     if (R->work_account) { /* f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
         double fv1[2] = {0, 0};
         solid_power(R, fv1);
@@ -946,7 +968,7 @@ static void solid_energy(solid_run *R, double t, double Fc, double rad, double r
     *comp = -uz / R->Mb;
     *closure = ke[0] + ke[1] + se[0] + se[1] + R->W_abs + R->W_fric - R->ke0;
     if (R->work_account)
-        *closure = ke[0] + ke[1] + R->W_int[0] + R->W_int[1] + R->W_abs + R->W_fric - R->ke0;
+        *closure = ke[0] + ke[1] + R->W_int[0] + R->W_int[1] + R->W_abs + R->W_fric - R->ke0 - R->grav.W;
     const double sf = R->sym_factor;
     const double r[13] = {t,          Fc * sf,      *comp,        rad,        ke[0] * sf,   se[0] * sf, ke[1] * sf,
                           se[1] * sf, R->W_n * sf, R->W_abs * sf, *closure * sf, pz / R->Mb, R->W_fric * sf};
@@ -958,6 +980,21 @@ static rf_status solid_vtk(solid_run *R, int frame, double t, rf_error *err)
 {
     f3_internal_force(&R->S, R->u, R->f); /* the boulder's co-rotated field of u_n, for its elastic stresses */
     return f3_vtk_frame(R->o.vtk_dir, frame, t, &R->S, R->u, R->v, R->mat, err);
+}
+
+static void solid_rigid_state(const solid_run *R, double P[3], double omega[3], double *Iyy);
+
+/* With gravity: the boulder's CM velocity and spin when the contact opens
+ * (the rebound's R_n, R_t, R_ke, before its weight turns it). */
+static void solid_separation(solid_run *R)
+{
+    if (R->rigid) { /* its own dofs */
+        R->sep_v[0] = R->B.V[0], R->sep_v[1] = 0, R->sep_v[2] = R->B.V[1], R->sep_w = R->B.w;
+        return;
+    }
+    double omega[3], Iyy;
+    solid_rigid_state(R, R->sep_v, omega, &Iyy);
+    R->sep_w = omega[1];
 }
 
 /* The time loop, with VTK frames if asked (about vtk_frames of them, and the
@@ -991,8 +1028,11 @@ static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *
         F3P_MARK(m);
         solid_energy(R, t, Fc, rad, row, &comp, &closure);
         F3P_LAP(F3P_ENERGY, m);
+        const int was_in_contact = run->in_contact;
         if ((st = fem_run_account(run, n, Fc, rad, comp, closure, R->ke0, row, err)) != RF_OK)
             return st;
+        if (R->grav.g > 0 && was_in_contact && !run->in_contact)
+            solid_separation(R);
         const int stop = fem_run_stop(run, n);
         F3P_LAP(F3P_RUN, m);
         if (stop)
@@ -1114,9 +1154,19 @@ static void solid_history(solid_run *R, const fem_run *run, double K_after, rf_f
     hist->slope_nodes = R->nn - R->mesh.boulder_nodes, hist->slope_elements = R->ne - R->mesh.boulder_elems;
     hist->state_hash = fem_hash(fem_hash(FEM_HASH_SEED, u, (size_t)R->ndof * sizeof *u), v,
                                 (size_t)R->ndof * sizeof *v);
+    char extra[320] = "";
+    if (R->outside_contact)
+        snprintf(extra, sizeof extra, "Contact reached the edge of the fine zone: raise core_factor. ");
+    if (R->grav.outside > 0)
+        snprintf(extra + strlen(extra), sizeof extra - strlen(extra), "%ld integration points of the geostatic "
+                 "state lie outside the yield surface (returned to it at the first step). ", R->grav.outside);
     fem_run_warnings(run, R->fixed_outer, R->L, R->w[1].p, R->in->radius, hist->warning, sizeof hist->warning,
-                     R->outside_contact ? "Contact reached the edge of the fine zone: raise core_factor. " : NULL);
+                     extra[0] ? extra : NULL);
     solid_history_plastic(R, hist);
+    if (R->plastic[1] || R->plastic[2]) /* less the geostatic stress's energy (0 without gravity) */
+        hist->elastic_energy_stress -= R->grav.E0 * sf;
+    hist->gravity = R->grav.g, hist->gravity_work = R->grav.W * sf, hist->geostatic_outside = R->grav.outside;
+    hist->at_rest = run->at_rest;
 }
 
 static void solid_report(solid_run *R, fem_run *run, const double P[3], double w_after, double Iyy,
@@ -1164,6 +1214,10 @@ static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_out
         P[0] = R->B.V[0], P[1] = 0, P[2] = R->B.V[1];
         omega[0] = omega[2] = 0, omega[1] = R->B.w, Iyy = R->B.I;
     }
+    if (R->grav.g > 0 && run->at_rest) /* settled in contact: R_n = 0 (it may still slide or roll) */
+        P[2] = 0;
+    else if (R->grav.g > 0 && !run->in_contact && run->episodes > 0) /* the state at the last separation */
+        memcpy(P, R->sep_v, sizeof R->sep_v), omega[1] = R->sep_w;
     const double vn_after = P[2], vt_after = P[0], w_after = omega[1];
     const double K_after = 0.5 * R->Mb * (vn_after * vn_after + vt_after * vt_after) + 0.5 * Iyy * w_after * w_after;
     fem_run_outputs(run, nsteps, R->o.duration_threshold, R->ke0, R->sym_factor, R->nn, R->ne, out);
@@ -1210,6 +1264,7 @@ static rf_status solid_attempt(rf_fem_workspace *ws, const rf_impact_input *in, 
     F3P_LAP(F3P_SETUP, m);
     if (st == RF_OK)
         st = fem_run_begin(&run, "fem3d", &R.o, R.dt, R.H.duration, hist || rep, 13, err);
+    run.gravity = R.grav.g;
     long nsteps = 0;
     if (st == RF_OK)
         st = solid_loop(&R, &run, &nsteps, err);
@@ -1284,4 +1339,97 @@ rf_status rf_fem3d_impact(const rf_impact_input *in, const rf_fem_options *opt, 
                           rf_fem_history *hist, rf_error *err)
 {
     return rf_fem3d_impact_ex(in, opt, NULL, out, hist, NULL, err);
+}
+
+/* 1 if element e is an axis-aligned box (two values of each coordinate). */
+static int element_is_box(const f3_mesh *m, long e)
+{
+    const int *c = m->conn + 8 * e;
+    for (int q = 0; q < 3; q++) {
+        const double lo = m->x[3 * (long)c[0] + q];
+        double hi = lo;
+        for (int a = 1; a < 8; a++) {
+            const double x = m->x[3 * (long)c[a] + q];
+            if (x != lo && hi != lo && x != hi)
+                return 0;
+            if (x != lo)
+                hi = x;
+        }
+    }
+    return 1;
+}
+
+/* The body load against the lumped weight at the nodes of the fine box's boxes. */
+static void gravity_load_check(const solid_run *R, f3_gravity_check *chk)
+{
+    const f3_mesh *m = &R->mesh;
+    const f3_system *S = &R->S;
+    const double *fg = R->grav.fgrav;
+    for (long i = R->nbn; fg && i < R->nn; i++) {
+        int box = !(m->flags[i] & (F3_OUTER | F3_SYM));
+        for (long p = S->inc_ptr[i]; box && p < S->inc_ptr[i + 1]; p++)
+            box = element_is_box(m, S->inc[p] / 8);
+        if (!box)
+            continue;
+        chk->box_nodes++;
+        for (int q = 0; q < 3; q++) {
+            const double w = R->mass[3 * i] * R->grav.g;
+            chk->load_err = fmax(chk->load_err, fabs(fg[3 * i + q] - w * R->grav.dir[q]) / w);
+        }
+    }
+}
+
+/* What fem3d_gravity_free_run reports of the state after its steps. */
+static void gravity_free_report(solid_run *R, f3_gravity_check *chk, double closure)
+{
+    for (long d = 3 * R->nbn; d < R->ndof; d++)
+        chk->slope_u_max = fmax(chk->slope_u_max, fabs(R->u[d])), chk->slope_v_max = fmax(chk->slope_v_max, fabs(R->v[d]));
+    for (long i = 0; i < R->nbn; i++)
+        for (int q = 0; q < 3; q++)
+            chk->cm_u[q] += R->mass[3 * i] * R->u[3 * i + q] / R->Mb, chk->cm_v[q] += R->mass[3 * i] * R->v[3 * i + q] / R->Mb;
+    for (long i = 0; i < R->nbn; i++)
+        for (int q = 0; q < 3; q++)
+            chk->spread_u = fmax(chk->spread_u, fabs(R->u[3 * i + q] - chk->cm_u[q]));
+    chk->dt = R->dt, chk->closure = closure, chk->gravity_work = R->grav.W, chk->outside = R->grav.outside;
+    gravity_load_check(R, chk);
+    const f3_mesh *m = &R->mesh;
+    for (long e = m->boulder_elems; chk->cell && e < R->ne; e++) {
+        double sig[6], ep, zc = 0;
+        if (!fem_kernel_points_hex_cell(&R->S.kernel[F3_SLOPE], e, sig, &ep))
+            return;
+        for (int a = 0; a < 8; a++)
+            zc += m->x[3 * (long)m->conn[8 * e + a] + 2] / 8;
+        chk->cell(chk->ctx, -zc, R->emat[e] == 2, sig);
+    }
+}
+
+rf_status fem3d_gravity_free_run(const rf_impact_input *in, const rf_fem_options *opt, const rf_fem3d_options *o3,
+                                 long steps, f3_gravity_check *chk, rf_error *err)
+{
+    rf_fem_workspace *ws = rf_fem_workspace_alloc();
+    if (!ws)
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
+    solid_run R;
+    memset(&R, 0, sizeof R);
+    R.pool = &ws->solid, R.no_contact = 1;
+    rf_status st = solid_prepare(&R, in, opt, o3, err);
+    if (st == RF_OK)
+        st = solid_mesh(&R, err);
+    if (st == RF_OK)
+        st = solid_assemble(&R, err);
+    double closure = 0;
+    for (long n = 0; st == RF_OK && n < steps; n++) {
+        double Fc, rad, row[13], comp;
+        if ((st = solid_step(&R, &Fc, &rad, err)) == RF_OK)
+            solid_energy(&R, (double)n * R.dt, Fc, rad, row, &comp, &closure);
+    }
+    if (st == RF_OK)
+        gravity_free_report(&R, chk, closure);
+    contact_release(&R.C);
+    fem_kernel_release(&R.S.kernel[0]);
+    fem_kernel_release(&R.S.kernel[1]);
+    if (R.have_mesh)
+        f3_mesh_free(&R.mesh);
+    rf_fem_workspace_free(ws);
+    return st;
 }

@@ -250,13 +250,19 @@ double fem_points_energy(const fem_points_view *v);
  * the point's law (k0[0] for law, k0[1] for law2).  mat[i] (NULL for a
  * linear law): the law's material, whose compaction cap (if any) is put
  * through the geostatic mean stress (normally consolidated under its own
- * weight: eps_c = (p - X0) / H_c when p > X0). */
+ * weight: eps_c = (p - X0) / H_c when p > X0).
+ * An infinite slope inclined at `incline` (3D model, slope frame: x
+ * down-slope, z the outward normal, d measured along -z): sigma_zz =
+ * cos(incline) sigma_v, sigma_zx = -sin(incline) sigma_v (>= 0, from
+ * equilibrium), sigma_xx = sigma_yy = K0 sigma_zz (incline 0: the level
+ * state above, bit for bit). */
 typedef struct {
     double g;                  /* [m/s^2] */
     double thickness;          /* [m] */
     double rho_layer, rho_base; /* [kg/m^3] */
     double k0[2];
     const rf_material *mat[2];
+    double incline;            /* [rad] slope angle (6-component points only) */
 } fem_geostatic;
 /* K0 of a material: Jaky's 1 - sin(phi) for Drucker-Prager (normally
  * consolidated soil), nu / (1 - nu) (uniaxial strain) for elastic and von Mises. */
@@ -271,6 +277,10 @@ long fem_points_geostatic(const fem_points_view *v, const double *depth, const f
  * -z at its 2x2 Gauss points, the reference mesh r, z, conn); -1 for another kernel. */
 long fem_kernel_points_axi_geostatic(fem_kernel *k, const double *r, const double *z, const int *conn,
                                      const fem_geostatic *g);
+/* The same for the hexahedron kernel (fem_kernel_points_hex) with the
+ * depths of its points given (depth[8 e + q], e local, q in the order of
+ * f3_hex_gradients); -1 for another kernel. */
+long fem_kernel_points_hex_geostatic(fem_kernel *k, const double *depth, const fem_geostatic *g);
 
 static inline void fem_kernel_release(fem_kernel *k)
 {

@@ -84,14 +84,15 @@ long fem_points_geostatic(const fem_points_view *v, const double *depth, const f
     long outside = 0;
     for (size_t p = 0; p < v->np; p++) {
         const int two = v->use2 && v->use2[p / (size_t)v->nq];
-        const double sv = fem_geostatic_vertical(g, depth[p]), sh = g->k0[two] * sv;
+        const double sv0 = fem_geostatic_vertical(g, depth[p]);
+        const double sv = g->incline != 0 ? cos(g->incline) * sv0 : sv0, sh = g->k0[two] * sv;
         double *s = v->sig + nc * p, *st = (double *)v->sig_t + nc * p;
         for (size_t i = 0; i < nc; i++)
             s[i] = 0;
         if (nc == 4) /* rr zz tt rz: z vertical */
             s[0] = sh, s[1] = sv, s[2] = sh;
-        else /* xx yy zz xy yz zx: z vertical */
-            s[0] = sh, s[1] = sh, s[2] = sv;
+        else /* xx yy zz xy yz zx: z the (slope) normal */
+            s[0] = sh, s[1] = sh, s[2] = sv, s[5] = g->incline != 0 ? -sin(g->incline) * sv0 : 0;
         memcpy(st, s, nc * sizeof *s);
         const rf_material *m = g->mat[two];
         if (!m)

@@ -464,7 +464,7 @@ static rf_status axi_gravity(axi_run *S, rf_error *err)
     rf_impact_material_params(S->in, S->layer ? 2 : 1, &p[1]);
     const fem_geostatic geo = {S->g, S->layer ? S->in->layer_thickness : 0, S->mat[2].rho, S->mat[1].rho,
                                {fem_geostatic_k0(&p[0]), fem_geostatic_k0(&p[1])},
-                               {S->plastic[1] ? &S->matl[1] : NULL, S->plastic[2] ? &S->matl[2] : NULL}};
+                               {S->plastic[1] ? &S->matl[1] : NULL, S->plastic[2] ? &S->matl[2] : NULL}, 0};
     fem_kernel *k = &S->kernel[FEM_SLOPE];
     S->geo_outside = fem_kernel_points_axi_geostatic(k, S->mesh.r, S->mesh.z, S->mesh.conn, &geo);
     if (S->geo_outside >= 0) {

@@ -43,7 +43,8 @@ double rf_impact_gravity(const rf_impact_input *in, int three_d)
 {
     if (in->gravity >= 0.0)
         return in->gravity;
-    return !three_d && rf_impact_has_plastic_body(in) ? RF_GRAVITY_STANDARD : 0.0;
+    (void)three_d; /* both FE models resolve auto alike (the 3D model has gravity since issue 10) */
+    return rf_impact_has_plastic_body(in) ? RF_GRAVITY_STANDARD : 0.0;
 }
 
 int rf_impact_has_plastic_body(const rf_impact_input *in)

@@ -464,8 +464,14 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
     int gravity_fuzzy = 0;
     for (size_t i = 0; i < c->n_params; i++)
         gravity_fuzzy |= c->field[i] == P_G;
-    if (gravity_fuzzy || b->gravity > 0 || (b->gravity < 0 && s->solver == RF_IMPACT_FEM && plastic_possible(c)))
+    const int gravity_named =
+        gravity_fuzzy || b->gravity > 0 || (b->gravity < 0 && s->solver == RF_IMPACT_FEM && plastic_possible(c));
+    if (gravity_named)
         append(buf, cap, &len, " gravity=%.17g", b->gravity < 0 ? RF_GRAVITY_STANDARD : b->gravity);
+    /* the 3D model runs with that gravity since issue 10 (before: auto was 0 there, > 0 refused): a
+       store never mixes its 3D results from before and after */
+    if (gravity_named && s->solver == RF_IMPACT_FEM && may_run_3d(c))
+        append(buf, cap, &len, " fem3d_gravity=slope_frame");
     append(buf, cap, &len, " params:");
     for (size_t i = 0; i < c->n_params; i++)
         append(buf, cap, &len, "%s%s", i ? "," : "", rf_impact_param_names[c->field[i]]);
