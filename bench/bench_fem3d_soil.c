@@ -9,7 +9,7 @@
  * large deformation; the 3D model has small strain only), E= (layer_E),
  * X0= (layer_cap_pressure), Hc= (layer_cap_hardening), t= (thickness),
  * core= (core_factor), domain= (domain_factor), end= (end time, s),
- * boundary=fixed|absorbing, ratio= (boulder_mesh_ratio), threads=. */
+ * law=elastic|dp (the layer's), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio), threads=. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -67,6 +67,8 @@ static int probe_set(probe *p, const char *arg)
         p->o.end_time = x;
     else if (KEY("boundary"))
         p->o.boundary = strcmp(eq + 1, "fixed") ? RF_FEM_BOUNDARY_ABSORBING : RF_FEM_BOUNDARY_FIXED;
+    else if (KEY("law"))
+        p->in.layer_material = !strcmp(eq + 1, "elastic") ? RF_MATERIAL_ELASTIC : RF_MATERIAL_DRUCKER_PRAGER;
     else if (KEY("ratio"))
         p->o.boulder_mesh_ratio = x;
     else if (KEY("threads"))
