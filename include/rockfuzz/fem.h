@@ -51,7 +51,7 @@ typedef enum {
                                     point kernel, without B-bar: the elastic results to round-off) */
 } rf_fem_kernel;
 
-/* Kinematics of the axisymmetric model (docs/validation-plastic.md section 6e). */
+/* Kinematics of the FE models (docs/validation-plastic.md sections 6e, 9c). */
 typedef enum {
     RF_FEM_KINEMATICS_AUTO = 0, /* default: large deformation when a body is elasto-plastic, else small strain */
     RF_FEM_SMALL_STRAIN,        /* strains, B and weights on the reference geometry; contact pairs fixed
@@ -103,8 +103,9 @@ typedef struct {
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */
     double duration_threshold; /* contact counts while force > this * F_max, default 1e-6 */
     rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
-    rf_fem_kinematics large_deformation; /* axisymmetric model: default auto (see rf_fem_kinematics); the
-                                            3D model is small strain and accepts auto or off only */
+    rf_fem_kinematics large_deformation; /* default auto (see rf_fem_kinematics); in the 3D model `on`
+                                            puts every deformable body on the updated-Lagrangian
+                                            hexahedron kernel (its contact is the same in both) */
     int contact_single_pivot;  /* axisymmetric contact: 1 solves the complementarity problem by single
                                   pivoting alone (slower; the check of the default block active-set
                                   method, which falls back to it after 200 rounds), default 0 */
@@ -112,7 +113,7 @@ typedef struct {
 
 void rf_fem_options_default(rf_fem_options *opt);
 
-/* 1 if the axisymmetric model runs in large deformation for this impact:
+/* 1 if the FE models run in large deformation for this impact:
  * opt->large_deformation on, or auto with an elasto-plastic body (the boulder,
  * the slope or a layer); the one rule the solver and the model identity use. */
 int rf_fem_large_deformation(const rf_fem_options *opt, const rf_impact_input *in);

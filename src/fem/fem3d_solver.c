@@ -28,6 +28,7 @@
 #include "core/util.h"
 #include "hex8_step.h"
 #include "fem3d_internal.h"
+#include "fem3d_large.h"
 #include "fem3d_prof.h"
 #include "fem3d_spec.h"
 #include "fem_core.h"
@@ -98,7 +99,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the 3D solver in the workspace pool. */
 enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM, Q_DASH, Q_ELM, Q_LAMX, Q_FIXED,
-       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM };
+       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM, Q_LAMU };
 
 /* The state of one 3D run. */
 typedef struct {
@@ -111,6 +112,10 @@ typedef struct {
     rf_material matl[3];  /* constitutive law of each (plastic[b] != 0: not elastic) */
     fem_lame lame[3];     /* parameters of the linear point laws (kernel = points) */
     int plastic[3], work_account; /* work_account: energies from the internal work (a plastic body) */
+    int large;            /* updated Lagrangian kernels (rf_fem_large_deformation); work_account then too */
+    f3_step_check step_check; /* large: the elements' step bounds at their current size */
+    double *lamu;         /* large: each element's Gershgorin bound of lambda_max (reference geometry) */
+    long unstable;        /* large: an element whose current step bound fell below dt (-1: none) */
     int layer, rigid;     /* a layer over the slope (fem3d_layer.c); a rigid boulder (fem3d_rigid.c) */
     double a_box;         /* contact radius the fine boxes cover (the larger of slope and layer) [m] */
     f3_layer_contact lc;  /* the layer's contact estimate (fem3d_spec.h); lc.thick: it alone sizes the mesh */
@@ -220,6 +225,8 @@ static rf_status solid_prepare(solid_run *R, const rf_impact_input *in, const rf
         R->plastic[b] = p.model != RF_MATERIAL_ELASTIC && !(b == 0 && R->rigid);
     }
     R->work_account = R->plastic[0] || R->plastic[1] || R->plastic[2];
+    R->large = rf_fem_large_deformation(&R->o, in);
+    R->work_account |= R->large; /* the energy from the internal work: no K in updated Lagrangian */
     return RF_OK;
 }
 
@@ -416,9 +423,9 @@ static void solid_element(void *ctx, long e, double K[576], double m[8], unsigne
 /* max_e lambda_max(M_e^-1 K_e), with the exact eigen-solve pruned by
  * Gershgorin bounds (hex8_step.c, docs/fem-speed.md plan step 6): bit for bit
  * the maximum over every element, at ~1 % of the solves. */
-static double solid_lambda_max(solid_run *R)
+static double solid_lambda_max(solid_run *R, double *lam_upper)
 {
-    return hex8_max_eigenvalue(R->ne, solid_element, R, NULL, NULL);
+    return hex8_max_eigenvalue(R->ne, solid_element, R, lam_upper, NULL);
 }
 
 /* Nodal masses (the boulder's density scaled so that the rigid-body mass is
@@ -445,7 +452,9 @@ static void solid_masses(solid_run *R)
     }
     for (long dd = 0; dd < R->ndof; dd++)
         R->invm[dd] = R->fixed[dd] ? 0 : 1 / R->mass[dd];
-    const double lam_max = solid_lambda_max(R);
+    double *lam_upper = R->large ? fem_pool_get(R->pool, Q_LAMU, (size_t)R->ne * sizeof(double), 0) : NULL;
+    const double lam_max = solid_lambda_max(R, lam_upper);
+    R->lamu = lam_upper;
     R->dt_edge = DBL_MAX;
     static const int ed[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                   {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
@@ -650,7 +659,7 @@ static rf_status solid_kernels(solid_run *R, rf_error *err)
             const fem_point_law law = fem_point_law_material3d(&R->matl[b]);
             st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 1,
                                        err);
-        } else if (R->o.kernel[b] == RF_FEM_KERNEL_POINTS) {
+        } else if (R->o.kernel[b] == RF_FEM_KERNEL_POINTS || R->large) {
             R->lame[b] = (fem_lame){lam, mu};
             const fem_point_law law = fem_point_law_linear3d(&R->lame[b]);
             st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 0,
@@ -658,6 +667,8 @@ static rf_status solid_kernels(solid_run *R, rf_error *err)
         } else
             st = fem_kernel_hex8_matfree(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, lam, mu, store_j,
                                          err);
+        if (st == RF_OK && R->large) /* (an elastic body: the linear, hypoelastic, law on the current geometry) */
+            st = fem_kernel_points_hex_large(&S->kernel[b], R->mesh.x, err);
         if (st != RF_OK)
             return st;
     }
@@ -684,6 +695,11 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
     if (!R->mass_moments_ok)
         return rf_fail(err, RF_EINTERNAL, "fem3d: no positive boulder mass weighting with the spheroid's moments");
     if ((st = solid_kernels(R, err)) != RF_OK)
+        return st;
+    if (R->large && !R->lamu)
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->ne);
+    if (R->large && (st = f3_step_check_init(&R->step_check, &R->mesh, R->ne, NULL, R->lamu, solid_element, R, err)) !=
+                        RF_OK)
         return st;
     solid_dashpots(R);
     if (R->dash_ratio >= 2)
@@ -990,6 +1006,9 @@ static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *
         double Fc, rad, row[13], comp, closure;
         if ((st = solid_step(R, &Fc, &rad, err)) != RF_OK)
             return st;
+        if (R->large && (R->unstable = f3_step_violation(&R->step_check, R->dt, R->u)) >= 0)
+            return rf_fail(err, RF_EMODEL, "fem3d: element %ld was compressed below the stability bound of the time "
+                           "step dt = %g s (dt_safety = %g) at t = %g s", R->unstable, R->dt, o->dt_safety, t);
         F3P_MARK(m);
         solid_energy(R, t, Fc, rad, row, &comp, &closure);
         F3P_LAP(F3P_ENERGY, m);
@@ -1186,16 +1205,16 @@ static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_out
         solid_report(R, run, P, w_after, Iyy, rep);
 }
 
-rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
-                             const rf_fem3d_options *o3, rf_impact_output *out, rf_fem_history *hist,
-                             rf_fem3d_report *rep, rf_error *err)
+/* One run with the options opt; *unstable >= 0 if an element of a
+ * large-deformation run outgrew the time step (f3_step_violation). */
+static rf_status solid_attempt(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                               const rf_fem3d_options *o3, rf_impact_output *out, rf_fem_history *hist,
+                               rf_fem3d_report *rep, long *unstable, rf_error *err)
 {
     const double wall0 = rf_monotonic_seconds();
-    if (!out || !ws)
-        return rf_fail(err, RF_EINVAL, "fem3d: NULL output or workspace");
     solid_run R;
     memset(&R, 0, sizeof R);
-    R.pool = &ws->solid;
+    R.pool = &ws->solid, R.unstable = -1;
     rf_status st = solid_prepare(&R, in, opt, o3, err);
     if (st != RF_OK)
         return st;
@@ -1221,8 +1240,10 @@ rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, co
             fem_run_history(&run, hist);
         out->wall_seconds = rf_monotonic_seconds() - wall0;
     }
+    *unstable = R.unstable;
     fem_run_free(&run);
     contact_release(&R.C);
+    f3_step_check_free(&R.step_check);
     fem_kernel_release(&R.S.kernel[0]);
     fem_kernel_release(&R.S.kernel[1]);
     if (R.have_mesh)
@@ -1231,6 +1252,41 @@ rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, co
         rf_fem_history_free(hist);
     if (st != RF_OK && rep)
         rf_fem3d_report_free(rep);
+    return st;
+}
+
+/* One attempt of rf_fem3d_impact_ws (fem_run_halving). */
+typedef struct {
+    rf_fem_workspace *ws;
+    const rf_impact_input *in;
+    const rf_fem3d_options *o3;
+    rf_impact_output *out;
+    rf_fem_history *hist;
+    rf_fem3d_report *rep;
+} solid_attempt_ctx;
+
+static rf_status solid_attempt_fn(void *ctx, const rf_fem_options *o, long *unstable, rf_error *err)
+{
+    const solid_attempt_ctx *c = ctx;
+    return solid_attempt(c->ws, c->in, o, c->o3, c->out, c->hist, c->rep, unstable, err);
+}
+
+rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
+                             const rf_fem3d_options *o3, rf_impact_output *out, rf_fem_history *hist,
+                             rf_fem3d_report *rep, rf_error *err)
+{
+    const double wall0 = rf_monotonic_seconds();
+    if (!out || !ws)
+        return rf_fail(err, RF_EINVAL, "fem3d: NULL output or workspace");
+    rf_fem_options o;
+    if (opt)
+        o = *opt;
+    else
+        rf_fem_options_default(&o);
+    solid_attempt_ctx c = {ws, in, o3, out, hist, rep};
+    const rf_status st = fem_run_halving(solid_attempt_fn, &c, &o, err);
+    if (st == RF_OK)
+        out->wall_seconds = rf_monotonic_seconds() - wall0;
     return st;
 }
 

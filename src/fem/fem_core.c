@@ -51,6 +51,18 @@ double fem_time_step(double lambda_max, double safety, double *dt_bound)
     return safety * *dt_bound;
 }
 
+rf_status fem_run_halving(fem_attempt_fn attempt, void *ctx, const rf_fem_options *o, rf_error *err)
+{
+    rf_fem_options oh = *o;
+    for (int k = 0;; k++) {
+        long unstable = -1;
+        const rf_status st = attempt(ctx, &oh, &unstable, err);
+        if (unstable < 0 || k == FEM_STEP_HALVINGS)
+            return st;
+        oh.dt_safety *= 0.5;
+    }
+}
+
 rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, double dt, double t_h, int record,
                         int ncol, rf_error *err)
 {

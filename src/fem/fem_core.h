@@ -43,6 +43,18 @@ struct rf_fem_workspace {
 /* dt = safety * 2 / sqrt(lambda_max) (central differences, undamped). */
 double fem_time_step(double lambda_max, double safety, double *dt_bound);
 
+/* --- large deformation: a run made again with half the step --- */
+
+/* Elements compressed under the contact lower their explicit step bound; a
+ * run whose step outgrows it is made again from the start with half the step
+ * (up to FEM_STEP_HALVINGS times), so that every result comes from a uniform
+ * step that stayed stable throughout. */
+#define FEM_STEP_HALVINGS 4
+/* One run with the options o; *unstable >= 0 (an element) if the step outgrew a bound. */
+typedef rf_status (*fem_attempt_fn)(void *ctx, const rf_fem_options *o, long *unstable, rf_error *err);
+/* attempt() with *o, then with dt_safety halved while an attempt was unstable; the last attempt's status. */
+rf_status fem_run_halving(fem_attempt_fn attempt, void *ctx, const rf_fem_options *o, rf_error *err);
+
 /* --- the run account --- */
 
 #define FEM_SERIES_MAX 13

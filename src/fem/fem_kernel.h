@@ -203,6 +203,15 @@ rf_status fem_kernel_points_hex(fem_kernel *k, long first, long count, const dou
  * other kernels); its dissipation account is fem_kernel_report_get's. */
 int fem_kernel_points_hex_cell(const fem_kernel *k, long e, double sig[6], double *plastic_strain);
 double fem_kernel_points_hex_energy(const fem_kernel *k);
+/* Turn a hexahedron point kernel just made (above) into the updated
+ * Lagrangian form (large deformation, fem_kernel_points3d_large.c): the strain
+ * increment and the spin from the gradients of the mid-step geometry
+ * X + (u_n + u_{n+1}) / 2, the committed stress turned by the Hughes-Winget
+ * rotation of that spin before the law's update, the force (and B-bar, if
+ * chosen) with the gradients and det J of the current geometry X + u_{n+1},
+ * the plastic dissipation over the current volumes.  Exact for a rigid
+ * motion of any size.  x: the reference node coordinates (read here only). */
+rf_status fem_kernel_points_hex_large(fem_kernel *k, const double *x, rf_error *err);
 /* sig = sig_n + D deps in 3D (xx yy zz xy yz zx, engineering shear strains),
  * with its elastic energy density. */
 fem_point_law fem_point_law_linear3d(const fem_lame *lame);

@@ -23,9 +23,6 @@
  * their trial copies and the law's state.  Vectors cross function calls by
  * pointer only. */
 #include "fem3d_internal.h"
-#include "fem_kernel.h"
-#include "hex8_kernel.h"
-
 /* The multiply-adds of the kinematics fused into FMA, as in hex8_kernel.c (round-off only). */
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC optimize("fp-contract=fast")
@@ -33,45 +30,19 @@
 #pragma clang fp contract(fast)
 #endif
 
+#include "fem_kernel_points3d.h"
+
 #include <stdlib.h>
 #include <string.h>
 
-#define NQ 8 /* Gauss points per element */
-#define NC 6 /* strain components: xx yy zz xy yz zx */
-enum { PW = HEX8_W }; /* elements per block (one vector lane each) = per work unit of forces_field */
+#define NQ P3_NQ
+#define NC P3_NC
+#define PW P3_W
+typedef p3_vec pvec;
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define P3_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-#else
-#define P3_CLONES
-#endif
-
-typedef double pvec __attribute__((vector_size(PW * sizeof(double))));
-
-typedef struct {
-    fem_point_law law, law2;
-    unsigned char *use2;  /* per element: law2 (NULL: law everywhere) */
-    long nblk;
-    int *conn;            /* per block [8 nodes][PW] node ids */
-    long *lane;           /* per block [PW]: local element number, -1 for padding */
-    double *G;            /* per block [8 points][8 nodes][3][PW]: dN/dx (0 in padding) */
-    double *wb;           /* per block [8 points][PW]: det J (1 in padding) */
-    double *w;            /* per point (8 le + q): det J */
-    int bbar;
-    double *eps, *sig, *var;       /* committed, per point */
-    double *eps_t, *sig_t, *var_t; /* trial of the last forces() */
-    double plastic_work, plastic_strain_max;
-    long point_max;
-} p3_data;
-
-static inline void vget(pvec *v, const double *p)
-{
-    memcpy(v, p, sizeof *v);
-}
-
-/* Strains of the block's points (engineering shear), the dilatation replaced by its element mean if bbar. */
 P3_CLONES
-static void block_strains(const double *G, const double *wb, const pvec ue[24], int bbar, pvec eps[NQ][NC])
+void p3_block_strains(const double *G, const double *wb, const pvec ue[24], int bbar, pvec eps[NQ][NC],
+                      pvec spin[NQ][3])
 {
     pvec W = {0}, th = {0};
     for (int q = 0; q < NQ; q++) {
@@ -79,14 +50,16 @@ static void block_strains(const double *G, const double *wb, const pvec ue[24], 
         for (int a = 0; a < 8; a++) {
             pvec g[3];
             for (int j = 0; j < 3; j++)
-                vget(&g[j], G + ((q * 8 + a) * 3 + j) * PW);
+                p3_vget(&g[j], G + ((q * 8 + a) * 3 + j) * PW);
             for (int c = 0; c < 3; c++)
                 for (int j = 0; j < 3; j++)
                     H[3 * c + j] += ue[3 * a + c] * g[j];
         }
         eps[q][0] = H[0], eps[q][1] = H[4], eps[q][2] = H[8];
         eps[q][3] = H[1] + H[3], eps[q][4] = H[5] + H[7], eps[q][5] = H[6] + H[2];
-        vget(&w, wb + q * PW);
+        if (spin) /* W v = spin x v with W = (H - H^T) / 2 */
+            spin[q][0] = 0.5 * (H[7] - H[5]), spin[q][1] = 0.5 * (H[2] - H[6]), spin[q][2] = 0.5 * (H[3] - H[1]);
+        p3_vget(&w, wb + q * PW);
         W += w, th += w * (H[0] + H[4] + H[8]);
     }
     if (!bbar)
@@ -98,14 +71,13 @@ static void block_strains(const double *G, const double *wb, const pvec ue[24], 
     }
 }
 
-/* F = sum_q w_q B_q^T s_q, s_q = sigma_q with the pressure replaced by its element mean if bbar. */
 P3_CLONES
-static void block_force(const double *G, const double *wb, const pvec sig[NQ][NC], int bbar, pvec F[24])
+void p3_block_force(const double *G, const double *wb, const pvec sig[NQ][NC], int bbar, pvec F[24])
 {
     pvec W = {0}, pbar = {0};
     for (int q = 0; q < NQ; q++) {
         pvec w;
-        vget(&w, wb + q * PW);
+        p3_vget(&w, wb + q * PW);
         W += w, pbar += w * (sig[q][0] + sig[q][1] + sig[q][2]) / 3;
     }
     pbar /= W;
@@ -114,26 +86,46 @@ static void block_force(const double *G, const double *wb, const pvec sig[NQ][NC
     for (int q = 0; q < NQ; q++) {
         const pvec *s = sig[q], dp = bbar ? pbar - (s[0] + s[1] + s[2]) / 3 : (pvec){0};
         pvec w;
-        vget(&w, wb + q * PW);
+        p3_vget(&w, wb + q * PW);
         const pvec S[9] = {w * (s[0] + dp), w * s[3], w * s[5], w * s[3], w * (s[1] + dp),
                            w * s[4], w * s[5], w * s[4], w * (s[2] + dp)};
         for (int a = 0; a < 8; a++) {
             pvec g[3];
             for (int j = 0; j < 3; j++)
-                vget(&g[j], G + ((q * 8 + a) * 3 + j) * PW);
+                p3_vget(&g[j], G + ((q * 8 + a) * 3 + j) * PW);
             for (int c = 0; c < 3; c++)
                 F[3 * a + c] += S[3 * c] * g[0] + S[3 * c + 1] * g[1] + S[3 * c + 2] * g[2];
         }
     }
 }
 
-/* The point laws, lane by lane (a return map branches): trial stress and state of block b. */
-static void block_laws(const p3_data *d, long b, const pvec eps[NQ][NC], pvec sig[NQ][NC])
+/* One point's law call: small strain from the total strain et, or (spin) from
+   the increment de with the committed stress turned first. */
+static void point_law(const p3_data *d, const fem_point_law *L, size_t p, const double *e, const double *spin,
+                      double *st)
 {
-    double e[NQ][NC][PW], s[NQ][NC][PW];
+    const size_t ns = (size_t)L->nstate;
+    double deps[NC], s0[NC], *et = d->eps_t + NC * p;
+    const double *sn = d->sig + NC * p;
+    for (int i = 0; i < NC; i++) {
+        deps[i] = spin ? e[i] : e[i] - d->eps[NC * p + i];
+        et[i] = spin ? d->eps[NC * p + i] + e[i] : e[i];
+    }
+    if (spin) {
+        memcpy(s0, sn, sizeof s0);
+        rf_material_rotate(s0, spin);
+        sn = s0;
+    }
+    L->update(L->params, deps, sn, d->var + ns * p, st, d->var_t + ns * p);
+}
+
+void p3_block_laws(const p3_data *d, long b, const pvec eps[NQ][NC], const pvec spin[NQ][3], pvec sig[NQ][NC])
+{
+    double e[NQ][NC][PW], s[NQ][NC][PW], w[NQ][3][PW];
     memcpy(e, eps, sizeof e);
+    if (spin)
+        memcpy(w, spin, sizeof w);
     memset(s, 0, sizeof s);
-    const size_t ns = (size_t)d->law.nstate;
     for (int l = 0; l < PW; l++) {
         const long le = d->lane[b * PW + l];
         if (le < 0)
@@ -141,15 +133,36 @@ static void block_laws(const p3_data *d, long b, const pvec eps[NQ][NC], pvec si
         const fem_point_law *L = d->use2 && d->use2[le] ? &d->law2 : &d->law;
         for (int q = 0; q < NQ; q++) {
             const size_t p = (size_t)NQ * (size_t)le + (size_t)q;
-            double deps[NC], *et = d->eps_t + NC * p, *st = d->sig_t + NC * p;
+            double el[NC], wl[3], *st = d->sig_t + NC * p;
             for (int i = 0; i < NC; i++)
-                et[i] = e[q][i][l], deps[i] = et[i] - d->eps[NC * p + i];
-            L->update(L->params, deps, d->sig + NC * p, d->var + ns * p, st, d->var_t + ns * p);
+                el[i] = e[q][i][l];
+            for (int i = 0; i < 3; i++)
+                wl[i] = spin ? w[q][i][l] : 0;
+            point_law(d, L, p, el, spin ? wl : NULL, st);
             for (int i = 0; i < NC; i++)
                 s[q][i][l] = st[i];
         }
     }
     memcpy(sig, s, sizeof s);
+}
+
+void p3_block_gather(const p3_data *d, long b, const double *u, double ul[24][PW])
+{
+    for (int a = 0; a < 8; a++)
+        for (int l = 0; l < PW; l++) {
+            const double *un = u + 3 * (long)d->conn[(b * 8 + a) * PW + l];
+            ul[3 * a][l] = un[0], ul[3 * a + 1][l] = un[1], ul[3 * a + 2][l] = un[2];
+        }
+}
+
+void p3_block_scatter(const p3_data *d, long b, long first, const double fl[24][PW], double *fe)
+{
+    for (int l = 0; l < PW; l++) {
+        const long le = d->lane[b * PW + l];
+        if (le >= 0)
+            for (int r = 0; r < 24; r++)
+                fe[24 * (first + le) + r] = fl[r][l];
+    }
 }
 
 /* Work units = blocks of PW elements, straight from the nodal field; element e's forces at fe + 24 e. */
@@ -158,62 +171,58 @@ static void p3_field(const fem_kernel *k, long b0, long b1, const double *u, dou
     const p3_data *d = k->data;
     for (long b = b0; b < b1; b++) {
         double ul[24][PW], fl[24][PW];
-        for (int a = 0; a < 8; a++)
-            for (int l = 0; l < PW; l++) {
-                const double *un = u + 3 * (long)d->conn[(b * 8 + a) * PW + l];
-                ul[3 * a][l] = un[0], ul[3 * a + 1][l] = un[1], ul[3 * a + 2][l] = un[2];
-            }
+        p3_block_gather(d, b, u, ul);
         pvec ue[24], eps[NQ][NC], sig[NQ][NC], F[24];
         memcpy(ue, ul, sizeof ul);
         const double *G = d->G + (size_t)b * NQ * 24 * PW, *wb = d->wb + (size_t)b * NQ * PW;
-        block_strains(G, wb, ue, d->bbar, eps);
-        block_laws(d, b, (const pvec(*)[NC])eps, sig);
-        block_force(G, wb, (const pvec(*)[NC])sig, d->bbar, F);
+        p3_block_strains(G, wb, ue, d->bbar, eps, NULL);
+        p3_block_laws(d, b, (const pvec(*)[NC])eps, NULL, sig);
+        p3_block_force(G, wb, (const pvec(*)[NC])sig, d->bbar, F);
         memcpy(fl, F, sizeof fl);
-        for (int l = 0; l < PW; l++) {
-            const long le = d->lane[b * PW + l];
-            if (le >= 0)
-                for (int r = 0; r < 24; r++)
-                    fe[24 * (k->first + le) + r] = fl[r][l];
-        }
+        p3_block_scatter(d, b, k->first, (const double(*)[PW])fl, fe);
     }
 }
 
-/* The kernel's points as fem_points_state.c sees them. */
-static fem_points_view p3_view(const fem_kernel *k)
+fem_points_view p3_view(const fem_kernel *k)
 {
     p3_data *d = k->data;
     return (fem_points_view){(size_t)NQ * (size_t)k->count, NQ, NC, &d->law, &d->law2, d->use2, d->w,
                              d->eps, d->sig, d->var, d->eps_t, d->sig_t, d->var_t};
 }
 
-static void p3_commit(fem_kernel *k)
+void p3_accept(fem_kernel *k)
 {
     p3_data *d = k->data;
     const fem_points_view v = p3_view(k);
     fem_points_accept(&v, &d->plastic_work, &d->plastic_strain_max, &d->point_max);
 }
 
-static void p3_destroy(fem_kernel *k)
+void p3_destroy(fem_kernel *k)
 {
     p3_data *d = k->data;
     if (d) {
         free(d->conn), free(d->lane), free(d->G), free(d->wb), free(d->w), free(d->eps), free(d->sig);
         free(d->var), free(d->eps_t), free(d->sig_t), free(d->var_t), free(d->use2);
+        free(d->X), free(d->uc), free(d->ut), free(d->w_t);
     }
     free(d);
     k->data = NULL;
 }
 
-static void p3_report(const fem_kernel *k, fem_kernel_report *r)
+void p3_report(const fem_kernel *k, fem_kernel_report *r)
 {
     const p3_data *d = k->data;
     r->plastic_work = d->plastic_work, r->plastic_strain_max = d->plastic_strain_max;
     r->element_max = d->point_max < 0 ? -1 : k->first + d->point_max / NQ;
 }
 
-static const fem_kernel_ops p3_ops = {"integration points (hexahedron, SIMD blocks)", NULL, NULL, p3_commit,
+static const fem_kernel_ops p3_ops = {"integration points (hexahedron, SIMD blocks)", NULL, NULL, p3_accept,
                                       p3_destroy, p3_field, p3_report};
+
+int p3_is(const fem_kernel *k)
+{
+    return (k->ops == &p3_ops || k->ops == &p3_large_ops) && k->data;
+}
 
 static rf_status p3_check(const fem_point_law *law, const fem_point_law *law2, const unsigned char *use2,
                           rf_error *err)
@@ -305,7 +314,7 @@ rf_status fem_kernel_points_hex(fem_kernel *k, long first, long count, const dou
 
 int fem_kernel_points_hex_cell(const fem_kernel *k, long e, double sig[6], double *plastic_strain)
 {
-    if (k->ops != &p3_ops || !k->data || e < k->first || e >= k->first + k->count)
+    if (!p3_is(k) || e < k->first || e >= k->first + k->count)
         return 0;
     const fem_points_view v = p3_view(k);
     fem_points_cell(&v, e - k->first, sig, plastic_strain);
@@ -314,7 +323,7 @@ int fem_kernel_points_hex_cell(const fem_kernel *k, long e, double sig[6], doubl
 
 double fem_kernel_points_hex_energy(const fem_kernel *k)
 {
-    if (k->ops != &p3_ops || !k->data)
+    if (!p3_is(k))
         return -1;
     const fem_points_view v = p3_view(k);
     return fem_points_energy(&v);

@@ -117,10 +117,9 @@ rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error
     }
     if (isinf(o->end_time))
         return rf_fail(err, RF_EINVAL, "fem: end_time = %g must be finite [s]", o->end_time);
-    if ((unsigned)o->large_deformation > RF_FEM_LARGE_DEFORMATION || (three_d && o->large_deformation == RF_FEM_LARGE_DEFORMATION))
-        return rf_fail(err, RF_EINVAL, "fem%s: large_deformation = %d (%s) is not available%s", three_d ? "3d" : "",
-                       (int)o->large_deformation, rf_fem_kinematics_name(o->large_deformation),
-                       three_d ? " in 3D (small strain only: auto or off)" : "");
+    if ((unsigned)o->large_deformation > RF_FEM_LARGE_DEFORMATION)
+        return rf_fail(err, RF_EINVAL, "fem%s: large_deformation = %d is unknown (accepted: auto, off, on)",
+                       three_d ? "3d" : "", (int)o->large_deformation);
     if ((unsigned)o->boundary > RF_FEM_BOUNDARY_ABSORBING)
         return rf_fail(err, RF_EINVAL, "fem: unknown boundary kind %d", (int)o->boundary);
     if (o->threads < 0)

@@ -941,11 +941,19 @@ static rf_status axi_attempt(rf_fem_workspace *ws, const rf_impact_input *in, co
     return st;
 }
 
-/* Large deformation: elements compressed under the contact lower their
- * explicit step bound; a run whose step outgrows it is made again from the
- * start with half the step (up to FEM_STEP_HALVINGS times), so that every
- * result comes from a uniform step that stayed stable throughout. */
-#define FEM_STEP_HALVINGS 4
+/* One attempt of rf_fem_impact_ws (fem_run_halving). */
+typedef struct {
+    rf_fem_workspace *ws;
+    const rf_impact_input *in;
+    rf_impact_output *out;
+    rf_fem_history *hist;
+} axi_attempt_ctx;
+
+static rf_status axi_attempt_fn(void *ctx, const rf_fem_options *o, long *unstable, rf_error *err)
+{
+    const axi_attempt_ctx *c = ctx;
+    return axi_attempt(c->ws, c->in, o, c->out, c->hist, unstable, err);
+}
 
 rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
                            rf_impact_output *out, rf_fem_history *hist, rf_error *err)
@@ -958,15 +966,11 @@ rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, cons
     else
         rf_fem_options_default(&o);
     const double wall0 = rf_monotonic_seconds();
-    for (int k = 0;; k++) {
-        long unstable = -1;
-        rf_status st = axi_attempt(ws, in, &o, out, hist, &unstable, err);
-        if (st == RF_OK)
-            out->wall_seconds = rf_monotonic_seconds() - wall0;
-        if (unstable < 0 || k == FEM_STEP_HALVINGS)
-            return st;
-        o.dt_safety *= 0.5;
-    }
+    axi_attempt_ctx c = {ws, in, out, hist};
+    const rf_status st = fem_run_halving(axi_attempt_fn, &c, &o, err);
+    if (st == RF_OK)
+        out->wall_seconds = rf_monotonic_seconds() - wall0;
+    return st;
 }
 
 rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,

@@ -412,6 +412,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            before, issue 10): a store never mixes results from before and after */
         if (may_run_3d(c))
             append(buf, cap, &len, " fem3d_materials=plastic_b_bar");
+        /* the 3D model runs in large deformation too (on, or auto with a plastic body; it was small
+           strain in every case before): a store never mixes 3D results of the two kinematics */
+        if (may_run_3d(c) && large_possible(c))
+            append(buf, cap, &len, " fem3d_kinematics=updated_lagrangian");
         /* results that changed with the solver robustness for soils (docs/validation-plastic.md
            section 10) are named, the others keep their identity: the automatic end waits for the
            impact to end (plastic runs), the dashpots take each face's impedance, semi-implicitly */
