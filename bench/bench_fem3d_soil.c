@@ -5,8 +5,8 @@
  * estimate (fem3d_spec.h) next to the measured penetration and contact
  * radius (docs/validation-plastic.md section 9c, docs/studies.md S6).
  *   bench_fem3d_soil [key=value ...] A [A ...]
- * keys: model=3d|axi, angle= (deg), f= (friction), large=0|1 (axisymmetric:
- * large deformation; the 3D model has small strain only), E= (layer_E),
+ * keys: model=3d|axi, angle= (deg), f= (friction), large=0|1 (small strain or
+ * large deformation, both models; default 0), E= (layer_E),
  * X0= (layer_cap_pressure), Hc= (layer_cap_hardening), t= (thickness),
  * core= (core_factor), domain= (domain_factor), end= (end time, s),
  * law=elastic|dp (the layer's), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio), threads=. */
@@ -121,7 +121,7 @@ int main(int argc, char **argv)
         printf("model=%s angle=%.0f f=%g ref=%g large=%d h=%.4f elements=%.0f steps=%.0f cpu=%.2f R_n=%.4f R_t=%.4f "
                "R_ke=%.4f W_p=%.4f pen=%.4f crater=%.4f a=%.4f F=%.4g t_c=%.4g closure=%.2e fric=%.3e\n",
                p.axi ? "axi" : "3d", p.in.slope_angle * 180 / RF_PI, p.in.friction, p.o.refinement,
-               rf_fem_large_deformation(&p.o, &p.in) && p.axi, H.h_contact, out.elements, out.steps, cpu, out.R_n,
+               rf_fem_large_deformation(&p.o, &p.in), H.h_contact, out.elements, out.steps, cpu, out.R_n,
                out.R_t, out.R_ke, out.plastic_work, out.penetration_max, out.indentation_depth, out.contact_radius,
                out.contact_force_max, out.contact_duration, H.closure[H.n - 1] / k0, rep.friction_work / k0);
         printf("  estimate: thick=%d depth=%.4f radius=%.4f zone=%.4f t=%.4g; warning: %s\n", lc.thick,
