@@ -146,10 +146,12 @@ typedef struct {
     fem_pool *pool;
 } solid_run;
 
-/* A layer over the slope (as the axisymmetric solver, fem_solver.c): the
+/* A layer over the slope: as the axisymmetric solver (fem_solver.c), the
  * mesh sized for the finer of the two contacts (slope's and layer's Hertz
  * radius), its fine boxes covering the larger, the run as long as the longer
- * Hertz duration; the layer's wave speeds. */
+ * Hertz duration; but a thick layer (the boulder stays in it,
+ * f3_layer_contact_estimate) sizes all three from its own contact.  The
+ * layer's wave speeds. */
 static rf_status solid_prepare_layer(solid_run *R, rf_error *err)
 {
     const rf_impact_input *in = R->in;

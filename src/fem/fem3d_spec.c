@@ -2,8 +2,10 @@
  * The arithmetic is the solver's own (fem3d_solver.c, "fine boxes"): Hertz
  * radius and duration from the normal velocity component, uniform cubes of
  * size a/refinement over core_factor * a, elongated down-slope by the patch
- * travel.  Until the solver calls this function, the two must be kept equal;
- * test_hex8_kernel checks the element count against the solver's. */
+ * travel; a thick layer's own contact (f3_layer_contact_estimate, below).
+ * Until the solver calls this function, the two must be kept equal;
+ * test_hex8_kernel (granite) and test_fem3d_layer (a soft layer) check the
+ * element count against the solver's. */
 #include "fem3d_spec.h"
 #include "core/util.h"
 
