@@ -2,13 +2,14 @@
  * 1. The kernels alone: CPU ns per element evaluation (forces_field + commit)
  *    on a 16^3 grid of unit-ish cubes, for the matrix-free elastic kernel, the
  *    integration-point kernel with the linear law, and with the J2 and
- *    Drucker-Prager + cap laws, elastic (small field) and plastic (large).
+ *    Drucker-Prager + cap laws, elastic (small field) and plastic (large),
+ *    each in small strain and in the updated-Lagrangian form (UL).
  * 2. The whole solver (half model, one thread): CPU ns per element-step and
  *    the results, for a granite sphere at V m/s on a slope at angle DEG that
  *    is elastic (matrix-free kernel; integration-point kernel in both bodies),
  *    von Mises (Y = 200 MPa) or Drucker-Prager with a cap; with angle 0 the
  *    axisymmetric model's results at the same a/h follow.
- *   bench_fem3d_plastic [refinement=3] [velocity=10] [angle_deg=0] [friction=0] [repeats=1]
+ *   bench_fem3d_plastic [refinement=3] [velocity=10] [angle_deg=0] [friction=0] [repeats=1] [kinematics=auto]
  * CPU time of the process (clock()), best of `repeats`: other jobs share the machine. */
 #include <math.h>
 #include <stdio.h>
@@ -83,12 +84,15 @@ static int kernels_alone(void)
                                    fem_point_law_material3d(&md)};
     const char *names[3] = {"linear", "von_mises", "drucker_prager + cap"};
     for (int l = 0; l < 3; l++)
-        for (int plastic = 0; plastic < (l ? 2 : 1); plastic++) {
+        for (int v = 0; v < (l ? 4 : 2); v++) {
+            const int plastic = v / 2, large = v % 2;
             if (fem_kernel_points_hex(&k, 0, ne, x, conn, &laws[l], NULL, NULL, l > 0, &err) != RF_OK)
+                return 1;
+            if (large && fem_kernel_points_hex_large(&k, x, &err) != RF_OK)
                 return 1;
             char name[80];
             const char *regime = l ? (plastic ? ", plastic (B-bar)" : ", elastic (B-bar)") : "";
-            snprintf(name, sizeof name, "points, %s%s", names[l], regime);
+            snprintf(name, sizeof name, "points%s, %s%s", large ? " UL" : "", names[l], regime);
             printf("%-44s %8.1f\n", name, kernel_ns(&k, u1, plastic ? 1e-3 : 1e-7, ne, 3, fe));
             fem_kernel_release(&k);
         }
@@ -126,10 +130,16 @@ int main(int argc, char **argv)
     const double ref = argc > 1 ? atof(argv[1]) : 3, V = argc > 2 ? atof(argv[2]) : 10;
     const double angle = argc > 3 ? atof(argv[3]) : 0, mu = argc > 4 ? atof(argv[4]) : 0;
     const int repeats = argc > 5 ? atoi(argv[5]) : 1;
+    rf_fem_kinematics kin = RF_FEM_KINEMATICS_AUTO;
+    rf_error kerr = {0};
+    if (argc > 6 && rf_fem_kinematics_parse(argv[6], &kin, &kerr) != RF_OK) {
+        fprintf(stderr, "bench_fem3d_plastic: %s\n", kerr.msg);
+        return 2;
+    }
     if (kernels_alone())
         return 1;
     printf("# a/h = %g, V = %g m/s, slope %g deg, friction %g, domain factor 10, fixed boundary, 1 thread, "
-           "CPU s best of %d\n", ref, V, angle, mu, repeats);
+           "large_deformation %s, CPU s best of %d\n", ref, V, angle, mu, rf_fem_kinematics_name(kin), repeats);
     printf("%-5s %-30s %7s %6s %7s %8s %8s %8s %7s %7s %7s %7s %8s\n", "model", "slope material", "elems", "steps",
            "cpu[s]", "ns/el-st", "R_n", "R_t", "W_p/KE", "pen_mm", "crat_mm", "eps_p", "energy");
     for (int m = 0; m < 4; m++) {
@@ -138,7 +148,7 @@ int main(int argc, char **argv)
         in.velocity = V, in.slope_angle = angle * 3.14159265358979323846 / 180, in.friction = mu;
         rf_fem_options o;
         rf_fem_options_default(&o);
-        o.refinement = ref, o.domain_factor = 10, o.threads = 1;
+        o.refinement = ref, o.domain_factor = 10, o.threads = 1, o.large_deformation = kin;
         const char *name;
         material(m, &in, &o, &name);
         double best = 1e300;

@@ -3,7 +3,7 @@
  * 0.5 m, 10 m/s vertical, gravity 0) on a slope, in the 3D model or the
  * axisymmetric one, one run per refinement, with the layer's contact
  * estimate (fem3d_spec.h) next to the measured penetration and contact
- * radius (docs/validation-plastic.md section 9c, docs/studies.md S6).
+ * radius (docs/validation-plastic.md section 9d, docs/studies.md S6).
  *   bench_fem3d_soil [key=value ...] A [A ...]
  * keys: model=3d|axi, angle= (deg), f= (friction), large=0|1 (small strain or
  * large deformation, both models; default 0), E= (layer_E),

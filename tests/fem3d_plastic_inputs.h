@@ -18,11 +18,14 @@ static inline rf_impact_input granite(double angle_deg, double f)
     return in;
 }
 
+/* small strain: the kernel that sections 9 and 9b of docs/validation-plastic.md validate (the default,
+   auto, runs a plastic body in large deformation: tests/test_fem3d_large*.c, section 9c), as the
+   axisymmetric tests' coarse() (fem_plastic_inputs.h) */
 static inline rf_fem_options coarse(double ref)
 {
     rf_fem_options o;
     rf_fem_options_default(&o);
-    o.refinement = ref, o.domain_factor = 10, o.threads = 1;
+    o.refinement = ref, o.domain_factor = 10, o.threads = 1, o.large_deformation = RF_FEM_SMALL_STRAIN;
     return o;
 }
 

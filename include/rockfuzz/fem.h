@@ -105,7 +105,9 @@ typedef struct {
     rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
     rf_fem_kinematics large_deformation; /* default auto (see rf_fem_kinematics); in the 3D model `on`
                                             puts every deformable body on the updated-Lagrangian
-                                            hexahedron kernel (its contact is the same in both) */
+                                            hexahedron kernel, auto the elasto-plastic ones (a slope
+                                            under a plastic layer with it), an elastic one keeps its
+                                            small-strain kernel; its contact is the same in both */
     int contact_single_pivot;  /* axisymmetric contact: 1 solves the complementarity problem by single
                                   pivoting alone (slower; the check of the default block active-set
                                   method, which falls back to it after 200 rounds), default 0 */

@@ -99,7 +99,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the 3D solver in the workspace pool. */
 enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM, Q_DASH, Q_ELM, Q_LAMX, Q_FIXED,
-       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM, Q_LAMU };
+       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM, Q_LAMU, Q_ULE };
 
 /* The state of one 3D run. */
 typedef struct {
@@ -112,7 +112,9 @@ typedef struct {
     rf_material matl[3];  /* constitutive law of each (plastic[b] != 0: not elastic) */
     fem_lame lame[3];     /* parameters of the linear point laws (kernel = points) */
     int plastic[3], work_account; /* work_account: energies from the internal work (a plastic body) */
-    int large;            /* updated Lagrangian kernels (rf_fem_large_deformation); work_account then too */
+    int large;            /* large deformation (rf_fem_large_deformation); work_account then too */
+    int ul[2];            /* body b on the updated-Lagrangian kernel: large and (on, or the body plastic) */
+    unsigned char *ul_elem; /* large: per element, on the UL kernel (the step check watches those) */
     f3_step_check step_check; /* large: the elements' step bounds at their current size */
     double *lamu;         /* large: each element's Gershgorin bound of lambda_max (reference geometry) */
     long unstable;        /* large: an element whose current step bound fell below dt (-1: none) */
@@ -229,6 +231,10 @@ static rf_status solid_prepare(solid_run *R, const rf_impact_input *in, const rf
     R->work_account = R->plastic[0] || R->plastic[1] || R->plastic[2];
     R->large = rf_fem_large_deformation(&R->o, in);
     R->work_account |= R->large; /* the energy from the internal work: no K in updated Lagrangian */
+    /* auto leaves an elastic body on its small-strain kernel: its strains stay ~a/r0 (section 9c) */
+    const int all = R->o.large_deformation == RF_FEM_LARGE_DEFORMATION;
+    R->ul[0] = R->large && !R->rigid && (all || R->plastic[0]);
+    R->ul[1] = R->large && (all || R->plastic[1] || R->plastic[2]);
     return RF_OK;
 }
 
@@ -640,7 +646,9 @@ static rf_status solid_rigid_setup(solid_run *R, rf_error *err)
  * (fem_kernel_points3d.c); an elastic body matrix-free (docs/fem-speed.md:
  * J^-1 stored while the mesh is small enough for the 640 B per element to
  * stay in cache, recomputed from x beyond), or with the linear point law if
- * its kernel option is `points`. */
+ * its kernel option is `points`.  In large deformation a body with ul[b]
+ * takes the updated-Lagrangian form of the point kernel (an elastic one the
+ * linear law). */
 static rf_status solid_kernels(solid_run *R, rf_error *err)
 {
     f3_system *S = &R->S;
@@ -661,7 +669,7 @@ static rf_status solid_kernels(solid_run *R, rf_error *err)
             const fem_point_law law = fem_point_law_material3d(&R->matl[b]);
             st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 1,
                                        err);
-        } else if (R->o.kernel[b] == RF_FEM_KERNEL_POINTS || R->large) {
+        } else if (R->o.kernel[b] == RF_FEM_KERNEL_POINTS || R->ul[b]) {
             R->lame[b] = (fem_lame){lam, mu};
             const fem_point_law law = fem_point_law_linear3d(&R->lame[b]);
             st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 0,
@@ -669,12 +677,23 @@ static rf_status solid_kernels(solid_run *R, rf_error *err)
         } else
             st = fem_kernel_hex8_matfree(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, lam, mu, store_j,
                                          err);
-        if (st == RF_OK && R->large) /* (an elastic body: the linear, hypoelastic, law on the current geometry) */
+        if (st == RF_OK && R->ul[b]) /* (an elastic body: the linear, hypoelastic, law on the current geometry) */
             st = fem_kernel_points_hex_large(&S->kernel[b], R->mesh.x, err);
         if (st != RF_OK)
             return st;
     }
     return RF_OK;
+}
+
+/* Large deformation: the step check watches the elements on the UL kernel. */
+static rf_status solid_step_check(solid_run *R, rf_error *err)
+{
+    R->ul_elem = fem_pool_get(R->pool, Q_ULE, (size_t)R->ne + 1, 0);
+    if (!R->lamu || !R->ul_elem)
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->ne);
+    for (long e = 0; e < R->ne; e++)
+        R->ul_elem[e] = (unsigned char)R->ul[e < R->mesh.boulder_elems ? F3_BOULDER : F3_SLOPE];
+    return f3_step_check_init(&R->step_check, &R->mesh, R->ne, R->ul_elem, R->lamu, solid_element, R, err);
 }
 
 /* Assembly: arrays, topology, elements, masses and time step, material
@@ -698,10 +717,7 @@ static rf_status solid_assemble(solid_run *R, rf_error *err)
         return rf_fail(err, RF_EINTERNAL, "fem3d: no positive boulder mass weighting with the spheroid's moments");
     if ((st = solid_kernels(R, err)) != RF_OK)
         return st;
-    if (R->large && !R->lamu)
-        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->ne);
-    if (R->large && (st = f3_step_check_init(&R->step_check, &R->mesh, R->ne, NULL, R->lamu, solid_element, R, err)) !=
-                        RF_OK)
+    if (R->large && (st = solid_step_check(R, err)) != RF_OK)
         return st;
     solid_dashpots(R);
     if (R->dash_ratio >= 2)

@@ -27,7 +27,7 @@ void f3_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *o, con
  * must cover the sphere's chord sqrt(2 R D - D^2) at twice that depth, D = 2 d
  * (no sink-in, and a margin for the estimate: soil beyond the boulder's
  * slave nodes is not held), capped at 0.95 c.  Docs:
- * docs/validation-plastic.md section 9c. */
+ * docs/validation-plastic.md section 9d. */
 typedef struct {
     int thick;          /* compression <= layer_thickness / 2 and radius <= layer_thickness: the boulder
                            stays in the layer and its contact's stresses spread there; its contact alone
