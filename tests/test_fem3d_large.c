@@ -202,6 +202,22 @@ static void test_soft_soil_vs_axisymmetric(void **state)
     assert_true(r3.penetration_max > 0.04 * in.radius);
 }
 
+/* The UL kernel writes only its own blocks' state: the soft-soil run gives
+ * the same bits with 1 and 2 threads. */
+static void test_threads_same_bits(void **state)
+{
+    (void)state;
+    const rf_impact_input in = soft_soil_3d(0);
+    rf_fem_options o = large_options(2, RF_FEM_KINEMATICS_AUTO);
+    const rf_fem3d_options o3 = large_options3d();
+    rf_impact_output a, b;
+    uint64_t ha = 0, hb = 1;
+    run3d_ex(&in, &o, &o3, &a, NULL, &ha);
+    o.threads = 2;
+    run3d_ex(&in, &o, &o3, &b, NULL, &hb);
+    assert_true(ha == hb && a.R_n == b.R_n);
+}
+
 /* Every deformable body on the UL kernel (on): a von Mises boulder (its
  * co-rotated field on the UL kernel) at 10 m/s on elastic granite (the
  * linear law on the UL kernel), a/h = 2, the first 1 ms of the 4.4 ms
@@ -379,6 +395,7 @@ int main(void)
         cmocka_unit_test(test_identity_names_3d_kinematics),
         cmocka_unit_test(test_soft_soil_vs_axisymmetric),
         cmocka_unit_test(test_all_bodies_updated_lagrangian),
+        cmocka_unit_test(test_threads_same_bits),
         cmocka_unit_test(test_step_check),
         cmocka_unit_test(test_step_halving),
     };

@@ -16,6 +16,11 @@
  * after each internal force) the strain energy is replaced by the internal
  * work dt/2 f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) summed over the steps, as in
  * the axisymmetric solver, and the kernels book the plastic dissipation.
+ * In large deformation (rf_fem_large_deformation) the plastic bodies (every
+ * deformable one with `on`) take the updated-Lagrangian kernel
+ * (fem_kernel_points3d_large.c), the energy is always the internal work, and
+ * a run whose compressed elements outgrow the step is made again with half
+ * the step (fem3d_large.c, fem_run_halving).
  * A layer (fem3d_layer.c mesh) is a second law in the slope's point kernel,
  * its elements found by their centres above the node plane at its bottom; a
  * rigid boulder (fem3d_rigid.c) has no force, no part in the time step, and
