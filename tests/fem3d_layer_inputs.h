@@ -32,4 +32,16 @@ static inline void dp_layer(rf_impact_input *in, double t)
     in->layer_cap_pressure = 50e6, in->layer_cap_hardening = 1e9;
 }
 
+/* The S5 nominal soil (examples/s5_v10.yaml): medium-dense gravelly colluvium, Drucker-Prager + cap
+   (E 100 MPa, nu 0.3, 1900 kg/m^3, c 10 kPa, phi 40 deg, psi 5 deg, X0 200 kPa, H_c 40 MPa), 1 m over
+   granite; a rigid boulder r0 = 0.5 m at 10 m/s, gravity 0. */
+static inline void s5_soil(rf_impact_input *in)
+{
+    in->radius = 0.5, in->velocity = 10, in->gravity = 0, in->boulder_material = RF_MATERIAL_RIGID_BODY;
+    in->layer_thickness = 1.0, in->layer_density = 1900, in->layer_E = 100e6, in->layer_poisson = 0.3;
+    in->layer_material = RF_MATERIAL_DRUCKER_PRAGER, in->layer_cohesion = 10e3;
+    in->layer_friction_angle = 40 * DEG, in->layer_dilatancy_angle = 5 * DEG;
+    in->layer_cap_pressure = 200e3, in->layer_cap_hardening = 40e6;
+}
+
 #endif

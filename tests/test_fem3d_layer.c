@@ -16,7 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fem3d_layer_inputs.h" /* granite, coarse, run3d_ex, show, dp_layer */
+#include "fem/fem3d_spec.h"       /* f3_layer_contact_estimate */
+#include "fem3d_layer_inputs.h" /* granite, coarse, run3d_ex, show, dp_layer, s5_soil */
 
 /* (a) A layer of the slope's own material is the homogeneous slope on the same (extruded) mesh, bit
    for bit (both through the linear point law; layered_mesh forces that mesh without a layer). */
@@ -119,6 +120,86 @@ static void test_refusals(void **state)
     assert_non_null(strstr(err.msg, "layer_thickness = 6 m"));
 }
 
+/* The layer's contact estimate (fem3d_spec.h) against closed forms: an elastic layer is the layer's
+   Hertz impact; a cap with X0 -> 0 is Hertz with E*_p = E* H_c / (H_c + M); a von Mises layer with a
+   small Y takes the energy at 3 Y: pi R 3Y d^2 / 2 = KE.  And which layers are thick. */
+static void test_soft_layer_estimate(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(0, 0);
+    s5_soil(&in);
+    in.layer_material = RF_MATERIAL_ELASTIC;
+    rf_impact_input lay = in;
+    lay.slope_density = in.layer_density, lay.slope_E = in.layer_E, lay.slope_poisson = in.layer_poisson;
+    rf_hertz_reference HL;
+    rf_impact_hertz_reference(&lay, &HL);
+    f3_layer_contact lc;
+    f3_layer_contact_estimate(&in, &lc);
+    assert_true(lc.compression == HL.compression && lc.radius == HL.contact_radius && lc.duration == HL.duration);
+    assert_true(lc.zone_radius == lc.radius && lc.thick);
+    const double R = HL.curvature_radius, ke = 0.5 * HL.mass * in.velocity * in.velocity;
+    in.layer_material = RF_MATERIAL_DRUCKER_PRAGER, in.layer_cap_pressure = 1; /* 1 Pa */
+    f3_layer_contact_estimate(&in, &lc);
+    const double M = in.layer_E * 0.7 / (1.3 * 0.4), Ep = HL.effective_modulus * 40e6 / (40e6 + M);
+    const double dp = pow(15 * HL.mass * in.velocity * in.velocity / (16 * Ep * sqrt(R)), 0.4);
+    print_message("cap, X0 = 1 Pa: depth %.5f m, Hertz with E*_p %.5f m\n", lc.compression, dp);
+    assert_true(fabs(lc.compression / dp - 1) < 1e-4);
+    assert_true(fabs(lc.radius - sqrt(R * lc.compression)) < 1e-12);
+    const double d2 = 2 * lc.compression;
+    assert_true(fabs(lc.zone_radius - fmax(lc.radius, sqrt(2 * R * d2 - d2 * d2))) < 1e-12);
+    in.layer_material = RF_MATERIAL_VON_MISES, in.layer_yield = 1e6;
+    f3_layer_contact_estimate(&in, &lc);
+    const double dv = sqrt(2 * ke / (3 * RF_PI * R * in.layer_yield));
+    print_message("von Mises, Y = 1 MPa: depth %.5f m, energy at 3Y %.5f m\n", lc.compression, dv);
+    assert_true(fabs(lc.compression / dv - 1) < 2e-3); /* the elastic start: (d_cross / d)^2 ~ 1e-4 */
+    assert_true(lc.zone_radius <= 0.95 * in.radius); /* the ball's chord is capped */
+    s5_soil(&in);
+    f3_layer_contact_estimate(&in, &lc);
+    print_message("S5 soil: depth %.4f m, radius %.4f m, zone %.4f m\n", lc.compression, lc.radius, lc.zone_radius);
+    assert_true(lc.thick);
+    rf_impact_input thin = granite(0, 0);
+    dp_layer(&thin, 0.1); /* the 0.1 m rock-like layer: the rock's contact still sizes the mesh */
+    f3_layer_contact_estimate(&thin, &lc);
+    assert_false(lc.thick);
+}
+
+/* A soft layer (the S5 soil, a Hertz radius of 0.4 r0) is accepted with a rigid boulder, its mesh sized
+   by its own contact, and the contact stays inside the fine zone (no edge warning) through the loading
+   half of the impact (large deformation, the default), on the mesh f3_impact_mesh_spec describes; an
+   elastic boulder on it is still refused (its fine box must stay within 0.6 r0). */
+static void test_soft_layer_zone(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(0, 0);
+    s5_soil(&in);
+    rf_fem_options o = coarse(2);
+    o.domain_factor = 9, o.end_time = 0.02;
+    rf_impact_output out;
+    rf_fem_history H = {0};
+    run3d_ex(&in, &o, NULL, &out, &H, NULL);
+    show("rigid on the S5 soil", &out);
+    f3_layer_contact lc;
+    f3_layer_contact_estimate(&in, &lc);
+    print_message("h %.4f m, estimate: depth %.4f m, radius %.4f m; warning: %s\n", H.h_contact, lc.compression,
+                  lc.radius, H.warning);
+    assert_true(fabs(H.h_contact - lc.radius / 2) < 1e-12);
+    assert_null(strstr(H.warning, "edge of the fine zone"));
+    assert_true(out.penetration_max > 0.05 && out.plastic_work > 0.5);
+    rf_fem_history_free(&H);
+    rf_fem3d_options o3; /* the mesh specification benches and tests build is the solver's */
+    rf_fem3d_options_default(&o3);
+    f3_mesh_spec ms;
+    f3_mesh mesh;
+    rf_error err = {0};
+    f3_impact_mesh_spec(&in, &o, &o3, &ms, NULL, NULL);
+    assert_int_equal(f3_mesh_build(&ms, &mesh, o.max_elements, &err), RF_OK);
+    assert_true((double)mesh.n_elems == out.elements);
+    f3_mesh_free(&mesh);
+    in.boulder_material = RF_MATERIAL_ELASTIC;
+    assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "too large for an elastic boulder"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -126,6 +207,8 @@ int main(void)
         cmocka_unit_test(test_threads),
         cmocka_unit_test(test_rigid_oblique_layer),
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_soft_layer_estimate),
+        cmocka_unit_test(test_soft_layer_zone),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -36,6 +36,7 @@
 #include "fem3d_internal.h"
 #include "fem3d_large.h"
 #include "fem3d_prof.h"
+#include "fem3d_spec.h"
 #include "fem_core.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
@@ -120,6 +121,7 @@ typedef struct {
     long unstable;        /* large: an element whose current step bound fell below dt (-1: none) */
     int layer, rigid;     /* a layer over the slope (fem3d_layer.c); a rigid boulder (fem3d_rigid.c) */
     double a_box;         /* contact radius the fine boxes cover (the larger of slope and layer) [m] */
+    f3_layer_contact lc;  /* the layer's contact estimate (fem3d_spec.h); lc.thick: it alone sizes the mesh */
     unsigned char *emat;  /* material of each element: 0 boulder, 1 slope, 2 layer */
     double *dashl, *dnrm; /* layer faces' dashpot areas; outer normals (extruded mesh) */
     double dash_ratio;    /* largest dt C / m of an explicit dashpot (stable below 2) */
@@ -150,10 +152,12 @@ typedef struct {
     fem_pool *pool;
 } solid_run;
 
-/* A layer over the slope (as the axisymmetric solver, fem_solver.c): the
+/* A layer over the slope: as the axisymmetric solver (fem_solver.c), the
  * mesh sized for the finer of the two contacts (slope's and layer's Hertz
  * radius), its fine boxes covering the larger, the run as long as the longer
- * Hertz duration; the layer's wave speeds. */
+ * Hertz duration; but a thick layer (the boulder stays in it,
+ * f3_layer_contact_estimate) sizes all three from its own contact.  The
+ * layer's wave speeds. */
 static rf_status solid_prepare_layer(solid_run *R, rf_error *err)
 {
     const rf_impact_input *in = R->in;
@@ -172,6 +176,11 @@ static rf_status solid_prepare_layer(solid_run *R, rf_error *err)
     R->H.contact_radius = fmin(R->H.contact_radius, HL.contact_radius);
     R->H.duration = fmax(R->H.duration, HL.duration);
     rf_impact_wave_speeds(&lay, 1, &R->w[2]);
+    f3_layer_contact_estimate(in, &R->lc);
+    if (R->lc.thick) { /* the boulder stays in the layer: its contact alone sizes the mesh and the run */
+        R->H.contact_radius = R->lc.radius, R->H.duration = R->lc.duration;
+        R->a_box = fmax(R->lc.radius, R->lc.zone_radius / R->o3.core_factor);
+    }
     return RF_OK;
 }
 
@@ -238,6 +247,35 @@ static rf_status solid_prepare(solid_run *R, const rf_impact_input *in, const rf
     return R->grav.g > 0 ? f3_gravity_stability(in, R->grav.g, R->L, &fs, err) : RF_OK;
 }
 
+/* The boulder's fine box in its half-space image.  An elastic boulder: at most
+ * 0.6 r0 long (its elements must stay near the contact, where the inversion
+ * keeps their size).  A rigid one carries only the contact's slave nodes: the
+ * box may cover the whole lower half of the ball; its farthest corner must
+ * leave room for the graded layers out to boulder_inner * r0. */
+static rf_status boulder_box_fits(const solid_run *R, rf_error *err)
+{
+    const f3_box *b = &R->ms.boulder;
+    const double r0 = R->in->radius;
+    if (R->rigid) {
+        const int nx = b->nxm > b->nxp ? b->nxm : b->nxp;
+        const double corner = b->h * sqrt((double)nx * nx + (double)b->ny * b->ny + (double)b->nz * b->nz);
+        if (corner > 0.8 * R->o3.boulder_inner * r0)
+            return rf_fail(err, RF_EINVAL,
+                           "fem3d: the rigid boulder's fine zone (corner %.3g m in its half-space image) needs "
+                           "boulder_inner >= %.3g (got %g); raise it or lower core_factor",
+                           corner, corner / (0.8 * r0), R->o3.boulder_inner);
+        return RF_OK;
+    }
+    const double box_b = (b->nxp + b->nxm) * b->h;
+    if (box_b > 0.6 * r0)
+        return rf_fail(err, RF_EINVAL,
+                       "fem3d: the fine zone (%.3g m) does not fit the boulder (r0 = %g m): the contact radius "
+                       "%.3g m%s is too large for an elastic boulder; lower core_factor or the impact speed, or "
+                       "take boulder_material rigid",
+                       box_b, r0, R->a_box, R->layer ? " (the larger of the slope's and the layer's)" : "");
+    return RF_OK;
+}
+
 /* Sizing and meshing: fine boxes of uniform cubes over core_factor * a,
  * elongated down-slope by the patch travel; graded layers out to L. */
 static rf_status solid_mesh(solid_run *R, rf_error *err)
@@ -262,20 +300,19 @@ static rf_status solid_mesh(solid_run *R, rf_error *err)
     /* the boulder's half-space image is scaled by c (x, y) and d (z) afterwards */
     const double sxy = c / r0, sz = d / r0, hb0 = hb / sxy;
     ms->boulder = (f3_box){n_b, n_b + (int)ceil(travel / hb - 1e-9), n_b, n_b, hb0};
+    if (R->rigid && R->lc.thick)
+        f3_soft_boulder_box(&ms->boulder, o3->core_factor * a_x, travel, r0, sxy);
     ms->radius = r0;
     ms->scale_xy = sxy, ms->scale_z = sz;
     ms->boulder_inner = o3->boulder_inner;
     ms->domain = R->L;
     ms->layer_aspect = o3->layer_aspect;
-    double box_b = (ms->boulder.nxp + ms->boulder.nxm) * hb0;
-    if (box_b > 0.6 * r0)
-        return rf_fail(err, RF_EINVAL,
-                       "fem3d: the fine zone (%.3g m) does not fit the boulder (r0 = %g m): the Hertz contact radius "
-                       "%.3g m%s is too large; lower core_factor or the impact speed",
-                       box_b, r0, a_x, R->layer ? " (the larger of the slope's and the layer's)" : "");
+    rf_status st = boulder_box_fits(R, err);
+    if (st != RF_OK)
+        return st;
     if ((ms->slope.nxm + ms->slope.nxp) * h * 4 > R->L)
         return rf_fail(err, RF_EINVAL, "fem3d: domain radius %g m is too small for the fine zone", R->L);
-    rf_status st = f3_mesh_build(ms, &R->mesh, o->max_elements, err);
+    st = f3_mesh_build(ms, &R->mesh, o->max_elements, err);
     R->have_mesh = st == RF_OK;
     return st;
 }
@@ -749,6 +786,14 @@ static double solid_dashpot_forces(solid_run *R)
     return W;
 }
 
+/* 1 if slave k (top_b order) is on the edge of the boulder's fine box: soil
+ * beyond it would meet no slave (the contact has outgrown the fine zone). */
+static int slave_on_edge(const f3_mesh *mesh, int full, long k)
+{
+    const long i = k / mesh->nyt_b, j = k % mesh->nyt_b;
+    return i == 0 || i == mesh->nxt_b - 1 || j == mesh->nyt_b - 1 || (full && j == 0);
+}
+
 /* Contact force, work, radius (force-weighted second moment: <rho^2> = 0.4 a^2
  * for Hertz) and the statistics of the step's closed pairs. */
 static double solid_contact_account(solid_run *R, double *rad)
@@ -772,7 +817,7 @@ static double solid_contact_account(solid_run *R, double *rad)
         R->pair_steps++;
         if (hypot(lam[1], lam[2]) < (1 - 1e-9) * C->friction * lam[0])
             R->stick_steps++;
-        if (C->outside[k])
+        if (C->outside[k] || slave_on_edge(&R->mesh, R->ms.full, k))
             R->outside_contact = 1;
         double X = R->mesh.x[3 * s] + u[3 * s], Y = R->mesh.x[3 * s + 1] + u[3 * s + 1];
         Fc += lam[0];

@@ -1,0 +1,134 @@
+/* bench_fem3d_soil.c - the S5 nominal soil layer (examples/s5_v10.yaml:
+ * colluvium, Drucker-Prager + cap, 1 m over granite, rigid boulder r0 =
+ * 0.5 m, 10 m/s vertical, gravity 0) on a slope, in the 3D model or the
+ * axisymmetric one, one run per refinement, with the layer's contact
+ * estimate (fem3d_spec.h) next to the measured penetration and contact
+ * radius (docs/validation-plastic.md section 9d, docs/studies.md S6).
+ *   bench_fem3d_soil [key=value ...] A [A ...]
+ * keys: model=3d|axi, angle= (deg), f= (friction), large=0|1 (small strain or
+ * large deformation, both models; default 0), E= (layer_E),
+ * X0= (layer_cap_pressure), Hc= (layer_cap_hardening), t= (thickness),
+ * core= (core_factor), domain= (domain_factor), end= (end time, s),
+ * law=elastic|dp (the layer's), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio), threads=. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/util.h"
+#include "fem/fem3d_spec.h"
+#include "rockfuzz/fem3d.h"
+
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+typedef struct {
+    int axi;
+    rf_impact_input in;
+    rf_fem_options o;
+    rf_fem3d_options o3;
+} probe;
+
+/* 1 if arg was a key=value setting. */
+static int probe_set(probe *p, const char *arg)
+{
+    const char *eq = strchr(arg, '=');
+    if (!eq)
+        return 0;
+    const size_t n = (size_t)(eq - arg);
+    const double x = atof(eq + 1);
+#define KEY(s) (n == strlen(s) && !strncmp(arg, s, n))
+    if (KEY("model"))
+        p->axi = !strcmp(eq + 1, "axi");
+    else if (KEY("angle"))
+        p->in.slope_angle = x * RF_PI / 180;
+    else if (KEY("f"))
+        p->in.friction = x;
+    else if (KEY("large"))
+        p->o.large_deformation = x > 0 ? RF_FEM_LARGE_DEFORMATION : RF_FEM_SMALL_STRAIN;
+    else if (KEY("E"))
+        p->in.layer_E = x;
+    else if (KEY("X0"))
+        p->in.layer_cap_pressure = x;
+    else if (KEY("Hc"))
+        p->in.layer_cap_hardening = x;
+    else if (KEY("t"))
+        p->in.layer_thickness = x;
+    else if (KEY("core"))
+        p->o3.core_factor = x;
+    else if (KEY("domain"))
+        p->o.domain_factor = x;
+    else if (KEY("end"))
+        p->o.end_time = x;
+    else if (KEY("boundary"))
+        p->o.boundary = strcmp(eq + 1, "fixed") ? RF_FEM_BOUNDARY_ABSORBING : RF_FEM_BOUNDARY_FIXED;
+    else if (KEY("law"))
+        p->in.layer_material = !strcmp(eq + 1, "elastic") ? RF_MATERIAL_ELASTIC : RF_MATERIAL_DRUCKER_PRAGER;
+    else if (KEY("ratio"))
+        p->o.boulder_mesh_ratio = x;
+    else if (KEY("threads"))
+        p->o.threads = (int)x;
+    else {
+        fprintf(stderr, "bench_fem3d_soil: unknown key in '%s'\n", arg);
+        exit(2);
+    }
+#undef KEY
+    return 1;
+}
+
+/* The S5 nominal point (examples/s5_v10.yaml), gravity 0, small strain. */
+static void s5_nominal(probe *p)
+{
+    rf_impact_input_default(&p->in);
+    rf_impact_input *in = &p->in;
+    in->radius = 0.5, in->velocity = 10, in->gravity = 0, in->boulder_material = RF_MATERIAL_RIGID_BODY;
+    in->layer_thickness = 1.0, in->layer_density = 1900, in->layer_E = 100e6, in->layer_poisson = 0.3;
+    in->layer_material = RF_MATERIAL_DRUCKER_PRAGER, in->layer_cohesion = 10e3;
+    in->layer_friction_angle = 40 * RF_PI / 180, in->layer_dilatancy_angle = 5 * RF_PI / 180;
+    in->layer_cap_pressure = 200e3, in->layer_cap_hardening = 40e6;
+    rf_fem_options_default(&p->o);
+    p->o.boundary = RF_FEM_BOUNDARY_FIXED, p->o.threads = 1, p->o.large_deformation = RF_FEM_SMALL_STRAIN;
+    rf_fem3d_options_default(&p->o3);
+}
+
+int main(int argc, char **argv)
+{
+    probe p;
+    s5_nominal(&p);
+    for (int i = 1; i < argc; i++) {
+        if (probe_set(&p, argv[i]))
+            continue;
+        p.o.refinement = atof(argv[i]);
+        f3_layer_contact lc;
+        f3_layer_contact_estimate(&p.in, &lc);
+        rf_impact_output out;
+        rf_fem_history H;
+        rf_fem3d_report rep = {0};
+        rf_error err = {0};
+        const double c0 = cpu_seconds();
+        rf_status st = p.axi ? rf_fem_impact(&p.in, &p.o, &out, &H, &err)
+                             : rf_fem3d_impact_ex(&p.in, &p.o, &p.o3, &out, &H, &rep, &err);
+        if (st != RF_OK) {
+            fprintf(stderr, "bench_fem3d_soil: %s\n", err.msg);
+            return 1;
+        }
+        const double cpu = cpu_seconds() - c0, k0 = H.ke0;
+        printf("model=%s angle=%.0f f=%g ref=%g large=%d h=%.4f elements=%.0f steps=%.0f cpu=%.2f R_n=%.4f R_t=%.4f "
+               "R_ke=%.4f W_p=%.4f pen=%.4f crater=%.4f a=%.4f F=%.4g t_c=%.4g closure=%.2e fric=%.3e\n",
+               p.axi ? "axi" : "3d", p.in.slope_angle * 180 / RF_PI, p.in.friction, p.o.refinement,
+               rf_fem_large_deformation(&p.o, &p.in), H.h_contact, out.elements, out.steps, cpu, out.R_n,
+               out.R_t, out.R_ke, out.plastic_work, out.penetration_max, out.indentation_depth, out.contact_radius,
+               out.contact_force_max, out.contact_duration, H.closure[H.n - 1] / k0, rep.friction_work / k0);
+        printf("  estimate: thick=%d depth=%.4f radius=%.4f zone=%.4f t=%.4g; warning: %s\n", lc.thick,
+               lc.compression, lc.radius, lc.zone_radius, lc.duration, H.warning[0] ? H.warning : "-");
+        fflush(stdout);
+        rf_fem_history_free(&H);
+        rf_fem3d_report_free(&rep);
+    }
+    return 0;
+}
