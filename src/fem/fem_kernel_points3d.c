@@ -323,7 +323,7 @@ int fem_kernel_points_hex_cell(const fem_kernel *k, long e, double sig[6], doubl
 
 long fem_kernel_points_hex_geostatic(fem_kernel *k, const double *depth, const fem_geostatic *g)
 {
-    if (k->ops != &p3_ops || !k->data)
+    if (!p3_is(k) || !k->data) /* either kinematics: the updated-Lagrangian kernel shares the points */
         return -1;
     const fem_points_view v = p3_view(k);
     return fem_points_geostatic(&v, depth, g);
