@@ -35,6 +35,16 @@ static inline rf_impact_input soft_soil_3d(double thickness)
     return in;
 }
 
+/* Section 9b's layer case: a rigid boulder at 10 m/s on a 0.1 m Drucker-Prager + cap layer (dp_layer:
+   E 20 GPa, c 5 MPa) over elastic granite; penetration 25 mm, a quarter of the layer. */
+static inline rf_impact_input dp_layer_case(void)
+{
+    rf_impact_input in = granite(0, 0);
+    in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    dp_layer(&in, 0.1);
+    return in;
+}
+
 /* Both models' options: a/h, a 3 r0 domain with absorbing boundaries, one thread, the kinematics. */
 static inline rf_fem_options large_options(double refinement, rf_fem_kinematics kin)
 {

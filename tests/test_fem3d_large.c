@@ -190,16 +190,44 @@ static void test_soft_soil_vs_axisymmetric(void **state)
     const rf_fem3d_options o3 = large_options3d();
     assert_int_equal(rf_fem_large_deformation(&o, &in), 1); /* auto: a plastic body = large deformation */
     rf_impact_output r3, ax;
-    run3d_ex(&in, &o, &o3, &r3, NULL, NULL);
+    rf_fem_history h3 = {0};
+    run3d_ex(&in, &o, &o3, &r3, &h3, NULL);
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &ax, NULL, &err), RF_OK);
     show("soft soil 3D, large", &r3);
     show("soft soil axisym., large", &ax);
+    /* the slope's elastic energy from its committed stresses against its internal work less its
+       dissipation (the axisymmetric soft-soil test's closure target, 5e-3 KE0) */
+    const double elastic_gap = (h3.elastic_energy_stress - h3.elastic_energy_work) / h3.ke0;
+    print_message("elastic energy from stresses - from work: %.1e KE0\n", elastic_gap);
+    assert_true(fabs(elastic_gap) < 5e-3);
+    rf_fem_history_free(&h3);
     assert_true(fabs(r3.R_n / ax.R_n - 1) < 0.05);
     assert_true(fabs(r3.penetration_max / ax.penetration_max - 1) < 0.03);
     assert_true(fabs(r3.plastic_work / ax.plastic_work - 1) < 0.03);
     assert_true(fabs(r3.energy_error) < 5e-3 && fabs(ax.energy_error) < 5e-3);
     assert_true(r3.penetration_max > 0.04 * in.radius);
+}
+
+/* (d) coarse, on a layer (the code path; the comparison with the
+ * axisymmetric model is in the accuracy file): section 9b's layer case
+ * (rigid boulder, 10 m/s, a 0.1 m DP + cap layer over granite) in large
+ * deformation at a/h = 2, its first 1.5 ms (of 5 ms): the layer's law and
+ * the bedrock's in one UL block; the energy closes to 5e-3 of KE0, the layer
+ * alone dissipates. */
+static void test_layer_large(void **state)
+{
+    (void)state;
+    const rf_impact_input in = dp_layer_case();
+    rf_fem_options o = large_options(2, RF_FEM_KINEMATICS_AUTO);
+    o.end_time = 1.5e-3;
+    rf_impact_output l3;
+    rf_fem_history h3 = {0};
+    run3d_ex(&in, &o, NULL, &l3, &h3, NULL);
+    show("DP layer 3D, large, 1.5 ms", &l3);
+    assert_true(fabs(l3.energy_error) < 5e-3);
+    assert_true(h3.plastic_work_boulder == 0 && h3.plastic_work_slope > 0 && h3.plastic_strain_max_in == 2);
+    rf_fem_history_free(&h3);
 }
 
 /* The UL kernel writes only its own blocks' state: the soft-soil run gives
@@ -394,6 +422,7 @@ int main(void)
         cmocka_unit_test(test_kinematics_option_3d),
         cmocka_unit_test(test_identity_names_3d_kinematics),
         cmocka_unit_test(test_soft_soil_vs_axisymmetric),
+        cmocka_unit_test(test_layer_large),
         cmocka_unit_test(test_all_bodies_updated_lagrangian),
         cmocka_unit_test(test_threads_same_bits),
         cmocka_unit_test(test_step_check),
