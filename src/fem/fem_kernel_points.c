@@ -43,10 +43,11 @@ typedef struct {
 } points_data;
 
 /* The laws of block b's elements [lo, hi) (local numbers), lane by lane.
- * spin NULL (small strain): eps are total strains.  Else eps are the
- * increments and the committed stress is first turned by the Hughes-Winget
- * rotation of the lane's spin.  sig: the trial stresses (0 in other lanes). */
-static void block_laws(points_data *d, long b, long lo, long hi, const double *eps, const double *spin, double *sig)
+ * sn NULL (small strain): eps are total strains, the committed stresses the
+ * points'.  Else eps are the increments and sn [4 points][4][AXB_W] the
+ * committed stresses turned by the increment's spin.  sig: the trial
+ * stresses (0 in other lanes). */
+static void block_laws(points_data *d, long b, long lo, long hi, const double *eps, const double *sn, double *sig)
 {
     memset(sig, 0, AXB_S * sizeof *sig);
     for (long le = lo; le < hi; le++) {
@@ -55,18 +56,16 @@ static void block_laws(points_data *d, long b, long lo, long hi, const double *e
         const int ns = L->nstate;
         for (int q = 0; q < NQ; q++) {
             const long p = NQ * le + q;
-            double deps[NC], s6[6] = {d->sig[NC * p], d->sig[NC * p + 1], d->sig[NC * p + 2], d->sig[NC * p + 3], 0, 0};
+            double deps[NC], s4[NC];
             for (int i = 0; i < NC; i++) {
                 const double s = eps[(q * NC + i) * AXB_W + l];
-                if (spin)
-                    deps[i] = s, d->eps_t[NC * p + i] = d->eps[NC * p + i] + s;
+                if (sn)
+                    deps[i] = s, d->eps_t[NC * p + i] = d->eps[NC * p + i] + s, s4[i] = sn[(q * NC + i) * AXB_W + l];
                 else
-                    d->eps_t[NC * p + i] = s, deps[i] = s - d->eps[NC * p + i];
+                    d->eps_t[NC * p + i] = s, deps[i] = s - d->eps[NC * p + i], s4[i] = d->sig[NC * p + i];
             }
-            if (spin)
-                rf_material_rotate(s6, (const double[3]){0, 0, spin[q * AXB_W + l]});
             double *st = d->sig_t + NC * p;
-            L->update(L->params, deps, s6, d->var + (size_t)ns * p, st, d->var_t + (size_t)ns * p);
+            L->update(L->params, deps, s4, d->var + (size_t)ns * p, st, d->var_t + (size_t)ns * p);
             for (int i = 0; i < NC; i++)
                 sig[(q * NC + i) * AXB_W + l] = st[i];
         }
@@ -135,8 +134,13 @@ static void large_block(points_data *d, long b, long lo, long hi, const double *
         for (int q = 0; q < NQ; q++)
             d->w_t[NQ * le + q] = wc[q * AXB_W + le - b * AXB_W];
     }
+    double sn[AXB_S] = {0}; /* the committed stresses, turned */
+    for (long le = lo; le < hi; le++)
+        for (int i = 0; i < NQ * NC; i++)
+            sn[i * AXB_W + le - b * AXB_W] = d->sig[NC * NQ * le + i];
+    axb_rotate(spin, sn);
     axb_strains(Gm, Cm, du, eps);
-    block_laws(d, b, lo, hi, eps, spin, sig);
+    block_laws(d, b, lo, hi, eps, sn, sig);
     axb_force(Gc, Cc, wc, sig, F);
 }
 

@@ -154,3 +154,23 @@ void axb_force(const double *G, const double *C, const double *w, const double *
     for (int j = 0; j < 8; j++)
         vst(F + j * AXB_W, y[j]);
 }
+
+/* rf_material_rotate (material_rotation.c) for a spin (0, 0, s) about the
+ * hoop axis and an axisymmetric stress (no yz, zx), operation for operation
+ * with the terms that are exactly zero left out: the Cayley factor f, Q's
+ * in-plane entries, Q sigma and (Q sigma) Q^T; tt is untouched (Q_tt = 1).
+ * The same bits (but for the sign of a zero component); s = 0 leaves sigma. */
+AXB_CLONES
+void axb_rotate(const double *spin, double *sig)
+{
+    for (int q = 0; q < 4; q++) {
+        const avec s = vld(spin + q * AXB_W), f = 2.0 / (1.0 + 0.25 * (s * s));
+        const avec q00 = 1.0 + f * (0.25 * -(s * s)), q01 = f * (0.5 * -s), q10 = f * (0.5 * s), q11 = q00;
+        double *p = sig + q * 4 * AXB_W;
+        const avec a = vld(p), b = vld(p + AXB_W), d = vld(p + 3 * AXB_W);
+        const avec s00 = q00 * a + q01 * d, s01 = q00 * d + q01 * b, s10 = q10 * a + q11 * d, s11 = q10 * d + q11 * b;
+        vst(p, s00 * q00 + s01 * q01);
+        vst(p + AXB_W, s10 * q10 + s11 * q11);
+        vst(p + 3 * AXB_W, 0.5 * ((s00 * q10 + s01 * q11) + (s10 * q00 + s11 * q01)));
+    }
+}

@@ -29,4 +29,8 @@ void axb_spins(const double *G, const double *du, double *spin);
 /* F = sum_q w_q (B_q + C_q)^T sig_q. */
 void axb_force(const double *G, const double *C, const double *w, const double *sig, double *F);
 
+/* sig (in: committed, out: turned) by the Hughes-Winget rotation of the spin
+ * about the hoop axis, as rf_material_rotate(sig, (0, 0, spin)) (the same bits). */
+void axb_rotate(const double *spin, double *sig);
+
 #endif
