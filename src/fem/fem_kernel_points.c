@@ -62,10 +62,11 @@ static void block_laws(points_data *d, long b, long lo, long hi, const double *e
                 if (sn)
                     deps[i] = s, d->eps_t[NC * p + i] = d->eps[NC * p + i] + s, s4[i] = sn[(q * NC + i) * AXB_W + l];
                 else
-                    d->eps_t[NC * p + i] = s, deps[i] = s - d->eps[NC * p + i], s4[i] = d->sig[NC * p + i];
+                    d->eps_t[NC * p + i] = s, deps[i] = s - d->eps[NC * p + i];
             }
+            /* small strain: the committed stress in place (a copy just stored would stall the law's wide loads) */
             double *st = d->sig_t + NC * p;
-            L->update(L->params, deps, s4, d->var + (size_t)ns * p, st, d->var_t + (size_t)ns * p);
+            L->update(L->params, deps, sn ? s4 : d->sig + NC * p, d->var + (size_t)ns * p, st, d->var_t + (size_t)ns * p);
             for (int i = 0; i < NC; i++)
                 sig[(q * NC + i) * AXB_W + l] = st[i];
         }
