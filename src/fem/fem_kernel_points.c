@@ -46,9 +46,24 @@ typedef struct {
  * sn NULL (small strain): eps are total strains, the committed stresses the
  * points'.  Else eps are the increments and sn [4 points][4][AXB_W] the
  * committed stresses turned by the increment's spin.  sig: the trial
- * stresses (0 in other lanes). */
+ * stresses (0 in other lanes).  The laws' inputs are all stored first: a law
+ * reads them with 16-byte loads, which stall on 8-byte stores still in the
+ * store buffer (measured: the small-strain runs were 5-15 % slower). */
 static void block_laws(points_data *d, long b, long lo, long hi, const double *eps, const double *sn, double *sig)
 {
+    double in[AXB_W][NQ][2][NC]; /* per lane and point: deps, committed stress (UL) */
+    for (long le = lo; le < hi; le++)
+        for (int q = 0; q < NQ; q++) {
+            const long l = le - b * AXB_W, p = NQ * le + q;
+            for (int i = 0; i < NC; i++) {
+                const double s = eps[(q * NC + i) * AXB_W + l];
+                if (sn)
+                    in[l][q][0][i] = s, d->eps_t[NC * p + i] = d->eps[NC * p + i] + s,
+                    in[l][q][1][i] = sn[(q * NC + i) * AXB_W + l];
+                else
+                    d->eps_t[NC * p + i] = s, in[l][q][0][i] = s - d->eps[NC * p + i];
+            }
+        }
     memset(sig, 0, AXB_S * sizeof *sig);
     for (long le = lo; le < hi; le++) {
         const long l = le - b * AXB_W;
@@ -56,17 +71,9 @@ static void block_laws(points_data *d, long b, long lo, long hi, const double *e
         const int ns = L->nstate;
         for (int q = 0; q < NQ; q++) {
             const long p = NQ * le + q;
-            double deps[NC], s4[NC];
-            for (int i = 0; i < NC; i++) {
-                const double s = eps[(q * NC + i) * AXB_W + l];
-                if (sn)
-                    deps[i] = s, d->eps_t[NC * p + i] = d->eps[NC * p + i] + s, s4[i] = sn[(q * NC + i) * AXB_W + l];
-                else
-                    d->eps_t[NC * p + i] = s, deps[i] = s - d->eps[NC * p + i];
-            }
-            /* small strain: the committed stress in place (a copy just stored would stall the law's wide loads) */
             double *st = d->sig_t + NC * p;
-            L->update(L->params, deps, sn ? s4 : d->sig + NC * p, d->var + (size_t)ns * p, st, d->var_t + (size_t)ns * p);
+            L->update(L->params, in[l][q][0], sn ? in[l][q][1] : d->sig + NC * p, d->var + (size_t)ns * p, st,
+                      d->var_t + (size_t)ns * p);
             for (int i = 0; i < NC; i++)
                 sig[(q * NC + i) * AXB_W + l] = st[i];
         }
