@@ -66,7 +66,8 @@ static void displacements(const mesh *m, int s, double ue[COUNT][8])
     for (int e = 0; e < COUNT; e++)
         for (int a = 0; a < 4; a++) {
             const int n = m->conn[4 * (FIRST + e) + a];
-            const double r = m->r[n] * (1 + 0.01 * s * (1 + m->z[n])), z = m->z[n] * (1 - 0.008 * s) + 0.002 * s * m->r[n];
+            const double r = m->r[n] * (1 + 0.01 * s * (1 + m->z[n]));
+            const double z = m->z[n] * (1 - 0.008 * s) + 0.002 * s * m->r[n];
             ue[e][2 * a] = c * r - sn * z - m->r[n], ue[e][2 * a + 1] = sn * r + c * z - m->z[n];
         }
 }
@@ -128,7 +129,8 @@ static void reference_element(mesh *m, int e, const double ue[8], int bbar, int 
         m->law.update(m->law.params, deps, s6, m->var[p], sig, var);
         memcpy(m->sig[p], sig, sizeof sig), memcpy(m->var[p], var, sizeof var);
         for (int j = 0; j < 8; j++)
-            y[j] += wc[q] * (Bc[q][j] * sig[0] + Bc[q][8 + j] * sig[1] + Bc[q][16 + j] * sig[2] + Bc[q][24 + j] * sig[3]);
+            y[j] += wc[q] * (Bc[q][j] * sig[0] + Bc[q][8 + j] * sig[1] + Bc[q][16 + j] * sig[2] +
+                             Bc[q][24 + j] * sig[3]);
     }
     memcpy(m->uc[e], ue, sizeof m->uc[e]);
 }

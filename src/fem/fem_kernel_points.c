@@ -128,7 +128,8 @@ static void large_block(points_data *d, long b, long lo, long hi, const double *
         const double *u = le >= lo && le < hi ? ue + 8 * (le - lo) : uc;
         for (int a = 0; a < 4; a++) {
             const int i = a * AXB_W + l;
-            rm[i] = X[2 * a] + 0.5 * (u[2 * a] + uc[2 * a]), zm[i] = X[2 * a + 1] + 0.5 * (u[2 * a + 1] + uc[2 * a + 1]);
+            rm[i] = X[2 * a] + 0.5 * (u[2 * a] + uc[2 * a]);
+            zm[i] = X[2 * a + 1] + 0.5 * (u[2 * a + 1] + uc[2 * a + 1]);
             rc[i] = X[2 * a] + u[2 * a], zc[i] = X[2 * a + 1] + u[2 * a + 1];
             du[2 * a * AXB_W + l] = u[2 * a] - uc[2 * a], du[(2 * a + 1) * AXB_W + l] = u[2 * a + 1] - uc[2 * a + 1];
         }
@@ -186,7 +187,8 @@ static void points_destroy(fem_kernel *k)
 {
     points_data *d = k->data;
     if (d) {
-        free(d->G), free(d->C), free(d->wb), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t), free(d->sig_t);
+        free(d->G), free(d->C), free(d->wb), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t);
+        free(d->sig_t);
         free(d->var_t), free(d->use2), free(d->X), free(d->ue_c), free(d->ue_t), free(d->w_t);
     }
     free(d);
@@ -309,7 +311,8 @@ rf_status fem_kernel_points_axi_two(fem_kernel *k, long first, long count, const
         memcpy(d->use2, use_law2, (size_t)count);
     }
     d->nblk = (count + AXB_W - 1) / AXB_W;
-    d->G = malloc(((size_t)d->nblk * AXB_G + 1) * sizeof *d->G), d->C = malloc(((size_t)d->nblk * AXB_C + 1) * sizeof *d->C);
+    d->G = malloc(((size_t)d->nblk * AXB_G + 1) * sizeof *d->G);
+    d->C = malloc(((size_t)d->nblk * AXB_C + 1) * sizeof *d->C);
     d->wb = malloc(((size_t)d->nblk * AXB_Q + 1) * sizeof *d->wb), d->w = malloc((np + 1) * sizeof *d->w);
     d->eps = calloc(np * NC, sizeof *d->eps), d->sig = calloc(np * NC, sizeof *d->sig);
     d->eps_t = calloc(np * NC, sizeof *d->eps_t), d->sig_t = calloc(np * NC, sizeof *d->sig_t);
