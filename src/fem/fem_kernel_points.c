@@ -5,9 +5,17 @@
  * also integrates a dissipative law's plastic work (sum_q w_q D_q).  Optional
  * mean-dilatation B-bar.  And two point laws: linear elasticity (the
  * reference: with it this kernel reproduces the precomputed stiffness) and
- * the material library's return maps (rockfuzz/material.h). */
+ * the material library's return maps (rockfuzz/material.h).
+ *
+ * The elements run in SIMD blocks of AXB_W consecutive elements, one per
+ * vector lane (fem_points_block.c: geometry, strains, spins, forces), the
+ * laws lane by lane (a return map branches).  Small strain keeps each
+ * block's gradients, N/r, weights and B-bar correction; the updated
+ * Lagrangian form computes them twice per step (mid-step and current
+ * geometry).  The per-point state stays in point order (p = 4 le + q). */
 #include "fem_internal.h"
 #include "fem_kernel.h"
+#include "fem_points_block.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -19,7 +27,8 @@
 typedef struct {
     fem_point_law law, law2;
     unsigned char *use2;      /* per element: law2 (NULL: law everywhere) */
-    double *B;      /* 4 x 32 per element */
+    long nblk;                /* blocks of AXB_W elements, the last one padded */
+    double *G, *C, *wb;       /* per block: AXB_G, AXB_C, AXB_Q (fem_points_block.h) */
     double *w;      /* 4 per element */
     double *eps, *sig, *var;          /* committed, per point */
     double *eps_t, *sig_t, *var_t;    /* trial of the last forces() */
@@ -27,99 +36,132 @@ typedef struct {
     long point_max;                          /* the point of plastic_strain_max (-1: none) */
     /* updated Lagrangian (fem_kernel_points_axi_large): reference node
        coordinates r0 z0 r1 z1 ... and committed / trial displacements, 8 per
-       element; w then holds the committed current weights, w_t the trial ones */
+       element (nblk AXB_W elements, the padding a unit square); w then holds
+       the committed current weights, w_t the trial ones */
     double *X, *ue_c, *ue_t, *w_t;
     int bbar;
 } points_data;
 
-static void mean_dilatation(double B[NQ][32], const double w[NQ]);
+/* The laws of block b's elements [lo, hi) (local numbers), lane by lane.
+ * sn NULL (small strain): eps are total strains, the committed stresses the
+ * points'.  Else eps are the increments and sn [4 points][4][AXB_W] the
+ * committed stresses turned by the increment's spin.  sig: the trial
+ * stresses (0 in other lanes).  The laws' inputs are all stored first: a law
+ * reads them with 16-byte loads, which stall on 8-byte stores still in the
+ * store buffer (measured: the small-strain runs were 5-15 % slower). */
+static void block_laws(points_data *d, long b, long lo, long hi, const double *eps, const double *sn, double *sig)
+{
+    double in[AXB_W][NQ][2][NC]; /* per lane and point: deps, committed stress (UL) */
+    for (long le = lo; le < hi; le++)
+        for (int q = 0; q < NQ; q++) {
+            const long l = le - b * AXB_W, p = NQ * le + q;
+            for (int i = 0; i < NC; i++) {
+                const double s = eps[(q * NC + i) * AXB_W + l];
+                if (sn)
+                    in[l][q][0][i] = s, d->eps_t[NC * p + i] = d->eps[NC * p + i] + s,
+                    in[l][q][1][i] = sn[(q * NC + i) * AXB_W + l];
+                else
+                    d->eps_t[NC * p + i] = s, in[l][q][0][i] = s - d->eps[NC * p + i];
+            }
+        }
+    memset(sig, 0, AXB_S * sizeof *sig);
+    for (long le = lo; le < hi; le++) {
+        const long l = le - b * AXB_W;
+        const fem_point_law *L = d->use2 && d->use2[le] ? &d->law2 : &d->law;
+        const int ns = L->nstate;
+        for (int q = 0; q < NQ; q++) {
+            const long p = NQ * le + q;
+            double *st = d->sig_t + NC * p;
+            L->update(L->params, in[l][q][0], sn ? in[l][q][1] : d->sig + NC * p, d->var + (size_t)ns * p, st,
+                      d->var_t + (size_t)ns * p);
+            for (int i = 0; i < NC; i++)
+                sig[(q * NC + i) * AXB_W + l] = st[i];
+        }
+    }
+}
+
+/* Element vectors (8 each, elements [lo, hi) of block b from v) into lanes
+ * (zeros elsewhere), and back. */
+static void lanes_in(const double *v, long b, long lo, long hi, double *u)
+{
+    memset(u, 0, AXB_U * sizeof *u);
+    for (long le = lo; le < hi; le++, v += 8)
+        for (int j = 0; j < 8; j++)
+            u[j * AXB_W + le - b * AXB_W] = v[j];
+}
+
+static void lanes_out(const double *F, long b, long lo, long hi, double *v)
+{
+    for (long le = lo; le < hi; le++, v += 8)
+        for (int j = 0; j < 8; j++)
+            v[j] = F[j * AXB_W + le - b * AXB_W];
+}
 
 static void points_forces(const fem_kernel *k, long e0, long e1, const double *ue, double *fe)
 {
     points_data *d = k->data;
-    const int ns = d->law.nstate;
-    for (long e = e0; e < e1; e++, ue += 8, fe += 8) {
-        const long le = e - k->first;
-        const fem_point_law *L = d->use2 && d->use2[le] ? &d->law2 : &d->law;
-        double y[8] = {0};
-        for (int q = 0; q < NQ; q++) {
-            const long p = NQ * le + q;
-            const double *B = d->B + 32 * p;
-            double *eps = d->eps_t + NC * p, *sig = d->sig_t + NC * p, deps[NC];
-            for (int i = 0; i < NC; i++) {
-                double s = 0;
-                for (int j = 0; j < 8; j++)
-                    s += B[8 * i + j] * ue[j];
-                eps[i] = s;
-                deps[i] = s - d->eps[NC * p + i];
-            }
-            L->update(L->params, deps, d->sig + NC * p, d->var + (size_t)ns * p, sig, d->var_t + (size_t)ns * p);
-            for (int j = 0; j < 8; j++)
-                y[j] += d->w[p] * (B[j] * sig[0] + B[8 + j] * sig[1] + B[16 + j] * sig[2] + B[24 + j] * sig[3]);
-        }
-        memcpy(fe, y, sizeof y);
+    const long l0 = e0 - k->first, l1 = e1 - k->first;
+    for (long b = l0 / AXB_W; b * AXB_W < l1; b++) {
+        const long lo = l0 > b * AXB_W ? l0 : b * AXB_W, hi = l1 < (b + 1) * AXB_W ? l1 : (b + 1) * AXB_W;
+        const double *G = d->G + AXB_G * b, *C = d->C + AXB_C * b;
+        double u[AXB_U], eps[AXB_S], sig[AXB_S], F[AXB_U];
+        lanes_in(ue + 8 * (lo - l0), b, lo, hi, u);
+        axb_strains(G, C, u, eps);
+        block_laws(d, b, lo, hi, eps, NULL, sig);
+        axb_force(G, C, d->wb + AXB_Q * b, sig, F);
+        lanes_out(F, b, lo, hi, fe + 8 * (lo - l0));
     }
 }
 
-/* Spin of the increment at each point, 1/2 (d du_z/dr - d du_r/dz), from the
- * plain B (before B-bar): row 0 holds dN/dr at the r dofs, row 1 dN/dz at the z dofs. */
-static void point_spins(double B[NQ][32], const double du[8], double spin[NQ])
-{
-    for (int q = 0; q < NQ; q++) {
-        double s = 0;
-        for (int a = 0; a < 4; a++)
-            s += B[q][2 * a] * du[2 * a + 1] - B[q][8 + 2 * a + 1] * du[2 * a];
-        spin[q] = 0.5 * s;
-    }
-}
-
-/* Updated Lagrangian element: the strain increment B(x_mid) du on the
+/* Updated Lagrangian block: the strain increment B(x_mid) du on the
  * mid-step geometry (exactly zero for a rigid rotation of any size), the
  * committed stress turned by the Hughes-Winget rotation of the increment's
  * spin (exact for that rotation), the return map, and the force
- * sum_q w_q(x) B_q(x)^T sigma_q on the current geometry x = X + u. */
-static void large_element(points_data *d, const fem_point_law *L, long le, const double *ue, double *y)
+ * sum_q w_q(x) B_q(x)^T sigma_q on the current geometry x = X + u.  Lanes
+ * outside [lo, hi) keep their committed displacement (no increment). */
+static void large_block(points_data *d, long b, long lo, long hi, const double *ue, double *F)
 {
-    const int ns = L->nstate;
-    const double *X = d->X + 8 * le, *uc = d->ue_c + 8 * le;
-    double xm[8], du[8], xc[8], Bm[NQ][32], wm[NQ], Bc[NQ][32], spin[NQ];
-    for (int j = 0; j < 8; j++)
-        du[j] = ue[j] - uc[j], xm[j] = X[j] + 0.5 * (ue[j] + uc[j]), xc[j] = X[j] + ue[j];
-    const double rm[4] = {xm[0], xm[2], xm[4], xm[6]}, zm[4] = {xm[1], xm[3], xm[5], xm[7]};
-    const double rc[4] = {xc[0], xc[2], xc[4], xc[6]}, zc[4] = {xc[1], xc[3], xc[5], xc[7]};
-    fem_element_points(rm, zm, Bm, wm);
-    point_spins(Bm, du, spin);
-    fem_element_points(rc, zc, Bc, d->w_t + NQ * le);
-    if (d->bbar)
-        mean_dilatation(Bm, wm), mean_dilatation(Bc, d->w_t + NQ * le);
-    memcpy(d->ue_t + 8 * le, ue, 8 * sizeof *ue);
-    for (int q = 0; q < NQ; q++) {
-        const long p = NQ * le + q;
-        const double *B = Bm[q], *w = d->w_t + NQ * le;
-        double deps[NC], s6[6] = {d->sig[NC * p], d->sig[NC * p + 1], d->sig[NC * p + 2], d->sig[NC * p + 3], 0, 0};
-        for (int i = 0; i < NC; i++) {
-            double s = 0;
-            for (int j = 0; j < 8; j++)
-                s += B[8 * i + j] * du[j];
-            deps[i] = s;
-            d->eps_t[NC * p + i] = d->eps[NC * p + i] + s;
+    double rm[4 * AXB_W], zm[4 * AXB_W], rc[4 * AXB_W], zc[4 * AXB_W], du[AXB_U];
+    for (int l = 0; l < AXB_W; l++) {
+        const long le = b * AXB_W + l;
+        const double *X = d->X + 8 * le, *uc = d->ue_c + 8 * le;
+        const double *u = le >= lo && le < hi ? ue + 8 * (le - lo) : uc;
+        for (int a = 0; a < 4; a++) {
+            const int i = a * AXB_W + l;
+            rm[i] = X[2 * a] + 0.5 * (u[2 * a] + uc[2 * a]);
+            zm[i] = X[2 * a + 1] + 0.5 * (u[2 * a + 1] + uc[2 * a + 1]);
+            rc[i] = X[2 * a] + u[2 * a], zc[i] = X[2 * a + 1] + u[2 * a + 1];
+            du[2 * a * AXB_W + l] = u[2 * a] - uc[2 * a], du[(2 * a + 1) * AXB_W + l] = u[2 * a + 1] - uc[2 * a + 1];
         }
-        rf_material_rotate(s6, (const double[3]){0, 0, spin[q]});
-        double *sig = d->sig_t + NC * p;
-        L->update(L->params, deps, s6, d->var + (size_t)ns * p, sig, d->var_t + (size_t)ns * p);
-        for (int j = 0; j < 8; j++)
-            y[j] += w[q] * (Bc[q][j] * sig[0] + Bc[q][8 + j] * sig[1] + Bc[q][16 + j] * sig[2] + Bc[q][24 + j] * sig[3]);
     }
+    double Gm[AXB_G], Cm[AXB_C], wm[AXB_Q], Gc[AXB_G], Cc[AXB_C], wc[AXB_Q], spin[AXB_Q], eps[AXB_S], sig[AXB_S];
+    axb_geometry(rm, zm, d->bbar, Gm, Cm, wm);
+    axb_spins(Gm, du, spin);
+    axb_geometry(rc, zc, d->bbar, Gc, Cc, wc);
+    for (long le = lo; le < hi; le++) {
+        memcpy(d->ue_t + 8 * le, ue + 8 * (le - lo), 8 * sizeof *ue);
+        for (int q = 0; q < NQ; q++)
+            d->w_t[NQ * le + q] = wc[q * AXB_W + le - b * AXB_W];
+    }
+    double sn[AXB_S] = {0}; /* the committed stresses, turned */
+    for (long le = lo; le < hi; le++)
+        for (int i = 0; i < NQ * NC; i++)
+            sn[i * AXB_W + le - b * AXB_W] = d->sig[NC * NQ * le + i];
+    axb_rotate(spin, sn);
+    axb_strains(Gm, Cm, du, eps);
+    block_laws(d, b, lo, hi, eps, sn, sig);
+    axb_force(Gc, Cc, wc, sig, F);
 }
 
 static void points_forces_large(const fem_kernel *k, long e0, long e1, const double *ue, double *fe)
 {
     points_data *d = k->data;
-    for (long e = e0; e < e1; e++, ue += 8, fe += 8) {
-        const long le = e - k->first;
-        double y[8] = {0};
-        large_element(d, d->use2 && d->use2[le] ? &d->law2 : &d->law, le, ue, y);
-        memcpy(fe, y, sizeof y);
+    const long l0 = e0 - k->first, l1 = e1 - k->first;
+    for (long b = l0 / AXB_W; b * AXB_W < l1; b++) {
+        const long lo = l0 > b * AXB_W ? l0 : b * AXB_W, hi = l1 < (b + 1) * AXB_W ? l1 : (b + 1) * AXB_W;
+        double F[AXB_U];
+        large_block(d, b, lo, hi, ue + 8 * (lo - l0), F);
+        lanes_out(F, b, lo, hi, fe + 8 * (lo - l0));
     }
 }
 
@@ -145,7 +187,8 @@ static void points_destroy(fem_kernel *k)
 {
     points_data *d = k->data;
     if (d) {
-        free(d->B), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t), free(d->sig_t);
+        free(d->G), free(d->C), free(d->wb), free(d->w), free(d->eps), free(d->sig), free(d->var), free(d->eps_t);
+        free(d->sig_t);
         free(d->var_t), free(d->use2), free(d->X), free(d->ue_c), free(d->ue_t), free(d->w_t);
     }
     free(d);
@@ -170,20 +213,35 @@ static int is_points(const fem_kernel *k)
     return k->ops == &points_ops || k->ops == &points_large_ops;
 }
 
+/* Node a of local element le (block padding beyond count: a unit square at r = 1..2 m). */
+static void element_node(const double *r, const double *z, const int *conn, long first, long count, long le, int a,
+                         double *re, double *ze)
+{
+    static const double PR[4] = {1, 2, 2, 1}, PZ[4] = {0, 0, 1, 1};
+    if (le >= count) {
+        *re = PR[a], *ze = PZ[a];
+        return;
+    }
+    const int n = conn[4 * (first + le) + a];
+    *re = r[n], *ze = z[n];
+}
+
 rf_status fem_kernel_points_axi_large(fem_kernel *k, const double *r, const double *z, const int *conn, rf_error *err)
 {
     if (!is_points(k) || !k->data)
         return rf_fail(err, RF_EINVAL, "fem: updated Lagrangian needs an integration-point kernel");
     points_data *d = k->data;
     const size_t ne = (size_t)k->count, np = NQ * ne;
-    d->X = malloc((ne + 1) * 8 * sizeof *d->X), d->ue_c = calloc(ne + 1, 8 * sizeof *d->ue_c);
-    d->ue_t = calloc(ne + 1, 8 * sizeof *d->ue_t), d->w_t = malloc((np + 1) * sizeof *d->w_t);
+    const size_t nl = (size_t)d->nblk * AXB_W; /* elements with the padding */
+    d->X = malloc((nl + 1) * 8 * sizeof *d->X), d->ue_c = calloc(nl + 1, 8 * sizeof *d->ue_c);
+    d->ue_t = calloc(nl + 1, 8 * sizeof *d->ue_t), d->w_t = malloc((np + 1) * sizeof *d->w_t);
     if (!d->X || !d->ue_c || !d->ue_t || !d->w_t)
         return rf_fail(err, RF_ENOMEM, "fem: out of memory for %ld elements", k->count);
-    for (size_t e = 0; e < ne; e++)
+    for (size_t e = 0; e < nl; e++)
         for (int a = 0; a < 4; a++) {
-            const int n = conn[4 * (k->first + (long)e) + a];
-            d->X[8 * e + 2 * a] = r[n], d->X[8 * e + 2 * a + 1] = z[n];
+            double re, ze;
+            element_node(r, z, conn, k->first, k->count, (long)e, a, &re, &ze);
+            d->X[8 * e + 2 * a] = re, d->X[8 * e + 2 * a + 1] = ze;
         }
     memcpy(d->w_t, d->w, np * sizeof *d->w);
     k->ops = &points_large_ops;
@@ -212,23 +270,6 @@ void fem_kernel_report_get(const fem_kernel *k, fem_kernel_report *r)
     r->plastic_work = r->plastic_strain_max = 0, r->element_max = -1;
     if (k->ops && k->ops->report && k->data)
         k->ops->report(k, r);
-}
-
-/* Mean dilatation: B_q rows rr, zz, tt get (bbar - b_q) / 3 with b_q the
- * volumetric row (sum of the three normal rows) and bbar its w-weighted mean. */
-static void mean_dilatation(double B[NQ][32], const double w[NQ])
-{
-    double bbar[8] = {0}, W = 0;
-    for (int q = 0; q < NQ; q++) {
-        W += w[q];
-        for (int j = 0; j < 8; j++)
-            bbar[j] += w[q] * (B[q][j] + B[q][8 + j] + B[q][16 + j]);
-    }
-    for (int q = 0; q < NQ; q++)
-        for (int j = 0; j < 8; j++) {
-            const double c = (bbar[j] / W - (B[q][j] + B[q][8 + j] + B[q][16 + j])) / 3;
-            B[q][j] += c, B[q][8 + j] += c, B[q][16 + j] += c;
-        }
 }
 
 rf_status fem_kernel_points_axi(fem_kernel *k, long first, long count, const double *r, const double *z,
@@ -269,20 +310,24 @@ rf_status fem_kernel_points_axi_two(fem_kernel *k, long first, long count, const
             return rf_fail(err, RF_ENOMEM, "fem: out of memory");
         memcpy(d->use2, use_law2, (size_t)count);
     }
-    d->B = malloc(np * 32 * sizeof *d->B), d->w = malloc(np * sizeof *d->w);
+    d->nblk = (count + AXB_W - 1) / AXB_W;
+    d->G = malloc(((size_t)d->nblk * AXB_G + 1) * sizeof *d->G);
+    d->C = malloc(((size_t)d->nblk * AXB_C + 1) * sizeof *d->C);
+    d->wb = malloc(((size_t)d->nblk * AXB_Q + 1) * sizeof *d->wb), d->w = malloc((np + 1) * sizeof *d->w);
     d->eps = calloc(np * NC, sizeof *d->eps), d->sig = calloc(np * NC, sizeof *d->sig);
     d->eps_t = calloc(np * NC, sizeof *d->eps_t), d->sig_t = calloc(np * NC, sizeof *d->sig_t);
     d->var = calloc(np * ns, sizeof *d->var), d->var_t = calloc(np * ns, sizeof *d->var_t);
-    if (!d->B || !d->w || !d->eps || !d->sig || !d->eps_t || !d->sig_t || !d->var || !d->var_t)
+    if (!d->G || !d->C || !d->wb || !d->w || !d->eps || !d->sig || !d->eps_t || !d->sig_t || !d->var || !d->var_t)
         return rf_fail(err, RF_ENOMEM, "fem: out of memory for %ld integration points", (long)np);
-    for (long e = 0; e < count; e++) {
-        const int *c = conn + 4 * (first + e);
-        double re[4], ze[4];
-        for (int a = 0; a < 4; a++)
-            re[a] = r[c[a]], ze[a] = z[c[a]];
-        fem_element_points(re, ze, (double(*)[32])(d->B + 128 * e), d->w + NQ * e);
-        if (bbar)
-            mean_dilatation((double(*)[32])(d->B + 128 * e), d->w + NQ * e);
+    for (long b = 0; b < d->nblk; b++) {
+        double rl[4 * AXB_W], zl[4 * AXB_W], *wb = d->wb + AXB_Q * b;
+        for (int l = 0; l < AXB_W; l++)
+            for (int a = 0; a < 4; a++)
+                element_node(r, z, conn, first, count, b * AXB_W + l, a, &rl[a * AXB_W + l], &zl[a * AXB_W + l]);
+        axb_geometry(rl, zl, bbar, d->G + AXB_G * b, d->C + AXB_C * b, wb);
+        for (long le = b * AXB_W; le < count && le < (b + 1) * AXB_W; le++)
+            for (int q = 0; q < NQ; q++)
+                d->w[NQ * le + q] = wb[q * AXB_W + le - b * AXB_W];
     }
     return RF_OK;
 }
