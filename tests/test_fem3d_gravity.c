@@ -171,6 +171,118 @@ static void test_unstable_layer(void **state)
     assert_int_equal(fem3d_gravity_free_run(&in, &o, NULL, 1, &c, &err), RF_OK);
 }
 
+/* The S6 colluvium (examples/s6_slope60.yaml): 1 m of Drucker-Prager soil, c 10 kPa, phi 40 deg, cap
+   X0 200 kPa, over granite. */
+static rf_impact_input s6_colluvium(double theta_deg)
+{
+    rf_impact_input in = soil(theta_deg);
+    in.velocity = 10, in.friction = 0;
+    in.layer_thickness = 1.0, in.layer_E = 100e6, in.layer_cohesion = 10e3;
+    in.layer_cap_pressure = 200e3, in.layer_cap_hardening = 40e6;
+    return in;
+}
+
+typedef struct {
+    closed_form cf;  /* err: the statically determinate components (zz, zx, xy, yz) and xx - yy */
+    rf_material m;   /* the layer's */
+    long raised, bad; /* layer cells with K > K0; cells with K outside [K0, 1] or not admissible */
+} steep_check;
+
+/* Every slope cell: sigma_zz, sigma_zx the closed form (equilibrium), sigma_xx = sigma_yy = K sigma_zz with
+   K in [K0, 1] (K0 in the granite), the layer's stress inside its yield surface. */
+static void steep_cell(void *ctx, double depth, int layer, const double sig[6])
+{
+    steep_check *c = ctx;
+    double s[6];
+    closed_form_stress(&c->cf, depth, layer, s);
+    for (int i = 2; i < 6; i++)
+        c->cf.err = fmax(c->cf.err, fabs(sig[i] - s[i]));
+    c->cf.err = fmax(c->cf.err, fabs(sig[0] - sig[1]));
+    c->cf.scale = fmax(c->cf.scale, fabs(s[2]));
+    c->cf.cells++, c->cf.layer_cells += layer;
+    const double k = sig[0] / sig[2], k0 = layer ? c->cf.k0_l : c->cf.k0_b, tol = 1e-9;
+    const rf_material_state ms = {0, 0, 0}; /* the mean pressure is far below the cap's X0 here */
+    c->raised += layer && k > k0 * (1 + tol);
+    c->bad += k < k0 * (1 - tol) || k > (layer ? 1 + tol : k0 * (1 + tol)) ||
+              (layer && !rf_material_admissible(&c->m, sig, &ms, tol));
+}
+
+/* The S6 colluvium at slope angle theta at rest for 30 steps (the default domain: the layer is thick),
+   its cells checked by steep_cell. */
+static void steep_run(double theta_deg, double cohesion, steep_check *sc, f3_gravity_check *c)
+{
+    rf_impact_input in = s6_colluvium(theta_deg);
+    in.layer_cohesion = cohesion;
+    *sc = (steep_check){{in.gravity, in.slope_angle, in.layer_thickness, in.layer_density, in.slope_density,
+                         k0(in.layer_material, in.layer_friction_angle, in.layer_poisson),
+                         k0(in.slope_material, in.slope_friction_angle, in.slope_poisson), 0, 0, 0, 0},
+                        {0}, 0, 0};
+    rf_material_params mp;
+    rf_material_params_default(&mp);
+    mp.model = RF_MATERIAL_DRUCKER_PRAGER, mp.E = in.layer_E, mp.poisson = in.layer_poisson;
+    mp.cohesion = in.layer_cohesion, mp.friction_angle = in.layer_friction_angle;
+    mp.dilatancy_angle = in.layer_dilatancy_angle;
+    mp.cap_pressure = in.layer_cap_pressure, mp.cap_hardening = in.layer_cap_hardening;
+    rf_error err = {0};
+    assert_int_equal(rf_material_init(&sc->m, &mp, &err), RF_OK);
+    *c = (f3_gravity_check){0};
+    c->ctx = sc, c->cell = steep_cell;
+    rf_fem_options o = coarse(2, RF_FEM_BOUNDARY_FIXED);
+    o.domain_factor = 0; /* auto */
+    const long steps = 30;
+    if (fem3d_gravity_free_run(&in, &o, NULL, steps, c, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    const double gt = in.gravity * (double)steps * c->dt;
+    printf("S6 colluvium at %.0f deg: %ld cells (%ld in the layer, %ld with K > K0, %ld bad); outside %ld; "
+           "max |v| %.2e m/s (g t = %.2e); determinate stresses - closed form %.2e of %.4g Pa\n",
+           theta_deg, sc->cf.cells, sc->cf.layer_cells, sc->raised, sc->bad, c->outside, c->slope_v_max, gt,
+           sc->cf.err / sc->cf.scale, sc->cf.scale);
+    assert_int_equal(c->outside, 0);
+    assert_int_equal(sc->bad, 0);
+    assert_true(sc->cf.err <= 1e-12 * sc->cf.scale);
+    assert_true(c->slope_v_max <= 1e-12 * gt);
+    assert_true(c->slope_u_max <= 1e-12 * gt * (double)steps * c->dt);
+}
+
+/* Depth below which the inclined K0 state of a layer (Jaky's K0, gamma, c, phi) at slope angle th is
+   outside the Drucker-Prager cone: sqrt(J2) + eta p = xi c with sigma_nn = -gamma d cos th, tau = gamma d
+   sin th, sigma_xx = sigma_yy = K0 sigma_nn. */
+static double k0_outside_depth(double gam, double c, double phi, double th)
+{
+    const double K0 = 1 - sin(phi), s = sin(phi);
+    const double eta = 6 * s / (sqrt(3.0) * (3 - s)), xi = 6 * cos(phi) / (sqrt(3.0) * (3 - s));
+    return xi * c / (gam * (sqrt(pow((1 - K0) * cos(th), 2) / 3 + pow(sin(th), 2)) - eta * (1 + 2 * K0) * cos(th) / 3));
+}
+
+/* (b2) The inclined K0 state of the S6 colluvium at 60 deg is outside the Drucker-Prager cone below
+   0.98 m (the slope stands: FS 1.2 at its base, 1 m); the in-plane stresses of an infinite slope are
+   statically indeterminate, so there the smallest admissible K > K0 is taken: no point outside, and the
+   slope stays at rest.  This mesh has no point that deep; the same soil with c 8.75 kPa (FS 1.05) is
+   outside below 0.86 m, where it has points: those get K > K0, none is outside, the slope stays at rest. */
+static void test_steep_layer_admissible(void **state)
+{
+    (void)state;
+    const double gam = 1900 * 9.81, d_s6 = k0_outside_depth(gam, 10e3, 40 * DEG, 60 * DEG);
+    const double d_weak = k0_outside_depth(gam, 8.75e3, 40 * DEG, 60 * DEG);
+    printf("K0 state outside the cone below %.3f m (c 10 kPa), %.3f m (c 8.75 kPa)\n", d_s6, d_weak);
+    assert_true(fabs(d_s6 - 0.98) < 0.01);
+    steep_check sc;
+    f3_gravity_check c;
+    steep_run(60, 10e3, &sc, &c);
+    steep_run(60, 8.75e3, &sc, &c);
+    assert_true(sc.raised > 0); /* some points were below d_weak */
+}
+
+/* (b3) Level ground: the same soil's K0 state is admissible at every depth: K0 exactly. */
+static void test_level_layer_k0(void **state)
+{
+    (void)state;
+    steep_check sc;
+    f3_gravity_check c;
+    steep_run(0, 10e3, &sc, &c);
+    assert_int_equal(sc.raised, 0);
+}
+
 /* (c) Free flight: with the contact off the boulder's centre of mass follows the central-difference
    parabola u_n = V0 t + g t (t + dt) / 2 (exact for a constant acceleration, v_{-1/2} = V0), rigid or
    elastic (which does not deform: a uniform body force on lumped masses), and energy closes with
@@ -355,6 +467,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_slope_at_rest),
         cmocka_unit_test(test_unstable_layer),
+        cmocka_unit_test(test_steep_layer_admissible),
+        cmocka_unit_test(test_level_layer_k0),
         cmocka_unit_test(test_free_flight),
         cmocka_unit_test(test_normal_vs_axisymmetric),
         cmocka_unit_test(test_oblique_frictionless),

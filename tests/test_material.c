@@ -505,6 +505,32 @@ static void expect_invalid(const rf_material_params *p, const char *field)
         fail_msg("message '%s' does not name '%s'", err.msg, field);
 }
 
+/* rf_material_yield: the closed forms.  Von Mises uniaxial sigma: |sigma| - (Y + H eps_p); Drucker-Prager
+   shear tau at mean stress p0: tau + eta p0 - xi c; hydrostatic compression P beyond the cap: P - X(eps_c);
+   elastic: -HUGE_VAL. */
+static void test_yield_function(void **state)
+{
+    (void)state;
+    rf_material_params pv = von_mises(100e6, 1e9);
+    rf_material mv = make(&pv);
+    rf_material_state st = {0.01, 0, 0};
+    const double s1[6] = {-150e6, 0, 0, 0, 0, 0};
+    assert_close(rf_material_yield(&mv, s1, &st), 150e6 - (100e6 + 1e9 * 0.01), 1e-12);
+    rf_material_params pd = sand(32, 0, 200e3, 40e6);
+    rf_material md = make(&pd);
+    const double p0 = -1e5, tau = 3e4, s2[6] = {p0, p0, p0, tau, 0, 0};
+    const double eta = rf_material_dp_eta(pd.friction_angle), xi = rf_material_dp_xi(pd.friction_angle);
+    st = (rf_material_state){0, 0, 0};
+    assert_close(rf_material_yield(&md, s2, &st), tau + eta * p0 - xi * pd.cohesion, 1e-12);
+    const double P = 3e5, s3[6] = {-P, -P, -P, 0, 0, 0};
+    st.compaction = 1e-3;
+    assert_close(rf_material_yield(&md, s3, &st), P - (200e3 + 40e6 * 1e-3), 1e-12);
+    rf_material_params pe;
+    rf_material_params_default(&pe);
+    rf_material me = make(&pe);
+    assert_true(rf_material_yield(&me, s3, &st) == -HUGE_VAL);
+}
+
 static void test_validation(void **state)
 {
     (void)state;
@@ -552,6 +578,7 @@ int main(void)
         cmocka_unit_test(test_block_equals_points),
         cmocka_unit_test(test_wave_speed),
         cmocka_unit_test(test_rotation),
+        cmocka_unit_test(test_yield_function),
         cmocka_unit_test(test_validation),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

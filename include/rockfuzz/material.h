@@ -100,6 +100,11 @@ void rf_material_rotate(double sig[6], const double spin[3]);
 int rf_material_admissible(const rf_material *m, const double sig[6], const rf_material_state *st,
                            double tol);
 
+/* The largest yield function of sig with st [Pa]: von Mises sqrt(3 J2) -
+ * (Y + H eps_p); Drucker-Prager max(cone, cap) (the cap if on); -HUGE_VAL for
+ * the elastic model.  <= 0: admissible. */
+double rf_material_yield(const rf_material *m, const double sig[6], const rf_material_state *st);
+
 /* Elastic (complementary) energy density 1/2 sig : C^-1 : sig [J/m^3]. */
 double rf_material_elastic_energy(const rf_material *m, const double sig[6]);
 

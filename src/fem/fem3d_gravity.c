@@ -14,7 +14,9 @@
  * rho dd and sigma_zx = g sin(theta) int rho dd, exactly; the in-plane
  * normal stresses are statically indeterminate: K0 sigma_zz (K0 as in the
  * axisymmetric model: Jaky's 1 - sin phi for Drucker-Prager, nu / (1 - nu)
- * otherwise), sigma_xy = sigma_yz = 0.  The stress is set at the slope
+ * otherwise) where that state is inside the yield surface, else the
+ * smallest admissible K > K0 (a steep slope's base), sigma_xy = sigma_yz =
+ * 0.  The stress is set at the slope
  * kernel's integration points (fem_points_geostatic, shared with the
  * axisymmetric model) and the slope's body load is that stress's internal
  * force at u = 0, computed by the same kernel, so that the slope at rest

@@ -1470,6 +1470,7 @@ rf_status fem3d_gravity_free_run(const rf_impact_input *in, const rf_fem_options
     }
     if (st == RF_OK)
         gravity_free_report(&R, chk, closure);
+    f3_step_check_free(&R.step_check);
     contact_release(&R.C);
     fem_kernel_release(&R.S.kernel[0]);
     fem_kernel_release(&R.S.kernel[1]);

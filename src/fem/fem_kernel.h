@@ -270,8 +270,12 @@ double fem_geostatic_k0(const rf_material_params *p);
 /* Vertical geostatic stress at depth d [Pa] (<= 0). */
 double fem_geostatic_vertical(const fem_geostatic *g, double depth);
 /* Committed and trial stresses (and a cap's compaction) of every point set to
- * the geostatic state at its depth depth[p]; returns the number of points
- * whose state the law does not admit (a yield or cap function > 0). */
+ * the geostatic state at its depth depth[p].  The in-plane stresses are
+ * statically indeterminate: where K0 puts a point outside its yield surface
+ * the smallest ratio K > K0 that puts it on or inside is taken instead (in
+ * [K0, 1], else up to the K minimising the yield function; bisection on the
+ * material's yield function); returns the number of points for which no
+ * such K exists (the state the law does not admit). */
 long fem_points_geostatic(const fem_points_view *v, const double *depth, const fem_geostatic *g);
 /* The same for the axisymmetric integration-point kernel (the point depths
  * -z at its 2x2 Gauss points, the reference mesh r, z, conn); -1 for another kernel. */

@@ -189,6 +189,18 @@ int rf_material_admissible(const rf_material *m, const double sig[6], const rf_m
     return !m->cap || mat_dp_cap(m, st->compaction, p) <= tol * scale;
 }
 
+double rf_material_yield(const rf_material *m, const double sig[6], const rf_material_state *st)
+{
+    double s[6];
+    const double p = mat_split(sig, s), sj2 = sqrt(0.5 * mat_ddot(s, s));
+    if (m->model == RF_MATERIAL_VON_MISES)
+        return sqrt(3.0) * sj2 - (m->yield + m->hardening * st->plastic_strain_eq);
+    if (m->model != RF_MATERIAL_DRUCKER_PRAGER)
+        return -HUGE_VAL;
+    const double f = mat_dp_cone(m, sj2, p);
+    return m->cap ? fmax(f, mat_dp_cap(m, st->compaction, p)) : f;
+}
+
 double rf_material_elastic_energy(const rf_material *m, const double sig[6])
 {
     double s[6];
