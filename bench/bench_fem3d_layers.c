@@ -4,7 +4,7 @@
  * changed, and the energy balance at the end: boulder vibration, slope
  * (waves), friction and normal contact work, closure, all / KE0.
  *   bench_fem3d_layers [key=value ...] A [A ...]
- * keys: model=3d|axi, v= (m/s), angle= (deg), f=, aspect= (layer_aspect),
+ * keys (bench_fem3d_probe.h, which has them all): model=3d|axi, v= (m/s), angle= (deg), f=, aspect= (layer_aspect),
  * inner= (boulder_inner), core= (core_factor), elong= (elongation),
  * domain= (domain_factor), full=0|1, dt= (dt_safety), ratio= (boulder_mesh_ratio),
  * threads=. */
@@ -16,63 +16,8 @@
 
 #include "core/util.h"
 #include "rockfuzz/fem3d.h"
+#include "bench_fem3d_probe.h"
 
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-typedef struct {
-    int axi;
-    rf_impact_input in;
-    rf_fem_options o;
-    rf_fem3d_options o3;
-} probe;
-
-/* 1 if arg was a key=value setting. */
-static int probe_set(probe *p, const char *arg)
-{
-    const char *eq = strchr(arg, '=');
-    if (!eq)
-        return 0;
-    const size_t n = (size_t)(eq - arg);
-    const double x = atof(eq + 1);
-#define KEY(s) (n == strlen(s) && !strncmp(arg, s, n))
-    if (KEY("model"))
-        p->axi = !strcmp(eq + 1, "axi");
-    else if (KEY("v"))
-        p->in.velocity = x;
-    else if (KEY("angle"))
-        p->in.slope_angle = x * RF_PI / 180;
-    else if (KEY("f"))
-        p->in.friction = x;
-    else if (KEY("aspect"))
-        p->o3.layer_aspect = x;
-    else if (KEY("inner"))
-        p->o3.boulder_inner = x;
-    else if (KEY("core"))
-        p->o3.core_factor = x;
-    else if (KEY("elong"))
-        p->o3.elongation = x;
-    else if (KEY("domain"))
-        p->o.domain_factor = x;
-    else if (KEY("full"))
-        p->o3.full_model = (int)x;
-    else if (KEY("dt"))
-        p->o.dt_safety = x;
-    else if (KEY("ratio"))
-        p->o.boulder_mesh_ratio = x;
-    else if (KEY("threads"))
-        p->o.threads = (int)x;
-    else {
-        fprintf(stderr, "bench_fem3d_layers: unknown key in '%s'\n", arg);
-        exit(2);
-    }
-#undef KEY
-    return 1;
-}
 
 int main(int argc, char **argv)
 {
@@ -82,7 +27,7 @@ int main(int argc, char **argv)
     rf_fem_options_default(&p.o);
     rf_fem3d_options_default(&p.o3);
     for (int i = 1; i < argc; i++) {
-        if (probe_set(&p, argv[i]))
+        if (probe_set(&p, argv[i], "bench_fem3d_layers"))
             continue;
         p.o.refinement = atof(argv[i]);
         rf_impact_output out;

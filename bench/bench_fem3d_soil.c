@@ -5,7 +5,7 @@
  * estimate (fem3d_spec.h) next to the measured penetration and contact
  * radius (docs/validation-plastic.md section 9d, docs/studies.md S6).
  *   bench_fem3d_soil [key=value ...] A [A ...]
- * keys: model=3d|axi, angle= (deg), f= (friction), large=0|1 (small strain or
+ * keys (bench_fem3d_probe.h, which has them all): model=3d|axi, angle= (deg), f= (friction), large=0|1 (small strain or
  * large deformation, both models; default 0), E= (layer_E),
  * X0= (layer_cap_pressure), Hc= (layer_cap_hardening), t= (thickness),
  * core= (core_factor), domain= (domain_factor), end= (end time, s),
@@ -20,69 +20,8 @@
 #include "core/util.h"
 #include "fem/fem3d_spec.h"
 #include "rockfuzz/fem3d.h"
+#include "bench_fem3d_probe.h"
 
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-typedef struct {
-    int axi;
-    rf_impact_input in;
-    rf_fem_options o;
-    rf_fem3d_options o3;
-} probe;
-
-/* 1 if arg was a key=value setting. */
-static int probe_set(probe *p, const char *arg)
-{
-    const char *eq = strchr(arg, '=');
-    if (!eq)
-        return 0;
-    const size_t n = (size_t)(eq - arg);
-    const double x = atof(eq + 1);
-#define KEY(s) (n == strlen(s) && !strncmp(arg, s, n))
-    if (KEY("model"))
-        p->axi = !strcmp(eq + 1, "axi");
-    else if (KEY("angle"))
-        p->in.slope_angle = x * RF_PI / 180;
-    else if (KEY("f"))
-        p->in.friction = x;
-    else if (KEY("large"))
-        p->o.large_deformation = x > 0 ? RF_FEM_LARGE_DEFORMATION : RF_FEM_SMALL_STRAIN;
-    else if (KEY("E"))
-        p->in.layer_E = x;
-    else if (KEY("X0"))
-        p->in.layer_cap_pressure = x;
-    else if (KEY("Hc"))
-        p->in.layer_cap_hardening = x;
-    else if (KEY("t"))
-        p->in.layer_thickness = x;
-    else if (KEY("core"))
-        p->o3.core_factor = x;
-    else if (KEY("domain"))
-        p->o.domain_factor = x;
-    else if (KEY("end"))
-        p->o.end_time = x;
-    else if (KEY("boundary"))
-        p->o.boundary = strcmp(eq + 1, "fixed") ? RF_FEM_BOUNDARY_ABSORBING : RF_FEM_BOUNDARY_FIXED;
-    else if (KEY("law"))
-        p->in.layer_material = !strcmp(eq + 1, "elastic") ? RF_MATERIAL_ELASTIC : RF_MATERIAL_DRUCKER_PRAGER;
-    else if (KEY("ratio"))
-        p->o.boulder_mesh_ratio = x;
-    else if (KEY("g"))
-        p->in.gravity = x;
-    else if (KEY("threads"))
-        p->o.threads = (int)x;
-    else {
-        fprintf(stderr, "bench_fem3d_soil: unknown key in '%s'\n", arg);
-        exit(2);
-    }
-#undef KEY
-    return 1;
-}
 
 /* The S5 nominal point (examples/s5_v10.yaml), gravity 0, small strain. */
 static void s5_nominal(probe *p)
@@ -104,7 +43,7 @@ int main(int argc, char **argv)
     probe p;
     s5_nominal(&p);
     for (int i = 1; i < argc; i++) {
-        if (probe_set(&p, argv[i]))
+        if (probe_set(&p, argv[i], "bench_fem3d_soil"))
             continue;
         p.o.refinement = atof(argv[i]);
         f3_layer_contact lc;
