@@ -543,6 +543,18 @@ static void contact_release(f3_contact *C)
     memset(C, 0, sizeof *C);
 }
 
+/* What a run owns beyond the workspace pool (its contact, step check,
+ * kernels and mesh): one release for the impact and the gravity check. */
+static void solid_release(solid_run *R)
+{
+    contact_release(&R->C);
+    f3_step_check_free(&R->step_check);
+    fem_kernel_release(&R->S.kernel[0]);
+    fem_kernel_release(&R->S.kernel[1]);
+    if (R->have_mesh)
+        f3_mesh_free(&R->mesh);
+}
+
 /* Contact: slaves are the boulder's fine-box face nodes. */
 static rf_status solid_contact_setup(solid_run *R, rf_error *err)
 {
@@ -1321,12 +1333,7 @@ static rf_status solid_attempt(rf_fem_workspace *ws, const rf_impact_input *in, 
     }
     *unstable = R.unstable;
     fem_run_free(&run);
-    contact_release(&R.C);
-    f3_step_check_free(&R.step_check);
-    fem_kernel_release(&R.S.kernel[0]);
-    fem_kernel_release(&R.S.kernel[1]);
-    if (R.have_mesh)
-        f3_mesh_free(&R.mesh);
+    solid_release(&R);
     if (st != RF_OK && hist)
         rf_fem_history_free(hist);
     if (st != RF_OK && rep)
@@ -1470,12 +1477,7 @@ rf_status fem3d_gravity_free_run(const rf_impact_input *in, const rf_fem_options
     }
     if (st == RF_OK)
         gravity_free_report(&R, chk, closure);
-    f3_step_check_free(&R.step_check);
-    contact_release(&R.C);
-    fem_kernel_release(&R.S.kernel[0]);
-    fem_kernel_release(&R.S.kernel[1]);
-    if (R.have_mesh)
-        f3_mesh_free(&R.mesh);
+    solid_release(&R);
     rf_fem_workspace_free(ws);
     return st;
 }
