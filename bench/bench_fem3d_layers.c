@@ -33,15 +33,7 @@ int main(int argc, char **argv)
         rf_impact_output out;
         rf_fem_history H;
         rf_fem3d_report rep = {0};
-        rf_error err = {0};
-        const double c0 = cpu_seconds();
-        rf_status st = p.axi ? rf_fem_impact(&p.in, &p.o, &out, &H, &err)
-                             : rf_fem3d_impact_ex(&p.in, &p.o, &p.o3, &out, &H, &rep, &err);
-        if (st != RF_OK) {
-            fprintf(stderr, "bench_fem3d_layers: %s\n", err.msg);
-            return 1;
-        }
-        const double cpu = cpu_seconds() - c0, k0 = H.ke0;
+        const double cpu = probe_run(&p, &out, &H, &rep, "bench_fem3d_layers"), k0 = H.ke0;
         printf("model=%s ref=%g aspect=%g inner=%g core=%g domain=%g elements=%.0f steps=%.0f cpu=%.2f R_n=%.6f "
                "R_t=%.6f R_ke=%.6f omega=%.5f vib=%.3e slope=%.3e fric=%.3e W_n=%.3e closure=%.3e\n",
                p.axi ? "axi" : "3d", p.o.refinement, p.o3.layer_aspect, p.o3.boulder_inner, p.o3.core_factor,

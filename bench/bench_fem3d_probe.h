@@ -112,4 +112,20 @@ static inline int probe_set(probe *p, const char *arg, const char *program)
     exit(2);
 }
 
+/* One run of the probe's model (axisymmetric or 3D) with its CPU seconds;
+ * a failed run stops the program (exit 1) with the solver's message. */
+static inline double probe_run(const probe *p, rf_impact_output *out, rf_fem_history *H, rf_fem3d_report *rep,
+                               const char *program)
+{
+    rf_error err = {0};
+    const double c0 = cpu_seconds();
+    rf_status st = p->axi ? rf_fem_impact(&p->in, &p->o, out, H, &err)
+                          : rf_fem3d_impact_ex(&p->in, &p->o, &p->o3, out, H, rep, &err);
+    if (st != RF_OK) {
+        fprintf(stderr, "%s: %s\n", program, err.msg);
+        exit(1);
+    }
+    return cpu_seconds() - c0;
+}
+
 #endif

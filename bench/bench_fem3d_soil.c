@@ -51,15 +51,7 @@ int main(int argc, char **argv)
         rf_impact_output out;
         rf_fem_history H;
         rf_fem3d_report rep = {0};
-        rf_error err = {0};
-        const double c0 = cpu_seconds();
-        rf_status st = p.axi ? rf_fem_impact(&p.in, &p.o, &out, &H, &err)
-                             : rf_fem3d_impact_ex(&p.in, &p.o, &p.o3, &out, &H, &rep, &err);
-        if (st != RF_OK) {
-            fprintf(stderr, "bench_fem3d_soil: %s\n", err.msg);
-            return 1;
-        }
-        const double cpu = cpu_seconds() - c0, k0 = H.ke0;
+        const double cpu = probe_run(&p, &out, &H, &rep, "bench_fem3d_soil"), k0 = H.ke0;
         printf("model=%s angle=%.0f f=%g ref=%g large=%d h=%.4f elements=%.0f steps=%.0f cpu=%.2f R_n=%.4f R_t=%.4f "
                "R_ke=%.4f W_p=%.4f pen=%.4f crater=%.4f a=%.4f F=%.4g t_c=%.4g closure=%.2e contact_work=%.2e fric=%.3e g=%g W_g=%.3e "
                "rest=%d outside=%ld\n",
