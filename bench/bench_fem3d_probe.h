@@ -8,7 +8,8 @@
  * Option keys: large=0|1, core= (core_factor), domain= (domain_factor), end=
  * (end_time, s), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio),
  * threads=, aspect= (layer_aspect), inner= (boulder_inner), elong=
- * (elongation), full=0|1, dt= (dt_safety). */
+ * (elongation), full=0|1, dt= (dt_safety),
+ * kappa= (surface_mass_kappa). */
 #ifndef ROCKFUZZ_BENCH_FEM3D_PROBE_H
 #define ROCKFUZZ_BENCH_FEM3D_PROBE_H
 
@@ -73,6 +74,8 @@ static inline int probe_set_option(probe *p, const char *arg, size_t n, const ch
         p->o.large_deformation = x > 0 ? RF_FEM_LARGE_DEFORMATION : RF_FEM_SMALL_STRAIN;
     else if (PROBE_KEY("core"))
         p->o3.core_factor = x;
+    else if (PROBE_KEY("kappa"))
+        p->o3.surface_mass_kappa = x;
     else if (PROBE_KEY("domain"))
         p->o.domain_factor = x;
     else if (PROBE_KEY("end"))

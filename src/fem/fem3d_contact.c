@@ -53,15 +53,18 @@ static void cr_w(double t, double w[4], double dw[4])
 }
 
 /* The C1 master face at (xi, eta) in quad (i, j): nodes m and weights N of the 4 x 4 stencil
-   (clamped at the grid's edge, where a repeated node's weight is merged into its first copy)
-   and the slope S of the deformed face. */
+   (clamped at the grid's edge, where a repeated node's weight is merged into its first copy),
+   the slope S of the deformed face against the current tangential position (dz/dx =
+   J^-T dz/dX, J = d(x, y)/d(X, Y): the face is stretched where the soil flows out of a crater),
+   the tangential displacement ut there and J (row-major). */
 static void catmull_rom(const f3_mesh *mesh, const double *u, int i, int j, double xi, double eta, int *m,
-                        double *N, double S[2])
+                        double *N, double S[2], double ut[2], double J[4])
 {
     const int nx = mesh->nxt_s, ny = mesh->nyt_s;
     double wx[4], dwx[4], wy[4], dwy[4];
     cr_w(xi, wx, dwx), cr_w(eta, wy, dwy);
-    S[0] = S[1] = 0;
+    double G[3][2] = {{1, 0}, {0, 1}, {0, 0}}; /* d(x, y, z) / d(X, Y) of the deformed face */
+    ut[0] = ut[1] = 0;
     int q = 0;
     for (int a = 0; a < 4; a++)
         for (int b = 0; b < 4; b++, q++) {
@@ -70,20 +73,66 @@ static void catmull_rom(const f3_mesh *mesh, const double *u, int i, int j, doub
             jj = jj < 0 ? 0 : jj > ny - 1 ? ny - 1 : jj;
             m[q] = mesh->top_s[ii * ny + jj];
             N[q] = wx[a] * wy[b];
-            const double uz = u[3 * m[q] + 2];
-            S[0] += dwx[a] * wy[b] * uz / mesh->h_s, S[1] += wx[a] * dwy[b] * uz / mesh->h_s;
+            const double dX = dwx[a] * wy[b] / mesh->h_s, dY = wx[a] * dwy[b] / mesh->h_s, *um = u + 3 * m[q];
+            for (int d = 0; d < 3; d++)
+                G[d][0] += dX * um[d], G[d][1] += dY * um[d];
+            ut[0] += N[q] * um[0], ut[1] += N[q] * um[1];
         }
+    const double det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
+    S[0] = (G[1][1] * G[2][0] - G[1][0] * G[2][1]) / det;
+    S[1] = (-G[0][1] * G[2][0] + G[0][0] * G[2][1]) / det;
+    J[0] = G[0][0], J[1] = G[0][1], J[2] = G[1][0], J[3] = G[1][1];
     for (int a = 0; a < F3_NM; a++)
         for (int b = a + 1; b < F3_NM; b++)
             if (N[b] != 0 && m[b] == m[a])
                 N[a] += N[b], N[b] = 0;
 }
 
+/* The top grid's quad (i, j) and local (xi, eta) of the material point (Xm, Ym), clamped to the
+   grid; returns 1 if it was outside (the symmetry plane's side y < 0 of a half model is not). */
+static int grid_cell(const f3_mesh *mesh, double Xm, double Ym, int *i, int *j, double *xi, double *eta)
+{
+    const double fx = (Xm - mesh->x0_s) / mesh->h_s, fy = (Ym - mesh->y0_s) / mesh->h_s;
+    const int nx = mesh->nxt_s, ny = mesh->nyt_s;
+    int out = 0;
+    *i = (int)floor(fx), *j = (int)floor(fy);
+    if (*i < 0)
+        *i = 0, out = 1;
+    if (*i > nx - 2)
+        *i = nx - 2, out = 1;
+    if (*j < 0)
+        *j = 0, out = fy < -1e-9;
+    if (*j > ny - 2)
+        *j = ny - 2, out = 1;
+    *xi = fx - *i, *eta = fy - *j;
+    *xi = *xi < 0 ? 0 : *xi > 1 ? 1 : *xi;
+    *eta = *eta < 0 ? 0 : *eta > 1 ? 1 : *eta;
+    return out;
+}
+
+/* The master material point currently under the slave at (X, Y): X_m + u_t(X_m) = (X, Y) on the
+   C1 face, by Newton from X_m = (X, Y) (each step evaluates the face there); its stencil,
+   weights and slope into m, N, S.  Returns 1 if it lies outside the grid. */
+static int locate_master(const f3_mesh *mesh, const double *u, double X, double Y, int *m, double *N, double *S)
+{
+    double Xm = X, Ym = Y;
+    int out = 0;
+    for (int it = 0; it < 8; it++) {
+        int i, j;
+        double xi, eta, ut[2], J[4];
+        out = grid_cell(mesh, Xm, Ym, &i, &j, &xi, &eta);
+        catmull_rom(mesh, u, i, j, xi, eta, m, N, S, ut, J);
+        const double rx = X - Xm - ut[0], ry = Y - Ym - ut[1], det = J[0] * J[3] - J[1] * J[2];
+        if (out || fabs(rx) + fabs(ry) <= 1e-12 * mesh->h_s || !(det > 0))
+            break;
+        Xm += (J[3] * rx - J[1] * ry) / det, Ym += (-J[2] * rx + J[0] * ry) / det;
+    }
+    return out;
+}
+
 void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, const double *v, int threads, int repair)
 {
     (void)threads;
-    const double h = mesh->h_s;
-    const int nx = mesh->nxt_s, ny = mesh->nyt_s;
 #ifdef _OPENMP
 #pragma omp for schedule(static) nowait /* orphaned: shared by the caller's parallel region, if any */
 #endif
@@ -91,40 +140,9 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
         int s = C->slave[k];
         int *m = C->mnode + F3_NM * k;
         double *N = C->N + F3_NM * k;
-        if (repair) {
-            /* master material point currently under the slave: X_m + u_m(X_m) = x_s + u_s
-               (fixed point with the bilinear quad; the master's tangential displacement
-               gradient is small), then the C1 face there */
-            const double X = mesh->x[3 * s] + u[3 * s], Y = mesh->x[3 * s + 1] + u[3 * s + 1];
-            double Xm = X, Ym = Y;
-            int out = 0;
-            for (int it = 0; it < 4; it++) {
-                double fx = (Xm - mesh->x0_s) / h, fy = (Ym - mesh->y0_s) / h;
-                int i = (int)floor(fx), j = (int)floor(fy);
-                out = 0;
-                if (i < 0)
-                    i = 0, out = 1;
-                if (i > nx - 2)
-                    i = nx - 2, out = 1;
-                if (j < 0)
-                    j = 0, out = fy < -1e-9;
-                if (j > ny - 2)
-                    j = ny - 2, out = 1;
-                double xi = fx - i, eta = fy - j;
-                xi = xi < 0 ? 0 : xi > 1 ? 1 : xi;
-                eta = eta < 0 ? 0 : eta > 1 ? 1 : eta;
-                m[0] = mesh->top_s[i * ny + j], m[1] = mesh->top_s[(i + 1) * ny + j];
-                m[2] = mesh->top_s[(i + 1) * ny + j + 1], m[3] = mesh->top_s[i * ny + j + 1];
-                N[0] = (1 - xi) * (1 - eta), N[1] = xi * (1 - eta), N[2] = xi * eta, N[3] = (1 - xi) * eta;
-                double umx = 0, umy = 0;
-                for (int a = 0; a < 4; a++)
-                    umx += N[a] * u[3 * m[a]], umy += N[a] * u[3 * m[a] + 1];
-                Xm = X - umx, Ym = Y - umy;
-                if (it == 3)
-                    catmull_rom(mesh, u, i, j, xi, eta, m, N, C->S + 2 * k);
-            }
-            C->outside[k] = (unsigned char)out;
-        }
+        if (repair)
+            C->outside[k] = (unsigned char)locate_master(mesh, u, mesh->x[3 * s] + u[3 * s],
+                                                         mesh->x[3 * s + 1] + u[3 * s + 1], m, N, C->S + 2 * k);
         for (int d = 0; d < 2; d++) {
             double gu = u[3 * s + d];
             for (int a = 0; a < F3_NM; a++)

@@ -57,6 +57,14 @@ typedef struct {
     double layer_depth;    /* > 0: a node plane at z = -layer_depth (extruded mesh) [m] */
 } f3_mesh_spec;
 
+/* Mass redistribution at the slope's contact face (fem3d_mass.c): each slope element with
+ * a face on the contact face (face[node] != 0) whose Gershgorin bound lam_upper[e] is below
+ * kappa lam_max keeps alpha = lam_upper[e] / (kappa lam_max) of its face nodes' masses elm and
+ * gives the rest to the node below each; lam_upper[e] becomes kappa lam_max.  Returns the
+ * number of elements changed. */
+long f3_surface_mass_shift(const f3_mesh *mesh, const unsigned char *face, double *elm, double *lam_upper,
+                           double lam_max, double kappa);
+
 rf_status f3_mesh_build(const f3_mesh_spec *spec, f3_mesh *mesh, long max_elements, rf_error *err);
 void f3_mesh_free(f3_mesh *mesh);
 /* The extruded slope (fem3d_layer.c): its node, element and outer-quad

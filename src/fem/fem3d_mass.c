@@ -1,4 +1,5 @@
-/* fem3d_mass.c - the rigid-body moments of the boulder's lumped masses.
+/* fem3d_mass.c - the lumped masses: the rigid-body moments of the boulder's,
+ * and the mass redistribution at the slope's contact face.
  *
  * The faceted boulder mesh lies inside the spheroid, and its element-node
  * masses put the centre of mass and the moment of inertia a little off the
@@ -88,4 +89,54 @@ int f3_boulder_mass_moments(const f3_mesh *mesh, double *elm, double M, double X
         elm[k] *= 1 + c[0] + c[1] * psi[1] + c[2] * psi[2] + c[3] * psi[3];
     }
     return 1;
+}
+
+/* Mass redistribution at the slope's contact face (Khenous, Laborde & Renard
+ * 2008, Eur. J. Mech. A/Solids 27:918; Doyen, Ern & Piperno 2011, SIAM J.
+ * Sci. Comput. 33:223).  The forward-increment contact captures a surface node
+ * perfectly inelastically: it loses the relative kinetic energy of its mass,
+ * an O(h) loss (docs/validation-plastic.md 9e).  The method takes the mass
+ * off the contact nodes onto the interior ones, which makes the semi-discrete
+ * contact energy-conserving and converges like the mesh (the mass moved is
+ * that of a surface layer of one element, moved by one element).  An explicit
+ * scheme cannot take all of it (a massless node has no stable step), so here
+ * each contact-face element of the slope keeps the fraction alpha of its
+ * surface nodes' masses and gives the rest to the node below each (its edge
+ * neighbour off the face), with alpha = lambda_e / (kappa lambda_max): its
+ * element eigenvalue then stays below kappa lambda_max (M' >= alpha M), so the
+ * step, set by lambda_max, is unchanged, and kappa < 1 leaves the updated-
+ * Lagrangian step check room for the element to be compressed.  Elements at
+ * or above kappa lambda_max (an elastic granite face, whose elements set the
+ * step) are left alone.  lam_upper: each element's Gershgorin bound, raised to
+ * the redistributed element's bound.  face: per node, 1 on the contact face. */
+long f3_surface_mass_shift(const f3_mesh *mesh, const unsigned char *face, double *elm, double *lam_upper,
+                           double lam_max, double kappa)
+{
+    static const int ed[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                  {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    long n = 0;
+    for (long e = mesh->boulder_elems; e < mesh->n_elems; e++) {
+        const int *cn = mesh->conn + 8 * e;
+        int top[8], nt = 0, below[8];
+        for (int a = 0; a < 8; a++)
+            nt += top[a] = face[cn[a]] != 0;
+        const double alpha = lam_upper[e] / (kappa * lam_max);
+        if (nt != 4 || !(alpha > 0) || alpha >= 1)
+            continue;
+        for (int a = 0; a < 8; a++)
+            below[a] = -1;
+        for (int k = 0; k < 12; k++) {
+            const int p = ed[k][0], q = ed[k][1];
+            if (top[p] != top[q])
+                below[top[p] ? p : q] = top[p] ? q : p;
+        }
+        for (int a = 0; a < 8; a++)
+            if (top[a]) {
+                elm[8 * e + below[a]] += (1 - alpha) * elm[8 * e + a];
+                elm[8 * e + a] *= alpha;
+            }
+        lam_upper[e] /= alpha;
+        n++;
+    }
+    return n;
 }

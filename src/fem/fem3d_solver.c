@@ -87,6 +87,8 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(o3->core_factor >= 1 && o3->core_factor <= 4), "fem3d: core_factor must be in [1, 4], got %g",
         o3->core_factor);
     BAD(!(o3->elongation >= 0 && o3->elongation <= 4), "fem3d: elongation must be in [0, 4], got %g", o3->elongation);
+    BAD(!(o3->surface_mass_kappa >= 0 && o3->surface_mass_kappa <= 1),
+        "fem3d: surface_mass_kappa must be in [0, 1], got %g", o3->surface_mass_kappa);
     BAD(!(o3->layer_aspect >= 0.5 && o3->layer_aspect <= 4), "fem3d: layer_aspect must be in [0.5, 4], got %g",
         o3->layer_aspect);
     BAD(!(o3->boulder_inner >= 2.5 && o3->boulder_inner <= 20), "fem3d: boulder_inner must be in [2.5, 20], got %g",
@@ -100,7 +102,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the 3D solver in the workspace pool. */
 enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM, Q_DASH, Q_ELM, Q_LAMX, Q_FIXED,
-       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM, Q_LAMU, Q_ULE, Q_FGRAV };
+       Q_OUTER, Q_UB, Q_VTK, Q_EMAT, Q_USE2, Q_DASHL, Q_DNRM, Q_LAMU, Q_ULE, Q_FGRAV, Q_MSHIFT };
 
 /* The state of one 3D run. */
 typedef struct {
@@ -118,6 +120,8 @@ typedef struct {
     unsigned char *ul_elem; /* large: per element, on the UL kernel (the step check watches those) */
     f3_step_check step_check; /* large: the elements' step bounds at their current size */
     double *lamu;         /* large: each element's Gershgorin bound of lambda_max (reference geometry) */
+    double *mshift;       /* per node: mass added by the contact face's redistribution [kg, model] (or NULL) */
+    long shifted_elems;   /* contact-face elements whose masses were redistributed */
     long unstable;        /* large: an element whose current step bound fell below dt (-1: none) */
     int layer, rigid;     /* a layer over the slope (fem3d_layer.c); a rigid boulder (fem3d_rigid.c) */
     double a_box;         /* contact radius the fine boxes cover (the larger of slope and layer) [m] */
@@ -445,6 +449,33 @@ static double solid_lambda_max(solid_run *R, double *lam_upper)
     return hex8_max_eigenvalue(R->ne, solid_element, R, lam_upper, NULL);
 }
 
+/* The mass redistribution at the slope's contact face (fem3d_mass.c): the nodes of the master
+ * grid, the element-node masses and the nodal masses again; mshift = each node's change. */
+static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
+{
+    unsigned char *face = calloc((size_t)R->nn, 1);
+    R->mshift = fem_pool_get(R->pool, Q_MSHIFT, (size_t)R->nn * sizeof(double), 1);
+    if (!face || !R->mshift) { /* without memory the masses stay lumped as they are */
+        free(face);
+        R->mshift = NULL;
+        return;
+    }
+    for (long k = 0; k < (long)R->mesh.nxt_s * R->mesh.nyt_s; k++)
+        face[R->mesh.top_s[k]] = !(R->mesh.flags[R->mesh.top_s[k]] & F3_OUTER);
+    R->shifted_elems = f3_surface_mass_shift(&R->mesh, face, R->elm, lam_upper, lam_max, R->o3.surface_mass_kappa);
+    free(face);
+    const f3_system *S = &R->S;
+    for (long n = R->nbn; n < R->nn && R->shifted_elems > 0; n++) {
+        double m = 0;
+        for (long p = S->inc_ptr[n]; p < S->inc_ptr[n + 1]; p++)
+            m += R->elm[S->inc[p]];
+        R->mshift[n] = m - R->mass[3 * n];
+        R->mass[3 * n] = R->mass[3 * n + 1] = R->mass[3 * n + 2] = m;
+        for (int q = 0; q < 3; q++)
+            R->invm[3 * n + q] = R->fixed[3 * n + q] ? 0 : 1 / m;
+    }
+}
+
 /* Nodal masses (the boulder's density scaled so that the rigid-body mass is
  * exact: its mesh is a polyhedron inside the spheroid), the largest element
  * eigenvalue and the time step. */
@@ -469,9 +500,11 @@ static void solid_masses(solid_run *R)
     }
     for (long dd = 0; dd < R->ndof; dd++)
         R->invm[dd] = R->fixed[dd] ? 0 : 1 / R->mass[dd];
-    double *lam_upper = R->large ? fem_pool_get(R->pool, Q_LAMU, (size_t)R->ne * sizeof(double), 0) : NULL;
+    double *lam_upper = fem_pool_get(R->pool, Q_LAMU, (size_t)R->ne * sizeof(double), 0);
     const double lam_max = solid_lambda_max(R, lam_upper);
-    R->lamu = lam_upper;
+    if (lam_upper && R->o3.surface_mass_kappa > 0)
+        surface_mass_shift(R, lam_upper, lam_max);
+    R->lamu = R->large ? lam_upper : NULL;
     R->dt_edge = DBL_MAX;
     static const int ed[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                   {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
@@ -1425,7 +1458,7 @@ static void gravity_load_check(const solid_run *R, f3_gravity_check *chk)
             continue;
         chk->box_nodes++;
         for (int q = 0; q < 3; q++) {
-            const double w = R->mass[3 * i] * R->grav.g;
+            const double w = (R->mass[3 * i] - (R->mshift ? R->mshift[i] : 0)) * R->grav.g; /* its own weight */
             chk->load_err = fmax(chk->load_err, fabs(fg[3 * i + q] - w * R->grav.dir[q]) / w);
         }
     }

@@ -34,6 +34,7 @@ void rf_fem3d_options_default(rf_fem3d_options *o3)
     o3->full_model = 0;
     o3->core_factor = 1.3;
     o3->elongation = 1.0;
+    o3->surface_mass_kappa = 0.05;
     o3->layer_aspect = 1.6;
     o3->boulder_inner = 4.0;
 }
