@@ -9,7 +9,9 @@
  * forms, and the normal row G v must be the derivative of that gap (a finite
  * difference of the located gap along a random velocity field).  With the
  * material slope, the normal contact did work on a frictionless sliding pair:
- * +1.7 % of the kinetic energy in the S5 soil at a/h 2. */
+ * +1.7 % of the kinetic energy in the S5 soil at a/h 2.  And the mass
+ * redistribution at the contact face (fem3d_mass.c) on one element: mass
+ * conserved, the element's eigenvalue bound raised to kappa lambda_max. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -122,11 +124,46 @@ static void test_normal_row_is_gap_derivative(void **state)
     assert_true(fabs(gv[0] - dg) < 1e-6 * (1 + fabs(dg)));
 }
 
+/* The mass redistribution of one unit-cube element (top face = nodes 4-7 on the contact face):
+   kappa lambda_max = 5 lambda_e keeps alpha = 0.2 of the face nodes' mass, gives the rest to the
+   node below each (a <-> a + 4 along the vertical edges), conserves the mass and bounds the
+   element's eigenvalue by kappa lambda_max; an element already above kappa lambda_max, or a slope
+   element without a whole face on it, is left alone. */
+static void test_surface_mass_shift(void **state)
+{
+    (void)state;
+    f3_mesh m = {0};
+    double x[8 * 3];
+    int conn[3 * 8];
+    unsigned char face[8] = {0, 0, 0, 0, 1, 1, 1, 1};
+    for (int a = 0; a < 8; a++)
+        x[3 * a] = (a == 1 || a == 2 || a == 5 || a == 6), x[3 * a + 1] = (a == 2 || a == 3 || a == 6 || a == 7),
+                  x[3 * a + 2] = a >= 4 ? 0 : -1;
+    for (int e = 0; e < 3; e++)
+        for (int a = 0; a < 8; a++)
+            conn[8 * e + a] = a;
+    m.n_nodes = 8, m.x = x, m.conn = conn, m.n_elems = 3, m.boulder_elems = 1; /* element 0: the boulder */
+    double elm[24], lam[3] = {1, 1, 6};
+    for (int k = 0; k < 24; k++)
+        elm[k] = 1 + 0.1 * (k % 8);
+    const double lam_max = 100, kappa = 0.05, before = elm[8 + 4] + elm[8 + 0];
+    assert_int_equal(f3_surface_mass_shift(&m, face, elm, lam, lam_max, kappa), 1); /* element 2: 6 >= kappa lam_max = 5 */
+    for (int a = 0; a < 8; a++)
+        assert_true(elm[a] == 1 + 0.1 * a && elm[16 + a] == 1 + 0.1 * a); /* boulder and element 2 untouched */
+    for (int a = 4; a < 8; a++) {
+        assert_true(fabs(elm[8 + a] - 0.2 * (1 + 0.1 * a)) < 1e-15);
+        assert_true(fabs(elm[8 + a - 4] - (1 + 0.1 * (a - 4) + 0.8 * (1 + 0.1 * a))) < 1e-15);
+    }
+    assert_true(fabs(elm[8 + 4] + elm[8 + 0] - before) < 1e-15);
+    assert_true(fabs(lam[1] - kappa * lam_max) < 1e-12 && lam[0] == 1 && lam[2] == 6);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stretched_face_closed_form),
         cmocka_unit_test(test_normal_row_is_gap_derivative),
+        cmocka_unit_test(test_surface_mass_shift),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

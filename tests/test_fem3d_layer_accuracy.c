@@ -4,7 +4,7 @@
  * test_fem3d_layer.c): Hertz with the rigid body's E* and the axisymmetric
  * rigid boulder, elastic boulders 100 and 1000 times stiffer, and the
  * axisymmetric layered model (a rock-like layer in small strain, the S5 soil
- * in large deformation). */
+ * in large deformation, its energy closure) and the mass redistribution at the contact face. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -119,8 +119,9 @@ static void test_layer_vs_axisymmetric(void **state)
 /* The S5 soil (a thick soft layer: the mesh sized from its own contact, docs/validation-plastic.md
    section 9d) at normal incidence, 3D at a/h 2 against the axisymmetric model at a/h 3 (its depth moves
    0.6 % from a/h 2), both in large deformation, fixed boundary, automatic domain: the depth and the
-   plastic work.  R_n (~0.05, the difference of two large energies) is not held: the 3D energy closure
-   on this soil is ~3 % of KE0 (the rigid boulder's slave spacing, section 9d). */
+   plastic work, and the 3D energy closure below the 0.5 % of KE0 that the axisymmetric model meets
+   (section 9e: -3.8e-2 before the contact face's current slope and the mass redistribution).  R_n
+   (~0.05, the difference of two large energies) is not held. */
 static void test_soft_layer_vs_axisymmetric(void **state)
 {
     (void)state;
@@ -137,7 +138,36 @@ static void test_soft_layer_vs_axisymmetric(void **state)
     show("rigid on the S5 soil, axisym.", &ax);
     assert_true(fabs(s3.penetration_max / ax.penetration_max - 1) < 0.05);
     assert_true(fabs(s3.plastic_work / ax.plastic_work - 1) < 0.05);
-    assert_true(fabs(s3.energy_error) < 0.05);
+    assert_true(fabs(s3.energy_error) < 5e-3);
+}
+
+/* The capture loss and the mass redistribution (section 9e): an elastic soft layer (the S5 soil's
+   elasticity) under the rigid boulder at 10 m/s, a/h 2.  Energy is conserved by the continuum; the
+   forward-increment contact loses the captured face nodes' relative kinetic energy (an O(h) loss),
+   which the redistribution takes off the face.  The step must be the same (the redistributed
+   elements stay below kappa lambda_max) and R_n may move by the mesh's error only. */
+static void test_soft_elastic_capture(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(0, 0);
+    s5_soil(&in);
+    in.layer_material = RF_MATERIAL_ELASTIC;
+    rf_fem_options o = coarse(2);
+    o.domain_factor = 0, o.boundary = RF_FEM_BOUNDARY_FIXED, o.large_deformation = RF_FEM_LARGE_DEFORMATION;
+    rf_fem3d_options o3;
+    rf_fem3d_options_default(&o3);
+    rf_impact_output on, off;
+    rf_fem_history hon = {0}, hoff = {0};
+    run3d_ex(&in, &o, &o3, &on, &hon, NULL);
+    o3.surface_mass_kappa = 0;
+    run3d_ex(&in, &o, &o3, &off, &hoff, NULL);
+    show("elastic soft layer, redistributed", &on);
+    show("elastic soft layer, lumped", &off);
+    assert_true(hon.dt == hoff.dt);
+    assert_true(fabs(off.energy_error) > 3e-3); /* the loss this removes */
+    assert_true(fabs(on.energy_error) < 1e-3);
+    assert_true(fabs(on.R_n - off.R_n) < 0.01);
+    rf_fem_history_free(&hon), rf_fem_history_free(&hoff);
 }
 
 int main(void)
@@ -147,6 +177,7 @@ int main(void)
         cmocka_unit_test(test_rigid_vs_stiff),
         cmocka_unit_test(test_layer_vs_axisymmetric),
         cmocka_unit_test(test_soft_layer_vs_axisymmetric),
+        cmocka_unit_test(test_soft_elastic_capture),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
