@@ -4,7 +4,7 @@
  * rotation of any size; the hypoelastic uniaxial compression to a large
  * strain), and whole impacts (the soft-soil case: energy closure and a
  * penetration of a large fraction of the radius; the contact's two LCP
- * solvers agree).  The small-speed impact against the small-strain result is
+ * solvers agree; the mass redistribution at the contact face).  The small-speed impact against the small-strain result is
  * in tests/test_fem_large_accuracy.c. */
 #include <math.h>
 #include <stdio.h>
@@ -189,6 +189,45 @@ static void test_soft_soil_energy(void **state)
     rf_fem_history_free(&hist);
 }
 
+/* The mass redistribution at the contact face (docs/validation-plastic.md 9e) in the axisymmetric
+ * model: the S5 soil (1 m over granite, rigid boulder r0 0.5 m, 10 m/s, gravity 0) at a coarse a/h 2.
+ * The granite sets the step, so the soil's face elements give most of their face nodes' mass to the
+ * nodes below: the step stays the same to the bit, and the capture loss of the forward-increment
+ * contact (the energy closure) falls to less than half.  An elastic granite impact, whose face
+ * elements set the step, is not touched: the same bits with and without. */
+static void test_surface_mass_redistribution(void **state)
+{
+    (void)state;
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    in.radius = 0.5, in.velocity = 10, in.gravity = 0, in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    in.layer_thickness = 1, in.layer_density = 1900, in.layer_E = 100e6, in.layer_poisson = 0.3;
+    in.layer_material = RF_MATERIAL_DRUCKER_PRAGER, in.layer_cohesion = 10e3;
+    in.layer_friction_angle = 40 * M_PI / 180, in.layer_dilatancy_angle = 5 * M_PI / 180;
+    in.layer_cap_pressure = 200e3, in.layer_cap_hardening = 40e6;
+    rf_fem_options o = axi_options(2, RF_FEM_KINEMATICS_AUTO);
+    o.domain_factor = 0;
+    rf_impact_output on, off;
+    rf_fem_history hon, hoff;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &on, &hon, &err), RF_OK);
+    o.surface_mass_kappa = 0;
+    assert_int_equal(rf_fem_impact(&in, &o, &off, &hoff, &err), RF_OK);
+    printf("S5 soil, a/h 2: closure %.3e redistributed, %.3e lumped; F_max %.4g / %.4g N; R_n %.4f / %.4f; dt %.6g / %.6g\n",
+           on.energy_error, off.energy_error, on.contact_force_max, off.contact_force_max, on.R_n, off.R_n, hon.dt,
+           hoff.dt);
+    assert_true(hon.dt == hoff.dt);
+    assert_true(on.energy_error < 0.5 * off.energy_error);
+    rf_fem_history_free(&hon), rf_fem_history_free(&hoff);
+    rf_impact_input g;
+    rf_impact_input_default(&g); /* granite on granite, 10 m/s */
+    o = axi_options(3, RF_FEM_KINEMATICS_AUTO);
+    assert_int_equal(rf_fem_impact(&g, &o, &on, NULL, &err), RF_OK);
+    o.surface_mass_kappa = 0;
+    assert_int_equal(rf_fem_impact(&g, &o, &off, NULL, &err), RF_OK);
+    assert_true(on.R_n == off.R_n && on.contact_force_max == off.contact_force_max && on.steps == off.steps);
+}
+
 /* The contact's single-pivot fallback (Murty's least-index rule, used when
  * the block active-set method cycles) against the block method: the
  * complementarity problem has one solution (G M^-1 G^T is positive
@@ -277,6 +316,7 @@ int main(void)
         cmocka_unit_test(test_identity_names_kinematics),
         cmocka_unit_test(test_soft_soil_energy),
         cmocka_unit_test(test_contact_single_pivot),
+        cmocka_unit_test(test_surface_mass_redistribution),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -47,10 +47,6 @@ typedef struct {
     double boulder_inner;   /* boulder: radius (/ r0) of the contact-side half-space image, default 4 */
     int layered_mesh;       /* 1: the slope as the extruded mesh a layer uses (horizontal node planes, a
                                cylinder of radius and depth domain) even without a layer; for checks, default 0 */
-    double surface_mass_kappa; /* mass redistribution at the slope's contact face (docs/validation-plastic.md
-                               9e): a face element whose eigenvalue is below kappa x the mesh's largest gives
-                               its face nodes' mass to the nodes below until it reaches it (the step is
-                               unchanged); in (0, 1], 0 = off, default 0.05 */
 } rf_fem3d_options;
 
 void rf_fem3d_options_default(rf_fem3d_options *o3);

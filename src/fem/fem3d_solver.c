@@ -87,8 +87,6 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(o3->core_factor >= 1 && o3->core_factor <= 4), "fem3d: core_factor must be in [1, 4], got %g",
         o3->core_factor);
     BAD(!(o3->elongation >= 0 && o3->elongation <= 4), "fem3d: elongation must be in [0, 4], got %g", o3->elongation);
-    BAD(!(o3->surface_mass_kappa >= 0 && o3->surface_mass_kappa <= 1),
-        "fem3d: surface_mass_kappa must be in [0, 1], got %g", o3->surface_mass_kappa);
     BAD(!(o3->layer_aspect >= 0.5 && o3->layer_aspect <= 4), "fem3d: layer_aspect must be in [0.5, 4], got %g",
         o3->layer_aspect);
     BAD(!(o3->boulder_inner >= 2.5 && o3->boulder_inner <= 20), "fem3d: boulder_inner must be in [2.5, 20], got %g",
@@ -462,7 +460,7 @@ static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
     }
     for (long k = 0; k < (long)R->mesh.nxt_s * R->mesh.nyt_s; k++)
         face[R->mesh.top_s[k]] = !(R->mesh.flags[R->mesh.top_s[k]] & F3_OUTER);
-    R->shifted_elems = f3_surface_mass_shift(&R->mesh, face, R->elm, lam_upper, lam_max, R->o3.surface_mass_kappa);
+    R->shifted_elems = f3_surface_mass_shift(&R->mesh, face, R->elm, lam_upper, lam_max, R->o.surface_mass_kappa);
     free(face);
     const f3_system *S = &R->S;
     for (long n = R->nbn; n < R->nn && R->shifted_elems > 0; n++) {
@@ -502,7 +500,7 @@ static void solid_masses(solid_run *R)
         R->invm[dd] = R->fixed[dd] ? 0 : 1 / R->mass[dd];
     double *lam_upper = fem_pool_get(R->pool, Q_LAMU, (size_t)R->ne * sizeof(double), 0);
     const double lam_max = solid_lambda_max(R, lam_upper);
-    if (lam_upper && R->o3.surface_mass_kappa > 0)
+    if (lam_upper && R->o.surface_mass_kappa > 0 && (R->layer || R->plastic[1])) /* soil: section 9e */
         surface_mass_shift(R, lam_upper, lam_max);
     R->lamu = R->large ? lam_upper : NULL;
     R->dt_edge = DBL_MAX;

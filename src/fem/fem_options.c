@@ -22,6 +22,7 @@ void rf_fem_options_default(rf_fem_options *opt)
     opt->core_factor = 2.5;
     opt->grading = 1.15;
     opt->dt_safety = 0.9;
+    opt->surface_mass_kappa = 0.25;
     opt->vtk_frames = 60;
     opt->history_stride = 0;
     opt->max_elements = 2000000;
@@ -34,7 +35,6 @@ void rf_fem3d_options_default(rf_fem3d_options *o3)
     o3->full_model = 0;
     o3->core_factor = 1.3;
     o3->elongation = 1.0;
-    o3->surface_mass_kappa = 0.05;
     o3->layer_aspect = 1.6;
     o3->boulder_inner = 4.0;
 }
@@ -113,6 +113,8 @@ static const struct {
     {"core_factor", offsetof(rf_fem_options, core_factor), 1.5, 10, 1.5, 10, 0, "(fine zone / a)"},
     {"grading", offsetof(rf_fem_options, grading), 1, 2, 1, 2, 0, "(element-size growth)"},
     {"dt_safety", offsetof(rf_fem_options, dt_safety), 1e-6, 4, 1e-6, 1, 0, "(time step / eigenvalue bound)"},
+    {"surface_mass_kappa", offsetof(rf_fem_options, surface_mass_kappa), 0, 1, 0, 1, 0,
+     "(contact-face element eigenvalue / the mesh's largest after the mass redistribution; 0 = off)"},
     {"end_time", offsetof(rf_fem_options, end_time), 0, INFINITY, 0, INFINITY, 0, "[s] (0 = automatic)"},
     {"duration_threshold", offsetof(rf_fem_options, duration_threshold), 0, 0.4999999, 0, 0.4999999, 0,
      "(share of F_max)"},

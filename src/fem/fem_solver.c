@@ -72,7 +72,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the axisymmetric solver in the workspace pool. */
 enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DASH, P_OUTER, P_ELM, P_FIXED, P_VTK,
-       P_EMAT, P_USE2, P_DTE, P_PACK0, P_PACK1, P_FGRAV };
+       P_EMAT, P_USE2, P_DTE, P_PACK0, P_PACK1, P_FGRAV, P_MSHIFT };
 
 /* The state of one axisymmetric run. */
 typedef struct {
@@ -84,6 +84,7 @@ typedef struct {
     unsigned char *emat;  /* material of each element: 0 boulder, 1 slope, 2 layer */
     int layer;            /* a layer of thickness in->layer_thickness over the slope */
     double V, L, h, hb;
+    double fine_r;        /* the slope's uniform fine zone reaches r = fine_r [m] */
     fem_mesh mesh;
     int have_mesh;
     long nn, ndof, ne, nbd;
@@ -104,6 +105,8 @@ typedef struct {
     int *outer;
     long nouter;
     double dt, dt_bound, dt_edge, mesh_mass_b, Mb, ke0, W_abs;
+    double *mshift;       /* per node: mass added by the contact face's redistribution [kg] (or NULL) */
+    long shifted_elems;   /* contact-face elements whose masses were redistributed */
     /* gravity (docs/validation-plastic.md "Gravity"): g > 0 gives the body load fgrav
        (the boulder's lumped weight, the slope's geostatic internal force at u = 0),
        its work W_grav, the elastic energy E0 of the geostatic stress and the
@@ -156,6 +159,7 @@ static rf_status axi_mesh(axi_run *S, rf_error *err)
     if (ss.n * ss.h * 4 > S->L)
         return rf_fail(err, RF_EINVAL, "fem: domain radius %g m is too small for the fine zone (%g m)", S->L,
                        ss.n * ss.h);
+    S->fine_r = ss.n * ss.h;
     rf_status st = fem_mesh_build(&bs, &ss, &S->mesh, o->max_elements, err);
     S->have_mesh = st == RF_OK;
     return st;
@@ -258,9 +262,85 @@ static long axi_step_violation(const axi_run *S)
     return -1;
 }
 
+/* Element e's largest eigenvalue of M_e^-1 K_e (a collapsed quad's repeated node with its masses merged). */
+static double axi_element_lambda(const axi_run *S, const double *elm, const unsigned char *fixed, long e)
+{
+    const int *c = S->mesh.conn + 4 * e;
+    int freed[8];
+    double me[4];
+    for (int a = 0; a < 4; a++) {
+        freed[2 * a] = !fixed[2 * c[a]];
+        freed[2 * a + 1] = !fixed[2 * c[a] + 1];
+        me[a] = 0;
+        for (int b = 0; b < 4; b++)
+            if (c[b] == c[a])
+                me[a] += elm[4 * e + b];
+    }
+    return fem_element_lambda_max(S->K + 64 * e, me, freed);
+}
+
+/* The mass redistribution at the slope's contact face (docs/validation-plastic.md 9e; the 3D form
+ * is fem3d_mass.c), for soil (a layer, an elasto-plastic slope): a slope quad with an edge on the
+ * contact face (the slope's surface nodes the contact can reach: the fine zone, out to the
+ * boulder's radius) whose eigenvalue lambda_e is below kappa lambda_max keeps alpha = lambda_e /
+ * (kappa lambda_max) of the face nodes' element masses and gives the rest to the node below each
+ * (its neighbour off the face along the quad's other edge); its eigenvalue stays below kappa
+ * lambda_max, so the step is unchanged.  Returns the number of elements changed. */
+static long axi_surface_mass_shift(axi_run *S, double *elm, const unsigned char *fixed, double lam_max)
+{
+    const fem_mesh *mesh = &S->mesh;
+    unsigned char *face = calloc((size_t)S->nn, 1);
+    if (!face)
+        return 0; /* without memory the masses stay lumped as they are */
+    const double reach = fmax(S->fine_r, S->H.c); /* soil is penetrated out to the boulder's radius */
+    for (long k = 0; k < mesh->n_ssurf; k++) {
+        const int i = mesh->ssurf[k];
+        face[i] = !(mesh->flags[i] & FEM_OUTER) && mesh->r[i] <= reach * (1 + 1e-9);
+    }
+    long n = 0;
+    for (long e = mesh->boulder_elems; e < S->ne; e++) {
+        const int *c = mesh->conn + 4 * e;
+        int top[4], nt = 0, distinct = 1;
+        for (int a = 0; a < 4; a++) {
+            nt += top[a] = face[c[a]];
+            for (int b = 0; b < a; b++)
+                distinct &= c[b] != c[a];
+        }
+        if (nt != 2 || !distinct || (top[0] && top[2]) || (top[1] && top[3]))
+            continue; /* not one edge on the face, or a collapsed quad */
+        const double alpha = axi_element_lambda(S, elm, fixed, e) / (S->o.surface_mass_kappa * lam_max);
+        if (!(alpha > 0) || alpha >= 1)
+            continue;
+        for (int a = 0; a < 4; a++)
+            if (top[a]) {
+                const int below = top[(a + 1) % 4] ? (a + 3) % 4 : (a + 1) % 4;
+                elm[4 * e + below] += (1 - alpha) * elm[4 * e + a];
+                elm[4 * e + a] *= alpha;
+            }
+        if (S->dte)
+            S->dte[e] = 2 / sqrt(axi_element_lambda(S, elm, fixed, e)) / element_size(mesh, e, NULL);
+        n++;
+    }
+    free(face);
+    return n;
+}
+
+/* Nodal masses from the element-node masses, and their inverses. */
+static void axi_nodal_masses(axi_run *S, const double *elm, const unsigned char *fixed)
+{
+    memset(S->mass, 0, (size_t)S->ndof * sizeof *S->mass);
+    for (long e = 0; e < S->ne; e++)
+        for (int a = 0; a < 4; a++) {
+            const int c = S->mesh.conn[4 * e + a];
+            S->mass[2 * c] += elm[4 * e + a], S->mass[2 * c + 1] += elm[4 * e + a];
+        }
+    for (long d = 0; d < S->ndof; d++)
+        S->invm[d] = fixed[d] ? 0 : 1 / S->mass[d];
+}
+
 /* Constraints (u_r = 0 on the axis; the outer surface if fixed), nodal
  * masses, the largest element eigenvalue, the time step. */
-static void axi_masses(axi_run *S, const double *elm, unsigned char *fixed)
+static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
 {
     const fem_mesh *mesh = &S->mesh;
     for (long i = 0; i < S->nn; i++) {
@@ -297,6 +377,15 @@ static void axi_masses(axi_run *S, const double *elm, unsigned char *fixed)
     }
     for (long d = 0; d < S->ndof; d++)
         S->invm[d] = fixed[d] ? 0 : 1 / S->mass[d];
+    if (S->o.surface_mass_kappa > 0 && (S->layer || S->plastic[1]) && /* soil only: section 9e */
+        (S->mshift = fem_pool_get(S->pool, P_MSHIFT, (size_t)S->nn * sizeof(double), 1)) &&
+        (S->shifted_elems = axi_surface_mass_shift(S, elm, fixed, lam_max)) > 0) {
+        for (long i = 0; i < S->nn; i++)
+            S->mshift[i] = -S->mass[2 * i];
+        axi_nodal_masses(S, elm, fixed);
+        for (long i = 0; i < S->nn; i++)
+            S->mshift[i] += S->mass[2 * i];
+    }
     S->dt = fem_time_step(lam_max, S->o.dt_safety, &S->dt_bound);
 }
 
@@ -1018,11 +1107,12 @@ rf_status fem_axi_slope_at_rest(const rf_impact_input *in, const rf_fem_options 
         chk->elements = S.ne - S.mesh.boulder_elems, chk->outside = S.geo_outside;
         chk->load_ratio_min = INFINITY, chk->load_ratio_max = -INFINITY;
         for (long i = S.mesh.boulder_nodes; S.fgrav && i < S.nn; i++) {
+            const double m = S.mass[2 * i + 1] - (S.mshift ? S.mshift[i] : 0); /* the node's own mass */
             if (S.invm[2 * i + 1] > 0)
-                chk->load_sum += S.fgrav[2 * i + 1], chk->weight_sum -= S.mass[2 * i + 1] * S.g;
-            if (S.mesh.flags[i] || S.mass[2 * i + 1] == 0)
+                chk->load_sum += S.fgrav[2 * i + 1], chk->weight_sum -= m * S.g;
+            if (S.mesh.flags[i] || m == 0)
                 continue;
-            const double ratio = S.fgrav[2 * i + 1] / (-S.mass[2 * i + 1] * S.g);
+            const double ratio = S.fgrav[2 * i + 1] / (-m * S.g);
             chk->load_ratio_min = fmin(chk->load_ratio_min, ratio), chk->load_ratio_max = fmax(chk->load_ratio_max, ratio);
         }
         chk->dt = S.dt;
