@@ -6,7 +6,11 @@
  * and carries one mean pressure per element; the material point law with a
  * huge yield stress equals the linear one; a J2 point driven into plastic
  * flow reports a dissipation equal to the work sum_q w_q sigma : deps less
- * the stored elastic energy; two laws in one block act element by element. */
+ * the stored elastic energy; at the soil's strains under a sunk boulder (a
+ * uniform compression 0.7 through the Drucker-Prager cap, with shear) every
+ * point carries the stress of one material point driven along the same path,
+ * the forces do the virtual work of that stress and the dissipation is the
+ * point's times the volume; two laws in one block act element by element. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -19,6 +23,7 @@
 
 #include "fem/fem3d_internal.h"
 #include "fem/fem_kernel.h"
+#include "fem/fem_kernel_points3d.h"
 #include "fem/hex8_kernel.h"
 
 enum { NE = 13 };
@@ -208,6 +213,80 @@ static void test_material_law(void **state)
     fem_kernel_release(&km);
 }
 
+/* The S5 colluvium (examples/s5_v10.yaml): Drucker-Prager with a cap. */
+static void colluvium(rf_material *m)
+{
+    rf_material_params p;
+    rf_material_params_default(&p);
+    p.model = RF_MATERIAL_DRUCKER_PRAGER, p.E = 100e6, p.poisson = 0.3, p.cohesion = 10e3;
+    p.friction_angle = 40 * acos(-1.0) / 180, p.dilatancy_angle = 5 * acos(-1.0) / 180;
+    p.cap_pressure = 200e3, p.cap_hardening = 40e6;
+    rf_error err;
+    assert_int_equal(rf_material_init(m, &p, &err), RF_OK);
+}
+
+/* At the strains under a boulder sunk into soil (0.6-0.8, docs/validation-plastic.md 9d) the
+   small-strain kernel is the material point: an affine field u = t A x (uniform displacement
+   gradient, t = 0..1 in equal steps, B-bar on) gives every Gauss point of every distorted
+   element the stress of one point driven by rf_material_update along eps = t sym(A); the nodal
+   forces do the virtual work V sigma : B of any affine field u = B x; the dissipation is the
+   point's times the volume.  Compression 0.7 through the cap with a shear 0.5. */
+static void test_homogeneous_large_strain(void **state)
+{
+    (void)state;
+    double x[24 * NE], u[24 * NE], fe[24 * NE];
+    int conn[8 * NE];
+    random_elements(NE, 29, x, conn);
+    rf_material m;
+    colluvium(&m);
+    const fem_point_law law = fem_point_law_material3d(&m);
+    fem_kernel k;
+    rf_error err;
+    assert_int_equal(fem_kernel_points_hex(&k, 0, NE, x, conn, &law, NULL, NULL, 1, &err), RF_OK);
+    const double A[9] = {0, 0, 0.5, 0, 0, 0, 0, 0, -0.7}; /* d u_c / d x_j at 3c + j */
+    const double de[6] = {A[0], A[4], A[8], A[1] + A[3], A[5] + A[7], A[2] + A[6]};
+    const int nstep = 140;
+    double sig[6] = {0}, D = 0, Dsum = 0, V = 0;
+    rf_material_state st = {0};
+    for (int n = 1; n <= nstep; n++) {
+        for (int a = 0; a < 8 * NE; a++)
+            for (int c = 0; c < 3; c++)
+                u[3 * a + c] = (double)n / nstep * (A[3 * c] * x[3 * a] + A[3 * c + 1] * x[3 * a + 1] +
+                                                    A[3 * c + 2] * x[3 * a + 2]);
+        field_forces(&k, u, fe);
+        k.ops->commit(&k);
+        double d[6];
+        for (int i = 0; i < 6; i++)
+            d[i] = de[i] / nstep;
+        rf_material_update(&m, d, sig, &st, &D);
+        Dsum += D;
+    }
+    assert_true(sig[2] < -1e6 && st.compaction > 0.1); /* through the cap, far beyond X0 = 0.2 MPa */
+    const double smax = max_abs(sig, 6);
+    for (long e = 0; e < NE; e++) {
+        double se[6], ep;
+        assert_int_equal(fem_kernel_points_hex_cell(&k, e, se, &ep), 1);
+        for (int i = 0; i < 6; i++)
+            assert_true(fabs(se[i] - sig[i]) < 1e-9 * smax);
+        assert_true(fabs(ep - st.plastic_strain_eq) < 1e-9 * st.plastic_strain_eq);
+    }
+    /* virtual work of u = B x (B[3c + j] = delta_c0 delta_j2 + delta_c1 delta_j1: a shear and a
+       stretch): sum F . u = V (sig_xz + sig_yy) per element */
+    for (long e = 0; e < NE; e++) {
+        double W = 0, Ve = 0;
+        for (int a = 0; a < 8; a++)
+            W += fe[24 * e + 3 * a] * x[24 * e + 3 * a + 2] + fe[24 * e + 3 * a + 1] * x[24 * e + 3 * a + 1];
+        for (int q = 0; q < 8; q++)
+            Ve += ((p3_data *)k.data)->w[8 * e + q];
+        V += Ve;
+        assert_true(fabs(W - Ve * (sig[5] + sig[1])) < 1e-9 * Ve * smax);
+    }
+    fem_kernel_report r;
+    fem_kernel_report_get(&k, &r);
+    assert_true(fabs(r.plastic_work - Dsum * V) < 1e-9 * Dsum * V);
+    fem_kernel_release(&k);
+}
+
 /* Two laws in one block: each element's forces are those of a block with its own law alone. */
 static void test_two_laws(void **state)
 {
@@ -276,6 +355,7 @@ int main(void)
         cmocka_unit_test(test_linear_equals_matfree),
         cmocka_unit_test(test_bbar),
         cmocka_unit_test(test_material_law),
+        cmocka_unit_test(test_homogeneous_large_strain),
         cmocka_unit_test(test_two_laws),
         cmocka_unit_test(test_bad_law),
     };
