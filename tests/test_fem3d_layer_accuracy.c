@@ -119,9 +119,9 @@ static void test_layer_vs_axisymmetric(void **state)
 /* The S5 soil (a thick soft layer: the mesh sized from its own contact, docs/validation-plastic.md
    section 9d) at normal incidence, 3D at a/h 2 against the axisymmetric model at a/h 3 (its depth moves
    0.6 % from a/h 2), both in large deformation, fixed boundary, automatic domain: the depth and the
-   plastic work, and the 3D energy closure below the 0.5 % of KE0 that the axisymmetric model meets
-   (section 9e: -3.8e-2 before the contact face's current slope and the mass redistribution).  R_n
-   (~0.05, the difference of two large energies) is not held. */
+   plastic work.  R_n (~0.05, the difference of two large energies) is not held, nor the 3D energy
+   closure of this default (lumped) face, -4e-2 of KE0 at this coarse mesh (the capture loss,
+   section 9e; test_surface_mass_3d holds it with the mass redistribution). */
 static void test_soft_layer_vs_axisymmetric(void **state)
 {
     (void)state;
@@ -138,15 +138,17 @@ static void test_soft_layer_vs_axisymmetric(void **state)
     show("rigid on the S5 soil, axisym.", &ax);
     assert_true(fabs(s3.penetration_max / ax.penetration_max - 1) < 0.05);
     assert_true(fabs(s3.plastic_work / ax.plastic_work - 1) < 0.05);
-    assert_true(fabs(s3.energy_error) < 5e-3);
+    assert_true(fabs(s3.energy_error) < 0.06);
 }
 
-/* The capture loss and the mass redistribution (section 9e): an elastic soft layer (the S5 soil's
-   elasticity) under the rigid boulder at 10 m/s, a/h 2.  Energy is conserved by the continuum; the
-   forward-increment contact loses the captured face nodes' relative kinetic energy (an O(h) loss),
-   which the redistribution takes off the face.  The step must be the same (the redistributed
-   elements stay below kappa lambda_max) and R_n may move by the mesh's error only. */
-static void test_soft_elastic_capture(void **state)
+/* The capture loss and the mass redistribution (section 9e), opt-in in the 3D model
+   (rf_fem3d_options.surface_mass): the rigid boulder at 10 m/s on (a) the S5 soil's elasticity as
+   an elastic layer and (b) the S5 soil, a/h 2.  The continuum conserves energy; the forward-
+   increment contact loses the captured face nodes' relative kinetic energy (an O(h) loss), which
+   the redistribution takes off the face.  The step must be the same (the redistributed elements
+   stay below kappa lambda_max), R_n may move by the mesh's error only, and the S5 soil's loss must
+   fall as the mass left on its face (a tenth). */
+static void test_surface_mass_3d(void **state)
 {
     (void)state;
     rf_impact_input in = granite(0, 0);
@@ -154,11 +156,13 @@ static void test_soft_elastic_capture(void **state)
     in.layer_material = RF_MATERIAL_ELASTIC;
     rf_fem_options o = coarse(2);
     o.domain_factor = 0, o.boundary = RF_FEM_BOUNDARY_FIXED, o.large_deformation = RF_FEM_LARGE_DEFORMATION;
-    rf_impact_output on, off;
+    rf_fem3d_options o3;
+    rf_fem3d_options_default(&o3);
+    rf_impact_output on, off, soil;
     rf_fem_history hon = {0}, hoff = {0};
-    run3d_ex(&in, &o, NULL, &on, &hon, NULL);
-    o.surface_mass_kappa = 0;
-    run3d_ex(&in, &o, NULL, &off, &hoff, NULL);
+    run3d_ex(&in, &o, &o3, &off, &hoff, NULL);
+    o3.surface_mass = 1;
+    run3d_ex(&in, &o, &o3, &on, &hon, NULL);
     show("elastic soft layer, redistributed", &on);
     show("elastic soft layer, lumped", &off);
     assert_true(hon.dt == hoff.dt);
@@ -166,6 +170,15 @@ static void test_soft_elastic_capture(void **state)
     assert_true(fabs(on.energy_error) < 1e-3);
     assert_true(fabs(on.R_n - off.R_n) < 0.01);
     rf_fem_history_free(&hon), rf_fem_history_free(&hoff);
+    s5_soil(&in);
+    rf_impact_output lumped;
+    run3d_ex(&in, &o, &o3, &soil, NULL, NULL);
+    o3.surface_mass = 0;
+    run3d_ex(&in, &o, &o3, &lumped, NULL, NULL);
+    show("S5 soil, redistributed", &soil);
+    show("S5 soil, lumped", &lumped);
+    /* a tenth of the face mass left (FEM_MASS_KEPT_MIN): the capture loss falls about tenfold */
+    assert_true(fabs(soil.energy_error) < 0.2 * fabs(lumped.energy_error));
 }
 
 int main(void)
@@ -175,7 +188,7 @@ int main(void)
         cmocka_unit_test(test_rigid_vs_stiff),
         cmocka_unit_test(test_layer_vs_axisymmetric),
         cmocka_unit_test(test_soft_layer_vs_axisymmetric),
-        cmocka_unit_test(test_soft_elastic_capture),
+        cmocka_unit_test(test_surface_mass_3d),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

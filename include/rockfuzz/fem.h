@@ -110,10 +110,12 @@ typedef struct {
     double core_factor;        /* uniform fine zone extends core_factor * a, default 2.5 */
     double grading;            /* element-size growth per element outside the fine zone, default 1.15 */
     double dt_safety;          /* time step = dt_safety * element eigenvalue bound, default 0.9 */
-    double surface_mass_kappa; /* mass redistribution at the slope's contact face (docs/validation-plastic.md
-                                  9e): a face element whose eigenvalue is below kappa x the mesh's largest
-                                  gives its face nodes' mass to the nodes below until it reaches it (the
-                                  step is unchanged); in [0, 1], 0 = off, default 0.25 */
+    double surface_mass_kappa; /* mass redistribution at the slope's contact face of a soil (a layer, an
+                                  elasto-plastic slope; docs/validation-plastic.md 9e): a face element whose
+                                  eigenvalue is below kappa x the mesh's largest gives its face nodes' mass
+                                  (down to a tenth) to the nodes below until it reaches it (the step is
+                                  unchanged); in [0, 1], 0 = off, default 0.1; the axisymmetric model (the
+                                  3D model only with rf_fem3d_options.surface_mass) */
     int vtk_frames;            /* approximate number of VTK frames, default 60 */
     int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */

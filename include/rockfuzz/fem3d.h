@@ -47,6 +47,9 @@ typedef struct {
     double boulder_inner;   /* boulder: radius (/ r0) of the contact-side half-space image, default 4 */
     int layered_mesh;       /* 1: the slope as the extruded mesh a layer uses (horizontal node planes, a
                                cylinder of radius and depth domain) even without a layer; for checks, default 0 */
+    int surface_mass;       /* 1: the mass redistribution at the contact face (rf_fem_options.surface_mass_kappa)
+                               in the 3D model too; default 0: with it frictionless oblique impacts on soil
+                               diverged (docs/validation-plastic.md 9e) */
 } rf_fem3d_options;
 
 void rf_fem3d_options_default(rf_fem3d_options *o3);

@@ -19,6 +19,7 @@
  * spheroid's.  y needs no correction: the mesh is symmetric about y = 0 (full
  * model) or cut by it (half model). */
 #include "fem3d_internal.h"
+#include "fem_core.h"
 
 #include <math.h>
 
@@ -120,7 +121,7 @@ long f3_surface_mass_shift(const f3_mesh *mesh, const unsigned char *face, doubl
         int top[8], nt = 0, below[8];
         for (int a = 0; a < 8; a++)
             nt += top[a] = face[cn[a]] != 0;
-        const double alpha = lam_upper[e] / (kappa * lam_max);
+        const double alpha = fmax(FEM_MASS_KEPT_MIN, lam_upper[e] / (kappa * lam_max));
         if (nt != 4 || !(alpha > 0) || alpha >= 1)
             continue;
         for (int a = 0; a < 8; a++)

@@ -468,9 +468,10 @@ static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
         for (long p = S->inc_ptr[n]; p < S->inc_ptr[n + 1]; p++)
             m += R->elm[S->inc[p]];
         R->mshift[n] = m - R->mass[3 * n];
-        R->mass[3 * n] = R->mass[3 * n + 1] = R->mass[3 * n + 2] = m;
-        for (int q = 0; q < 3; q++)
+        for (int q = 0; q < 3; q++) {
+            R->mass[3 * n + q] = m;
             R->invm[3 * n + q] = R->fixed[3 * n + q] ? 0 : 1 / m;
+        }
     }
 }
 
@@ -500,7 +501,7 @@ static void solid_masses(solid_run *R)
         R->invm[dd] = R->fixed[dd] ? 0 : 1 / R->mass[dd];
     double *lam_upper = fem_pool_get(R->pool, Q_LAMU, (size_t)R->ne * sizeof(double), 0);
     const double lam_max = solid_lambda_max(R, lam_upper);
-    if (lam_upper && R->o.surface_mass_kappa > 0 && (R->layer || R->plastic[1])) /* soil: section 9e */
+    if (lam_upper && R->o.surface_mass_kappa > 0 && R->o3.surface_mass && (R->layer || R->plastic[1])) /* 9e */
         surface_mass_shift(R, lam_upper, lam_max);
     R->lamu = R->large ? lam_upper : NULL;
     R->dt_edge = DBL_MAX;
@@ -1242,9 +1243,14 @@ static void solid_history(solid_run *R, const fem_run *run, double K_after, rf_f
     hist->slope_nodes = R->nn - R->mesh.boulder_nodes, hist->slope_elements = R->ne - R->mesh.boulder_elems;
     hist->state_hash = fem_hash(fem_hash(FEM_HASH_SEED, u, (size_t)R->ndof * sizeof *u), v,
                                 (size_t)R->ndof * sizeof *v);
-    char extra[320] = "";
+    char extra[640] = "";
     if (R->outside_contact)
         snprintf(extra, sizeof extra, "Contact reached the edge of the fine zone: raise core_factor. ");
+    if (!R->large && (R->plastic[1] || R->plastic[2]))
+        snprintf(extra + strlen(extra), sizeof extra - strlen(extra), "Small strain with an elasto-plastic slope "
+                 "or layer: the 3D contact follows the deformed face, the soil its reference geometry; where the "
+                 "soil yields the boulder sinks too deep (docs/validation-plastic.md 9d). Large deformation (auto, "
+                 "the default) is consistent. ");
     if (R->grav.outside > 0)
         snprintf(extra + strlen(extra), sizeof extra - strlen(extra), "%ld integration points of the geostatic "
                  "state lie outside the yield surface (returned to it at the first step). ", R->grav.outside);

@@ -22,7 +22,7 @@ void rf_fem_options_default(rf_fem_options *opt)
     opt->core_factor = 2.5;
     opt->grading = 1.15;
     opt->dt_safety = 0.9;
-    opt->surface_mass_kappa = 0.25;
+    opt->surface_mass_kappa = 0.1;
     opt->vtk_frames = 60;
     opt->history_stride = 0;
     opt->max_elements = 2000000;

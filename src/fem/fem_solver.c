@@ -308,7 +308,8 @@ static long axi_surface_mass_shift(axi_run *S, double *elm, const unsigned char 
         }
         if (nt != 2 || !distinct || (top[0] && top[2]) || (top[1] && top[3]))
             continue; /* not one edge on the face, or a collapsed quad */
-        const double alpha = axi_element_lambda(S, elm, fixed, e) / (S->o.surface_mass_kappa * lam_max);
+        const double alpha =
+            fmax(FEM_MASS_KEPT_MIN, axi_element_lambda(S, elm, fixed, e) / (S->o.surface_mass_kappa * lam_max));
         if (!(alpha > 0) || alpha >= 1)
             continue;
         for (int a = 0; a < 4; a++)
