@@ -14,7 +14,7 @@ void fem_ale_free(fem_ale *A)
 {
     free(A->move), free(A->nb_ptr), free(A->nb), free(A->ne_ptr), free(A->ne), free(A->face), free(A->size0);
     free(A->zone_e), free(A->zone_n), free(A->slot), free(A->mean), free(A->swept), free(A->vol0), free(A->w1);
-    free(A->hmin);
+    free(A->hmin), free(A->vnew);
     memset(A, 0, sizeof *A);
 }
 
@@ -146,9 +146,9 @@ rf_status fem_ale_setup(fem_ale *A, const fem_mesh *mesh, long e0, long e1, cons
     A->face = malloc((4 * nbe + 1) * sizeof *A->face), A->size0 = malloc((nbe + 1) * sizeof *A->size0);
     A->slot = malloc((nbe + 1) * sizeof *A->slot), A->hmin = malloc((nn + 1) * sizeof *A->hmin);
     A->swept = malloc((4 * nbe + 1) * sizeof *A->swept), A->vol0 = malloc((nbe + 1) * sizeof *A->vol0);
-    A->w1 = malloc((4 * nbe + 1) * sizeof *A->w1);
+    A->w1 = malloc((4 * nbe + 1) * sizeof *A->w1), A->vnew = malloc((2 * nn + 1) * sizeof *A->vnew);
     if (!A->move || !A->zone_n || !A->zone_e || !A->face || !A->size0 || !A->slot || !A->hmin || !A->swept ||
-        !A->vol0 || !A->w1)
+        !A->vol0 || !A->w1 || !A->vnew)
         return rf_fail(err, RF_ENOMEM, "fem ale: out of memory for %ld elements", (long)nbe);
     for (long e = e0; e < e1; e++) {
         const int *c = mesh->conn + 4 * e;
@@ -467,20 +467,14 @@ static double inverse_bilinear(const double r[4], const double z[4], double pr, 
 double fem_ale_remap_velocity(fem_ale *A, const fem_mesh *mesh, const double *u, const double *delta,
                               const double *mass, const double *invm, double *v)
 {
-    double *vn = A->hmin; /* scratch: nn values, the new vz ... */
-    double dpz = 0, msum = 0, dke = 0;
-    long nmoved = 0;
-    for (long i = 0; i < A->nn; i++)
-        if (moved_node(delta, (int)i))
-            nmoved++;
-    double *vr = malloc((size_t)(nmoved + 1) * sizeof *vr);
-    long k = 0;
-    for (long i = 0; i < A->nn; i++) {
+    double *vn = A->vnew, dpz = 0, msum = 0, dke = 0;
+    for (long i = 0; i < A->nn; i++) { /* the old field at the new place (all read before any is written) */
         if (!moved_node(delta, (int)i))
             continue;
         const double pr = mesh->r[i] + u[2 * i] + delta[2 * i], pz = mesh->z[i] + u[2 * i + 1] + delta[2 * i + 1];
-        double best = INFINITY, wr = v[2 * i], wz = v[2 * i + 1];
-        for (long p = A->ne_ptr[i]; p < A->ne_ptr[i + 1]; p++) {
+        double best = INFINITY;
+        vn[2 * i] = v[2 * i], vn[2 * i + 1] = v[2 * i + 1];
+        for (long p = A->ne_ptr[i]; p < A->ne_ptr[i + 1]; p++) { /* the element around i that holds it */
             if (A->ne[p] < 0)
                 continue;
             double r[4], z[4], N[4];
@@ -488,35 +482,28 @@ double fem_ale_remap_velocity(fem_ale *A, const fem_mesh *mesh, const double *u,
             const double out = inverse_bilinear(r, z, pr, pz, N);
             if (!(out < best))
                 continue;
-            best = out, wr = wz = 0;
+            best = out, vn[2 * i] = vn[2 * i + 1] = 0;
             const int *c = mesh->conn + 4 * A->ne[p];
             for (int a = 0; a < 4; a++)
-                wr += N[a] * v[2 * c[a]], wz += N[a] * v[2 * c[a] + 1];
+                vn[2 * i] += N[a] * v[2 * c[a]], vn[2 * i + 1] += N[a] * v[2 * c[a] + 1];
         }
-        if (vr)
-            vr[k] = invm[2 * i] > 0 ? wr : v[2 * i];
-        vn[i] = wz;
-        k++;
+        if (!(invm[2 * i] > 0)) /* on the axis: v_r = 0 */
+            vn[2 * i] = v[2 * i];
     }
-    k = 0;
     for (long i = 0; i < A->nn; i++) { /* write back; the z momentum change */
         if (!moved_node(delta, (int)i))
             continue;
         const double m = mass[2 * i + 1];
         dke -= 0.5 * m * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
-        if (vr)
-            v[2 * i] = vr[k];
-        k++;
-        dpz += m * (vn[i] - v[2 * i + 1]), msum += m;
-        v[2 * i + 1] = vn[i];
+        dpz += m * (vn[2 * i + 1] - v[2 * i + 1]), msum += m;
+        v[2 * i] = vn[2 * i], v[2 * i + 1] = vn[2 * i + 1];
     }
-    for (long i = 0; i < A->nn; i++) {
+    for (long i = 0; i < A->nn; i++) { /* the z momentum restored: one shift of the moved nodes' v_z */
         if (!moved_node(delta, (int)i))
             continue;
         v[2 * i + 1] -= dpz / msum;
         dke += 0.5 * mass[2 * i + 1] * (v[2 * i] * v[2 * i] + v[2 * i + 1] * v[2 * i + 1]);
     }
-    free(vr);
     return dke;
 }
 

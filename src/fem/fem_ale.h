@@ -54,7 +54,7 @@ typedef struct {
     unsigned char *zone_e; /* scratch per block element */
     unsigned char *zone_n; /* scratch per node */
     long *slot;            /* block element -> row of the means (-1) */
-    double *mean, *swept, *vol0, *w1, *hmin; /* scratch */
+    double *mean, *swept, *vol0, *w1, *hmin, *vnew; /* scratch */
     long nmean;
 } fem_ale;
 
