@@ -201,7 +201,9 @@ static void usage(FILE *f)
         "                           indentation_depth [m], equivalent_plastic_strain_max [-],\n"
         "                           nodes, elements, steps, gravity [m/s^2, the value used],\n"
         "                           at_rest (1: the block came to rest, R_n = 0),\n"
-        "                           wall_seconds [s]; NaN -> null\n"
+        "                           with --ale on when it rezoned: ale_rezones and\n"
+        "                           ale_remap_energy [-, of the initial KE; not in the\n"
+        "                           energy error], wall_seconds [s]; NaN -> null\n"
         "  -h, --help               show this help\n"
         "\n"
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
