@@ -44,12 +44,14 @@ static void grid_make(grid *g, int nr, int nz, double r0, double lr, double lz)
     m->r = calloc((size_t)m->n_nodes, sizeof *m->r), m->z = calloc((size_t)m->n_nodes, sizeof *m->z);
     m->flags = calloc((size_t)m->n_nodes, 1), m->conn = calloc((size_t)(4 * m->n_elems), sizeof *m->conn);
     m->ebody = calloc((size_t)m->n_elems, 1);
-    g->invm = calloc((size_t)(2 * m->n_nodes), sizeof *g->invm), g->mass = calloc((size_t)(2 * m->n_nodes), sizeof *g->mass);
+    g->invm = calloc((size_t)(2 * m->n_nodes), sizeof *g->invm);
+    g->mass = calloc((size_t)(2 * m->n_nodes), sizeof *g->mass);
     for (int j = 0; j <= nz; j++)
         for (int i = 0; i <= nr; i++) {
             const long n = (long)j * (nr + 1) + i;
             m->r[n] = r0 + lr * i / nr, m->z[n] = -lz + lz * j / nz;
-            m->flags[n] = (unsigned char)((r0 == 0 && i == 0 ? FEM_AXIS : 0) | (i == nr || j == 0 || (r0 > 0 && i == 0) ? FEM_OUTER : 0) |
+            const int outer = i == nr || j == 0 || (r0 > 0 && i == 0);
+            m->flags[n] = (unsigned char)((r0 == 0 && i == 0 ? FEM_AXIS : 0) | (outer ? FEM_OUTER : 0) |
                                           (j == nz ? FEM_SURFACE : 0));
             g->invm[2 * n] = (m->flags[n] & FEM_AXIS) ? 0 : 1, g->invm[2 * n + 1] = 1;
             g->mass[2 * n] = g->mass[2 * n + 1] = 1 + 0.1 * (double)(n % 7);
@@ -124,9 +126,11 @@ static void test_uniform_state_exact(void **state)
     rf_error err = {0};
     assert_int_equal(fem_ale_setup(&A, &g.m, 0, g.m.n_elems, NULL, g.invm, &PARAMS, &err), RF_OK);
     fem_points_view v;
-    double *ue_c, *u = calloc((size_t)(2 * g.m.n_nodes), sizeof *u), *delta = malloc((size_t)(2 * g.m.n_nodes) * sizeof *delta);
+    const size_t nd = (size_t)(2 * g.m.n_nodes);
+    double *ue_c, *u = calloc(nd, sizeof *u), *delta = malloc(nd * sizeof *delta);
     assert_int_equal(fem_kernel_points_axi_ale(&s.k, &v, &ue_c), 1);
-    const double sig0[4] = {-3e5, -7e5, -2e5, 1.5e5}, eps0[4] = {-0.01, 0.02, 0.003, -0.04}, var0[4] = {0.3, -0.02, 0.01, 5};
+    const double sig0[4] = {-3e5, -7e5, -2e5, 1.5e5}, eps0[4] = {-0.01, 0.02, 0.003, -0.04};
+    const double var0[4] = {0.3, -0.02, 0.01, 5};
     for (size_t p = 0; p < v.np; p++)
         for (int i = 0; i < 4; i++)
             v.sig[4 * p + i] = sig0[i], v.eps[4 * p + i] = eps0[i], v.var[4 * p + i] = var0[i];
@@ -166,7 +170,8 @@ static void test_conservative(void **state)
     rf_error err = {0};
     assert_int_equal(fem_ale_setup(&A, &g.m, 0, g.m.n_elems, NULL, g.invm, &PARAMS, &err), RF_OK);
     fem_points_view v;
-    double *ue_c, *u = calloc((size_t)(2 * g.m.n_nodes), sizeof *u), *delta = malloc((size_t)(2 * g.m.n_nodes) * sizeof *delta);
+    const size_t nd = (size_t)(2 * g.m.n_nodes);
+    double *ue_c, *u = calloc(nd, sizeof *u), *delta = malloc(nd * sizeof *delta);
     assert_int_equal(fem_kernel_points_axi_ale(&s.k, &v, &ue_c), 1);
     double before = 0, after = 0;
     for (size_t p = 0; p < v.np; p++) {
@@ -207,7 +212,8 @@ static void test_velocity_remap(void **state)
     rf_error err = {0};
     assert_int_equal(fem_ale_setup(&A, &g.m, 0, g.m.n_elems, NULL, g.invm, &PARAMS, &err), RF_OK);
     const long nd = 2 * g.m.n_nodes;
-    double *u = calloc((size_t)nd, sizeof *u), *delta = malloc((size_t)nd * sizeof *delta), *v = malloc((size_t)nd * sizeof *v);
+    double *u = calloc((size_t)nd, sizeof *u), *delta = malloc((size_t)nd * sizeof *delta);
+    double *v = malloc((size_t)nd * sizeof *v);
     random_motion(&A, &g, 0.3, delta);
     for (long i = 0; i < g.m.n_nodes; i++)
         v[2 * i] = 0.7 * g.m.r[i], v[2 * i + 1] = -4.0;
@@ -351,7 +357,8 @@ static void test_crush_case_ends(void **state)
            "elastic %.2e), %ld rezones, largest move %.3g m, dt_safety %.3g\n", b.R_n, b.penetration_max,
            b.contact_force_max, b.energy_error, remap, h.ale_kinetic / h.ke0, h.ale_elastic / h.ke0, h.ale_rezones,
            h.ale_move_max, h.dt / h.dt_bound);
-    const size_t last = h.n - 1; /* the closure net of the remap is the contact's work (its inelastic node collisions) */
+    /* the closure net of the remap is the contact's work (its inelastic node collisions) */
+    const size_t last = h.n - 1;
     const double gap = (h.closure[last] - h.contact_work[last]) / h.ke0;
     printf("closure %.5f KE0, contact work %.5f KE0: the rest %.1e KE0\n", h.closure[last] / h.ke0,
            h.contact_work[last] / h.ke0, gap);
