@@ -74,6 +74,20 @@ typedef enum {
                                    normal gaps, pairs found again every step */
 } rf_fem_kinematics;
 
+/* ALE rezoning of the axisymmetric large-deformation slope (docs/validation-plastic.md
+ * section 8b): where the updated-Lagrangian mesh has become distorted (an element's
+ * stable size below ale_trigger of its reference size), its interior nodes are
+ * relocated by a smoothing and the stresses, internal variables and velocities
+ * remapped (first-order donor cell, conservative; the energy the remap changes is
+ * reported as its own term of the closure).  Ignored in small strain and by the 3D model. */
+typedef enum {
+    RF_FEM_ALE_AUTO = 0, /* default: see rf_fem_ale_enabled */
+    RF_FEM_ALE_OFF,
+    RF_FEM_ALE_ON
+} rf_fem_ale;
+const char *rf_fem_ale_name(rf_fem_ale a);
+rf_status rf_fem_ale_parse(const char *name, rf_fem_ale *a, rf_error *err);
+
 /* "auto" | "off" | "on" <-> enum. */
 const char *rf_fem_kinematics_name(rf_fem_kinematics k);
 rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_error *err);
@@ -129,6 +143,10 @@ typedef struct {
     int contact_single_pivot;  /* axisymmetric contact: 1 solves the complementarity problem by single
                                   pivoting alone (slower; the check of the default block active-set
                                   method, which falls back to it after 200 rounds), default 0 */
+    rf_fem_ale ale;            /* axisymmetric large deformation: ALE rezoning of the slope, default auto */
+    double ale_trigger;        /* rezone when a slope element's size falls below this share of its
+                                  reference size, default 0.5, in (0, 1) */
+    int ale_sweeps;            /* smoothing sweeps per rezone, default 10 (0: no node moves) */
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);
@@ -137,6 +155,9 @@ void rf_fem_options_default(rf_fem_options *opt);
  * opt->large_deformation on, or auto with an elasto-plastic body (the boulder,
  * the slope or a layer); the one rule the solver and the model identity use. */
 int rf_fem_large_deformation(const rf_fem_options *opt, const rf_impact_input *in);
+/* 1 if the axisymmetric model rezones its slope (ALE): opt->ale on, or auto
+ * (see fem_options.c); only in large deformation. */
+int rf_fem_ale_enabled(const rf_fem_options *opt, const rf_impact_input *in);
 
 
 /* The one check of the options (three_d: for the 3D model, whose limits
@@ -170,6 +191,8 @@ typedef struct {
     double *absorbed;             /* energy taken out by the dashpots */
     double *closure;              /* total + absorbed - KE0 (energy error) */
     double *boulder_velocity;     /* rigid (CM) vertical velocity [m/s] */
+    double *remap;                /* axisymmetric with ALE: energy the remaps added so far [J] (kinetic +
+                                     elastic + potential; NULL without ALE); the closure is net of it */
 
     /* diagnostics */
     double dt;                    /* time step used [s] */
@@ -199,6 +222,11 @@ typedef struct {
     double gravity_work;          /* work of gravity on both bodies at the end (the loss of potential energy) [J] */
     long geostatic_outside;       /* integration points whose geostatic state the law does not admit (0 expected) */
     int at_rest;                  /* 1: the run ended by the rest rule (the boulder at rest in contact: R_n = 0) */
+    /* ALE rezoning (axisymmetric large deformation, option ale; zeros without) */
+    long ale_rezones, ale_nodes_moved; /* rezones that moved nodes; node relocations summed */
+    double ale_kinetic, ale_elastic, ale_potential; /* energy the remaps added [J], by kind */
+    double ale_move_max;          /* largest relocation of a node in one rezone [m] */
+    double ale_ratio_min;         /* smallest element size / reference size that triggered a rezone */
     uint64_t state_hash;          /* FNV-1a over the bytes of the final u and v (determinism checks) */
     char warning[512];            /* "" or a human-readable warning */
 } rf_fem_history;

@@ -23,7 +23,7 @@
 
 typedef enum {
     O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
-    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_DOMAIN, O_END_TIME, O_THREADS, O_VTK, O_JSON,
+    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_ALE, O_DOMAIN, O_END_TIME, O_THREADS, O_VTK, O_JSON,
     O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S,
     O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L,
     O_G, O_HELP, O_COUNT
@@ -78,6 +78,7 @@ static const struct {
     {O_REFINEMENT, "refinement", NULL},
     {O_BOUNDARY, "boundary", NULL},
     {O_LARGE, "large-deformation", NULL},
+    {O_ALE, "ale", NULL},
     {O_DOMAIN, "domain-factor", NULL},
     {O_END_TIME, "end-time", NULL},
     {O_THREADS, "threads", NULL},
@@ -166,6 +167,15 @@ static void usage(FILE *f)
         "                           geometry, objective Hughes-Winget stress rotation, contact on\n"
         "                           the deformed surfaces); off: small strain on the reference\n"
         "                           geometry (docs/validation-plastic.md sections 6e, 9c)\n"
+        "  --ale K                  fem, axisymmetric large deformation: auto | on | off\n"
+        "                           (default auto = off).  on: ALE rezoning of the soil: where\n"
+        "                           an element's size falls below half its reference size,\n"
+        "                           the interior nodes around it are smoothed and the stresses,\n"
+        "                           internal variables and velocities remapped (conservative\n"
+        "                           donor cell; the energy it changes is reported as its own\n"
+        "                           term).  Use it when a run fails with \"element N was\n"
+        "                           compressed below the stability bound\" (soil squeezed\n"
+        "                           under the block's tip; docs/validation-plastic.md 8b)\n"
         "  --domain-factor F        fem: slope domain radius / r0 >= 3 (default: sized so that\n"
         "                           2 L / c_p >= 1.25 Hertz t_c, at least 10: no reflected\n"
         "                           wave returns into the elastic contact); --boundary fixed\n"
@@ -191,7 +201,9 @@ static void usage(FILE *f)
         "                           indentation_depth [m], equivalent_plastic_strain_max [-],\n"
         "                           nodes, elements, steps, gravity [m/s^2, the value used],\n"
         "                           at_rest (1: the block came to rest, R_n = 0),\n"
-        "                           wall_seconds [s]; NaN -> null\n"
+        "                           with --ale on when it rezoned: ale_rezones and\n"
+        "                           ale_remap_energy [-, of the initial KE; not in the\n"
+        "                           energy error], wall_seconds [s]; NaN -> null\n"
         "  -h, --help               show this help\n"
         "\n"
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
@@ -231,7 +243,7 @@ static void json_number(const char *key, double x, int last)
         printf("\"%s\": null%s", key, last ? "" : ", ");
 }
 
-static void print_json(const rf_impact_output *o, double gravity, int at_rest)
+static void print_json(const rf_impact_output *o, double gravity, int at_rest, const rf_fem_history *h)
 {
     printf("{");
     json_number("contact_force_max", o->contact_force_max, 0);
@@ -251,6 +263,10 @@ static void print_json(const rf_impact_output *o, double gravity, int at_rest)
     json_number("steps", o->steps, 0);
     json_number("gravity", gravity, 0);
     printf("\"at_rest\": %d, ", at_rest);
+    if (h && h->ale_rezones > 0 && h->ke0 > 0) { /* ALE: the rezones and the energy they added, of KE0 */
+        json_number("ale_rezones", (double)h->ale_rezones, 0);
+        json_number("ale_remap_energy", (h->ale_kinetic + h->ale_elastic + h->ale_potential) / h->ke0, 0);
+    }
     json_number("wall_seconds", o->wall_seconds, 1);
     printf("}\n");
 }
@@ -299,13 +315,13 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     if (spec->solver == RF_IMPACT_FEM) {
         int three_d = rf_fem_needs_3d(in);
         printf("  FE settings       %s, refinement a/h = %g, domain = %g r0%s, boundary %s%s, threads %d, "
-               "large deformation %s\n",
+               "large deformation %s, ale %s\n",
                three_d ? "3D half model (inclined slope or friction)" : "axisymmetric",
                rf_fem_refinement(&spec->fem, three_d), rf_fem_domain_factor(&spec->fem, in),
                spec->fem.domain_factor > 0 ? "" : " (automatic)",
                rf_fem_boundary_name(rf_fem_boundary_resolve(spec->fem.boundary, in)),
                spec->fem.boundary == RF_FEM_BOUNDARY_AUTO ? " (automatic)" : "", spec->fem.threads,
-               rf_fem_kinematics_name(spec->fem.large_deformation));
+               rf_fem_kinematics_name(spec->fem.large_deformation), rf_fem_ale_name(spec->fem.ale));
     }
     printf("\nResults\n");
     print_value("max contact force", o->contact_force_max, "N");
@@ -363,7 +379,7 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
         return EXIT_FAILED;
     }
     if (json) {
-        print_json(out, hist.gravity, hist.at_rest);
+        print_json(out, hist.gravity, hist.at_rest, &hist);
     } else {
         print_summary(spec, &spec->base, out);
         printf("  FE mesh               boulder %ld nodes / %ld elements, slope %ld / %ld; "
@@ -374,6 +390,12 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
         if (hist.ke0 > 0.0)
             printf("  FE energy at the end  boulder vibration %.3g, slope %.3g of the initial KE\n",
                    hist.vibration_energy / hist.ke0, hist.slope_energy / hist.ke0);
+        if (hist.ale_rezones > 0 && hist.ke0 > 0.0)
+            printf("  FE ALE                %ld rezones, %ld node moves (largest %.3g m); energy the remaps added "
+                   "%.3g of the initial KE (kinetic %.3g, elastic %.3g, potential %.3g), not in the closure\n",
+                   hist.ale_rezones, hist.ale_nodes_moved, hist.ale_move_max,
+                   (hist.ale_kinetic + hist.ale_elastic + hist.ale_potential) / hist.ke0, hist.ale_kinetic / hist.ke0,
+                   hist.ale_elastic / hist.ke0, hist.ale_potential / hist.ke0);
         if (three_d && hist.ke0 > 0.0)
             printf("  FE friction work      %.3g of the initial KE (half model; energies of the full body)\n",
                    friction_work / hist.ke0);
@@ -455,6 +477,12 @@ int rf_cli_impact(int argc, char **argv)
         case O_LARGE:
             if (rf_fem_kinematics_parse(val, &spec.fem.large_deformation, &err) != RF_OK) {
                 fprintf(stderr, "rockfuzz impact: --large-deformation: %s\n", err.msg);
+                return EXIT_USAGE;
+            }
+            break;
+        case O_ALE:
+            if (rf_fem_ale_parse(val, &spec.fem.ale, &err) != RF_OK) {
+                fprintf(stderr, "rockfuzz impact: --ale: %s\n", err.msg);
                 return EXIT_USAGE;
             }
             break;
@@ -580,7 +608,7 @@ int rf_cli_impact(int argc, char **argv)
         return EXIT_FAILED;
     }
     if (json) {
-        print_json(&out, 0.0, 0);
+        print_json(&out, 0.0, 0, NULL);
     } else {
         print_summary(&spec, in, &out);
         print_references(&spec, in);

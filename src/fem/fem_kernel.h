@@ -232,6 +232,11 @@ typedef struct {
     double *eps, *sig, *var;
     const double *eps_t, *sig_t, *var_t;
 } fem_points_view;
+/* For an ALE remap (fem_ale.c): the committed points of an updated
+ * Lagrangian kernel made by fem_kernel_points_axi_large (v) and its committed
+ * element displacements (*ue_c, 8 per element of the block, writable: the
+ * remap moves the committed geometry with the mesh).  0 for another kernel. */
+int fem_kernel_points_axi_ale(fem_kernel *k, fem_points_view *v, double **ue_c);
 /* Trial state becomes committed; a dissipative law's plastic work of the
  * increment, sum_p w_p var_p[nstate - 1], is added to *work and the largest
  * equivalent plastic strain var_p[0] (and its point) tracked. */

@@ -248,6 +248,15 @@ rf_status fem_kernel_points_axi_large(fem_kernel *k, const double *r, const doub
     return RF_OK;
 }
 
+int fem_kernel_points_axi_ale(fem_kernel *k, fem_points_view *v, double **ue_c)
+{
+    if (k->ops != &points_large_ops || !k->data)
+        return 0;
+    *v = points_view(k);
+    *ue_c = ((points_data *)k->data)->ue_c;
+    return 1;
+}
+
 int fem_kernel_cell_state(const fem_kernel *k, long e, double sig[4], double *plastic_strain)
 {
     if (!is_points(k) || !k->data || e < k->first || e >= k->first + k->count)

@@ -27,6 +27,9 @@ void rf_fem_options_default(rf_fem_options *opt)
     opt->history_stride = 0;
     opt->max_elements = 2000000;
     opt->duration_threshold = 1e-6;
+    opt->ale = RF_FEM_ALE_AUTO;
+    opt->ale_trigger = 0.5;
+    opt->ale_sweeps = 10;
 }
 
 void rf_fem3d_options_default(rf_fem3d_options *o3)
@@ -89,6 +92,31 @@ rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_err
                    name ? name : "(null)");
 }
 
+static const char *const ale_names[] = {"auto", "off", "on"};
+
+const char *rf_fem_ale_name(rf_fem_ale a)
+{
+    return (unsigned)a < 3 ? ale_names[a] : "unknown";
+}
+
+rf_status rf_fem_ale_parse(const char *name, rf_fem_ale *a, rf_error *err)
+{
+    for (int i = 0; i < 3; i++)
+        if (name && !strcmp(name, ale_names[i])) {
+            *a = (rf_fem_ale)i;
+            return RF_OK;
+        }
+    return rf_fail(err, RF_EINVAL, "ale '%s' is unknown (accepted: auto, off, on)", name ? name : "(null)");
+}
+
+/* auto: off (docs/validation-plastic.md section 8b). */
+int rf_fem_ale_enabled(const rf_fem_options *opt, const rf_impact_input *in)
+{
+    if (!rf_fem_large_deformation(opt, in))
+        return 0;
+    return opt->ale == RF_FEM_ALE_ON;
+}
+
 int rf_fem_large_deformation(const rf_fem_options *opt, const rf_impact_input *in)
 {
     if (opt->large_deformation != RF_FEM_KINEMATICS_AUTO)
@@ -138,6 +166,13 @@ rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error
     if ((unsigned)o->large_deformation > RF_FEM_LARGE_DEFORMATION)
         return rf_fail(err, RF_EINVAL, "fem%s: large_deformation = %d is unknown (accepted: auto, off, on)",
                        three_d ? "3d" : "", (int)o->large_deformation);
+    if ((unsigned)o->ale > RF_FEM_ALE_ON)
+        return rf_fail(err, RF_EINVAL, "fem: ale = %d is unknown (accepted: auto, off, on)", (int)o->ale);
+    if (!(o->ale_trigger > 0 && o->ale_trigger < 1))
+        return rf_fail(err, RF_EINVAL, "fem: ale_trigger = %g must lie in (0, 1) (share of the reference element size)",
+                       o->ale_trigger);
+    if (o->ale_sweeps < 0 || o->ale_sweeps > 1000)
+        return rf_fail(err, RF_EINVAL, "fem: ale_sweeps = %d must lie in [0, 1000]", o->ale_sweeps);
     if ((unsigned)o->boundary > RF_FEM_BOUNDARY_AUTO)
         return rf_fail(err, RF_EINVAL, "fem: unknown boundary kind %d", (int)o->boundary);
     if (o->threads < 0)

@@ -20,6 +20,7 @@
  * Determinism: each element writes its own forces, each node sums its
  * elements in element order: the same bits for any thread count. */
 #include "rockfuzz/fem.h"
+#include "fem_ale.h"
 #include "fem_core.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
@@ -41,10 +42,10 @@ void rf_fem_history_free(rf_fem_history *h)
     free(h->t);
     free(h->contact_force), free(h->compression), free(h->contact_radius);
     free(h->kinetic_boulder), free(h->strain_boulder), free(h->kinetic_slope), free(h->strain_slope);
-    free(h->contact_work), free(h->absorbed), free(h->closure), free(h->boulder_velocity);
+    free(h->contact_work), free(h->absorbed), free(h->closure), free(h->boulder_velocity), free(h->remap);
     h->t = h->contact_force = h->compression = h->contact_radius = NULL;
     h->kinetic_boulder = h->strain_boulder = h->kinetic_slope = h->strain_slope = NULL;
-    h->contact_work = h->absorbed = h->closure = h->boulder_velocity = NULL;
+    h->contact_work = h->absorbed = h->closure = h->boulder_velocity = h->remap = NULL;
     h->n = 0;
 }
 
@@ -72,7 +73,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
 
 /* Buffers of the axisymmetric solver in the workspace pool. */
 enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DASH, P_OUTER, P_ELM, P_FIXED, P_VTK,
-       P_EMAT, P_USE2, P_DTE, P_PACK0, P_PACK1, P_FGRAV, P_MSHIFT };
+       P_EMAT, P_USE2, P_DTE, P_PACK0, P_PACK1, P_FGRAV, P_MSHIFT, P_ALE };
 
 /* The state of one axisymmetric run. */
 typedef struct {
@@ -115,6 +116,11 @@ typedef struct {
     long geo_outside;
     int no_contact;       /* fem_axi_slope_at_rest: the slope alone (no contact step) */
     fem_contact C;
+    /* ALE rezoning of the slope (fem_ale.h; large deformation, option ale) */
+    int ale_on;
+    fem_ale ale;
+    fem_ale_account ale_acc;
+    double *ale_delta;
     fem_pool *pool;
 } axi_run;
 
@@ -237,27 +243,13 @@ static rf_status axi_elements(axi_run *S, double *elm, rf_error *err)
     return RF_OK;
 }
 
-/* The size L = area / longest diagonal of element e at the reference
- * (u == NULL) or the current geometry X + u: the explicit step bound of a
- * quad scales with it (0 for an inverted element). */
-static double element_size(const fem_mesh *mesh, long e, const double *u)
-{
-    const int *c = mesh->conn + 4 * e;
-    double r[4], z[4];
-    for (int a = 0; a < 4; a++)
-        r[a] = mesh->r[c[a]] + (u ? u[2 * c[a]] : 0), z[a] = mesh->z[c[a]] + (u ? u[2 * c[a] + 1] : 0);
-    const double area = 0.5 * ((r[2] - r[0]) * (z[3] - z[1]) - (r[3] - r[1]) * (z[2] - z[0]));
-    const double diag = fmax(hypot(r[2] - r[0], z[2] - z[0]), hypot(r[3] - r[1], z[3] - z[1]));
-    return area > 0 ? area / diag : 0;
-}
-
 /* Large deformation: the central-difference step must stay below every
  * element's bound as the elements are compressed; the bound is scaled with
  * the element's current size.  Returns the first element that violates it, -1 if none. */
 static long axi_step_violation(const axi_run *S)
 {
     for (long e = 0; e < S->ne; e++)
-        if (S->dte[e] > 0 && S->dt > S->dte[e] * element_size(&S->mesh, e, S->u))
+        if (S->dte[e] > 0 && S->dt > S->dte[e] * fem_ale_element_size(&S->mesh, e, S->u))
             return e;
     return -1;
 }
@@ -372,7 +364,7 @@ static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
             continue; /* a rigid boulder has no stiffness: the slope sets the step */
         double lm = fem_element_lambda_max(S->K + 64 * e, me, freed);
         if (S->dte)
-            S->dte[e] = 2 / sqrt(lm) / element_size(mesh, e, NULL);
+            S->dte[e] = 2 / sqrt(lm) / fem_ale_element_size(mesh, e, NULL);
         if (lm > lam_max)
             lam_max = lm;
     }
@@ -529,6 +521,13 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
     S->ke0 = 0.5 * Mb * S->V * S->V;
     if (S->rigid)
         S->C.rigid_invm = 1 / Mb, S->C.rigid_dofs = S->nbd;
+    if (S->ale_on) {
+        const fem_ale_params ap = {S->o.ale_trigger, fmin(0.5 * (1 + S->o.ale_trigger), 0.95), S->o.ale_sweeps};
+        if (!(S->ale_delta = fem_pool_get(S->pool, P_ALE, (size_t)S->ndof * sizeof(double), 1)))
+            return rf_fail(err, RF_ENOMEM, "fem: out of memory");
+        if ((st = fem_ale_setup(&S->ale, &S->mesh, S->mesh.boulder_elems, S->ne, S->emat, S->invm, &ap, err)) != RF_OK)
+            return st;
+    }
     return S->g > 0 ? axi_gravity(S, err) : RF_OK;
 }
 
@@ -705,6 +704,30 @@ static double axi_gravity_power(const axi_run *S)
     return p;
 }
 
+/* ALE (fem_ale.h), between the Lagrangian steps where the committed state
+ * and the nodes are both at u_n: a rezone of the slope if an element has
+ * become too small, then the internal force again on the new mesh (a zero
+ * increment: the remapped stresses, returned to the yield surface where the
+ * mix of two admissible states is not).  The elastic energy the remap
+ * changes enters the internal work, so that the stored energy stays the
+ * committed stresses'; the remap's energy is its own term of the closure. */
+static rf_status axi_rezone(axi_run *S, rf_error *err)
+{
+    const double el0 = S->ale_acc.elastic;
+    const long moved = fem_ale_rezone(&S->ale, &S->mesh, S->u, S->v, S->mass, S->invm, S->fgrav,
+                                      &S->kernel[FEM_SLOPE], S->ale_delta, &S->ale_acc, err);
+    if (moved < 0)
+        return rf_error_prefix(err, "fem");
+    if (moved == 0)
+        return RF_OK;
+    S->W_int[FEM_SLOPE] += S->ale_acc.elastic - el0;
+    axi_internal_force(S, S->u, S->f);
+    for (int b = 0; b < 2; b++)
+        if (S->kernel[b].ops->commit)
+            S->kernel[b].ops->commit(&S->kernel[b]);
+    return RF_OK;
+}
+
 /* One step: internal force -> dashpots -> predictor -> contact.  Returns the
  * total contact force in *Fc and the contact radius in *rad. */
 static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
@@ -715,6 +738,9 @@ static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
     for (int b = 0; b < 2; b++) /* the state at u_n is accepted */
         if (S->kernel[b].ops->commit)
             S->kernel[b].ops->commit(&S->kernel[b]);
+    rf_status st = S->ale_on ? axi_rezone(S, err) : RF_OK;
+    if (st != RF_OK)
+        return st;
     double W_abs_inc = axi_dashpot_forces(S);
     double fv[2] = {0, 0};
     if (S->work_account)
@@ -737,7 +763,7 @@ static rf_status axi_step(axi_run *S, double *Fc, double *rad, rf_error *err)
     }
     if (S->large) /* the pairs on the predicted surfaces */
         fem_contact_update(&S->C, u);
-    rf_status st = S->no_contact ? (*Fc = 0, RF_OK) : fem_contact_step(&S->C, S->invm, dt, u, v, Fc, err);
+    st = S->no_contact ? (*Fc = 0, RF_OK) : fem_contact_step(&S->C, S->invm, dt, u, v, Fc, err);
     if (st != RF_OK)
         return st;
     S->W_abs += W_abs_inc;
@@ -802,7 +828,7 @@ static void axi_body_sums(const axi_run *S, axi_sums *b, axi_sums *sl)
 
 /* Energies at t_{n+1/2} (KE with v_{n+1/2}, strain 1/2 u_n' f_int(u_n) ...
  * with u_{n+1}), the history row, the compression and the closure error. */
-static void axi_energy(const axi_run *S, double t, double Fc, double rad, double row[12], double *comp,
+static void axi_energy(const axi_run *S, double t, double Fc, double rad, double row[13], double *comp,
                        double *closure)
 {
     axi_sums sb, ss;
@@ -818,7 +844,13 @@ static void axi_energy(const axi_run *S, double t, double Fc, double rad, double
         *closure = ke[0] + ke[1] + S->W_int[0] + S->W_int[1] + S->W_abs - S->ke0;
     if (S->fgrav) /* gravity's work: the potential energy released */
         *closure -= S->W_grav;
-    const double r[12] = {t, Fc, *comp, rad, ke[0], se[0], ke[1], se[1], S->C.work, S->W_abs, *closure, pz / S->Mb};
+    /* ALE: the energy the remaps added (kinetic, elastic, the potential of
+       the moved masses, which W_grav does not see) is its own term */
+    const fem_ale_account *a = &S->ale_acc;
+    *closure -= a->kinetic + a->elastic;
+    const double remap = a->kinetic + a->elastic + a->potential;
+    const double r[13] = {t, Fc, *comp, rad, ke[0], se[0], ke[1], se[1], S->C.work, S->W_abs, *closure, pz / S->Mb,
+                          remap};
     memcpy(row, r, sizeof r);
 }
 
@@ -840,7 +872,7 @@ static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
                 return st;
             vtk_times[vtk_n++] = t;
         }
-        double Fc, rad, row[12], comp, closure;
+        double Fc, rad, row[13], comp, closure;
         if ((st = axi_step(S, &Fc, &rad, err)) != RF_OK)
             return st;
         if (S->large && (S->unstable = axi_step_violation(S)) >= 0)
@@ -926,6 +958,10 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     }
     hist->gravity = S->g, hist->gravity_work = S->W_grav, hist->geostatic_outside = S->geo_outside;
     hist->at_rest = R->at_rest;
+    const fem_ale_account *a = &S->ale_acc;
+    hist->ale_rezones = a->rezones, hist->ale_nodes_moved = a->nodes_moved;
+    hist->ale_kinetic = a->kinetic, hist->ale_elastic = a->elastic, hist->ale_potential = a->potential;
+    hist->ale_move_max = a->move_max, hist->ale_ratio_min = a->ratio_min;
     hist->boulder_nodes = S->mesh.boulder_nodes, hist->boulder_elements = S->mesh.boulder_elems;
     hist->slope_nodes = S->nn - S->mesh.boulder_nodes, hist->slope_elements = S->ne - S->mesh.boulder_elems;
     hist->state_hash = fem_hash(fem_hash(FEM_HASH_SEED, u, (size_t)S->ndof * sizeof *u), v,
@@ -989,6 +1025,7 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
     S->large = rf_fem_large_deformation(&S->o, in);
     S->g = rf_impact_gravity(in, 0);
     S->work_account |= S->large; /* the energy from the internal work: no K in updated Lagrangian */
+    S->ale_on = rf_fem_ale_enabled(&S->o, in);
     return RF_OK;
 }
 
@@ -1011,20 +1048,24 @@ static rf_status axi_attempt(rf_fem_workspace *ws, const rf_impact_input *in, co
     if (st == RF_OK)
         st = axi_assemble(&S, err);
     if (st == RF_OK)
-        st = fem_run_begin(&R, "fem", &S.o, S.dt, S.H.duration, hist != NULL, 12, err);
+        st = fem_run_begin(&R, "fem", &S.o, S.dt, S.H.duration, hist != NULL, S.ale_on ? 13 : 12, err);
     R.gravity = S.g;
     long nsteps = 0;
     if (st == RF_OK)
         st = axi_loop(&S, &R, &nsteps, err);
     if (st == RF_OK) {
         axi_extract(&S, &R, nsteps, out, hist);
-        if (hist)
+        if (hist) {
             fem_run_history(&R, hist);
+            if (S.ale_on)
+                hist->remap = R.series.col[12], R.series.col[12] = NULL;
+        }
         out->wall_seconds = rf_monotonic_seconds() - wall0;
     }
     *unstable = S.unstable;
     fem_run_free(&R);
     fem_contact_free(&S.C);
+    fem_ale_free(&S.ale);
     fem_kernel_release(&S.kernel[0]);
     fem_kernel_release(&S.kernel[1]);
     if (S.have_mesh)
@@ -1132,6 +1173,7 @@ rf_status fem_axi_slope_at_rest(const rf_impact_input *in, const rf_fem_options 
         }
     }
     fem_contact_free(&S.C);
+    fem_ale_free(&S.ale);
     fem_kernel_release(&S.kernel[0]);
     fem_kernel_release(&S.kernel[1]);
     if (S.have_mesh)

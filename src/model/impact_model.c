@@ -420,6 +420,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            small-strain results, whose identity stays as it was */
         if (large_possible(c))
             append(buf, cap, &len, " kinematics=updated_lagrangian");
+        /* ALE rezoning of the axisymmetric slope (option ale on; auto is off): named, so that a store
+           never mixes its results with the Lagrangian ones, whose identity stays as it was */
+        if (large_possible(c) && o->ale == RF_FEM_ALE_ON)
+            append(buf, cap, &len, " ale=on trigger=%.17g sweeps=%d", o->ale_trigger, o->ale_sweeps);
         /* the 3D model takes plastic bodies and measures penetration_max and indentation_depth (NaN
            before, issue 10): a store never mixes results from before and after */
         if (may_run_3d(c))
