@@ -311,7 +311,7 @@ static long axi_surface_mass_shift(axi_run *S, double *elm, const unsigned char 
                 elm[4 * e + a] *= alpha;
             }
         if (S->dte)
-            S->dte[e] = 2 / sqrt(axi_element_lambda(S, elm, fixed, e)) / element_size(mesh, e, NULL);
+            S->dte[e] = 2 / sqrt(axi_element_lambda(S, elm, fixed, e)) / fem_ale_element_size(mesh, e, NULL);
         n++;
     }
     free(face);
