@@ -113,30 +113,54 @@ static void soil_kernel_make(soil_kernel *s, const grid *g)
 
 static const fem_ale_params PARAMS = {0.5, 0.75, 10};
 
+/* A grid of soil with its point kernel, the rezoner over all of it, the kernel's state view and
+ * zeroed displacement and mesh-motion arrays: what the state-remap tests share. */
+typedef struct {
+    grid g;
+    soil_kernel s;
+    fem_ale A;
+    fem_points_view v;
+    double *ue_c, *u, *delta;
+} remap_case;
+
+static void remap_case_make(remap_case *c, int nr, int nz, double lr, double lz)
+{
+    grid_make(&c->g, nr, nz, 0, lr, lz);
+    soil_kernel_make(&c->s, &c->g);
+    rf_error err = {0};
+    assert_int_equal(fem_ale_setup(&c->A, &c->g.m, 0, c->g.m.n_elems, NULL, c->g.invm, &PARAMS, &err), RF_OK);
+    const size_t nd = (size_t)(2 * c->g.m.n_nodes);
+    c->u = calloc(nd, sizeof *c->u), c->delta = malloc(nd * sizeof *c->delta);
+    assert_int_equal(fem_kernel_points_axi_ale(&c->s.k, &c->v, &c->ue_c), 1);
+}
+
+static void remap_case_free(remap_case *c)
+{
+    fem_kernel_release(&c->s.k);
+    fem_ale_free(&c->A);
+    free(c->u), free(c->delta);
+    grid_free(&c->g);
+}
+
 /* A uniform stress, strain and state, moved by any mesh motion: the same
  * values to round-off; the committed geometry moves with the mesh. */
 static void test_uniform_state_exact(void **state)
 {
     (void)state;
-    grid g;
-    grid_make(&g, 6, 5, 0, 1.2, 1.0);
-    soil_kernel s;
-    soil_kernel_make(&s, &g);
-    fem_ale A;
-    rf_error err = {0};
-    assert_int_equal(fem_ale_setup(&A, &g.m, 0, g.m.n_elems, NULL, g.invm, &PARAMS, &err), RF_OK);
-    fem_points_view v;
-    const size_t nd = (size_t)(2 * g.m.n_nodes);
-    double *ue_c, *u = calloc(nd, sizeof *u), *delta = malloc(nd * sizeof *delta);
-    assert_int_equal(fem_kernel_points_axi_ale(&s.k, &v, &ue_c), 1);
+    remap_case c;
+    remap_case_make(&c, 6, 5, 1.2, 1.0);
+    grid g = c.g;
+    fem_points_view v = c.v;
+    double *ue_c = c.ue_c, *u = c.u, *delta = c.delta;
     const double sig0[4] = {-3e5, -7e5, -2e5, 1.5e5}, eps0[4] = {-0.01, 0.02, 0.003, -0.04};
     const double var0[4] = {0.3, -0.02, 0.01, 5};
     for (size_t p = 0; p < v.np; p++)
         for (int i = 0; i < 4; i++)
             v.sig[4 * p + i] = sig0[i], v.eps[4 * p + i] = eps0[i], v.var[4 * p + i] = var0[i];
-    random_motion(&A, &g, 0.3, delta);
+    random_motion(&c.A, &g, 0.3, delta);
     double elastic;
-    assert_int_equal(fem_ale_remap_points(&A, &g.m, u, delta, &s.k, &elastic, &err), RF_OK);
+    rf_error err = {0};
+    assert_int_equal(fem_ale_remap_points(&c.A, &g.m, u, delta, &c.s.k, &elastic, &err), RF_OK);
     double worst = 0;
     for (size_t p = 0; p < v.np; p++)
         for (int i = 0; i < 4; i++) {
@@ -151,10 +175,7 @@ static void test_uniform_state_exact(void **state)
             const int n = g.m.conn[4 * e + a];
             assert_true(ue_c[8 * e + 2 * a] == delta[2 * n] && ue_c[8 * e + 2 * a + 1] == delta[2 * n + 1]);
         }
-    fem_kernel_release(&s.k);
-    fem_ale_free(&A);
-    free(u), free(delta);
-    grid_free(&g);
+    remap_case_free(&c);
 }
 
 /* A non-uniform field keeps its integral sum_p w_p q_p (the boundary does not
@@ -162,25 +183,20 @@ static void test_uniform_state_exact(void **state)
 static void test_conservative(void **state)
 {
     (void)state;
-    grid g;
-    grid_make(&g, 5, 6, 0, 1.0, 1.4);
-    soil_kernel s;
-    soil_kernel_make(&s, &g);
-    fem_ale A;
-    rf_error err = {0};
-    assert_int_equal(fem_ale_setup(&A, &g.m, 0, g.m.n_elems, NULL, g.invm, &PARAMS, &err), RF_OK);
-    fem_points_view v;
-    const size_t nd = (size_t)(2 * g.m.n_nodes);
-    double *ue_c, *u = calloc(nd, sizeof *u), *delta = malloc(nd * sizeof *delta);
-    assert_int_equal(fem_kernel_points_axi_ale(&s.k, &v, &ue_c), 1);
+    remap_case c;
+    remap_case_make(&c, 5, 6, 1.0, 1.4);
+    grid g = c.g;
+    fem_points_view v = c.v;
+    double *u = c.u, *delta = c.delta;
     double before = 0, after = 0;
     for (size_t p = 0; p < v.np; p++) {
         v.sig[4 * p + 1] = -1e5 * (1 + (double)(p % 13)) * (1 + 0.1 * (double)(p / 4));
         before += v.w[p] * v.sig[4 * p + 1];
     }
-    random_motion(&A, &g, 0.25, delta);
+    random_motion(&c.A, &g, 0.25, delta);
     double elastic;
-    assert_int_equal(fem_ale_remap_points(&A, &g.m, u, delta, &s.k, &elastic, &err), RF_OK);
+    rf_error err = {0};
+    assert_int_equal(fem_ale_remap_points(&c.A, &g.m, u, delta, &c.s.k, &elastic, &err), RF_OK);
     for (long e = 0; e < g.m.n_elems; e++) {
         double r[4], z[4], B[4][32], w[4];
         for (int a = 0; a < 4; a++) {
@@ -194,10 +210,7 @@ static void test_conservative(void **state)
     printf("integral of sigma_zz before %.12e, after the remap %.12e (relative %.1e); elastic energy change %.3e J\n",
            before, after, fabs(after - before) / fabs(before), elastic);
     assert_true(fabs(after - before) < 1e-12 * fabs(before));
-    fem_kernel_release(&s.k);
-    fem_ale_free(&A);
-    free(u), free(delta);
-    grid_free(&g);
+    remap_case_free(&c);
 }
 
 /* Velocities: a uniform v_z and a linear radial v_r = a r (both carried by
