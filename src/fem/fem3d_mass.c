@@ -103,13 +103,16 @@ int f3_boulder_mass_moments(const f3_mesh *mesh, double *elm, double M, double X
  * scheme cannot take all of it (a massless node has no stable step), so here
  * each contact-face element of the slope keeps the fraction alpha of its
  * surface nodes' masses and gives the rest to the node below each (its edge
- * neighbour off the face), with alpha = lambda_e / (kappa lambda_max): its
- * element eigenvalue then stays below kappa lambda_max (M' >= alpha M), so the
- * step, set by lambda_max, is unchanged, and kappa < 1 leaves the updated-
- * Lagrangian step check room for the element to be compressed.  Elements at
- * or above kappa lambda_max (an elastic granite face, whose elements set the
- * step) are left alone.  lam_upper: each element's Gershgorin bound, raised to
- * the redistributed element's bound.  face: per node, 1 on the contact face. */
+ * neighbour off the face), with alpha = max(FEM_MASS_KEPT_MIN, lambda_e /
+ * (kappa lambda_max)): its element eigenvalue then stays below lambda_e / alpha
+ * <= kappa lambda_max (M' >= alpha M), so the step, set by lambda_max, is
+ * unchanged, and kappa < 1 leaves the updated-Lagrangian step check room for
+ * the element to be compressed.  Elements at or above kappa lambda_max (an
+ * elastic granite face, whose elements set the step) are left alone.  The
+ * solver calls it for soil only, and in 3D only on request
+ * (rf_fem3d_options.surface_mass: frictionless oblique impacts diverged with
+ * it).  lam_upper: each element's Gershgorin bound, raised to the
+ * redistributed element's bound.  face: per node, 1 on the contact face. */
 long f3_surface_mass_shift(const f3_mesh *mesh, const unsigned char *face, double *elm, double *lam_upper,
                            double lam_max, double kappa)
 {
