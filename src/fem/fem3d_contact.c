@@ -14,15 +14,18 @@
  * caps it at f lambda_n (return map).  No penalty, no tangential spring: the
  * constraints hold to the solver tolerance (1e-9 h).
  * Pairing: the master material point currently under the slave (current
- * tangential positions of both surfaces) picks the master quad of the
- * slope's uniform fine-box face and the bilinear weights.  Unlike the axisymmetric solver the
+ * tangential positions of both surfaces, found by Newton on the C1 face below)
+ * picks the 4 x 4 stencil of the slope's uniform fine-box face.  Unlike the axisymmetric solver the
  * pairing is not frozen at the reference configuration: the boulder slides
  * v_t t_c ~ 3 cm, a quarter of the contact radius, which a fixed pairing
  * would turn into a wrong gap (the master's indentation is measured at the
  * wrong place).
  * Master face: C1, the Catmull-Rom (cubic Hermite with central-difference
  * slopes) surface of the 4 x 4 grid nodes around the quad under the slave,
- * for the gap, the relative tangential displacement and the slope S alike.
+ * for the gap, the relative tangential displacement and the slope S alike;
+ * S = dz/dx against the current tangential position (J^-T dz/dX), which is
+ * what the gap's derivative carries where the soil's face is stretched
+ * (docs/validation-plastic.md 9e).
  * With the bilinear quad (C0) S was the quad's secant slope, constant across
  * the quad in x: a slave at the fraction xi of the quad saw the slope of its
  * middle, off by (1/2 - xi) h u_z'', and the slaves of the near-matching
@@ -79,8 +82,12 @@ static void catmull_rom(const f3_mesh *mesh, const double *u, int i, int j, doub
             ut[0] += N[q] * um[0], ut[1] += N[q] * um[1];
         }
     const double det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
-    S[0] = (G[1][1] * G[2][0] - G[1][0] * G[2][1]) / det;
-    S[1] = (-G[0][1] * G[2][0] + G[0][0] * G[2][1]) / det;
+    if (det > 0) {
+        S[0] = (G[1][1] * G[2][0] - G[1][0] * G[2][1]) / det;
+        S[1] = (-G[0][1] * G[2][0] + G[0][0] * G[2][1]) / det;
+    } else { /* a folded face (no height field over x, y there): its material slope, finite */
+        S[0] = G[2][0], S[1] = G[2][1];
+    }
     J[0] = G[0][0], J[1] = G[0][1], J[2] = G[1][0], J[3] = G[1][1];
     for (int a = 0; a < F3_NM; a++)
         for (int b = a + 1; b < F3_NM; b++)
