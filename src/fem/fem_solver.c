@@ -274,10 +274,11 @@ static double axi_element_lambda(const axi_run *S, const double *elm, const unsi
 /* The mass redistribution at the slope's contact face (docs/validation-plastic.md 9e; the 3D form
  * is fem3d_mass.c), for soil (a layer, an elasto-plastic slope): a slope quad with an edge on the
  * contact face (the slope's surface nodes the contact can reach: the fine zone, out to the
- * boulder's radius) whose eigenvalue lambda_e is below kappa lambda_max keeps alpha = lambda_e /
- * (kappa lambda_max) of the face nodes' element masses and gives the rest to the node below each
- * (its neighbour off the face along the quad's other edge); its eigenvalue stays below kappa
- * lambda_max, so the step is unchanged.  Returns the number of elements changed. */
+ * boulder's radius) whose eigenvalue lambda_e is below kappa lambda_max keeps alpha =
+ * max(FEM_MASS_KEPT_MIN, lambda_e / (kappa lambda_max)) of the face nodes' element masses and
+ * gives the rest to the node below each (its neighbour off the face along the quad's other edge);
+ * its eigenvalue stays below lambda_e / alpha <= kappa lambda_max, so the step is unchanged.
+ * Returns the number of elements changed. */
 static long axi_surface_mass_shift(axi_run *S, double *elm, const unsigned char *fixed, double lam_max)
 {
     const fem_mesh *mesh = &S->mesh;
