@@ -433,9 +433,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            by ~1e-5, soil by a few per cent */
         if (may_run_3d(c))
             append(buf, cap, &len, " fem3d_face=current_slope");
-        /* the mass redistribution at the contact face (both solvers): granite is untouched, but a slope
-           much softer than the boulder may not be, so every FE identity names it */
-        append(buf, cap, &len, " surface_mass_kappa=%.17g", o->surface_mass_kappa);
+        /* the mass redistribution at the contact face of a soil (a layer or a plastic slope; elastic
+           slopes are untouched, their identity stays) */
+        if (layer_possible(c) || plastic_possible(c))
+            append(buf, cap, &len, " surface_mass_kappa=%.17g", o->surface_mass_kappa);
         /* the 3D model runs in large deformation too (on, or auto with a plastic body; it was small
            strain in every case before): a store never mixes 3D results of the two kinematics */
         if (may_run_3d(c) && large_possible(c))
