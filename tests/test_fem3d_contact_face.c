@@ -124,6 +124,30 @@ static void test_normal_row_is_gap_derivative(void **state)
     assert_true(fabs(gv[0] - dg) < 1e-6 * (1 + fabs(dg)));
 }
 
+/* The half model's symmetry plane y = 0 (the grid starts on it): the face is even in y, so its slope
+   across the plane is 0 there; the Catmull-Rom stencil mirrors the row y = -h onto y = +h (a clamped
+   stencil gave (u(h) - u(0)) / 2h). */
+static void test_symmetry_plane_slope(void **state)
+{
+    (void)state;
+    face_case f;
+    const double h = 0.1;
+    face_setup(&f, h);
+    for (int n = 0; n < NN - 1; n++)
+        f.x[3 * n + 1] += 3 * h; /* rows y = 0 .. 7h */
+    f.mesh.y0_s = 0;
+    double u[3 * NN] = {0}, v[3 * NN] = {0};
+    for (int n = 0; n < NN - 1; n++) {
+        const double X = f.x[3 * n], Y = f.x[3 * n + 1];
+        u[3 * n + 2] = -0.3 * (X * X + Y * Y);
+    }
+    f.x[3 * (NN - 1)] = 0.037, f.x[3 * (NN - 1) + 1] = 0, f.x[3 * (NN - 1) + 2] = 0.01;
+    located_gap(&f, u, v);
+    assert_int_equal(f.outside, 0);
+    assert_true(fabs(f.S[1]) < 1e-15);
+    assert_true(fabs(f.S[0] - (-0.6 * 0.037)) < 1e-3); /* dz/dx of the bowl, to the face's O(h^2) */
+}
+
 /* The mass redistribution of one unit-cube element (top face = nodes 4-7 on the contact face):
    kappa lambda_max = 5 lambda_e keeps alpha = 0.2 of the face nodes' mass, gives the rest to the
    node below each (a <-> a + 4 along the vertical edges), conserves the mass and bounds the
@@ -163,6 +187,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stretched_face_closed_form),
         cmocka_unit_test(test_normal_row_is_gap_derivative),
+        cmocka_unit_test(test_symmetry_plane_slope),
         cmocka_unit_test(test_surface_mass_shift),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

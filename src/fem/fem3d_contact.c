@@ -56,14 +56,15 @@ static void cr_w(double t, double w[4], double dw[4])
 }
 
 /* The C1 master face at (xi, eta) in quad (i, j): nodes m and weights N of the 4 x 4 stencil
-   (clamped at the grid's edge, where a repeated node's weight is merged into its first copy),
+   (mirrored across the half model's symmetry plane y = 0, where the face is even in y; clamped
+   at the grid's other edges, where a repeated node's weight is merged into its first copy),
    the slope S of the deformed face against the current tangential position (dz/dx =
    J^-T dz/dX, J = d(x, y)/d(X, Y): the face is stretched where the soil flows out of a crater),
    the tangential displacement ut there and J (row-major). */
 static void catmull_rom(const f3_mesh *mesh, const double *u, int i, int j, double xi, double eta, int *m,
                         double *N, double S[2], double ut[2], double J[4])
 {
-    const int nx = mesh->nxt_s, ny = mesh->nyt_s;
+    const int nx = mesh->nxt_s, ny = mesh->nyt_s, mirror = fabs(mesh->y0_s) <= 1e-9 * mesh->h_s;
     double wx[4], dwx[4], wy[4], dwy[4];
     cr_w(xi, wx, dwx), cr_w(eta, wy, dwy);
     double G[3][2] = {{1, 0}, {0, 1}, {0, 0}}; /* d(x, y, z) / d(X, Y) of the deformed face */
@@ -72,6 +73,8 @@ static void catmull_rom(const f3_mesh *mesh, const double *u, int i, int j, doub
     for (int a = 0; a < 4; a++)
         for (int b = 0; b < 4; b++, q++) {
             int ii = i - 1 + a, jj = j - 1 + b;
+            if (jj < 0 && mirror) /* the half model's symmetry plane: the face is even in y */
+                jj = -jj;
             ii = ii < 0 ? 0 : ii > nx - 1 ? nx - 1 : ii;
             jj = jj < 0 ? 0 : jj > ny - 1 ? ny - 1 : jj;
             m[q] = mesh->top_s[ii * ny + jj];
