@@ -124,7 +124,7 @@ long f3_surface_mass_shift(const f3_mesh *mesh, const unsigned char *face, doubl
         int top[8], nt = 0, below[8];
         for (int a = 0; a < 8; a++)
             nt += top[a] = face[cn[a]] != 0;
-        const double alpha = fmax(FEM_MASS_KEPT_MIN, lam_upper[e] / (kappa * lam_max));
+        const double alpha = fem_mass_kept(lam_upper[e], kappa, lam_max);
         if (nt != 4 || !(alpha > 0) || alpha >= 1)
             continue;
         for (int a = 0; a < 8; a++)

@@ -87,6 +87,7 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(o3->core_factor >= 1 && o3->core_factor <= 4), "fem3d: core_factor must be in [1, 4], got %g",
         o3->core_factor);
     BAD(!(o3->elongation >= 0 && o3->elongation <= 4), "fem3d: elongation must be in [0, 4], got %g", o3->elongation);
+    BAD(o3->surface_mass != 0 && o3->surface_mass != 1, "fem3d: surface_mass must be 0 or 1, got %d", o3->surface_mass);
     BAD(!(o3->layer_aspect >= 0.5 && o3->layer_aspect <= 4), "fem3d: layer_aspect must be in [0.5, 4], got %g",
         o3->layer_aspect);
     BAD(!(o3->boulder_inner >= 2.5 && o3->boulder_inner <= 20), "fem3d: boulder_inner must be in [2.5, 20], got %g",
@@ -447,6 +448,15 @@ static double solid_lambda_max(solid_run *R, double *lam_upper)
     return hex8_max_eigenvalue(R->ne, solid_element, R, lam_upper, NULL);
 }
 
+/* Node n's lumped mass: the sum of its element-node masses (incidence order). */
+static double node_mass(const solid_run *R, long n)
+{
+    double m = 0;
+    for (long p = R->S.inc_ptr[n]; p < R->S.inc_ptr[n + 1]; p++)
+        m += R->elm[R->S.inc[p]];
+    return m;
+}
+
 /* The mass redistribution at the slope's contact face (fem3d_mass.c): the nodes of the master
  * grid, the element-node masses and the nodal masses again; mshift = each node's change. */
 static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
@@ -462,11 +472,8 @@ static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
         face[R->mesh.top_s[k]] = !(R->mesh.flags[R->mesh.top_s[k]] & F3_OUTER);
     R->shifted_elems = f3_surface_mass_shift(&R->mesh, face, R->elm, lam_upper, lam_max, R->o.surface_mass_kappa);
     free(face);
-    const f3_system *S = &R->S;
     for (long n = R->nbn; n < R->nn && R->shifted_elems > 0; n++) {
-        double m = 0;
-        for (long p = S->inc_ptr[n]; p < S->inc_ptr[n + 1]; p++)
-            m += R->elm[S->inc[p]];
+        const double m = node_mass(R, n);
         R->mshift[n] = m - R->mass[3 * n];
         for (int q = 0; q < 3; q++) {
             R->mass[3 * n + q] = m;
@@ -481,7 +488,6 @@ static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
 static void solid_masses(solid_run *R)
 {
     const f3_mesh *mesh = &R->mesh;
-    const f3_system *S = &R->S;
     R->mesh_mass_b = 0;
     for (long e = 0; e < mesh->boulder_elems; e++)
         for (int a = 0; a < 8; a++)
@@ -491,12 +497,8 @@ static void solid_masses(solid_run *R)
     for (long e = 0; e < mesh->boulder_elems * 8; e++)
         R->elm[e] *= mscale;
     boulder_inertia(R);
-    for (long n = 0; n < R->nn; n++) {
-        double m = 0;
-        for (long p = S->inc_ptr[n]; p < S->inc_ptr[n + 1]; p++)
-            m += R->elm[S->inc[p]];
-        R->mass[3 * n] = R->mass[3 * n + 1] = R->mass[3 * n + 2] = m;
-    }
+    for (long n = 0; n < R->nn; n++)
+        R->mass[3 * n] = R->mass[3 * n + 1] = R->mass[3 * n + 2] = node_mass(R, n);
     for (long dd = 0; dd < R->ndof; dd++)
         R->invm[dd] = R->fixed[dd] ? 0 : 1 / R->mass[dd];
     double *lam_upper = fem_pool_get(R->pool, Q_LAMU, (size_t)R->ne * sizeof(double), 0);

@@ -118,6 +118,15 @@ int fem_run_stop(const fem_run *r, long n);
  * node at least this share of its element masses: nearly massless face nodes (a share of 0.006,
  * soft soil over granite) made frictionless ploughing in the 3D model diverge. */
 #define FEM_MASS_KEPT_MIN 0.1
+
+/* The share of its face nodes' element masses that a contact-face element with eigenvalue bound
+ * lam_e keeps, max(FEM_MASS_KEPT_MIN, lam_e / (kappa lam_max)) (>= 1: the element is left alone);
+ * the rule of both solvers' mass redistribution. */
+static inline double fem_mass_kept(double lam_e, double kappa, double lam_max)
+{
+    const double a = lam_e / (kappa * lam_max);
+    return a > FEM_MASS_KEPT_MIN ? a : FEM_MASS_KEPT_MIN;
+}
 #define FEM_REST_WINDOW 2.0
 /* Fill the outputs every FE model defines; nsteps steps were made. */
 void fem_run_outputs(const fem_run *r, long nsteps, double duration_threshold, double ke0, double force_factor,

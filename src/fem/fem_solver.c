@@ -301,8 +301,7 @@ static long axi_surface_mass_shift(axi_run *S, double *elm, const unsigned char 
         }
         if (nt != 2 || !distinct || (top[0] && top[2]) || (top[1] && top[3]))
             continue; /* not one edge on the face, or a collapsed quad */
-        const double alpha =
-            fmax(FEM_MASS_KEPT_MIN, axi_element_lambda(S, elm, fixed, e) / (S->o.surface_mass_kappa * lam_max));
+        const double alpha = fem_mass_kept(axi_element_lambda(S, elm, fixed, e), S->o.surface_mass_kappa, lam_max);
         if (!(alpha > 0) || alpha >= 1)
             continue;
         for (int a = 0; a < 4; a++)
@@ -343,34 +342,17 @@ static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
         if (i >= mesh->boulder_nodes && (mesh->flags[i] & FEM_OUTER) && S->fixed_outer)
             fixed[2 * i] = fixed[2 * i + 1] = 1;
     }
+    axi_nodal_masses(S, elm, fixed);
     double lam_max = 0;
     for (long e = 0; e < S->ne; e++) {
-        const int *c = mesh->conn + 4 * e;
-        int freed[8];
-        for (int a = 0; a < 4; a++) {
-            S->mass[2 * c[a]] += elm[4 * e + a];
-            S->mass[2 * c[a] + 1] += elm[4 * e + a];
-            freed[2 * a] = !fixed[2 * c[a]];
-            freed[2 * a + 1] = !fixed[2 * c[a] + 1];
-        }
-        /* degenerate (collapsed) quads repeat a node: merge its masses for the bound */
-        double me[4];
-        for (int a = 0; a < 4; a++) {
-            me[a] = 0;
-            for (int b = 0; b < 4; b++)
-                if (c[b] == c[a])
-                    me[a] += elm[4 * e + b];
-        }
         if (S->rigid && e < mesh->boulder_elems)
             continue; /* a rigid boulder has no stiffness: the slope sets the step */
-        double lm = fem_element_lambda_max(S->K + 64 * e, me, freed);
+        const double lm = axi_element_lambda(S, elm, fixed, e);
         if (S->dte)
             S->dte[e] = 2 / sqrt(lm) / fem_ale_element_size(mesh, e, NULL);
         if (lm > lam_max)
             lam_max = lm;
     }
-    for (long d = 0; d < S->ndof; d++)
-        S->invm[d] = fixed[d] ? 0 : 1 / S->mass[d];
     if (S->o.surface_mass_kappa > 0 && (S->layer || S->plastic[1]) && /* soil only: section 9e */
         (S->mshift = fem_pool_get(S->pool, P_MSHIFT, (size_t)S->nn * sizeof(double), 1)) &&
         (S->shifted_elems = axi_surface_mass_shift(S, elm, fixed, lam_max)) > 0) {
