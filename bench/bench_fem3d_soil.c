@@ -54,13 +54,13 @@ int main(int argc, char **argv)
         const double cpu = probe_run(&p, &out, &H, &rep, "bench_fem3d_soil"), k0 = H.ke0;
         printf("model=%s angle=%.0f f=%g ref=%g large=%d h=%.4f elements=%.0f steps=%.0f cpu=%.2f R_n=%.4f R_t=%.4f "
                "R_ke=%.4f W_p=%.4f pen=%.4f crater=%.4f a=%.4f F=%.4g t_c=%.4g closure=%.2e contact_work=%.2e fric=%.3e g=%g W_g=%.3e "
-               "rest=%d outside=%ld gap_pen=%.2e\n",
+               "rest=%d outside=%ld gap_pen=%.2e unlocated=%ld\n",
                p.axi ? "axi" : "3d", p.in.slope_angle * 180 / RF_PI, p.in.friction, p.o.refinement,
                rf_fem_large_deformation(&p.o, &p.in), H.h_contact, out.elements, out.steps, cpu, out.R_n,
                out.R_t, out.R_ke, out.plastic_work, out.penetration_max, out.indentation_depth, out.contact_radius,
                out.contact_force_max, out.contact_duration, H.closure[H.n - 1] / k0, H.contact_work[H.n - 1] / k0,
                rep.friction_work / k0, H.gravity, H.gravity_work / k0,
-               H.at_rest, H.geostatic_outside, H.penetration_max);
+               H.at_rest, H.geostatic_outside, H.penetration_max, rep.unlocated_pair_steps);
         printf("  estimate: thick=%d depth=%.4f radius=%.4f zone=%.4f t=%.4g; warning: %s\n", lc.thick,
                lc.compression, lc.radius, lc.zone_radius, lc.duration, H.warning[0] ? H.warning : "-");
         fflush(stdout);

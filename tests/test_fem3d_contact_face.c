@@ -32,7 +32,7 @@ typedef struct {
     double x[3 * NN];
     int top[NX * NY];
     int slave, mnode[F3_NM];
-    double N[F3_NM], S[2], s0[2], gvo[3];
+    double N[F3_NM], S[2], s0[2], gvo[3], Xm[2];
     unsigned char outside;
 } face_case;
 
@@ -50,7 +50,13 @@ static void face_setup(face_case *f, double h)
     f->mesh.nxt_s = NX, f->mesh.nyt_s = NY, f->mesh.x0_s = -4 * h, f->mesh.y0_s = -3 * h, f->mesh.h_s = h;
     f->slave = NN - 1;
     f->C.nslave = 1, f->C.slave = &f->slave, f->C.mnode = f->mnode, f->C.N = f->N, f->C.S = f->S;
-    f->C.s0 = f->s0, f->C.gvo = f->gvo, f->C.outside = &f->outside;
+    f->C.s0 = f->s0, f->C.gvo = f->gvo, f->C.outside = &f->outside, f->C.Xm = f->Xm;
+}
+
+/* Start the next location from the slave's reference (X, Y), as the solver does before the first. */
+static void face_restart(face_case *f)
+{
+    f->Xm[0] = f->x[3 * f->slave], f->Xm[1] = f->x[3 * f->slave + 1];
 }
 
 /* The affine field u = (ex X + g Y, ey Y, a X + b Y) on the grid, the slave at (xs, ys, zs). */
@@ -67,6 +73,7 @@ static void affine(const face_case *f, double *u, const double p[5], const doubl
 /* The gap of the located pair: the slave's z less the face's at the master point. */
 static double located_gap(face_case *f, const double *u, const double *v)
 {
+    face_restart(f);
     f3_contact_locate(&f->C, &f->mesh, u, v, 1, 1);
     double g = f->x[3 * f->slave + 2] + u[3 * f->slave + 2];
     for (int a = 0; a < F3_NM; a++)
@@ -148,6 +155,68 @@ static void test_symmetry_plane_slope(void **state)
     assert_true(fabs(f.S[0] - (-0.6 * 0.037)) < 1e-3); /* dz/dx of the bowl, to the face's O(h^2) */
 }
 
+/* A crater's wall along the plane of motion, as measured where a ploughing boulder's pair went
+   wrong (docs/validation-plastic.md 9e): one quad stretched to 3.3 times its length between
+   compressed neighbours, so x(X) along the face is S-shaped, and the slave 0.17 m from its master
+   material point.  Plain Newton from the slave's own (X, Y) cycled between the quads and stopped
+   7 mm off after its 8 iterations (on this grid it leaves the grid); the located point must put the face under the slave (the
+   Catmull-Rom weights interpolate the node positions, so sum N x_m is the face point's x), from a
+   cold start and from a warm one on the far side. */
+static void test_uneven_stretch_located(void **state)
+{
+    (void)state;
+    face_case f;
+    const double h = 0.1094, xs[3] = {0.2473, 0.0512, -0.0818};
+    /* x of the node columns i = 0..8 (X = (i - 4) h): the measured -0.028, 0.061, 0.375, 0.476 at i = 4..7 */
+    const double xcol[NX] = {-0.36, -0.25, -0.15, -0.08, -0.028, 0.061, 0.375, 0.476, 0.57};
+    face_setup(&f, h);
+    double u[3 * NN] = {0}, v[3 * NN] = {0};
+    for (int n = 0; n < NN - 1; n++) {
+        const double X = f.x[3 * n];
+        u[3 * n] = xcol[n / NY] - X, u[3 * n + 2] = -0.05 - 0.1 * X * X;
+    }
+    for (int d = 0; d < 3; d++)
+        u[3 * (NN - 1) + d] = xs[d] - f.x[3 * (NN - 1) + d];
+    for (int start = 0; start < 2; start++) {
+        face_restart(&f);
+        if (start) /* warm start from a point beyond the root, in the next quad but one */
+            f.Xm[0] = 3.5 * h, f.Xm[1] = -2 * h;
+        f3_contact_locate(&f.C, &f.mesh, u, v, 1, 1);
+        double x = 0, y = 0;
+        for (int a = 0; a < F3_NM; a++)
+            x += f.N[a] * (f.x[3 * f.mnode[a]] + u[3 * f.mnode[a]]), y += f.N[a] * f.x[3 * f.mnode[a] + 1];
+        assert_int_equal(f.outside, 0);
+        assert_true(fabs(x - xs[0]) < 1e-12 && fabs(y - xs[1]) < 1e-12);
+        assert_true(fabs(f.Xm[0] - xs[0]) > 0.07); /* the master point is far from the slave's X */
+    }
+}
+
+/* A folded face (column 5 pushed past column 6: x(X) turns back, det J < 0 between them): the
+   point under a slave is not unique there, so the location keeps the slave's previous master
+   point (flag 2) and the stencil there, and the gap stays continuous. */
+static void test_folded_face_keeps_point(void **state)
+{
+    (void)state;
+    face_case f;
+    const double h = 0.1, xs[3] = {0.16, 0.05, 0.02};
+    const double xcol[NX] = {-0.4, -0.3, -0.2, -0.1, 0.0, 0.25, 0.12, 0.3, 0.4};
+    face_setup(&f, h);
+    double u[3 * NN] = {0}, v[3 * NN] = {0};
+    for (int n = 0; n < NN - 1; n++)
+        u[3 * n] = xcol[n / NY] - f.x[3 * n];
+    for (int d = 0; d < 3; d++)
+        u[3 * (NN - 1) + d] = xs[d] - f.x[3 * (NN - 1) + d];
+    const double P0[2] = {0.15, 0.05}; /* inside the fold: x(X) decreases there */
+    f.Xm[0] = P0[0], f.Xm[1] = P0[1];
+    f3_contact_locate(&f.C, &f.mesh, u, v, 1, 1);
+    assert_int_equal(f.outside, 2);
+    assert_true(f.Xm[0] == P0[0] && f.Xm[1] == P0[1]);
+    double X = 0, Y = 0; /* the weights are the Catmull-Rom ones at P0 (they reproduce X and Y) */
+    for (int a = 0; a < F3_NM; a++)
+        X += f.N[a] * f.x[3 * f.mnode[a]], Y += f.N[a] * f.x[3 * f.mnode[a] + 1];
+    assert_true(fabs(X - P0[0]) < 1e-12 && fabs(Y - P0[1]) < 1e-12);
+}
+
 /* The mass redistribution of one unit-cube element (top face = nodes 4-7 on the contact face):
    kappa lambda_max = 5 lambda_e keeps alpha = 0.2 of the face nodes' mass, gives the rest to the
    node below each (a <-> a + 4 along the vertical edges), conserves the mass and bounds the
@@ -188,6 +257,8 @@ int main(void)
         cmocka_unit_test(test_stretched_face_closed_form),
         cmocka_unit_test(test_normal_row_is_gap_derivative),
         cmocka_unit_test(test_symmetry_plane_slope),
+        cmocka_unit_test(test_uneven_stretch_located),
+        cmocka_unit_test(test_folded_face_keeps_point),
         cmocka_unit_test(test_surface_mass_shift),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

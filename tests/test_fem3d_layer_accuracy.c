@@ -147,7 +147,8 @@ static void test_soft_layer_vs_axisymmetric(void **state)
    increment contact loses the captured face nodes' relative kinetic energy (an O(h) loss), which
    the redistribution takes off the face.  The step must be the same (the redistributed elements
    stay below kappa lambda_max), R_n may move by the mesh's error only, and the S5 soil's loss must
-   fall as the mass left on its face (a tenth). */
+   fall as the mass left on its face (alpha = lambda_e / (kappa lambda_max) ~ 0.006 over granite:
+   measured 1.3e-3 against 4.0e-2, a thirtieth). */
 static void test_surface_mass_3d(void **state)
 {
     (void)state;
@@ -177,8 +178,7 @@ static void test_surface_mass_3d(void **state)
     run3d_ex(&in, &o, &o3, &lumped, NULL, NULL);
     show("S5 soil, redistributed", &soil);
     show("S5 soil, lumped", &lumped);
-    /* a tenth of the face mass left (FEM_MASS_KEPT_MIN): the capture loss falls about tenfold */
-    assert_true(fabs(soil.energy_error) < 0.2 * fabs(lumped.energy_error));
+    assert_true(fabs(soil.energy_error) < 0.1 * fabs(lumped.energy_error));
 }
 
 int main(void)

@@ -127,7 +127,7 @@ typedef struct {
     double surface_mass_kappa; /* mass redistribution at the slope's contact face of a soil (a layer, an
                                   elasto-plastic slope; docs/validation-plastic.md 9e): a face element whose
                                   eigenvalue is below kappa x the mesh's largest gives its face nodes' mass
-                                  (down to a tenth) to the nodes below until it reaches it (the step is
+                                  to the nodes below until it reaches it (the step is
                                   unchanged); in [0, 1], 0 = off, default 0.1; the axisymmetric model (the
                                   3D model only with rf_fem3d_options.surface_mass) */
     int vtk_frames;            /* approximate number of VTK frames, default 60 */

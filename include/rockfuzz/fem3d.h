@@ -66,6 +66,7 @@ typedef struct {
     double stick_fraction;     /* share of contact pair-steps that stuck (0 without friction) */
     int pgs_sweeps_max;        /* most Gauss-Seidel sweeps needed by the contact in one step */
     double pgs_residual_max;   /* largest contact residual left (gap or slip) [m] */
+    long unlocated_pair_steps; /* closed pair-steps whose master point was not found to 1e-9 h (0 expected) */
     uint64_t state_hash;       /* FNV-1a over the bytes of the final u and v arrays */
     double *friction_series;   /* friction work at the rf_fem_history sample times [J] */
     size_t n;                  /* samples in friction_series */

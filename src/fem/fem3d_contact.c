@@ -120,24 +120,66 @@ static int grid_cell(const f3_mesh *mesh, double Xm, double Ym, int *i, int *j, 
     return out;
 }
 
-/* The master material point currently under the slave at (X, Y): X_m + u_t(X_m) = (X, Y) on the
-   C1 face, by Newton from X_m = (X, Y) (each step evaluates the face there); its stencil,
-   weights and slope into m, N, S.  Returns 1 if it lies outside the grid. */
-static int locate_master(const f3_mesh *mesh, const double *u, double X, double Y, int *m, double *N, double *S)
+/* The face's residual r = (X, Y) - X_m - u_t(X_m) at the material point P = X_m, with its
+   stencil, weights, slope and J into m, N, S, J; returns 1 if P is outside the grid. */
+static int face_residual(const f3_mesh *mesh, const double *u, double X, double Y, const double P[2], int *m,
+                         double *N, double *S, double r[2], double J[4])
 {
-    double Xm = X, Ym = Y;
-    int out = 0;
-    for (int it = 0; it < 8; it++) {
-        int i, j;
-        double xi, eta, ut[2], J[4];
-        out = grid_cell(mesh, Xm, Ym, &i, &j, &xi, &eta);
-        catmull_rom(mesh, u, i, j, xi, eta, m, N, S, ut, J);
-        const double rx = X - Xm - ut[0], ry = Y - Ym - ut[1], det = J[0] * J[3] - J[1] * J[2];
-        if (out || fabs(rx) + fabs(ry) <= 1e-12 * mesh->h_s || !(det > 0))
-            break;
-        Xm += (J[3] * rx - J[1] * ry) / det, Ym += (-J[2] * rx + J[0] * ry) / det;
-    }
+    int i, j;
+    double xi, eta, ut[2];
+    const int out = grid_cell(mesh, P[0], P[1], &i, &j, &xi, &eta);
+    catmull_rom(mesh, u, i, j, xi, eta, m, N, S, ut, J);
+    r[0] = X - P[0] - ut[0], r[1] = Y - P[1] - ut[1];
     return out;
+}
+
+/* The master material point currently under the slave at (X, Y): X_m + u_t(X_m) = (X, Y) on the
+   C1 face, by Newton from P (the slave's previous master point, or its own position if that was off
+   the grid; on return the new one), its stencil, weights and slope into m, N, S.  Where the soil is
+   stretched unevenly along the face (a crater's wall: one quad 3.3 times its length between two
+   compressed ones) x(X) is S-shaped, and plain Newton from the slave's own (X, Y) cycled between the
+   quads and stopped 7 mm off (docs/validation-plastic.md 9e): each step is halved until |r| falls
+   (backtracking; a step off the grid too), which converges wherever the face is a height field over
+   (x, y).  Where it is folded (det J <= 0 on the way) the point is not unique: the previous one is
+   kept, so that the gap stays continuous.  Returns 0; 1 if the point lies outside the grid; 2 if it
+   was not found to 1e-9 h (the previous point kept). */
+static int locate_master(const f3_mesh *mesh, const double *u, double X, double Y, double P[2], int *m, double *N,
+                         double *S)
+{
+    const double tol = 1e-12 * mesh->h_s;
+    double r[2], J[4];
+    int out = face_residual(mesh, u, X, Y, P, m, N, S, r, J);
+    if (out) /* the last point was off the grid: start again under the slave */
+        P[0] = X, P[1] = Y, out = face_residual(mesh, u, X, Y, P, m, N, S, r, J);
+    const double P0[2] = {P[0], P[1]};
+    double rn = hypot(r[0], r[1]);
+    int current = 1; /* m, N, S and J are those of P */
+    for (int it = 0; it < 60 && !out && rn > tol; it++) {
+        const double det = J[0] * J[3] - J[1] * J[2];
+        if (!(det > 0))
+            break;
+        const double d[2] = {(J[3] * r[0] - J[1] * r[1]) / det, (-J[2] * r[0] + J[0] * r[1]) / det};
+        int accepted = 0;
+        for (double a = 1; a >= 0x1p-30 && !accepted; a *= 0.5) {
+            const double T[2] = {P[0] + a * d[0], P[1] + a * d[1]};
+            double rt[2];
+            const int o = face_residual(mesh, u, X, Y, T, m, N, S, rt, J);
+            const double rtn = hypot(rt[0], rt[1]);
+            current = 0;
+            if (rtn < (1 - 0.5 * a) * rn)
+                P[0] = T[0], P[1] = T[1], r[0] = rt[0], r[1] = rt[1], rn = rtn, out = o, accepted = current = 1;
+        }
+        if (!accepted)
+            break;
+    }
+    if (out) /* beyond the grid (the accepted point's clamped stencil) */
+        return 1;
+    const int found = rn <= 1e-9 * mesh->h_s;
+    if (!found)
+        P[0] = P0[0], P[1] = P0[1];
+    if (!found || !current)
+        face_residual(mesh, u, X, Y, P, m, N, S, r, J);
+    return found ? 0 : 2;
 }
 
 void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, const double *v, int threads, int repair)
@@ -149,10 +191,10 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
     for (long k = 0; k < C->nslave; k++) {
         int s = C->slave[k];
         int *m = C->mnode + F3_NM * k;
-        double *N = C->N + F3_NM * k;
+        double *N = C->N + F3_NM * k, *P = C->Xm + 2 * k;
+        const double X = mesh->x[3 * s] + u[3 * s], Y = mesh->x[3 * s + 1] + u[3 * s + 1];
         if (repair)
-            C->outside[k] = (unsigned char)locate_master(mesh, u, mesh->x[3 * s] + u[3 * s],
-                                                         mesh->x[3 * s + 1] + u[3 * s + 1], m, N, C->S + 2 * k);
+            C->outside[k] = (unsigned char)locate_master(mesh, u, X, Y, P, m, N, C->S + 2 * k);
         for (int d = 0; d < 2; d++) {
             double gu = u[3 * s + d];
             for (int a = 0; a < F3_NM; a++)

@@ -59,7 +59,7 @@ typedef struct {
 
 /* Mass redistribution at the slope's contact face (fem3d_mass.c): each slope element with
  * a face on the contact face (face[node] != 0) whose Gershgorin bound lam_upper[e] is below
- * kappa lam_max keeps alpha = max(FEM_MASS_KEPT_MIN (fem_core.h), lam_upper[e] / (kappa lam_max)) of its face
+ * kappa lam_max keeps alpha = lam_upper[e] / (kappa lam_max) (fem_mass_kept, fem_core.h) of its face
  * nodes' masses elm and gives the rest to the node below each; lam_upper[e] becomes
  * lam_upper[e] / alpha.  Returns the number of elements changed. */
 long f3_surface_mass_shift(const f3_mesh *mesh, const unsigned char *face, double *elm, double *lam_upper,
@@ -115,7 +115,9 @@ typedef struct {
     double *s0;          /* 2 per slave: relative tangential displacement at step n [m] */
     double *A;           /* 3 per slave: diagonal of dt^2 G M^-1 G^T */
     double *gvo;         /* 3 per slave: G v_{n-1/2} */
-    unsigned char *outside; /* slave beyond the master grid (clamped) */
+    double *Xm;          /* 2 per slave: its master material point (X, Y) at the last pairing, where the
+                            next one starts (set to the slave's reference position before the first) */
+    unsigned char *outside; /* 1: slave beyond the master grid (clamped); 2: its master point not found */
     int *cand;
     long ncand;
     double *du;          /* 3 per node scratch, zero between calls */

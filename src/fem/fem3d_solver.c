@@ -152,6 +152,7 @@ typedef struct {
     double W_n, W_fric, W_abs, pen_max, slip_max, pgs_res_max;
     long stick_steps, pair_steps;
     int pgs_sweeps_max, outside_contact;
+    long unlocated_steps; /* pair-steps in contact whose master point was not found to tolerance */
     fem_pool *pool;
 } solid_run;
 
@@ -573,7 +574,7 @@ static void solid_dashpots(solid_run *R)
 static void contact_release(f3_contact *C)
 {
     free(C->slave), free(C->lam), free(C->mnode), free(C->N), free(C->S), free(C->gap), free(C->ds), free(C->s0);
-    free(C->A), free(C->gvo), free(C->outside), free(C->cand), free(C->du), free(C->rr);
+    free(C->A), free(C->gvo), free(C->Xm), free(C->outside), free(C->cand), free(C->du), free(C->rr);
     memset(C, 0, sizeof *C);
 }
 
@@ -605,13 +606,16 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
     C->s0 = malloc(ns * 2 * sizeof *C->s0);
     C->A = malloc(ns * 3 * sizeof *C->A);
     C->gvo = malloc(ns * 3 * sizeof *C->gvo);
+    C->Xm = malloc(ns * 2 * sizeof *C->Xm);
     C->outside = calloc(ns, 1);
     C->cand = malloc(ns * sizeof *C->cand);
     C->du = calloc((size_t)R->ndof, sizeof *C->du);
     if (!C->slave || !C->lam || !C->mnode || !C->N || !C->S || !C->gap || !C->ds || !C->s0 || !C->A || !C->gvo ||
-        !C->outside || !C->cand || !C->du)
+        !C->Xm || !C->outside || !C->cand || !C->du)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
     memcpy(C->slave, R->mesh.top_b, ns * sizeof *C->slave);
+    for (size_t k = 0; k < ns; k++)
+        C->Xm[2 * k] = R->mesh.x[3 * C->slave[k]], C->Xm[2 * k + 1] = R->mesh.x[3 * C->slave[k] + 1];
     C->friction = R->in->friction;
     C->tol = 1e-9 * R->h;
     C->band = 0.5 * fmin(R->h, R->hb) + 2 * R->V * R->dt;
@@ -863,8 +867,10 @@ static double solid_contact_account(solid_run *R, double *rad)
         R->pair_steps++;
         if (hypot(lam[1], lam[2]) < (1 - 1e-9) * C->friction * lam[0])
             R->stick_steps++;
-        if (C->outside[k] || slave_on_edge(&R->mesh, R->ms.full, k))
+        if (C->outside[k] == 1 || slave_on_edge(&R->mesh, R->ms.full, k))
             R->outside_contact = 1;
+        if (C->outside[k] == 2)
+            R->unlocated_steps++;
         double X = R->mesh.x[3 * s] + u[3 * s], Y = R->mesh.x[3 * s + 1] + u[3 * s + 1];
         Fc += lam[0];
         sx += lam[0] * X;
@@ -1279,6 +1285,7 @@ static void solid_report(solid_run *R, fem_run *run, const double P[3], double w
     rep->stick_fraction = R->pair_steps ? (double)R->stick_steps / (double)R->pair_steps : 0;
     rep->pgs_sweeps_max = R->pgs_sweeps_max;
     rep->pgs_residual_max = R->pgs_res_max;
+    rep->unlocated_pair_steps = R->unlocated_steps;
     rep->state_hash = fem_hash(fem_hash(FEM_HASH_SEED, R->u, (size_t)R->ndof * sizeof *R->u), R->v,
                                (size_t)R->ndof * sizeof *R->v);
     rep->n = run->series.n;
