@@ -75,7 +75,7 @@ static inline int probe_set_option(probe *p, const char *arg, size_t n, const ch
     else if (PROBE_KEY("core"))
         p->o3.core_factor = x;
     else if (PROBE_KEY("kappa"))
-        p->o.surface_mass_kappa = x, p->o3.surface_mass = x > 0;
+        p->o.surface_mass_kappa = x, p->o.surface_mass_3d = x > 0;
     else if (PROBE_KEY("domain"))
         p->o.domain_factor = x;
     else if (PROBE_KEY("end"))

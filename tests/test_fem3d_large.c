@@ -414,6 +414,36 @@ static void test_identity_names_3d_kinematics(void **state)
     assert_false(identity_has(&spec, "fem3d_kinematics")); /* off: the earlier 3D plastic identity */
 }
 
+/* The 3D mass redistribution switch (docs/validation-plastic.md 9e): off or on only, named in the
+ * identity only when on and a soil may run in 3D (a 3D soil store never mixes the two faces). */
+static void test_surface_mass_3d_switch(void **state)
+{
+    (void)state;
+    int on = 7;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_switch_parse("surface_mass_3d", "on", &on, &err), RF_OK);
+    assert_int_equal(on, 1);
+    assert_int_equal(rf_fem_switch_parse("surface_mass_3d", "off", &on, &err), RF_OK);
+    assert_int_equal(on, 0);
+    assert_int_equal(rf_fem_switch_parse("surface_mass_3d", "yes", &on, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "surface_mass_3d 'yes'"));
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    assert_int_equal(o.surface_mass_3d, 0);
+    o.surface_mass_3d = 2;
+    assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "surface_mass_3d = 2"));
+    rf_impact_model_spec spec;
+    rf_impact_model_spec_default(&spec);
+    spec.solver = RF_IMPACT_FEM;
+    spec.fem.surface_mass_3d = 1;
+    assert_false(identity_has(&spec, "fem3d_surface_mass")); /* granite: nothing is redistributed */
+    spec.base.slope_material = RF_MATERIAL_VON_MISES, spec.base.slope_yield = 2e8;
+    assert_true(identity_has(&spec, "fem3d_surface_mass=on"));
+    spec.fem.surface_mass_3d = 0;
+    assert_false(identity_has(&spec, "fem3d_surface_mass"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -421,6 +451,7 @@ int main(void)
         cmocka_unit_test(test_uniaxial_large_compression),
         cmocka_unit_test(test_kinematics_option_3d),
         cmocka_unit_test(test_identity_names_3d_kinematics),
+        cmocka_unit_test(test_surface_mass_3d_switch),
         cmocka_unit_test(test_soft_soil_vs_axisymmetric),
         cmocka_unit_test(test_layer_large),
         cmocka_unit_test(test_all_bodies_updated_lagrangian),

@@ -143,7 +143,7 @@ static void test_soft_layer_vs_axisymmetric(void **state)
 }
 
 /* The capture loss and the mass redistribution (section 9e), opt-in in the 3D model
-   (rf_fem3d_options.surface_mass): the rigid boulder at 10 m/s on (a) the S5 soil's elasticity as
+   (rf_fem_options.surface_mass_3d): the rigid boulder at 10 m/s on (a) the S5 soil's elasticity as
    an elastic layer and (b) the S5 soil, a/h 2.  The continuum conserves energy; the forward-
    increment contact loses the captured face nodes' relative kinetic energy (an O(h) loss), which
    the redistribution takes off the face.  The step must be the same (the redistributed elements
@@ -163,7 +163,7 @@ static void test_surface_mass_3d(void **state)
     rf_impact_output on, off, soil;
     rf_fem_history hon = {0}, hoff = {0};
     run3d_ex(&in, &o, &o3, &off, &hoff, NULL);
-    o3.surface_mass = 1;
+    o.surface_mass_3d = 1;
     run3d_ex(&in, &o, &o3, &on, &hon, NULL);
     show("elastic soft layer, redistributed", &on);
     show("elastic soft layer, lumped", &off);
@@ -175,7 +175,7 @@ static void test_surface_mass_3d(void **state)
     s5_soil(&in);
     rf_impact_output lumped;
     run3d_ex(&in, &o, &o3, &soil, NULL, NULL);
-    o3.surface_mass = 0;
+    o.surface_mass_3d = 0;
     run3d_ex(&in, &o, &o3, &lumped, NULL, NULL);
     show("S5 soil, redistributed", &soil);
     show("S5 soil, lumped", &lumped);
@@ -199,7 +199,7 @@ static void test_redistributed_ploughing(void **state)
     o.boundary = RF_FEM_BOUNDARY_ABSORBING;
     rf_fem3d_options o3;
     rf_fem3d_options_default(&o3);
-    o3.surface_mass = 1;
+    o.surface_mass_3d = 1;
     rf_impact_output out;
     rf_fem3d_report rep = {0};
     rf_error err = {0};

@@ -87,6 +87,8 @@ typedef enum {
 } rf_fem_ale;
 const char *rf_fem_ale_name(rf_fem_ale a);
 rf_status rf_fem_ale_parse(const char *name, rf_fem_ale *a, rf_error *err);
+/* "off" -> 0, "on" -> 1 for the switch named what (surface_mass_3d). */
+rf_status rf_fem_switch_parse(const char *what, const char *name, int *on, rf_error *err);
 
 /* "auto" | "off" | "on" <-> enum. */
 const char *rf_fem_kinematics_name(rf_fem_kinematics k);
@@ -129,7 +131,11 @@ typedef struct {
                                   eigenvalue is below kappa x the mesh's largest gives its face nodes' mass
                                   to the nodes below until it reaches it (the step is
                                   unchanged); in [0, 1], 0 = off, default 0.1; the axisymmetric model (the
-                                  3D model only with rf_fem3d_options.surface_mass) */
+                                  3D model only with surface_mass_3d) */
+    int surface_mass_3d;       /* 1: the same redistribution in the 3D model: it closes the energy account
+                                  on soil, but where an element is about as deep as the crater (a/h 2-3) it
+                                  misplaces the ploughed mass (R_t of frictionless ploughing 0.15 low at
+                                  a/h 2; docs/validation-plastic.md 9e); default 0 (off) */
     int vtk_frames;            /* approximate number of VTK frames, default 60 */
     int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */

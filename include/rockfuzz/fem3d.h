@@ -47,11 +47,6 @@ typedef struct {
     double boulder_inner;   /* boulder: radius (/ r0) of the contact-side half-space image, default 4 */
     int layered_mesh;       /* 1: the slope as the extruded mesh a layer uses (horizontal node planes, a
                                cylinder of radius and depth domain) even without a layer; for checks, default 0 */
-    int surface_mass;       /* 1: the mass redistribution at the contact face (rf_fem_options.surface_mass_kappa)
-                               in the 3D model too: it closes the energy account on soil, but where an element is
-                               about as deep as the crater (a/h 2-3) it misplaces the ploughed mass (R_t of
-                               frictionless ploughing 0.15 low at a/h 2; docs/validation-plastic.md 9e);
-                               default 0 */
 } rf_fem3d_options;
 
 void rf_fem3d_options_default(rf_fem3d_options *o3);

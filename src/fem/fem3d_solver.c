@@ -87,7 +87,6 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
     BAD(!(o3->core_factor >= 1 && o3->core_factor <= 4), "fem3d: core_factor must be in [1, 4], got %g",
         o3->core_factor);
     BAD(!(o3->elongation >= 0 && o3->elongation <= 4), "fem3d: elongation must be in [0, 4], got %g", o3->elongation);
-    BAD(o3->surface_mass != 0 && o3->surface_mass != 1, "fem3d: surface_mass must be 0 or 1, got %d", o3->surface_mass);
     BAD(!(o3->layer_aspect >= 0.5 && o3->layer_aspect <= 4), "fem3d: layer_aspect must be in [0.5, 4], got %g",
         o3->layer_aspect);
     BAD(!(o3->boulder_inner >= 2.5 && o3->boulder_inner <= 20), "fem3d: boulder_inner must be in [2.5, 20], got %g",
@@ -504,7 +503,7 @@ static void solid_masses(solid_run *R)
         R->invm[dd] = R->fixed[dd] ? 0 : 1 / R->mass[dd];
     double *lam_upper = fem_pool_get(R->pool, Q_LAMU, (size_t)R->ne * sizeof(double), 0);
     const double lam_max = solid_lambda_max(R, lam_upper);
-    if (lam_upper && R->o.surface_mass_kappa > 0 && R->o3.surface_mass && (R->layer || R->plastic[1])) /* 9e */
+    if (lam_upper && R->o.surface_mass_kappa > 0 && R->o.surface_mass_3d && (R->layer || R->plastic[1])) /* 9e */
         surface_mass_shift(R, lam_upper, lam_max);
     R->lamu = R->large ? lam_upper : NULL;
     R->dt_edge = DBL_MAX;

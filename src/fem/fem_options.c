@@ -23,6 +23,7 @@ void rf_fem_options_default(rf_fem_options *opt)
     opt->grading = 1.15;
     opt->dt_safety = 0.9;
     opt->surface_mass_kappa = 0.1;
+    opt->surface_mass_3d = 0;
     opt->vtk_frames = 60;
     opt->history_stride = 0;
     opt->max_elements = 2000000;
@@ -109,6 +110,15 @@ rf_status rf_fem_ale_parse(const char *name, rf_fem_ale *a, rf_error *err)
     return rf_fail(err, RF_EINVAL, "ale '%s' is unknown (accepted: auto, off, on)", name ? name : "(null)");
 }
 
+rf_status rf_fem_switch_parse(const char *what, const char *name, int *on, rf_error *err)
+{
+    if (name && (!strcmp(name, "off") || !strcmp(name, "on"))) {
+        *on = !strcmp(name, "on");
+        return RF_OK;
+    }
+    return rf_fail(err, RF_EINVAL, "%s '%s' is unknown (accepted: off, on)", what, name ? name : "(null)");
+}
+
 /* auto: off (docs/validation-plastic.md section 8b). */
 int rf_fem_ale_enabled(const rf_fem_options *opt, const rf_impact_input *in)
 {
@@ -166,6 +176,9 @@ rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error
     if ((unsigned)o->large_deformation > RF_FEM_LARGE_DEFORMATION)
         return rf_fail(err, RF_EINVAL, "fem%s: large_deformation = %d is unknown (accepted: auto, off, on)",
                        three_d ? "3d" : "", (int)o->large_deformation);
+    if (o->surface_mass_3d != 0 && o->surface_mass_3d != 1)
+        return rf_fail(err, RF_EINVAL, "fem%s: surface_mass_3d = %d must be 0 (off) or 1 (on)", three_d ? "3d" : "",
+                       o->surface_mass_3d);
     if ((unsigned)o->ale > RF_FEM_ALE_ON)
         return rf_fail(err, RF_EINVAL, "fem: ale = %d is unknown (accepted: auto, off, on)", (int)o->ale);
     if (!(o->ale_trigger > 0 && o->ale_trigger < 1))
