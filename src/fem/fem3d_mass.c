@@ -111,8 +111,9 @@ int f3_boulder_mass_moments(const f3_mesh *mesh, double *elm, double M, double X
  * elastic granite face, whose elements set the step) are left alone.  The
  * solver calls it for soil only, and in 3D only on request
  * (rf_fem_options.surface_mass_3d: on meshes whose elements are about as deep
- * as the crater it misplaces the ploughed mass).  lam_upper: each element's Gershgorin bound, raised to the
- * redistributed element's bound.  face: per node, 1 on the contact face. */
+ * as the crater it misplaces the ploughed mass).  lam_upper: each element's
+ * Gershgorin bound, raised to the redistributed element's bound.  face: per
+ * node, 1 on the contact face. */
 long f3_surface_mass_shift(const f3_mesh *mesh, const unsigned char *face, double *elm, double *lam_upper,
                            double lam_max, double kappa)
 {
