@@ -129,13 +129,13 @@ typedef struct {
     double surface_mass_kappa; /* mass redistribution at the slope's contact face of a soil (a layer, an
                                   elasto-plastic slope; docs/validation-plastic.md 9e): a face element whose
                                   eigenvalue is below kappa x the mesh's largest gives its face nodes' mass
-                                  to the nodes below until it reaches it (the step is
+                                  (down to a tenth) to the nodes below until it reaches it (the step is
                                   unchanged); in [0, 1], 0 = off, default 0.1; the axisymmetric model (the
                                   3D model only with surface_mass_3d) */
     int surface_mass_3d;       /* 1: the same redistribution in the 3D model: it closes the energy account
-                                  on soil, but where an element is about as deep as the crater (a/h 2-3) it
-                                  misplaces the ploughed mass (R_t of frictionless ploughing 0.15 low at
-                                  a/h 2; docs/validation-plastic.md 9e); default 0 (off) */
+                                  on soil, but where an element is about as deep as the crater (a/h 2) it
+                                  misplaces the ploughed mass (R_t of frictionless ploughing 0.08 low at
+                                  a/h 2, agreeing from a/h 3; docs/validation-plastic.md 9e); default 0 */
     int vtk_frames;            /* approximate number of VTK frames, default 60 */
     int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */

@@ -59,7 +59,7 @@ typedef struct {
 
 /* Mass redistribution at the slope's contact face (fem3d_mass.c): each slope element with
  * a face on the contact face (face[node] != 0) whose Gershgorin bound lam_upper[e] is below
- * kappa lam_max keeps alpha = lam_upper[e] / (kappa lam_max) (fem_mass_kept, fem_core.h) of its face
+ * kappa lam_max keeps alpha = max(FEM_MASS_KEPT_MIN (fem_core.h), lam_upper[e] / (kappa lam_max)) of its face
  * nodes' masses elm and gives the rest to the node below each; lam_upper[e] becomes
  * lam_upper[e] / alpha.  Returns the number of elements changed. */
 long f3_surface_mass_shift(const f3_mesh *mesh, const unsigned char *face, double *elm, double *lam_upper,

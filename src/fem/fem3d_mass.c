@@ -103,8 +103,8 @@ int f3_boulder_mass_moments(const f3_mesh *mesh, double *elm, double M, double X
  * scheme cannot take all of it (a massless node has no stable step), so here
  * each contact-face element of the slope keeps the fraction alpha of its
  * surface nodes' masses and gives the rest to the node below each (its edge
- * neighbour off the face), with alpha = lambda_e / (kappa lambda_max)
- * (fem_mass_kept): its element eigenvalue then stays below lambda_e / alpha
+ * neighbour off the face), with alpha = max(FEM_MASS_KEPT_MIN, lambda_e /
+ * (kappa lambda_max)): its element eigenvalue then stays below lambda_e / alpha
  * <= kappa lambda_max (M' >= alpha M), so the step, set by lambda_max, is
  * unchanged, and kappa < 1 leaves the updated-Lagrangian step check room for
  * the element to be compressed.  Elements at or above kappa lambda_max (an

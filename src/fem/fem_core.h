@@ -114,15 +114,20 @@ int fem_run_stop(const fem_run *r, long n);
  * (closed within the last 0.1 t_h) with a normal speed below FEM_REST_SPEED
  * times the incoming one; the run then ends (R_n = 0), without failing. */
 #define FEM_REST_SPEED 0.02
+/* The mass redistribution at the contact face (docs/validation-plastic.md 9e) leaves every face
+ * node at least this share of its element masses.  Any share keeps the step; the floor keeps the
+ * face elements from being crushed: with a share of 0.006 (soft soil over granite) the boulder
+ * drove nearly massless face nodes into the heavy ones below, and a 3D ploughing run at a/h 5
+ * failed with a face element compressed below the step bound, which ends with 0.1. */
+#define FEM_MASS_KEPT_MIN 0.1
+
 /* The share of its face nodes' element masses that a contact-face element with eigenvalue bound
- * lam_e keeps, lam_e / (kappa lam_max) (>= 1: the element is left alone): the rule of both
- * solvers' mass redistribution (docs/validation-plastic.md 9e).  Any share keeps the step (the
- * element's eigenvalue stays below kappa lam_max); there is no floor: the floor of 0.1 once set
- * here because nearly massless face nodes made 3D ploughing diverge hid a defect of the 3D
- * contact's master-point location (fem3d_contact.c), since fixed. */
+ * lam_e keeps, max(FEM_MASS_KEPT_MIN, lam_e / (kappa lam_max)) (>= 1: the element is left alone);
+ * the rule of both solvers' mass redistribution. */
 static inline double fem_mass_kept(double lam_e, double kappa, double lam_max)
 {
-    return lam_e / (kappa * lam_max);
+    const double a = lam_e / (kappa * lam_max);
+    return a > FEM_MASS_KEPT_MIN ? a : FEM_MASS_KEPT_MIN;
 }
 #define FEM_REST_WINDOW 2.0
 /* Fill the outputs every FE model defines; nsteps steps were made. */

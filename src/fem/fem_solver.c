@@ -275,7 +275,7 @@ static double axi_element_lambda(const axi_run *S, const double *elm, const unsi
  * is fem3d_mass.c), for soil (a layer, an elasto-plastic slope): a slope quad with an edge on the
  * contact face (the slope's surface nodes the contact can reach: the fine zone, out to the
  * boulder's radius) whose eigenvalue lambda_e is below kappa lambda_max keeps alpha =
- * lambda_e / (kappa lambda_max) (fem_mass_kept) of the face nodes' element masses and
+ * max(FEM_MASS_KEPT_MIN, lambda_e / (kappa lambda_max)) of the face nodes' element masses and
  * gives the rest to the node below each (its neighbour off the face along the quad's other edge);
  * its eigenvalue stays below lambda_e / alpha <= kappa lambda_max, so the step is unchanged.
  * Returns the number of elements changed. */

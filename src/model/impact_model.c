@@ -434,11 +434,11 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         if (may_run_3d(c))
             append(buf, cap, &len, " fem3d_face=current_slope");
         /* the mass redistribution at the contact face of a soil (a layer or a plastic slope; elastic
-           slopes are untouched, their identity stays), since without the floor of 0.1 on the share
-           kept; soil in 3D also changed with the master point's location (backtracking Newton from
-           the previous point, where plain Newton had failed on unevenly stretched faces) */
+           slopes are untouched, their identity stays); soil in 3D also changed with the master
+           point's location (backtracking Newton from the previous point, where plain Newton had
+           failed on unevenly stretched faces) */
         if (layer_possible(c) || plastic_possible(c))
-            append(buf, cap, &len, " surface_mass_kappa=%.17g surface_mass_floor=none", o->surface_mass_kappa);
+            append(buf, cap, &len, " surface_mass_kappa=%.17g", o->surface_mass_kappa);
         if (may_run_3d(c) && (layer_possible(c) || plastic_possible(c)))
             append(buf, cap, &len, " fem3d_locate=warm_backtracking%s",
                    o->surface_mass_3d ? " fem3d_surface_mass=on" : "");
