@@ -196,13 +196,11 @@ static void test_redistributed_ploughing(void **state)
     rf_fem_options_default(&o);
     o.refinement = 2, o.threads = 1, o.large_deformation = RF_FEM_LARGE_DEFORMATION;
     o.boundary = RF_FEM_BOUNDARY_ABSORBING;
-    rf_fem3d_options o3;
-    rf_fem3d_options_default(&o3);
     o.surface_mass_3d = 1;
     rf_impact_output out;
     rf_fem3d_report rep = {0};
     rf_error err = {0};
-    const rf_status st = rf_fem3d_impact_ex(&in, &o, &o3, &out, NULL, &rep, &err);
+    const rf_status st = rf_fem3d_impact_ex(&in, &o, NULL, &out, NULL, &rep, &err);
     if (st != RF_OK)
         print_error("fem3d: %s\n", err.msg);
     assert_int_equal(st, RF_OK);
