@@ -180,7 +180,7 @@ static void usage(FILE *f)
         "  --surface-mass-3d K      fem, 3D model on a soil (a layer or a plastic slope): off |\n"
         "                           on (default off).  on: the contact face's mass is moved to\n"
         "                           the nodes below, as the axisymmetric model always does: the\n"
-        "                           energy account closes (the lumped face loses 1.5-4 %% of the\n"
+        "                           energy account closes (the lumped face loses 1-4 %% of the\n"
         "                           kinetic energy at a/h 2-3) and the peak force is not made of\n"
         "                           capture impulses, but where an element is about as deep as\n"
         "                           the crater (a/h 2) the ploughed mass is misplaced and R_t\n"
