@@ -142,11 +142,11 @@ static int parse_increments(const char *s, int *n)
 
 static int parse_path(const char *s, strain_path *path)
 {
-    for (int i = 0; i < 3; i++)
-        if (!strcmp(s, path_names[i])) {
-            *path = (strain_path)i;
-            return 1;
-        }
+    const int i = rf_name_index(s, path_names, 3);
+    if (i >= 0) {
+        *path = (strain_path)i;
+        return 1;
+    }
     fprintf(stderr, "rockfuzz material: --path '%s': not one of uniaxial_strain, simple_shear, "
                     "hydrostatic\n", s);
     return 0;

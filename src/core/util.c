@@ -22,3 +22,11 @@ char *rf_strdup(const char *s)
         memcpy(d, s, n);
     return d;
 }
+
+int rf_name_index(const char *name, const char *const *names, int n)
+{
+    for (int k = 0; name && k < n; k++)
+        if (!strcmp(name, names[k]))
+            return k;
+    return -1;
+}

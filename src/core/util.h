@@ -1,7 +1,7 @@
 /* util.h - the few small helpers every module needs, defined once.
  *
  * Internal (not part of the public API): pi, a monotonic clock for progress
- * and timing, and a strdup that C17 lacks. */
+ * and timing, a strdup that C17 lacks, and a name-table lookup. */
 #ifndef ROCKFUZZ_CORE_UTIL_H
 #define ROCKFUZZ_CORE_UTIL_H
 
@@ -12,5 +12,9 @@ double rf_monotonic_seconds(void);
 
 /* A malloc'ed copy of s, or NULL when s is NULL or memory runs out. */
 char *rf_strdup(const char *s);
+
+/* The index of name in names[0..n), or -1 (also for a NULL name): the parse side of every
+   enum <-> name table. */
+int rf_name_index(const char *name, const char *const *names, int n);
 
 #endif

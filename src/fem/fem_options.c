@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "core/util.h"
+
 void rf_fem_options_default(rf_fem_options *opt)
 {
     memset(opt, 0, sizeof *opt);
@@ -52,11 +54,11 @@ const char *rf_fem_boundary_name(rf_fem_boundary b)
 
 rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *err)
 {
-    for (int k = 0; k < 3; k++)
-        if (name && !strcmp(name, boundary_names[k])) {
-            *b = (rf_fem_boundary)k;
-            return RF_OK;
-        }
+    const int k = rf_name_index(name, boundary_names, 3);
+    if (k >= 0) {
+        *b = (rf_fem_boundary)k;
+        return RF_OK;
+    }
     return rf_fail(err, RF_EINVAL, "boundary '%s' is unknown (accepted: auto, fixed, absorbing)",
                    name ? name : "(null)");
 }
@@ -84,11 +86,11 @@ const char *rf_fem_kinematics_name(rf_fem_kinematics k)
 
 rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_error *err)
 {
-    for (int i = 0; i < 3; i++)
-        if (name && !strcmp(name, kinematics_names[i])) {
-            *k = (rf_fem_kinematics)i;
-            return RF_OK;
-        }
+    const int i = rf_name_index(name, kinematics_names, 3);
+    if (i >= 0) {
+        *k = (rf_fem_kinematics)i;
+        return RF_OK;
+    }
     return rf_fail(err, RF_EINVAL, "large_deformation '%s' is unknown (accepted: auto, off, on)",
                    name ? name : "(null)");
 }
@@ -102,18 +104,21 @@ const char *rf_fem_ale_name(rf_fem_ale a)
 
 rf_status rf_fem_ale_parse(const char *name, rf_fem_ale *a, rf_error *err)
 {
-    for (int i = 0; i < 3; i++)
-        if (name && !strcmp(name, ale_names[i])) {
-            *a = (rf_fem_ale)i;
-            return RF_OK;
-        }
+    const int i = rf_name_index(name, ale_names, 3);
+    if (i >= 0) {
+        *a = (rf_fem_ale)i;
+        return RF_OK;
+    }
     return rf_fail(err, RF_EINVAL, "ale '%s' is unknown (accepted: auto, off, on)", name ? name : "(null)");
 }
 
+static const char *const switch_names[] = {"off", "on"};
+
 rf_status rf_fem_switch_parse(const char *what, const char *name, int *on, rf_error *err)
 {
-    if (name && (!strcmp(name, "off") || !strcmp(name, "on"))) {
-        *on = !strcmp(name, "on");
+    const int i = rf_name_index(name, switch_names, 2);
+    if (i >= 0) {
+        *on = i;
         return RF_OK;
     }
     return rf_fail(err, RF_EINVAL, "%s '%s' is unknown (accepted: off, on)", what, name ? name : "(null)");

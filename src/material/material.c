@@ -27,11 +27,11 @@ const char *rf_material_model_name(rf_material_model model)
 
 rf_status rf_material_model_parse(const char *name, rf_material_model *model, rf_error *err)
 {
-    for (int i = 0; i < 3; i++)
-        if (name && !strcmp(name, model_names[i])) {
-            *model = (rf_material_model)i;
-            return RF_OK;
-        }
+    const int i = rf_name_index(name, model_names, 3);
+    if (i >= 0) {
+        *model = (rf_material_model)i;
+        return RF_OK;
+    }
     return rf_fail(err, RF_EINVAL, "material model '%s' is not one of elastic, von_mises, drucker_prager",
                    name ? name : "(null)");
 }

@@ -42,11 +42,11 @@ const char *rf_impact_solver_name(rf_impact_solver s)
 
 rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err)
 {
-    for (int k = 0; k < 5; k++)
-        if (name && !strcmp(name, solver_names[k])) {
-            *s = (rf_impact_solver)k;
-            return RF_OK;
-        }
+    const int k = rf_name_index(name, solver_names, 5);
+    if (k >= 0) {
+        *s = (rf_impact_solver)k;
+        return RF_OK;
+    }
     return rf_fail(err, RF_EINVAL, "solver '%s' is unknown (accepted: fem, hertz, hunter, rigid, mdr)",
                    name ? name : "(null)");
 }
