@@ -499,13 +499,10 @@ static rf_status parse_document(sp_ctx *c, rf_study *s, struct fy_document *doc)
             if ((st = sp_string(c, v, "description", &d, &len)) != RF_OK)
                 return st;
         } else if (!strcmp(key, "scheme")) {
-            const char *sc;
-            size_t len;
-            if ((st = sp_string(c, v, "scheme", &sc, &len)) != RF_OK)
-                return st;
             char buf[32];
-            if (len >= sizeof buf || (snprintf(buf, sizeof buf, "%.*s", (int)len, sc),
-                                      rf_tm_scheme_parse(buf, &s->scheme) != RF_OK))
+            if ((st = sp_word(c, v, "scheme", buf, sizeof buf)) != RF_OK)
+                return st;
+            if (rf_tm_scheme_parse(buf, &s->scheme) != RF_OK)
                 return sp_fail(c, v, "scheme", "unknown scheme; expected general, reduced or extended");
         } else if (!strcmp(key, "levels")) {
             long long m;

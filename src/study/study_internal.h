@@ -34,6 +34,9 @@ rf_status sp_integer(sp_ctx *c, struct fy_node *n, const char *path, long long m
 rf_status sp_bool(sp_ctx *c, struct fy_node *n, const char *path, int *v);
 /* A scalar as a string (plain or quoted); *s points into the document, len set. */
 rf_status sp_string(sp_ctx *c, struct fy_node *n, const char *path, const char **s, size_t *len);
+/* A short word (an enum's name) into buf; one longer than size - 1 becomes "", which no name
+   table holds, so that the caller's parse fails and it reports its own located message. */
+rf_status sp_word(sp_ctx *c, struct fy_node *n, const char *path, char *buf, size_t size);
 /* Malloc'ed NUL-terminated copy of a string scalar. */
 rf_status sp_string_dup(sp_ctx *c, struct fy_node *n, const char *path, char **out);
 /* A sequence of numbers [min..max] long into v (caller-sized for max). */

@@ -493,15 +493,12 @@ static double impact_unit(const rf_impact_input *in, const double *field)
    "downward", is refused rather than read as anything). */
 static rf_status parse_gravity(sp_ctx *c, struct fy_node *v, const char *path, double *g)
 {
-    const char *str;
-    size_t len;
-    rf_status st = sp_string(c, v, path, &str, &len);
+    char buf[63];
+    rf_status st = sp_word(c, v, path, buf, sizeof buf);
     if (st != RF_OK)
         return st;
-    char buf[64];
-    snprintf(buf, sizeof buf, "%.*s", (int)(len < 63 ? len : 63), str);
     rf_error tmp;
-    if (len >= 63 || rf_impact_gravity_parse(buf, g, &tmp) != RF_OK)
+    if (rf_impact_gravity_parse(buf, g, &tmp) != RF_OK)
         return sp_fail(c, v, path, "expected auto or a magnitude >= 0 [m/s^2] (gravity acts along -z)");
     return RF_OK;
 }
@@ -525,8 +522,6 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             break;
         sp_pathf(p, sizeof p, "%s.%s", path, key);
         double *field = impact_field(&spec.base, key);
-        const char *str;
-        size_t len;
         char buf[32];
         if (field) {
             for (size_t i = 0; i < s->n_params; i++)
@@ -541,11 +536,10 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             *field *= impact_unit(&spec.base, field);
         } else if (!strcmp(key, "boulder_material") || !strcmp(key, "slope_material") ||
                    !strcmp(key, "layer_material")) {
-            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
-            snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
             rf_error tmp;
-            if (len >= 31 || (key[0] == 'b' ? rf_impact_boulder_material_parse(buf, &spec.base.boulder_material, &tmp)
+            if ((key[0] == 'b' ? rf_impact_boulder_material_parse(buf, &spec.base.boulder_material, &tmp)
                                              : rf_material_model_parse(buf, key[0] == 's' ? &spec.base.slope_material
                                                                                           : &spec.base.layer_material,
                                                                        &tmp)) != RF_OK)
@@ -553,34 +547,30 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                                                       : "unknown material; expected elastic, von_mises or "
                                                         "drucker_prager");
         } else if (!strcmp(key, "solver") || !strcmp(key, "boundary")) {
-            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
-            snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
             rf_error tmp;
-            if (len >= 31 || (key[0] == 's' ? rf_impact_solver_parse(buf, &spec.solver, &tmp)
+            if ((key[0] == 's' ? rf_impact_solver_parse(buf, &spec.solver, &tmp)
                                             : rf_fem_boundary_parse(buf, &spec.fem.boundary, &tmp)) != RF_OK)
                 return sp_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter, rigid or mdr"
                                                       : "unknown boundary; expected auto, fixed or absorbing");
         } else if (!strcmp(key, "large_deformation")) {
-            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
-            snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
             rf_error tmp;
-            if (len >= 31 || rf_fem_kinematics_parse(buf, &spec.fem.large_deformation, &tmp) != RF_OK)
+            if (rf_fem_kinematics_parse(buf, &spec.fem.large_deformation, &tmp) != RF_OK)
                 return sp_fail(c, v, p, "unknown large_deformation; expected auto, on or off");
         } else if (!strcmp(key, "ale")) {
-            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
-            snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
             rf_error tmp;
-            if (len >= 31 || rf_fem_ale_parse(buf, &spec.fem.ale, &tmp) != RF_OK)
+            if (rf_fem_ale_parse(buf, &spec.fem.ale, &tmp) != RF_OK)
                 return sp_fail(c, v, p, "unknown ale; expected auto, on or off");
         } else if (!strcmp(key, "surface_mass_3d")) {
-            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
-            snprintf(buf, sizeof buf, "%.*s", (int)(len < 31 ? len : 31), str);
             rf_error tmp;
-            if (len >= 31 || rf_fem_switch_parse("surface_mass_3d", buf, &spec.fem.surface_mass_3d, &tmp) != RF_OK)
+            if (rf_fem_switch_parse("surface_mass_3d", buf, &spec.fem.surface_mass_3d, &tmp) != RF_OK)
                 return sp_fail(c, v, p, "unknown surface_mass_3d; expected on or off");
         } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor") || !strcmp(key, "end_time")) {
             double *d = key[0] == 'r' ? &spec.fem.refinement : key[0] == 'd' ? &spec.fem.domain_factor

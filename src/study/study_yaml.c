@@ -275,6 +275,17 @@ rf_status sp_string(sp_ctx *c, struct fy_node *n, const char *path, const char *
     return RF_OK;
 }
 
+rf_status sp_word(sp_ctx *c, struct fy_node *n, const char *path, char *buf, size_t size)
+{
+    const char *s = NULL;
+    size_t len = 0;
+    rf_status st = sp_string(c, n, path, &s, &len);
+    if (st != RF_OK)
+        return st;
+    snprintf(buf, size, "%.*s", len < size ? (int)len : 0, s);
+    return RF_OK;
+}
+
 rf_status sp_string_dup(sp_ctx *c, struct fy_node *n, const char *path, char **out)
 {
     const char *s = NULL;
