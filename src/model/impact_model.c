@@ -437,11 +437,12 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            slopes are untouched, their identity stays); soil in 3D also changed with the master
            point's location (backtracking Newton from the previous point, where plain Newton had
            failed on unevenly stretched faces) */
-        if (layer_possible(c) || plastic_possible(c))
+        if (layer_possible(c) || plastic_possible(c)) {
             append(buf, cap, &len, " surface_mass_kappa=%.17g", o->surface_mass_kappa);
-        if (may_run_3d(c) && (layer_possible(c) || plastic_possible(c)))
-            append(buf, cap, &len, " fem3d_locate=warm_backtracking%s",
-                   o->surface_mass_3d ? " fem3d_surface_mass=on" : "");
+            if (may_run_3d(c))
+                append(buf, cap, &len, " fem3d_locate=warm_backtracking%s",
+                       o->surface_mass_3d ? " fem3d_surface_mass=on" : "");
+        }
         /* the 3D model runs in large deformation too (on, or auto with a plastic body; it was small
            strain in every case before): a store never mixes 3D results of the two kinematics */
         if (may_run_3d(c) && large_possible(c))
