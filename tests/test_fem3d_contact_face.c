@@ -11,7 +11,9 @@
  * material slope, the normal contact did work on a frictionless sliding pair:
  * +1.7 % of the kinetic energy in the S5 soil at a/h 2.  And the mass
  * redistribution at the contact face (fem3d_mass.c) on one element: mass
- * conserved, the element's eigenvalue bound raised to kappa lambda_max. */
+ * conserved, the element's eigenvalue bound raised to kappa lambda_max.  And
+ * Coulomb friction on a sloped face: |F_t| = f F_n for the forces split by the
+ * face's geometry (section 9f). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -32,7 +34,7 @@ typedef struct {
     double x[3 * NN];
     int top[NX * NY];
     int slave, mnode[F3_NM];
-    double N[F3_NM], S[2], s0[2], gvo[3], Xm[2];
+    double N[F3_NM], S[2], s0[3], gvo[3], Xm[2];
     unsigned char outside;
 } face_case;
 
@@ -251,6 +253,55 @@ static void test_surface_mass_shift(void **state)
     assert_true(fabs(lam[1] - kappa * lam_max) < 1e-12 && lam[0] == 1 && lam[2] == 6);
 }
 
+/* Coulomb friction on a sloped face z = a X (a = 0.5, the wall of a crater), a slave sliding down
+   along it into a 1 mm penetration, masters fixed: after the solve the slave's contact force F
+   (m du / dt^2), split along the face's unit normal by geometry, is at the cap |F_t| = f F_n and
+   opposes the slip, and the gap is closed.  With friction rows along x (the old form) F_t / F_n
+   would be f / (1 + a^2 +- f a) = 0.94 or 0.48 for f = 0.8. */
+static void test_friction_on_sloped_face(void **state)
+{
+    (void)state;
+    face_case f;
+    const double h = 0.1, a = 0.5, fr = 0.8, dt = 1e-5, m = 2.0;
+    const double p[5] = {0, 0, 0, a, 0}, xs[3] = {0.02, 0.03, a * 0.02};
+    face_setup(&f, h);
+    double u[3 * NN], v[3 * NN] = {0}, invm[3 * NN] = {0}, du[3 * NN] = {0};
+    double lam[3] = {0}, gap[1], ds[3], A[3], rr[2];
+    int cand[1];
+    affine(&f, u, p, xs);
+    for (int d = 0; d < 3; d++)
+        invm[3 * f.slave + d] = 1 / m;
+    f.C.lam = lam, f.C.gap = gap, f.C.ds = ds, f.C.A = A, f.C.cand = cand, f.C.du = du, f.C.rr = rr;
+    f.C.friction = fr, f.C.tol = 1e-15, f.C.band = h, f.C.max_sweeps = 100;
+    face_restart(&f);
+    f3_contact_locate(&f.C, &f.mesh, u, v, 1, 1);
+    /* the predictor: down the slope (-x along the face, a little across it) and 1 mm into it */
+    const double mv[3] = {-0.004, 0.001, -a * 0.004 - 0.001};
+    for (int d = 0; d < 3; d++)
+        u[3 * f.slave + d] += mv[d];
+    double pred[3];
+    memcpy(pred, u + 3 * f.slave, sizeof pred);
+    f3_contact_predict(&f.C, &f.mesh, u, invm, dt, 1);
+    rf_error err = {0};
+    assert_int_equal(f3_contact_solve(&f.C, invm, dt, u, v, &err), RF_OK);
+    double F[3], n[3] = {-a, 0, 1}, Fn = 0;
+    const double nn = sqrt(1 + a * a);
+    for (int d = 0; d < 3; d++)
+        F[d] = m * (u[3 * f.slave + d] - pred[d]) / (dt * dt), n[d] /= nn, Fn += F[d] * n[d];
+    double Ft[3], slip[3], sn = 0, ft = 0, dot = 0, sl = 0;
+    for (int d = 0; d < 3; d++)
+        sn += mv[d] * n[d];
+    for (int d = 0; d < 3; d++)
+        Ft[d] = F[d] - Fn * n[d], slip[d] = mv[d] - sn * n[d], ft += Ft[d] * Ft[d], sl += slip[d] * slip[d],
+        dot += Ft[d] * slip[d];
+    ft = sqrt(ft), sl = sqrt(sl);
+    const double z = f.x[3 * f.slave + 2] + u[3 * f.slave + 2], X = f.x[3 * f.slave] + u[3 * f.slave];
+    assert_true(Fn > 0);
+    assert_true(fabs(z - a * X) < 1e-12);            /* on the face again */
+    assert_true(fabs(ft / Fn - fr) < 1e-9);           /* Coulomb's cap on the forces */
+    assert_true(dot < -0.999 * ft * sl);              /* against the slip (here along it exactly) */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -260,6 +311,7 @@ int main(void)
         cmocka_unit_test(test_uneven_stretch_located),
         cmocka_unit_test(test_folded_face_keeps_point),
         cmocka_unit_test(test_surface_mass_shift),
+        cmocka_unit_test(test_friction_on_sloped_face),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

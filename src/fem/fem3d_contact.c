@@ -11,8 +11,15 @@
  * shared master nodes; the system is solved by projected Gauss-Seidel in
  * slave order: the normal update is a projection on lambda_n >= 0, the
  * tangential one computes the multiplier that stops the slip of the step and
- * caps it at f lambda_n (return map).  No penalty, no tangential spring: the
- * constraints hold to the solver tolerance (1e-9 h).
+ * caps it so that |F_t| <= f |F_n| (return map).  No penalty, no tangential
+ * spring: the constraints hold to the solver tolerance (1e-9 h).
+ * Rows: the normal n = (-S_x, -S_y, 1), the gap's gradient, and the face's
+ * tangents t_x = (1, 0, S_x), t_y = (0, 1, S_y), orthogonal to n.  With
+ * tangential rows along x and y (as before) friction pushed into a crater's
+ * wall and the cap f lambda_n was not Coulomb's on a sloped face (effective f
+ * f / (1 + S^2 -+ f S): 1.33 or 0.57 for f = 1, S = 0.5); the stick
+ * kinematics is the same (n, t_x, t_y span space), the forces are not
+ * (docs/validation-plastic.md 9f).
  * Pairing: the master material point currently under the slave (current
  * tangential positions of both surfaces, found by Newton on the C1 face below)
  * picks the 4 x 4 stencil of the slope's uniform fine-box face.  Unlike the axisymmetric solver the
@@ -195,30 +202,53 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
         const double X = mesh->x[3 * s] + u[3 * s], Y = mesh->x[3 * s + 1] + u[3 * s + 1];
         if (repair)
             C->outside[k] = (unsigned char)locate_master(mesh, u, X, Y, P, m, N, C->S + 2 * k);
-        for (int d = 0; d < 2; d++) {
-            double gu = u[3 * s + d];
-            for (int a = 0; a < F3_NM; a++)
-                gu -= N[a] * u[3 * m[a] + d];
-            C->s0[2 * k + d] = gu;
-        }
+        f3_contact_rel(C, k, u, C->s0 + 3 * k);
         f3_contact_gv(C, k, v, C->gvo + 3 * k);
     }
 }
 
-void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3])
+/* Relative vector of pair k (slave minus the master point's interpolation) of the nodal field v. */
+void f3_contact_rel(const f3_contact *C, long k, const double *v, double r[3])
 {
     const int s = C->slave[k];
     const int *m = C->mnode + F3_NM * k;
-    const double *N = C->N + F3_NM * k, *S = C->S + 2 * k;
-    double r[3];
+    const double *N = C->N + F3_NM * k;
     for (int d = 0; d < 3; d++) {
         r[d] = v[3 * s + d];
         for (int a = 0; a < F3_NM; a++)
             r[d] -= N[a] * v[3 * m[a] + d];
     }
-    g[0] = r[2] - S[0] * r[0] - S[1] * r[1];
-    g[1] = r[0];
-    g[2] = r[1];
+}
+
+/* The rows of pair k: the face's normal n = (-S_x, -S_y, 1) (the gradient of the gap) and its
+   tangents t_x = (1, 0, S_x), t_y = (0, 1, S_y), both orthogonal to n. */
+static inline void row_w(const f3_contact *C, long k, int c, double w[3])
+{
+    const double Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
+    if (c == 0)
+        w[0] = -Sx, w[1] = -Sy, w[2] = 1;
+    else if (c == 1)
+        w[0] = 1, w[1] = 0, w[2] = Sx;
+    else
+        w[0] = 0, w[1] = 1, w[2] = Sy;
+}
+
+void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3])
+{
+    double r[3];
+    f3_contact_rel(C, k, v, r);
+    for (int c = 0; c < 3; c++) {
+        double w[3];
+        row_w(C, k, c, w);
+        g[c] = w[0] * r[0] + w[1] * r[1] + w[2] * r[2];
+    }
+}
+
+void f3_contact_forces(const f3_contact *C, long k, double *Fn, double *Ft)
+{
+    const double *lam = C->lam + 3 * k, Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
+    *Fn = lam[0] * sqrt(1 + Sx * Sx + Sy * Sy);
+    *Ft = sqrt(lam[1] * lam[1] * (1 + Sx * Sx) + lam[2] * lam[2] * (1 + Sy * Sy) + 2 * lam[1] * lam[2] * Sx * Sy);
 }
 
 void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, const double *invm, double dt,
@@ -236,30 +266,29 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
         double g = mesh->x[3 * s + 2] + u[3 * s + 2]; /* the master face is z = 0 in the reference */
         for (int a = 0; a < F3_NM; a++)
             g -= N[a] * (mesh->x[3 * m[a] + 2] + u[3 * m[a] + 2]);
-        for (int d = 0; d < 2; d++) {
-            double su = u[3 * s + d];
-            for (int a = 0; a < F3_NM; a++)
-                su -= N[a] * u[3 * m[a] + d];
-            C->ds[2 * k + d] = su - C->s0[2 * k + d];
-        }
+        double r[3];
+        f3_contact_rel(C, k, u, r);
+        for (int d = 0; d < 3; d++)
+            C->ds[3 * k + d] = r[d] - C->s0[3 * k + d];
         /* the master point moved with the slip of the step: first order in the face slope */
-        C->gap[k] = g - C->S[2 * k] * C->ds[2 * k] - C->S[2 * k + 1] * C->ds[2 * k + 1];
-        /* diagonal of dt^2 G M^-1 G^T: (normal, x, y) */
-        const double Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
-        double an = invm[3 * s + 2] + Sx * Sx * invm[3 * s] + Sy * Sy * invm[3 * s + 1];
-        double ax = invm[3 * s], ay = invm[3 * s + 1];
-        for (int q = 0; q < F3_NM; q++) {
-            const double *im = invm + 3 * m[q];
-            an += N[q] * N[q] * (im[2] + Sx * Sx * im[0] + Sy * Sy * im[1]);
-            ax += N[q] * N[q] * im[0];
-            ay += N[q] * N[q] * im[1];
+        C->gap[k] = g - C->S[2 * k] * C->ds[3 * k] - C->S[2 * k + 1] * C->ds[3 * k + 1];
+        /* diagonal of dt^2 G M^-1 G^T: (normal, t_x, t_y) */
+        double an = 0, ax = 0, ay = 0, wn[3], wx[3], wy[3];
+        row_w(C, k, 0, wn), row_w(C, k, 1, wx), row_w(C, k, 2, wy);
+        for (int q = -1; q < F3_NM; q++) {
+            const double *im = invm + 3 * (q < 0 ? s : m[q]), n2 = q < 0 ? 1 : N[q] * N[q];
+            for (int d = 0; d < 3; d++)
+                an += n2 * wn[d] * wn[d] * im[d], ax += n2 * wx[d] * wx[d] * im[d], ay += n2 * wy[d] * wy[d] * im[d];
         }
-        if (C->rigid_invm > 0) { /* the slave's response is the rigid body's: 1/M + (r x e)_y^2 / I */
+        if (C->rigid_invm > 0) { /* the slave's response is the rigid body's: |w_xz|^2 / M + (r x w)_y^2 / I */
             const double rx = mesh->x[3 * s] + u[3 * s] - C->rigid_c[0], rz = mesh->x[3 * s + 2] + u[3 * s + 2] - C->rigid_c[1];
             C->rr[2 * k] = rx, C->rr[2 * k + 1] = rz;
-            const double tn = rz * (-Sx) - rx;
-            an += C->rigid_invm * (Sx * Sx + 1) + C->rigid_invi * tn * tn;
-            ax += C->rigid_invm + C->rigid_invi * rz * rz;
+            const double *w3[3] = {wn, wx, wy};
+            double *a3[3] = {&an, &ax, &ay};
+            for (int c = 0; c < 3; c++) {
+                const double *w = w3[c], tn = rz * w[0] - rx * w[2];
+                *a3[c] += C->rigid_invm * (w[0] * w[0] + w[2] * w[2]) + C->rigid_invi * tn * tn;
+            }
         }
         C->A[3 * k] = dt2 * an, C->A[3 * k + 1] = dt2 * ax, C->A[3 * k + 2] = dt2 * ay;
     }
@@ -282,40 +311,31 @@ static inline void spread(f3_contact *C, long k, int c, double delta, const doub
     const int s = C->slave[k];
     const int *m = C->mnode + F3_NM * k;
     const double *N = C->N + F3_NM * k;
-    if (c == 0) {
-        const double w[3] = {-C->S[2 * k], -C->S[2 * k + 1], 1};
-        if (C->rigid_invm > 0) {
-            const double F[3] = {w[0] * delta, w[1] * delta, w[2] * delta};
-            spread_rigid(C, k, F, dt2);
-        }
-        for (int d = 0; d < 3; d++) {
-            C->du[3 * s + d] += dt2 * invm[3 * s + d] * w[d] * delta;
-            for (int a = 0; a < F3_NM; a++)
-                C->du[3 * m[a] + d] -= dt2 * invm[3 * m[a] + d] * N[a] * w[d] * delta;
-        }
-        return;
-    }
-    const int d = c - 1;
-    if (C->rigid_invm > 0 && d == 0) {
-        const double F[3] = {delta, 0, 0};
+    double w[3];
+    row_w(C, k, c, w);
+    if (C->rigid_invm > 0) {
+        const double F[3] = {w[0] * delta, w[1] * delta, w[2] * delta};
         spread_rigid(C, k, F, dt2);
     }
-    C->du[3 * s + d] += dt2 * invm[3 * s + d] * delta;
-    for (int a = 0; a < F3_NM; a++)
-        C->du[3 * m[a] + d] -= dt2 * invm[3 * m[a] + d] * N[a] * delta;
+    for (int d = 0; d < 3; d++) {
+        if (w[d] == 0)
+            continue;
+        C->du[3 * s + d] += dt2 * invm[3 * s + d] * w[d] * delta;
+        for (int a = 0; a < F3_NM; a++)
+            C->du[3 * m[a] + d] -= dt2 * invm[3 * m[a] + d] * N[a] * w[d] * delta;
+    }
 }
 
 static inline double gdu(const f3_contact *C, long k, int c)
 {
-    double g[3];
-    f3_contact_gv(C, k, C->du, g);
+    double r[3], w[3];
+    f3_contact_rel(C, k, C->du, r);
     if (C->rigid_invm > 0) { /* the slave's displacement is the rigid body's */
         const double *d = C->rigid_du, rx = C->rr[2 * k], rz = C->rr[2 * k + 1];
-        const double dx = d[0] + d[2] * rz, dz = d[1] - d[2] * rx;
-        g[0] += dz - C->S[2 * k] * dx;
-        g[1] += dx;
+        r[0] += d[0] + d[2] * rz, r[2] += d[1] - d[2] * rx;
     }
-    return g[c];
+    row_w(C, k, c, w);
+    return w[0] * r[0] + w[1] * r[1] + w[2] * r[2];
 }
 
 rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double *u, double *v, rf_error *err)
@@ -365,12 +385,16 @@ rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double 
             double lt[2];
             for (int c = 1; c < 3; c++) {
                 if (A[c] > 0) {
-                    double s = C->ds[2 * k + c - 1] + gdu(C, k, c);
+                    const double *ds = C->ds + 3 * k;
+                    double s = ds[c - 1] + C->S[2 * k + c - 1] * ds[2] + gdu(C, k, c);
                     lt[c - 1] = lam[c] - s / A[c];
                 } else
                     lt[c - 1] = 0;
             }
-            double cap = f * ln, mag = sqrt(lt[0] * lt[0] + lt[1] * lt[1]);
+            /* Coulomb on the forces: |lt_x t_x + lt_y t_y| <= f ln |n| */
+            const double Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
+            double cap = f * ln * sqrt(1 + Sx * Sx + Sy * Sy);
+            double mag = sqrt(lt[0] * lt[0] * (1 + Sx * Sx) + lt[1] * lt[1] * (1 + Sy * Sy) + 2 * lt[0] * lt[1] * Sx * Sy);
             if (mag > cap) {
                 double sc = mag > 0 ? cap / mag : 0;
                 lt[0] *= sc, lt[1] *= sc;

@@ -111,10 +111,10 @@ typedef struct {
     double *N;           /* F3_NM Catmull-Rom weights per slave */
     double *S;           /* 2 per slave: slope d u_z / d(x, y) of the deformed master face */
     double *gap;         /* predicted normal gap [m] */
-    double *ds;          /* 2 per slave: predicted slip increment of the step [m] */
-    double *s0;          /* 2 per slave: relative tangential displacement at step n [m] */
+    double *ds;          /* 3 per slave: predicted relative displacement increment of the step [m] */
+    double *s0;          /* 3 per slave: relative displacement at step n [m] */
     double *A;           /* 3 per slave: diagonal of dt^2 G M^-1 G^T */
-    double *gvo;         /* 3 per slave: G v_{n-1/2} */
+    double *gvo;         /* 3 per slave: G v_{n-1/2} (normal, t_x, t_y rows) */
     double *Xm;          /* 2 per slave: its master material point (X, Y) at the last pairing, where the
                             next one starts (set to the slave's reference position before the first) */
     unsigned char *outside; /* 1: slave beyond the master grid (clamped); 2: its master point not found */
@@ -135,13 +135,18 @@ typedef struct {
 } f3_contact;
 
 /* Pair every slave with the master quad under its position x + u (u at step
- * n) if repair (else keep the pairing); store G u_n (tangential) and
+ * n) if repair (else keep the pairing); store the relative displacement at n and
  * G v_{n-1/2}.  Inside a parallel region its threads share the slaves, with
  * no barrier at the end (synchronise before u or v change). */
 void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, const double *v, int threads,
                        int repair);
-/* G v of pair k: (normal, x, y) relative velocity (or any per-dof field). */
+/* Relative vector of pair k: slave minus master point, of any per-dof field. */
+void f3_contact_rel(const f3_contact *C, long k, const double *v, double r[3]);
+/* G v of pair k: its rows n = (-S_x, -S_y, 1), t_x = (1, 0, S_x), t_y = (0, 1, S_y) on the
+   relative vector (or any per-dof field). */
 void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3]);
+/* Normal and tangential force magnitudes of pair k's multipliers [N]. */
+void f3_contact_forces(const f3_contact *C, long k, double *Fn, double *Ft);
 /* Predicted gaps and slip increments from the predicted displacements. */
 void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, const double *invm, double dt,
                         int threads);

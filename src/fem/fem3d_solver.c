@@ -601,8 +601,8 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
     C->N = malloc(ns * F3_NM * sizeof *C->N);
     C->S = calloc(ns * 2, sizeof *C->S);
     C->gap = malloc(ns * sizeof *C->gap);
-    C->ds = malloc(ns * 2 * sizeof *C->ds);
-    C->s0 = malloc(ns * 2 * sizeof *C->s0);
+    C->ds = malloc(ns * 3 * sizeof *C->ds);
+    C->s0 = malloc(ns * 3 * sizeof *C->s0);
     C->A = malloc(ns * 3 * sizeof *C->A);
     C->gvo = malloc(ns * 3 * sizeof *C->gvo);
     C->Xm = malloc(ns * 2 * sizeof *C->Xm);
@@ -864,7 +864,9 @@ static double solid_contact_account(solid_run *R, double *rad)
         if (slip > R->slip_max)
             R->slip_max = slip;
         R->pair_steps++;
-        if (hypot(lam[1], lam[2]) < (1 - 1e-9) * C->friction * lam[0])
+        double Fn, Ft;
+        f3_contact_forces(C, k, &Fn, &Ft);
+        if (Ft < (1 - 1e-9) * C->friction * Fn)
             R->stick_steps++;
         if (C->outside[k] == 1 || slave_on_edge(&R->mesh, R->ms.full, k))
             R->outside_contact = 1;

@@ -433,6 +433,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            by ~1e-5, soil by a few per cent */
         if (may_run_3d(c))
             append(buf, cap, &len, " fem3d_face=current_slope");
+        /* 3D friction acts along the deformed face's tangents, capped on the forces (it was along x
+           and y, capped on the multipliers; docs/validation-plastic.md 9f) */
+        if (may_run_3d(c))
+            append(buf, cap, &len, " fem3d_friction=face_tangent");
         /* the mass redistribution at the contact face of a soil (a layer or a plastic slope; elastic
            slopes are untouched, their identity stays); soil in 3D also changed with the master
            point's location (backtracking Newton from the previous point, where plain Newton had
