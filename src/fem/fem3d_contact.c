@@ -244,11 +244,17 @@ void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3])
     }
 }
 
+/* |l_x t_x + l_y t_y| of the tangential multipliers l on a face of slope S. */
+static inline double tangential_norm(const double S[2], double lx, double ly)
+{
+    return sqrt(lx * lx * (1 + S[0] * S[0]) + ly * ly * (1 + S[1] * S[1]) + 2 * lx * ly * S[0] * S[1]);
+}
+
 void f3_contact_forces(const f3_contact *C, long k, double *Fn, double *Ft)
 {
-    const double *lam = C->lam + 3 * k, Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
-    *Fn = lam[0] * sqrt(1 + Sx * Sx + Sy * Sy);
-    *Ft = sqrt(lam[1] * lam[1] * (1 + Sx * Sx) + lam[2] * lam[2] * (1 + Sy * Sy) + 2 * lam[1] * lam[2] * Sx * Sy);
+    const double *lam = C->lam + 3 * k, *S = C->S + 2 * k;
+    *Fn = lam[0] * sqrt(1 + S[0] * S[0] + S[1] * S[1]);
+    *Ft = tangential_norm(S, lam[1], lam[2]);
 }
 
 void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, const double *invm, double dt,
@@ -392,9 +398,8 @@ rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double 
                     lt[c - 1] = 0;
             }
             /* Coulomb on the forces: |lt_x t_x + lt_y t_y| <= f ln |n| */
-            const double Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
-            double cap = f * ln * sqrt(1 + Sx * Sx + Sy * Sy);
-            double mag = sqrt(lt[0] * lt[0] * (1 + Sx * Sx) + lt[1] * lt[1] * (1 + Sy * Sy) + 2 * lt[0] * lt[1] * Sx * Sy);
+            const double *S = C->S + 2 * k;
+            const double cap = f * ln * sqrt(1 + S[0] * S[0] + S[1] * S[1]), mag = tangential_norm(S, lt[0], lt[1]);
             if (mag > cap) {
                 double sc = mag > 0 ? cap / mag : 0;
                 lt[0] *= sc, lt[1] *= sc;
