@@ -233,18 +233,28 @@ static inline void row_w(const f3_contact *C, long k, int c, double w[3])
         w[0] = 0, w[1] = 1, w[2] = Sy;
 }
 
+/* Row c of pair k applied to a relative vector r. */
+static inline double row_dot(const f3_contact *C, long k, int c, const double r[3])
+{
+    double w[3];
+    row_w(C, k, c, w);
+    return w[0] * r[0] + w[1] * r[1] + w[2] * r[2];
+}
+
 void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3])
 {
     double r[3];
     f3_contact_rel(C, k, v, r);
-    for (int c = 0; c < 3; c++) {
-        double w[3];
-        row_w(C, k, c, w);
-        g[c] = w[0] * r[0] + w[1] * r[1] + w[2] * r[2];
-    }
+    for (int c = 0; c < 3; c++)
+        g[c] = row_dot(C, k, c, r);
 }
 
-/* |l_x t_x + l_y t_y| of the tangential multipliers l on a face of slope S. */
+/* |n| of a face of slope S, and |l_x t_x + l_y t_y| of the tangential multipliers l on it. */
+static inline double normal_norm(const double S[2])
+{
+    return sqrt(1 + S[0] * S[0] + S[1] * S[1]);
+}
+
 static inline double tangential_norm(const double S[2], double lx, double ly)
 {
     return sqrt(lx * lx * (1 + S[0] * S[0]) + ly * ly * (1 + S[1] * S[1]) + 2 * lx * ly * S[0] * S[1]);
@@ -253,7 +263,7 @@ static inline double tangential_norm(const double S[2], double lx, double ly)
 void f3_contact_forces(const f3_contact *C, long k, double *Fn, double *Ft)
 {
     const double *lam = C->lam + 3 * k, *S = C->S + 2 * k;
-    *Fn = lam[0] * sqrt(1 + S[0] * S[0] + S[1] * S[1]);
+    *Fn = lam[0] * normal_norm(S);
     *Ft = tangential_norm(S, lam[1], lam[2]);
 }
 
@@ -334,14 +344,13 @@ static inline void spread(f3_contact *C, long k, int c, double delta, const doub
 
 static inline double gdu(const f3_contact *C, long k, int c)
 {
-    double r[3], w[3];
+    double r[3];
     f3_contact_rel(C, k, C->du, r);
     if (C->rigid_invm > 0) { /* the slave's displacement is the rigid body's */
         const double *d = C->rigid_du, rx = C->rr[2 * k], rz = C->rr[2 * k + 1];
         r[0] += d[0] + d[2] * rz, r[2] += d[1] - d[2] * rx;
     }
-    row_w(C, k, c, w);
-    return w[0] * r[0] + w[1] * r[1] + w[2] * r[2];
+    return row_dot(C, k, c, r);
 }
 
 rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double *u, double *v, rf_error *err)
@@ -391,15 +400,14 @@ rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double 
             double lt[2];
             for (int c = 1; c < 3; c++) {
                 if (A[c] > 0) {
-                    const double *ds = C->ds + 3 * k;
-                    double s = ds[c - 1] + C->S[2 * k + c - 1] * ds[2] + gdu(C, k, c);
+                    double s = row_dot(C, k, c, C->ds + 3 * k) + gdu(C, k, c); /* slip of the step */
                     lt[c - 1] = lam[c] - s / A[c];
                 } else
                     lt[c - 1] = 0;
             }
             /* Coulomb on the forces: |lt_x t_x + lt_y t_y| <= f ln |n| */
             const double *S = C->S + 2 * k;
-            const double cap = f * ln * sqrt(1 + S[0] * S[0] + S[1] * S[1]), mag = tangential_norm(S, lt[0], lt[1]);
+            const double cap = f * ln * normal_norm(S), mag = tangential_norm(S, lt[0], lt[1]);
             if (mag > cap) {
                 double sc = mag > 0 ? cap / mag : 0;
                 lt[0] *= sc, lt[1] *= sc;
