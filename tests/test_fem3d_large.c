@@ -414,8 +414,9 @@ static void test_identity_names_3d_kinematics(void **state)
     assert_false(identity_has(&spec, "fem3d_kinematics")); /* off: the earlier 3D plastic identity */
 }
 
-/* The 3D mass redistribution switch (docs/validation-plastic.md 9e): off or on only, named in the
- * identity only when on and a soil may run in 3D (a 3D soil store never mixes the two faces). */
+/* The 3D mass redistribution switch (docs/validation-plastic.md 9e): off or on only, on by default,
+ * named in the identity only when on and a soil may run in 3D (a 3D soil store never mixes the two
+ * faces; granite stores keep their identity). */
 static void test_surface_mass_3d_switch(void **state)
 {
     (void)state;
@@ -429,7 +430,7 @@ static void test_surface_mass_3d_switch(void **state)
     assert_non_null(strstr(err.msg, "surface_mass_3d 'yes'"));
     rf_fem_options o;
     rf_fem_options_default(&o);
-    assert_int_equal(o.surface_mass_3d, 0);
+    assert_int_equal(o.surface_mass_3d, 1); /* on by default (section 9e) */
     o.surface_mass_3d = 2;
     assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "surface_mass_3d = 2"));

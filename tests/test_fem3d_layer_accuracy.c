@@ -4,8 +4,8 @@
  * test_fem3d_layer.c): Hertz with the rigid body's E* and the axisymmetric
  * rigid boulder, elastic boulders 100 and 1000 times stiffer, and the
  * axisymmetric layered model (a rock-like layer in small strain, the S5 soil
- * in large deformation, its energy closure) and the mass redistribution at the contact face (normal
- * impact, and frictionless ploughing at 45 deg). */
+ * in large deformation, its energy closure and peak force at the 3D defaults) and the mass
+ * redistribution at the contact face (normal impact, and frictionless ploughing at 45 deg). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -118,32 +118,37 @@ static void test_layer_vs_axisymmetric(void **state)
 }
 
 /* The S5 soil (a thick soft layer: the mesh sized from its own contact, docs/validation-plastic.md
-   section 9d) at normal incidence, 3D at a/h 2 against the axisymmetric model at a/h 3 (its depth moves
-   0.6 % from a/h 2), both in large deformation, fixed boundary, automatic domain: the depth and the
-   plastic work.  R_n (~0.05, the difference of two large energies) is not held, nor the 3D energy
-   closure of this default (lumped) face, -4e-2 of KE0 at this coarse mesh (the capture loss,
-   section 9e; test_surface_mass_3d holds it with the mass redistribution). */
+   section 9d) at normal incidence, 3D at its defaults (a/h 3, the mass redistribution at the contact
+   face, section 9e) against the axisymmetric model at a/h 3, both in large deformation, fixed
+   boundary, automatic domain.  The issue's energy closure (0.5 % of KE0; measured -3.3e-3, the
+   lumped face -2.2e-2), the depth (3D 4.4 % deeper: the 3-4 % of section 9d), the plastic work and
+   the peak force (1.3 % apart; the lumped 3D face's capture impulses made it 4.96e6 N against 8.6e5
+   N).  R_n (~0.05, the difference of two large energies) is not held. */
 static void test_soft_layer_vs_axisymmetric(void **state)
 {
     (void)state;
     rf_impact_input in = granite(0, 0);
     s5_soil(&in);
-    rf_fem_options o = coarse(2);
+    rf_fem_options o = coarse(3);
     o.domain_factor = 0, o.boundary = RF_FEM_BOUNDARY_FIXED, o.large_deformation = RF_FEM_LARGE_DEFORMATION;
+    rf_fem_options d;
+    rf_fem_options_default(&d);
+    assert_int_equal(o.surface_mass_3d, d.surface_mass_3d);
+    assert_true(rf_fem_refinement(&d, 1) == 3);
     rf_impact_output s3, ax;
     run3d_ex(&in, &o, NULL, &s3, NULL, NULL);
-    o.refinement = 3;
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &ax, NULL, &err), RF_OK);
     show("rigid on the S5 soil, 3D", &s3);
     show("rigid on the S5 soil, axisym.", &ax);
-    assert_true(fabs(s3.penetration_max / ax.penetration_max - 1) < 0.05);
-    assert_true(fabs(s3.plastic_work / ax.plastic_work - 1) < 0.05);
-    assert_true(fabs(s3.energy_error) < 0.06);
+    assert_true(fabs(s3.energy_error) < 5e-3);
+    assert_true(fabs(s3.penetration_max / ax.penetration_max - 1) < 0.06);
+    assert_true(fabs(s3.plastic_work / ax.plastic_work - 1) < 0.02);
+    assert_true(fabs(s3.contact_force_max / ax.contact_force_max - 1) < 0.05);
 }
 
-/* The capture loss and the mass redistribution (section 9e), opt-in in the 3D model
-   (rf_fem_options.surface_mass_3d): the rigid boulder at 10 m/s on (a) the S5 soil's elasticity as
+/* The capture loss and the mass redistribution (section 9e), the 3D model's default on soil
+   (rf_fem_options.surface_mass_3d, off: the lumped face): the rigid boulder at 10 m/s on (a) the S5 soil's elasticity as
    an elastic layer and (b) the S5 soil, a/h 2.  The continuum conserves energy; the forward-
    increment contact loses the captured face nodes' relative kinetic energy (an O(h) loss), which
    the redistribution takes off the face.  The step must be the same (the redistributed elements
@@ -161,6 +166,7 @@ static void test_surface_mass_3d(void **state)
     rf_fem3d_options_default(&o3);
     rf_impact_output on, off, soil;
     rf_fem_history hon = {0}, hoff = {0};
+    o.surface_mass_3d = 0;
     run3d_ex(&in, &o, &o3, &off, &hoff, NULL);
     o.surface_mass_3d = 1;
     run3d_ex(&in, &o, &o3, &on, &hon, NULL);

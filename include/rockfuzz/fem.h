@@ -133,9 +133,11 @@ typedef struct {
                                   unchanged); in [0, 1], 0 = off, default 0.1; the axisymmetric model (the
                                   3D model only with surface_mass_3d) */
     int surface_mass_3d;       /* 1: the same redistribution in the 3D model: it closes the energy account
-                                  on soil, but where an element is about as deep as the crater (a/h 2) it
-                                  misplaces the ploughed mass (R_t of frictionless ploughing 0.08 low at
-                                  a/h 2, agreeing from a/h 3; docs/validation-plastic.md 9e); default 0 */
+                                  on soil (0, the lumped face, loses 1-4 % of KE0 at a/h 2-3), but where an
+                                  element is about as deep as the crater (a/h 2) it misplaces the ploughed
+                                  mass (R_t of frictionless ploughing 0.08 low at a/h 2, agreeing with 0
+                                  from a/h 3, the default refinement; docs/validation-plastic.md 9e);
+                                  default 1 */
     int vtk_frames;            /* approximate number of VTK frames, default 60 */
     int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */

@@ -25,7 +25,7 @@ void rf_fem_options_default(rf_fem_options *opt)
     opt->grading = 1.15;
     opt->dt_safety = 0.9;
     opt->surface_mass_kappa = 0.1;
-    opt->surface_mass_3d = 0;
+    opt->surface_mass_3d = 1;
     opt->vtk_frames = 60;
     opt->history_stride = 0;
     opt->max_elements = 2000000;
