@@ -9,7 +9,7 @@
  * (end_time, s), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio),
  * threads=, aspect= (layer_aspect), inner= (boulder_inner), elong=
  * (elongation), full=0|1, dt= (dt_safety),
- * kappa= (surface_mass_kappa; > 0 also turns it on in 3D). */
+ * kappa= (surface_mass_kappa; > 0 also turns it on in 3D, 0 off). */
 #ifndef ROCKFUZZ_BENCH_FEM3D_PROBE_H
 #define ROCKFUZZ_BENCH_FEM3D_PROBE_H
 
