@@ -133,8 +133,7 @@ static void test_soft_layer_vs_axisymmetric(void **state)
     o.domain_factor = 0, o.boundary = RF_FEM_BOUNDARY_FIXED, o.large_deformation = RF_FEM_LARGE_DEFORMATION;
     rf_fem_options d;
     rf_fem_options_default(&d);
-    assert_int_equal(o.surface_mass_3d, d.surface_mass_3d);
-    assert_true(rf_fem_refinement(&d, 1) == 3);
+    assert_true(rf_fem_refinement(&d, 1) == 3); /* the 3D default mesh is the one held here */
     rf_impact_output s3, ax;
     run3d_ex(&in, &o, NULL, &s3, NULL, NULL);
     rf_error err = {0};
@@ -142,7 +141,7 @@ static void test_soft_layer_vs_axisymmetric(void **state)
     show("rigid on the S5 soil, 3D", &s3);
     show("rigid on the S5 soil, axisym.", &ax);
     assert_true(fabs(s3.energy_error) < 5e-3);
-    assert_true(fabs(s3.penetration_max / ax.penetration_max - 1) < 0.06);
+    assert_true(fabs(s3.penetration_max / ax.penetration_max - 1) < 0.05);
     assert_true(fabs(s3.plastic_work / ax.plastic_work - 1) < 0.02);
     assert_true(fabs(s3.contact_force_max / ax.contact_force_max - 1) < 0.05);
 }
