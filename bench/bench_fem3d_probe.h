@@ -9,7 +9,7 @@
  * (end_time, s), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio),
  * threads=, aspect= (layer_aspect), inner= (boulder_inner), elong=
  * (elongation), full=0|1, dt= (dt_safety),
- * kappa= (surface_mass_kappa; > 0 also turns it on in 3D, 0 off). */
+ * kappa= (surface_mass_kappa; > 0 also turns it on in 3D, 0 off), sphere= (sphere_contact_3d, 1 on). */
 #ifndef ROCKFUZZ_BENCH_FEM3D_PROBE_H
 #define ROCKFUZZ_BENCH_FEM3D_PROBE_H
 
@@ -76,6 +76,8 @@ static inline int probe_set_option(probe *p, const char *arg, size_t n, const ch
         p->o3.core_factor = x;
     else if (PROBE_KEY("kappa"))
         p->o.surface_mass_kappa = x, p->o.surface_mass_3d = x > 0;
+    else if (PROBE_KEY("sphere"))
+        p->o.sphere_contact_3d = x > 0;
     else if (PROBE_KEY("domain"))
         p->o.domain_factor = x;
     else if (PROBE_KEY("end"))

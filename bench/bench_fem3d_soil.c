@@ -11,7 +11,9 @@
  * core= (core_factor), domain= (domain_factor), end= (end time, s),
  * law=elastic|dp (the layer's), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio), threads=,
  * g= (gravity [m/s^2]; default 0, -1 = auto 9.81), kappa= (> 0: the mass redistribution at the
- * 3D contact face, the library's default, as kappa=0.1; without it the lumped face). */
+ * 3D contact face, the library's default, as kappa=0.1; without it the lumped face), sphere=1 (the
+ * slope's face nodes against the rigid boulder's exact sphere, the library's default; without it the
+ * faceted contact). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,6 +41,8 @@ static void s5_nominal(probe *p)
     /* the lumped 3D face unless kappa= > 0 is given (so that the commands of docs/validation-plastic.md
        9e-9f keep their meaning; the library's default since 9e is on, kappa 0.1) */
     p->o.surface_mass_3d = 0;
+    /* and the faceted contact unless sphere=1 (the library's default since 9g) */
+    p->o.sphere_contact_3d = 0;
     rf_fem3d_options_default(&p->o3);
 }
 

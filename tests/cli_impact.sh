@@ -92,6 +92,8 @@ expect_error 2 "large_deformation 'maybe'" --large-deformation maybe
 "$bin" impact --help | grep -q -- '--large-deformation K' || fail "help lacks --large-deformation"
 expect_error 2 "surface_mass_3d 'yes'" --surface-mass-3d yes
 "$bin" impact --help | grep -q -- '--surface-mass-3d K' || fail "help lacks --surface-mass-3d"
+expect_error 2 "sphere_contact_3d 'yes'" --sphere-contact-3d yes
+"$bin" impact --help | grep -q -- '--sphere-contact-3d K' || fail "help lacks --sphere-contact-3d"
 "$bin" impact --solver fem --large-deformation on --slope-angle 30 --friction 0.5 --refinement 2 --domain-factor 3 \
     --threads 1 --end-time 2e-4 >/dev/null 2>&1 || fail "3D refused --large-deformation on"
 # the simulated time [s]: named with its value and unit; in the help

@@ -272,6 +272,28 @@ static void test_fem_identity_end(void **state)
     rf_model_free(&model);
 }
 
+/* The rigid sphere's exact-surface 3D contact (docs/validation-plastic.md 9g) is named in the identity
+ * of a study whose boulder is rigid and which may run the 3D model (a store never mixes its results
+ * with the faceted contact's); an elastic boulder's identity does not change. */
+static void test_fem_identity_sphere_contact(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
+    spec.base.slope_angle = 0.5, spec.base.friction = 0.3;
+    const char *names[] = {"velocity"};
+    rf_model a, b, c;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &c, &err), RF_OK); /* elastic boulder */
+    spec.base.boulder_material = RF_MATERIAL_RIGID_BODY;
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &a, &err), RF_OK);
+    spec.fem.sphere_contact_3d = 0;
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &b, &err), RF_OK);
+    assert_non_null(strstr(a.identity, " fem3d_contact=exact_sphere"));
+    assert_null(strstr(b.identity, "fem3d_contact="));
+    assert_null(strstr(c.identity, "fem3d_contact="));
+    rf_model_free(&a), rf_model_free(&b), rf_model_free(&c);
+}
+
 /* The default boundary (auto) in the identity: elastic bodies without a layer
  * resolve it to fixed everywhere and keep the identity of the old default
  * (fixed) to the byte; with a plastic body or a possible layer (the absorbing
@@ -534,6 +556,7 @@ int main(void)
         cmocka_unit_test(test_concurrent),
         cmocka_unit_test(test_fem_model),
         cmocka_unit_test(test_fem_identity_end),
+        cmocka_unit_test(test_fem_identity_sphere_contact),
         cmocka_unit_test(test_fem_identity_boundary),
         cmocka_unit_test(test_plastic_parameters),
         cmocka_unit_test(test_fem_dispatch),

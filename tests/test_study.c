@@ -290,6 +290,9 @@ static const bad_case bad_cases[] = {
     {"unknown surface_mass_3d",
      "levels: 4\nparameters:\n  velocity: {tfn: [10, 1, 1]}\nmodel:\n  impact: {solver: fem, surface_mass_3d: yes}\n", 5,
      "model.impact.surface_mass_3d = yes", "on or off"},
+    {"unknown sphere_contact_3d",
+     "levels: 4\nparameters:\n  velocity: {tfn: [10, 1, 1]}\nmodel:\n  impact: {solver: fem, sphere_contact_3d: yes}\n", 5,
+     "model.impact.sphere_contact_3d = yes", "on or off"},
     {"impact input both fuzzy and crisp",
      "levels: 4\nparameters:\n  velocity: {tfn: [10, 1, 1]}\nmodel:\n  impact:\n    solver: hertz\n"
      "    velocity: 3\n",

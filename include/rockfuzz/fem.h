@@ -138,6 +138,12 @@ typedef struct {
                                   mass (R_t of frictionless ploughing 0.08 low at a/h 2, agreeing with 0
                                   from a/h 3, the default refinement; docs/validation-plastic.md 9e);
                                   default 1 */
+    int sphere_contact_3d;     /* 1: a rigid spherical boulder's 3D contact is the slope's face nodes against
+                                  its exact sphere (node to rigid surface); 0: its faceted face's nodes
+                                  against the slope's Catmull-Rom face, which flings light face nodes of a
+                                  soil into the contact (its negative weights) and loses 0.5-0.7 % of KE0
+                                  at 30 deg with friction (docs/validation-plastic.md 9g); acts only on a
+                                  rigid sphere (not a spheroid, not an elastic boulder); default 1 */
     int vtk_frames;            /* approximate number of VTK frames, default 60 */
     int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
     long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */

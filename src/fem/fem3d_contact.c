@@ -197,6 +197,11 @@ void f3_contact_locate(f3_contact *C, const f3_mesh *mesh, const double *u, cons
 #endif
     for (long k = 0; k < C->nslave; k++) {
         int s = C->slave[k];
+        if (C->sphere) { /* the slave's own u_n and v_{n-1/2}: the master is the rigid body */
+            for (int d = 0; d < 3; d++)
+                C->s0[3 * k + d] = u[3 * s + d], C->gvo[3 * k + d] = v[3 * s + d];
+            continue;
+        }
         int *m = C->mnode + F3_NM * k;
         double *N = C->N + F3_NM * k, *P = C->Xm + 2 * k;
         const double X = mesh->x[3 * s] + u[3 * s], Y = mesh->x[3 * s + 1] + u[3 * s + 1];
@@ -224,6 +229,11 @@ void f3_contact_rel(const f3_contact *C, long k, const double *v, double r[3])
    tangents t_x = (1, 0, S_x), t_y = (0, 1, S_y), both orthogonal to n. */
 static inline void row_w(const f3_contact *C, long k, int c, double w[3])
 {
+    if (C->sphere) {
+        const double *W = C->wr + 9 * k + 3 * c;
+        w[0] = W[0], w[1] = W[1], w[2] = W[2];
+        return;
+    }
     const double Sx = C->S[2 * k], Sy = C->S[2 * k + 1];
     if (c == 0)
         w[0] = -Sx, w[1] = -Sy, w[2] = 1;
@@ -241,12 +251,58 @@ static inline double row_dot(const f3_contact *C, long k, int c, const double r[
     return w[0] * r[0] + w[1] * r[1] + w[2] * r[2];
 }
 
+/* Sphere mode: the rigid body's field d = (CM x, CM z, rotation about y) at pair k's arm. */
+static inline void body_point(const f3_contact *C, long k, const double d[3], double b[3])
+{
+    const double rx = C->rr[2 * k], rz = C->rr[2 * k + 1];
+    b[0] = d[0] + d[2] * rz, b[1] = 0, b[2] = d[1] - d[2] * rx;
+}
+
+/* Sphere mode: the slave's field a minus the body's field d at its arm, on the three rows. */
+static inline void sphere_rows(const f3_contact *C, long k, const double a[3], const double d[3], double g[3])
+{
+    double b[3], r[3];
+    body_point(C, k, d, b);
+    for (int q = 0; q < 3; q++)
+        r[q] = a[q] - b[q];
+    for (int c = 0; c < 3; c++)
+        g[c] = row_dot(C, k, c, r);
+}
+
 void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3])
 {
+    if (C->sphere) {
+        sphere_rows(C, k, v + 3 * C->slave[k], C->body_v, g);
+        return;
+    }
     double r[3];
     f3_contact_rel(C, k, v, r);
     for (int c = 0; c < 3; c++)
         g[c] = row_dot(C, k, c, r);
+}
+
+void f3_contact_gvo(const f3_contact *C, long k, double g[3])
+{
+    if (C->sphere) {
+        sphere_rows(C, k, C->gvo + 3 * k, C->body_vo, g);
+        return;
+    }
+    for (int c = 0; c < 3; c++)
+        g[c] = C->gvo[3 * k + c];
+}
+
+double f3_contact_gap_now(const f3_contact *C, const f3_mesh *mesh, long k, const double *u)
+{
+    const int s = C->slave[k];
+    if (C->sphere) {
+        const double d[3] = {mesh->x[3 * s] + u[3 * s] - C->rigid_c[0], mesh->x[3 * s + 1] + u[3 * s + 1],
+                             mesh->x[3 * s + 2] + u[3 * s + 2] - C->rigid_c[1]};
+        return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - C->radius;
+    }
+    double g = mesh->x[3 * s + 2] + u[3 * s + 2];
+    for (int a = 0; a < F3_NM; a++)
+        g -= C->N[F3_NM * k + a] * u[3 * C->mnode[F3_NM * k + a] + 2];
+    return g;
 }
 
 /* |n| of a face of slope S, and |l_x t_x + l_y t_y| of the tangential multipliers l on it. */
@@ -260,11 +316,63 @@ static inline double tangential_norm(const double S[2], double lx, double ly)
     return sqrt(lx * lx * (1 + S[0] * S[0]) + ly * ly * (1 + S[1] * S[1]) + 2 * lx * ly * S[0] * S[1]);
 }
 
+/* The same for pair k (sphere mode: orthonormal rows). */
+static inline double pair_normal_norm(const f3_contact *C, long k)
+{
+    return C->sphere ? 1 : normal_norm(C->S + 2 * k);
+}
+
+static inline double pair_tangential_norm(const f3_contact *C, long k, double lx, double ly)
+{
+    return C->sphere ? hypot(lx, ly) : tangential_norm(C->S + 2 * k, lx, ly);
+}
+
 void f3_contact_forces(const f3_contact *C, long k, double *Fn, double *Ft)
 {
-    const double *lam = C->lam + 3 * k, *S = C->S + 2 * k;
-    *Fn = lam[0] * normal_norm(S);
-    *Ft = tangential_norm(S, lam[1], lam[2]);
+    const double *lam = C->lam + 3 * k;
+    *Fn = lam[0] * pair_normal_norm(C, k);
+    *Ft = pair_tangential_norm(C, k, lam[1], lam[2]);
+}
+
+/* Sphere mode: unit normal n out of the sphere at the slave's direction d from the centre, and
+   tangents t1 in the (x, z) plane (down the slope where n is the slope's normal), t2 = n x t1. */
+static void sphere_basis(const double d[3], double w[9])
+{
+    const double r = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double *n = w, *t1 = w + 3, *t2 = w + 6;
+    for (int q = 0; q < 3; q++)
+        n[q] = r > 0 ? d[q] / r : q == 2 ? -1 : 0;
+    double l = hypot(n[0], n[2]);
+    if (l > 1e-6)
+        t1[0] = -n[2] / l, t1[1] = 0, t1[2] = n[0] / l;
+    else /* n along y: t1 = x */
+        t1[0] = 1, t1[1] = 0, t1[2] = 0;
+    t2[0] = n[1] * t1[2] - n[2] * t1[1], t2[1] = n[2] * t1[0] - n[0] * t1[2], t2[2] = n[0] * t1[1] - n[1] * t1[0];
+}
+
+/* Sphere mode, pair k: gap, rows, arm, the slip of the predictor's step relative to the body's
+   material point, and the diagonal of dt^2 G M^-1 G^T (the slave node and the rigid body). */
+static void sphere_predict_pair(f3_contact *C, const f3_mesh *mesh, const double *u, const double *invm, double dt2,
+                                long k)
+{
+    const int s = C->slave[k];
+    const double d[3] = {mesh->x[3 * s] + u[3 * s] - C->rigid_c[0], mesh->x[3 * s + 1] + u[3 * s + 1],
+                         mesh->x[3 * s + 2] + u[3 * s + 2] - C->rigid_c[1]};
+    double *w = C->wr + 9 * k;
+    sphere_basis(d, w);
+    C->gap[k] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - C->radius;
+    C->rr[2 * k] = d[0], C->rr[2 * k + 1] = d[2];
+    double b[3];
+    body_point(C, k, C->body_d, b);
+    for (int q = 0; q < 3; q++)
+        C->ds[3 * k + q] = u[3 * s + q] - C->s0[3 * k + q] - b[q];
+    for (int c = 0; c < 3; c++) {
+        const double *wc = w + 3 * c, tn = d[2] * wc[0] - d[0] * wc[2];
+        double a = C->rigid_invm * (wc[0] * wc[0] + wc[2] * wc[2]) + C->rigid_invi * tn * tn;
+        for (int q = 0; q < 3; q++)
+            a += wc[q] * wc[q] * invm[3 * s + q];
+        C->A[3 * k + c] = dt2 * a;
+    }
 }
 
 void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, const double *invm, double dt,
@@ -276,6 +384,10 @@ void f3_contact_predict(f3_contact *C, const f3_mesh *mesh, const double *u, con
 #pragma omp parallel for schedule(static) num_threads(threads) if (C->nslave > 4096)
 #endif
     for (long k = 0; k < C->nslave; k++) {
+        if (C->sphere) {
+            sphere_predict_pair(C, mesh, u, invm, dt2, k);
+            continue;
+        }
         int s = C->slave[k];
         const int *m = C->mnode + F3_NM * k;
         const double *N = C->N + F3_NM * k;
@@ -329,6 +441,13 @@ static inline void spread(f3_contact *C, long k, int c, double delta, const doub
     const double *N = C->N + F3_NM * k;
     double w[3];
     row_w(C, k, c, w);
+    if (C->sphere) { /* the slave is pushed along w, the body back */
+        const double F[3] = {-w[0] * delta, -w[1] * delta, -w[2] * delta};
+        spread_rigid(C, k, F, dt2);
+        for (int d = 0; d < 3; d++)
+            C->du[3 * s + d] += dt2 * invm[3 * s + d] * w[d] * delta;
+        return;
+    }
     if (C->rigid_invm > 0) {
         const double F[3] = {w[0] * delta, w[1] * delta, w[2] * delta};
         spread_rigid(C, k, F, dt2);
@@ -344,6 +463,11 @@ static inline void spread(f3_contact *C, long k, int c, double delta, const doub
 
 static inline double gdu(const f3_contact *C, long k, int c)
 {
+    if (C->sphere) {
+        double g[3];
+        sphere_rows(C, k, C->du + 3 * C->slave[k], C->rigid_du, g);
+        return g[c];
+    }
     double r[3];
     f3_contact_rel(C, k, C->du, r);
     if (C->rigid_invm > 0) { /* the slave's displacement is the rigid body's */
@@ -406,8 +530,7 @@ rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double 
                     lt[c - 1] = 0;
             }
             /* Coulomb on the forces: |lt_x t_x + lt_y t_y| <= f ln |n| */
-            const double *S = C->S + 2 * k;
-            const double cap = f * ln * normal_norm(S), mag = tangential_norm(S, lt[0], lt[1]);
+            const double cap = f * ln * pair_normal_norm(C, k), mag = pair_tangential_norm(C, k, lt[0], lt[1]);
             if (mag > cap) {
                 double sc = mag > 0 ? cap / mag : 0;
                 lt[0] *= sc, lt[1] *= sc;
@@ -431,10 +554,11 @@ rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double 
     for (long q = 0; q < C->ncand; q++) {
         long k = C->cand[q];
         int nodes[F3_NM + 1];
+        const int nn = C->sphere ? 1 : F3_NM + 1;
         nodes[0] = C->slave[k];
-        for (int a = 0; a < F3_NM; a++)
+        for (int a = 0; a + 1 < nn; a++)
             nodes[a + 1] = C->mnode[F3_NM * k + a];
-        for (int a = 0; a < F3_NM + 1; a++)
+        for (int a = 0; a < nn; a++)
             for (int d = 0; d < 3; d++) {
                 double x = C->du[3 * nodes[a] + d];
                 if (x != 0) {

@@ -128,6 +128,16 @@ typedef struct {
     double rigid_c[2];   /* its CM (x, z) in the predicted state [m]; set before f3_contact_predict */
     double rigid_du[3];  /* CM displacement (x, z) [m] and rotation [rad] of the corrections */
     double *rr;          /* 2 per slave: (x, z) from the CM in the predicted state [m] */
+    /* Sphere mode (rf_fem_options.sphere_contact_3d, a rigid spherical boulder): the slaves are the
+       slope's face nodes (top_s order) and the master is the boulder's exact sphere of radius
+       `radius` about rigid_c; no master nodes.  s0 holds the slave's u at step n and gvo its
+       v_{n-1/2} (vectors, not row products); the rows are orthonormal (wr). */
+    int sphere;
+    double radius;
+    double body_d[3];    /* the rigid predictor's step: CM (x, z) [m] and rotation [rad] */
+    double body_vo[3];   /* the body's (V_x, V_z, omega) at n-1/2 */
+    double body_v[3];    /* ... and at n+1/2 after the correction (set before the account) */
+    double *wr;          /* 9 per slave: unit normal (out of the sphere) and tangents t1, t2 */
     double friction, tol, band;
     int max_sweeps;
     int sweeps;          /* statistics of the last solve */
@@ -145,6 +155,10 @@ void f3_contact_rel(const f3_contact *C, long k, const double *v, double r[3]);
 /* G v of pair k: its rows n = (-S_x, -S_y, 1), t_x = (1, 0, S_x), t_y = (0, 1, S_y) on the
    relative vector (or any per-dof field). */
 void f3_contact_gv(const f3_contact *C, long k, const double *v, double g[3]);
+/* G v_{n-1/2} of pair k (its rows at the account on the stored old velocities). */
+void f3_contact_gvo(const f3_contact *C, long k, double g[3]);
+/* Gap of pair k after the correction (u at n+1; in sphere mode rigid_c the corrected centre) [m]. */
+double f3_contact_gap_now(const f3_contact *C, const f3_mesh *mesh, long k, const double *u);
 /* Normal and tangential force magnitudes of pair k's multipliers [N]. */
 void f3_contact_forces(const f3_contact *C, long k, double *Fn, double *Ft);
 /* Predicted gaps and slip increments from the predicted displacements. */

@@ -573,7 +573,7 @@ static void solid_dashpots(solid_run *R)
 static void contact_release(f3_contact *C)
 {
     free(C->slave), free(C->lam), free(C->mnode), free(C->N), free(C->S), free(C->gap), free(C->ds), free(C->s0);
-    free(C->A), free(C->gvo), free(C->Xm), free(C->outside), free(C->cand), free(C->du), free(C->rr);
+    free(C->A), free(C->gvo), free(C->Xm), free(C->outside), free(C->cand), free(C->du), free(C->rr), free(C->wr);
     memset(C, 0, sizeof *C);
 }
 
@@ -589,11 +589,15 @@ static void solid_release(solid_run *R)
         f3_mesh_free(&R->mesh);
 }
 
-/* Contact: slaves are the boulder's fine-box face nodes. */
+/* Contact: slaves are the boulder's fine-box face nodes; in sphere mode (a rigid sphere with
+   sphere_contact_3d) the slope's, against the exact sphere. */
 static rf_status solid_contact_setup(solid_run *R, rf_error *err)
 {
     f3_contact *C = &R->C;
-    const size_t ns = (size_t)R->mesh.nxt_b * (size_t)R->mesh.nyt_b;
+    C->sphere = R->o.sphere_contact_3d && R->rigid && R->H.c == R->H.d;
+    C->radius = R->H.d;
+    const size_t ns = C->sphere ? (size_t)R->mesh.nxt_s * (size_t)R->mesh.nyt_s
+                                : (size_t)R->mesh.nxt_b * (size_t)R->mesh.nyt_b;
     C->nslave = (long)ns;
     C->slave = malloc(ns * sizeof *C->slave);
     C->lam = calloc(ns * 3, sizeof *C->lam);
@@ -612,7 +616,9 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
     if (!C->slave || !C->lam || !C->mnode || !C->N || !C->S || !C->gap || !C->ds || !C->s0 || !C->A || !C->gvo ||
         !C->Xm || !C->outside || !C->cand || !C->du)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
-    memcpy(C->slave, R->mesh.top_b, ns * sizeof *C->slave);
+    if (C->sphere && !(C->wr = calloc(ns * 9, sizeof *C->wr)))
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
+    memcpy(C->slave, C->sphere ? R->mesh.top_s : R->mesh.top_b, ns * sizeof *C->slave);
     for (size_t k = 0; k < ns; k++)
         C->Xm[2 * k] = R->mesh.x[3 * C->slave[k]], C->Xm[2 * k + 1] = R->mesh.x[3 * C->slave[k] + 1];
     C->friction = R->in->friction;
@@ -837,10 +843,11 @@ static double solid_dashpot_forces(solid_run *R)
 
 /* 1 if slave k (top_b order) is on the edge of the boulder's fine box: soil
  * beyond it would meet no slave (the contact has outgrown the fine zone). */
-static int slave_on_edge(const f3_mesh *mesh, int full, long k)
+static int slave_on_edge(const f3_mesh *mesh, int full, int sphere, long k)
 {
-    const long i = k / mesh->nyt_b, j = k % mesh->nyt_b;
-    return i == 0 || i == mesh->nxt_b - 1 || j == mesh->nyt_b - 1 || (full && j == 0);
+    const long nx = sphere ? mesh->nxt_s : mesh->nxt_b, ny = sphere ? mesh->nyt_s : mesh->nyt_b;
+    const long i = k / ny, j = k % ny;
+    return i == 0 || i == nx - 1 || j == ny - 1 || (full && j == 0);
 }
 
 /* Contact force, work, radius (force-weighted second moment: <rho^2> = 0.4 a^2
@@ -857,9 +864,11 @@ static double solid_contact_account(solid_run *R, double *rad)
             continue;
         int s = C->slave[k];
         double gvn[3];
+        double gvo[3];
         f3_contact_gv(C, k, R->v, gvn);
-        R->W_n += lam[0] * dt * (gvn[0] + C->gvo[3 * k]) / 2;
-        R->W_fric -= (lam[1] * (gvn[1] + C->gvo[3 * k + 1]) + lam[2] * (gvn[2] + C->gvo[3 * k + 2])) * dt / 2;
+        f3_contact_gvo(C, k, gvo);
+        R->W_n += lam[0] * dt * (gvn[0] + gvo[0]) / 2;
+        R->W_fric -= (lam[1] * (gvn[1] + gvo[1]) + lam[2] * (gvn[2] + gvo[2])) * dt / 2;
         double slip = hypot(gvn[1], gvn[2]) * dt;
         if (slip > R->slip_max)
             R->slip_max = slip;
@@ -868,7 +877,7 @@ static double solid_contact_account(solid_run *R, double *rad)
         f3_contact_forces(C, k, &Fn, &Ft);
         if (Ft < (1 - 1e-9) * C->friction * Fn)
             R->stick_steps++;
-        if (C->outside[k] == 1 || slave_on_edge(&R->mesh, R->ms.full, k))
+        if (C->outside[k] == 1 || slave_on_edge(&R->mesh, R->ms.full, C->sphere, k))
             R->outside_contact = 1;
         if (C->outside[k] == 2)
             R->unlocated_steps++;
@@ -885,11 +894,7 @@ static double solid_contact_account(solid_run *R, double *rad)
         *rad = sqrt(fmax(0, 2.5 * var));
     }
     for (long q = 0; q < C->ncand; q++) { /* penetration after the correction */
-        long k = C->cand[q];
-        int s = C->slave[k];
-        double g = R->mesh.x[3 * s + 2] + u[3 * s + 2];
-        for (int a = 0; a < F3_NM; a++)
-            g -= C->N[F3_NM * k + a] * u[3 * C->mnode[F3_NM * k + a] + 2];
+        const double g = f3_contact_gap_now(C, &R->mesh, C->cand[q], u);
         if (-g > R->pen_max)
             R->pen_max = -g;
     }
@@ -909,6 +914,12 @@ static void solid_power(const solid_run *R, double fv[2])
 /* The boulder's lowest point (its contact-face nodes) below the undeformed slope surface z = 0. */
 static void solid_depth(solid_run *R)
 {
+    if (R->C.sphere) { /* the exact sphere's */
+        const double d = R->C.radius - R->C.rigid_c[1];
+        if (d > R->depth_max)
+            R->depth_max = d;
+        return;
+    }
     for (long k = 0; k < R->C.nslave; k++) {
         const long s = R->C.slave[k];
         const double d = -(R->mesh.x[3 * s + 2] + R->u[3 * s + 2]);
@@ -987,6 +998,14 @@ static void solid_force_predict(solid_run *R, double fv[2])
     predictor_share(R);
 }
 
+/* The rigid boulder's centre (x, z) for the contact: its CM, or in sphere mode the exact sphere's
+   centre (the first-contact point + r0 along z at rest; the same point as the CM to round-off). */
+static void solid_rigid_centre(solid_run *R)
+{
+    const double *c = R->C.sphere ? (const double[3]){0, 0, R->C.radius} : R->B.c0;
+    R->C.rigid_c[0] = c[0] + R->B.X[0], R->C.rigid_c[1] = c[2] + R->B.X[1];
+}
+
 /* One step: dashpots (v_{n-1/2}) -> internal force, pairing, predictor -> contact. */
 static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err)
 {
@@ -1010,11 +1029,15 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
                 W_abs_inc -= 0.5 * dt * R->fext[3 * i + q] * v[3 * i + q];
         }
     if (R->rigid) { /* the boulder's predicted rigid state (its nodes moved along straight lines above) */
+        f3_rigid *B = &R->B;
+        const double Xn[3] = {B->X[0], B->X[1], B->th};
+        R->C.body_vo[0] = B->V[0], R->C.body_vo[1] = B->V[1], R->C.body_vo[2] = B->w;
         if (R->grav.fgrav) /* its weight M g at the centre of mass */
-            R->B.V[0] += dt * R->grav.g * R->grav.dir[0], R->B.V[1] += dt * R->grav.g * R->grav.dir[2];
-        f3_rigid_predict(&R->B, dt);
-        f3_rigid_place(&R->B, &R->mesh, R->nbn, u, v);
-        R->C.rigid_c[0] = R->B.c0[0] + R->B.X[0], R->C.rigid_c[1] = R->B.c0[2] + R->B.X[1];
+            B->V[0] += dt * R->grav.g * R->grav.dir[0], B->V[1] += dt * R->grav.g * R->grav.dir[2];
+        f3_rigid_predict(B, dt);
+        f3_rigid_place(B, &R->mesh, R->nbn, u, v);
+        R->C.body_d[0] = B->X[0] - Xn[0], R->C.body_d[1] = B->X[1] - Xn[1], R->C.body_d[2] = B->th - Xn[2];
+        solid_rigid_centre(R);
     }
     if (R->no_contact)
         R->C.ncand = 0;
@@ -1028,6 +1051,10 @@ static rf_status solid_step(solid_run *R, double *Fc, double *rad, rf_error *err
     if (R->rigid) { /* the contact's impulse on the rigid dofs */
         f3_rigid_correct(&R->B, R->C.rigid_du, dt);
         f3_rigid_place(&R->B, &R->mesh, R->nbn, u, v);
+        if (R->C.sphere) { /* the account's and the depth's body */
+            solid_rigid_centre(R);
+            R->C.body_v[0] = R->B.V[0], R->C.body_v[1] = R->B.V[1], R->C.body_v[2] = R->B.w;
+        }
     }
     if (R->C.sweeps > R->pgs_sweeps_max)
         R->pgs_sweeps_max = R->C.sweeps;

@@ -26,6 +26,7 @@ void rf_fem_options_default(rf_fem_options *opt)
     opt->dt_safety = 0.9;
     opt->surface_mass_kappa = 0.1;
     opt->surface_mass_3d = 1;
+    opt->sphere_contact_3d = 1;
     opt->vtk_frames = 60;
     opt->history_stride = 0;
     opt->max_elements = 2000000;
@@ -184,6 +185,9 @@ rf_status rf_fem_options_validate(const rf_fem_options *o, int three_d, rf_error
     if (o->surface_mass_3d != 0 && o->surface_mass_3d != 1)
         return rf_fail(err, RF_EINVAL, "fem%s: surface_mass_3d = %d must be 0 (off) or 1 (on)", three_d ? "3d" : "",
                        o->surface_mass_3d);
+    if (o->sphere_contact_3d != 0 && o->sphere_contact_3d != 1)
+        return rf_fail(err, RF_EINVAL, "fem%s: sphere_contact_3d = %d must be 0 (off) or 1 (on)", three_d ? "3d" : "",
+                       o->sphere_contact_3d);
     if ((unsigned)o->ale > RF_FEM_ALE_ON)
         return rf_fail(err, RF_EINVAL, "fem: ale = %d is unknown (accepted: auto, off, on)", (int)o->ale);
     if (!(o->ale_trigger > 0 && o->ale_trigger < 1))

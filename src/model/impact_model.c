@@ -447,6 +447,9 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                 append(buf, cap, &len, " fem3d_locate=warm_backtracking%s",
                        o->surface_mass_3d ? " fem3d_surface_mass=on" : "");
         }
+        /* a rigid sphere's 3D contact against its exact surface (docs/validation-plastic.md 9g) */
+        if (may_run_3d(c) && o->sphere_contact_3d && b->boulder_material == RF_MATERIAL_RIGID_BODY)
+            append(buf, cap, &len, " fem3d_contact=exact_sphere");
         /* the 3D model runs in large deformation too (on, or auto with a plastic body; it was small
            strain in every case before): a store never mixes 3D results of the two kinematics */
         if (may_run_3d(c) && large_possible(c))

@@ -572,6 +572,12 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             rf_error tmp;
             if (rf_fem_switch_parse("surface_mass_3d", buf, &spec.fem.surface_mass_3d, &tmp) != RF_OK)
                 return sp_fail(c, v, p, "unknown surface_mass_3d; expected on or off");
+        } else if (!strcmp(key, "sphere_contact_3d")) {
+            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
+                return st;
+            rf_error tmp;
+            if (rf_fem_switch_parse("sphere_contact_3d", buf, &spec.fem.sphere_contact_3d, &tmp) != RF_OK)
+                return sp_fail(c, v, p, "unknown sphere_contact_3d; expected on or off");
         } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor") || !strcmp(key, "end_time")) {
             double *d = key[0] == 'r' ? &spec.fem.refinement : key[0] == 'd' ? &spec.fem.domain_factor
                                                                              : &spec.fem.end_time;
@@ -597,7 +603,8 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                 return sp_fail(c, v, p, "must be >= 0");
         } else {
             return sp_fail(c, k, p,
-                           "unknown key; the impact model takes solver, boundary, large_deformation, ale, surface_mass_3d, refinement, "
+                           "unknown key; the impact model takes solver, boundary, large_deformation, ale, surface_mass_3d, sphere_contact_3d, "
+                           "refinement, "
                            "domain_factor, end_time [s], threads, e_n, hunter_coefficient, boulder_material, slope_material, layer_material and "
                            "crisp inputs "
                            "(radius, horizontal_axis, vertical_axis, boulder_density, slope_density, boulder_E, "
