@@ -566,18 +566,13 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             rf_error tmp;
             if (rf_fem_ale_parse(buf, &spec.fem.ale, &tmp) != RF_OK)
                 return sp_fail(c, v, p, "unknown ale; expected auto, on or off");
-        } else if (!strcmp(key, "surface_mass_3d")) {
+        } else if (!strcmp(key, "surface_mass_3d") || !strcmp(key, "sphere_contact_3d")) {
+            int *on = key[1] == 'u' ? &spec.fem.surface_mass_3d : &spec.fem.sphere_contact_3d;
             if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
             rf_error tmp;
-            if (rf_fem_switch_parse("surface_mass_3d", buf, &spec.fem.surface_mass_3d, &tmp) != RF_OK)
-                return sp_fail(c, v, p, "unknown surface_mass_3d; expected on or off");
-        } else if (!strcmp(key, "sphere_contact_3d")) {
-            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
-                return st;
-            rf_error tmp;
-            if (rf_fem_switch_parse("sphere_contact_3d", buf, &spec.fem.sphere_contact_3d, &tmp) != RF_OK)
-                return sp_fail(c, v, p, "unknown sphere_contact_3d; expected on or off");
+            if (rf_fem_switch_parse(key, buf, on, &tmp) != RF_OK)
+                return sp_fail(c, v, p, "unknown %s; expected on or off", key);
         } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor") || !strcmp(key, "end_time")) {
             double *d = key[0] == 'r' ? &spec.fem.refinement : key[0] == 'd' ? &spec.fem.domain_factor
                                                                              : &spec.fem.end_time;
