@@ -46,7 +46,15 @@
  * the rotation about y), so every pair couples with every other through the
  * body.  Gauss-Seidel never factors the matrix: the dependent rows that made
  * the axisymmetric direct solve singular (validation-plastic.md 10c) only make
- * the multipliers non-unique, not the impulses. */
+ * the multipliers non-unique, not the impulses.
+ * Sphere mode (C->sphere, a rigid sphere with rf_fem_options.sphere_contact_3d):
+ * the roles are turned round.  The slaves are the slope's fine-box face nodes
+ * and the master is the boulder's exact sphere: gap |x - c| - r0, rows the
+ * unit normal out of the sphere and two unit tangents (t1 in the x-z plane,
+ * t2 = n x t1), each impulse on its node alone and back on the rigid body.
+ * The faceted contact's Catmull-Rom stencil, whose negative weights pushed
+ * the outer soil nodes of a pair into the boulder where the next slaves
+ * captured them, is gone (docs/validation-plastic.md 9g). */
 #include "fem3d_internal.h"
 
 #include <math.h>
