@@ -366,9 +366,11 @@ static void sphere_predict_pair(f3_contact *C, const f3_mesh *mesh, const double
     const int s = C->slave[k];
     const double d[3] = {mesh->x[3 * s] + u[3 * s] - C->rigid_c[0], mesh->x[3 * s + 1] + u[3 * s + 1],
                          mesh->x[3 * s + 2] + u[3 * s + 2] - C->rigid_c[1]};
+    C->gap[k] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - C->radius;
+    if (C->gap[k] >= C->band) /* not a candidate of this step's solve: nothing else is read */
+        return;
     double *w = C->wr + 9 * k;
     sphere_basis(d, w);
-    C->gap[k] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - C->radius;
     C->rr[2 * k] = d[0], C->rr[2 * k + 1] = d[2];
     double b[3];
     body_point(C, k, C->body_d, b);
