@@ -299,13 +299,21 @@ void f3_contact_gvo(const f3_contact *C, long k, double g[3])
         g[c] = C->gvo[3 * k + c];
 }
 
+/* Sphere mode: slave node s's position x + u from the sphere's centre (rigid_c, on y = 0) into d;
+   returns |d| - r0, its gap. */
+static double sphere_offset(const f3_contact *C, const f3_mesh *mesh, const double *u, int s, double d[3])
+{
+    d[0] = mesh->x[3 * s] + u[3 * s] - C->rigid_c[0], d[1] = mesh->x[3 * s + 1] + u[3 * s + 1];
+    d[2] = mesh->x[3 * s + 2] + u[3 * s + 2] - C->rigid_c[1];
+    return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - C->radius;
+}
+
 double f3_contact_gap_now(const f3_contact *C, const f3_mesh *mesh, long k, const double *u)
 {
     const int s = C->slave[k];
     if (C->sphere) {
-        const double d[3] = {mesh->x[3 * s] + u[3 * s] - C->rigid_c[0], mesh->x[3 * s + 1] + u[3 * s + 1],
-                             mesh->x[3 * s + 2] + u[3 * s + 2] - C->rigid_c[1]};
-        return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - C->radius;
+        double d[3];
+        return sphere_offset(C, mesh, u, s, d);
     }
     double g = mesh->x[3 * s + 2] + u[3 * s + 2];
     for (int a = 0; a < F3_NM; a++)
@@ -364,9 +372,8 @@ static void sphere_predict_pair(f3_contact *C, const f3_mesh *mesh, const double
                                 long k)
 {
     const int s = C->slave[k];
-    const double d[3] = {mesh->x[3 * s] + u[3 * s] - C->rigid_c[0], mesh->x[3 * s + 1] + u[3 * s + 1],
-                         mesh->x[3 * s + 2] + u[3 * s + 2] - C->rigid_c[1]};
-    C->gap[k] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) - C->radius;
+    double d[3];
+    C->gap[k] = sphere_offset(C, mesh, u, s, d);
     if (C->gap[k] >= C->band) /* not a candidate of this step's solve: nothing else is read */
         return;
     double *w = C->wr + 9 * k;

@@ -567,7 +567,7 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             if (rf_fem_ale_parse(buf, &spec.fem.ale, &tmp) != RF_OK)
                 return sp_fail(c, v, p, "unknown ale; expected auto, on or off");
         } else if (!strcmp(key, "surface_mass_3d") || !strcmp(key, "sphere_contact_3d")) {
-            int *on = key[1] == 'u' ? &spec.fem.surface_mass_3d : &spec.fem.sphere_contact_3d;
+            int *on = !strcmp(key, "surface_mass_3d") ? &spec.fem.surface_mass_3d : &spec.fem.sphere_contact_3d;
             if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
             rf_error tmp;
