@@ -48,6 +48,11 @@ if command -v python3 >/dev/null; then
     check 'close(o["stress_xy"], dp(32)[1] * 1e3 + dp(32)[0] * 1e5) and close(o["mean_stress"], -1e5)' \
         --model drucker_prager --E 20e6 --poisson 0.3 --cohesion 1e3 --friction-angle 32 \
         --path simple_shear --strain 0.05 --initial-mean-stress -1e5 --increments 3
+    # DP dilatant simple shear at constant volume with a dilatancy cutoff of 1 %: the dilation
+    # stops there, p = p0 - K 0.01, tau = xi c - eta p (the critical state)
+    check 'close(o["plastic_volumetric_strain"], 0.01) and close(o["mean_stress"], -1e5 - K / 1e4 * 0.01) and close(o["stress_xy"], dp(35)[1] * 1e3 - dp(35)[0] * (-1e5 - K / 1e4 * 0.01))' \
+        --model drucker_prager --E 20e6 --poisson 0.3 --cohesion 1e3 --friction-angle 35 --dilatancy-angle 10 \
+        --dilatancy-cutoff 0.01 --path simple_shear --strain 0.5 --initial-mean-stress -1e5 --increments 7
     # DP hydrostatic tension: apex c cot(phi)
     check 'close(o["mean_stress"], 1e3 / math.tan(math.radians(32))) and o["stress_xy"] == 0' \
         --model drucker_prager --E 20e6 --poisson 0.3 --cohesion 1e3 --friction-angle 32 --dilatancy-angle 10 \
@@ -100,6 +105,8 @@ expect_error "--dilatancy-angle 40" --model drucker_prager --cohesion 1e3 --fric
 expect_error "--cohesion -1" --model drucker_prager --cohesion -1 --friction-angle 30 $base
 expect_error "--cap-pressure 1e4: the cap needs both" --model drucker_prager --cohesion 1e3 --friction-angle 30 --cap-pressure 1e4 $base
 expect_error "--cap-pressure 0" --model drucker_prager --cohesion 1e3 --friction-angle 30 --cap-pressure 0 --cap-hardening 1e6 $base
+expect_error "--dilatancy-cutoff 0: must be" --model drucker_prager --cohesion 1e3 --friction-angle 30 --dilatancy-cutoff 0 $base
+expect_error "--dilatancy-cutoff -0.1" --model drucker_prager --cohesion 1e3 --friction-angle 30 --dilatancy-cutoff -0.1 $base
 expect_error "--cap-hardening -1" --model drucker_prager --cohesion 1e3 --friction-angle 30 --cap-pressure 1e4 --cap-hardening -1 $base
 expect_error "--path 'triaxial'" --model elastic --E 1e9 --poisson 0.3 --path triaxial --strain 0.01
 expect_error "--strain 2" --model elastic --E 1e9 --poisson 0.3 --path hydrostatic --strain 2

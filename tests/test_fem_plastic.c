@@ -461,6 +461,41 @@ static void test_rigid_boulder(void **state)
     rf_fem_history_free(&hr), rf_fem_history_free(&he);
 }
 
+/* The dilatancy cutoff reaches the FE's law: a sand slope with psi = 9 deg and
+ * a cutoff of 1e-9 runs as the same sand with psi = 0 (its dilation ends after
+ * 1e-9), far from the unlimited psi = 9 deg; a cutoff no point reaches changes
+ * nothing, to the bit. */
+static void test_dilatancy_cutoff_reaches_law(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(5);
+    in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    in.slope_density = 1850, in.slope_E = 200e6, in.slope_poisson = 0.3;
+    in.slope_material = RF_MATERIAL_DRUCKER_PRAGER, in.slope_cohesion = 1e3;
+    in.slope_friction_angle = 39 * M_PI / 180, in.slope_dilatancy_angle = 9 * M_PI / 180;
+    rf_fem_options o = coarse(3);
+    o.end_time = 2e-3;
+    rf_impact_output free9, cut9, free0, huge9;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &free9, NULL, &err), RF_OK);
+    in.slope_dilatancy_cutoff = 1.0;
+    assert_int_equal(rf_fem_impact(&in, &o, &huge9, NULL, &err), RF_OK);
+    in.slope_dilatancy_cutoff = 1e-9;
+    assert_int_equal(rf_fem_impact(&in, &o, &cut9, NULL, &err), RF_OK);
+    in.slope_dilatancy_cutoff = 0, in.slope_dilatancy_angle = 0;
+    assert_int_equal(rf_fem_impact(&in, &o, &free0, NULL, &err), RF_OK);
+    printf("sand, 5 m/s, 2 ms: penetration psi 9 %.9e m, psi 9 cut 1e-9 %.9e m, psi 0 %.9e m; "
+           "W_p %.9e / %.9e / %.9e KE\n", free9.penetration_max, cut9.penetration_max, free0.penetration_max,
+           free9.plastic_work, cut9.plastic_work, free0.plastic_work);
+    assert_true(free9.penetration_max == huge9.penetration_max && free9.plastic_work == huge9.plastic_work &&
+                free9.contact_force_max == huge9.contact_force_max && free9.energy_error == huge9.energy_error &&
+                free9.equivalent_plastic_strain_max == huge9.equivalent_plastic_strain_max);
+    const double psi_effect = fabs(free9.penetration_max - free0.penetration_max);
+    assert_true(psi_effect > 1e-4 * free0.penetration_max);
+    assert_true(fabs(cut9.penetration_max - free0.penetration_max) < 1e-4 * psi_effect);
+    assert_true(fabs(cut9.plastic_work - free0.plastic_work) < 1e-4 * fabs(free9.plastic_work - free0.plastic_work));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -472,6 +507,7 @@ int main(void)
         cmocka_unit_test(test_vtk_plastic_fields),
         cmocka_unit_test(test_plastic_threads_deterministic),
         cmocka_unit_test(test_rigid_boulder),
+        cmocka_unit_test(test_dilatancy_cutoff_reaches_law),
         cmocka_unit_test(test_layer_logic),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

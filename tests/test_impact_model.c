@@ -545,6 +545,37 @@ static void test_plastic_parameters(void **state)
     rf_model_free(&model);
 }
 
+/* The dilatancy cutoff is an input and a study parameter; the identity names
+ * it only where it may act, so identities without it are unchanged. */
+static void test_dilatancy_cutoff_identity(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
+    spec.base.slope_material = RF_MATERIAL_DRUCKER_PRAGER;
+    spec.base.slope_cohesion = 1e6, spec.base.slope_friction_angle = 35.0 * DEG;
+    spec.base.slope_dilatancy_angle = 5.0 * DEG;
+    const char *names[] = {"slope_dilatancy_cutoff"};
+    rf_model model;
+    rf_error err = {0};
+    assert_int_equal(rf_impact_model_create(&spec, names, 0, &model, &err), RF_OK);
+    assert_null(strstr(model.identity, "dilatancy_cutoff"));
+    rf_model_free(&model);
+    spec.base.slope_dilatancy_cutoff = 0.02;
+    assert_int_equal(rf_impact_model_create(&spec, names, 0, &model, &err), RF_OK);
+    assert_non_null(strstr(model.identity, " slope_dilatancy_cutoff=0.02"));
+    assert_null(strstr(model.identity, "layer_dilatancy_cutoff"));
+    rf_model_free(&model);
+    spec.base.slope_dilatancy_cutoff = 0.0;
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);
+    assert_non_null(strstr(model.identity, " slope_dilatancy_cutoff="));
+    /* an inadmissible value is named */
+    const double bad[] = {-0.01};
+    double y[RF_IMPACT_N_OUTPUTS];
+    assert_int_not_equal(rf_model_eval(&model, bad, y, &err), RF_OK);
+    assert_non_null(strstr(err.msg, "slope_dilatancy_cutoff"));
+    rf_model_free(&model);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -559,6 +590,7 @@ int main(void)
         cmocka_unit_test(test_fem_identity_sphere_contact),
         cmocka_unit_test(test_fem_identity_boundary),
         cmocka_unit_test(test_plastic_parameters),
+        cmocka_unit_test(test_dilatancy_cutoff_identity),
         cmocka_unit_test(test_fem_dispatch),
         cmocka_unit_test(test_fem_warnings),
     };

@@ -179,6 +179,70 @@ static void test_dp_simple_shear_dilatant(void **state)
     }
 }
 
+/* The dilatancy cutoff (critical state): the same dilatant shear stops
+ * dilating at a plastic volume change eps_cut, after which it is isochoric,
+ * so p = p0 - K eps_cut and tau = xi c - eta p for any number of increments;
+ * below the cutoff the law is the one without it, to the bit. */
+static void test_dp_dilatancy_cutoff(void **state)
+{
+    (void)state;
+    rf_material_params p = sand(36, 8, 0, 0), q = p;
+    q.dilatancy_cutoff = 5e-4;
+    rf_material m = make(&p), mc = make(&q);
+    double p0 = -5e4, gamma = 0.02, e[6] = {0, 0, 0, gamma, 0, 0}, sig[6], sig_free[6];
+    rf_material_state st, st_free;
+    drive(&m, p0, e, 100, sig_free, &st_free);
+    assert_true(st_free.plastic_volumetric > 2.0 * q.dilatancy_cutoff); /* the cutoff is crossed */
+    for (size_t c = 0; c < N_COUNTS; c++) {
+        drive(&mc, p0, e, increment_counts[c], sig, &st);
+        double pf = p0 - m.K * q.dilatancy_cutoff, tau = m.xi * p.cohesion - m.eta * pf;
+        assert_close(st.plastic_volumetric, q.dilatancy_cutoff, 1e-12);
+        assert_close(sig[0], pf, 1e-12);
+        assert_close(sig[3], tau, 1e-12);
+    }
+    /* Below the cutoff: identical to the law without it. */
+    double gp_cut = q.dilatancy_cutoff / m.eta_bar;
+    double gamma_below = 0.5 * (gp_cut * (m.G + m.K * m.eta * m.eta_bar) + m.xi * p.cohesion - m.eta * p0) / m.G;
+    double e_below[6] = {0, 0, 0, gamma_below, 0, 0};
+    drive(&m, p0, e_below, 50, sig_free, &st_free);
+    drive(&mc, p0, e_below, 50, sig, &st);
+    assert_true(st.plastic_volumetric > 0.0 && st.plastic_volumetric < q.dilatancy_cutoff);
+    assert_memory_equal(sig, sig_free, sizeof sig);
+    assert_memory_equal(&st, &st_free, sizeof st);
+}
+
+/* Compaction on the cap lowers the plastic volume change, so a compacted
+ * sand dilates again up to the same critical state: compress on the cap,
+ * unload elastically, shear at constant volume; the dilation ends at the
+ * cutoff, not at the cutoff plus the compaction. */
+static void test_dp_cutoff_after_compaction(void **state)
+{
+    (void)state;
+    rf_material_params p = sand(36, 8, 200e3, 50e6);
+    p.dilatancy_cutoff = 5e-3;
+    rf_material m = make(&p);
+    double sig[6] = {0}, d;
+    rf_material_state st = {0};
+    double S = -0.01 / 50, comp[6] = {S, S, S, 0, 0, 0};
+    for (int k = 0; k < 50; k++)
+        rf_material_update(&m, comp, sig, &st, &d);
+    double ec = st.compaction;
+    assert_true(ec > 2e-3);
+    assert_close(st.plastic_volumetric, -ec, 1e-12);
+    double unload = (-5e4 - sig[0]) / (3.0 * m.K) / 10, back[6] = {unload, unload, unload, 0, 0, 0};
+    for (int k = 0; k < 10; k++)
+        rf_material_update(&m, back, sig, &st, &d);
+    assert_close(sig[0], -5e4, 1e-9);
+    assert_true(st.compaction == ec); /* elastic unloading */
+    double p1 = sig[0], shear[6] = {0, 0, 0, 0.2 / 200, 0, 0};
+    for (int k = 0; k < 200; k++)
+        rf_material_update(&m, shear, sig, &st, &d);
+    assert_close(st.plastic_volumetric, p.dilatancy_cutoff, 1e-12);
+    assert_close(sig[0], p1 - m.K * (p.dilatancy_cutoff + ec), 1e-12);
+    assert_close(sig[3], m.xi * p.cohesion - m.eta * sig[0], 1e-12);
+    assert_true(st.compaction == ec); /* the cap stayed elastic: -p < X */
+}
+
 /* Hydrostatic tension: the mean stress stops at the apex c cot(phi), the
  * deviator stays zero, W_p = p_apex * (3 S - p_apex / K), whatever psi. */
 static void test_dp_apex(void **state)
@@ -398,6 +462,8 @@ static void test_random_materials_large_steps(void **state)
         p.cohesion = k % 5 == 0 ? 0.0 : uniform(&seed, 0.0, 5e4);
         if (p.friction_angle < 1e-3 * DEG)
             p.cohesion = 1e4;
+        if (k % 3 == 0)
+            p.dilatancy_cutoff = uniform(&seed, 1e-4, 2e-2);
         if (k % 2) {
             p.cap_pressure = uniform(&seed, 1e3, 2e5);
             p.cap_hardening = k % 4 == 1 ? 0.0 : uniform(&seed, 0.0, 1e8);
@@ -553,6 +619,10 @@ static void test_validation(void **state)
     expect_invalid(&p, "cap_pressure = -1");
     p = sand(30, 0, 1e4, NAN);
     expect_invalid(&p, "cap_hardening = nan");
+    p = sand(30, 5, 0, 0), p.dilatancy_cutoff = -1e-3;
+    expect_invalid(&p, "dilatancy_cutoff = -0.001");
+    p.dilatancy_cutoff = INFINITY;
+    expect_invalid(&p, "dilatancy_cutoff = inf");
     rf_material_model model;
     rf_error err = {0};
     assert_int_equal(rf_material_model_parse("mohr", &model, &err), RF_EINVAL);
@@ -567,6 +637,8 @@ int main(void)
         cmocka_unit_test(test_dp_constants),
         cmocka_unit_test(test_dp_simple_shear),
         cmocka_unit_test(test_dp_simple_shear_dilatant),
+        cmocka_unit_test(test_dp_dilatancy_cutoff),
+        cmocka_unit_test(test_dp_cutoff_after_compaction),
         cmocka_unit_test(test_dp_apex),
         cmocka_unit_test(test_dp_cone_never_yields_confined),
         cmocka_unit_test(test_dp_cap_confined),

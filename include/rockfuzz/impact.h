@@ -47,6 +47,8 @@ typedef struct {
     double slope_dilatancy_angle;       /* drucker_prager: psi [rad] in [0, phi] */
     double slope_cap_pressure;          /* drucker_prager: crush pressure X0 [Pa]; 0 = no cap */
     double slope_cap_hardening;         /* drucker_prager: compaction modulus H_c [Pa] */
+    double slope_dilatancy_cutoff;      /* drucker_prager: plastic volumetric strain [-] at which
+                                           the dilatancy stops; 0 = none (docs/materials.md) */
     /* A layer over the slope's material (the bedrock): 0 = homogeneous slope.
        Its own density, elasticity and material, named as the slope's
        (defaults: the nominal granite, elastic).  FE axisymmetric model only
@@ -57,6 +59,7 @@ typedef struct {
     double layer_yield, layer_hardening, layer_cohesion;
     double layer_friction_angle, layer_dilatancy_angle; /* [rad] (degrees in the CLI and studies) */
     double layer_cap_pressure, layer_cap_hardening;
+    double layer_dilatancy_cutoff;
     /* Gravity [m/s^2] along -z (the slope normal of a normal impact): the
        boulder's weight and the geostatic stress of the slope and layer
        (docs/validation-plastic.md "Gravity"), a magnitude >= 0.  RF_GRAVITY_AUTO

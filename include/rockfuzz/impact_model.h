@@ -55,7 +55,7 @@ rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_inpu
  * slope_dilatancy_angle and the layer's two angles in DEGREES here; the
  * material choice itself is spec->base.*_material, crisp), and the
  * model outputs in order, with their units. */
-#define RF_IMPACT_N_PARAMS 32
+#define RF_IMPACT_N_PARAMS 34
 #define RF_IMPACT_N_OUTPUTS 11
 extern const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS];
 extern const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS];

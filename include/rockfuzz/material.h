@@ -5,8 +5,11 @@
  * isotropic hardening (radial return, Wilkins 1964; Simo & Hughes 1998 ch. 3);
  * Drucker-Prager with the cone matched to Mohr-Coulomb's compressive meridian,
  * non-associated flow, exact cone and apex returns (de Souza Neto, Peric &
- * Owen 2008 ch. 8) and an optional hardening flat compaction cap (crush curve
- * on the mean stress, Krieg 1972 / LS-DYNA soil-and-foam type); and the
+ * Owen 2008 ch. 8), an optional hardening flat compaction cap (crush curve
+ * on the mean stress, Krieg 1972 / LS-DYNA soil-and-foam type) and an optional
+ * dilatancy cutoff (the flow turns isochoric once the plastic volume change
+ * reaches a critical-state limit, as the "dilatancy cut-off" of geotechnical
+ * codes, Vermeer & de Borst 1984 / Plaxis); and the
  * Hughes-Winget (1980) objective stress rotation for large deformation.
  *
  * Conventions: SI units, tension positive, angles in radians (degrees only at
@@ -50,6 +53,9 @@ typedef struct {
                                compaction (a compressive mean stress); 0 = no cap */
     double cap_hardening;   /* drucker_prager: compaction modulus H_c [Pa] >= 0,
                                X = X0 + H_c eps_c (eps_c: plastic compaction) */
+    double dilatancy_cutoff; /* drucker_prager: plastic volumetric strain [-] > 0 at which the
+                                cone's dilatancy stops (critical state: psi acts only while
+                                the plastic volume change is below it); 0 = no cutoff */
 } rf_material_params;
 
 /* Derived constants, built once by rf_material_init; read-only afterwards. */
@@ -62,6 +68,7 @@ typedef struct {
     double apex_pressure;    /* DP: xi c / eta = c cot(phi) [Pa] (HUGE_VAL when phi = 0) */
     int cap;                 /* DP: 1 when the compaction cap is on */
     double cap_pressure, cap_hardening;
+    double dilatancy_cutoff; /* DP: HUGE_VAL when there is none */
 } rf_material;
 
 /* Per integration point, besides the stress.  Zero-initialise to start. */

@@ -24,8 +24,8 @@
 typedef enum {
     O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
     O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_ALE, O_SMASS3, O_SPHERE3, O_DOMAIN, O_END_TIME, O_THREADS, O_VTK, O_JSON,
-    O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S,
-    O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L,
+    O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S, O_DCUT_S,
+    O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L, O_DCUT_L,
     O_G, O_HELP, O_COUNT
 } opt_id;
 
@@ -59,6 +59,7 @@ static const struct {
     {O_PSI_S, "slope-dilatancy-angle", "slope_dilatancy_angle"},
     {O_CAP_S, "slope-cap-pressure", "slope_cap_pressure"},
     {O_CAPH_S, "slope-cap-hardening", "slope_cap_hardening"},
+    {O_DCUT_S, "slope-dilatancy-cutoff", "slope_dilatancy_cutoff"},
     {O_L_T, "layer-thickness", "layer_thickness"},
     {O_L_RHO, "layer-density", "layer_density"},
     {O_L_E, "layer-E", "layer_E"},
@@ -71,6 +72,7 @@ static const struct {
     {O_PSI_L, "layer-dilatancy-angle", "layer_dilatancy_angle"},
     {O_CAP_L, "layer-cap-pressure", "layer_cap_pressure"},
     {O_CAPH_L, "layer-cap-hardening", "layer_cap_hardening"},
+    {O_DCUT_L, "layer-dilatancy-cutoff", "layer_dilatancy_cutoff"},
     {O_G, "gravity", "gravity"},
     {O_SOLVER, "solver", NULL},
     {O_EN, "e-n", NULL},
@@ -137,12 +139,15 @@ static void usage(FILE *f)
         "  --slope-cap-pressure PA  drucker_prager: crush pressure X0 of the compaction cap\n"
         "                           [Pa] (default 0 = no cap)\n"
         "  --slope-cap-hardening PA drucker_prager: cap hardening modulus H_c >= 0 [Pa]\n"
+        "  --slope-dilatancy-cutoff EPS  drucker_prager: plastic volumetric strain [-] at\n"
+        "                           which the dilatancy stops (critical state; (e_max - e0)\n"
+        "                           / (1 + e0) from void ratios; default 0 = no cutoff)\n"
         "  --layer-thickness M      a layer over the slope (the bedrock), [m] (default 0 = none;\n"
         "                           fem solver; the 3D model meshes it with a node plane at\n"
         "                           its bottom, at least one contact element thick)\n"
         "  --layer-density, --layer-E, --layer-poisson, --layer-material, --layer-yield,\n"
         "  --layer-hardening, --layer-cohesion, --layer-friction-angle, --layer-dilatancy-angle,\n"
-        "  --layer-cap-pressure, --layer-cap-hardening\n"
+        "  --layer-cap-pressure, --layer-cap-hardening, --layer-dilatancy-cutoff\n"
         "                           the layer's inputs, as the slope's (default: granite, elastic)\n"
         "\n"
         "Model:\n"
@@ -332,6 +337,10 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
         printf("  slope plasticity  drucker_prager c = %g Pa, phi = %g deg, psi = %g deg, cap X0 = %g Pa, "
                "H_c = %g Pa\n", in->slope_cohesion, in->slope_friction_angle * 180.0 / RF_PI,
                in->slope_dilatancy_angle * 180.0 / RF_PI, in->slope_cap_pressure, in->slope_cap_hardening);
+    if (in->slope_material == RF_MATERIAL_DRUCKER_PRAGER && in->slope_dilatancy_cutoff > 0)
+        printf("  slope dilatancy   stops at a plastic volumetric strain of %g\n", in->slope_dilatancy_cutoff);
+    if (in->layer_thickness > 0 && in->layer_material == RF_MATERIAL_DRUCKER_PRAGER && in->layer_dilatancy_cutoff > 0)
+        printf("  layer dilatancy   stops at a plastic volumetric strain of %g\n", in->layer_dilatancy_cutoff);
     printf("  impact            V = %g m/s vertical, slope angle = %g deg, friction = %g\n",
            in->velocity, in->slope_angle * 180.0 / RF_PI, in->friction);
     printf("  mass              %.6g kg\n", rf_impact_mass(in));
@@ -575,6 +584,7 @@ int rf_cli_impact(int argc, char **argv)
             case O_PSI_S: in->slope_dilatancy_angle = x * RF_PI / 180.0; break;
             case O_CAP_S: in->slope_cap_pressure = x; break;
             case O_CAPH_S: in->slope_cap_hardening = x; break;
+            case O_DCUT_S: in->slope_dilatancy_cutoff = x; break;
             case O_L_T: in->layer_thickness = x; break;
             case O_L_RHO: in->layer_density = x; break;
             case O_L_E: in->layer_E = x; break;
@@ -586,6 +596,7 @@ int rf_cli_impact(int argc, char **argv)
             case O_PSI_L: in->layer_dilatancy_angle = x * RF_PI / 180.0; break;
             case O_CAP_L: in->layer_cap_pressure = x; break;
             case O_CAPH_L: in->layer_cap_hardening = x; break;
+            case O_DCUT_L: in->layer_dilatancy_cutoff = x; break;
             case O_EN:
                 if (!(x >= 0.0 && x <= 1.0)) {
                     fprintf(stderr, "rockfuzz impact: --e-n %s: the normal COR must lie in [0, 1]\n", val);

@@ -26,7 +26,7 @@ typedef enum { PATH_UNIAXIAL, PATH_SHEAR, PATH_HYDROSTATIC } strain_path;
 static const char *const path_names[] = {"uniaxial_strain", "simple_shear", "hydrostatic"};
 
 typedef enum {
-    O_MODEL, O_E, O_NU, O_YIELD, O_HARDENING, O_COHESION, O_PHI, O_PSI, O_CAP_P, O_CAP_H,
+    O_MODEL, O_E, O_NU, O_YIELD, O_HARDENING, O_COHESION, O_PHI, O_PSI, O_CAP_P, O_CAP_H, O_DCUT,
     O_PATH, O_STRAIN, O_P0, O_INCREMENTS, O_JSON, O_HISTORY, O_HELP, O_COUNT
 } opt_id;
 
@@ -46,6 +46,7 @@ static const struct {
     {O_PSI, "dilatancy-angle", RF_MATERIAL_DRUCKER_PRAGER},
     {O_CAP_P, "cap-pressure", RF_MATERIAL_DRUCKER_PRAGER},
     {O_CAP_H, "cap-hardening", RF_MATERIAL_DRUCKER_PRAGER},
+    {O_DCUT, "dilatancy-cutoff", RF_MATERIAL_DRUCKER_PRAGER},
     {O_PATH, "path", -1},
     {O_STRAIN, "strain", -1},
     {O_P0, "initial-mean-stress", -1},
@@ -89,6 +90,9 @@ static void usage(FILE *f)
         "                           where plastic compaction starts (flat cap)\n"
         "  --cap-hardening PA       H_c >= 0: X = X0 + H_c eps_c, eps_c the plastic\n"
         "                           compaction; the cap is on only when both are given\n"
+        "  --dilatancy-cutoff EPS   > 0: the plastic volumetric strain at which the\n"
+        "                           dilatancy stops (critical state); from void ratios,\n"
+        "                           (e_max - e0) / (1 + e0) (default: no cutoff)\n"
         "\n"
         "Path:\n"
         "  --path NAME              uniaxial_strain: eps_xx = S, other strains zero\n"
@@ -180,6 +184,7 @@ static int set_option(driver_args *a, opt_id id, const char *name, const char *v
     case O_PSI: p->dilatancy_angle = x * deg; break;
     case O_CAP_P: p->cap_pressure = x; break;
     case O_CAP_H: p->cap_hardening = x; break;
+    case O_DCUT: p->dilatancy_cutoff = x; break;
     case O_STRAIN: a->strain = x; break;
     case O_P0: a->p0 = x; break;
     default: break;
@@ -276,6 +281,11 @@ static int check_presence(const driver_args *a)
                         "--cap-hardening\n", option_name(id), a->given[id]);
         return 0;
     }
+    if (a->given[O_DCUT] && !(a->params.dilatancy_cutoff > 0.0)) {
+        fprintf(stderr, "rockfuzz material: --dilatancy-cutoff %s: must be a plastic volumetric strain > 0 "
+                        "(leave the option out for no cutoff)\n", a->given[O_DCUT]);
+        return 0;
+    }
     return 1;
 }
 
@@ -285,7 +295,7 @@ static opt_id option_of_field(const char *msg)
     static const struct { const char *field; opt_id id; } map[] = {
         {"E =", O_E}, {"poisson =", O_NU}, {"yield =", O_YIELD}, {"hardening =", O_HARDENING},
         {"cohesion =", O_COHESION}, {"friction_angle =", O_PHI}, {"dilatancy_angle =", O_PSI},
-        {"cap_pressure =", O_CAP_P}, {"cap_hardening =", O_CAP_H}};
+        {"cap_pressure =", O_CAP_P}, {"cap_hardening =", O_CAP_H}, {"dilatancy_cutoff =", O_DCUT}};
     for (size_t i = 0; i < sizeof map / sizeof map[0]; i++)
         if (!strncmp(msg, map[i].field, strlen(map[i].field)))
             return map[i].id;

@@ -30,12 +30,14 @@ void rf_impact_input_default(rf_impact_input *in)
     in->slope_yield = in->slope_hardening = in->slope_cohesion = 0.0;
     in->slope_friction_angle = in->slope_dilatancy_angle = 0.0;
     in->slope_cap_pressure = in->slope_cap_hardening = 0.0;
+    in->slope_dilatancy_cutoff = 0.0;
     in->layer_thickness = 0.0;
     in->layer_density = 2600.0, in->layer_E = 68.2e9, in->layer_poisson = 0.25;
     in->layer_material = RF_MATERIAL_ELASTIC;
     in->layer_yield = in->layer_hardening = in->layer_cohesion = 0.0;
     in->layer_friction_angle = in->layer_dilatancy_angle = 0.0;
     in->layer_cap_pressure = in->layer_cap_hardening = 0.0;
+    in->layer_dilatancy_cutoff = 0.0;
     in->gravity = RF_GRAVITY_AUTO;
 }
 
@@ -105,6 +107,7 @@ void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_
         p->cohesion = in->layer_cohesion;
         p->friction_angle = in->layer_friction_angle, p->dilatancy_angle = in->layer_dilatancy_angle;
         p->cap_pressure = in->layer_cap_pressure, p->cap_hardening = in->layer_cap_hardening;
+        p->dilatancy_cutoff = in->layer_dilatancy_cutoff;
         return;
     }
     p->model = in->slope_material;
@@ -113,20 +116,21 @@ void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_
     p->cohesion = in->slope_cohesion;
     p->friction_angle = in->slope_friction_angle, p->dilatancy_angle = in->slope_dilatancy_angle;
     p->cap_pressure = in->slope_cap_pressure, p->cap_hardening = in->slope_cap_hardening;
+    p->dilatancy_cutoff = in->slope_dilatancy_cutoff;
 }
 
 /* The material fields of each body, checked by the material library
  * (rf_material_init), whose messages start with the parameter's own name. */
-static const char *const material_fields[3][9][2] = {
+static const char *const material_fields[3][10][2] = {
     {{"yield", "boulder_yield"}, {"hardening", "boulder_hardening"}, {"model", "boulder_material"}},
     {{"yield", "slope_yield"}, {"hardening", "slope_hardening"}, {"cohesion", "slope_cohesion"},
      {"friction_angle", "slope_friction_angle"}, {"dilatancy_angle", "slope_dilatancy_angle"},
      {"cap_pressure", "slope_cap_pressure"}, {"cap_hardening", "slope_cap_hardening"},
-     {"model", "slope_material"}},
+     {"dilatancy_cutoff", "slope_dilatancy_cutoff"}, {"model", "slope_material"}},
     {{"yield", "layer_yield"}, {"hardening", "layer_hardening"}, {"cohesion", "layer_cohesion"},
      {"friction_angle", "layer_friction_angle"}, {"dilatancy_angle", "layer_dilatancy_angle"},
      {"cap_pressure", "layer_cap_pressure"}, {"cap_hardening", "layer_cap_hardening"},
-     {"model", "layer_material"}, {"E", "layer_E"}}};
+     {"dilatancy_cutoff", "layer_dilatancy_cutoff"}, {"model", "layer_material"}, {"E", "layer_E"}}};
 static const char *const body_names[3] = {"boulder", "slope", "layer"};
 
 /* NULL if the materials are valid, else the impact field at fault; msg gets

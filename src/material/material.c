@@ -78,6 +78,9 @@ static rf_status validate_drucker_prager(const rf_material_params *p, rf_error *
                        p->cap_pressure);
     if (!(p->cap_hardening >= 0.0 && isfinite(p->cap_hardening)))
         return rf_fail(err, RF_EINVAL, "cap_hardening = %g: must be finite and >= 0 Pa", p->cap_hardening);
+    if (!(p->dilatancy_cutoff >= 0.0 && isfinite(p->dilatancy_cutoff)))
+        return rf_fail(err, RF_EINVAL, "dilatancy_cutoff = %g: must be a finite plastic volumetric strain "
+                       ">= 0 (0 = no cutoff)", p->dilatancy_cutoff);
     return RF_OK;
 }
 
@@ -91,6 +94,7 @@ static void init_drucker_prager(rf_material *m, const rf_material_params *p)
     m->cap = p->cap_pressure > 0.0;
     m->cap_pressure = p->cap_pressure;
     m->cap_hardening = p->cap_hardening;
+    m->dilatancy_cutoff = p->dilatancy_cutoff > 0.0 ? p->dilatancy_cutoff : HUGE_VAL;
 }
 
 rf_status rf_material_init(rf_material *m, const rf_material_params *p, rf_error *err)
@@ -140,7 +144,7 @@ void rf_material_update(const rf_material *m, const double deps[6], double sig[6
     if (m->model == RF_MATERIAL_VON_MISES)
         mat_return_von_mises(m, st->plastic_strain_eq, s_tr, p_tr, &r);
     else if (m->model == RF_MATERIAL_DRUCKER_PRAGER)
-        mat_return_drucker_prager(m, st->compaction, s_tr, p_tr, &r);
+        mat_return_drucker_prager(m, st, s_tr, p_tr, &r);
     else
         memcpy(r.s, s_tr, sizeof r.s);
 

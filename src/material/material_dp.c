@@ -10,7 +10,14 @@
  * a flat cap, combined with the cone as in multi-surface cap models
  * (Sandler & Rubin 1979).
  * The cap hardens only with its own compaction eps_c: cone dilatancy does not
- * retract it.  With perfect plasticity on the cone and linear cap hardening
+ * retract it.
+ * Dilatancy cutoff: the cone's flow is dilatant only while the plastic
+ * volume change (dilation positive, the cap's compaction counted negative)
+ * is below the cutoff, a critical state past which a sand shears at constant
+ * volume (the "dilatancy cut-off" of Vermeer & de Borst 1984 and Plaxis,
+ * there written with void ratios: cutoff = (e_max - e_0) / (1 + e_0)).  A
+ * cone return that crosses it is split exactly (cone_return); the corner
+ * takes psi or 0 from the state at the start of the increment.  With perfect plasticity on the cone and linear cap hardening
  * every branch is a closed form: cone, apex, cap, and the cone-cap corner (a
  * 2x2 linear system).  The active set is found by trying single surfaces
  * first and accepting a candidate only when it violates no other surface
@@ -36,14 +43,23 @@ static void set_deviator(mat_return *r, const double s_tr[6], double factor)
         r->s[i] = factor * s_tr[i];
 }
 
-/* Smooth-cone return, or the apex when the cone return overshoots it. */
+/* Smooth-cone return, or the apex when the cone return overshoots it.
+ * room: the plastic dilation still allowed before the cutoff (HUGE_VAL: none).
+ * The flow is dilatant (eta_bar) for the first room / eta_bar of the
+ * multiplier and isochoric after it, so the consistency condition
+ * f_tr - G dgamma - K eta eta_bar dgamma_1 = 0 stays a closed form. */
 static void cone_return(const rf_material *m, const double s_tr[6], double sj2_tr, double p_tr,
-                        double f_tr, mat_return *r)
+                        double f_tr, double room, mat_return *r)
 {
     double dgamma = f_tr / (m->G + m->K * m->eta * m->eta_bar);
+    double dp = m->K * m->eta_bar * dgamma; /* the mean stress's drop (as before the cutoff, to the bit) */
+    if (m->eta_bar * dgamma > room) {
+        dgamma = (f_tr - m->K * m->eta * room) / m->G;
+        dp = m->K * room;
+    }
     if (sj2_tr - m->G * dgamma >= 0.0) {
         set_deviator(r, s_tr, 1.0 - m->G * dgamma / sj2_tr);
-        r->p = p_tr - m->K * m->eta_bar * dgamma;
+        r->p = p_tr - dp;
         return;
     }
     /* Apex (perfect plasticity): sigma = p_apex I whatever psi. */
@@ -61,24 +77,27 @@ static void cap_return(const rf_material *m, const double s_tr[6], double p_tr, 
     r->compaction = dc;
 }
 
-/* Cone and cap both active: solve for (dgamma, d eps_c).
- *   [G + K eta eta_bar   -eta K  ] [dgamma]   [f_cone_tr]
- *   [-K eta_bar           K + H_c] [d eps_c] = [f_cap_tr ]           */
-static void corner_return(const rf_material *m, const double s_tr[6], double sj2_tr, double p_tr,
-                          double f_cone, double f_cap, mat_return *r)
+/* Cone and cap both active: solve for (dgamma, d eps_c), eb the dilatancy
+ * coefficient eta_bar (0 once the cutoff is reached).
+ *   [G + K eta eb   -eta K  ] [dgamma]   [f_cone_tr]
+ *   [-K eb           K + H_c] [d eps_c] = [f_cap_tr ]           */
+static void corner_return(const rf_material *m, double eb, const double s_tr[6], double sj2_tr,
+                          double p_tr, double f_cone, double f_cap, mat_return *r)
 {
-    double a11 = m->G + m->K * m->eta * m->eta_bar, kh = m->K + m->cap_hardening;
-    double det = a11 * kh - m->eta * m->eta_bar * m->K * m->K;
+    double a11 = m->G + m->K * m->eta * eb, kh = m->K + m->cap_hardening;
+    double det = a11 * kh - m->eta * eb * m->K * m->K;
     double dgamma = (f_cone * kh + m->eta * m->K * f_cap) / det;
-    double dc = (a11 * f_cap + m->K * m->eta_bar * f_cone) / det;
+    double dc = (a11 * f_cap + m->K * eb * f_cone) / det;
     set_deviator(r, s_tr, sj2_tr > 0.0 ? 1.0 - m->G * dgamma / sj2_tr : 0.0);
-    r->p = p_tr - m->K * m->eta_bar * dgamma + m->K * dc;
+    r->p = p_tr - m->K * eb * dgamma + m->K * dc;
     r->compaction = dc;
 }
 
-void mat_return_drucker_prager(const rf_material *m, double compaction, const double s_tr[6],
+void mat_return_drucker_prager(const rf_material *m, const rf_material_state *st, const double s_tr[6],
                                double p_tr, mat_return *r)
 {
+    double compaction = st->compaction;
+    double room = fmax(0.0, m->dilatancy_cutoff - st->plastic_volumetric);
     double sj2_tr = sqrt(0.5 * mat_ddot(s_tr, s_tr));
     double f_cone = mat_dp_cone(m, sj2_tr, p_tr);
     double f_cap = m->cap ? mat_dp_cap(m, compaction, p_tr) : -HUGE_VAL;
@@ -91,7 +110,7 @@ void mat_return_drucker_prager(const rf_material *m, double compaction, const do
         return;
     }
     if (f_cone > 0.0) {
-        cone_return(m, s_tr, sj2_tr, p_tr, f_cone, r);
+        cone_return(m, s_tr, sj2_tr, p_tr, f_cone, room, r);
         if (!m->cap || mat_dp_cap(m, compaction, r->p) <= tol)
             return;
     }
@@ -100,5 +119,5 @@ void mat_return_drucker_prager(const rf_material *m, double compaction, const do
         if (mat_dp_cone(m, sj2_tr, r->p) <= tol)
             return;
     }
-    corner_return(m, s_tr, sj2_tr, p_tr, f_cone, f_cap, r);
+    corner_return(m, room > 0.0 ? m->eta_bar : 0.0, s_tr, sj2_tr, p_tr, f_cone, f_cap, r);
 }

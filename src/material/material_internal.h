@@ -39,7 +39,7 @@ void mat_return_von_mises(const rf_material *m, double eps_p_eq, const double s_
                           mat_return *r);
 
 /* Drucker-Prager cone / apex / cap / corner return (material_dp.c). */
-void mat_return_drucker_prager(const rf_material *m, double compaction, const double s_tr[6],
+void mat_return_drucker_prager(const rf_material *m, const rf_material_state *st, const double s_tr[6],
                                double p_tr, mat_return *r);
 
 /* Yield functions of the DP cone and cap at (sqrt(J2), p) [Pa]. */

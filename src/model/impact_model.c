@@ -24,7 +24,8 @@ const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS] = {
     "boulder_yield", "boulder_hardening", "slope_yield", "slope_hardening", "slope_cohesion",
     "slope_friction_angle", "slope_dilatancy_angle", "slope_cap_pressure", "slope_cap_hardening",
     "layer_thickness", "layer_density", "layer_E", "layer_poisson", "layer_yield", "layer_hardening",
-    "layer_cohesion", "layer_friction_angle", "layer_dilatancy_angle", "layer_cap_pressure", "layer_cap_hardening", "gravity"};
+    "layer_cohesion", "layer_friction_angle", "layer_dilatancy_angle", "layer_cap_pressure", "layer_cap_hardening", "gravity",
+    "slope_dilatancy_cutoff", "layer_dilatancy_cutoff"};
 
 const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
     "contact_force_max", "compression_max", "contact_duration", "contact_radius",
@@ -243,7 +244,8 @@ static size_t impact_warnings(void *p, char *buf, size_t size)
 enum {
     P_RADIUS, P_C, P_RHO_B, P_RHO_S, P_E_B, P_E_S, P_NU_B, P_NU_S, P_V, P_ANGLE, P_MU,
     P_Y_B, P_H_B, P_Y_S, P_H_S, P_COH_S, P_PHI_S, P_PSI_S, P_CAP_S, P_CAPH_S,
-    P_L_T, P_L_RHO, P_L_E, P_L_NU, P_Y_L, P_H_L, P_COH_L, P_PHI_L, P_PSI_L, P_CAP_L, P_CAPH_L, P_G
+    P_L_T, P_L_RHO, P_L_E, P_L_NU, P_Y_L, P_H_L, P_COH_L, P_PHI_L, P_PSI_L, P_CAP_L, P_CAPH_L, P_G,
+    P_DCUT_S, P_DCUT_L
 };
 
 static void bind(rf_impact_input *in, int field, double x)
@@ -284,6 +286,8 @@ static void bind(rf_impact_input *in, int field, double x)
     case P_CAP_L: in->layer_cap_pressure = x; break;
     case P_CAPH_L: in->layer_cap_hardening = x; break;
     case P_G: in->gravity = x; break;
+    case P_DCUT_S: in->slope_dilatancy_cutoff = x; break;
+    case P_DCUT_L: in->layer_dilatancy_cutoff = x; break;
     }
 }
 
@@ -337,13 +341,19 @@ static void append(char *buf, size_t cap, size_t *len, const char *fmt, ...)
         *len += (size_t)n;
 }
 
+/* 1 when the parameter `field` (a P_ index) is bound, i.e. fuzzy in a study. */
+static int param_bound(const impact_ctx *c, int field)
+{
+    for (size_t i = 0; i < c->n_params; i++)
+        if (c->field[i] == field)
+            return 1;
+    return 0;
+}
+
 /* A layer in the base input, or its thickness bound: a layer may appear at some points. */
 static int layer_possible(const impact_ctx *c)
 {
-    int layer = c->spec.base.layer_thickness > 0;
-    for (size_t i = 0; i < c->n_params; i++)
-        layer |= c->field[i] == P_L_T;
-    return layer;
+    return c->spec.base.layer_thickness > 0 || param_bound(c, P_L_T);
 }
 
 /* 1 if some evaluation may run in large deformation (rf_fem_large_deformation
@@ -485,11 +495,14 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
                b->layer_thickness, b->layer_density, b->layer_E, b->layer_poisson,
                rf_material_model_name(b->layer_material), b->layer_yield, b->layer_hardening, b->layer_cohesion,
                b->layer_friction_angle, b->layer_dilatancy_angle, b->layer_cap_pressure, b->layer_cap_hardening);
+    /* the dilatancy cutoff is named only where it may act: identities without it stay as they were */
+    if (b->slope_dilatancy_cutoff != 0 || param_bound(c, P_DCUT_S))
+        append(buf, cap, &len, " slope_dilatancy_cutoff=%.17g", b->slope_dilatancy_cutoff);
+    if (b->layer_dilatancy_cutoff != 0 || param_bound(c, P_DCUT_L))
+        append(buf, cap, &len, " layer_dilatancy_cutoff=%.17g", b->layer_dilatancy_cutoff);
     /* gravity (docs/validation-plastic.md "Gravity") is named when an evaluation may run with it: the
        gravity-free identities stay as they were */
-    int gravity_fuzzy = 0;
-    for (size_t i = 0; i < c->n_params; i++)
-        gravity_fuzzy |= c->field[i] == P_G;
+    const int gravity_fuzzy = param_bound(c, P_G);
     const int gravity_named =
         gravity_fuzzy || b->gravity > 0 || (b->gravity < 0 && s->solver == RF_IMPACT_FEM && plastic_possible(c));
     if (gravity_named)
@@ -551,7 +564,8 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
                            "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
                            "slope_cap_hardening, layer_thickness, layer_density, layer_E, layer_poisson, "
                            "layer_yield, layer_hardening, layer_cohesion, layer_friction_angle [deg], "
-                           "layer_dilatancy_angle [deg], layer_cap_pressure, layer_cap_hardening, gravity)",
+                           "layer_dilatancy_angle [deg], layer_cap_pressure, layer_cap_hardening, gravity, "
+                           "slope_dilatancy_cutoff, layer_dilatancy_cutoff)",
                            param_names[i] ? param_names[i] : "(null)");
         }
         for (size_t j = 0; j < i; j++)
@@ -573,7 +587,8 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
             nominal.radius, 1.0, nominal.boulder_density, nominal.slope_density,
             nominal.boulder_E, nominal.slope_E, nominal.boulder_poisson, nominal.slope_poisson,
             nominal.velocity, 0.0, 0.0, 1e8, 0.0, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0,
-            0.1, nominal.layer_density, nominal.layer_E, nominal.layer_poisson, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0};
+            0.1, nominal.layer_density, nominal.layer_E, nominal.layer_poisson, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0,
+            0.0, 0.0, 0.0};
         int f = c->field[i];
         if (f == P_C)
             bind(&probe, f, 0.0); /* a sphere probe: c = 0 is valid */

@@ -471,6 +471,8 @@ static double *impact_field(rf_impact_input *in, const char *name)
         {"layer_cap_pressure", &in->layer_cap_pressure},
         {"layer_cap_hardening", &in->layer_cap_hardening},
         {"gravity", &in->gravity}, /* [m/s^2] >= 0, or auto (parse_impact) */
+        {"slope_dilatancy_cutoff", &in->slope_dilatancy_cutoff},
+        {"layer_dilatancy_cutoff", &in->layer_dilatancy_cutoff},
     };
     for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
         if (!strcmp(name, f[k].name))
@@ -608,7 +610,7 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                            "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
                            "slope_cap_hardening, layer_thickness, layer_density, layer_E, layer_poisson, layer_yield, "
                            "layer_hardening, layer_cohesion, layer_friction_angle [deg], layer_dilatancy_angle [deg], "
-                           "layer_cap_pressure, layer_cap_hardening)");
+                           "layer_cap_pressure, layer_cap_hardening, slope_dilatancy_cutoff, layer_dilatancy_cutoff)");
         }
     }
     /* Every parameter must name an impact input. */
