@@ -67,7 +67,7 @@ int main(int argc, char **argv)
                rf_fem_large_deformation(&p.o, &p.in), H.h_contact, out.elements, out.steps, cpu, out.R_n,
                out.R_t, out.R_ke, out.plastic_work, out.penetration_max, out.indentation_depth, out.contact_radius,
                out.contact_force_max, out.contact_duration, H.closure[H.n - 1] / k0, H.contact_work[H.n - 1] / k0,
-               rep.friction_work / k0, H.gravity, H.gravity_work / k0,
+               (p.axi ? H.friction_work : rep.friction_work) / k0, H.gravity, H.gravity_work / k0,
                H.at_rest, H.geostatic_outside, H.penetration_max, rep.unlocated_pair_steps);
         printf("  estimate: thick=%d depth=%.4f radius=%.4f zone=%.4f t=%.4g; warning: %s\n", lc.thick,
                lc.compression, lc.radius, lc.zone_radius, lc.duration, H.warning[0] ? H.warning : "-");

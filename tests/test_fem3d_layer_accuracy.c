@@ -136,7 +136,8 @@ static void test_layer_vs_axisymmetric(void **state)
    -3.3e-3, the lumped face -2.2e-2), the depth (3D 3.6 % deeper: the sphere sinks between the
    soil's face nodes by up to h^2 / 4R, 3.8 mm, 2.5 %, at this mesh), the plastic work and the peak
    force (1.7 % apart; the lumped 3D face's capture impulses made it 4.96e6 N against 8.6e5 N).  R_n
-   (~0.05, the difference of two large energies) is not held. */
+   (~0.05, the difference of two large energies) is not held.  Then both again with friction 0.6
+   (below). */
 static void test_soft_layer_vs_axisymmetric(void **state)
 {
     (void)state;
@@ -158,6 +159,32 @@ static void test_soft_layer_vs_axisymmetric(void **state)
     assert_true(fabs(s3.penetration_max / ax.penetration_max - 1) < 0.05);
     assert_true(fabs(s3.plastic_work / ax.plastic_work - 1) < 0.02);
     assert_true(fabs(s3.contact_force_max / ax.contact_force_max - 1) < 0.05);
+    /* Friction 0.6, a second method for the axisymmetric contact's Coulomb friction
+       (fem_contact_friction.c): the 3D model's frictional exact-sphere contact.  Friction holds the
+       soil under the rough block (the surface no longer slides outward along it): both models must
+       see the penetration fall by more than a tenth and agree on it as closely as without friction
+       (5 %), on W_p (2 %), on the peak force (5 %) and on the contact's duration (5 %). */
+    in.friction = 0.6;
+    rf_impact_output s3f, axf;
+    rf_fem3d_report rep = {0};
+    rf_fem_history h3, h;
+    o.refinement = 3;
+    assert_int_equal(rf_fem3d_impact_ex(&in, &o, NULL, &s3f, &h3, &rep, &err), RF_OK);
+    o.refinement = 0;
+    assert_int_equal(rf_fem_impact(&in, &o, &axf, &h, &err), RF_OK);
+    show("S5 soil, friction 0.6, 3D", &s3f);
+    show("S5 soil, friction 0.6, axisym.", &axf);
+    print_message("friction work: 3D %.3e, axisymmetric %.3e KE0; stuck %.2f of the closed pair-steps, "
+                  "<= %d sweeps, slip left on a sticking pair <= %.2g m\n", rep.friction_work / h3.ke0,
+                  h.friction_work / h.ke0, h.stick_fraction, h.friction_sweeps_max, h.stick_residual_max);
+    assert_true(s3f.penetration_max < 0.9 * s3.penetration_max && axf.penetration_max < 0.9 * ax.penetration_max);
+    assert_true(fabs(s3f.penetration_max / axf.penetration_max - 1) < 0.05);
+    assert_true(fabs(s3f.plastic_work / axf.plastic_work - 1) < 0.02);
+    assert_true(fabs(s3f.contact_duration / axf.contact_duration - 1) < 0.05);
+    assert_true(fabs(s3f.contact_force_max / axf.contact_force_max - 1) < 0.05);
+    assert_true(fabs(axf.energy_error) < 5e-3 && h.friction_work > 0);
+    rf_fem_history_free(&h), rf_fem_history_free(&h3);
+    rf_fem3d_report_free(&rep);
 }
 
 /* The capture loss and the mass redistribution (section 9e), the 3D model's default on soil

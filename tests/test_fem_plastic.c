@@ -496,6 +496,40 @@ static void test_dilatancy_cutoff_reaches_law(void **state)
     assert_true(fabs(cut9.plastic_work - free0.plastic_work) < 1e-4 * fabs(free9.plastic_work - free0.plastic_work));
 }
 
+/* Coulomb friction of the axisymmetric contact on a soil (logic, coarse): the S5 soil (colluvium,
+ * 1 m over granite) under a rigid block at 10 m/s, large deformation, a/h 2.  With friction 0.6
+ * the energy account still closes with the friction work as its own term (0.5 % of KE0), friction
+ * dissipates, part of the pair-steps stick and part slip, and the rough block sinks less; without
+ * friction nothing of it is computed.  (Against the 3D model: test_soft_layer_vs_axisymmetric.) */
+static void test_axisymmetric_friction(void **state)
+{
+    (void)state;
+    rf_impact_input in = granite(10);
+    in.radius = 0.5, in.gravity = 0, in.boulder_material = RF_MATERIAL_RIGID_BODY;
+    in.layer_thickness = 1.0, in.layer_density = 1900, in.layer_E = 100e6, in.layer_poisson = 0.3;
+    in.layer_material = RF_MATERIAL_DRUCKER_PRAGER, in.layer_cohesion = 10e3;
+    in.layer_friction_angle = 40 * M_PI / 180, in.layer_dilatancy_angle = 5 * M_PI / 180;
+    in.layer_cap_pressure = 200e3, in.layer_cap_hardening = 40e6;
+    rf_fem_options o = axi_options(2, RF_FEM_LARGE_DEFORMATION);
+    o.domain_factor = 0, o.boundary = RF_FEM_BOUNDARY_FIXED;
+    rf_impact_output smooth, rough;
+    rf_fem_history hs, hr;
+    rf_error err = {0};
+    assert_int_equal(rf_fem_impact(&in, &o, &smooth, &hs, &err), RF_OK);
+    in.friction = 0.6;
+    assert_int_equal(rf_fem_impact(&in, &o, &rough, &hr, &err), RF_OK);
+    printf("S5 soil, a/h 2: penetration %.4f -> %.4f m with friction 0.6; friction work %.3e KE0, stuck %.2f, "
+           "<= %d sweeps, slip left <= %.2g m; energy error %.2e\n", smooth.penetration_max, rough.penetration_max,
+           hr.friction_work / hr.ke0, hr.stick_fraction, hr.friction_sweeps_max, hr.stick_residual_max,
+           rough.energy_error);
+    assert_true(hs.friction_work == 0 && hs.stick_fraction == 0 && hs.friction_sweeps_max == 0);
+    assert_true(fabs(rough.energy_error) < 5e-3);
+    assert_true(hr.friction_work > 0 && hr.friction_work < 0.05 * hr.ke0);
+    assert_true(hr.stick_fraction > 0 && hr.stick_fraction < 1);
+    assert_true(rough.penetration_max < 0.9 * smooth.penetration_max);
+    rf_fem_history_free(&hs), rf_fem_history_free(&hr);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -508,6 +542,7 @@ int main(void)
         cmocka_unit_test(test_plastic_threads_deterministic),
         cmocka_unit_test(test_rigid_boulder),
         cmocka_unit_test(test_dilatancy_cutoff_reaches_law),
+        cmocka_unit_test(test_axisymmetric_friction),
         cmocka_unit_test(test_layer_logic),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -313,7 +313,7 @@ static void rigid_dependent_pairs(double xb, double dt)
         const int seg = k / 2, m1 = NB + seg, m2 = m1 + 1;
         const double xi = k % 2 ? xb : 0.25;
         pair[k] = (contact_pair){{2 * k + 1, 2 * m1 + 1, 2 * m2 + 1}, {1, -(1 - xi), -xi}, {2 * k, 2 * m1, 2 * m2},
-                                 0, 0.25 + 0.5 * k, xi, seg};
+                                 0, 0.25 + 0.5 * k, xi, seg, {0, 1}};
     }
     C.npairs = NB, C.pair = pair, C.gpred = gpred, C.lambda = lambda, C.active = active, C.cand = cand;
     C.A = A, C.rhs = rhs, C.du = du, C.gvo = gvo, C.tol = 1e-9 * delta, C.band = 1, C.nq = 3;

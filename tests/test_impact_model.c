@@ -294,6 +294,27 @@ static void test_fem_identity_sphere_contact(void **state)
     rf_model_free(&a), rf_model_free(&b), rf_model_free(&c);
 }
 
+/* The axisymmetric contact's friction is named where an evaluation may run
+ * it with friction (slope angle 0 or fuzzy, friction > 0 or fuzzy), and
+ * nowhere else: oblique stores (3D) and frictionless ones keep their identity. */
+static void test_fem_identity_axi_friction(void **state)
+{
+    (void)state;
+    rf_impact_model_spec spec = spec_for(RF_IMPACT_FEM);
+    const char *names[] = {"friction", "slope_angle"};
+    rf_model m;
+    rf_error err = {0};
+    const struct { double angle, mu; size_t n; int named; } cases[] = {
+        {0, 0, 0, 0}, {0, 0.5, 0, 1}, {0.5, 0.5, 0, 0}, {0.5, 0, 1, 0}, {0, 0, 1, 1}, {0.5, 0.5, 2, 1}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        spec.base.slope_angle = cases[k].angle, spec.base.friction = cases[k].mu;
+        assert_int_equal(rf_impact_model_create(&spec, names, cases[k].n, &m, &err), RF_OK);
+        if (!strstr(m.identity, " axi_contact=coulomb_friction") != !cases[k].named)
+            fail_msg("case %zu: identity '%s'", k, m.identity);
+        rf_model_free(&m);
+    }
+}
+
 /* The default boundary (auto) in the identity: elastic bodies without a layer
  * resolve it to fixed everywhere and keep the identity of the old default
  * (fixed) to the byte; with a plastic body or a possible layer (the absorbing
@@ -588,6 +609,7 @@ int main(void)
         cmocka_unit_test(test_fem_model),
         cmocka_unit_test(test_fem_identity_end),
         cmocka_unit_test(test_fem_identity_sphere_contact),
+        cmocka_unit_test(test_fem_identity_axi_friction),
         cmocka_unit_test(test_fem_identity_boundary),
         cmocka_unit_test(test_plastic_parameters),
         cmocka_unit_test(test_dilatancy_cutoff_identity),

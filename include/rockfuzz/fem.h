@@ -241,6 +241,11 @@ typedef struct {
     double ale_kinetic, ale_elastic, ale_potential; /* energy the remaps added [J], by kind */
     double ale_move_max;          /* largest relocation of a node in one rezone [m] */
     double ale_ratio_min;         /* smallest element size / reference size that triggered a rezone */
+    /* Coulomb friction of the axisymmetric contact (friction > 0; zeros without) */
+    double friction_work;         /* work dissipated by friction at the end [J], a term of the closure */
+    double stick_fraction;        /* closed pair-steps that stuck (|F_t| < mu F_n) / all closed pair-steps */
+    int friction_sweeps_max;      /* most Gauss-Seidel sweeps one step needed */
+    double stick_residual_max;    /* largest slip per step left on a sticking pair [m] */
     uint64_t state_hash;          /* FNV-1a over the bytes of the final u and v (determinism checks) */
     char warning[512];            /* "" or a human-readable warning */
 } rf_fem_history;

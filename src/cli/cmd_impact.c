@@ -152,8 +152,9 @@ static void usage(FILE *f)
         "\n"
         "Model:\n"
         "  --solver NAME            fem | hertz | hunter | rigid | mdr (default fem)\n"
-        "                           fem:    explicit FE; axisymmetric for a normal impact,\n"
-        "                                   3D half model for a slope or friction between\n"
+        "                           fem:    explicit FE; axisymmetric for a normal impact\n"
+        "                                   (Coulomb friction on a plastic body), 3D half\n"
+        "                                   model for a slope or friction between elastic\n"
         "                                   dissimilar bodies (docs/impact.md)\n"
         "                           hertz:  elastic Hertz, R_n = 1\n"
         "                           hunter: Hertz + Hunter (1957) wave loss\n"
@@ -435,6 +436,11 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
         if (three_d && hist.ke0 > 0.0)
             printf("  FE friction work      %.3g of the initial KE (half model; energies of the full body)\n",
                    friction_work / hist.ke0);
+        if (!three_d && spec->base.friction > 0 && hist.ke0 > 0.0)
+            printf("  FE friction work      %.3g of the initial KE (axisymmetric contact: %.0f %% of the closed "
+                   "pair-steps stuck, at most %d Gauss-Seidel sweeps, slip left on a sticking pair <= %.2g m "
+                   "per step)\n", friction_work / hist.ke0, 100 * hist.stick_fraction, hist.friction_sweeps_max,
+                   hist.stick_residual_max);
         print_references(spec, &spec->base);
     }
     if (hist.warning[0])

@@ -7,7 +7,8 @@
  * >= 0 are the forces at step n that make the predicted gaps at n+1 exactly
  * non-negative, a small linear complementarity problem over the pairs near
  * contact solved by an active set with dense Cholesky.  They add no
- * compliance and do not restrict dt.  Frictionless. */
+ * compliance and do not restrict dt.  Coulomb friction, when asked, in
+ * fem_contact_friction.c. */
 #include "fem_internal.h"
 
 #include <math.h>
@@ -249,7 +250,7 @@ static rf_status contact_solve(fem_contact *C, const double *u, const double *in
 void fem_contact_free(fem_contact *C)
 {
     free(C->pair), free(C->gpred), free(C->lambda), free(C->active), free(C->cand), free(C->A), free(C->rhs);
-    free(C->du), free(C->gvo), free(C->vold);
+    free(C->du), free(C->gvo), free(C->vold), free(C->lam_t), free(C->vt_old);
     *C = (fem_contact){0};
 }
 
@@ -289,7 +290,7 @@ rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, dou
         p->rdof[0] = 2 * s, p->rdof[1] = 2 * m1, p->rdof[2] = 2 * m2;
         p->c[0] = 1, p->c[1] = -(1 - xi), p->c[2] = -xi;
         p->g0 = mesh->z[s] - ((1 - xi) * mesh->z[m1] + xi * mesh->z[m2]);
-        p->r = rs, p->xi = xi, p->seg = j;
+        p->r = rs, p->xi = xi, p->seg = j, p->n[0] = 0, p->n[1] = 1;
     }
     C->A = malloc((size_t)C->npairs * C->npairs * sizeof *C->A + sizeof(double));
     C->rhs = malloc(((size_t)C->npairs + 1) * sizeof *C->rhs);
@@ -302,6 +303,8 @@ rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, dou
 /* G v_{n-1/2} of every pair, kept for the contact work. */
 void fem_contact_begin(fem_contact *C, const double *v)
 {
+    if (C->vt_old)
+        memcpy(C->vt_old, v, (size_t)C->ndof * sizeof *v);
     if (C->vold) { /* the pairs change after the predictor: keep v itself */
         memcpy(C->vold, v, (size_t)(2 * C->mesh->n_nodes) * sizeof *v);
         return;
@@ -312,15 +315,10 @@ void fem_contact_begin(fem_contact *C, const double *v)
     }
 }
 
-/* Multipliers for the predicted u, their corrections of u and v, the
- * contact work lambda' G (v_{n+1/2} + v_{n-1/2}) dt / 2; returns the total
- * contact force in *Fc. */
-rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double *u, double *v, double *Fc,
-                           rf_error *err)
+/* The corrections of u and v by the multipliers C->lambda; returns their
+ * vertical force on the boulder. */
+static double apply_normal(fem_contact *C, const double *invm, double dt, double *u, double *v)
 {
-    rf_status st = contact_solve(C, u, invm, dt, err);
-    if (st != RF_OK)
-        return st;
     double F = 0, dv_rigid = 0;
     const int q0 = C->rigid_invm > 0;
     for (long i = 0; i < C->npairs; i++) {
@@ -338,6 +336,21 @@ rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double
     if (q0 && dv_rigid != 0) /* the whole boulder moves */
         for (long d = 1; d < C->rigid_dofs; d += 2)
             v[d] += dv_rigid, u[d] += dt * dv_rigid;
+    return F;
+}
+
+/* Multipliers for the predicted u, their corrections of u and v, the
+ * contact work lambda' G (v_{n+1/2} + v_{n-1/2}) dt / 2; returns the total
+ * vertical contact force on the boulder in *Fc. */
+rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double *u, double *v, double *Fc,
+                           rf_error *err)
+{
+    rf_status st = contact_solve(C, u, invm, dt, err);
+    if (st != RF_OK)
+        return st;
+    double F = apply_normal(C, invm, dt, u, v);
+    if (C->friction > 0) /* the tangential multipliers, on the normal ones (fem_contact_friction.c) */
+        F += fem_contact_friction(C, invm, dt, u, v);
     for (long i = 0; i < C->npairs; i++) {
         if (C->lambda[i] <= 0)
             continue;
@@ -463,7 +476,7 @@ static void pair_relinearise(fem_contact *C, contact_pair *p, const double *u)
     for (int q = 0; q < 6; q++)
         p->dof[q] = dof[q], p->c[q] = c[q], p->g0 -= c[q] * u[dof[q]];
     p->rdof[0] = 2 * s, p->rdof[1] = 2 * m1, p->rdof[2] = 2 * m2;
-    p->xi = xi, p->r = x[0];
+    p->xi = xi, p->r = x[0], p->n[0] = nr, p->n[1] = nz;
 }
 
 /* After the predictor (large deformation): every pair linearised about the

@@ -23,8 +23,15 @@ rf_status rf_fem_solve_ws(rf_fem_workspace *ws, const rf_impact_input *in, const
     if (friction_work)
         *friction_work = 0.0;
     /* the 3D model refuses what it cannot do (gravity, a spheroid on a slope, ...) with its own message */
-    if (!want_3d)
-        return ws ? rf_fem_impact_ws(ws, in, opt, out, hist, err) : rf_fem_impact(in, opt, out, hist, err);
+    if (!want_3d) { /* the axisymmetric model: its friction work is in the history */
+        rf_fem_history local, *h = hist ? hist : friction_work ? &local : NULL;
+        rf_status st = ws ? rf_fem_impact_ws(ws, in, opt, out, h, err) : rf_fem_impact(in, opt, out, h, err);
+        if (friction_work && st == RF_OK)
+            *friction_work = h->friction_work;
+        if (h == &local && st == RF_OK)
+            rf_fem_history_free(&local);
+        return st;
+    }
     rf_fem_options o;
     if (opt)
         o = *opt;

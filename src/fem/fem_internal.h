@@ -97,6 +97,7 @@ typedef struct {
     double r;      /* radius of the slave: reference (small strain) or current */
     double xi;     /* position on the segment */
     long seg;      /* large deformation: the segment, ssurf[seg] to ssurf[seg + 1] */
+    double n[2];   /* the gap's unit normal (r, z): (0, 1) in small strain */
 } contact_pair;
 
 typedef struct {
@@ -122,6 +123,15 @@ typedef struct {
     const fem_mesh *mesh; /* reference coordinates and surfaces (large deformation) */
     double *vold;         /* v_{n-1/2} kept by fem_contact_begin (large deformation) */
     int block_rounds;     /* block active-set rounds before single pivoting (FEM_CONTACT_BLOCK_ROUNDS) */
+    /* Coulomb friction (fem_contact_friction.c; friction > 0 after fem_contact_friction_setup) */
+    double friction;      /* coefficient, static = kinetic */
+    double *lam_t;        /* tangential multiplier per pair [N], |lam_t| <= friction lambda */
+    double *vt_old;       /* v_{n-1/2}, kept by fem_contact_begin for the friction work */
+    double W_fric;        /* work dissipated by friction so far [J] (>= 0) */
+    long pair_steps, stick_steps; /* closed pair-steps, and those that stuck */
+    int sweeps_max;       /* largest number of Gauss-Seidel sweeps of one step */
+    double stick_residual_max; /* largest slip per step left on a sticking pair [m] */
+    long ndof;            /* size of vt_old */
 } fem_contact;
 
 /* Rounds of the block active-set method before the contact solver falls back
@@ -143,6 +153,12 @@ rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double
                            rf_error *err);
 /* Gaps at n+1: penetration and slip maxima; returns the contact radius [m]. */
 double fem_contact_measure(fem_contact *C, const double *u);
+/* Coulomb friction on the pairs (fem_contact_friction.c): set up for ndof
+ * dofs with coefficient mu > 0; after the normal corrections of a step, the
+ * tangential multipliers by projected Gauss-Seidel and their corrections of
+ * u and v, the friction work; returns their vertical force on the boulder. */
+rf_status fem_contact_friction_setup(fem_contact *C, long ndof, double mu, rf_error *err);
+double fem_contact_friction(fem_contact *C, const double *invm, double dt, double *u, double *v);
 void fem_contact_free(fem_contact *C);
 
 /* Test hook (tests/test_fem_gravity.c): the slope of an impact alone under

@@ -239,7 +239,7 @@ int rf_fem_needs_3d(const rf_impact_input *in)
     if (!(in->friction > 0.0))
         return 0;
     if (rf_impact_has_plastic_body(in))
-        return 0; /* the axisymmetric model (large deformation, gravity), frictionless */
+        return 0; /* the axisymmetric model (large deformation, gravity), with Coulomb friction */
     const int layer = in->layer_thickness > 0;
     /* Dundurs' beta of the boulder (a rigid one: E -> infinity) and the
      * surface it meets, the layer's when there is one */

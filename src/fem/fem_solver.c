@@ -493,6 +493,8 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
         return st;
     if (S->o.contact_single_pivot)
         S->C.block_rounds = 0;
+    if (S->in->friction > 0 && (st = fem_contact_friction_setup(&S->C, S->ndof, S->in->friction, err)) != RF_OK)
+        return st;
     S->C.tol = 1e-9 * S->h;
     S->C.band = 0.5 * fmin(S->h, S->hb) + 2 * S->V * S->dt;
     for (long i = 0; i < S->mesh.boulder_nodes; i++)
@@ -827,6 +829,7 @@ static void axi_energy(const axi_run *S, double t, double Fc, double rad, double
         *closure = ke[0] + ke[1] + S->W_int[0] + S->W_int[1] + S->W_abs - S->ke0;
     if (S->fgrav) /* gravity's work: the potential energy released */
         *closure -= S->W_grav;
+    *closure += S->C.W_fric; /* dissipated by friction (0 without) */
     /* ALE: the energy the remaps added (kinetic, elastic, the potential of
        the moved masses, which W_grav does not see) is its own term */
     const fem_ale_account *a = &S->ale_acc;
@@ -945,6 +948,9 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     hist->ale_rezones = a->rezones, hist->ale_nodes_moved = a->nodes_moved;
     hist->ale_kinetic = a->kinetic, hist->ale_elastic = a->elastic, hist->ale_potential = a->potential;
     hist->ale_move_max = a->move_max, hist->ale_ratio_min = a->ratio_min;
+    hist->friction_work = S->C.W_fric, hist->friction_sweeps_max = S->C.sweeps_max;
+    hist->stick_residual_max = S->C.stick_residual_max;
+    hist->stick_fraction = S->C.pair_steps > 0 ? (double)S->C.stick_steps / (double)S->C.pair_steps : 0;
     hist->boulder_nodes = S->mesh.boulder_nodes, hist->boulder_elements = S->mesh.boulder_elems;
     hist->slope_nodes = S->nn - S->mesh.boulder_nodes, hist->slope_elements = S->ne - S->mesh.boulder_elems;
     hist->state_hash = fem_hash(fem_hash(FEM_HASH_SEED, u, (size_t)S->ndof * sizeof *u), v,

@@ -438,6 +438,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            before, issue 10): a store never mixes results from before and after */
         if (may_run_3d(c))
             append(buf, cap, &len, " fem3d_materials=plastic_b_bar");
+        /* the axisymmetric contact has Coulomb friction since issue 10 (it was frictionless): named
+           where an evaluation may run it with friction, so a store never mixes the two */
+        if ((b->slope_angle == 0 || param_bound(c, P_ANGLE)) && (b->friction > 0 || param_bound(c, P_MU)))
+            append(buf, cap, &len, " axi_contact=coulomb_friction");
         /* 3D results changed with the contact face's current slope (Newton-located master point)
            and the mass redistribution at the contact face (docs/validation-plastic.md 9e): granite
            by ~1e-5, soil by a few per cent */
