@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """tools/dilatancy_cutoff_plot.py - the figure of docs/validation-plastic.md
-section 8c: the 117 kg block's drop tests on 1 m of dense sand (SWEEP-5..20 and
-JGGE24-s1 at 25.4 m/s) without and with a dilatancy cutoff.
+sections 8c-8d: the 117 kg block's drop tests on 1 m of dense sand (SWEEP-5..20
+and JGGE24-s1 at 25.4 m/s) in several settings of the model.
 
-Usage: /usr/bin/python3 tools/dilatancy_cutoff_plot.py NONE-DIR CUT-DIR [IMG-DIR]
-NONE-DIR, CUT-DIR: outputs of tools/drop_tests.sh run without and with
-DILATANCY_CUTOFF (their drop_tests.jsonl).  Draws IMG-DIR/drop_tests_cutoff.png
-(default docs/img): penetration / r0 and peak force against the impact speed,
-a failed run drawn as a cross at the bottom of the panel.  Prints the points.
+Usage: /usr/bin/python3 tools/dilatancy_cutoff_plot.py DIR=LABEL [DIR=LABEL ...] [--img IMG-DIR]
+DIR: an output of tools/drop_tests.sh (its drop_tests.jsonl), e.g. run without
+and with DILATANCY_CUTOFF and FRICTION; LABEL its legend.  Draws
+IMG-DIR/drop_tests_cutoff.png (default docs/img): penetration / r0 and peak
+force against the impact speed, a failed run drawn as a cross at the bottom of
+the panel.  Prints the points.
 """
 import json
 import os
@@ -47,16 +48,22 @@ def series(rows):
 
 
 def main():
-    if len(sys.argv) < 3:
+    args, img = sys.argv[1:], "docs/img"
+    if "--img" in args:
+        k = args.index("--img")
+        img = args[k + 1]
+        del args[k:k + 2]
+    if not args or any("=" not in a for a in args):
         sys.exit(__doc__)
-    img = sys.argv[3] if len(sys.argv) > 3 else "docs/img"
     fig, ax = plt.subplots(1, 2, figsize=(10, 4))
-    for path, label, style in ((sys.argv[1], "no cutoff", "o-"), (sys.argv[2], "dilatancy cutoff 0.2", "s--")):
+    styles = ["o-", "s--", "^-.", "v:"]
+    for k, arg in enumerate(args):
+        path, label = arg.split("=", 1)
         v, pen, force, failed = series(load(path))
         print(label, "speeds", v, "penetration/r0", [round(p, 3) for p in pen],
               "F_max kN", [round(f) for f in force], "failed at", failed)
-        line = ax[0].plot(v, pen, style, label=label)[0]
-        ax[1].plot(v, force, style, color=line.get_color(), label=label)
+        line = ax[0].plot(v, pen, styles[k % len(styles)], label=label)[0]
+        ax[1].plot(v, force, styles[k % len(styles)], color=line.get_color(), label=label)
         for a in ax:
             a.plot(failed, [0] * len(failed), "x", color=line.get_color(), markersize=10,
                    label=label + ": run failed" if failed else None)
