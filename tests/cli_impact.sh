@@ -162,5 +162,25 @@ if [ "$status" -eq 0 ]; then # the FE solver is built
     rm -rf "$tmp"
 fi
 
+# --- a rough block at normal incidence on a soil (the axisymmetric contact's friction): the JSON
+# names friction_work after at_rest, a small positive fraction of KE0; without friction it is absent ---
+if [ "$status" -eq 0 ] && command -v python3 >/dev/null; then
+    soil="--boulder-material rigid --radius 0.5 --layer-thickness 1 --layer-material drucker_prager
+          --layer-density 1900 --layer-E 100e6 --layer-poisson 0.3 --layer-cohesion 10e3 --layer-friction-angle 40
+          --layer-cap-pressure 200e3 --layer-cap-hardening 40e6 --refinement 2 --end-time 0.01"
+    # shellcheck disable=SC2086
+    rough=$("$bin" impact $soil --friction 0.6 --json 2>/dev/null) || fail "rough block: exit $?"
+    # shellcheck disable=SC2086
+    smooth=$("$bin" impact $soil --json 2>/dev/null) || fail "smooth block: exit $?"
+    python3 - "$rough" "$smooth" <<'PY' || fail "friction_work in the JSON: $rough / $smooth"
+import json, sys
+r, s = json.loads(sys.argv[1]), json.loads(sys.argv[2])
+k = list(r)
+assert k[k.index("at_rest") + 1] == "friction_work", k
+assert 0 < r["friction_work"] < 0.05, r
+assert "friction_work" not in s, s
+PY
+fi
+
 [ "$fails" -eq 0 ] && echo "cli_impact: all checks passed"
 exit $((fails > 0))

@@ -232,6 +232,8 @@ static void usage(FILE *f)
         "                           indentation_depth [m], equivalent_plastic_strain_max [-],\n"
         "                           nodes, elements, steps, gravity [m/s^2, the value used],\n"
         "                           at_rest (1: the block came to rest, R_n = 0),\n"
+        "                           with friction > 0: friction_work [-, of the initial\n"
+        "                           KE; a term of the energy account],\n"
         "                           with --ale on when it rezoned: ale_rezones and\n"
         "                           ale_remap_energy [-, of the initial KE; not in the\n"
         "                           energy error], wall_seconds [s]; NaN -> null\n"
@@ -274,7 +276,9 @@ static void json_number(const char *key, double x, int last)
         printf("\"%s\": null%s", key, last ? "" : ", ");
 }
 
-static void print_json(const rf_impact_output *o, double gravity, int at_rest, const rf_fem_history *h)
+/* friction_work: of the initial KE, NaN (left out) when the run had no friction. */
+static void print_json(const rf_impact_output *o, double gravity, int at_rest, const rf_fem_history *h,
+                       double friction_work)
 {
     printf("{");
     json_number("contact_force_max", o->contact_force_max, 0);
@@ -294,6 +298,8 @@ static void print_json(const rf_impact_output *o, double gravity, int at_rest, c
     json_number("steps", o->steps, 0);
     json_number("gravity", gravity, 0);
     printf("\"at_rest\": %d, ", at_rest);
+    if (!isnan(friction_work))
+        json_number("friction_work", friction_work, 0);
     if (h && h->ale_rezones > 0 && h->ke0 > 0) { /* ALE: the rezones and the energy they added, of KE0 */
         json_number("ale_rezones", (double)h->ale_rezones, 0);
         json_number("ale_remap_energy", (h->ale_kinetic + h->ale_elastic + h->ale_potential) / h->ke0, 0);
@@ -416,7 +422,8 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
         return EXIT_FAILED;
     }
     if (json) {
-        print_json(out, hist.gravity, hist.at_rest, &hist);
+        print_json(out, hist.gravity, hist.at_rest, &hist,
+                   spec->base.friction > 0 && hist.ke0 > 0 ? friction_work / hist.ke0 : NAN);
     } else {
         print_summary(spec, &spec->base, out);
         printf("  FE mesh               boulder %ld nodes / %ld elements, slope %ld / %ld; "
@@ -664,7 +671,7 @@ int rf_cli_impact(int argc, char **argv)
         return EXIT_FAILED;
     }
     if (json) {
-        print_json(&out, 0.0, 0, NULL);
+        print_json(&out, 0.0, 0, NULL, NAN);
     } else {
         print_summary(&spec, in, &out);
         print_references(&spec, in);
