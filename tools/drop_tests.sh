@@ -11,7 +11,7 @@
 #   /usr/bin/python3 tools/drop_tests_plot.py OUT docs/img
 # draws docs/img/drop_tests.png and prints the tables of the section.
 # ~1 min of CPU on one core.
-# Usage: [GRAVITY=auto|G] [DILATANCY_CUTOFF=EPS] [FRICTION=MU] [CASES=file] tools/drop_tests.sh [build-dir] [out-dir]
+# Usage: [GRAVITY=auto|G] [DILATANCY_CUTOFF=EPS] [FRICTION=MU] [REFINEMENT=A] [CASES=file] tools/drop_tests.sh [build-dir] [out-dir]
 # (CASES: another case list of the same columns, e.g. a part of the default
 # one to run parts in parallel and concatenate their drop_tests.jsonl)
 set -e
@@ -21,6 +21,7 @@ out=${2:-$build/drop-tests}
 grav=${GRAVITY:-auto}
 cutoff=${DILATANCY_CUTOFF:-0}   # the layer's dilatancy cutoff (docs/materials.md), 0 = none
 friction=${FRICTION:-0}         # Coulomb friction of the block on the soil, 0 = frictionless
+refinement=${REFINEMENT:-3}     # the FE refinement (a/h)
 cases=${CASES:-$src/tools/data/drop_tests_cases.txt}
 mkdir -p "$out"
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -46,7 +47,7 @@ grep -v '^#' "$cases" | while read -r id group mass radius v layer soil bed; do
     # shellcheck disable=SC2086
     if res=$(nice "$bin" impact --boulder-material rigid --radius "$radius" --boulder-density "$rho" --velocity "$v" \
             --layer-thickness "$layer" --layer-material drucker_prager $s $b \
-            --layer-dilatancy-cutoff "$cutoff" --friction "$friction" --refinement 3 --boundary fixed --gravity "$grav" --json 2> "$out/err.txt"); then
+            --layer-dilatancy-cutoff "$cutoff" --friction "$friction" --refinement "$refinement" --boundary fixed --gravity "$grav" --json 2> "$out/err.txt"); then
         warn=$(tr '\n' ' ' < "$out/err.txt" | sed 's/"/\\"/g')
         echo "{\"case\": \"$id\", \"group\": \"$group\", \"mass\": $mass, \"radius\": $radius, \"velocity\": $v, \"layer\": $layer, \"soil\": \"$soil\", \"bedrock\": \"$bed\", \"warning\": \"$warn\", \"out\": $res}" >> "$R"
     else
