@@ -1,6 +1,6 @@
 #!/bin/bash
 # cli_s5_studies.sh - guards the study files of S5 (examples/s5_v5/10/20.yaml,
-# docs/studies.md): each must load (every input name known to the impact
+# docs/studies.md) and of S5r (s5r_v*.yaml, S5 with a fuzzy friction): each must load (every input name known to the impact
 # model, every support admissible for its material) and plan the documented
 # 1 + m * 2^n = 1 + 4 * 2^5 = 129 evaluations.  Nothing is evaluated: the run
 # is stopped by --max-evaluations before the first model call, which happens
@@ -30,6 +30,18 @@ for v in 5 10 20; do
     grep -q "^    boundary: absorbing\$" "$f" || fail "s5_v$v: the boundary is not pinned absorbing"
     grep -q "^    gravity: 0" "$f" && fail "s5_v$v: pins gravity 0 (the default is auto = 9.81 for the plastic layer)"
     [ -f "$tmp/o$v/result.json" ] && fail "s5_v$v: wrote result.json without evaluating"
+done
+
+# S5r (the rough block): the S5 files with a sixth fuzzy input, friction: 1 + 4 * 2^6 = 257
+for v in 5 10 20; do
+    f="$src/examples/s5r_v$v.yaml"
+    [ -f "$f" ] || { fail "$f missing"; continue; }
+    "$bin" run "$f" --out "$tmp/r$v" --quiet --no-plots --max-evaluations 256 > /dev/null 2> "$tmp/r$v.err"
+    grep -q "needs 257 distinct model evaluations" "$tmp/r$v.err" \
+        || fail "s5r_v$v: did not load and plan 257 evaluations: $(cat "$tmp/r$v.err")"
+    diff <(grep -v -e '^#' -e '^name:' -e '^  friction:' "$f") \
+         <(grep -v -e '^#' -e '^name:' "$src/examples/s5_v$v.yaml") > /dev/null \
+        || fail "s5r_v$v: differs from s5_v$v.yaml in more than its friction"
 done
 
 # negative control: the same file with one input renamed must be refused at load

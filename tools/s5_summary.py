@@ -7,6 +7,8 @@ from the three runs
     rockfuzz run examples/s5_v20.yaml --out out/s5_v20 --tolerate-failures
 
 Usage: /usr/bin/python3 tools/s5_summary.py [--suffix=S] [OUT-ROOT [IMG-DIR [ROCKFUZZ]]]
+(S5r, the rough block: link its runs as OUT-ROOT/s5_v<v>_r and give --suffix=_r; a fuzzy
+friction is then passed on to the energy-error reruns)
 (defaults out, docs/img).  --suffix=S reads OUT-ROOT/s5_v<v>S (e.g. --suffix=_g for the
 runs with gravity, out/s5_v5_g) and names the figures studies_s5S_*.png.  With ROCKFUZZ (the binary), also reruns the input
 points where R_n, penetration_max, contact_force_max and plastic_work take
@@ -96,20 +98,20 @@ def energy_errors(binary, runs):
             for k in ("x_lower", "x_upper"):
                 x = res["outputs"][o][k][0]
                 pts.add(tuple(x[n] for n in ("layer_E", "layer_cohesion", "layer_friction_angle",
-                                             "layer_cap_pressure", "layer_thickness")))
+                                             "layer_cap_pressure", "layer_thickness")) + (x.get("friction", 0.0),))
         bnd = "fixed" if "boundary=fixed" in crisp else "absorbing"
         grav = crisp.split("gravity=")[1].split(",")[0].split(";")[0].split(" ")[0] if "gravity=" in crisp else "0"
         worst = 0.0
-        for E, c, phi, x0, t in sorted(pts):
+        for E, c, phi, x0, t, mu in sorted(pts):
             cmd = [binary, "impact", "--boulder-material", "rigid", "--radius", "0.5", "--velocity", str(v),
                    "--layer-thickness", repr(t), "--layer-material", "drucker_prager", "--layer-density", "1900",
                    "--layer-E", repr(E), "--layer-poisson", "0.3", "--layer-cohesion", repr(c),
                    "--layer-friction-angle", repr(phi), "--layer-dilatancy-angle", "5",
                    "--layer-cap-pressure", repr(x0), "--layer-cap-hardening", "40e6", "--refinement", "3",
-                   "--boundary", bnd, "--gravity", grav, "--json"]
+                   "--boundary", bnd, "--gravity", grav, "--friction", repr(mu), "--json"]
             r = subprocess.run(cmd, capture_output=True, text=True)
             if r.returncode != 0:
-                print("v = %d, x = %s: failed: %s" % (v, (E, c, phi, x0, t), r.stderr.strip()[:80]))
+                print("v = %d, x = %s: failed: %s" % (v, (E, c, phi, x0, t, mu), r.stderr.strip()[:80]))
                 continue
             e = abs(json.loads(r.stdout)["energy_error"])
             worst = max(worst, e)
