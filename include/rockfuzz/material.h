@@ -9,7 +9,7 @@
  * on the mean stress, Krieg 1972 / LS-DYNA soil-and-foam type) and an optional
  * dilatancy cutoff (the flow turns isochoric once the plastic volume change
  * reaches a critical-state limit, as the "dilatancy cut-off" of geotechnical
- * codes, Vermeer & de Borst 1984 / Plaxis); and the
+ * codes such as Plaxis); and the
  * Hughes-Winget (1980) objective stress rotation for large deformation.
  *
  * Conventions: SI units, tension positive, angles in radians (degrees only at

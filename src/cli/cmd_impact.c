@@ -140,7 +140,7 @@ static void usage(FILE *f)
         "                           [Pa] (default 0 = no cap)\n"
         "  --slope-cap-hardening PA drucker_prager: cap hardening modulus H_c >= 0 [Pa]\n"
         "  --slope-dilatancy-cutoff EPS  drucker_prager: plastic volumetric strain [-] at\n"
-        "                           which the dilatancy stops (critical state; (e_max - e0)\n"
+        "                           which the dilatancy stops (critical state; (e_cs - e0)\n"
         "                           / (1 + e0) from void ratios; default 0 = no cutoff)\n"
         "  --layer-thickness M      a layer over the slope (the bedrock), [m] (default 0 = none;\n"
         "                           fem solver; the 3D model meshes it with a node plane at\n"

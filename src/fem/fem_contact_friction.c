@@ -91,15 +91,18 @@ static double pair_update(fem_contact *C, long i, const double *invm, double dt,
     return fabs(d) * dt * dt * a;
 }
 
-/* The friction work of the step, lam_t c_t (v_{n+1/2} + v_{n-1/2}) dt / 2, and the stick count. */
-static void friction_account(fem_contact *C, double dt, const double *v)
+/* The friction work of the step, lam_t c_t (v_{n+1/2} + v_{n-1/2}) dt / 2, and the stick count;
+ * returns the vertical force of the tangential multipliers on the boulder (t_z lam_t per slave). */
+static double friction_account(fem_contact *C, double dt, const double *v)
 {
+    double Fz = 0;
     for (long i = 0; i < C->npairs; i++) {
         if (!(C->lambda[i] > 0))
             continue;
         int dof[6];
         double c[6];
         tangential_row(C, C->pair + i, dof, c);
+        Fz += c[0] * C->lam_t[i];
         const double s_new = row_rate(C, dof, c, v, 0), s_old = row_rate(C, dof, c, C->vt_old, 0);
         C->W_fric -= C->lam_t[i] * (s_new + s_old) * dt / 2;
         C->pair_steps++;
@@ -108,6 +111,7 @@ static void friction_account(fem_contact *C, double dt, const double *v)
             C->stick_residual_max = fmax(C->stick_residual_max, fabs(s_new) * dt);
         }
     }
+    return Fz;
 }
 
 double fem_contact_friction(fem_contact *C, const double *invm, double dt, double *u, double *v)
@@ -138,9 +142,5 @@ double fem_contact_friction(fem_contact *C, const double *invm, double dt, doubl
     if (drig != 0) /* the whole rigid boulder */
         for (long d = 1; d < C->rigid_dofs; d += 2)
             v[d] += drig, u[d] += dt * drig;
-    friction_account(C, dt, v);
-    double Fz = 0; /* the vertical force on the boulder: t_z lam_t on each slave */
-    for (long i = 0; i < C->npairs; i++)
-        Fz += -C->pair[i].n[0] * C->lam_t[i];
-    return Fz;
+    return friction_account(C, dt, v);
 }

@@ -10,18 +10,18 @@
  * a flat cap, combined with the cone as in multi-surface cap models
  * (Sandler & Rubin 1979).
  * The cap hardens only with its own compaction eps_c: cone dilatancy does not
- * retract it.
- * Dilatancy cutoff: the cone's flow is dilatant only while the plastic
- * volume change (dilation positive, the cap's compaction counted negative)
- * is below the cutoff, a critical state past which a sand shears at constant
- * volume (the "dilatancy cut-off" of Vermeer & de Borst 1984 and Plaxis,
- * there written with void ratios: cutoff = (e_max - e_0) / (1 + e_0)).  A
- * cone return that crosses it is split exactly (cone_return); the corner
- * takes psi or 0 from the state at the start of the increment.  With perfect plasticity on the cone and linear cap hardening
+ * retract it.  With perfect plasticity on the cone and linear cap hardening
  * every branch is a closed form: cone, apex, cap, and the cone-cap corner (a
  * 2x2 linear system).  The active set is found by trying single surfaces
  * first and accepting a candidate only when it violates no other surface
- * (the multisurface returns of Simo & Hughes 1998). */
+ * (the multisurface returns of Simo & Hughes 1998).
+ * Dilatancy cutoff: the cone's flow is dilatant only while the plastic
+ * volume change (dilation positive, the cap's compaction counted negative)
+ * is below the cutoff, a critical state past which a sand shears at constant
+ * volume (the "dilatancy cut-off" of geotechnical codes such as Plaxis;
+ * from void ratios, (e_cs - e_0) / (1 + e_0), docs/materials.md).  A cone
+ * return that crosses it is split exactly (cone_return); the corner takes
+ * psi or 0 from the state at the start of the increment. */
 #include "material/material_internal.h"
 
 #include <math.h>
