@@ -3,6 +3,7 @@
  * validated here, before any evaluation, and every message is located
  * (file:line: field = value: reason). */
 #include "study/study_internal.h"
+#include "core/textfile.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -10,13 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <fcntl.h>
-#include <poll.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #define MAX_PARAMS 64
-#define STUDY_PIPE_WAIT_MS 5000 /* a pipe given as the study file must deliver within this */
 #define MAX_POINTS 10000
 
 static const char *const shape_keys[] = {"tfn", "trapezoid", "interval", "gaussian", "crisp", "points", "cuts"};
@@ -557,86 +553,8 @@ static rf_status split_path(const char *path, char **dir, char **stem, rf_error 
 /* YAML text must be UTF-8 without NUL bytes.  Checked before libfyaml sees
  * the text: libfyaml 0.7.12 loops forever on some invalid bytes after '%'
  * (found by fuzz_study: "%\xff\xff\xff\xf8"). */
-rf_status sp_check_text(const char *name, const char *buf, size_t len, rf_error *err)
-{
-    const unsigned char *p = (const unsigned char *)buf;
-    int line = 1;
-    size_t col = 1;
-    for (size_t k = 0; k < len;) {
-        unsigned char ch = p[k];
-        size_t extra = 0;
-        unsigned cp = 0;
-        if (ch == 0)
-            return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: the file contains a NUL byte (not a text file?)", name,
-                           line, col);
-        if (ch < 0x80)
-            extra = 0, cp = ch;
-        else if (ch >= 0xc2 && ch <= 0xdf)
-            extra = 1, cp = ch & 0x1f;
-        else if (ch >= 0xe0 && ch <= 0xef)
-            extra = 2, cp = ch & 0x0f;
-        else if (ch >= 0xf0 && ch <= 0xf4)
-            extra = 3, cp = ch & 0x07;
-        else
-            goto bad;
-        for (size_t e = 1; e <= extra; e++) {
-            if (k + e >= len || (p[k + e] & 0xc0) != 0x80)
-                goto bad;
-            cp = (cp << 6) | (p[k + e] & 0x3f);
-        }
-        if ((extra == 2 && (cp < 0x800 || (cp >= 0xd800 && cp <= 0xdfff))) || (extra == 3 && (cp < 0x10000 || cp > 0x10ffff)))
-            goto bad;
-        if (ch == '\n')
-            line++, col = 1;
-        else
-            col++;
-        k += extra + 1;
-        continue;
-    bad:
-        return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: byte 0x%02x is not valid UTF-8 (YAML files are UTF-8 text)",
-                       name, line, col, ch);
-    }
-    return RF_OK;
-}
 
 #define MAX_STUDY_BYTES (16u << 20)
-
-/* The one YAML document of buf into *doc (free with fy_parse_document_destroy
- * on *fyp); invalid YAML, no document or a second one is an error. */
-static rf_status read_yaml(const char *name, const char *buf, size_t len, struct fy_diag *diag,
-                           struct fy_parser **fyp, struct fy_document **doc, rf_error *err)
-{
-    struct fy_parse_cfg pc;
-    memset(&pc, 0, sizeof pc);
-    /* Duplicate keys are accepted by the parser and reported by us with both lines. */
-    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
-    pc.diag = diag;
-    *doc = NULL;
-    *fyp = fy_parser_create(&pc);
-    if (!*fyp)
-        return rf_fail(err, RF_ENOMEM, "out of memory (YAML parser)");
-    if (fy_parser_set_string(*fyp, len ? buf : "", len) == 0)
-        *doc = fy_parse_load_document(*fyp);
-    if (!*doc) {
-        void *it = NULL;
-        struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
-        if (e)
-            return rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg,
-                           e->column);
-        return rf_fail(err, RF_EPARSE, "%s:1: the study file holds no YAML document (empty?)", name);
-    }
-    /* One study per file: a second document would otherwise be ignored without a word. */
-    struct fy_document *more = fy_parse_load_document(*fyp);
-    if (!more && !fy_parser_get_stream_error(*fyp))
-        return RF_OK;
-    int line = more && fy_document_root(more) ? sp_line(fy_document_root(more)) : 0;
-    fy_parse_document_destroy(*fyp, more);
-    if (line)
-        return rf_fail(err, RF_EPARSE, "%s:%d: a second YAML document (after '---'); a study file holds exactly one",
-                       name, line);
-    return rf_fail(err, RF_EPARSE, "%s: a second YAML document, or text after the first that is not YAML; a study "
-                   "file holds exactly one document", name);
-}
 
 static rf_status load(const char *name, const char *buf, size_t len, rf_study *s, rf_error *err)
 {
@@ -652,67 +570,17 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
         return rf_fail(err, RF_ENOMEM, "out of memory");
     rf_status st = split_path(name, &s->dir, &stem, err);
     s->name = stem;
+    sp_doc d = {0};
     if (st == RF_OK)
-        st = sp_check_text(name, buf, len, err);
-    struct fy_diag *diag = NULL;
-    if (st == RF_OK) {
-        struct fy_diag_cfg dc;
-        fy_diag_cfg_default(&dc);
-        dc.fp = NULL;
-        dc.colorize = false;
-        if (!(diag = fy_diag_create(&dc)))
-            st = rf_fail(err, RF_ENOMEM, "out of memory (YAML diagnostics)");
-        else
-            fy_diag_set_collect_errors(diag, true);
-    }
-    struct fy_parser *fyp = NULL;
-    struct fy_document *doc = NULL;
-    if (st == RF_OK)
-        st = read_yaml(name, buf, len, diag, &fyp, &doc, err);
+        st = sp_doc_load(&d, name, buf, len, "study file", err);
     if (st == RF_OK) {
         sp_ctx c = {name, s->dir, err, NULL};
-        st = parse_document(&c, s, doc);
+        st = parse_document(&c, s, d.doc);
     }
-    if (doc)
-        fy_parse_document_destroy(fyp, doc);
-    if (fyp)
-        fy_parser_destroy(fyp);
-    if (diag)
-        fy_diag_destroy(diag);
+    sp_doc_free(&d);
     if (st != RF_OK)
         rf_study_free(s);
     return st;
-}
-
-/* Open the study file: a regular file, or a pipe that has a writer (e.g.
- * `<(generate)`); a directory, a device or a FIFO nobody writes to is refused
- * instead of read or waited on forever. */
-static rf_status open_study_file(const char *path, FILE **f, rf_error *err)
-{
-    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0)
-        return rf_fail(err, RF_EIO, "%s: cannot open the study file: %s", path, strerror(errno));
-    struct stat sb;
-    const char *what = NULL;
-    if (fstat(fd, &sb) != 0)
-        what = strerror(errno);
-    else if (S_ISDIR(sb.st_mode))
-        what = "it is a directory";
-    else if (S_ISFIFO(sb.st_mode)) {
-        struct pollfd p = {fd, POLLIN, 0};
-        if (poll(&p, 1, STUDY_PIPE_WAIT_MS) <= 0 || !(p.revents & (POLLIN | POLLHUP)))
-            what = "it is a pipe or FIFO and nothing was written to it within 5 s";
-    } else if (!S_ISREG(sb.st_mode))
-        what = "it is not a regular file";
-    if (!what && fcntl(fd, F_SETFL, 0) != 0)
-        what = strerror(errno);
-    if (!what && !(*f = fdopen(fd, "rb")))
-        what = strerror(errno);
-    if (what) {
-        close(fd);
-        return rf_fail(err, RF_EIO, "%s: cannot read the study file: %s", path, what);
-    }
-    return RF_OK;
 }
 
 rf_status rf_study_load(const char *path, rf_study *study, rf_error *err)
@@ -720,28 +588,10 @@ rf_status rf_study_load(const char *path, rf_study *study, rf_error *err)
     if (!path || !study)
         return rf_fail(err, RF_EINTERNAL, "rf_study_load: NULL argument");
     memset(study, 0, sizeof *study);
-    FILE *f = NULL;
-    rf_status opened = open_study_file(path, &f, err);
-    if (opened != RF_OK)
-        return opened;
-    long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
-    if (size < 0 || fseek(f, 0, SEEK_SET) != 0)
-        size = MAX_STUDY_BYTES; /* not seekable (a pipe): read up to the limit */
-    size_t cap = (size_t)size < MAX_STUDY_BYTES ? (size_t)size + 1 : MAX_STUDY_BYTES + 1;
-    char *buf = malloc(cap);
-    if (!buf) {
-        fclose(f);
-        return rf_fail(err, RF_ENOMEM, "out of memory");
-    }
-    size_t len = fread(buf, 1, cap, f);
-    int bad = ferror(f) || (len == cap && cap <= MAX_STUDY_BYTES); /* or it grew while we read it */
-    fclose(f);
-    rf_status st;
-    if (bad)
-        st = rf_fail(err, RF_EIO, "%s: cannot read the study file", path);
-    else if (len > MAX_STUDY_BYTES)
-        st = rf_fail(err, RF_EINVAL, "%s: the study file is larger than %u bytes", path, MAX_STUDY_BYTES);
-    else
+    char *buf = NULL;
+    size_t len = 0;
+    rf_status st = rf_read_text_file(path, "study file", MAX_STUDY_BYTES, &buf, &len, err);
+    if (st == RF_OK)
         st = load(path, buf, len, study, err);
     free(buf);
     return st;

@@ -1,10 +1,11 @@
 /* traj_yaml.c - the trajectory file (docs/trajectories.md sec. 2): YAML read
- * with the study parser's located accessors (study/study_internal.h), so a
+ * with the core's located accessors (core/yaml.h), so a
  * bad value is reported as "file:line: field = value: reason".  Numbers that
  * may be random are read by traj_yaml_value.c; the profile by
  * traj_yaml_profile.c.  After parsing, the spec is validated and a failing
  * field is located through the lines recorded while reading. */
 #include "trajectory/traj_yaml_internal.h"
+#include "core/textfile.h"
 
 #include <errno.h>
 #include <math.h>
@@ -253,34 +254,15 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spe
         *slash = '\0';
     c.sp = (sp_ctx){name, slash ? dir : ".", err, NULL};
     s->file = rf_strdup(name);
-    struct fy_diag_cfg dc;
-    fy_diag_cfg_default(&dc);
-    dc.fp = NULL;
-    dc.colorize = false;
-    struct fy_diag *diag = fy_diag_create(&dc);
-    struct fy_parse_cfg pc;
-    memset(&pc, 0, sizeof pc);
-    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
-    pc.diag = diag;
-    if (diag)
-        fy_diag_set_collect_errors(diag, true);
-    rf_status st = diag ? sp_check_text(name, buf, len, err) : rf_fail(err, RF_ENOMEM, "out of memory");
-    struct fy_document *doc = st == RF_OK ? fy_document_build_from_string(&pc, len ? buf : "", len) : NULL;
-    if (st == RF_OK && !doc) {
-        void *it = NULL;
-        struct fy_diag_error *e = fy_diag_errors_iterate(diag, &it);
-        st = e ? rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg, e->column)
-               : rf_fail(err, RF_EPARSE, "%s:1: the file holds no YAML document (empty?)", name);
-    } else if (st == RF_OK)
-        st = parse_document(&c, fy_document_root(doc));
+    sp_doc d = {0};
+    rf_status st = sp_doc_load(&d, name, buf, len, "trajectory file", err);
+    if (st == RF_OK)
+        st = parse_document(&c, fy_document_root(d.doc));
     if (st == RF_OK && !c.record_given)
         s->record = s->samples < 200 ? s->samples : 200;
     if (st == RF_OK)
         st = ty_validate(&c);
-    if (doc)
-        fy_document_destroy(doc);
-    if (diag)
-        fy_diag_destroy(diag);
+    sp_doc_free(&d);
     ty_ctx_free(&c);
     free(dir);
     if (st != RF_OK)
@@ -296,19 +278,10 @@ rf_status rf_traj_load_buffer(const char *name, const char *buf, size_t len, rf_
 rf_status rf_traj_load(const char *path, rf_traj_spec *s, rf_error *err)
 {
     memset(s, 0, sizeof *s);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return rf_fail(err, RF_EIO, "%s: cannot open the trajectory file: %s", path, strerror(errno));
-    char *buf = malloc(MAX_TRAJ_BYTES + 1);
-    size_t len = buf ? fread(buf, 1, MAX_TRAJ_BYTES + 1, f) : 0;
-    int bad = !buf || ferror(f);
-    fclose(f);
-    rf_status st;
-    if (bad)
-        st = rf_fail(err, RF_EIO, "%s: cannot read the trajectory file", path);
-    else if (len > MAX_TRAJ_BYTES)
-        st = rf_fail(err, RF_EINVAL, "%s: larger than %u bytes", path, MAX_TRAJ_BYTES);
-    else
+    char *buf = NULL;
+    size_t len = 0;
+    rf_status st = rf_read_text_file(path, "trajectory file", MAX_TRAJ_BYTES, &buf, &len, err);
+    if (st == RF_OK)
         st = load(path, buf, len, s, err);
     free(buf);
     return st;

@@ -6,7 +6,7 @@
 #define ROCKFUZZ_TRAJ_YAML_INTERNAL_H
 
 #include "trajectory/traj_internal.h"
-#include "study/study_internal.h"
+#include "core/yaml.h"
 
 typedef struct {
     char path[160];

@@ -1,10 +1,13 @@
-/* traj_study.c - the `model: {trajectory: ...}` block of a study file
+/* study_traj.c - the `model: {trajectory: ...}` block of a study file
  * (docs/trajectories.md sec. 5): the trajectory file, Monte Carlo overrides,
  * and the binding of every fuzzy parameter to a numeric input of that file.
  * Trajectory outputs are not monotonic in their inputs (a small change moves
  * an impact onto another segment), so unless the study names a scheme the
  * general form is used; the left/right grid keeps the monotonicity check on. */
-#include "trajectory/traj_yaml_internal.h"
+#include "study/study_internal.h"
+#include "core/util.h"
+#include "rockfuzz/fuzzy.h"
+#include "rockfuzz/trajectory.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -1,7 +1,7 @@
-/* study_yaml.c - typed, located access to a libfyaml document for the study
- * parser: every failure becomes "file:line: field = value: reason".
- * Numbers must be plain finite scalars; quoted scalars are strings. */
-#include "study/study_internal.h"
+/* yaml.c - typed, located access to a libfyaml document (core/yaml.h):
+ * every failure becomes "file:line: field = value: reason".  Numbers must be
+ * plain finite scalars; quoted scalars are strings. */
+#include "core/yaml.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -353,4 +353,113 @@ rf_status sp_next(sp_ctx *c, sp_iter *it, const char *path, const char **key, st
     *keynode = k;
     *val = v;
     return RF_OK;
+}
+
+rf_status sp_check_text(const char *name, const char *buf, size_t len, rf_error *err)
+{
+    const unsigned char *p = (const unsigned char *)buf;
+    int line = 1;
+    size_t col = 1;
+    for (size_t k = 0; k < len;) {
+        unsigned char ch = p[k];
+        size_t extra = 0;
+        unsigned cp = 0;
+        if (ch == 0)
+            return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: the file contains a NUL byte (not a text file?)", name,
+                           line, col);
+        if (ch < 0x80)
+            extra = 0, cp = ch;
+        else if (ch >= 0xc2 && ch <= 0xdf)
+            extra = 1, cp = ch & 0x1f;
+        else if (ch >= 0xe0 && ch <= 0xef)
+            extra = 2, cp = ch & 0x0f;
+        else if (ch >= 0xf0 && ch <= 0xf4)
+            extra = 3, cp = ch & 0x07;
+        else
+            goto bad;
+        for (size_t e = 1; e <= extra; e++) {
+            if (k + e >= len || (p[k + e] & 0xc0) != 0x80)
+                goto bad;
+            cp = (cp << 6) | (p[k + e] & 0x3f);
+        }
+        if ((extra == 2 && (cp < 0x800 || (cp >= 0xd800 && cp <= 0xdfff))) || (extra == 3 && (cp < 0x10000 || cp > 0x10ffff)))
+            goto bad;
+        if (ch == '\n')
+            line++, col = 1;
+        else
+            col++;
+        k += extra + 1;
+        continue;
+    bad:
+        return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: byte 0x%02x is not valid UTF-8 (YAML files are UTF-8 text)",
+                       name, line, col, ch);
+    }
+    return RF_OK;
+}
+
+static rf_status first_document(sp_doc *d, const char *name, const char *buf, size_t len, const char *what,
+                                rf_error *err)
+{
+    struct fy_parse_cfg pc;
+    memset(&pc, 0, sizeof pc);
+    /* Duplicate keys are accepted by the parser and reported by us with both lines. */
+    pc.flags = FYPCF_QUIET | FYPCF_COLLECT_DIAG | FYPCF_ALLOW_DUPLICATE_KEYS;
+    pc.diag = d->diag;
+    d->parser = fy_parser_create(&pc);
+    if (!d->parser)
+        return rf_fail(err, RF_ENOMEM, "out of memory (YAML parser)");
+    if (fy_parser_set_string(d->parser, len ? buf : "", len) == 0)
+        d->doc = fy_parse_load_document(d->parser);
+    if (d->doc)
+        return RF_OK;
+    void *it = NULL;
+    struct fy_diag_error *e = fy_diag_errors_iterate(d->diag, &it);
+    if (e)
+        return rf_fail(err, RF_EPARSE, "%s:%d: not valid YAML: %s (column %d)", name, e->line, e->msg, e->column);
+    return rf_fail(err, RF_EPARSE, "%s:1: the %s holds no YAML document (empty?)", name, what);
+}
+
+/* One document per file: a second one would otherwise be ignored without a word. */
+static rf_status no_second_document(sp_doc *d, const char *name, const char *what, rf_error *err)
+{
+    struct fy_document *more = fy_parse_load_document(d->parser);
+    if (!more && !fy_parser_get_stream_error(d->parser))
+        return RF_OK;
+    int line = more && fy_document_root(more) ? sp_line(fy_document_root(more)) : 0;
+    fy_parse_document_destroy(d->parser, more);
+    if (line)
+        return rf_fail(err, RF_EPARSE, "%s:%d: a second YAML document (after '---'); a %s holds exactly one", name,
+                       line, what);
+    return rf_fail(err, RF_EPARSE, "%s: a second YAML document, or text after the first that is not YAML; a %s "
+                   "holds exactly one document", name, what);
+}
+
+rf_status sp_doc_load(sp_doc *d, const char *name, const char *buf, size_t len, const char *what, rf_error *err)
+{
+    memset(d, 0, sizeof *d);
+    rf_status st = sp_check_text(name, buf, len, err);
+    if (st != RF_OK)
+        return st;
+    struct fy_diag_cfg dc;
+    fy_diag_cfg_default(&dc);
+    dc.fp = NULL;
+    dc.colorize = false;
+    if (!(d->diag = fy_diag_create(&dc)))
+        return rf_fail(err, RF_ENOMEM, "out of memory (YAML diagnostics)");
+    fy_diag_set_collect_errors(d->diag, true);
+    st = first_document(d, name, buf, len, what, err);
+    if (st == RF_OK)
+        st = no_second_document(d, name, what, err);
+    return st;
+}
+
+void sp_doc_free(sp_doc *d)
+{
+    if (d->doc)
+        fy_parse_document_destroy(d->parser, d->doc);
+    if (d->parser)
+        fy_parser_destroy(d->parser);
+    if (d->diag)
+        fy_diag_destroy(d->diag);
+    memset(d, 0, sizeof *d);
 }
