@@ -2,7 +2,8 @@
  * integration (isotropic linear elasticity, small strain), row-sum lumped
  * mass, and the element eigenvalue bound 2/sqrt(max lambda(M_e^-1 K_e)) that
  * sets the explicit time step (Householder tridiagonalisation + Sturm
- * bisection: exact up to round-off, unlike an edge-length estimate). */
+ * bisection: exact up to round-off, unlike an edge-length estimate), and the
+ * node order that gives a positive Jacobian. */
 #include "fem3d_internal.h"
 
 #include <math.h>
@@ -49,6 +50,20 @@ double f3_hex_center_jacobian(const double x[24])
 {
     double N[8], dN[8][3];
     return shape(x, 0, 0, 0, N, dN);
+}
+
+/* Swaps the hexahedron's two faces when its centre Jacobian is negative. */
+void f3_hex_orient(const double *x, int *c)
+{
+    double xe[24];
+    for (int a = 0; a < 8; a++)
+        for (int d = 0; d < 3; d++)
+            xe[3 * a + d] = x[3 * c[a] + d];
+    if (f3_hex_center_jacobian(xe) < 0)
+        for (int a = 0; a < 4; a++) {
+            int t = c[a];
+            c[a] = c[a + 4], c[a + 4] = t;
+        }
 }
 
 void f3_hex_gradients(const double x[24], double dN[8][8][3], double w[8])

@@ -91,7 +91,7 @@ void f3_hex_matrices(const double x[24], const f3_material *mat, double K[576], 
 void f3_hex_gradients(const double x[24], double dN[8][8][3], double w[8]);
 /* Jacobian determinant at the element centre (orientation check). */
 double f3_hex_center_jacobian(const double x[24]);
-void f3_hex_orient(const double *x, int *c); /* fem3d_mesh.c: positive Jacobian */
+void f3_hex_orient(const double *x, int *c); /* fem3d_element.c: positive Jacobian */
 /* Largest eigenvalue of M_e^-1 K_e over the free dofs (Householder + Sturm
  * bisection: exact for a 24 x 24 matrix up to round-off). */
 double f3_hex_lambda_max(const double K[576], const double m[8], const unsigned char free_dof[24]);

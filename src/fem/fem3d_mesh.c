@@ -198,20 +198,6 @@ void f3_mesh_free(f3_mesh *m)
     memset(m, 0, sizeof *m);
 }
 
-/* Swaps the hexahedron's two faces when its centre Jacobian is negative. */
-void f3_hex_orient(const double *x, int *c)
-{
-    double xe[24];
-    for (int a = 0; a < 8; a++)
-        for (int d = 0; d < 3; d++)
-            xe[3 * a + d] = x[3 * c[a] + d];
-    if (f3_hex_center_jacobian(xe) < 0)
-        for (int a = 0; a < 4; a++) {
-            int t = c[a];
-            c[a] = c[a + 4], c[a + 4] = t;
-        }
-}
-
 rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, rf_error *err)
 {
     memset(m, 0, sizeof *m);

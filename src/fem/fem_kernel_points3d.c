@@ -219,9 +219,11 @@ void p3_report(const fem_kernel *k, fem_kernel_report *r)
 static const fem_kernel_ops p3_ops = {"integration points (hexahedron, SIMD blocks)", NULL, NULL, p3_accept,
                                       p3_destroy, p3_field, p3_report};
 
+/* Both forms of the kernel (small strain here, updated Lagrangian in
+   fem_kernel_points3d_large.c) free their data with p3_destroy. */
 int p3_is(const fem_kernel *k)
 {
-    return (k->ops == &p3_ops || k->ops == &p3_large_ops) && k->data;
+    return k->ops && k->ops->destroy == p3_destroy && k->data;
 }
 
 static rf_status p3_check(const fem_point_law *law, const fem_point_law *law2, const unsigned char *use2,

@@ -75,6 +75,4 @@ void p3_report(const fem_kernel *k, fem_kernel_report *r);
 /* 1 if k is a hexahedron point kernel of either form. */
 int p3_is(const fem_kernel *k);
 
-extern const fem_kernel_ops p3_large_ops;
-
 #endif

@@ -118,8 +118,8 @@ static void large_commit(fem_kernel *k)
     p3_accept(k);
 }
 
-const fem_kernel_ops p3_large_ops = {"integration points (hexahedron, SIMD blocks, updated Lagrangian)", NULL, NULL,
-                                     large_commit, p3_destroy, large_field, p3_report};
+static const fem_kernel_ops p3_large_ops = {"integration points (hexahedron, SIMD blocks, updated Lagrangian)",
+                                            NULL, NULL, large_commit, p3_destroy, large_field, p3_report};
 
 rf_status fem_kernel_points_hex_large(fem_kernel *k, const double *x, rf_error *err)
 {
