@@ -3,6 +3,7 @@
  * test, contact-force record and duration, maxima, energy-closure check,
  * sampled history, warnings, the common outputs). */
 #include "fem_core.h"
+#include "core/hash.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -292,12 +293,4 @@ void fem_run_free(fem_run *r)
     memset(r, 0, sizeof *r);
 }
 
-uint64_t fem_hash(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 1099511628211ULL;
-    }
-    return h;
-}
+uint64_t fem_hash(uint64_t h, const void *data, size_t n) { return rf_fnv1a(h, data, n); }

@@ -146,7 +146,8 @@ void fem_run_free(fem_run *r);
 void fem_contact_window(const double *force, long nsteps, double dt, double threshold, double *t_first,
                         double *t_last);
 
-/* FNV-1a over n bytes, continuing from h (start with FEM_HASH_SEED). */
+/* FNV-1a (core/hash.h) over n bytes, continuing from h (start with FEM_HASH_SEED, a
+   seed of its own that the regression hashes were recorded with). */
 #define FEM_HASH_SEED 1469598103934665603ULL
 uint64_t fem_hash(uint64_t h, const void *data, size_t n);
 

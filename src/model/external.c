@@ -26,6 +26,7 @@
 #undef _POSIX_C_SOURCE
 #define _GNU_SOURCE
 #include "rockfuzz/model.h"
+#include "core/hash.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -208,16 +209,6 @@ static int write_file(const char *path, const char *data, size_t len)
     return close(fd) == 0 ? 0 : errno;
 }
 
-static uint64_t fnv1a64(const char *data, size_t len)
-{
-    uint64_t h = 14695981039346656037ull;
-    for (size_t i = 0; i < len; i++) {
-        h ^= (unsigned char)data[i];
-        h *= 1099511628211ull;
-    }
-    return h;
-}
-
 #define HASHED_FILE_MAX (1u << 30) /* program and script files hashed into the identity */
 
 /* FNV-1a of a whole file; 0 and *h set, or errno. */
@@ -227,7 +218,7 @@ static int file_hash(const char *path, uint64_t *h)
     size_t len = 0;
     int e = read_file(path, HASHED_FILE_MAX, &text, &len);
     if (!e)
-        *h = fnv1a64(text, len);
+        *h = rf_fnv1a(RF_FNV1A_OFFSET, text, len);
     free(text);
     return e;
 }
@@ -1067,7 +1058,7 @@ static char *build_identity(const ext_ctx *c)
     sb_puts(&b, ";templates=[");
     for (size_t t = 0; t < c->n_templates; t++)
         sb_printf(&b, "%s%s:fnv1a64=%016llx", t ? "," : "", c->templates[t].dst,
-                  (unsigned long long)fnv1a64(c->templates[t].text, c->templates[t].len));
+                  (unsigned long long)rf_fnv1a(RF_FNV1A_OFFSET, c->templates[t].text, c->templates[t].len));
     sb_puts(&b, "];outputs=[");
     for (size_t k = 0; k < c->n_outputs; k++) {
         const ext_output *o = &c->outputs[k];

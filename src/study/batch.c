@@ -3,6 +3,7 @@
  * runner.c (local threads) and mpi.c (rank 0 serving worker ranks); it calls
  * neither, so the two never include each other. */
 #include "study/batch.h"
+#include "core/json.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -88,20 +89,6 @@ void rf_batch_progress(rf_batch *b, int final)
     fflush(f);
 }
 
-static void json_text(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            fprintf(f, "\\%c", *p);
-        else if (*p < 0x20)
-            fprintf(f, "\\u%04x", *p);
-        else
-            fputc(*p, f);
-    }
-    fputc('"', f);
-}
-
 /* Called with b->lock held. */
 static void jsonl_line(rf_batch *b, size_t k, int ok, const rf_error *err, double seconds)
 {
@@ -124,7 +111,7 @@ static void jsonl_line(rf_batch *b, size_t k, int ok, const rf_error *err, doubl
     fputc(']', f);
     if (!ok) {
         fputs(", \"error\": ", f);
-        json_text(f, err && err->msg[0] ? err->msg : "failed");
+        rf_json_string(f, err && err->msg[0] ? err->msg : "failed");
     }
     fputs("}\n", f);
     fflush(f);
