@@ -44,7 +44,7 @@ static void assert_same(const double *a, const double *b, size_t n)
         if (isnan(a[k]) && isnan(b[k]))
             continue;
         if (!(a[k] == b[k]))
-            fail_msg("output %s: %.17g != %.17g", rf_impact_output_names[k], a[k], b[k]);
+            fail_msg("output %s: %.17g != %.17g", rf_impact_output_fields[k].name, a[k], b[k]);
     }
 }
 
@@ -566,8 +566,8 @@ static void test_plastic_parameters(void **state)
     rf_model_free(&model);
 }
 
-/* The dilatancy cutoff is an input and a study parameter; the identity names
- * it only where it may act, so identities without it are unchanged. */
+/* The dilatancy cutoff is an input and a study parameter, and the identity
+ * carries its value (as every input's: test_impact_fields). */
 static void test_dilatancy_cutoff_identity(void **state)
 {
     (void)state;
@@ -579,12 +579,12 @@ static void test_dilatancy_cutoff_identity(void **state)
     rf_model model;
     rf_error err = {0};
     assert_int_equal(rf_impact_model_create(&spec, names, 0, &model, &err), RF_OK);
-    assert_null(strstr(model.identity, "dilatancy_cutoff"));
+    assert_non_null(strstr(model.identity, " slope_dilatancy_cutoff=0 "));
     rf_model_free(&model);
     spec.base.slope_dilatancy_cutoff = 0.02;
     assert_int_equal(rf_impact_model_create(&spec, names, 0, &model, &err), RF_OK);
     assert_non_null(strstr(model.identity, " slope_dilatancy_cutoff=0.02"));
-    assert_null(strstr(model.identity, "layer_dilatancy_cutoff"));
+    assert_non_null(strstr(model.identity, " layer_dilatancy_cutoff=0 "));
     rf_model_free(&model);
     spec.base.slope_dilatancy_cutoff = 0.0;
     assert_int_equal(rf_impact_model_create(&spec, names, 1, &model, &err), RF_OK);

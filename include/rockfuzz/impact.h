@@ -17,6 +17,8 @@
 #define ROCKFUZZ_IMPACT_H
 
 #include "rockfuzz/material.h"
+
+#include <stddef.h>
 #include "rockfuzz/status.h"
 
 #ifdef __cplusplus
@@ -94,6 +96,67 @@ const char *rf_impact_material_name(rf_material_model m);
 /* The constitutive parameters of the boulder (body 0), the slope (body 1) or
  * the layer (body 2); a rigid boulder gives its elastic constants. */
 void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_params *p);
+
+/* ---- the one description of the numeric inputs (impact_fields.c) ----
+ * Every numeric field of rf_impact_input is one row: its name (the study
+ * key, the fuzzy parameter's name, the identity's and the JSON's key; the
+ * CLI option is the name with '-' for '_'), where it lives, its unit and
+ * default as a user gives them, the rule it must satisfy and a help line.
+ * The defaults, the validation of single fields, the binding of fuzzy
+ * parameters, the result store's identity and the CLI and study keys all
+ * loop over this table, so a new input is one row (and its physics). */
+typedef enum {
+    RF_FIELD_PLAIN = 0,   /* stored as given */
+    RF_FIELD_DEGREES,     /* given in degrees, stored in radians */
+    RF_FIELD_GRAVITY      /* >= 0, or RF_GRAVITY_AUTO (given as "auto") */
+} rf_field_kind;
+
+typedef enum {
+    RF_CHECK_NONE = 0,    /* checked with its body's material (rf_material_init) */
+    RF_CHECK_POSITIVE,    /* finite, > 0 */
+    RF_CHECK_NONNEGATIVE, /* finite, >= 0 */
+    RF_CHECK_POISSON,     /* in (-1, 0.5) */
+    RF_CHECK_INCLINATION, /* in [0, 90) degrees */
+    RF_CHECK_GRAVITY      /* finite and >= 0, or RF_GRAVITY_AUTO */
+} rf_field_check;
+
+typedef struct {
+    const char *name;
+    size_t offset;           /* of the double in rf_impact_input */
+    rf_field_kind kind;
+    const char *unit;        /* as given ("deg" for angles; "" dimensionless) */
+    double def;              /* default, as given */
+    double probe;            /* a valid value, as given, that stands for the field when it is fuzzy
+                                while the other inputs are checked (a von Mises yield needs Y > 0) */
+    rf_field_check check;
+    int bindable;            /* a fuzzy parameter may drive it */
+    const char *help;        /* one line: what it is, and its rule where it has one */
+} rf_impact_field;
+
+extern const rf_impact_field rf_impact_fields[];
+extern const size_t rf_impact_n_fields;
+/* The row named name, or NULL. */
+const rf_impact_field *rf_impact_field_find(const char *name);
+/* Store a value as given (degrees for angles) in the field: a crisp input. */
+void rf_impact_field_store(rf_impact_input *in, const rf_impact_field *f, double given);
+/* Bind a fuzzy parameter's value: rf_impact_field_store, and binding
+ * horizontal_axis also resets vertical_axis to 0 (constant volume). */
+void rf_impact_field_set(rf_impact_input *in, const rf_impact_field *f, double given);
+/* The field's value as given (degrees for angles). */
+double rf_impact_field_get(const rf_impact_input *in, const rf_impact_field *f);
+/* 1 if x (as stored) satisfies the field's check. */
+int rf_impact_field_ok(const rf_impact_field *f, double stored);
+
+/* The model outputs of an impact (the values a study gets, in this order):
+ * one row each, name, place in rf_impact_output, unit and help. */
+typedef struct {
+    const char *name;
+    size_t offset;           /* of the double in rf_impact_output */
+    const char *unit;        /* "" dimensionless */
+    const char *help;
+} rf_impact_output_field;
+#define RF_IMPACT_N_OUTPUTS 11
+extern const rf_impact_output_field rf_impact_output_fields[RF_IMPACT_N_OUTPUTS];
 
 /* Nominal granite of SYSTEM.md: r0 = 1 m, rho 2600, E 68.2 GPa, nu 0.25,
  * 10 m/s, horizontal slope, friction 0. */

@@ -51,18 +51,9 @@ rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_err
 rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
                           rf_impact_output *out, rf_error *err);
 
-/* Parameter names a study may bind (slope_angle, slope_friction_angle and
- * slope_dilatancy_angle and the layer's two angles in DEGREES here; the
- * material choice itself is spec->base.*_material, crisp), and the
- * model outputs in order, with their units. */
-#define RF_IMPACT_N_PARAMS 34
-#define RF_IMPACT_N_OUTPUTS 11
-extern const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS];
-extern const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS];
-extern const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS];
-
 /* Create the impact model: x[i] is the value of param_names[i] (one of
- * rf_impact_param_names; an unknown or repeated name is RF_EINVAL).  Outputs:
+ * the bindable rows of rf_impact_fields (impact.h; angles in degrees); an
+ * unknown or repeated name is RF_EINVAL).  Outputs, rf_impact_output_fields:
  * contact_force_max [N], compression_max [m], contact_duration [s],
  * contact_radius [m], R_n, R_t, R_ke [-], plastic_work [-, fraction of the
  * initial KE], penetration_max [m], indentation_depth [m],

@@ -7,38 +7,16 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 void rf_impact_input_default(rf_impact_input *in)
 {
-    in->radius = 1.0;
-    in->horizontal_axis = 0.0;
-    in->vertical_axis = 0.0;
-    in->boulder_density = 2600.0;
-    in->slope_density = 2600.0;
-    in->boulder_E = 68.2e9;
-    in->slope_E = 68.2e9;
-    in->boulder_poisson = 0.25;
-    in->slope_poisson = 0.25;
-    in->velocity = 10.0;
-    in->slope_angle = 0.0;
-    in->friction = 0.0;
-    in->boulder_material = RF_MATERIAL_ELASTIC;
-    in->boulder_yield = in->boulder_hardening = 0.0;
-    in->slope_material = RF_MATERIAL_ELASTIC;
-    in->slope_yield = in->slope_hardening = in->slope_cohesion = 0.0;
-    in->slope_friction_angle = in->slope_dilatancy_angle = 0.0;
-    in->slope_cap_pressure = in->slope_cap_hardening = 0.0;
-    in->slope_dilatancy_cutoff = 0.0;
-    in->layer_thickness = 0.0;
-    in->layer_density = 2600.0, in->layer_E = 68.2e9, in->layer_poisson = 0.25;
-    in->layer_material = RF_MATERIAL_ELASTIC;
-    in->layer_yield = in->layer_hardening = in->layer_cohesion = 0.0;
-    in->layer_friction_angle = in->layer_dilatancy_angle = 0.0;
-    in->layer_cap_pressure = in->layer_cap_hardening = 0.0;
-    in->layer_dilatancy_cutoff = 0.0;
-    in->gravity = RF_GRAVITY_AUTO;
+    memset(in, 0, sizeof *in);
+    for (size_t k = 0; k < rf_impact_n_fields; k++)
+        rf_impact_field_store(in, &rf_impact_fields[k], rf_impact_fields[k].def);
+    in->boulder_material = in->slope_material = in->layer_material = RF_MATERIAL_ELASTIC;
 }
 
 double rf_impact_gravity(const rf_impact_input *in, int three_d)
@@ -176,98 +154,68 @@ static const char *material_invalid(const rf_impact_input *in, rf_error *err)
     return NULL;
 }
 
-static int positive(double x) { return isfinite(x) && x > 0.0; }
-static int poisson_ok(double x) { return isfinite(x) && x > -1.0 && x < 0.5; }
-
-/* One table drives both rf_impact_input_first_invalid and the messages. */
-enum { CHECK_POSITIVE, CHECK_POISSON, CHECK_AXIS, CHECK_FRICTION, CHECK_ANGLE, CHECK_GRAVITY };
-static const struct {
-    const char *name;
-    size_t offset;
-    int check;
-    const char *rule;
-} fields[] = {
-    {"radius", offsetof(rf_impact_input, radius), CHECK_POSITIVE, "must be finite and > 0 [m]"},
-    {"horizontal_axis", offsetof(rf_impact_input, horizontal_axis), CHECK_AXIS,
-     "must be finite and >= 0 [m] (0 = sphere)"},
-    {"vertical_axis", offsetof(rf_impact_input, vertical_axis), CHECK_AXIS,
-     "must be finite and >= 0 [m] (0 = derived from constant volume)"},
-    {"boulder_density", offsetof(rf_impact_input, boulder_density), CHECK_POSITIVE,
-     "must be finite and > 0 [kg/m^3]"},
-    {"slope_density", offsetof(rf_impact_input, slope_density), CHECK_POSITIVE,
-     "must be finite and > 0 [kg/m^3]"},
-    {"boulder_E", offsetof(rf_impact_input, boulder_E), CHECK_POSITIVE, "must be finite and > 0 [Pa]"},
-    {"slope_E", offsetof(rf_impact_input, slope_E), CHECK_POSITIVE, "must be finite and > 0 [Pa]"},
-    {"boulder_poisson", offsetof(rf_impact_input, boulder_poisson), CHECK_POISSON,
-     "Poisson's ratio must lie in (-1, 0.5)"},
-    {"slope_poisson", offsetof(rf_impact_input, slope_poisson), CHECK_POISSON,
-     "Poisson's ratio must lie in (-1, 0.5)"},
-    {"velocity", offsetof(rf_impact_input, velocity), CHECK_POSITIVE, "must be finite and > 0 [m/s]"},
-    {"slope_angle", offsetof(rf_impact_input, slope_angle), CHECK_ANGLE,
-     "must lie in [0, 90) degrees"},
-    {"friction", offsetof(rf_impact_input, friction), CHECK_FRICTION, "must be finite and >= 0"},
-    {"layer_thickness", offsetof(rf_impact_input, layer_thickness), CHECK_AXIS,
-     "must be finite and >= 0 [m] (0 = homogeneous slope)"},
-    {"gravity", offsetof(rf_impact_input, gravity), CHECK_GRAVITY,
-     "must be >= 0 [m/s^2] (its magnitude: it acts along -z), or RF_GRAVITY_AUTO (-1) for auto (9.81 with a "
-     "plastic body, else 0)"},
-};
-#define N_FIELDS (sizeof fields / sizeof fields[0])
-
-static double field_value(const rf_impact_input *in, size_t k)
+/* The rule a field breaks, for messages. */
+static void rule_text(const rf_impact_field *f, char *buf, size_t size)
 {
-    return *(const double *)((const char *)in + fields[k].offset);
+    switch (f->check) {
+    case RF_CHECK_POSITIVE: snprintf(buf, size, "must be finite and > 0 [%s]", f->unit); return;
+    case RF_CHECK_NONNEGATIVE:
+        snprintf(buf, size, f->unit[0] ? "must be finite and >= 0 [%s]" : "must be finite and >= 0", f->unit);
+        return;
+    case RF_CHECK_POISSON: snprintf(buf, size, "Poisson's ratio must lie in (-1, 0.5)"); return;
+    case RF_CHECK_INCLINATION: snprintf(buf, size, "must lie in [0, 90) degrees"); return;
+    case RF_CHECK_GRAVITY:
+        snprintf(buf, size, "must be >= 0 [m/s^2] (its magnitude: it acts along -z), or RF_GRAVITY_AUTO (-1) for "
+                 "auto (9.81 with a plastic body, else 0)");
+        return;
+    case RF_CHECK_NONE: break;
+    }
+    buf[0] = '\0';
 }
 
-static int field_ok(double x, int check)
+static double stored(const rf_impact_input *in, const rf_impact_field *f)
 {
-    switch (check) {
-    case CHECK_POSITIVE: return positive(x);
-    case CHECK_POISSON: return poisson_ok(x);
-    case CHECK_AXIS: return isfinite(x) && x >= 0.0;
-    case CHECK_FRICTION: return isfinite(x) && x >= 0.0;
-    case CHECK_ANGLE: return isfinite(x) && x >= 0.0 && x < 0.5 * RF_PI;
-    case CHECK_GRAVITY: return (isfinite(x) && x >= 0.0) || x == RF_GRAVITY_AUTO;
-    }
-    return 0;
+    return *(const double *)((const char *)in + f->offset);
 }
 
-/* Index of the first invalid field, N_FIELDS if all are valid.  A vertical
- * axis without a horizontal one is reported on vertical_axis. */
-static size_t first_invalid(const rf_impact_input *in)
+/* The first field that breaks its rule (table order), NULL if none.  A
+ * vertical axis without a horizontal one is reported on vertical_axis. */
+static const rf_impact_field *first_invalid(const rf_impact_input *in)
 {
-    for (size_t k = 0; k < N_FIELDS; k++) {
-        if (!field_ok(field_value(in, k), fields[k].check))
-            return k;
-        if (fields[k].offset == offsetof(rf_impact_input, vertical_axis) && in->vertical_axis > 0.0
-            && !(in->horizontal_axis > 0.0))
-            return k;
+    for (size_t k = 0; k < rf_impact_n_fields; k++) {
+        const rf_impact_field *f = &rf_impact_fields[k];
+        if (!rf_impact_field_ok(f, stored(in, f)))
+            return f;
+        if (f->offset == offsetof(rf_impact_input, vertical_axis) && in->vertical_axis > 0.0 &&
+            !(in->horizontal_axis > 0.0))
+            return f;
     }
-    return N_FIELDS;
+    return NULL;
 }
 
 const char *rf_impact_input_first_invalid(const rf_impact_input *in)
 {
-    size_t k = first_invalid(in);
-    return k < N_FIELDS ? fields[k].name : material_invalid(in, NULL);
+    const rf_impact_field *f = first_invalid(in);
+    return f ? f->name : material_invalid(in, NULL);
 }
 
 rf_status rf_impact_input_validate(const rf_impact_input *in, rf_error *err)
 {
     if (!in)
         return rf_fail(err, RF_EINTERNAL, "impact input is NULL");
-    size_t k = first_invalid(in);
-    if (k == N_FIELDS)
+    const rf_impact_field *f = first_invalid(in);
+    if (!f)
         return material_invalid(in, err) ? RF_EINVAL : RF_OK;
-    double x = field_value(in, k);
-    if (fields[k].check == CHECK_ANGLE)
-        return rf_fail(err, RF_EINVAL, "slope_angle = %g rad (%g deg): %s", x, x * 180.0 / RF_PI,
-                       fields[k].rule);
-    if (fields[k].offset == offsetof(rf_impact_input, vertical_axis) && field_ok(x, CHECK_AXIS))
+    double x = stored(in, f);
+    char rule[200];
+    rule_text(f, rule, sizeof rule);
+    if (f->kind == RF_FIELD_DEGREES)
+        return rf_fail(err, RF_EINVAL, "%s = %g rad (%g deg): %s", f->name, x, x * 180.0 / RF_PI, rule);
+    if (f->offset == offsetof(rf_impact_input, vertical_axis) && rf_impact_field_ok(f, x))
         return rf_fail(err, RF_EINVAL,
                        "vertical_axis = %g: a spheroid needs horizontal_axis > 0 as well "
                        "(horizontal_axis = %g)", x, in->horizontal_axis);
-    return rf_fail(err, RF_EINVAL, "%s = %g: %s", fields[k].name, x, fields[k].rule);
+    return rf_fail(err, RF_EINVAL, "%s = %g: %s", f->name, x, rule);
 }
 
 double rf_dundurs_beta(double E1, double nu1, double E2, double nu2)

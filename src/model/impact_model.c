@@ -18,22 +18,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const rf_impact_param_names[RF_IMPACT_N_PARAMS] = {
-    "radius", "horizontal_axis", "boulder_density", "slope_density", "boulder_E", "slope_E",
-    "boulder_poisson", "slope_poisson", "velocity", "slope_angle", "friction",
-    "boulder_yield", "boulder_hardening", "slope_yield", "slope_hardening", "slope_cohesion",
-    "slope_friction_angle", "slope_dilatancy_angle", "slope_cap_pressure", "slope_cap_hardening",
-    "layer_thickness", "layer_density", "layer_E", "layer_poisson", "layer_yield", "layer_hardening",
-    "layer_cohesion", "layer_friction_angle", "layer_dilatancy_angle", "layer_cap_pressure", "layer_cap_hardening", "gravity",
-    "slope_dilatancy_cutoff", "layer_dilatancy_cutoff"};
-
-const char *const rf_impact_output_names[RF_IMPACT_N_OUTPUTS] = {
-    "contact_force_max", "compression_max", "contact_duration", "contact_radius",
-    "R_n", "R_t", "R_ke", "plastic_work", "penetration_max", "indentation_depth",
-    "equivalent_plastic_strain_max"};
-
-const char *const rf_impact_output_units[RF_IMPACT_N_OUTPUTS] = {"N", "m", "s", "m", "", "", "", "", "m", "m", ""};
-
 static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid", "mdr"};
 
 const char *rf_impact_solver_name(rf_impact_solver s)
@@ -167,10 +151,12 @@ rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_inpu
 
 /* --- the rf_model --- */
 
+#define MAX_BOUND 64 /* > the number of bindable inputs */
+
 typedef struct {
     rf_impact_model_spec spec;  /* fem.vtk_dir cleared: evaluations must not share a directory */
     size_t n_params;
-    int field[RF_IMPACT_N_PARAMS]; /* index into rf_impact_param_names for each x[i] */
+    const rf_impact_field *field[MAX_BOUND]; /* the input each x[i] drives */
     /* FE warnings (e.g. reflected waves) of the evaluations so far, and the
        idle FE workspaces that evaluations (on any worker thread) reuse */
     pthread_mutex_t lock;
@@ -241,62 +227,12 @@ static size_t impact_warnings(void *p, char *buf, size_t size)
     return warned;
 }
 
-enum {
-    P_RADIUS, P_C, P_RHO_B, P_RHO_S, P_E_B, P_E_S, P_NU_B, P_NU_S, P_V, P_ANGLE, P_MU,
-    P_Y_B, P_H_B, P_Y_S, P_H_S, P_COH_S, P_PHI_S, P_PSI_S, P_CAP_S, P_CAPH_S,
-    P_L_T, P_L_RHO, P_L_E, P_L_NU, P_Y_L, P_H_L, P_COH_L, P_PHI_L, P_PSI_L, P_CAP_L, P_CAPH_L, P_G,
-    P_DCUT_S, P_DCUT_L
-};
-
-static void bind(rf_impact_input *in, int field, double x)
-{
-    switch (field) {
-    case P_RADIUS: in->radius = x; break;
-    case P_C:
-        in->horizontal_axis = x;
-        in->vertical_axis = 0.0; /* d = radius^3 / c^2: constant volume */
-        break;
-    case P_RHO_B: in->boulder_density = x; break;
-    case P_RHO_S: in->slope_density = x; break;
-    case P_E_B: in->boulder_E = x; break;
-    case P_E_S: in->slope_E = x; break;
-    case P_NU_B: in->boulder_poisson = x; break;
-    case P_NU_S: in->slope_poisson = x; break;
-    case P_V: in->velocity = x; break;
-    case P_ANGLE: in->slope_angle = x * RF_PI / 180.0; break;
-    case P_MU: in->friction = x; break;
-    case P_Y_B: in->boulder_yield = x; break;
-    case P_H_B: in->boulder_hardening = x; break;
-    case P_Y_S: in->slope_yield = x; break;
-    case P_H_S: in->slope_hardening = x; break;
-    case P_COH_S: in->slope_cohesion = x; break;
-    case P_PHI_S: in->slope_friction_angle = x * RF_PI / 180.0; break;
-    case P_PSI_S: in->slope_dilatancy_angle = x * RF_PI / 180.0; break;
-    case P_CAP_S: in->slope_cap_pressure = x; break;
-    case P_CAPH_S: in->slope_cap_hardening = x; break;
-    case P_L_T: in->layer_thickness = x; break;
-    case P_L_RHO: in->layer_density = x; break;
-    case P_L_E: in->layer_E = x; break;
-    case P_L_NU: in->layer_poisson = x; break;
-    case P_Y_L: in->layer_yield = x; break;
-    case P_H_L: in->layer_hardening = x; break;
-    case P_COH_L: in->layer_cohesion = x; break;
-    case P_PHI_L: in->layer_friction_angle = x * RF_PI / 180.0; break;
-    case P_PSI_L: in->layer_dilatancy_angle = x * RF_PI / 180.0; break;
-    case P_CAP_L: in->layer_cap_pressure = x; break;
-    case P_CAPH_L: in->layer_cap_hardening = x; break;
-    case P_G: in->gravity = x; break;
-    case P_DCUT_S: in->slope_dilatancy_cutoff = x; break;
-    case P_DCUT_L: in->layer_dilatancy_cutoff = x; break;
-    }
-}
-
 static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
 {
     impact_ctx *c = p;
     rf_impact_input in = c->spec.base;
     for (size_t i = 0; i < c->n_params; i++)
-        bind(&in, c->field[i], x[i]);
+        rf_impact_field_set(&in, c->field[i], x[i]);
     rf_error local;
     rf_status st = rf_impact_input_validate(&in, &local);
     if (st != RF_OK)
@@ -312,17 +248,8 @@ static rf_status impact_eval(void *p, const double *x, double *y, rf_error *err)
     if (st != RF_OK)
         return rf_fail(err, st == RF_EINVAL ? RF_EMODEL : st, "impact model (%s): %s",
                        rf_impact_solver_name(c->spec.solver), local.msg);
-    y[0] = out.contact_force_max;
-    y[1] = out.compression_max;
-    y[2] = out.contact_duration;
-    y[3] = out.contact_radius;
-    y[4] = out.R_n;
-    y[5] = out.R_t;
-    y[6] = out.R_ke;
-    y[7] = out.plastic_work;
-    y[8] = out.penetration_max;
-    y[9] = out.indentation_depth;
-    y[10] = out.equivalent_plastic_strain_max;
+    for (size_t k = 0; k < RF_IMPACT_N_OUTPUTS; k++)
+        y[k] = *(const double *)((const char *)&out + rf_impact_output_fields[k].offset);
     return RF_OK;
 }
 
@@ -341,11 +268,11 @@ static void append(char *buf, size_t cap, size_t *len, const char *fmt, ...)
         *len += (size_t)n;
 }
 
-/* 1 when the parameter `field` (a P_ index) is bound, i.e. fuzzy in a study. */
-static int param_bound(const impact_ctx *c, int field)
+/* 1 when the input `name` is bound, i.e. fuzzy in a study. */
+static int param_bound(const impact_ctx *c, const char *name)
 {
     for (size_t i = 0; i < c->n_params; i++)
-        if (c->field[i] == field)
+        if (!strcmp(c->field[i]->name, name))
             return 1;
     return 0;
 }
@@ -353,7 +280,7 @@ static int param_bound(const impact_ctx *c, int field)
 /* A layer in the base input, or its thickness bound: a layer may appear at some points. */
 static int layer_possible(const impact_ctx *c)
 {
-    return c->spec.base.layer_thickness > 0 || param_bound(c, P_L_T);
+    return c->spec.base.layer_thickness > 0 || param_bound(c, "layer_thickness");
 }
 
 /* 1 if some evaluation may run in large deformation (rf_fem_large_deformation
@@ -391,12 +318,28 @@ static const char *boundary_identity(const impact_ctx *c)
     return layer_possible(c) || plastic_possible(c) ? "auto_absorbing_if_layer_or_plastic" : "fixed";
 }
 
+/* Every input of the base, from the one table (rf_impact_fields: SI, angles in
+ * radians as stored) and the three materials: a field cannot be forgotten, so
+ * a store never serves a result computed for other inputs. */
+static void base_identity(const impact_ctx *c, char *buf, size_t cap, size_t *len)
+{
+    const rf_impact_input *b = &c->spec.base;
+    append(buf, cap, len, " base: boulder_material=%s slope_material=%s layer_material=%s",
+           rf_impact_material_name(b->boulder_material), rf_material_model_name(b->slope_material),
+           rf_material_model_name(b->layer_material));
+    for (size_t k = 0; k < rf_impact_n_fields; k++) {
+        const rf_impact_field *f = &rf_impact_fields[k];
+        double x = *(const double *)((const char *)b + f->offset);
+        append(buf, cap, len, " %s=%.17g", f->name, x);
+    }
+}
+
 static void make_identity(const impact_ctx *c, char *buf, size_t cap)
 {
     const rf_impact_model_spec *s = &c->spec;
     const rf_impact_input *b = &s->base;
     size_t len = 0;
-    append(buf, cap, &len, "impact v1 solver=%s", rf_impact_solver_name(s->solver));
+    append(buf, cap, &len, "impact v2 solver=%s", rf_impact_solver_name(s->solver));
     int en_solver = s->solver == RF_IMPACT_RIGID || s->solver == RF_IMPACT_MDR;
     if (s->solver == RF_IMPACT_HUNTER || (en_solver && isnan(s->e_n)))
         append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
@@ -440,7 +383,7 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
             append(buf, cap, &len, " fem3d_materials=plastic_b_bar");
         /* the axisymmetric contact has Coulomb friction since issue 10 (it was frictionless): named
            where an evaluation may run it with friction, so a store never mixes the two */
-        if ((b->slope_angle == 0 || param_bound(c, P_ANGLE)) && (b->friction > 0 || param_bound(c, P_MU)))
+        if ((b->slope_angle == 0 || param_bound(c, "slope_angle")) && (b->friction > 0 || param_bound(c, "friction")))
             append(buf, cap, &len, " axi_contact=coulomb_friction");
         /* 3D results changed with the contact face's current slope (Newton-located master point)
            and the mass redistribution at the contact face (docs/validation-plastic.md 9e): granite
@@ -476,48 +419,10 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         if (strcmp(boundary_identity(c), "fixed") != 0) /* some evaluation may have dashpots */
             append(buf, cap, &len, " dashpots=face_impedance_semi_implicit");
     }
-    append(buf, cap, &len,
-           " base: radius=%.17g horizontal_axis=%.17g vertical_axis=%.17g boulder_density=%.17g"
-           " slope_density=%.17g boulder_E=%.17g slope_E=%.17g boulder_poisson=%.17g"
-           " slope_poisson=%.17g velocity=%.17g slope_angle_rad=%.17g friction=%.17g",
-           b->radius, b->horizontal_axis, b->vertical_axis, b->boulder_density, b->slope_density,
-           b->boulder_E, b->slope_E, b->boulder_poisson, b->slope_poisson, b->velocity,
-           b->slope_angle, b->friction);
-    if (b->boulder_material != RF_MATERIAL_ELASTIC || b->slope_material != RF_MATERIAL_ELASTIC)
-        append(buf, cap, &len,
-               " boulder_material=%s boulder_yield=%.17g boulder_hardening=%.17g slope_material=%s"
-               " slope_yield=%.17g slope_hardening=%.17g slope_cohesion=%.17g slope_friction_angle_rad=%.17g"
-               " slope_dilatancy_angle_rad=%.17g slope_cap_pressure=%.17g slope_cap_hardening=%.17g",
-               rf_impact_material_name(b->boulder_material), b->boulder_yield, b->boulder_hardening,
-               rf_material_model_name(b->slope_material), b->slope_yield, b->slope_hardening, b->slope_cohesion,
-               b->slope_friction_angle, b->slope_dilatancy_angle, b->slope_cap_pressure, b->slope_cap_hardening);
-    if (layer_possible(c))
-        append(buf, cap, &len,
-               " layer_thickness=%.17g layer_density=%.17g layer_E=%.17g layer_poisson=%.17g layer_material=%s"
-               " layer_yield=%.17g layer_hardening=%.17g layer_cohesion=%.17g layer_friction_angle_rad=%.17g"
-               " layer_dilatancy_angle_rad=%.17g layer_cap_pressure=%.17g layer_cap_hardening=%.17g",
-               b->layer_thickness, b->layer_density, b->layer_E, b->layer_poisson,
-               rf_material_model_name(b->layer_material), b->layer_yield, b->layer_hardening, b->layer_cohesion,
-               b->layer_friction_angle, b->layer_dilatancy_angle, b->layer_cap_pressure, b->layer_cap_hardening);
-    /* the dilatancy cutoff is named only where it may act: identities without it stay as they were */
-    if (b->slope_dilatancy_cutoff != 0 || param_bound(c, P_DCUT_S))
-        append(buf, cap, &len, " slope_dilatancy_cutoff=%.17g", b->slope_dilatancy_cutoff);
-    if (b->layer_dilatancy_cutoff != 0 || param_bound(c, P_DCUT_L))
-        append(buf, cap, &len, " layer_dilatancy_cutoff=%.17g", b->layer_dilatancy_cutoff);
-    /* gravity (docs/validation-plastic.md "Gravity") is named when an evaluation may run with it: the
-       gravity-free identities stay as they were */
-    const int gravity_fuzzy = param_bound(c, P_G);
-    const int gravity_named =
-        gravity_fuzzy || b->gravity > 0 || (b->gravity < 0 && s->solver == RF_IMPACT_FEM && plastic_possible(c));
-    if (gravity_named)
-        append(buf, cap, &len, " gravity=%.17g", b->gravity < 0 ? RF_GRAVITY_STANDARD : b->gravity);
-    /* the 3D model runs with that gravity since issue 10 (before: auto was 0 there, > 0 refused): a
-       store never mixes its 3D results from before and after */
-    if (gravity_named && s->solver == RF_IMPACT_FEM && may_run_3d(c))
-        append(buf, cap, &len, " fem3d_gravity=slope_frame");
+    base_identity(c, buf, cap, &len);
     append(buf, cap, &len, " params:");
     for (size_t i = 0; i < c->n_params; i++)
-        append(buf, cap, &len, "%s%s", i ? "," : "", rf_impact_param_names[c->field[i]]);
+        append(buf, cap, &len, "%s%s", i ? "," : "", c->field[i]->name);
 }
 
 /* Whether an FE evaluation of this model may need the 3D solver, so that its
@@ -530,9 +435,40 @@ static int may_run_3d(const impact_ctx *c)
     if (rf_fem_needs_3d(&c->spec.base))
         return 1;
     for (size_t i = 0; i < c->n_params; i++)
-        if (c->field[i] == P_ANGLE || c->field[i] == P_MU)
+        if (!strcmp(c->field[i]->name, "slope_angle") || !strcmp(c->field[i]->name, "friction"))
             return 1;
     return 0;
+}
+
+/* The bindable inputs, listed for a message. */
+static void bindable_list(char *buf, size_t size)
+{
+    size_t len = 0;
+    buf[0] = '\0';
+    for (size_t k = 0; k < rf_impact_n_fields && len < size; k++)
+        if (rf_impact_fields[k].bindable)
+            len += (size_t)snprintf(buf + len, size - len, "%s%s%s", len ? ", " : "", rf_impact_fields[k].name,
+                                    rf_impact_fields[k].kind == RF_FIELD_DEGREES ? " [deg]" : "");
+}
+
+/* c->field[i] = the input param_names[i] names: a bindable row, each at most once. */
+static rf_status bind_names(impact_ctx *c, const char *const *param_names, size_t n_params, rf_error *err)
+{
+    for (size_t i = 0; i < n_params; i++) {
+        const rf_impact_field *f = rf_impact_field_find(param_names[i]);
+        if (!f || !f->bindable) {
+            char list[1024];
+            bindable_list(list, sizeof list);
+            return rf_fail(err, RF_EINVAL, "impact model: parameter '%s' is unknown (accepted: %s)",
+                           param_names[i] ? param_names[i] : "(null)", list);
+        }
+        for (size_t j = 0; j < i; j++)
+            if (c->field[j] == f)
+                return rf_fail(err, RF_EINVAL, "impact model: parameter '%s' is bound twice", param_names[i]);
+        c->field[i] = f;
+    }
+    c->n_params = n_params;
+    return RF_OK;
 }
 
 rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *const *param_names,
@@ -544,61 +480,24 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     rf_status st = rf_impact_model_spec_validate(spec, err);
     if (st != RF_OK)
         return st;
-    if (n_params > RF_IMPACT_N_PARAMS)
-        return rf_fail(err, RF_EINVAL, "impact model: %zu parameters given, at most %d distinct "
-                                       "ones exist", n_params, RF_IMPACT_N_PARAMS);
+    if (n_params > MAX_BOUND)
+        return rf_fail(err, RF_EINVAL, "impact model: %zu parameters given, at most %zu distinct ones exist",
+                       n_params, rf_impact_n_fields);
     impact_ctx *c = calloc(1, sizeof *c);
     if (!c)
         return rf_fail(err, RF_ENOMEM, "out of memory for the impact model");
     pthread_mutex_init(&c->lock, NULL);
     c->spec = *spec;
     c->spec.fem.vtk_dir = NULL;
-    for (size_t i = 0; i < n_params; i++) {
-        int found = -1;
-        for (int k = 0; k < RF_IMPACT_N_PARAMS; k++)
-            if (param_names[i] && !strcmp(param_names[i], rf_impact_param_names[k]))
-                found = k;
-        if (found < 0) {
-            ctx_destroy(c);
-            return rf_fail(err, RF_EINVAL,
-                           "impact model: parameter '%s' is unknown (accepted: radius, "
-                           "horizontal_axis, boulder_density, slope_density, boulder_E, slope_E, "
-                           "boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction, "
-                           "boulder_yield, boulder_hardening, slope_yield, slope_hardening, slope_cohesion, "
-                           "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
-                           "slope_cap_hardening, layer_thickness, layer_density, layer_E, layer_poisson, "
-                           "layer_yield, layer_hardening, layer_cohesion, layer_friction_angle [deg], "
-                           "layer_dilatancy_angle [deg], layer_cap_pressure, layer_cap_hardening, gravity, "
-                           "slope_dilatancy_cutoff, layer_dilatancy_cutoff)",
-                           param_names[i] ? param_names[i] : "(null)");
-        }
-        for (size_t j = 0; j < i; j++)
-            if (c->field[j] == found) {
-                ctx_destroy(c);
-                return rf_fail(err, RF_EINVAL, "impact model: parameter '%s' is bound twice",
-                               param_names[i]);
-            }
-        c->field[i] = found;
+    if ((st = bind_names(c, param_names, n_params, err)) != RF_OK) {
+        ctx_destroy(c);
+        return st;
     }
-    c->n_params = n_params;
     /* base must be valid except for the bound fields: checked at eval time,
      * but a base that is invalid in an unbound field is an error now. */
     rf_impact_input probe = c->spec.base;
-    rf_impact_input nominal;
-    rf_impact_input_default(&nominal);
-    for (size_t i = 0; i < n_params; i++) {
-        const double nominal_x[RF_IMPACT_N_PARAMS] = {
-            nominal.radius, 1.0, nominal.boulder_density, nominal.slope_density,
-            nominal.boulder_E, nominal.slope_E, nominal.boulder_poisson, nominal.slope_poisson,
-            nominal.velocity, 0.0, 0.0, 1e8, 0.0, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0,
-            0.1, nominal.layer_density, nominal.layer_E, nominal.layer_poisson, 1e8, 0.0, 1e4, 30.0, 0.0, 0.0, 0.0,
-            0.0, 0.0, 0.0};
-        int f = c->field[i];
-        if (f == P_C)
-            bind(&probe, f, 0.0); /* a sphere probe: c = 0 is valid */
-        else
-            bind(&probe, f, nominal_x[f]);
-    }
+    for (size_t i = 0; i < n_params; i++)
+        rf_impact_field_set(&probe, c->field[i], c->field[i]->probe);
     rf_error local;
     if (rf_impact_input_validate(&probe, &local) != RF_OK) {
         ctx_destroy(c);
@@ -620,8 +519,10 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
     model->ctx = c;
     model->destroy = ctx_destroy;
     model->threads_per_eval = spec->solver == RF_IMPACT_FEM && spec->fem.threads > 1 ? spec->fem.threads : 1;
-    st = rf_model_init_outputs(model, RF_IMPACT_N_OUTPUTS, rf_impact_output_names,
-                               rf_impact_output_units, err);
+    const char *names[RF_IMPACT_N_OUTPUTS], *units[RF_IMPACT_N_OUTPUTS];
+    for (size_t k = 0; k < RF_IMPACT_N_OUTPUTS; k++)
+        names[k] = rf_impact_output_fields[k].name, units[k] = rf_impact_output_fields[k].unit;
+    st = rf_model_init_outputs(model, RF_IMPACT_N_OUTPUTS, names, units, err);
     if (st == RF_OK) {
         char buf[4096];
         make_identity(c, buf, sizeof buf);

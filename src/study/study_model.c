@@ -434,63 +434,6 @@ done:
 
 /* ---- impact ---- */
 
-/* Crisp inputs of the impact block: name -> field of rf_impact_input. */
-static double *impact_field(rf_impact_input *in, const char *name)
-{
-    struct { const char *name; double *field; } f[] = {
-        {"radius", &in->radius},
-        {"horizontal_axis", &in->horizontal_axis},
-        {"vertical_axis", &in->vertical_axis},
-        {"boulder_density", &in->boulder_density},
-        {"slope_density", &in->slope_density},
-        {"boulder_E", &in->boulder_E},
-        {"slope_E", &in->slope_E},
-        {"boulder_poisson", &in->boulder_poisson},
-        {"slope_poisson", &in->slope_poisson},
-        {"velocity", &in->velocity},
-        {"slope_angle", &in->slope_angle},
-        {"friction", &in->friction},
-        {"boulder_yield", &in->boulder_yield},
-        {"boulder_hardening", &in->boulder_hardening},
-        {"slope_yield", &in->slope_yield},
-        {"slope_hardening", &in->slope_hardening},
-        {"slope_cohesion", &in->slope_cohesion},
-        {"slope_friction_angle", &in->slope_friction_angle},
-        {"slope_dilatancy_angle", &in->slope_dilatancy_angle},
-        {"slope_cap_pressure", &in->slope_cap_pressure},
-        {"slope_cap_hardening", &in->slope_cap_hardening},
-        {"layer_thickness", &in->layer_thickness},
-        {"layer_density", &in->layer_density},
-        {"layer_E", &in->layer_E},
-        {"layer_poisson", &in->layer_poisson},
-        {"layer_yield", &in->layer_yield},
-        {"layer_hardening", &in->layer_hardening},
-        {"layer_cohesion", &in->layer_cohesion},
-        {"layer_friction_angle", &in->layer_friction_angle},
-        {"layer_dilatancy_angle", &in->layer_dilatancy_angle},
-        {"layer_cap_pressure", &in->layer_cap_pressure},
-        {"layer_cap_hardening", &in->layer_cap_hardening},
-        {"gravity", &in->gravity}, /* [m/s^2] >= 0, or auto (parse_impact) */
-        {"slope_dilatancy_cutoff", &in->slope_dilatancy_cutoff},
-        {"layer_dilatancy_cutoff", &in->layer_dilatancy_cutoff},
-    };
-    for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
-        if (!strcmp(name, f[k].name))
-            return f[k].field;
-    return NULL;
-}
-
-static const double deg = RF_PI / 180.0;
-
-/* Angles are given in degrees in a study and kept in radians in the input. */
-static double impact_unit(const rf_impact_input *in, const double *field)
-{
-    return field == &in->slope_angle || field == &in->slope_friction_angle || field == &in->slope_dilatancy_angle ||
-                   field == &in->layer_friction_angle || field == &in->layer_dilatancy_angle
-               ? deg
-               : 1.0;
-}
-
 /* gravity: auto, or its magnitude [m/s^2] >= 0 (a negative value, say -9.81 for
    "downward", is refused rather than read as anything). */
 static rf_status parse_gravity(sp_ctx *c, struct fy_node *v, const char *path, double *g)
@@ -503,6 +446,73 @@ static rf_status parse_gravity(sp_ctx *c, struct fy_node *v, const char *path, d
     if (rf_impact_gravity_parse(buf, g, &tmp) != RF_OK)
         return sp_fail(c, v, path, "expected auto or a magnitude >= 0 [m/s^2] (gravity acts along -z)");
     return RF_OK;
+}
+
+/* A crisp input of the impact block, as the table says (degrees for angles). */
+static rf_status parse_impact_input(sp_ctx *c, const rf_study *s, const rf_impact_field *f, struct fy_node *v,
+                                    const char *p, rf_impact_input *in)
+{
+    for (size_t i = 0; i < s->n_params; i++)
+        if (!strcmp(s->param_names[i], f->name))
+            return sp_fail(c, v, p, "'%s' is already a fuzzy parameter (line %d); give it in one place", f->name,
+                           s->param_line[i]);
+    double x;
+    rf_status st = f->kind == RF_FIELD_GRAVITY ? parse_gravity(c, v, p, &x) : sp_number(c, v, p, &x);
+    if (st == RF_OK)
+        rf_impact_field_store(in, f, x);
+    return st;
+}
+
+/* The impact inputs a fuzzy parameter may drive, with their units, for messages. */
+static void impact_keys(char *buf, size_t size)
+{
+    size_t len = 0;
+    buf[0] = '\0';
+    for (size_t k = 0; k < rf_impact_n_fields && len < size; k++) {
+        const rf_impact_field *f = &rf_impact_fields[k];
+        if (f->bindable)
+            len += (size_t)snprintf(buf + len, size - len, "%s%s%s%s%s", len ? ", " : "", f->name,
+                                    f->unit[0] ? " [" : "", f->unit, f->unit[0] ? "]" : "");
+    }
+}
+
+/* Levenshtein distance of two short names (capped at 64 characters). */
+static size_t name_distance(const char *a, const char *b)
+{
+    size_t la = strlen(a) < 64 ? strlen(a) : 64, lb = strlen(b) < 64 ? strlen(b) : 64, row[65];
+    for (size_t j = 0; j <= lb; j++)
+        row[j] = j;
+    for (size_t i = 1; i <= la; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= lb; j++) {
+            size_t up = row[j], best = diag + (a[i - 1] != b[j - 1]);
+            best = up + 1 < best ? up + 1 : best;
+            best = row[j - 1] + 1 < best ? row[j - 1] + 1 : best;
+            diag = up, row[j] = best;
+        }
+    }
+    return row[lb];
+}
+
+/* An unknown key: the nearest input name when it is close (a typo), and where the list is. */
+static rf_status unknown_impact_key(sp_ctx *c, struct fy_node *k, const char *p, const char *key)
+{
+    const char *near = NULL;
+    size_t best = 3; /* at most two edits */
+    for (size_t q = 0; q < rf_impact_n_fields; q++) {
+        size_t d = name_distance(key, rf_impact_fields[q].name);
+        if (d < best)
+            best = d, near = rf_impact_fields[q].name;
+    }
+    char hint[128] = "";
+    if (near)
+        snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
+    return sp_fail(c, k, p, "unknown key; %sthe impact model takes solver, boundary, large_deformation, ale, "
+                   "surface_mass_3d, sphere_contact_3d, refinement, domain_factor, end_time [s], threads, e_n, "
+                   "hunter_coefficient, boulder_material, slope_material, layer_material and the crisp inputs "
+                   "that `rockfuzz impact --help` and docs/impact.md list (radius [m], slope_angle [deg], ...)",
+                   hint);
 }
 
 static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
@@ -523,19 +533,11 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
         if (!key)
             break;
         sp_pathf(p, sizeof p, "%s.%s", path, key);
-        double *field = impact_field(&spec.base, key);
+        const rf_impact_field *field = rf_impact_field_find(key);
         char buf[32];
         if (field) {
-            for (size_t i = 0; i < s->n_params; i++)
-                if (!strcmp(s->param_names[i], key))
-                    return sp_fail(c, v, p, "'%s' is already a fuzzy parameter (line %d); give it in one place",
-                                   key, s->param_line[i]);
-            if (field == &spec.base.gravity) {
-                if ((st = parse_gravity(c, v, p, field)) != RF_OK)
-                    return st;
-            } else if ((st = sp_number(c, v, p, field)) != RF_OK)
+            if ((st = parse_impact_input(c, s, field, v, p, &spec.base)) != RF_OK)
                 return st;
-            *field *= impact_unit(&spec.base, field);
         } else if (!strcmp(key, "boulder_material") || !strcmp(key, "slope_material") ||
                    !strcmp(key, "layer_material")) {
             if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
@@ -599,41 +601,23 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
             if (!(spec.hunter_coefficient >= 0))
                 return sp_fail(c, v, p, "must be >= 0");
         } else {
-            return sp_fail(c, k, p,
-                           "unknown key; the impact model takes solver, boundary, large_deformation, ale, surface_mass_3d, sphere_contact_3d, "
-                           "refinement, "
-                           "domain_factor, end_time [s], threads, e_n, hunter_coefficient, boulder_material, slope_material, layer_material and "
-                           "crisp inputs "
-                           "(radius, horizontal_axis, vertical_axis, boulder_density, slope_density, boulder_E, "
-                           "slope_E, boulder_poisson, slope_poisson, velocity, slope_angle [deg], friction, "
-                           "boulder_yield, boulder_hardening, slope_yield, slope_hardening, slope_cohesion, "
-                           "slope_friction_angle [deg], slope_dilatancy_angle [deg], slope_cap_pressure, "
-                           "slope_cap_hardening, layer_thickness, layer_density, layer_E, layer_poisson, layer_yield, "
-                           "layer_hardening, layer_cohesion, layer_friction_angle [deg], layer_dilatancy_angle [deg], "
-                           "layer_cap_pressure, layer_cap_hardening, slope_dilatancy_cutoff, layer_dilatancy_cutoff)");
+            return unknown_impact_key(c, k, p, key);
         }
     }
     /* Every parameter must name an impact input. */
     for (size_t i = 0; i < s->n_params; i++) {
-        int found = 0;
-        for (size_t q = 0; q < RF_IMPACT_N_PARAMS; q++)
-            if (!strcmp(s->param_names[i], rf_impact_param_names[q]))
-                found = 1;
-        if (!found) {
-            char list[512] = "";
-            size_t len = 0;
-            for (size_t q = 0; q < RF_IMPACT_N_PARAMS && len < sizeof list; q++)
-                len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", q ? ", " : "", rf_impact_param_names[q]);
+        const rf_impact_field *f = rf_impact_field_find(s->param_names[i]);
+        if (!f || !f->bindable) {
+            char list[1024];
+            impact_keys(list, sizeof list);
             return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: '%s' is not an input of the impact model "
                            "(inputs: %s)", c->file, s->param_line[i], s->param_names[i], s->param_names[i], list);
         }
     }
     /* Check the crisp inputs with the fuzzy ones at their nominal values, then each support end. */
     rf_impact_input probe = spec.base;
-    for (size_t i = 0; i < s->n_params; i++) {
-        double *f = impact_field(&probe, s->param_names[i]);
-        *f = rf_fuzzy_nominal(&s->inputs[i]) * impact_unit(&probe, f);
-    }
+    for (size_t i = 0; i < s->n_params; i++)
+        rf_impact_field_set(&probe, rf_impact_field_find(s->param_names[i]), rf_fuzzy_nominal(&s->inputs[i]));
     const char *bad = rf_impact_input_first_invalid(&probe);
     if (bad) {
         for (size_t i = 0; i < s->n_params; i++)
@@ -664,8 +648,7 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
         double ends[2] = {lo, hi};
         for (int e = 0; e < 2; e++) {
             rf_impact_input q = probe;
-            double *f = impact_field(&q, s->param_names[i]);
-            *f = ends[e] * impact_unit(&q, f);
+            rf_impact_field_set(&q, rf_impact_field_find(s->param_names[i]), ends[e]);
             const char *b = rf_impact_input_first_invalid(&q);
             if (b && !strcmp(b, s->param_names[i])) {
                 rf_error tmp;
