@@ -8,7 +8,7 @@
  * analysis on, serial path; goal of issue 9: <= 12 ns incl. analysis), the
  * runner's speed-up from 1 to 2 workers on a ~1 us model, and the peak RSS.
  * Wall times on a shared machine are noisy: compare within one run, and use
- * callgrind instruction counts for small changes (docs/architecture.md).
+ * callgrind instruction counts for small changes (docs/tm-internals.md).
  * Each case line ends with a checksum (FNV-1a) of the bits of every cut,
  * bound input, monotonicity verdict and influence measure: a change to the
  * TM's code must leave it unchanged.

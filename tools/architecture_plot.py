@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """architecture_plot.py - docs/img/architecture.png: the data flow of a study
-and the stages of the FE core (docs/architecture.md).
+and the stages of the FE core (docs/fem-internals.md).
 
 Usage: /usr/bin/python3 tools/architecture_plot.py [img-dir]
 """
