@@ -70,6 +70,8 @@ typedef struct {
 typedef struct {
     char *name;
     char *file;                 /* the file it was read from (messages), may be NULL */
+    uint64_t text_hash;         /* FNV-1a of the trajectory file's text (0: built in memory); with the
+                                   profile's vertices it makes the trajectory model's identity */
     double gravity;             /* [m/s^2], default 9.81 */
     size_t n_points;
     double *px, *py;            /* profile vertices [m] */

@@ -10,6 +10,7 @@
  * shared by every evaluation (each impact of the impact model is computed
  * once per study process), unless a parameter changes it. */
 #include "trajectory/traj_internal.h"
+#include "core/hash.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -122,12 +123,20 @@ static rf_status init_outputs(rf_model *m, const rf_traj_spec *s, rf_error *err)
     return st;
 }
 
+/* The identity names the content, not the file name: the trajectory file's
+ * text (every value it gives) and the profile's vertices and segment
+ * materials as read (a profile CSV or a DEM cut enters through them), so an
+ * edited file is never served from a store. */
 static rf_status set_identity(rf_model *m, const traj_model_ctx *c, rf_error *err)
 {
+    const rf_traj_spec *s = &c->spec;
+    uint64_t profile = rf_fnv1a(RF_FNV1A_OFFSET, s->px, s->n_points * sizeof *s->px);
+    profile = rf_fnv1a(profile, s->py, s->n_points * sizeof *s->py);
+    profile = rf_fnv1a(profile, s->seg_material, (s->n_points ? s->n_points - 1 : 0) * sizeof *s->seg_material);
     char buf[2048];
-    int len = snprintf(buf, sizeof buf, "trajectory: file=%s samples=%zu seed=%llu lhs=%d bind=",
-                       c->spec.file ? c->spec.file : "?", c->spec.samples, (unsigned long long)c->spec.seed,
-                       c->spec.lhs);
+    int len = snprintf(buf, sizeof buf, "trajectory v2: file=%s text=%016llx profile=%016llx samples=%zu "
+                       "seed=%llu lhs=%d bind=", s->file ? s->file : "?", (unsigned long long)s->text_hash,
+                       (unsigned long long)profile, s->samples, (unsigned long long)s->seed, s->lhs);
     for (size_t i = 0; i < c->n_params && len > 0 && (size_t)len < sizeof buf; i++)
         len += snprintf(buf + len, sizeof buf - (size_t)len, "%s%s", i ? "," : "", c->paths[i]);
     return rf_model_set_identity(m, buf, err);

@@ -6,6 +6,7 @@
  * field is located through the lines recorded while reading. */
 #include "trajectory/traj_yaml_internal.h"
 #include "core/textfile.h"
+#include "core/hash.h"
 
 #include <errno.h>
 #include <math.h>
@@ -254,6 +255,7 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spe
         *slash = '\0';
     c.sp = (sp_ctx){name, slash ? dir : ".", err, NULL};
     s->file = rf_strdup(name);
+    s->text_hash = rf_fnv1a(RF_FNV1A_OFFSET, buf, len);
     sp_doc d = {0};
     rf_status st = sp_doc_load(&d, name, buf, len, "trajectory file", err);
     if (st == RF_OK)
