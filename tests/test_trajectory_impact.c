@@ -139,6 +139,78 @@ static void test_cache(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* Build a table from spec s and return its status; *cached gets how many of its impacts came from the file. */
+static rf_status build_cached(const rf_traj_spec *s, size_t *evals, size_t *cached, rf_error *err)
+{
+    traj_impact_table *t = NULL;
+    rf_status st = traj_impact_table_build(s, &t, err);
+    size_t nv, nt;
+    double est;
+    if (st == RF_OK)
+        traj_impact_table_info(t, &nv, &nt, evals, cached, &est);
+    traj_impact_table_free(t);
+    return st;
+}
+
+/* Every row read from the cache is checked: a non-finite value, an R_n out of
+ * [0, 1] and a second, different result for the same impact are refused with
+ * the file and line; an identical repeat is kept once and counted once. */
+static void test_cache_rows_checked(void **state)
+{
+    (void)state;
+    remove("traj_impact_cache.txt");
+    char buf[2048];
+    snprintf(buf, sizeof buf, "%s", yaml);
+    char *p = strstr(buf, "tolerance: 0.005}");
+    snprintf(p, sizeof buf - (size_t)(p - buf), "tolerance: 0.005, cache: traj_impact_cache.txt}}\n");
+    rf_traj_spec s;
+    rf_error err;
+    if (rf_traj_load_buffer("im.yaml", buf, strlen(buf), &s, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    size_t evals, cached, n0;
+    assert_int_equal(build_cached(&s, &n0, &cached, &err), RF_OK);
+    /* the whole file once more: the same impacts, kept and counted once */
+    FILE *f = fopen("traj_impact_cache.txt", "r");
+    assert_non_null(f);
+    char all[65536], first[512], key[256];
+    size_t len = fread(all, 1, sizeof all - 1, f);
+    fclose(f);
+    all[len] = '\0';
+    snprintf(first, sizeof first, "%.*s", (int)(strchr(all, '\n') - all + 1), all);
+    double r[5];
+    assert_int_equal(sscanf(first, "%255s %lf %lf %lf %lf %lf", key, &r[0], &r[1], &r[2], &r[3], &r[4]), 6);
+    f = fopen("traj_impact_cache.txt", "a");
+    assert_non_null(f);
+    fputs(all, f);
+    fclose(f);
+    assert_int_equal(build_cached(&s, &evals, &cached, &err), RF_OK);
+    assert_int_equal(evals, 0);
+    assert_int_equal(cached, n0);
+    size_t lines = 2 * (size_t)n0;
+    const char *bad[3][2] = {{"nan", "not a finite number"}, {"5", "R_n must lie in [0, 1]"},
+                             {"other", "other results than at line 1"}};
+    for (int k = 0; k < 3; k++) {
+        char row[600];
+        double rn = k == 2 ? r[2] * 0.5 : 0;
+        if (k == 2)
+            snprintf(row, sizeof row, "%s %.17g %.17g %.17g %.17g %.17g\n", key, r[0], r[1], rn, r[3], r[4]);
+        else
+            snprintf(row, sizeof row, "%s %.17g %.17g %s %.17g %.17g\n", key, r[0] * 3.1, r[1], bad[k][0], r[3], r[4]);
+        f = fopen("traj_impact_cache.txt", "w");
+        assert_non_null(f);
+        fputs(all, f);
+        fputs(all, f);
+        fputs(row, f);
+        fclose(f);
+        assert_int_not_equal(build_cached(&s, &evals, &cached, &err), RF_OK);
+        char where[64];
+        snprintf(where, sizeof where, "traj_impact_cache.txt:%zu:", lines + 1);
+        if (!strstr(err.msg, where) || !strstr(err.msg, bad[k][1]))
+            fail_msg("case %d: %s", k, err.msg);
+    }
+    rf_traj_spec_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -146,6 +218,7 @@ int main(void)
         cmocka_unit_test(test_bounce_uses_table),
         cmocka_unit_test(test_model_shares_table),
         cmocka_unit_test(test_cache),
+        cmocka_unit_test(test_cache_rows_checked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -18,8 +18,12 @@ rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double
                                    double *spin, rf_error *err);
 
 /* traj_impact_cache.c: rows of (v_n, theta, R_n, R_t, spin) for this setup
- * appended to *memo from the file (returns how many); and appended to it. */
-size_t traj_impact_cache_load(const char *path, const traj_impact_setup *s, double **memo, size_t *n, size_t *cap);
+ * appended to *memo from the file, each checked (finite, v_n > 0, theta in
+ * [0, pi/2), R_n in [0, 1], |R_t| <= 1, no energy gained beyond 1 %), an
+ * identical repeat kept once, a conflicting one refused with both lines; and
+ * new rows appended to the file. */
+rf_status traj_impact_cache_load(const char *path, const traj_impact_setup *s, double **memo, size_t *n,
+                                 size_t *cap, rf_error *err);
 void traj_impact_cache_append(const char *path, const traj_impact_setup *s, const double *rows, size_t count);
 
 #endif

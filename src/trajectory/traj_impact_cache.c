@@ -11,6 +11,7 @@
 #include "trajectory/traj_impact.h"
 
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,30 +23,110 @@ static void cache_key(const traj_impact_setup *s, char *key, size_t size)
              s->friction, s->refinement);
 }
 
-size_t traj_impact_cache_load(const char *path, const traj_impact_setup *s, double **memo, size_t *n, size_t *cap)
+/* Why a row (v_n, theta, R_n, R_t, spin) cannot be an impact of a sphere, or
+ * NULL.  The energy after the impact (translation and rotation, I = 0.4 m r^2)
+ * may exceed the energy before by at most 1 %, the FE energy closure's order;
+ * the bounce law caps what is left. */
+static const char *row_invalid(const double r[5])
+{
+    for (int q = 0; q < 5; q++)
+        if (!isfinite(r[q]))
+            return "a value is not a finite number";
+    if (!(r[0] > 0))
+        return "v_n must be > 0 [m/s]";
+    if (!(r[1] >= 0 && r[1] < 0.5 * RF_PI))
+        return "theta must lie in [0, pi/2) [rad]";
+    if (!(r[2] >= 0 && r[2] <= 1))
+        return "R_n must lie in [0, 1]";
+    if (!(fabs(r[3]) <= 1))
+        return "R_t must lie in [-1, 1]";
+    double c = cos(r[1]), s = sin(r[1]);
+    if (r[2] * r[2] * c * c + r[3] * r[3] * s * s * (1 + 0.4 * r[4] * r[4]) > 1.01)
+        return "the impact would gain kinetic energy (R_n, R_t and spin together)";
+    return NULL;
+}
+
+/* Index of an earlier row of *memo with the same (v_n, theta), or n. */
+static size_t same_impact(const double *memo, size_t n, const double r[5])
+{
+    for (size_t k = 0; k < n; k++)
+        if (memo[5 * k] == r[0] && memo[5 * k + 1] == r[1])
+            return k;
+    return n;
+}
+
+/* Room for one more row in *memo (rows of 5) and in *lines (their line numbers). */
+static rf_status grow(double **memo, size_t n, size_t *cap, size_t **lines, size_t *lcap, rf_error *err)
+{
+    if (n >= *cap) {
+        size_t c = *cap ? 2 * *cap : 256;
+        double *m = realloc(*memo, c * 5 * sizeof *m);
+        if (!m)
+            return rf_fail(err, RF_ENOMEM, "out of memory reading the impact cache");
+        *memo = m, *cap = c;
+    }
+    if (n >= *lcap) {
+        size_t c = *lcap ? 2 * *lcap : 256;
+        while (c <= n)
+            c *= 2;
+        size_t *l = realloc(*lines, c * sizeof *l);
+        if (!l)
+            return rf_fail(err, RF_ENOMEM, "out of memory reading the impact cache");
+        *lines = l, *lcap = c;
+    }
+    return RF_OK;
+}
+
+typedef struct {
+    const char *path;
+    double **memo;
+    size_t *n, *cap;
+    size_t *lines, lcap;      /* file line of each row (0: not from the file) */
+    rf_error *err;
+} cache_reader;
+
+/* One row of the current setup: checked, and added unless an identical one is
+ * there; a different result for the same impact is an error naming both lines. */
+static rf_status add_row(cache_reader *c, size_t line, const double r[5])
+{
+    const char *why = row_invalid(r);
+    if (why)
+        return rf_fail(c->err, RF_EINVAL, "%s:%zu: impact cache row (v_n %g, theta %g, R_n %g, R_t %g, spin %g): "
+                       "%s", c->path, line, r[0], r[1], r[2], r[3], r[4], why);
+    size_t k = same_impact(*c->memo, *c->n, r);
+    if (k < *c->n && memcmp(*c->memo + 5 * k, r, 5 * sizeof *r) != 0)
+        return rf_fail(c->err, RF_EINVAL, "%s:%zu: impact cache: the impact v_n %g m/s, theta %g rad has other "
+                       "results than at line %zu; remove the wrong line", c->path, line, r[0], r[1], c->lines[k]);
+    if (k < *c->n)
+        return RF_OK; /* the same impact twice (e.g. two runs computed it): kept once */
+    rf_status st = grow(c->memo, *c->n, c->cap, &c->lines, &c->lcap, c->err);
+    if (st == RF_OK) {
+        memcpy(*c->memo + 5 * *c->n, r, 5 * sizeof *r);
+        c->lines[(*c->n)++] = line;
+    }
+    return st;
+}
+
+rf_status traj_impact_cache_load(const char *path, const traj_impact_setup *s, double **memo, size_t *n,
+                                 size_t *cap, rf_error *err)
 {
     FILE *f = path ? fopen(path, "r") : NULL;
     if (!f)
-        return 0;
+        return RF_OK; /* no cache yet */
     char key[256], line[512], k[256];
     cache_key(s, key, sizeof key);
-    size_t loaded = 0;
-    while (fgets(line, sizeof line, f)) {
+    cache_reader c = {path, memo, n, cap, NULL, 0, err};
+    rf_status st = grow(memo, *n, cap, &c.lines, &c.lcap, err); /* rows already in the memo: line 0 */
+    for (size_t q = 0; st == RF_OK && q < *n; q++)
+        c.lines[q] = 0;
+    for (size_t nl = 1; st == RF_OK && fgets(line, sizeof line, f); nl++) {
         double r[5];
-        if (sscanf(line, "%255s %lf %lf %lf %lf %lf", k, &r[0], &r[1], &r[2], &r[3], &r[4]) != 6 || strcmp(k, key))
-            continue;
-        if (*n == *cap) {
-            size_t c = *cap ? 2 * *cap : 256;
-            double *m = realloc(*memo, c * 5 * sizeof *m);
-            if (!m)
-                break;
-            *memo = m, *cap = c;
-        }
-        memcpy(*memo + 5 * (*n)++, r, sizeof r);
-        loaded++;
+        if (sscanf(line, "%255s %lf %lf %lf %lf %lf", k, &r[0], &r[1], &r[2], &r[3], &r[4]) == 6 && !strcmp(k, key))
+            st = add_row(&c, nl, r);
     }
     fclose(f);
-    return loaded;
+    free(c.lines);
+    return st;
 }
 
 void traj_impact_cache_append(const char *path, const traj_impact_setup *s, const double *rows, size_t count)

@@ -21,7 +21,7 @@ struct traj_impact_table {
     double v[MAX_NODES], th[MAX_NODES];
     double *c;                 /* [(i * nt + j) * 3 + q]: R_n, R_t, spin */
     size_t evaluations;        /* impacts computed by the model for this table */
-    size_t from_cache;         /* impacts read from bounce.impact.cache */
+    size_t from_cache;         /* impacts of the table taken from bounce.impact.cache */
     double error_estimate;
 };
 
@@ -31,6 +31,8 @@ typedef struct {
     rf_error *err;
     double *memo;             /* (v, theta, R_n, R_t, spin) of every impact computed */
     size_t n_memo, cap_memo;
+    size_t n_cached;          /* the first n_cached rows of memo came from the cache file */
+    unsigned char *hit;       /* n_cached flags: the row was used by the table */
     const char *cache;        /* bounce.impact.cache or NULL */
 } builder;
 
@@ -40,6 +42,8 @@ static rf_status eval(builder *b, double v, double th, double *c)
     for (size_t k = 0; k < b->n_memo; k++)
         if (b->memo[5 * k] == v && b->memo[5 * k + 1] == th) {
             memcpy(c, &b->memo[5 * k + 2], 3 * sizeof *c);
+            if (k < b->n_cached && b->hit && !b->hit[k]) /* a cache hit, counted once per impact */
+                b->hit[k] = 1, b->t->from_cache++;
             return RF_OK;
         }
     b->t->evaluations++;
@@ -189,7 +193,7 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
     traj_impact_table *t = calloc(1, sizeof *t);
     if (!t)
         return rf_fail(err, RF_ENOMEM, "out of memory");
-    builder b = {{0}, t, err, NULL, 0, 0, spec->impact_cache};
+    builder b = {{0}, t, err, NULL, 0, 0, 0, NULL, spec->impact_cache};
     rf_status st = traj_impact_setup_init(&b.setup, spec, err);
     t->nv = t->nt = 5;
     for (size_t i = 0; i < 5; i++) { /* v_n geometric, theta uniform */
@@ -197,7 +201,10 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
         t->th[i] = spec->impact_max_incidence * (RF_PI / 180) * (double)i / 4;
     }
     if (st == RF_OK)
-        t->from_cache = traj_impact_cache_load(spec->impact_cache, &b.setup, &b.memo, &b.n_memo, &b.cap_memo);
+        st = traj_impact_cache_load(spec->impact_cache, &b.setup, &b.memo, &b.n_memo, &b.cap_memo, err);
+    b.n_cached = b.n_memo;
+    if (st == RF_OK && b.n_cached && !(b.hit = calloc(b.n_cached, 1)))
+        st = rf_fail(err, RF_ENOMEM, "out of memory");
     if (st == RF_OK)
         st = fill(&b);
     if (st == RF_OK)
@@ -205,6 +212,7 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
     if (st == RF_OK)
         st = estimate_error(&b);
     free(b.memo);
+    free(b.hit);
     if (st != RF_OK) {
         traj_impact_table_free(t);
         return st;
