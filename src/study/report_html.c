@@ -261,6 +261,8 @@ static void write_headline(FILE *f, struct fy_node *outputs)
                "(membership 0); with every input at its nominal value it is <b>%.4g %s</b>.",
             round_off(lo, big) * fac, round_off(hi, big) * fac, du, round_off(number(get(o, "nominal")), big) * fac,
             du);
+    if (lo == 0 && strstr(name, "_ke_"))
+        fputs(" (0: at some inputs no block reaches the line.)", f);
     if (!isnan(r)) {
         fputs(" The input with the largest influence is <b>", f);
         html(f, top);
