@@ -112,7 +112,7 @@ assert a["outputs"] == b["outputs"]
 EOF
 
 # ---- the shipped examples run ----
-# default.yaml is the FE quick-start study (~1 min): here only that it loads,
+# default.yaml is the quick-start trajectory study (395 TM points): here only that it loads,
 # builds its model and is stopped by the evaluation cap before any run
 "$bin" run "$src/examples/default.yaml" --out "$tmp/ex_default" --quiet --max-evaluations 1 > /dev/null 2> "$tmp/ex.err" \
     && fail "examples/default.yaml ran past --max-evaluations 1"
