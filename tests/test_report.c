@@ -230,18 +230,21 @@ static rf_status load(const char *text, rf_study *s)
     return st;
 }
 
-/* indentation_depth is reported only above 1 % of the smallest penetration_max:
- * here penetration_max = x1 >= 1 (support [1, 3]), so the floor is 0.01. */
+/* indentation_depth is reported only above 1 % of the smallest penetration_max
+ * (here penetration_max = x1 >= 1, support [1, 3], so the floor is 0.01), and
+ * never where plastic_work is 0 at every point (elastic bodies: no crater). */
 static void test_indentation_floor(void **state)
 {
     (void)state;
     const char *fmt = "levels: 2\nparameters:\n  x1: {tfn: [2, 1, 1]}\n  x2: {tfn: [3, 1, 2]}\n"
-                      "model:\n  formula: {penetration_max: \"x1\", indentation_depth: \"%s\"}\n"
+                      "model:\n  formula: {penetration_max: \"x1\", indentation_depth: \"%s\", plastic_work: \"%s\"}\n"
                       "options: {left_right: false}\n";
-    const char *expr[2] = {"0.002*(x2 - 3)", "0.0025*x2"}; /* |.| <= 0.004 < 0.01; 0.005 .. 0.0125 */
-    for (int c = 0; c < 2; c++) {
+    /* |.| <= 0.004 < 0.01; 0.005 .. 0.0125 with plastic work; the same without */
+    const char *expr[3][2] = {{"0.002*(x2 - 3)", "0.1"}, {"0.0025*x2", "0.1*x1"}, {"0.0025*x2", "x1 - x1"}};
+    const rp_output_kind want[3] = {RP_OUTPUT_BELOW_FLOOR, RP_OUTPUT_SHOWN, RP_OUTPUT_BELOW_FLOOR};
+    for (int c = 0; c < 3; c++) {
         char text[512];
-        snprintf(text, sizeof text, fmt, expr[c]);
+        snprintf(text, sizeof text, fmt, expr[c][0], expr[c][1]);
         rf_study s;
         rf_tm_result res;
         rf_tm_options opt;
@@ -252,9 +255,11 @@ static void test_indentation_floor(void **state)
         char why[512];
         assert_int_equal(rp_output_classify(&s, &res, 0, why, sizeof why), RP_OUTPUT_SHOWN);
         rp_output_kind k = rp_output_classify(&s, &res, 1, why, sizeof why);
-        assert_int_equal(k, c == 0 ? RP_OUTPUT_BELOW_FLOOR : RP_OUTPUT_SHOWN);
+        assert_int_equal(k, want[c]);
         if (c == 0)
             assert_non_null(strstr(why, "|value| <= 0.004 m, less than 1 % of the smallest penetration_max (1 m)"));
+        if (c == 2)
+            assert_non_null(strstr(why, "the bodies stay elastic (plastic_work 0 at every point)"));
         rf_tm_result_free(&res);
         rf_study_free(&s);
     }

@@ -16,9 +16,10 @@ int rp_output_undefined(const rf_tm_result *res, size_t k);
 /* How an output is reported.  SHOWN: table, measures, plots.  The others get one
  * line: UNDEFINED (NaN everywhere, e.g. R_t of a normal impact), ZERO (exactly 0
  * at every point, e.g. plastic_work of elastic bodies) and BELOW_FLOOR
- * (indentation_depth smaller than RP_INDENTATION_FLOOR x the smallest
- * penetration_max of the study: the elastic spring-back residual, numerical
- * noise; docs/user-guide.md section 3). */
+ * (indentation_depth of elastic bodies, plastic_work 0 at every point, or
+ * smaller than RP_INDENTATION_FLOOR x the smallest penetration_max of the
+ * study: the elastic spring-back residual, numerical noise; docs/user-guide.md
+ * section 3). */
 typedef enum { RP_OUTPUT_SHOWN, RP_OUTPUT_UNDEFINED, RP_OUTPUT_ZERO, RP_OUTPUT_BELOW_FLOOR } rp_output_kind;
 
 #define RP_INDENTATION_FLOOR 0.01

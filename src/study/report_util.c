@@ -71,11 +71,21 @@ rp_output_kind rp_output_classify(const rf_study *s, const rf_tm_result *res, si
         snprintf(why, size, "0 at every point");
         return RP_OUTPUT_ZERO;
     }
-    long pen = output_index(s, "penetration_max");
-    if (strcmp(s->model.output_names[k], "indentation_depth") != 0 || pen < 0)
+    if (strcmp(s->model.output_names[k], "indentation_depth") != 0)
+        return RP_OUTPUT_SHOWN;
+    long pen = output_index(s, "penetration_max"), wp = output_index(s, "plastic_work");
+    double a = output_max_abs(res, k);
+    if (wp >= 0 && output_all_zero(res, (size_t)wp)) {
+        snprintf(why, size,
+                 "below its numerical floor: the bodies stay elastic (plastic_work 0 at every point), so the "
+                 "permanent indentation is 0; the |value| <= %.2g m computed is the slope's residual elastic vibration",
+                 a);
+        return RP_OUTPUT_BELOW_FLOOR;
+    }
+    if (pen < 0)
         return RP_OUTPUT_SHOWN;
     /* the smallest penetration of the study: its level-0 lower bound */
-    double ref = res->lo[(size_t)pen * (res->levels + 1)], a = output_max_abs(res, k);
+    double ref = res->lo[(size_t)pen * (res->levels + 1)];
     if (isfinite(ref) && ref > 0 && a < RP_INDENTATION_FLOOR * ref) {
         snprintf(why, size,
                  "below its numerical floor: |value| <= %.2g m, less than %.0f %% of the smallest penetration_max "
