@@ -347,7 +347,7 @@ static void write_settings(FILE *f, struct fy_node *root)
     if (!set) {
         html(f, text(get(root, "model_identity"), a, sizeof a)); /* a result from an older version */
     } else if (fy_node_mapping_item_count(set) == 0) {
-        fputs("all at their defaults", f);
+        fputs(vs ? "all at their defaults" : "as in the model line above", f);
     } else {
         fputs("<table>", f);
         void *it = NULL;

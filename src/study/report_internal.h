@@ -37,8 +37,9 @@ typedef struct {
 } rp_setting;
 
 /* The key=value settings of the model identity (at most max): for the impact
- * model those that differ from its defaults (*vs_defaults = 1), for the other
- * models all of them.  The raw identity stays in result.json. */
+ * model those that differ from its defaults (*vs_defaults = 1), for the
+ * trajectory model all of them, for formula and program models none (their
+ * description says it all).  The raw identity stays in result.json. */
 size_t rp_model_settings(const rf_study *s, rp_setting *out, size_t max, int *vs_defaults);
 
 /* The unit to show a value of this unit and size in: kJ for J from 1e4 J on

@@ -174,6 +174,8 @@ static char *impact_default_identity(const rf_study *s)
 size_t rp_model_settings(const rf_study *s, rp_setting *out, size_t max, int *vs_defaults)
 {
     *vs_defaults = 0;
+    if (s->model_kind != RF_STUDY_MODEL_IMPACT && s->model_kind != RF_STUDY_MODEL_TRAJECTORY)
+        return 0; /* a formula or program: the model line (its description) says it all */
     size_t n = identity_tokens(s->model.identity, out, max);
     char *def = s->model_kind == RF_STUDY_MODEL_IMPACT ? impact_default_identity(s) : NULL;
     if (!def)
