@@ -30,25 +30,129 @@ static const char *mono_text(rf_monotonicity m)
 
 /* ---------------------------------------------------------------- summary */
 
-static void print_value(FILE *f, double v, rf_na_reason why)
+static void print_value(FILE *f, double v)
 {
     if (isnan(v))
-        fprintf(f, " %12s", why != RF_NA_NONE ? "n/a" : "nan");
+        fprintf(f, " %12s", "n/a"); /* the reason follows on the line */
     else
         fprintf(f, " %12.6g", v);
 }
 
-void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_analysis *an)
+/* The cut table, level-0 points and influence table of output k. */
+static void print_output_detail(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_analysis *an, size_t k,
+                                int w)
 {
     size_t n = res->n_inputs, m = res->levels;
+    fprintf(f, "  %8s %16s %16s\n", "mu", "lower", "upper");
+    for (size_t j = 0; j <= m; j++)
+        fprintf(f, "  %8.4f %16.10g %16.10g\n", (double)j / (double)m, res->lo[k * (m + 1) + j],
+                res->hi[k * (m + 1) + j]);
+    fprintf(f, "  nominal: %.10g\n", res->nominal[k]);
+    for (int side = 0; side < 2; side++) {
+        const double *xs = side ? res->x_hi : res->x_lo;
+        fprintf(f, "  level-0 %s bound %.10g at:", side ? "upper" : "lower",
+                side ? res->hi[k * (m + 1)] : res->lo[k * (m + 1)]);
+        for (size_t i = 0; i < n; i++)
+            fprintf(f, " %s=%.10g", s->param_names[i], xs[(k * (m + 1) + 0) * n + i]);
+        fputc('\n', f);
+    }
+    if (isnan(res->nominal[k]))
+        fprintf(f, "  note: the model returns NaN for this output at the nominal point (undefined here)\n");
+    fprintf(f, "  influence:\n    %-*s %12s %12s %12s %12s\n", w, "input", "rho", "kappa", "rho_left", "rho_right");
+    for (size_t i = 0; i < n; i++) {
+        size_t q = k * n + i;
+        fprintf(f, "    %-*s", w, s->param_names[i]);
+        print_value(f, an->rho[q]);
+        print_value(f, an->kappa[q]);
+        print_value(f, an->rho_left[q]);
+        print_value(f, an->rho_right[q]);
+        if (isnan(an->rho[q]) && an->reason_hanss[q] != RF_NA_NONE)
+            fprintf(f, "  rho: n/a (%s)", rf_na_reason_text(an->reason_hanss[q]));
+        if (isnan(an->rho_left[q]) && an->reason_lr[q] != RF_NA_NONE && s->left_right)
+            fprintf(f, "  left/right: n/a (%s)", rf_na_reason_text(an->reason_lr[q]));
+        fputc('\n', f);
+    }
+    if (!s->left_right)
+        fprintf(f, "  rho_left, rho_right: n/a (options.left_right is off: the three-point grid was not evaluated)\n");
+    if (isnan(an->degree_of_uncertainty[k]))
+        fprintf(f, "  degree of uncertainty: n/a (%s)\n",
+                an->reason_nu[k] != RF_NA_NONE ? rf_na_reason_text(an->reason_nu[k]) : "undefined");
+    else if (isnan(an->interaction[k]))
+        fprintf(f, "  degree of uncertainty: %.6g (interaction part n/a: %s)\n", an->degree_of_uncertainty[k],
+                s->left_right ? "the nominal output is 0" : "needs the left/right grid, options.left_right is off");
+    else
+        fprintf(f, "  degree of uncertainty: %.6g (interaction part %.6g)\n", an->degree_of_uncertainty[k],
+                an->interaction[k]);
+}
+
+/* Monotonicity of output k: a warning for the reduced form, information otherwise; returns 1 if warned. */
+static int print_monotonicity(FILE *f, const rf_study *s, const rf_tm_result *res, size_t k)
+{
+    size_t n = res->n_inputs;
+    int warned = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (res->monotonicity[k * n + i] != RF_MONO_NONMONOTONIC)
+            continue;
+        if (res->scheme == RF_TM_REDUCED) {
+            fprintf(f, "  WARNING: %s is not monotonic in %s on the three-point grid: the reduced form can "
+                       "under-estimate this output; rerun with scheme: extended or general\n",
+                    s->model.output_names[k], s->param_names[i]);
+            warned = 1;
+        } else {
+            fprintf(f, "  note: %s is not monotonic in %s (the %s form handles this on its grid)\n",
+                    s->model.output_names[k], s->param_names[i], rf_tm_scheme_name(res->scheme));
+        }
+    }
+    return warned;
+}
+
+/* One line per kind of output that gets no section (0 everywhere, undefined, below its floor). */
+static void print_skipped(FILE *f, const rf_study *s, const rf_tm_result *res)
+{
+    static const char *const title[] = {"", "undefined (the model returns NaN at every point)",
+                                        "0 at every point", ""};
+    char why[512];
+    for (int kind = RP_OUTPUT_UNDEFINED; kind <= RP_OUTPUT_ZERO; kind++) {
+        int any = 0;
+        for (size_t k = 0; k < res->n_outputs; k++)
+            if ((int)rp_output_classify(s, res, k, why, sizeof why) == kind)
+                fprintf(f, "%s%s", any++ ? ", " : "\n", s->model.output_names[k]);
+        if (any)
+            fprintf(f, ": %s (no section).\n", title[kind]);
+    }
+    for (size_t k = 0; k < res->n_outputs; k++)
+        if (rp_output_classify(s, res, k, why, sizeof why) == RP_OUTPUT_BELOW_FLOOR)
+            fprintf(f, "\n%s: not shown, %s.\n", s->model.output_names[k], why);
+}
+
+/* The answer: per reported output its support at membership 0, nominal value and main input. */
+static void print_answer(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_analysis *an)
+{
+    size_t n = res->n_inputs, m = res->levels;
+    char why[512];
+    fprintf(f, "\nAnswer (support at membership 0; nominal value; the input with the largest influence rho):\n");
+    for (size_t k = 0; k < res->n_outputs; k++) {
+        if (rp_output_classify(s, res, k, why, sizeof why) != RP_OUTPUT_SHOWN)
+            continue;
+        double lo = res->lo[k * (m + 1)], hi = res->hi[k * (m + 1)], fac;
+        const char *unit = s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "";
+        const char *du = rp_display_unit(unit, fmax(fabs(lo), fabs(hi)), &fac);
+        fprintf(f, "  %s: %.4g to %.4g%s%s, nominal %.4g%s%s", s->model.output_names[k], lo * fac, hi * fac,
+                du[0] ? " " : "", du, res->nominal[k] * fac, du[0] ? " " : "", du);
+        int top = rp_main_input(an->rho + k * n, n);
+        if (top >= 0)
+            fprintf(f, "; %s %.0f %%", s->param_names[top], 100 * an->rho[k * n + (size_t)top]);
+        fputc('\n', f);
+    }
+}
+
+void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_analysis *an)
+{
+    size_t n = res->n_inputs;
     int w = 12; /* width of the input-name column */
     for (size_t i = 0; i < n; i++)
         if ((int)strlen(s->param_names[i]) > w)
             w = (int)strlen(s->param_names[i]);
-    fprintf(f, "\nStudy '%s': %s form, m = %zu levels, %zu input%s, model %s\n", s->name,
-            rf_tm_scheme_name(res->scheme), m, n, n == 1 ? "" : "s", s->model_description);
-    fprintf(f, "Evaluations: %zu requested, %zu distinct (probe %zu, left/right grid %zu)\n", res->requested,
-            res->distinct, res->probe_evaluations, res->lr_evaluations);
     fprintf(f, "\nInputs:\n");
     for (size_t i = 0; i < n; i++) {
         fprintf(f, "  %-*s  %s%s%s%s", w, s->param_names[i], s->param_shapes[i], s->param_units[i][0] ? " [" : "",
@@ -58,72 +162,21 @@ void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res
                     s->param_class[i] != RF_MONO_AUTO ? " (forced)" : " (probe)");
         fputc('\n', f);
     }
-    int warned_header = 0;
+    int warned = 0;
+    char why[512];
     for (size_t k = 0; k < res->n_outputs; k++) {
+        if (rp_output_classify(s, res, k, why, sizeof why) != RP_OUTPUT_SHOWN)
+            continue;
         const char *unit = s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "";
         fprintf(f, "\nOutput %s%s%s%s\n", s->model.output_names[k], unit[0] ? " [" : "", unit, unit[0] ? "]" : "");
-        if (rp_output_undefined(res, k)) {
-            fprintf(f, "  undefined for this study: the model returns NaN at every point (no table, measures or "
-                       "plots)\n");
-            continue;
-        }
-        fprintf(f, "  %8s %16s %16s\n", "mu", "lower", "upper");
-        for (size_t j = 0; j <= m; j++)
-            fprintf(f, "  %8.4f %16.10g %16.10g\n", (double)j / (double)m, res->lo[k * (m + 1) + j],
-                    res->hi[k * (m + 1) + j]);
-        fprintf(f, "  nominal: %.10g\n", res->nominal[k]);
-        for (int side = 0; side < 2; side++) {
-            const double *xs = side ? res->x_hi : res->x_lo;
-            fprintf(f, "  level-0 %s bound %.10g at:", side ? "upper" : "lower",
-                    side ? res->hi[k * (m + 1)] : res->lo[k * (m + 1)]);
-            for (size_t i = 0; i < n; i++)
-                fprintf(f, " %s=%.10g", s->param_names[i], xs[(k * (m + 1) + 0) * n + i]);
-            fputc('\n', f);
-        }
-        if (isnan(res->nominal[k]))
-            fprintf(f, "  note: the model returns NaN for this output at the nominal point (undefined here)\n");
-        fprintf(f, "  influence:\n    %-*s %12s %12s %12s %12s\n", w, "input", "rho", "kappa", "rho_left", "rho_right");
-        for (size_t i = 0; i < n; i++) {
-            size_t q = k * n + i;
-            fprintf(f, "    %-*s", w, s->param_names[i]);
-            print_value(f, an->rho[q], an->reason_hanss[q]);
-            print_value(f, an->kappa[q], an->reason_hanss[q]);
-            print_value(f, an->rho_left[q], an->reason_lr[q]);
-            print_value(f, an->rho_right[q], an->reason_lr[q]);
-            if (isnan(an->rho[q]) && an->reason_hanss[q] != RF_NA_NONE)
-                fprintf(f, "  rho: n/a (%s)", rf_na_reason_text(an->reason_hanss[q]));
-            if (isnan(an->rho_left[q]) && an->reason_lr[q] != RF_NA_NONE)
-                fprintf(f, "  left/right: n/a (%s)", rf_na_reason_text(an->reason_lr[q]));
-            fputc('\n', f);
-        }
-        if (isnan(an->degree_of_uncertainty[k]))
-            fprintf(f, "  degree of uncertainty: n/a (%s)\n",
-                    an->reason_nu[k] != RF_NA_NONE ? rf_na_reason_text(an->reason_nu[k]) : "undefined");
-        else
-            fprintf(f, "  degree of uncertainty: %.6g (interaction part %.6g)\n", an->degree_of_uncertainty[k],
-                    an->interaction[k]);
-        /* Monotonicity: a warning for the reduced form, information otherwise. */
-        int checked = 0;
-        for (size_t i = 0; i < n; i++) {
-            rf_monotonicity v = res->monotonicity[k * n + i];
-            if (v != RF_MONO_AUTO)
-                checked = 1;
-            if (v == RF_MONO_NONMONOTONIC) {
-                if (res->scheme == RF_TM_REDUCED) {
-                    fprintf(f, "  WARNING: %s is not monotonic in %s on the three-point grid: the reduced form can "
-                               "under-estimate this output; rerun with scheme: extended or general\n",
-                            s->model.output_names[k], s->param_names[i]);
-                    warned_header = 1;
-                } else {
-                    fprintf(f, "  note: %s is not monotonic in %s (the %s form handles this on its grid)\n",
-                            s->model.output_names[k], s->param_names[i], rf_tm_scheme_name(res->scheme));
-                }
-            }
-        }
-        if (!checked)
-            fprintf(f, "  monotonicity: not checked (options.left_right is off)\n");
+        print_output_detail(f, s, res, an, k, w);
+        warned |= print_monotonicity(f, s, res, k);
     }
-    if (warned_header)
+    print_skipped(f, s, res);
+    if (!s->left_right)
+        fprintf(f, "\nMonotonicity: not checked (options.left_right is off in the study).\n");
+    print_answer(f, s, res, an);
+    if (warned)
         fprintf(f, "\nSee the warnings above: the reduced form is exact only for models monotonic in every input.\n");
     fputc('\n', f);
 }
@@ -196,6 +249,24 @@ static void json_reason(FILE *f, const char *key, double v, rf_na_reason r)
     }
 }
 
+/* "model_settings": the readable settings (differing from the defaults for the impact model). */
+static void write_settings(FILE *f, const rf_study *s)
+{
+    enum { MAX_SETTINGS = 128 };
+    rp_setting *set = malloc(MAX_SETTINGS * sizeof *set);
+    int vs_defaults = 0;
+    size_t n = set ? rp_model_settings(s, set, MAX_SETTINGS, &vs_defaults) : 0;
+    fprintf(f, ",\n  \"model_settings_vs_defaults\": %s,\n  \"model_settings\": {", vs_defaults ? "true" : "false");
+    for (size_t i = 0; i < n; i++) {
+        fputs(i ? ", " : "", f);
+        json_string(f, set[i].key);
+        fputs(": ", f);
+        json_string(f, set[i].value);
+    }
+    fputc('}', f);
+    free(set);
+}
+
 /* Every message a reader of result.json / report.html must see, as JSON strings. */
 static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_report_options *opt)
 {
@@ -230,10 +301,7 @@ static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res, 
                 WARN();
             }
     }
-    if (!s->left_right) {
-        snprintf(msg, sizeof msg, "monotonicity not checked (options.left_right is off)");
-        WARN();
-    }
+    /* options.left_right off is the study's choice, not a warning: the run table says it */
     if (opt && opt->model_warnings && opt->model_warnings[0]) {
         /* what the model itself reported while evaluating, handed over as data */
         snprintf(msg, sizeof msg, "model: %s", opt->model_warnings);
@@ -264,6 +332,7 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
     json_string(f, rf_study_model_kind_name(s->model_kind));
     fputs(",\n  \"model_identity\": ", f);
     json_string(f, s->model.identity ? s->model.identity : "");
+    write_settings(f, s);
     fputs(",\n  \"mu\": ", f);
     json_levels(f, m);
     fputs(",\n  \"inputs\": {", f);
@@ -293,6 +362,13 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
         json_string(f, s->model.output_names[k]);
         fputs(": {\n      \"unit\": ", f);
         json_string(f, s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "");
+        char why[512];
+        rp_output_kind kind = rp_output_classify(s, res, k, why, sizeof why);
+        fprintf(f, ",\n      \"status\": \"%s\"", rp_output_kind_name(kind));
+        if (kind != RP_OUTPUT_SHOWN) {
+            fputs(", \"status_reason\": ", f);
+            json_string(f, why);
+        }
         fputs(",\n      \"mu\": ", f);
         json_levels(f, m);
         fputs(",\n      \"lower\": ", f);
@@ -362,9 +438,9 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
     fputs("],\n", f);
     fputs("  \"wall_seconds\": ", f);
     json_number(f, opt ? opt->wall_seconds : NAN);
-    fprintf(f, ",\n  \"jobs\": %d,\n  \"measures\": \"rho, kappa: Hanss 2002/2005 (tm_spec 5.3); rho_left, "
-               "rho_right, degree_of_uncertainty: LR analysis (project definition after Gauger et al. 2008, "
-               "tm_spec 5.4)\"\n}\n",
+    fprintf(f, ",\n  \"jobs\": %d,\n  \"measures\": \"rho, kappa: the influence measures of Hanss "
+               "(Applied Fuzzy Arithmetic, Springer 2005); rho_left, rho_right, degree_of_uncertainty: left/right "
+               "analysis, a project definition after Gauger et al. (2008); see docs/user-guide.md section 3\"\n}\n",
             opt ? opt->jobs : 0);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad)

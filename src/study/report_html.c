@@ -161,38 +161,218 @@ static const char *CSS =
     "th{background:#eee;white-space:nowrap}td.l{text-align:left}td.na{color:#999}"
     ".warn{background:#fde2e1;border:2px solid #c00;padding:.5em 1em;margin:1em 0}"
     ".warn li{margin:.3em 0}.note{color:#666}img{max-width:340px;border:1px solid #ddd}"
-    ".fig{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}";
+    ".fig{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}"
+    ".summary{background:#eef5ff;border:2px solid #36c;padding:.5em 1em;margin:1em 0}"
+    ".summary td.l b{font-weight:600}";
 
-static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
+static void output_status(struct fy_node *o, char *buf, size_t size);
+
+/* The outputs that get no section, one line per kind with the reason. */
+static void write_skipped(FILE *f, struct fy_node *outputs)
 {
-    char a[2048], b[256], c[256];
-    fputs("<!DOCTYPE html>\n<html lang=en><head><meta charset=utf-8><title>rockfuzz report: ", f);
-    html(f, text(get(root, "name"), a, sizeof a));
-    fprintf(f, "</title><style>%s</style></head><body>\n<h1>Study ", CSS);
-    html(f, a);
-    fputs("</h1>\n", f);
-
-    /* warnings first: they change how everything below must be read */
-    struct fy_node *warnings = get(root, "warnings");
-    if (warnings && fy_node_sequence_item_count(warnings) > 0) {
-        fputs("<div class=warn><b>Warnings</b><ul>\n", f);
+    static const char *const kinds[][2] = {{"zero", "0 at every point of the study"},
+                                           {"undefined", "undefined: the model returns NaN at every point"},
+                                           {"below_floor", NULL}};
+    char name[256], st[64], why[512];
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        int any = 0;
         void *it = NULL;
-        struct fy_node *w;
-        while ((w = fy_node_sequence_iterate(warnings, &it))) {
-            fputs("<li>", f);
-            html(f, text(w, a, sizeof a));
-            fputs("</li>\n", f);
+        struct fy_node_pair *p;
+        while ((p = fy_node_mapping_iterate(outputs, &it))) {
+            output_status(fy_node_pair_value(p), st, sizeof st);
+            if (strcmp(st, kinds[k][0]) != 0)
+                continue;
+            fputs(any++ ? ", " : "<p class=note>Not shown: ", f);
+            html(f, text(fy_node_pair_key(p), name, sizeof name));
+            if (!kinds[k][1]) {
+                fputs(" (", f);
+                html(f, text(get(fy_node_pair_value(p), "status_reason"), why, sizeof why));
+                fputs(")", f);
+            }
         }
-        fputs("</ul></div>\n", f);
+        if (any)
+            fprintf(f, "%s%s.</p>\n", kinds[k][1] ? ": " : "", kinds[k][1] ? kinds[k][1] : "");
     }
+}
 
+/* The status of an output (result.json's "status"; older results: NaN everywhere is undefined). */
+static void output_status(struct fy_node *o, char *buf, size_t size)
+{
+    text(get(o, "status"), buf, size);
+    if (buf[0])
+        return;
+    struct fy_node *lo = get(o, "lower");
+    int undefined = 1;
+    for (int j = 0; j < fy_node_sequence_item_count(lo); j++)
+        if (!isnan(number(fy_node_sequence_get_by_index(lo, j))))
+            undefined = 0;
+    snprintf(buf, size, "%s", undefined ? "undefined" : "shown");
+}
+
+/* The input with the largest rho of output o: its name into buf and its rho, or NaN. */
+static double main_input(struct fy_node *o, char *buf, size_t size)
+{
+    double best = NAN;
+    buf[0] = '\0';
+    void *it = NULL;
+    struct fy_node_pair *p;
+    while ((p = fy_node_mapping_iterate(get(o, "influence"), &it))) {
+        double r = number(get(fy_node_pair_value(p), "rho"));
+        if (!isnan(r) && (isnan(best) || r > best)) {
+            best = r;
+            text(fy_node_pair_key(p), buf, size);
+        }
+    }
+    return best;
+}
+
+/* v, or 0 where it is round-off against the scale big (e.g. -8.9e-16 m beside 6.8 m). */
+static double round_off(double v, double big)
+{
+    return fabs(v) < 1e-12 * big ? 0 : v;
+}
+
+/* The headline: the first output called *_ke_p95 (a barrier's design energy), else the first shown. */
+static void write_headline(FILE *f, struct fy_node *outputs)
+{
+    struct fy_node_pair *p, *pick = NULL;
+    void *it = NULL;
+    char name[256], st[64], unit[64], top[256];
+    int pick_is_p95 = 0;
+    while ((p = fy_node_mapping_iterate(outputs, &it))) {
+        output_status(fy_node_pair_value(p), st, sizeof st);
+        size_t len = strlen(text(fy_node_pair_key(p), name, sizeof name));
+        int p95 = len > 7 && !strcmp(name + len - 7, "_ke_p95");
+        if (!strcmp(st, "shown") && (!pick || (p95 && !pick_is_p95))) {
+            pick = p;
+            pick_is_p95 = p95;
+        }
+    }
+    if (!pick)
+        return;
+    struct fy_node *o = fy_node_pair_value(pick);
+    double lo = number(fy_node_sequence_get_by_index(get(o, "lower"), 0));
+    double hi = number(fy_node_sequence_get_by_index(get(o, "upper"), 0)), fac;
+    double big = fmax(fabs(lo), fabs(hi)), r = main_input(o, top, sizeof top);
+    const char *du = rp_display_unit(text(get(o, "unit"), unit, sizeof unit), big, &fac);
+    fputs("<p class=headline><b>", f);
+    html(f, text(fy_node_pair_key(pick), name, sizeof name));
+    fprintf(f, "</b> lies between <b>%.4g and %.4g %s</b> with the inputs anywhere in their supports "
+               "(membership 0); with every input at its nominal value it is <b>%.4g %s</b>.",
+            round_off(lo, big) * fac, round_off(hi, big) * fac, du, round_off(number(get(o, "nominal")), big) * fac,
+            du);
+    if (lo == 0 && strstr(name, "_ke_"))
+        fputs(" (0: at some inputs no block reaches the line.)", f);
+    if (!isnan(r)) {
+        fputs(" The input with the largest influence is <b>", f);
+        html(f, top);
+        fprintf(f, "</b> (%.0f %% of the relative influence).", 100 * r);
+    }
+    fputs("</p>\n", f);
+}
+
+/* One row of the summary: support at membership 0, nominal, main input. */
+static void summary_row(FILE *f, const char *name, struct fy_node *o)
+{
+    char unit[64], top[256];
+    double lo = number(fy_node_sequence_get_by_index(get(o, "lower"), 0));
+    double hi = number(fy_node_sequence_get_by_index(get(o, "upper"), 0)), fac;
+    const char *du = rp_display_unit(text(get(o, "unit"), unit, sizeof unit), fmax(fabs(lo), fabs(hi)), &fac);
+    fputs("<tr><td class=l><b>", f);
+    html(f, name);
+    fputs("</b></td><td class=l>", f);
+    html(f, du);
+    double big = fmax(fabs(lo), fabs(hi)), nom = number(get(o, "nominal"));
+    fprintf(f, "</td><td>%.4g &ndash; %.4g</td><td>%.4g</td><td class=l>", round_off(lo, big) * fac,
+            round_off(hi, big) * fac, round_off(nom, big) * fac);
+    double r = main_input(o, top, sizeof top);
+    if (isnan(r))
+        fputs("n/a (no input changes it)", f);
+    else {
+        html(f, top);
+        fprintf(f, " (&rho; = %.2f)", r);
+    }
+    fputs("</td></tr>\n", f);
+}
+
+/* The answer first: per reported output its support at membership 0, nominal value and main input. */
+static void write_summary(FILE *f, struct fy_node *root)
+{
+    struct fy_node *outputs = get(root, "outputs");
+    fputs("<div class=summary id=summary><b>Summary: the answer</b>\n", f);
+    write_headline(f, outputs);
+    fputs("<p>Each output of the model as a fuzzy "
+          "number: the range it can take with the inputs anywhere in their supports (membership 0), its value "
+          "with every input at its nominal (peak) value, and the input with the largest share of its "
+          "uncertainty (Hanss's relative influence &rho;, the shares add up to 1).</p>\n<table><tr><th>output</th>"
+          "<th>unit</th><th>support at membership 0</th><th>nominal</th><th>largest influence</th></tr>\n",
+          f);
+    void *it = NULL;
+    struct fy_node_pair *p;
+    char name[256], st[64];
+    while ((p = fy_node_mapping_iterate(outputs, &it))) {
+        output_status(fy_node_pair_value(p), st, sizeof st);
+        if (!strcmp(st, "shown"))
+            summary_row(f, text(fy_node_pair_key(p), name, sizeof name), fy_node_pair_value(p));
+    }
+    fputs("</table>\n", f);
+    write_skipped(f, outputs);
+    fputs("</div>\n", f);
+}
+
+static void write_warnings(FILE *f, struct fy_node *root)
+{
+    char a[2048];
+    struct fy_node *warnings = get(root, "warnings");
+    if (!warnings || fy_node_sequence_item_count(warnings) == 0)
+        return;
+    fputs("<div class=warn><b>Warnings</b><ul>\n", f);
+    void *it = NULL;
+    struct fy_node *w;
+    while ((w = fy_node_sequence_iterate(warnings, &it))) {
+        fputs("<li>", f);
+        html(f, text(w, a, sizeof a));
+        fputs("</li>\n", f);
+    }
+    fputs("</ul></div>\n", f);
+}
+
+/* The model's settings: those differing from its defaults (impact model), else all. */
+static void write_settings(FILE *f, struct fy_node *root)
+{
+    char a[512], b[512];
+    struct fy_node *set = get(root, "model_settings");
+    int vs = !strcmp(text(get(root, "model_settings_vs_defaults"), a, sizeof a), "true");
+    fprintf(f, "<tr><th>model settings%s</th><td class=l>", vs ? "<br>(those not at their default)" : "");
+    if (!set) {
+        html(f, text(get(root, "model_identity"), a, sizeof a)); /* a result from an older version */
+    } else if (fy_node_mapping_item_count(set) == 0) {
+        fputs(vs ? "all at their defaults" : "as in the model line above", f);
+    } else {
+        fputs("<table>", f);
+        void *it = NULL;
+        struct fy_node_pair *p;
+        while ((p = fy_node_mapping_iterate(set, &it))) {
+            fputs("<tr><td class=l>", f);
+            html(f, text(fy_node_pair_key(p), a, sizeof a));
+            fputs("</td><td class=l>", f);
+            html(f, text(fy_node_pair_value(p), b, sizeof b));
+            fputs("</td></tr>", f);
+        }
+        fputs("</table>", f);
+    }
+    fputs("<span class=note>(the full identity string is model_identity in result.json)</span></td></tr>\n", f);
+}
+
+static void write_run_table(FILE *f, struct fy_node *root)
+{
+    char a[2048];
     struct fy_node *ev = get(root, "evaluations");
     fputs("<h2>Run</h2>\n<table>\n", f);
     static const char *const meta[][2] = {{"version", "rockfuzz version"}, {"study_file", "study file"},
                                           {"scheme", "TM scheme"},         {"levels", "levels m"},
-                                          {"model", "model"},              {"model_identity", "model identity"},
-                                          {"jobs", "threads"},             {"mpi_ranks", "MPI ranks"},
-                                          {"wall_seconds", "wall time [s]"}};
+                                          {"model", "model"},              {"jobs", "threads"},
+                                          {"mpi_ranks", "MPI ranks"},      {"wall_seconds", "wall time [s]"}};
     for (size_t k = 0; k < sizeof meta / sizeof *meta; k++) {
         fprintf(f, "<tr><th>%s</th><td class=l>", meta[k][1]);
         if (!strcmp(meta[k][0], "wall_seconds"))
@@ -201,6 +381,11 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
             html(f, text(get(root, meta[k][0]), a, sizeof a));
         fputs("</td></tr>\n", f);
     }
+    write_settings(f, root);
+    int lr = strcmp(text(get(root, "left_right"), a, sizeof a), "false") != 0;
+    fprintf(f, "<tr><th>monotonicity check</th><td class=l>%s</td></tr>\n",
+            lr ? "on (the left/right three-point grid)"
+               : "off, as the study asks (options.left_right: false): no monotonicity check, no rho_left/right");
     static const char *const counts[][2] = {{"requested", "grid points requested"},
                                             {"distinct", "distinct evaluations"},
                                             {"evaluated", "evaluated in this run"},
@@ -219,8 +404,11 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
         fputs("</td></tr>\n", f);
     }
     fputs("</table>\n", f);
+}
 
-    /* inputs */
+static void write_inputs(FILE *f, const char *dir, struct fy_node *root)
+{
+    char a[2048], b[256], c[256];
     struct fy_node *inputs = get(root, "inputs");
     fputs("<h2>Fuzzy inputs</h2>\n<table><tr><th>input</th><th>shape</th><th>unit</th><th>nominal</th>"
           "<th>support lower</th><th>support upper</th></tr>\n",
@@ -250,70 +438,105 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
         embed_png(f, dir, stem, a);
     }
     fputs("</div>\n", f);
+}
 
-    /* outputs */
+/* The cut table of output o, its nominal value and degree of uncertainty. */
+static void write_cuts(FILE *f, struct fy_node *o)
+{
+    struct fy_node *lo = get(o, "lower"), *hi = get(o, "upper"), *mu = get(o, "mu");
+    char why[512];
+    fputs("<div><table><tr><th>&mu;</th><th>lower</th><th>upper</th></tr>\n", f);
+    for (int j = 0; j < fy_node_sequence_item_count(lo); j++) {
+        fputs("<tr>", f);
+        cell_number(f, number(fy_node_sequence_get_by_index(mu, j)));
+        cell_number(f, number(fy_node_sequence_get_by_index(lo, j)));
+        cell_number(f, number(fy_node_sequence_get_by_index(hi, j)));
+        fputs("</tr>\n", f);
+    }
+    fputs("<tr><th>nominal</th>", f);
+    cell_number(f, number(get(o, "nominal")));
+    fputs("<td></td></tr></table>\n", f);
+    double nu = number(get(o, "degree_of_uncertainty"));
+    if (isnan(nu)) {
+        text(get(o, "na_reason_degree_of_uncertainty"), why, sizeof why);
+        fputs("<p>degree of uncertainty: n/a (", f);
+        html(f, why[0] ? why : "undefined for this output");
+        fputs(")</p></div>\n", f);
+    } else {
+        fprintf(f, "<p>degree of uncertainty: %.4g</p></div>\n", nu);
+    }
+}
+
+static void write_influence(FILE *f, struct fy_node *o)
+{
+    char a[512];
+    fputs("<h3>Influence of the inputs</h3>\n<div class=fig><table><tr><th>input</th><th>rho</th>"
+          "<th>kappa</th><th>rho_left</th><th>rho_right</th><th>monotonicity</th></tr>\n",
+          f);
+    struct fy_node *inf = get(o, "influence");
+    void *jt = NULL;
+    struct fy_node_pair *q;
+    while ((q = fy_node_mapping_iterate(inf, &jt))) {
+        struct fy_node *v = fy_node_pair_value(q);
+        fputs("<tr><td class=l>", f);
+        html(f, text(fy_node_pair_key(q), a, sizeof a));
+        fputs("</td>", f);
+        cell_number(f, number(get(v, "rho")));
+        cell_number(f, number(get(v, "kappa")));
+        cell_number(f, number(get(v, "rho_left")));
+        cell_number(f, number(get(v, "rho_right")));
+        fputs("<td class=l>", f);
+        html(f, text(get(v, "monotonicity"), a, sizeof a));
+        fputs("</td></tr>\n", f);
+    }
+    fputs("</table>\n", f);
+    influence_svg(f, inf);
+    fputs("</div>\n<p class=note>n/a: rho of an input that does not change the output (or of a crisp input); "
+          "rho_left/right without the left/right grid.</p>\n", f);
+}
+
+static void write_outputs(FILE *f, const char *dir, struct fy_node *root)
+{
     struct fy_node *outputs = get(root, "outputs");
-    it = NULL;
+    void *it = NULL;
+    struct fy_node_pair *p;
     while ((p = fy_node_mapping_iterate(outputs, &it))) {
         struct fy_node *o = fy_node_pair_value(p);
-        char name[256], safe[128], stem[256];
+        char name[256], safe[128], stem[256], unit[256], st[64];
+        output_status(o, st, sizeof st);
+        if (strcmp(st, "shown") != 0)
+            continue; /* listed in one line in the summary */
         text(fy_node_pair_key(p), name, sizeof name);
         rp_safe_name(name, safe, sizeof safe);
         fputs("<h2>Output ", f);
         html(f, name);
-        text(get(o, "unit"), b, sizeof b);
-        if (b[0]) {
+        if (text(get(o, "unit"), unit, sizeof unit)[0]) {
             fputs(" [", f);
-            html(f, b);
+            html(f, unit);
             fputs("]", f);
         }
-        fputs("</h2>\n", f);
-        struct fy_node *lo = get(o, "lower"), *hi = get(o, "upper"), *mu = get(o, "mu");
-        int undefined = 1;
-        for (int j = 0; j < fy_node_sequence_item_count(lo); j++)
-            if (!isnan(number(fy_node_sequence_get_by_index(lo, j))))
-                undefined = 0;
-        if (undefined) {
-            fputs("<p class=note>Undefined for this study: the model returns NaN at every point (e.g. R_t of a "
-                  "normal impact).</p>\n",
-                  f);
-            continue;
-        }
-        fputs("<div class=fig><div><table><tr><th>&mu;</th><th>lower</th><th>upper</th></tr>\n", f);
-        for (int j = 0; j < fy_node_sequence_item_count(lo); j++) {
-            fputs("<tr>", f);
-            cell_number(f, number(fy_node_sequence_get_by_index(mu, j)));
-            fprintf(f, "<td>%.10g</td><td>%.10g</td></tr>\n", number(fy_node_sequence_get_by_index(lo, j)),
-                    number(fy_node_sequence_get_by_index(hi, j)));
-        }
-        fprintf(f, "<tr><th>nominal</th><td colspan=2>%.10g</td></tr></table>\n",
-                number(get(o, "nominal")));
-        fprintf(f, "<p>degree of uncertainty: %.4g</p></div>\n", number(get(o, "degree_of_uncertainty")));
+        fputs("</h2>\n<div class=fig>", f);
+        write_cuts(f, o);
         snprintf(stem, sizeof stem, "output_%s", safe);
         embed_png(f, dir, stem, name);
-        fputs("</div>\n<h3>Influence of the inputs</h3>\n<div class=fig><table><tr><th>input</th><th>rho</th>"
-              "<th>kappa</th><th>rho_left</th><th>rho_right</th><th>monotonicity</th></tr>\n",
-              f);
-        struct fy_node *inf = get(o, "influence");
-        void *jt = NULL;
-        struct fy_node_pair *q;
-        while ((q = fy_node_mapping_iterate(inf, &jt))) {
-            struct fy_node *v = fy_node_pair_value(q);
-            fputs("<tr><td class=l>", f);
-            html(f, text(fy_node_pair_key(q), a, sizeof a));
-            fputs("</td>", f);
-            cell_number(f, number(get(v, "rho")));
-            cell_number(f, number(get(v, "kappa")));
-            cell_number(f, number(get(v, "rho_left")));
-            cell_number(f, number(get(v, "rho_right")));
-            fputs("<td class=l>", f);
-            html(f, text(get(v, "monotonicity"), a, sizeof a));
-            fputs("</td></tr>\n", f);
-        }
-        fputs("</table>\n", f);
-        influence_svg(f, inf);
         fputs("</div>\n", f);
+        write_influence(f, o);
     }
+}
+
+static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
+{
+    char a[2048];
+    fputs("<!DOCTYPE html>\n<html lang=en><head><meta charset=utf-8><title>rockfuzz report: ", f);
+    html(f, text(get(root, "name"), a, sizeof a));
+    fprintf(f, "</title><style>%s</style></head><body>\n<h1>Study ", CSS);
+    html(f, a);
+    fputs("</h1>\n", f);
+    write_summary(f, root);  /* the answer first */
+    write_warnings(f, root); /* then what changes how it must be read */
+    write_run_table(f, root);
+    write_inputs(f, dir, root);
+    write_outputs(f, dir, root);
     fputs("<p class=note>", f);
     html(f, text(get(root, "measures"), a, sizeof a));
     fputs("</p>\n</body></html>\n", f);

@@ -140,6 +140,14 @@ static void draw_bars(const void *p)
     }
 }
 
+static int any_finite(const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(v[i]))
+            return 1;
+    return 0;
+}
+
 rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
                                 rf_error *err)
 {
@@ -162,8 +170,9 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
         return rf_fail(err, RF_ENOMEM, "out of memory");
     st = RF_OK;
     for (size_t k = 0; k < res->n_outputs && st == RF_OK; k++) {
-        if (rp_output_undefined(res, k))
-            continue; /* nothing to draw; the summary says why */
+        char why[512];
+        if (rp_output_classify(s, res, k, why, sizeof why) != RP_OUTPUT_SHOWN)
+            continue; /* nothing worth drawing; the summary says why in one line */
         const char *name = s->model.output_names[k];
         const char *unit = s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "";
         rp_safe_name(name, safe, sizeof safe);
@@ -182,8 +191,10 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
         snprintf(stem, sizeof stem, "influence_%s", safe);
         snprintf(title, sizeof title, "relative influence on %.100s (Hanss #gr)", name);
         bar_plot bp = {n, (const char *const *)s->param_names, tmp, NULL, title, "#gr", NULL, NULL};
-        if ((st = rf_plot_figure(dir, stem, 800, 560, draw_bars, &bp, err)) != RF_OK)
+        if (any_finite(tmp, n) && (st = rf_plot_figure(dir, stem, 800, 560, draw_bars, &bp, err)) != RF_OK)
             break;
+        if (!any_finite(tmp + n, 2 * n))
+            continue; /* no left/right grid (options.left_right off): an empty plot is not drawn */
         snprintf(stem, sizeof stem, "influence_lr_%s", safe);
         snprintf(title, sizeof title, "left/right influence on %.100s", name);
         bar_plot lr = {n, (const char *const *)s->param_names, tmp + n, tmp + 2 * n, title, "#gr",
