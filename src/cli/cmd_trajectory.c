@@ -132,7 +132,7 @@ int rf_cli_trajectory(int argc, char **argv)
     rf_traj_ensemble ens;
     rf_traj_stats st;
     int rc = 0;
-    if (rf_traj_run(&spec, a.threads, &ens, &err) != RF_OK || rf_traj_stats_compute(&ens, &st, &err) != RF_OK) {
+    if (rf_traj_run(&spec, a.threads, &ens, &err) != RF_OK || rf_traj_stats_compute_spec(&spec, &ens, &st, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
         rf_traj_ensemble_free(&ens);
         rf_traj_spec_free(&spec);
