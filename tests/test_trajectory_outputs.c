@@ -317,6 +317,21 @@ static void test_outputs_errors(void **state)
     expect_error("collectors: [{name: c, x: 5, energy_thresholds: [-1]}]\n", "thresholds must be >= 0");
     expect_error("collectors: [{name: c, x: 5, height_thresholds: [2, 1]}]\n",
                  "bad.yaml:5: collectors.c.height_thresholds = [2, 1]: the values must increase");
+    /* a spec built in code is checked too */
+    rf_traj_spec s;
+    rf_error err;
+    load("profile: {points: [[0, 1], [10, 0]], material: m}\nmaterials: {m: {R_n: 0.3, R_t: 0.8}}\n"
+         "block: {mass: 1}\nrelease: {x: 1, y: 2}\ncollectors: [{name: c, x: 5}]\n", &s);
+    s.outputs.percentiles[1] = 100;
+    assert_int_not_equal(rf_traj_spec_validate(&s, &err), RF_OK);
+    assert_non_null(strstr(err.msg, "outputs.percentiles[1] = 100: must lie in"));
+    s.outputs.percentiles[1] = 95;
+    s.collectors[0].n_height_thresholds = RF_TRAJ_MAX_THRESHOLDS;
+    assert_int_not_equal(rf_traj_spec_validate(&s, &err), RF_OK);
+    assert_non_null(strstr(err.msg, "collectors.c.height_thresholds: 16 values; at most 15"));
+    s.collectors[0].n_height_thresholds = 0;
+    assert_int_equal(rf_traj_spec_validate(&s, &err), RF_OK);
+    rf_traj_spec_free(&s);
 }
 
 static size_t output_index(const rf_model *m, const char *name)
