@@ -24,15 +24,17 @@ static void usage(FILE *f)
         "\n"
         "  --json                 print the JSON document (samples, trajectories with their\n"
         "                         impacts, rest point and collector crossings, statistics)\n"
-        "  --out DIR              write DIR/result.json, trajectories.csv, crossings.csv,\n"
-        "                         statistics.csv, plots (PNG, SVG) and report.html\n"
+        "  --out DIR              write DIR/result.json, trajectories.csv, samples.csv (every\n"
+        "                         sample's runout), crossings.csv, statistics.csv, exceedance.csv,\n"
+        "                         runout_histogram.csv, plots (PNG, SVG) and report.html\n"
         "  --threads N            worker threads (default: all cores; results do not depend on it)\n"
         "  --samples N, --seed S  override the file's samples and seed\n"
         "  --max-trajectories N   trajectories listed in the JSON (default 100)\n"
         "  --no-plots             skip the plots and report.html\n"
         "  --quiet                no summary\n"
         "\n"
-        "Units: m, s, m/s, rad/s, kg, J; angles in the file in degrees.\n");
+        "Units: m, s, m/s, rad/s, kg, J (the summary shows energies in kJ); angles in the file\n"
+        "in degrees.\n");
 }
 
 typedef struct {
