@@ -398,6 +398,32 @@ static void test_study_model_outputs(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* A fuzzy capacity keeps its output's name; where it reaches 0 the output
+ * would vanish: that evaluation fails with a message instead of shifting
+ * the outputs. */
+static void test_study_model_bound_capacity(void **state)
+{
+    (void)state;
+    rf_traj_spec s;
+    load(ensemble_yaml, &s);
+    const char *pn[1] = {"cap"}, *pp[1] = {"collectors.b.capacity"};
+    rf_model model;
+    rf_error err;
+    assert_int_equal(rf_traj_model_create(&s, 1, pn, pp, &model, &err), RF_OK);
+    size_t k = output_index(&model, "b_p_total_energy_above_capacity");
+    double *y = calloc(model.n_outputs, sizeof *y), x[3] = {1e4, 1e6, 0};
+    assert_int_equal(model.eval(model.ctx, &x[0], y, &err), RF_OK);
+    double p_small = y[k];
+    assert_int_equal(model.eval(model.ctx, &x[1], y, &err), RF_OK);
+    assert_true(p_small > y[k]);     /* a larger capacity is exceeded less often */
+    assert_true(y[k] == 0);          /* no block carries 1 MJ here */
+    assert_int_not_equal(model.eval(model.ctx, &x[2], y, &err), RF_OK);
+    assert_non_null(strstr(err.msg, "capacity or height reaches 0"));
+    free(y);
+    rf_model_free(&model);
+    rf_traj_spec_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -410,6 +436,7 @@ int main(void)
         cmocka_unit_test(test_percentile_names),
         cmocka_unit_test(test_outputs_errors),
         cmocka_unit_test(test_study_model_outputs),
+        cmocka_unit_test(test_study_model_bound_capacity),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -23,6 +23,7 @@ typedef struct {
     size_t n_params;
     char **paths;
     void *table;             /* impact_model: built once when no parameter changes it, else NULL */
+    size_t n_outputs;
 } traj_model_ctx;
 
 /* The outputs, in order, as one walk over the spec (names) and the
@@ -31,12 +32,16 @@ typedef struct {
     char **names;            /* naming pass, else NULL */
     const char **units;
     double *y;               /* filling pass, else NULL */
-    size_t n;
+    size_t n, cap;           /* outputs seen; room in names/units/y */
     int nomem;
 } out_sink;
 
 static void emit(out_sink *o, const char *name, const char *unit, double v)
 {
+    if (o->n >= o->cap) { /* counting, or more outputs than named (see traj_model_eval) */
+        o->n++;
+        return;
+    }
     if (o->names && !(o->names[o->n] = rf_strdup(name)))
         o->nomem = 1;
     if (o->units)
@@ -134,9 +139,13 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     rf_traj_stats t;
     if ((st = traj_run_shared(&s, 1, c->table, &e, err)) == RF_OK) {
         if ((st = rf_traj_stats_compute_spec(&s, &e, &t, err)) == RF_OK) {
-            out_sink o = {NULL, NULL, y, 0, 0};
+            out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0};
             walk_outputs(&o, &s, &t);
             rf_traj_stats_free(&t);
+            /* a bound capacity or barrier height that reaches 0 drops its exceedance output */
+            if (o.n != c->n_outputs)
+                st = rf_fail(err, RF_EINVAL, "a bound collector capacity or height reaches 0 at this point: the "
+                                             "outputs P(E > capacity), P(h > height) no longer exist; keep it > 0");
         }
         rf_traj_ensemble_free(&e);
     }
@@ -172,12 +181,12 @@ static rf_status share_table(traj_model_ctx *c, rf_error *err)
 
 static rf_status init_outputs(rf_model *m, const rf_traj_spec *s, rf_error *err)
 {
-    out_sink o = {NULL, NULL, NULL, 0, 0};
+    out_sink o = {NULL, NULL, NULL, 0, 0, 0};
     walk_outputs(&o, s, NULL); /* count */
     size_t n = o.n;
     o.names = calloc(n ? n : 1, sizeof *o.names);
     o.units = calloc(n ? n : 1, sizeof *o.units);
-    o.n = 0;
+    o.n = 0, o.cap = n;
     if (o.names && o.units)
         walk_outputs(&o, s, NULL);
     rf_status st = o.names && o.units && !o.nomem ? RF_OK : rf_fail(err, RF_ENOMEM, "out of memory");
@@ -237,6 +246,7 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
         st = share_table(c, err);
     if (st == RF_OK)
         st = init_outputs(model, &c->spec, err);
+    c->n_outputs = model->n_outputs;
     if (st == RF_OK)
         st = set_identity(model, c, err);
     if (st != RF_OK)
