@@ -48,7 +48,7 @@ import json, sys
 r = [json.load(open(p)) for p in sys.argv[1:]]
 for x in r[1:]:
     assert x["outputs"] == r[0]["outputs"], "outputs differ"
-o = r[0]["outputs"]["fence_ke_p95"]
+o = r[0]["outputs"]["fence_total_energy_p95"]
 assert o["lower"][0] < o["upper"][0], o
 if len(r) > 2:
     assert r[2]["mpi_ranks"] == 2 and r[2]["evaluations"]["on_worker_ranks"] > 0, r[2]["evaluations"]

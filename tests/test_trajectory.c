@@ -75,9 +75,9 @@ static void test_ledge(void **state)
     double tc = 6.5 / 5, vyc = vy - G * tc;
     assert_true(c.cross[0].reached);
     assert_close(c.cross[0].t, tc, 1e-12);
-    assert_close(c.cross[0].height, y0 + vy * tc - 0.5 * G * tc * tc, 1e-12);
-    assert_close(c.cross[0].normal_height, c.cross[0].height, 1e-12);
-    assert_close(c.cross[0].kinetic_energy, 500 * (25 + vyc * vyc), 1e-12);
+    assert_close(c.cross[0].height_lowest, y0 + vy * tc - 0.5 * G * tc * tc, 1e-12);
+    assert_close(c.cross[0].normal_height, c.cross[0].height_lowest, 1e-12);
+    assert_close(c.cross[0].translational_energy, 500 * (25 + vyc * vyc), 1e-12);
     assert_true(c.cross[0].rotational_energy == 0);
     assert_int_equal(c.res.state, RF_TRAJ_STOPPED);
     free_case(&c);
@@ -164,7 +164,7 @@ static void test_slide_incline_floor(void **state)
     assert_close(c.res.t_end, ttoe + v1 / (mu * G), 1e-9);
     assert_true(c.res.y_end == 0);
     assert_close(c.cross[0].speed, sqrt(2 * a * 2.5), 1e-9);   /* x = 2: half way, 2.5 m along */
-    assert_true(fabs(c.cross[0].height) < 1e-12);
+    assert_true(fabs(c.cross[0].height_lowest) < 1e-12);
     assert_close(c.cross[1].speed, sqrt(v1 * v1 - 2 * mu * G * 1), 1e-9);
     free_case(&c);
 }
@@ -211,7 +211,7 @@ static void test_rolling(void **state)
     double a = 5.0 / 7.0 * G * (sin(b) - 0.1 * cos(b)), s = 50 / cos(b), v = sqrt(2 * a * s);
     double m = 4.0 / 3.0 * 3.14159265358979323846 * 0.125 * 2600;
     assert_close(c.cross[0].speed, v, 1e-9);
-    assert_close(c.cross[0].kinetic_energy, 0.5 * m * v * v, 1e-9);
+    assert_close(c.cross[0].translational_energy, 0.5 * m * v * v, 1e-9);
     assert_close(c.cross[0].rotational_energy, 0.2 * m * v * v, 1e-9);
     assert_int_equal(c.res.state, RF_TRAJ_EXITED);
     free_case(&c);
@@ -236,7 +236,7 @@ static void test_convex_overflown(void **state)
     assert_close(m->t, 0.5 + T, 1e-12);
     assert_close(m->vy_in, -G * T, 1e-12);
     /* at x = 15 the block is g (0.5)^2/2 below the edge, the face is 5 m below */
-    assert_close(c.cross[0].height, 10 - 0.5 * G * 0.25 - 5, 1e-12);
+    assert_close(c.cross[0].height_lowest, 10 - 0.5 * G * 0.25 - 5, 1e-12);
     assert_close(c.cross[0].normal_height, (10 - 0.5 * G * 0.25 - 5) * cos(45 * DEG), 1e-12);
     free_case(&c);
 }
@@ -391,7 +391,7 @@ static void test_barrier(void **state)
         traj_case t;
         run_case(&t, yaml);
         assert_int_equal(t.cross[0].stopped_by_barrier, c[k].held);
-        assert_close(t.cross[0].kinetic_energy, E, 1e-12);
+        assert_close(t.cross[0].translational_energy, E, 1e-12);
         if (c[k].held) {
             assert_int_equal(t.res.state, RF_TRAJ_STOPPED);
             assert_close(t.res.x_end, 6, 1e-15);

@@ -41,8 +41,8 @@ static void test_same_bits_any_threads(void **state)
         assert_memory_equal(e[0].rebound_height, e[t].rebound_height, s.samples * sizeof(double));
         for (size_t i = 0; i < s.samples * 2; i++) {
             assert_int_equal(e[0].crossings[i].reached, e[t].crossings[i].reached);
-            assert_memory_equal(&e[0].crossings[i].kinetic_energy, &e[t].crossings[i].kinetic_energy, sizeof(double));
-            assert_memory_equal(&e[0].crossings[i].height, &e[t].crossings[i].height, sizeof(double));
+            assert_memory_equal(&e[0].crossings[i].total_energy, &e[t].crossings[i].total_energy, sizeof(double));
+            assert_memory_equal(&e[0].crossings[i].height_lowest, &e[t].crossings[i].height_lowest, sizeof(double));
         }
     }
     /* something random did happen */

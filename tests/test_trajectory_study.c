@@ -4,8 +4,9 @@
  * [r_lo, r_hi] is [r_lo^2, r_hi^2] (a + 0.95 (b - a)); the TM over the Monte
  * Carlo must match it within 3 standard errors of the sample quantile,
  * sqrt(0.95 * 0.05 / N) R_n^2 (b - a).  Also: the general form is the
- * default, bindings are checked, and common random numbers make the model a
- * deterministic function of its inputs. */
+ * default, bindings are checked, common random numbers make the model a
+ * deterministic function of its inputs, and a fuzzy exceedance probability
+ * (runout, energy at a collector) matches its closed form. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -84,6 +85,60 @@ static void test_hybrid_closed_form(void **state)
     rf_study_free(&s);
 }
 
+/* A fuzzy exceedance probability, closed form: a point released on flat
+ * ground at v0 ~ U[5, 15] m/s slides to x = v0^2 / (2 g tan phi), so
+ * P(runout_x > X) = (15 - sqrt(2 g tan phi X)) / 10; at a collector at xc its
+ * energy is m (v0^2 - 2 g tan phi xc) / 2, so P(E > Es) = (15 - sqrt(2 Es / m +
+ * 2 g tan phi xc)) / 10.  Both fall with phi: the cut [phi_lo, phi_hi] gives
+ * [P(phi_hi), P(phi_lo)], within 3 standard errors sqrt(P (1 - P) / N). */
+static const char *slide_yaml =
+    "name: slide\n"
+    "profile: {points: [[-1, 0], [300, 0]], material: ground}\n"
+    "materials: {ground: {R_n: 0.3, R_t: 0.8, friction_angle: 30}}\n"
+    "block: {shape: point, mass: 1000}\n"
+    "release: {x: 0, y: 0, vx: {uniform: [5, 15]}, vy: 0}\n"
+    "collectors: [{name: c, x: 4, energy_thresholds: [30000]}]\n"
+    "outputs: {runout_thresholds: [8]}\n"
+    "samples: 2000\nseed: 5\n";
+
+static double p_exceed(double v_star) { return (15 - v_star) / 10; }
+
+static void test_fuzzy_exceedance_closed_form(void **state)
+{
+    (void)state;
+    rf_study s;
+    rf_error err;
+    write_file("traj_slide.yaml", slide_yaml);
+    write_file("traj_slide_study.yaml", "levels: 3\nparameters: {phi: {tfn: [30, 5, 5]}}\n"
+                                        "model: {trajectory: {file: traj_slide.yaml, "
+                                        "bind: {phi: materials.ground.friction_angle}}}\n");
+    if (rf_study_load("traj_slide_study.yaml", &s, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    rf_tm_options opt;
+    rf_study_tm_options(&s, &opt);
+    rf_tm_result r;
+    assert_int_equal(rf_tm_run(s.inputs, s.n_params, &s.model, &opt, &r, &err), RF_OK);
+    size_t kx = output_index(&s.model, "p_runout_x_above_8m"), ke = output_index(&s.model, "c_p_total_energy_above_30000J");
+    size_t m = r.levels;
+    const double g = 9.81, DEG = 3.14159265358979323846 / 180, N = 2000;
+    for (size_t j = 0; j <= m; j++) {
+        double t_lo = tan(r.in_lo[j] * DEG), t_hi = tan(r.in_hi[j] * DEG);
+        double px[2] = {p_exceed(sqrt(2 * g * t_hi * 8)), p_exceed(sqrt(2 * g * t_lo * 8))};
+        double pe[2] = {p_exceed(sqrt(60 + 2 * g * t_hi * 4)), p_exceed(sqrt(60 + 2 * g * t_lo * 4))};
+        double got_x[2] = {r.lo[kx * (m + 1) + j], r.hi[kx * (m + 1) + j]};
+        double got_e[2] = {r.lo[ke * (m + 1) + j], r.hi[ke * (m + 1) + j]};
+        for (int b = 0; b < 2; b++) {
+            print_message("mu = %zu/%zu: P(runout > 8 m) %.4f (closed form %.4f), P(E > 30 kJ) %.4f (%.4f)\n", j, m,
+                          got_x[b], px[b], got_e[b], pe[b]);
+            assert_true(fabs(got_x[b] - px[b]) <= 3 * sqrt(px[b] * (1 - px[b]) / N));
+            assert_true(fabs(got_e[b] - pe[b]) <= 3 * sqrt(pe[b] * (1 - pe[b]) / N));
+        }
+    }
+    assert_true(r.hi[kx * (m + 1)] - r.lo[kx * (m + 1)] > 0.1); /* really fuzzy */
+    rf_tm_result_free(&r);
+    rf_study_free(&s);
+}
+
 static void test_binding_errors(void **state)
 {
     (void)state;
@@ -129,6 +184,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hybrid_closed_form),
         cmocka_unit_test(test_binding_errors),
+        cmocka_unit_test(test_fuzzy_exceedance_closed_form),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

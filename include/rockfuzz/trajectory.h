@@ -11,8 +11,11 @@
  * the ground.  Spin omega is positive when it rolls the block forward along t
  * of the segment it touches (clockwise for travel to the right).
  *
- * The block is its centre point for contact (lumped mass): the radius enters
- * only the inertia, the rotational energy, rolling and the rigid_sphere law. */
+ * The block is one point for contact (lumped mass): the simulated point is
+ * the block's contact point, i.e. its lowest point when it lies on flat
+ * ground; a sphere's centre is taken r above it.  The radius enters only the
+ * inertia, the rotational energy, rolling, the rigid_sphere law and the
+ * passing height of the centre. */
 #ifndef ROCKFUZZ_TRAJECTORY_H
 #define ROCKFUZZ_TRAJECTORY_H
 
@@ -60,12 +63,32 @@ typedef struct {
     double lo, hi;              /* truncation (-inf/inf: none) */
 } rf_traj_random;
 
+/* Lengths of the user's lists of percentiles and thresholds (`outputs:`, collectors). */
+#define RF_TRAJ_MAX_PERCENTILES 16
+#define RF_TRAJ_MAX_THRESHOLDS 16
+#define RF_TRAJ_MAX_BINS 200
+
 typedef struct {
     char *name;
     double x;                   /* [m] vertical line x = const */
     double capacity;            /* [J] barrier energy capacity; 0 = a pure collector */
     double height;              /* [m] barrier height; 0 = unlimited (only with capacity) */
+    /* User thresholds of P(total_energy > E) and P(height_lowest > h); the
+     * barrier's capacity and height (when > 0) are added before them
+     * (rf_traj_thresholds), so at most RF_TRAJ_MAX_THRESHOLDS - 1 each. */
+    size_t n_energy_thresholds, n_height_thresholds;
+    double energy_thresholds[RF_TRAJ_MAX_THRESHOLDS];   /* [J] */
+    double height_thresholds[RF_TRAJ_MAX_THRESHOLDS];   /* [m] */
 } rf_traj_collector;
+
+/* `outputs:` of the trajectory file: which statistics are reported. */
+typedef struct {
+    size_t n_percentiles;                     /* default 3: 50, 95, 99 (max is always reported) */
+    double percentiles[RF_TRAJ_MAX_PERCENTILES];  /* [%], increasing, in (0, 100) */
+    size_t n_runout_thresholds;
+    double runout_thresholds[RF_TRAJ_MAX_THRESHOLDS];  /* [m]: P(runout_x > x) */
+    size_t runout_bins;                       /* bins of the runout histogram, default 20 */
+} rf_traj_outputs;
 
 typedef struct {
     char *name;
@@ -95,6 +118,7 @@ typedef struct {
     size_t record;              /* trajectories kept with their events (default min(samples, 200)) */
     size_t n_random;
     rf_traj_random *random;
+    rf_traj_outputs outputs;
     /* impact_model law: settings of the tabulation (traj_impact_table.c) */
     char impact_solver[16];     /* "rigid" | "hunter" | "hertz" | "fem" */
     double impact_tolerance;    /* target interpolation error of R_n, R_t [-], default 0.01 */
@@ -152,7 +176,13 @@ typedef struct {
 typedef struct {
     int reached;                /* crossed the collector line (first crossing recorded) */
     int stopped_by_barrier;
-    double t, height, normal_height, speed, kinetic_energy, rotational_energy;
+    double t;                   /* [s] */
+    double height_lowest;       /* [m] the block's lowest point (the simulated point) above the ground, vertically */
+    double height_centre;       /* [m] its centre: height_lowest + radius (sphere), height_lowest (point) */
+    double normal_height;       /* [m] the simulated point's distance from the ground segment, along its normal */
+    double speed;               /* [m/s] */
+    double translational_energy, rotational_energy;  /* [J] m v^2 / 2, I omega^2 / 2 */
+    double total_energy;        /* [J] translational_energy + rotational_energy */
 } rf_traj_crossing;
 
 typedef struct {
@@ -182,8 +212,13 @@ rf_status rf_traj_simulate(const rf_traj_world *world, const rf_traj_spec *value
 
 /* ---- Monte Carlo ensembles ---- */
 
+/* Percentiles of a sample: the fixed p50, p95, p99, and value[k] at the
+ * chosen level[k] [%] (the spec's outputs.percentiles), max and mean. */
 typedef struct {
     double p50, p95, p99, max, mean;
+    size_t n;
+    double level[RF_TRAJ_MAX_PERCENTILES];
+    double value[RF_TRAJ_MAX_PERCENTILES];
 } rf_traj_percentiles;
 
 typedef struct {
@@ -209,19 +244,55 @@ rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *e
 void rf_traj_ensemble_free(rf_traj_ensemble *ens);
 
 /* Percentiles (linear interpolation between order statistics, Hyndman-Fan
- * type 7) of the finite values among v[0..n-1] (v is not modified); NaN if none. */
+ * type 7) of the finite values among v[0..n-1] (v is not modified); NaN if
+ * none.  _of: at the levels 50, 95, 99; _at: at levels[0..n_levels-1] [%]. */
 rf_traj_percentiles rf_traj_percentiles_of(const double *v, size_t n);
+rf_traj_percentiles rf_traj_percentiles_at(const double *v, size_t n, const double *levels, size_t n_levels);
+/* The name of a percentile level: "p50", "p99_9" (a '.' becomes '_'). */
+void rf_traj_percentile_name(double level, char *buf, size_t size);
+
+/* Counts of a sample in `bins` equal bins over [lo, hi] = [min, max] of its
+ * finite values: bin k holds edge[k] <= v < edge[k + 1], the last one also
+ * v = hi (all values equal: one bin). */
+typedef struct {
+    size_t bins, total;
+    double edge[RF_TRAJ_MAX_BINS + 1];
+    size_t count[RF_TRAJ_MAX_BINS];
+} rf_traj_histogram;
+void rf_traj_histogram_of(const double *v, size_t n, size_t bins, rf_traj_histogram *h);
+/* The histogram of the end points runout_x of every sample. */
+void rf_traj_runout_histogram(const rf_traj_ensemble *ens, size_t bins, rf_traj_histogram *h);
+
+/* Per collector: percentiles over the samples that reach it; exceedance
+ * probabilities over ALL samples (a block that does not reach the line does
+ * not exceed), at the collector's thresholds. */
+/* The exceedance thresholds of a collector: energy (height 0) [J] or height
+ * (height 1) [m]: the barrier's own value when > 0 (*own = 1), then the
+ * user's; returns how many were written to t[RF_TRAJ_MAX_THRESHOLDS]. */
+size_t rf_traj_thresholds(const rf_traj_collector *c, int height, double *t, int *own);
 
 typedef struct {
-    size_t stopped, exited, step_limit;
-    rf_traj_percentiles runout_x, rebound_height;
+    double reach_probability;
+    rf_traj_percentiles total_energy, translational_energy, rotational_energy;  /* [J] */
+    rf_traj_percentiles height_lowest, height_centre;   /* [m] */
+    rf_traj_percentiles speed;                          /* [m/s] */
+    double p_energy_above[RF_TRAJ_MAX_THRESHOLDS];      /* P(total_energy > rf_traj_thresholds(.., 0, ..)[k]) */
+    double p_height_above[RF_TRAJ_MAX_THRESHOLDS];      /* P(height_lowest > rf_traj_thresholds(.., 1, ..)[k]) */
+} rf_traj_collector_stats;
+
+typedef struct {
+    size_t samples, stopped, exited, step_limit;
+    rf_traj_percentiles runout_x, rebound_height;       /* [m], over all samples */
+    double p_runout_above[RF_TRAJ_MAX_THRESHOLDS];      /* P(runout_x > outputs.runout_thresholds[k]) */
+    rf_traj_histogram runout_histogram;
     size_t n_collectors;
-    double *reach_probability;          /* n_collectors */
-    rf_traj_percentiles *kinetic_energy;  /* n_collectors: translational + rotational [J] of the crossings */
-    rf_traj_percentiles *height;          /* n_collectors: vertical passing height [m] */
-    rf_traj_percentiles *speed;           /* n_collectors [m/s] */
+    rf_traj_collector_stats *collectors;                /* n_collectors */
 } rf_traj_stats;
 
+/* Statistics with the spec's outputs (percentiles, thresholds, bins); spec
+ * NULL: the defaults (p50, p95, p99, 20 bins, no thresholds). */
+rf_status rf_traj_stats_compute_spec(const rf_traj_spec *spec, const rf_traj_ensemble *ens, rf_traj_stats *st,
+                                     rf_error *err);
 rf_status rf_traj_stats_compute(const rf_traj_ensemble *ens, rf_traj_stats *st, rf_error *err);
 void rf_traj_stats_free(rf_traj_stats *st);
 
@@ -242,9 +313,11 @@ void rf_traj_write_json(FILE *f, const rf_traj_spec *spec, const rf_traj_ensembl
                         size_t max_trajectories);
 /* A readable summary (states, runout, per collector reach/energy/height). */
 void rf_traj_write_summary(FILE *f, const rf_traj_spec *spec, const rf_traj_ensemble *ens, const rf_traj_stats *st);
-/* DIR/trajectories.csv (recorded paths sampled every dt seconds and at every
- * event), DIR/crossings.csv (every sample's collector crossings),
- * DIR/statistics.csv (per collector). */
+/* traj_csv.c: DIR/trajectories.csv (recorded paths: every event and 15
+ * points inside each stretch), samples.csv (every sample's state, runout_x,
+ * rebound height), crossings.csv (every sample's collector crossings),
+ * statistics.csv (percentiles per quantity), exceedance.csv (P(quantity >
+ * threshold)), runout_histogram.csv.  Every header names its unit. */
 rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
                             const rf_traj_stats *st, rf_error *err);
 /* traj_plot.c: DIR/trajectory_profile.{png,svg} (profile, recorded paths,
@@ -258,11 +331,15 @@ int rf_traj_state_at(const rf_traj_result *res, double t, double *x, double *y, 
 
 /* ---- the study model (traj_model.c) ---- */
 
-/* Output names per collector C: C_ke_p50/p95/p99/max [J], C_height_p50/...
- * [m], C_reach_probability [-]; then runout_p50/p95/p99/max [m] and
- * rebound_height_p50/p95/p99/max [m].  param_names[i] is bound to the spec
- * path bind_paths[i].  Every evaluation uses the same seed: common random
- * numbers across the TM's points. */
+/* Output names (pXX: each of the spec's outputs.percentiles, then max; see
+ * rf_traj_percentile_name), per collector C: C_total_energy_pXX [J],
+ * C_height_lowest_pXX, C_height_centre_pXX [m], C_speed_pXX [m/s],
+ * C_reach_probability, C_p_total_energy_above_capacity (barrier) and
+ * C_p_total_energy_above_<E>J, C_p_height_lowest_above_barrier and
+ * C_p_height_lowest_above_<h>m [-]; then runout_x_pXX, rebound_height_pXX [m],
+ * p_runout_x_above_<x>m [-] ('.' in a number becomes '_').  param_names[i] is
+ * bound to the spec path bind_paths[i].  Every evaluation uses the same seed:
+ * common random numbers across the TM's points. */
 rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const char *const *param_names,
                                const char *const *bind_paths, rf_model *model, rf_error *err);
 

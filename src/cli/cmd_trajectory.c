@@ -24,15 +24,17 @@ static void usage(FILE *f)
         "\n"
         "  --json                 print the JSON document (samples, trajectories with their\n"
         "                         impacts, rest point and collector crossings, statistics)\n"
-        "  --out DIR              write DIR/result.json, trajectories.csv, crossings.csv,\n"
-        "                         statistics.csv, plots (PNG, SVG) and report.html\n"
+        "  --out DIR              write DIR/result.json, trajectories.csv, samples.csv (every\n"
+        "                         sample's runout), crossings.csv, statistics.csv, exceedance.csv,\n"
+        "                         runout_histogram.csv, plots (PNG, SVG) and report.html\n"
         "  --threads N            worker threads (default: all cores; results do not depend on it)\n"
         "  --samples N, --seed S  override the file's samples and seed\n"
         "  --max-trajectories N   trajectories listed in the JSON (default 100)\n"
         "  --no-plots             skip the plots and report.html\n"
         "  --quiet                no summary\n"
         "\n"
-        "Units: m, s, m/s, rad/s, kg, J; angles in the file in degrees.\n");
+        "Units: m, s, m/s, rad/s, kg, J (the summary shows energies in kJ); angles in the file\n"
+        "in degrees.\n");
 }
 
 typedef struct {
@@ -132,7 +134,7 @@ int rf_cli_trajectory(int argc, char **argv)
     rf_traj_ensemble ens;
     rf_traj_stats st;
     int rc = 0;
-    if (rf_traj_run(&spec, a.threads, &ens, &err) != RF_OK || rf_traj_stats_compute(&ens, &st, &err) != RF_OK) {
+    if (rf_traj_run(&spec, a.threads, &ens, &err) != RF_OK || rf_traj_stats_compute_spec(&spec, &ens, &st, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
         rf_traj_ensemble_free(&ens);
         rf_traj_spec_free(&spec);

@@ -137,14 +137,20 @@ void traj_record_crossing(traj_run *r, size_t c, double t, double x, double y, d
     rf_traj_crossing *cr = &r->res->crossings[c];
     cr->reached = 1;
     cr->t = t;
-    cr->height = y - geo->ground_y;
-    cr->normal_height = g->nx * (x - g->ax) + g->ny * (y - g->ay);
+    /* The simulated point is the block's lowest point; a sphere's centre is r
+     * above it.  In contact the point is on the ground by definition: its
+     * height is 0, not the rounding of y along the segment minus the ground. */
+    int on_ground = r->phase == TRAJ_CONTACT;
+    cr->height_lowest = on_ground ? 0 : y - geo->ground_y;
+    cr->height_centre = cr->height_lowest + r->radius;
+    cr->normal_height = on_ground ? 0 : g->nx * (x - g->ax) + g->ny * (y - g->ay);
     cr->speed = hypot(vx, vy);
-    cr->kinetic_energy = 0.5 * r->mass * cr->speed * cr->speed;
+    cr->translational_energy = 0.5 * r->mass * cr->speed * cr->speed;
     cr->rotational_energy = 0.5 * r->inertia * omega * omega;
+    cr->total_energy = cr->translational_energy + cr->rotational_energy;
     *stopped = 0;
-    if (spec->capacity > 0 && (spec->height <= 0 || cr->height <= spec->height) &&
-        cr->kinetic_energy + cr->rotational_energy <= spec->capacity) {
+    if (spec->capacity > 0 && (spec->height <= 0 || cr->height_lowest <= spec->height) &&
+        cr->total_energy <= spec->capacity) {
         cr->stopped_by_barrier = 1;
         *stopped = 1;
         r->t = t, r->x = x, r->y = y, r->vx = r->vy = r->omega = 0;

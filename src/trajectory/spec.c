@@ -193,6 +193,46 @@ static rf_status check_release(const rf_traj_spec *s, const rf_traj_world *w, rf
     return RF_OK;
 }
 
+/* A list of n <= max finite values, increasing, each in [lo, hi]. */
+static rf_status check_list(const char *path, const double *v, size_t n, size_t max, double lo, double hi,
+                            rf_error *err)
+{
+    if (n > max)
+        return rf_fail(err, RF_EINVAL, "%s: %zu values; at most %zu", path, n, max);
+    for (size_t k = 0; k < n; k++) {
+        if (!(v[k] >= lo && v[k] <= hi))
+            return rf_fail(err, RF_EINVAL, "%s[%zu] = %g: must lie in [%g, %g]", path, k, v[k], lo, hi);
+        if (k && !(v[k] > v[k - 1]))
+            return rf_fail(err, RF_EINVAL, "%s[%zu] = %g: the values must increase", path, k, v[k]);
+    }
+    return RF_OK;
+}
+
+/* outputs: percentiles in (0, 100), thresholds finite and increasing, bins in range. */
+static rf_status check_outputs(const rf_traj_spec *s, rf_error *err)
+{
+    const rf_traj_outputs *o = &s->outputs;
+    rf_status st = check_list("outputs.percentiles", o->percentiles, o->n_percentiles, RF_TRAJ_MAX_PERCENTILES,
+                              1e-9, 100 - 1e-9, err);
+    if (st == RF_OK)
+        st = check_list("outputs.runout_thresholds", o->runout_thresholds, o->n_runout_thresholds,
+                        RF_TRAJ_MAX_THRESHOLDS, -HUGE_VAL, HUGE_VAL, err);
+    if (st == RF_OK && o->runout_bins > RF_TRAJ_MAX_BINS)
+        st = rf_fail(err, RF_EINVAL, "outputs.runout_bins = %zu: at most %d", o->runout_bins, RF_TRAJ_MAX_BINS);
+    for (size_t c = 0; c < s->n_collectors && st == RF_OK; c++) {
+        const rf_traj_collector *col = &s->collectors[c];
+        char p[300];
+        snprintf(p, sizeof p, "collectors.%s.energy_thresholds", col->name);
+        st = check_list(p, col->energy_thresholds, col->n_energy_thresholds, RF_TRAJ_MAX_THRESHOLDS - 1, 0,
+                        HUGE_VAL, err);
+        snprintf(p, sizeof p, "collectors.%s.height_thresholds", col->name);
+        if (st == RF_OK)
+            st = check_list(p, col->height_thresholds, col->n_height_thresholds, RF_TRAJ_MAX_THRESHOLDS - 1, 0,
+                            HUGE_VAL, err);
+    }
+    return st;
+}
+
 /* Everything but the ranges of the random inputs. */
 static rf_status validate_values(const rf_traj_spec *s, rf_error *err)
 {
@@ -203,7 +243,7 @@ static rf_status validate_values(const rf_traj_spec *s, rf_error *err)
     for (size_t i = 0; s->seg_material && i + 1 < s->n_points; i++)
         if (s->seg_material[i] >= s->n_materials)
             return rf_fail(err, RF_EINVAL, "profile.materials[%zu]: no such material", i);
-    if ((st = check_block(s, err)) != RF_OK)
+    if ((st = check_block(s, err)) != RF_OK || (st = check_outputs(s, err)) != RF_OK)
         return st;
     for (size_t c = 0; c < s->n_collectors; c++)
         if (!(s->collectors[c].capacity >= 0 && s->collectors[c].height >= 0))

@@ -1,8 +1,11 @@
-/* traj_csv.c - a slope profile from a CSV file: one vertex per line,
- * "x,y" or "x,y,material" (metres; the material names one of the spec's
- * materials and applies to the segment starting at that vertex).  Blank
- * lines and lines starting with '#' are skipped, and so is a first line that
- * is not numeric (a header).  Errors name the file, line and value. */
+/* traj_csv.c - the trajectory CSV files.  Read: a slope profile, one vertex
+ * per line, "x,y" or "x,y,material" (metres; the material names one of the
+ * spec's materials and applies to the segment starting at that vertex).
+ * Blank lines and lines starting with '#' are skipped, and so is a first line
+ * that is not numeric (a header).  Errors name the file, line and value.
+ * Written (rf_traj_write_csv): recorded paths, every sample's end point and
+ * collector crossings, statistics, exceedance probabilities and the runout
+ * histogram; every header names its unit. */
 #include "trajectory/traj_internal.h"
 
 #include <ctype.h>
@@ -118,4 +121,132 @@ rf_status rf_traj_profile_read_csv(const char *path, rf_traj_spec *s, rf_error *
 {
     int named;
     return traj_csv_read(path, s, &named, err);
+}
+
+static rf_status write_paths(FILE *f, const rf_traj_ensemble *e)
+{
+    fputs("sample,t_s,x_m,y_m,vx_m_s,vy_m_s,event\n", f);
+    static const char *const kinds[] = {"release", "impact", "launch", "contact", "vertex", "rest", "exit",
+                                        "step_limit"};
+    for (size_t i = 0; i < e->n_recorded; i++) {
+        const rf_traj_result *r = &e->recorded[i];
+        for (size_t k = 0; k < r->n_events; k++) {
+            const rf_traj_event *ev = &r->events[k];
+            fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%s\n", i, ev->t, ev->x, ev->y, ev->vx, ev->vy, kinds[ev->kind]);
+            double t1 = k + 1 < r->n_events ? r->events[k + 1].t : ev->t;
+            for (int j = 1; j < 16 && t1 > ev->t; j++) { /* points inside the stretch */
+                double d = (t1 - ev->t) * j / 16.0;
+                fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,\n", i, ev->t + d, ev->x + ev->vx * d + 0.5 * ev->ax * d * d,
+                        ev->y + ev->vy * d + 0.5 * ev->ay * d * d, ev->vx + ev->ax * d, ev->vy + ev->ay * d);
+            }
+        }
+    }
+    return ferror(f) ? RF_EIO : RF_OK;
+}
+
+static rf_status write_samples(FILE *f, const rf_traj_ensemble *e)
+{
+    fputs("sample,state,runout_x_m,rebound_height_m\n", f);
+    for (size_t i = 0; i < e->samples; i++)
+        fprintf(f, "%zu,%s,%.17g,%.17g\n", i, rf_traj_state_name(e->state[i]), e->runout_x[i], e->rebound_height[i]);
+    return ferror(f) ? RF_EIO : RF_OK;
+}
+
+static rf_status write_crossings(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *e)
+{
+    fputs("sample,state,runout_x_m,collector,reached,t_s,height_lowest_m,height_centre_m,normal_height_m,speed_m_s,"
+          "translational_energy_J,rotational_energy_J,total_energy_J,stopped_by_barrier\n", f);
+    for (size_t i = 0; i < e->samples; i++)
+        for (size_t c = 0; c < s->n_collectors; c++) {
+            const rf_traj_crossing *x = &e->crossings[i * s->n_collectors + c];
+            fprintf(f, "%zu,%s,%.17g,%s,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", i,
+                    rf_traj_state_name(e->state[i]), e->runout_x[i], s->collectors[c].name, x->reached, x->t,
+                    x->height_lowest, x->height_centre, x->normal_height, x->speed, x->translational_energy,
+                    x->rotational_energy, x->total_energy, x->stopped_by_barrier);
+        }
+    return ferror(f) ? RF_EIO : RF_OK;
+}
+
+static void stats_row(FILE *f, const char *c, const char *what, const char *unit, const rf_traj_percentiles *p)
+{
+    fprintf(f, "%s%s%s,%s", c ? c : "", c ? "." : "", what, unit);
+    for (size_t k = 0; k < p->n; k++)
+        fprintf(f, ",%.9g", p->value[k]);
+    fprintf(f, ",%.9g,%.9g\n", p->max, p->mean);
+}
+
+/* One row per quantity: its percentiles at the chosen levels, max, mean. */
+static rf_status write_stats(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
+{
+    char name[32];
+    fputs("quantity,unit", f);
+    for (size_t k = 0; k < st->runout_x.n; k++)
+        rf_traj_percentile_name(st->runout_x.level[k], name, sizeof name), fprintf(f, ",%s", name);
+    fputs(",max,mean\n", f);
+    stats_row(f, NULL, "runout_x", "m", &st->runout_x);
+    stats_row(f, NULL, "rebound_height", "m", &st->rebound_height);
+    for (size_t c = 0; c < s->n_collectors; c++) {
+        const rf_traj_collector_stats *cs = &st->collectors[c];
+        const char *n = s->collectors[c].name;
+        fprintf(f, "%s.reach_probability,-,%.9g", n, cs->reach_probability);
+        for (size_t k = 0; k <= st->runout_x.n; k++)
+            fputc(',', f);
+        fputc('\n', f);
+        stats_row(f, n, "total_energy", "J", &cs->total_energy);
+        stats_row(f, n, "translational_energy", "J", &cs->translational_energy);
+        stats_row(f, n, "rotational_energy", "J", &cs->rotational_energy);
+        stats_row(f, n, "height_lowest", "m", &cs->height_lowest);
+        stats_row(f, n, "height_centre", "m", &cs->height_centre);
+        stats_row(f, n, "speed", "m/s", &cs->speed);
+    }
+    return ferror(f) ? RF_EIO : RF_OK;
+}
+
+/* quantity,threshold,unit,source,probability: P(quantity > threshold) over all samples. */
+static rf_status write_exceedance(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
+{
+    fputs("quantity,threshold,unit,source,probability\n", f);
+    for (size_t k = 0; k < s->outputs.n_runout_thresholds; k++)
+        fprintf(f, "runout_x,%.9g,m,user,%.9g\n", s->outputs.runout_thresholds[k], st->p_runout_above[k]);
+    for (size_t c = 0; c < s->n_collectors; c++) {
+        double t[RF_TRAJ_MAX_THRESHOLDS];
+        int own;
+        size_t n = rf_traj_thresholds(&s->collectors[c], 0, t, &own);
+        for (size_t k = 0; k < n; k++)
+            fprintf(f, "%s.total_energy,%.9g,J,%s,%.9g\n", s->collectors[c].name, t[k],
+                    own && !k ? "capacity" : "user", st->collectors[c].p_energy_above[k]);
+        n = rf_traj_thresholds(&s->collectors[c], 1, t, &own);
+        for (size_t k = 0; k < n; k++)
+            fprintf(f, "%s.height_lowest,%.9g,m,%s,%.9g\n", s->collectors[c].name, t[k],
+                    own && !k ? "barrier_height" : "user", st->collectors[c].p_height_above[k]);
+    }
+    return ferror(f) ? RF_EIO : RF_OK;
+}
+
+static rf_status write_histogram(FILE *f, const rf_traj_stats *st)
+{
+    const rf_traj_histogram *h = &st->runout_histogram;
+    fputs("bin,runout_x_from_m,runout_x_to_m,count\n", f);
+    for (size_t k = 0; k < h->bins; k++)
+        fprintf(f, "%zu,%.9g,%.9g,%zu\n", k, h->edge[k], h->edge[k + 1], h->count[k]);
+    return ferror(f) ? RF_EIO : RF_OK;
+}
+
+rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                            const rf_traj_stats *st, rf_error *err)
+{
+    static const char *const names[6] = {"trajectories.csv", "samples.csv", "crossings.csv", "statistics.csv",
+                                         "exceedance.csv", "runout_histogram.csv"};
+    for (int k = 0; k < 6; k++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+        FILE *f = fopen(path, "w");
+        if (!f)
+            return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
+        rf_status rc = k == 0 ? write_paths(f, e) : k == 1 ? write_samples(f, e) : k == 2 ? write_crossings(f, s, e)
+                     : k == 3 ? write_stats(f, s, st) : k == 4 ? write_exceedance(f, s, st) : write_histogram(f, st);
+        if (fclose(f) != 0 || rc != RF_OK)
+            return rf_fail(err, RF_EIO, "cannot write %s", path);
+    }
+    return RF_OK;
 }

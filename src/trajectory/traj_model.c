@@ -1,11 +1,13 @@
 /* traj_model.c - the trajectory model behind the rf_model interface: one
  * evaluation binds the TM point's values to paths of the trajectory spec,
  * runs the whole Monte Carlo ensemble (single-threaded: the study runner
- * parallelises over points) and returns its statistics.  Every evaluation
+ * parallelises over points) and returns its statistics, named as in the
+ * trajectory JSON (percentiles at the file's outputs.percentiles, exceedance
+ * probabilities at its thresholds).  Every evaluation
  * uses the spec's seed, so the TM's points see the same random numbers
  * (common random numbers): differences between points are the fuzzy inputs'
  * effect, not sampling noise.  A collector that no block reaches gets 0 for
- * its energy and height percentiles (no energy passes), so outputs stay finite.
+ * its energy, height and speed percentiles (nothing passes), so outputs stay finite.
  * With the impact_model law the impact table is built once for the model and
  * shared by every evaluation (each impact of the impact model is computed
  * once per study process), unless a parameter changes it. */
@@ -22,19 +24,107 @@ typedef struct {
     size_t n_params;
     char **paths;
     void *table;             /* impact_model: built once when no parameter changes it, else NULL */
+    size_t n_outputs;
 } traj_model_ctx;
 
-static const char *const pct_names[4] = {"p50", "p95", "p99", "max"};
+/* The outputs, in order, as one walk over the spec (names) and the
+ * statistics (values): a sink either counts, names or fills them. */
+typedef struct {
+    char **names;            /* naming pass, else NULL */
+    const char **units;
+    double *y;               /* filling pass, else NULL */
+    size_t n, cap;           /* outputs seen; room in names/units/y */
+    int nomem;
+} out_sink;
 
-static void put_pct(double *y, const rf_traj_percentiles *p)
+static void emit(out_sink *o, const char *name, const char *unit, double v)
 {
-    double v[4] = {p->p50, p->p95, p->p99, p->max};
-    for (int k = 0; k < 4; k++)
-        y[k] = isfinite(v[k]) ? v[k] : 0;
+    if (o->n >= o->cap) { /* counting, or more outputs than named (see traj_model_eval) */
+        o->n++;
+        return;
+    }
+    if (o->names && !(o->names[o->n] = rf_strdup(name)))
+        o->nomem = 1;
+    if (o->units)
+        o->units[o->n] = unit;
+    if (o->y)
+        o->y[o->n] = isfinite(v) ? v : 0;
+    o->n++;
 }
 
-/* Outputs: per collector 4 ke + 4 height + reach; then 4 runout + 4 rebound. */
-static size_t n_outputs_for(size_t nc) { return 9 * nc + 8; }
+/* PREFIX_pXX for each chosen level, then PREFIX_max. */
+static void emit_pct(out_sink *o, const rf_traj_outputs *lv, const char *prefix, const char *unit,
+                     const rf_traj_percentiles *p)
+{
+    char name[400], lvl[32];
+    for (size_t k = 0; k < lv->n_percentiles; k++) {
+        rf_traj_percentile_name(lv->percentiles[k], lvl, sizeof lvl);
+        snprintf(name, sizeof name, "%s_%s", prefix, lvl);
+        emit(o, name, unit, p && k < p->n ? p->value[k] : NAN);
+    }
+    snprintf(name, sizeof name, "%s_max", prefix);
+    emit(o, name, unit, p ? p->max : NAN);
+}
+
+/* "500000J", "2_5m": a threshold in an output name ('.' -> '_', no '+'). */
+static void threshold_tag(double v, const char *unit, char *buf, size_t size)
+{
+    char num[64], *q = buf;
+    snprintf(num, sizeof num, "%.10g", v);
+    for (const char *p = num; *p && q + 1 < buf + size; p++)
+        if (*p != '+')
+            *q++ = *p == '.' ? '_' : *p;
+    *q = '\0';
+    snprintf(q, size - (size_t)(q - buf), "%s", unit);
+}
+
+/* PREFIX_p_QUANTITY_above_TAG for each threshold (TAG = own_tag for the barrier's own). */
+static void emit_exceed(out_sink *o, const char *prefix, const char *quantity, const char *unit, const double *t,
+                        const double *p, size_t n, int own, const char *own_tag)
+{
+    char name[400], tag[96];
+    for (size_t k = 0; k < n; k++) {
+        if (own && !k)
+            snprintf(tag, sizeof tag, "%s", own_tag);
+        else
+            threshold_tag(t[k], unit, tag, sizeof tag);
+        snprintf(name, sizeof name, "%s%sp_%s_above_%s", prefix, *prefix ? "_" : "", quantity, tag);
+        emit(o, name, "", p ? p[k] : NAN);
+    }
+}
+
+static void emit_collector(out_sink *o, const rf_traj_spec *s, size_t c, const rf_traj_collector_stats *cs)
+{
+    const rf_traj_outputs *lv = &s->outputs;
+    const char *nm = s->collectors[c].name;
+    char prefix[300];
+    const char *q[4] = {"total_energy", "height_lowest", "height_centre", "speed"}, *u[4] = {"J", "m", "m", "m/s"};
+    const rf_traj_percentiles *p[4] = {cs ? &cs->total_energy : NULL, cs ? &cs->height_lowest : NULL,
+                                       cs ? &cs->height_centre : NULL, cs ? &cs->speed : NULL};
+    for (int k = 0; k < 4; k++) {
+        snprintf(prefix, sizeof prefix, "%s_%s", nm, q[k]);
+        emit_pct(o, lv, prefix, u[k], p[k]);
+    }
+    snprintf(prefix, sizeof prefix, "%s_reach_probability", nm);
+    emit(o, prefix, "", cs ? cs->reach_probability : NAN);
+    double t[RF_TRAJ_MAX_THRESHOLDS];
+    int own;
+    size_t n = rf_traj_thresholds(&s->collectors[c], 0, t, &own);
+    emit_exceed(o, nm, "total_energy", "J", t, cs ? cs->p_energy_above : NULL, n, own, "capacity");
+    n = rf_traj_thresholds(&s->collectors[c], 1, t, &own);
+    emit_exceed(o, nm, "height_lowest", "m", t, cs ? cs->p_height_above : NULL, n, own, "barrier");
+}
+
+/* Every output: per collector, then runout_x, rebound_height and P(runout_x > x). */
+static void walk_outputs(out_sink *o, const rf_traj_spec *s, const rf_traj_stats *t)
+{
+    for (size_t c = 0; c < s->n_collectors; c++)
+        emit_collector(o, s, c, t ? &t->collectors[c] : NULL);
+    emit_pct(o, &s->outputs, "runout_x", "m", t ? &t->runout_x : NULL);
+    emit_pct(o, &s->outputs, "rebound_height", "m", t ? &t->rebound_height : NULL);
+    emit_exceed(o, "", "runout_x", "m", s->outputs.runout_thresholds, t ? t->p_runout_above : NULL,
+                s->outputs.n_runout_thresholds, 0, "");
+}
 
 static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_error *err)
 {
@@ -49,16 +139,14 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     rf_traj_ensemble e;
     rf_traj_stats t;
     if ((st = traj_run_shared(&s, 1, c->table, &e, err)) == RF_OK) {
-        if ((st = rf_traj_stats_compute(&e, &t, err)) == RF_OK) {
-            size_t nc = s.n_collectors, o = 0;
-            for (size_t k = 0; k < nc; k++, o += 9) {
-                put_pct(y + o, &t.kinetic_energy[k]);
-                put_pct(y + o + 4, &t.height[k]);
-                y[o + 8] = t.reach_probability[k];
-            }
-            put_pct(y + o, &t.runout_x);
-            put_pct(y + o + 4, &t.rebound_height);
+        if ((st = rf_traj_stats_compute_spec(&s, &e, &t, err)) == RF_OK) {
+            out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0};
+            walk_outputs(&o, &s, &t);
             rf_traj_stats_free(&t);
+            /* a bound capacity or barrier height that reaches 0 drops its exceedance output */
+            if (o.n != c->n_outputs)
+                st = rf_fail(err, RF_EINVAL, "a bound collector capacity or height reaches 0 at this point: the "
+                                             "outputs P(E > capacity), P(h > height) no longer exist; keep it > 0");
         }
         rf_traj_ensemble_free(&e);
     }
@@ -94,32 +182,21 @@ static rf_status share_table(traj_model_ctx *c, rf_error *err)
 
 static rf_status init_outputs(rf_model *m, const rf_traj_spec *s, rf_error *err)
 {
-    size_t n = n_outputs_for(s->n_collectors), o = 0;
-    char **names = calloc(n, sizeof *names);
-    const char **units = calloc(n, sizeof *units);
-    rf_status st = names && units ? RF_OK : rf_fail(err, RF_ENOMEM, "out of memory");
-    char buf[300];
-    for (size_t k = 0; k < s->n_collectors && st == RF_OK; k++) {
-        for (int q = 0; q < 8; q++, o++) {
-            snprintf(buf, sizeof buf, "%s_%s_%s", s->collectors[k].name, q < 4 ? "ke" : "height", pct_names[q % 4]);
-            names[o] = rf_strdup(buf), units[o] = q < 4 ? "J" : "m";
-        }
-        snprintf(buf, sizeof buf, "%s_reach_probability", s->collectors[k].name);
-        names[o] = rf_strdup(buf), units[o++] = "";
-    }
-    for (int q = 0; q < 8 && st == RF_OK; q++, o++) {
-        snprintf(buf, sizeof buf, "%s_%s", q < 4 ? "runout" : "rebound_height", pct_names[q % 4]);
-        names[o] = rf_strdup(buf), units[o] = "m";
-    }
-    for (size_t k = 0; k < n && st == RF_OK; k++)
-        if (!names[k])
-            st = rf_fail(err, RF_ENOMEM, "out of memory");
+    out_sink o = {NULL, NULL, NULL, 0, 0, 0};
+    walk_outputs(&o, s, NULL); /* count */
+    size_t n = o.n;
+    o.names = calloc(n ? n : 1, sizeof *o.names);
+    o.units = calloc(n ? n : 1, sizeof *o.units);
+    o.n = 0, o.cap = n;
+    if (o.names && o.units)
+        walk_outputs(&o, s, NULL);
+    rf_status st = o.names && o.units && !o.nomem ? RF_OK : rf_fail(err, RF_ENOMEM, "out of memory");
     if (st == RF_OK)
-        st = rf_model_init_outputs(m, n, (const char *const *)names, units, err);
-    for (size_t k = 0; names && k < n; k++)
-        free(names[k]);
-    free(names);
-    free(units);
+        st = rf_model_init_outputs(m, n, (const char *const *)o.names, o.units, err);
+    for (size_t k = 0; o.names && k < n; k++)
+        free(o.names[k]);
+    free(o.names);
+    free(o.units);
     return st;
 }
 
@@ -154,6 +231,10 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
         free(c);
         return st;
     }
+    if (!c->spec.outputs.n_percentiles) { /* a spec built in code: the defaults */
+        c->spec.outputs.n_percentiles = 3;
+        c->spec.outputs.percentiles[0] = 50, c->spec.outputs.percentiles[1] = 95, c->spec.outputs.percentiles[2] = 99;
+    }
     c->paths = calloc(n_params ? n_params : 1, sizeof *c->paths);
     if (!c->paths)
         st = rf_fail(err, RF_ENOMEM, "out of memory");
@@ -174,6 +255,7 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
         st = share_table(c, err);
     if (st == RF_OK)
         st = init_outputs(model, &c->spec, err);
+    c->n_outputs = model->n_outputs;
     if (st == RF_OK)
         st = set_identity(model, c, err);
     if (st != RF_OK)

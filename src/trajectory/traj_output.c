@@ -1,7 +1,8 @@
-/* traj_output.c - what `rockfuzz trajectory` writes: the JSON document
- * (shape fixed by issue 11 and docs/trajectories.md), a readable summary,
- * and CSV files.  Recorded paths are rebuilt exactly from their events (each
- * stretch is a parabola or a uniformly accelerated motion). */
+/* traj_output.c - what `rockfuzz trajectory` prints: the JSON document
+ * (shape in docs/trajectories.md; energies in J) and a readable summary
+ * (energies in kJ, said once in its header); the CSV files are traj_csv.c's.
+ * Recorded paths are rebuilt exactly from their events (each stretch is a
+ * parabola or a uniformly accelerated motion). */
 #include "trajectory/traj_internal.h"
 
 #include <errno.h>
@@ -31,12 +32,16 @@ static void jstr(FILE *f, const char *s)
     fputc('"', f);
 }
 
+/* {"p50": .., <the chosen levels>, "max": .., "mean": ..} */
 static void jpct(FILE *f, const rf_traj_percentiles *p)
 {
-    fputs("{\"p50\": ", f), jnum(f, p->p50);
-    fputs(", \"p95\": ", f), jnum(f, p->p95);
-    fputs(", \"p99\": ", f), jnum(f, p->p99);
-    fputs(", \"max\": ", f), jnum(f, p->max);
+    char name[32];
+    fputc('{', f);
+    for (size_t k = 0; k < p->n; k++) {
+        rf_traj_percentile_name(p->level[k], name, sizeof name);
+        fprintf(f, "\"%s\": ", name), jnum(f, p->value[k]), fputs(", ", f);
+    }
+    fputs("\"max\": ", f), jnum(f, p->max);
     fputs(", \"mean\": ", f), jnum(f, p->mean);
     fputc('}', f);
 }
@@ -66,11 +71,13 @@ static void json_crossing(FILE *f, const rf_traj_crossing *c)
         return;
     }
     fputs("{\"t\": ", f), jnum(f, c->t);
-    fputs(", \"height\": ", f), jnum(f, c->height);
+    fputs(", \"height_lowest\": ", f), jnum(f, c->height_lowest);
+    fputs(", \"height_centre\": ", f), jnum(f, c->height_centre);
     fputs(", \"normal_height\": ", f), jnum(f, c->normal_height);
     fputs(", \"speed\": ", f), jnum(f, c->speed);
-    fputs(", \"kinetic_energy\": ", f), jnum(f, c->kinetic_energy);
+    fputs(", \"translational_energy\": ", f), jnum(f, c->translational_energy);
     fputs(", \"rotational_energy\": ", f), jnum(f, c->rotational_energy);
+    fputs(", \"total_energy\": ", f), jnum(f, c->total_energy);
     fprintf(f, ", \"stopped_by_barrier\": %s}", c->stopped_by_barrier ? "true" : "false");
 }
 
@@ -97,6 +104,63 @@ static void json_trajectory(FILE *f, const rf_traj_spec *s, const rf_traj_result
     fputs("}}", f);
 }
 
+/* [{"threshold": v, "barrier": true|false, "probability": p}, ...] */
+static void json_exceed(FILE *f, const double *t, const double *p, size_t n, int own)
+{
+    fputc('[', f);
+    for (size_t k = 0; k < n; k++) {
+        fputs(k ? ", {\"threshold\": " : "{\"threshold\": ", f), jnum(f, t[k]);
+        fprintf(f, ", \"barrier\": %s, \"probability\": ", own && k == 0 ? "true" : "false"), jnum(f, p[k]);
+        fputc('}', f);
+    }
+    fputc(']', f);
+}
+
+static void json_histogram(FILE *f, const rf_traj_histogram *h)
+{
+    fputs("{\"edges\": [", f);
+    for (size_t k = 0; h->bins && k <= h->bins; k++)
+        fputs(k ? ", " : "", f), jnum(f, h->edge[k]);
+    fputs("], \"counts\": [", f);
+    for (size_t k = 0; k < h->bins; k++)
+        fprintf(f, "%s%zu", k ? ", " : "", h->count[k]);
+    fputs("]}", f);
+}
+
+static void json_collector_stats(FILE *f, const rf_traj_collector *col, const rf_traj_collector_stats *cs)
+{
+    const rf_traj_percentiles *q[6] = {&cs->total_energy, &cs->translational_energy, &cs->rotational_energy,
+                                       &cs->height_lowest, &cs->height_centre, &cs->speed};
+    static const char *const names[6] = {"total_energy", "translational_energy", "rotational_energy",
+                                         "height_lowest", "height_centre", "speed"};
+    jstr(f, col->name);
+    fputs(": {\"reach_probability\": ", f), jnum(f, cs->reach_probability);
+    for (int k = 0; k < 6; k++)
+        fprintf(f, ", \"%s\": ", names[k]), jpct(f, q[k]);
+    double t[RF_TRAJ_MAX_THRESHOLDS];
+    int own;
+    size_t n = rf_traj_thresholds(col, 0, t, &own);
+    fputs(", \"p_total_energy_above\": ", f), json_exceed(f, t, cs->p_energy_above, n, own);
+    n = rf_traj_thresholds(col, 1, t, &own);
+    fputs(", \"p_height_lowest_above\": ", f), json_exceed(f, t, cs->p_height_above, n, own);
+    fputc('}', f);
+}
+
+static void json_statistics(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
+{
+    fputs("{\"runout_x\": ", f), jpct(f, &st->runout_x);
+    fputs(", \"rebound_height\": ", f), jpct(f, &st->rebound_height);
+    fputs(", \"p_runout_x_above\": ", f);
+    json_exceed(f, s->outputs.runout_thresholds, st->p_runout_above, s->outputs.n_runout_thresholds, 0);
+    fputs(",\n  \"runout_histogram\": ", f), json_histogram(f, &st->runout_histogram);
+    fputs(",\n  \"collectors\": {", f);
+    for (size_t c = 0; c < s->n_collectors; c++) {
+        fputs(c ? ",\n   " : "", f);
+        json_collector_stats(f, &s->collectors[c], &st->collectors[c]);
+    }
+    fputs("}}", f);
+}
+
 void rf_traj_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_traj_stats *st,
                         size_t max_traj)
 {
@@ -112,18 +176,8 @@ void rf_traj_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *
         fputs(i ? ",\n  " : "\n  ", f);
         json_trajectory(f, s, &e->recorded[i]);
     }
-    fputs("],\n \"statistics\": {\"runout_x\": ", f), jpct(f, &st->runout_x);
-    fputs(", \"rebound_height\": ", f), jpct(f, &st->rebound_height);
-    fputs(", \"collectors\": {", f);
-    for (size_t c = 0; c < s->n_collectors; c++) {
-        fputs(c ? ", " : "", f), jstr(f, s->collectors[c].name);
-        fputs(": {\"reach_probability\": ", f), jnum(f, st->reach_probability[c]);
-        fputs(", \"kinetic_energy\": ", f), jpct(f, &st->kinetic_energy[c]);
-        fputs(", \"height\": ", f), jpct(f, &st->height[c]);
-        fputs(", \"speed\": ", f), jpct(f, &st->speed[c]);
-        fputc('}', f);
-    }
-    fputs("}}", f);
+    fputs("],\n \"statistics\": ", f);
+    json_statistics(f, s, st);
     if (s->law == RF_BOUNCE_IMPACT_MODEL) {
         fprintf(f, ",\n \"impact_table\": {\"solver\": \"%s\", \"nodes_normal_speed\": %zu, \"nodes_incidence\": %zu, "
                    "\"impacts_computed\": %zu, \"impacts_from_cache\": %zu, \"tolerance\": %.6g, \"error_estimate\": ",
@@ -135,11 +189,52 @@ void rf_traj_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *
     fprintf(f, ",\n \"wall_seconds\": %.6g}\n", e->wall_seconds);
 }
 
+/* "  what:  p50 1.2  p95 3.4  max 5.6" in the chosen levels, values times scale. */
+static void summary_row(FILE *f, int indent, const char *what, const rf_traj_percentiles *p, double scale)
+{
+    char name[32];
+    fprintf(f, "%*s%-*s", indent, "", 26 - indent, what);
+    for (size_t k = 0; k < p->n; k++) {
+        rf_traj_percentile_name(p->level[k], name, sizeof name);
+        fprintf(f, "%s %-9.4g ", name, p->value[k] * scale);
+    }
+    fprintf(f, "max %.4g\n", p->max * scale);
+}
+
+static void summary_exceed(FILE *f, const char *what, const char *unit, const double *t, const double *p, size_t n,
+                           int own, const char *own_name, double scale)
+{
+    for (size_t k = 0; k < n; k++)
+        fprintf(f, "%*sP(%s > %.4g %s%s) = %.4g\n", own_name ? 4 : 2, "", what, t[k] * scale, unit,
+                own && !k ? own_name : "", p[k]);
+}
+
+static void summary_collector(FILE *f, const rf_traj_collector *col, const rf_traj_collector_stats *cs)
+{
+    fprintf(f, "  collector %s (x = %g m): reach probability %.4g\n", col->name, col->x, cs->reach_probability);
+    if (cs->reach_probability > 0) {
+        summary_row(f, 4, "total energy", &cs->total_energy, 1e-3);
+        summary_row(f, 4, "translational energy", &cs->translational_energy, 1e-3);
+        summary_row(f, 4, "rotational energy", &cs->rotational_energy, 1e-3);
+        summary_row(f, 4, "height lowest point", &cs->height_lowest, 1);
+        summary_row(f, 4, "height centre", &cs->height_centre, 1);
+        summary_row(f, 4, "speed", &cs->speed, 1);
+    }
+    double t[RF_TRAJ_MAX_THRESHOLDS];
+    int own;
+    size_t n = rf_traj_thresholds(col, 0, t, &own);
+    summary_exceed(f, "total energy", "kJ", t, cs->p_energy_above, n, own, ", the capacity", 1e-3);
+    n = rf_traj_thresholds(col, 1, t, &own);
+    summary_exceed(f, "height lowest point", "m", t, cs->p_height_above, n, own, ", the barrier height", 1);
+}
+
 void rf_traj_write_summary(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_traj_stats *st)
 {
     fprintf(f, "%s: %zu trajector%s (%s sampling, seed %llu) in %.3g s\n", s->name ? s->name : "trajectory",
             e->samples, e->samples == 1 ? "y" : "ies", s->lhs ? "Latin hypercube" : "random",
             (unsigned long long)s->seed, e->wall_seconds);
+    fprintf(f, "  units: energy kJ, height and x m, speed m/s; collector statistics over the blocks that reach "
+               "it, probabilities over all blocks\n");
     fprintf(f, "  stopped %zu, exited %zu, step_limit %zu\n", st->stopped, st->exited, st->step_limit);
     if (s->law == RF_BOUNCE_IMPACT_MODEL)
         fprintf(f, "  impact_model (%s): table of %zu normal speeds x %zu incidences; %zu impacts computed, %zu from "
@@ -151,19 +246,12 @@ void rf_traj_write_summary(FILE *f, const rf_traj_spec *s, const rf_traj_ensembl
         fprintf(f, "  %s at t = %.6g s, x = %.6g m, y = %.6g m after %zu impact%s\n", rf_traj_state_name(r->state),
                 r->t_end, r->x_end, r->y_end, r->n_impacts, r->n_impacts == 1 ? "" : "s");
     } else {
-        fprintf(f, "  runout x [m]: p50 %.4g  p95 %.4g  p99 %.4g  max %.4g\n", st->runout_x.p50, st->runout_x.p95,
-                st->runout_x.p99, st->runout_x.max);
+        summary_row(f, 2, "runout x [m]", &st->runout_x, 1);
+        summary_exceed(f, "runout x", "m", s->outputs.runout_thresholds, st->p_runout_above,
+                       s->outputs.n_runout_thresholds, 0, NULL, 1);
     }
-    for (size_t c = 0; c < s->n_collectors; c++) {
-        fprintf(f, "  collector %s (x = %g m): reach probability %.4g\n", s->collectors[c].name, s->collectors[c].x,
-                st->reach_probability[c]);
-        if (st->reach_probability[c] > 0) {
-            const rf_traj_percentiles *k = &st->kinetic_energy[c], *h = &st->height[c];
-            fprintf(f, "    energy [kJ]: p50 %.4g  p95 %.4g  p99 %.4g  max %.4g\n", k->p50 / 1e3, k->p95 / 1e3,
-                    k->p99 / 1e3, k->max / 1e3);
-            fprintf(f, "    height [m]:  p50 %.4g  p95 %.4g  p99 %.4g  max %.4g\n", h->p50, h->p95, h->p99, h->max);
-        }
-    }
+    for (size_t c = 0; c < s->n_collectors; c++)
+        summary_collector(f, &s->collectors[c], &st->collectors[c]);
 }
 
 int rf_traj_state_at(const rf_traj_result *r, double t, double *x, double *y, double *vx, double *vy)
@@ -181,72 +269,4 @@ int rf_traj_state_at(const rf_traj_result *r, double t, double *x, double *y, do
     *vx = e->vx + e->ax * d;
     *vy = e->vy + e->ay * d;
     return 1;
-}
-
-static rf_status write_paths(FILE *f, const rf_traj_ensemble *e)
-{
-    fputs("sample,t_s,x_m,y_m,vx_m_s,vy_m_s,event\n", f);
-    static const char *const kinds[] = {"release", "impact", "launch", "contact", "vertex", "rest", "exit",
-                                        "step_limit"};
-    for (size_t i = 0; i < e->n_recorded; i++) {
-        const rf_traj_result *r = &e->recorded[i];
-        for (size_t k = 0; k < r->n_events; k++) {
-            const rf_traj_event *ev = &r->events[k];
-            fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%s\n", i, ev->t, ev->x, ev->y, ev->vx, ev->vy, kinds[ev->kind]);
-            double t1 = k + 1 < r->n_events ? r->events[k + 1].t : ev->t;
-            for (int j = 1; j < 16 && t1 > ev->t; j++) { /* points inside the stretch */
-                double d = (t1 - ev->t) * j / 16.0;
-                fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,\n", i, ev->t + d, ev->x + ev->vx * d + 0.5 * ev->ax * d * d,
-                        ev->y + ev->vy * d + 0.5 * ev->ay * d * d, ev->vx + ev->ax * d, ev->vy + ev->ay * d);
-            }
-        }
-    }
-    return ferror(f) ? RF_EIO : RF_OK;
-}
-
-static rf_status write_crossings(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *e)
-{
-    fputs("sample,state,runout_x_m,collector,reached,t_s,height_m,normal_height_m,speed_m_s,kinetic_energy_J,"
-          "rotational_energy_J,stopped_by_barrier\n", f);
-    for (size_t i = 0; i < e->samples; i++)
-        for (size_t c = 0; c < s->n_collectors; c++) {
-            const rf_traj_crossing *x = &e->crossings[i * s->n_collectors + c];
-            fprintf(f, "%zu,%s,%.9g,%s,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n", i, rf_traj_state_name(e->state[i]),
-                    e->runout_x[i], s->collectors[c].name, x->reached, x->t, x->height, x->normal_height, x->speed,
-                    x->kinetic_energy, x->rotational_energy, x->stopped_by_barrier);
-        }
-    return ferror(f) ? RF_EIO : RF_OK;
-}
-
-static rf_status write_stats(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
-{
-    fputs("quantity,unit,p50,p95,p99,max,mean\n", f);
-    const rf_traj_percentiles *r = &st->runout_x;
-    fprintf(f, "runout_x,m,%.9g,%.9g,%.9g,%.9g,%.9g\n", r->p50, r->p95, r->p99, r->max, r->mean);
-    for (size_t c = 0; c < s->n_collectors; c++) {
-        const rf_traj_percentiles *q[3] = {&st->kinetic_energy[c], &st->height[c], &st->speed[c]};
-        const char *n[3] = {"kinetic_energy", "height", "speed"}, *u[3] = {"J", "m", "m/s"};
-        fprintf(f, "%s.reach_probability,-,%.9g,,,,\n", s->collectors[c].name, st->reach_probability[c]);
-        for (int k = 0; k < 3; k++)
-            fprintf(f, "%s.%s,%s,%.9g,%.9g,%.9g,%.9g,%.9g\n", s->collectors[c].name, n[k], u[k], q[k]->p50, q[k]->p95,
-                    q[k]->p99, q[k]->max, q[k]->mean);
-    }
-    return ferror(f) ? RF_EIO : RF_OK;
-}
-
-rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
-                            const rf_traj_stats *st, rf_error *err)
-{
-    const char *names[3] = {"trajectories.csv", "crossings.csv", "statistics.csv"};
-    for (int k = 0; k < 3; k++) {
-        char path[4096];
-        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
-        FILE *f = fopen(path, "w");
-        if (!f)
-            return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
-        rf_status rc = k == 0 ? write_paths(f, e) : k == 1 ? write_crossings(f, s, e) : write_stats(f, s, st);
-        if (fclose(f) != 0 || rc != RF_OK)
-            return rf_fail(err, RF_EIO, "cannot write %s", path);
-    }
-    return RF_OK;
 }

@@ -180,7 +180,7 @@ static void draw_hist(const void *v)
     for (size_t i = 0; ke && h && i < N; i++) {
         const rf_traj_crossing *x = &p->e->crossings[i * nc + hd->c];
         if (x->reached)
-            ke[m] = (x->kinetic_energy + x->rotational_energy) * 1e-3, h[m++] = x->height;
+            ke[m] = x->total_energy * 1e-3, h[m++] = x->height_lowest;
     }
     char title[300];
     plssub(1, 2);

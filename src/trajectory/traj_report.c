@@ -73,11 +73,11 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
     for (size_t c = 0; c < s->n_collectors; c++) {
         char what[300];
         fprintf(f, "<tr><td>%s (x = %g m): reach probability</td><td>-</td><td colspan=4>%.4g</td></tr>\n",
-                s->collectors[c].name, s->collectors[c].x, st->reach_probability[c]);
+                s->collectors[c].name, s->collectors[c].x, st->collectors[c].reach_probability);
         snprintf(what, sizeof what, "%s: energy", s->collectors[c].name);
-        row(f, what, "kJ", &st->kinetic_energy[c], 1e-3);
+        row(f, what, "kJ", &st->collectors[c].total_energy, 1e-3);
         snprintf(what, sizeof what, "%s: passing height", s->collectors[c].name);
-        row(f, what, "m", &st->height[c], 1);
+        row(f, what, "m", &st->collectors[c].height_lowest, 1);
     }
     fputs("</table><p>Collector statistics are over the trajectories that reach the line; energies include "
           "rotation. Envelopes use the recorded trajectories.</p>\n<h2>Profile, trajectories, envelopes</h2>"

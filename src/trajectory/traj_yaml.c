@@ -88,6 +88,71 @@ static rf_status parse_law(ty_ctx *c, struct fy_node *v)
     return sp_fail(&c->sp, v, "bounce.law", "expected constant, velocity_scaled, rigid_sphere or impact_model");
 }
 
+/* A list of numbers under `path`: at most `max`, finite, and increasing if `increasing`. */
+static rf_status number_list(ty_ctx *c, struct fy_node *v, const char *path, size_t max, int increasing,
+                             double *out, size_t *count)
+{
+    rf_status st = sp_numbers(&c->sp, v, path, 1, max, out, count);
+    for (size_t k = 0; st == RF_OK && k < *count; k++) {
+        if (!isfinite(out[k]))
+            return sp_fail(&c->sp, v, path, "every value must be finite");
+        if (increasing && k && !(out[k] > out[k - 1]))
+            return sp_fail(&c->sp, v, path, "the values must increase");
+    }
+    return st;
+}
+
+/* collectors[i].energy_thresholds [J] / height_thresholds [m]: read here, not by ty_fields. */
+static rf_status parse_thresholds(ty_ctx *c, struct fy_node *e, const char *p, rf_traj_collector *col)
+{
+    const char *keys[2] = {"energy_thresholds", "height_thresholds"};
+    double *dst[2] = {col->energy_thresholds, col->height_thresholds};
+    size_t *n[2] = {&col->n_energy_thresholds, &col->n_height_thresholds};
+    for (int k = 0; k < 2; k++) {
+        struct fy_node *v = fy_node_mapping_lookup_by_string(e, keys[k], FY_NT);
+        char path[400];
+        sp_pathf(path, sizeof path, "%s.%s", p, keys[k]);
+        rf_status st = v ? number_list(c, v, path, RF_TRAJ_MAX_THRESHOLDS - 1, 1, dst[k], n[k]) : RF_OK;
+        if (st != RF_OK)
+            return st;
+        if (*n[k] && !(dst[k][0] >= 0))
+            return sp_fail(&c->sp, v, path, "thresholds must be >= 0");
+    }
+    return RF_OK;
+}
+
+/* outputs: {percentiles: [..] in (0, 100), runout_thresholds: [..] m, runout_bins: N} */
+static rf_status parse_outputs(ty_ctx *c, struct fy_node *n)
+{
+    rf_traj_outputs *o = &c->spec->outputs;
+    rf_status st = sp_mapping(&c->sp, n, "outputs");
+    sp_iter it = {n, NULL, 0, {0}};
+    const char *key;
+    struct fy_node *k, *v;
+    long long bins;
+    while (st == RF_OK) {
+        if ((st = sp_next(&c->sp, &it, "outputs", &key, &k, &v)) != RF_OK || !key)
+            return st;
+        if (!strcmp(key, "percentiles")) {
+            st = number_list(c, v, "outputs.percentiles", RF_TRAJ_MAX_PERCENTILES, 1, o->percentiles,
+                             &o->n_percentiles);
+            if (st == RF_OK && !(o->percentiles[0] > 0 && o->percentiles[o->n_percentiles - 1] < 100))
+                st = sp_fail(&c->sp, v, "outputs.percentiles", "percentiles lie in (0, 100); max is always given");
+        } else if (!strcmp(key, "runout_thresholds")) {
+            st = number_list(c, v, "outputs.runout_thresholds", RF_TRAJ_MAX_THRESHOLDS, 1, o->runout_thresholds,
+                             &o->n_runout_thresholds);
+        } else if (!strcmp(key, "runout_bins")) {
+            if ((st = sp_integer(&c->sp, v, "outputs.runout_bins", 1, RF_TRAJ_MAX_BINS, &bins)) == RF_OK)
+                o->runout_bins = (size_t)bins;
+        } else {
+            char p[300];
+            sp_pathf(p, sizeof p, "outputs.%s", key);
+            st = sp_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins");
+        }
+    }
+    return st;
+}
+
 static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
 {
     size_t cnt;
@@ -114,7 +179,8 @@ static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
                 return sp_fail(&c->sp, nm, p, "a second collector with this name");
         col->x = NAN;
         sp_pathf(p, sizeof p, "collectors.%s", col->name);
-        if ((st = ty_fields(c, e, p, "name x capacity height", 0)) != RF_OK)
+        if ((st = ty_fields(c, e, p, "name x capacity height energy_thresholds height_thresholds", 0)) != RF_OK ||
+            (st = parse_thresholds(c, e, p, col)) != RF_OK)
             return st;
         if (isnan(col->x))
             return sp_fail(&c->sp, e, p, "a collector needs x [m]");
@@ -163,8 +229,8 @@ static rf_status parse_top_scalar(ty_ctx *c, const char *key, struct fy_node *k,
         return RF_OK;
     }
     return sp_fail(&c->sp, k, key, "unknown key; a trajectory file takes name, description, gravity, profile, "
-                                   "materials, block, release, bounce, stop, collectors, samples, seed, sampling, "
-                                   "record");
+                                   "materials, block, release, bounce, stop, collectors, outputs, samples, seed, "
+                                   "sampling, record");
 }
 
 static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct fy_node *v)
@@ -180,6 +246,8 @@ static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct
         return ty_fields(c, v, "stop", "v_stop max_steps", 0);
     if (!strcmp(key, "collectors"))
         return parse_collectors(c, v);
+    if (!strcmp(key, "outputs"))
+        return parse_outputs(c, v);
     if (!strcmp(key, "bounce")) {
         if ((st = sp_mapping(&c->sp, v, "bounce")) != RF_OK)
             return st;
@@ -213,6 +281,9 @@ static void spec_defaults(rf_traj_spec *s)
     s->impact_friction = NAN;
     s->impact_speed_min = 0.25, s->impact_speed_max = 40;
     s->impact_max_incidence = 80;
+    s->outputs.n_percentiles = 3;
+    s->outputs.percentiles[0] = 50, s->outputs.percentiles[1] = 95, s->outputs.percentiles[2] = 99;
+    s->outputs.runout_bins = 20;
 }
 
 static rf_status parse_document(ty_ctx *c, struct fy_node *root)
