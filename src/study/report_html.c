@@ -232,7 +232,7 @@ static double round_off(double v, double big)
     return fabs(v) < 1e-12 * big ? 0 : v;
 }
 
-/* The headline: the first output called *_ke_p95 (a barrier's design energy), else the first shown. */
+/* The headline: the first output called *_total_energy_p95 (a barrier's design energy), else the first shown. */
 static void write_headline(FILE *f, struct fy_node *outputs)
 {
     struct fy_node_pair *p, *pick = NULL;
@@ -242,7 +242,7 @@ static void write_headline(FILE *f, struct fy_node *outputs)
     while ((p = fy_node_mapping_iterate(outputs, &it))) {
         output_status(fy_node_pair_value(p), st, sizeof st);
         size_t len = strlen(text(fy_node_pair_key(p), name, sizeof name));
-        int p95 = len > 7 && !strcmp(name + len - 7, "_ke_p95");
+        int p95 = len > 17 && !strcmp(name + len - 17, "_total_energy_p95");
         if (!strcmp(st, "shown") && (!pick || (p95 && !pick_is_p95))) {
             pick = p;
             pick_is_p95 = p95;
