@@ -217,7 +217,7 @@ static void usage(FILE *f)
         "                           the contact's progress, then the run fails rather than\n"
         "                           report an unfinished rebound).  A given end time stops there\n"
         "                           (a warning if the impact has not ended)\n"
-        "  --threads N              fem: threads of the solver, 1..1024 (default: all\n"
+        "  --threads N              fem: threads of the solver, 0..1024 (default or 0: all\n"
         "                           cores for the 3D model, 1 for the axisymmetric one;\n"
         "                           the results are the same bit for bit)\n"
         "  --vtk DIR                fem: write VTK snapshots into DIR (fem.pvd + fem_NNNN.vtu;\n"
@@ -260,8 +260,8 @@ static int parse_int(const char *opt, const char *s, int *x)
     char *end = NULL;
     errno = 0;
     long v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE || v < 1 || v > RF_CLI_MAX_THREADS) {
-        fprintf(stderr, "rockfuzz impact: --%s '%s': expected an integer in [1, %d]\n", opt, s, RF_CLI_MAX_THREADS);
+    if (end == s || *end != '\0' || errno == ERANGE || v < 0 || v > RF_CLI_MAX_THREADS) {
+        fprintf(stderr, "rockfuzz impact: --%s '%s': expected an integer in [0, %d]\n", opt, s, RF_CLI_MAX_THREADS);
         return 0;
     }
     *x = (int)v;
@@ -642,7 +642,7 @@ int rf_cli_impact(int argc, char **argv)
     /* the 3D model on all cores (the solvers give the same bits for any count); the axisymmetric
        one on one: its steps (~0.1 ms) are shorter than a thread hand-off, and 2 threads were up to
        2x slower up to 12 600 elements (docs/fem-speed.md section 5) */
-    if (!given[O_THREADS] && rf_fem_needs_3d(in)) {
+    if ((!given[O_THREADS] || spec.fem.threads == 0) && rf_fem_needs_3d(in)) {
         long cores = sysconf(_SC_NPROCESSORS_ONLN);
         spec.fem.threads = cores < 1 ? 1 : cores > RF_CLI_MAX_THREADS ? RF_CLI_MAX_THREADS : (int)cores;
     }

@@ -7,6 +7,8 @@
 #include "rockfuzz/report.h"
 #include "rockfuzz/trajectory.h"
 
+#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +28,8 @@ static void usage(FILE *f)
         "                         impacts, rest point and collector crossings, statistics)\n"
         "  --out DIR              write DIR/result.json, trajectories.csv, crossings.csv,\n"
         "                         statistics.csv, plots (PNG, SVG) and report.html\n"
-        "  --threads N            worker threads (default: all cores; results do not depend on it)\n"
+        "  --threads N            worker threads, 0..1024 (default or 0: all cores; results do\n"
+        "                         not depend on it)\n"
         "  --samples N, --seed S  override the file's samples and seed\n"
         "  --max-trajectories N   trajectories listed in the JSON (default 100)\n"
         "  --no-plots             skip the plots and report.html\n"
@@ -42,12 +45,14 @@ typedef struct {
     size_t max_traj;
 } traj_args;
 
-static int parse_count(const char *opt, const char *v, long long min, long long *out)
+static int parse_count(const char *opt, const char *v, long long min, long long max, long long *out)
 {
-    char *end;
+    char *end = NULL;
+    errno = 0;
     long long n = v ? strtoll(v, &end, 10) : 0;
-    if (!v || *end || n < min) {
-        fprintf(stderr, "rockfuzz trajectory: %s = %s: expected an integer >= %lld\n", opt, v ? v : "(missing)", min);
+    if (!v || end == v || *end || errno || n < min || n > max) {
+        fprintf(stderr, "rockfuzz trajectory: %s = %s: expected an integer in [%lld, %lld]\n", opt,
+                v ? v : "(missing)", min, max);
         return 0;
     }
     *out = n;
@@ -65,10 +70,10 @@ static int parse_args(int argc, char **argv, traj_args *a)
         else if (!strcmp(o, "--quiet")) a->quiet = 1;
         else if (!strcmp(o, "--no-plots")) a->plots = 0;
         else if (!strcmp(o, "--out") && v) a->out = v, i++;
-        else if (!strcmp(o, "--threads")) { if (!parse_count(o, v, 0, &n)) return 0; a->threads = (int)n, i++; }
-        else if (!strcmp(o, "--samples")) { if (!parse_count(o, v, 1, &a->samples)) return 0; i++; }
-        else if (!strcmp(o, "--seed")) { if (!parse_count(o, v, 0, &a->seed)) return 0; i++; }
-        else if (!strcmp(o, "--max-trajectories")) { if (!parse_count(o, v, 0, &n)) return 0; a->max_traj = (size_t)n, i++; }
+        else if (!strcmp(o, "--threads")) { if (!parse_count(o, v, 0, RF_CLI_MAX_THREADS, &n)) return 0; a->threads = (int)n, i++; }
+        else if (!strcmp(o, "--samples")) { if (!parse_count(o, v, 1, LLONG_MAX, &a->samples)) return 0; i++; }
+        else if (!strcmp(o, "--seed")) { if (!parse_count(o, v, 0, LLONG_MAX, &a->seed)) return 0; i++; }
+        else if (!strcmp(o, "--max-trajectories")) { if (!parse_count(o, v, 0, LLONG_MAX, &n)) return 0; a->max_traj = (size_t)n, i++; }
         else if (o[0] != '-' && !a->file) a->file = o;
         else {
             fprintf(stderr, "rockfuzz trajectory: unknown or incomplete option '%s' (try --help)\n", o);
