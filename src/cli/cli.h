@@ -14,4 +14,16 @@ int rf_cli_report(int argc, char **argv);  /* cmd_report.c: report.html from a f
 int rf_cli_material(int argc, char **argv); /* cmd_material.c: material-point driver */
 int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall trajectories of a trajectory file */
 
+/* progress.c: the progress line of one long run (the FE solvers' progress callback). */
+#define RF_CLI_PROGRESS_HZ 4.0    /* redraws per second at most */
+#define RF_CLI_PROGRESS_DELAY 1.0 /* [s] before the first line: short runs stay silent */
+typedef struct {
+    int on, drawn;
+    const char *what;
+    double start, last_draw, t_last; /* monotonic [s]; t_last: the simulated time last seen */
+} rf_cli_progress;
+void rf_cli_progress_begin(rf_cli_progress *p, int on, const char *what);
+void rf_cli_progress_fem(void *ctx, double t, double t_end); /* an rf_fem_options.progress */
+void rf_cli_progress_end(rf_cli_progress *p);                /* erases the line if one was drawn */
+
 #endif
