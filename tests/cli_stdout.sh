@@ -56,6 +56,8 @@ check trajectory "$tmp/t.yaml"
 check run "$tmp/s.yaml" --out "$tmp/run" --quiet --force
 check status "$tmp/run"
 check report "$tmp/run"
+"$bin" trajectory "$tmp/t.yaml" --out "$tmp/tr" --quiet || fail "trajectory --out"
+check report "$tmp/tr"
 
 # a long output (many buffers: the failure happens before the final flush)
 check trajectory "$tmp/t.yaml" --json --samples 2000 --max-trajectories 2000
