@@ -74,7 +74,8 @@ static double *vtu_array(const vtu_file *f, const char *name, size_t *n, int *nc
         sscanf(t, "type=\"%31[^\"]\"", type) != 1 || sscanf(c, "NumberOfComponents=\"%d\"", ncomp) != 1 ||
         sscanf(o, "offset=\"%llu\"", &off) != 1)
         return NULL;
-    const size_t size = !strcmp(type, "Float64") ? 8 : !strcmp(type, "Int32") ? 4 : !strcmp(type, "UInt8") ? 1 : 0;
+    const int f32 = !strcmp(type, "Float32");
+    const size_t size = !strcmp(type, "Float64") ? 8 : f32 || !strcmp(type, "Int32") ? 4 : !strcmp(type, "UInt8") ? 1 : 0;
     uint64_t bytes;
     if (!size || (size_t)(f->data - f->bytes) + off + 8 > f->size)
         return NULL;
@@ -87,7 +88,11 @@ static double *vtu_array(const vtu_file *f, const char *name, size_t *n, int *nc
     for (size_t i = 0; x && i < *n; i++) {
         if (size == 8)
             memcpy(&x[i], d + 8 * i, 8);
-        else if (size == 4) {
+        else if (f32) {
+            float v;
+            memcpy(&v, d + 4 * i, 4);
+            x[i] = v;
+        } else if (size == 4) {
             int32_t v;
             memcpy(&v, d + 4 * i, 4);
             x[i] = v;

@@ -37,8 +37,8 @@ static void elastic_cell_stress(const f3_mesh *mesh, long e, const double *u, co
     s[3] = mu * (H[0][1] + H[1][0]) / W, s[4] = mu * (H[1][2] + H[2][1]) / W, s[5] = mu * (H[2][0] + H[0][2]) / W;
 }
 
-/* Cell data: the six stresses and the plastic strain (7 x n_elems), and the body ids. */
-static void cell_state(const f3_system *S, const double *u, const f3_material mat[2], double *s, unsigned char *body)
+/* Cell data: the six stresses and the plastic strain (7 x n_elems, Float32 as in fem_vtk.c), and the body ids. */
+static void cell_state(const f3_system *S, const double *u, const f3_material mat[2], float *s, unsigned char *body)
 {
     const f3_mesh *mesh = S->mesh;
     const long n = mesh->n_elems;
@@ -48,7 +48,7 @@ static void cell_state(const f3_system *S, const double *u, const f3_material ma
         if (!fem_kernel_points_hex_cell(&S->kernel[b], e, se, &se[6]))
             elastic_cell_stress(mesh, e, b == F3_BOULDER ? S->ub : u, &mat[b], se);
         for (int k = 0; k < 7; k++)
-            s[k * n + e] = se[k];
+            s[k * n + e] = (float)se[k];
         body[e] = (unsigned char)b;
     }
 }
@@ -63,7 +63,7 @@ rf_status f3_vtk_frame(const char *dir, int frame, double t, const f3_system *S,
     const f3_mesh *mesh = S->mesh;
     const long nn = mesh->n_nodes, ne = mesh->n_elems;
     fem_vtk_grid g = {0};
-    double *s = g.owned[2] = malloc((size_t)(ne > 0 ? ne : 1) * 7 * sizeof *s);
+    float *s = g.owned[2] = malloc((size_t)(ne > 0 ? ne : 1) * 7 * sizeof *s);
     unsigned char *body = g.owned[3] = malloc((size_t)(ne > 0 ? ne : 1));
     rf_status st = s && body ? fem_vtk_cells(&g, mesh->conn, ne, 8, 12, err)
                              : rf_fail(err, RF_ENOMEM, "fem3d vtk: out of memory");
@@ -75,7 +75,7 @@ rf_status f3_vtk_frame(const char *dir, int frame, double t, const f3_system *S,
         g.point_data[1] = (fem_vtk_array){"velocity", "Float64", 3, v, (size_t)(3 * nn), sizeof(double)};
         g.n_point_data = 2;
         for (int k = 0; k < 7; k++)
-            g.cell_data[k] = (fem_vtk_array){sn[k], "Float64", 1, s + k * ne, (size_t)ne, sizeof(double)};
+            g.cell_data[k] = (fem_vtk_array){sn[k], "Float32", 1, s + k * ne, (size_t)ne, sizeof(float)};
         g.cell_data[7] = (fem_vtk_array){"body", "UInt8", 1, body, (size_t)ne, 1};
         g.n_cell_data = 8;
         st = fem_vtk_write(path, t, &g, err);

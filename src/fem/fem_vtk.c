@@ -4,7 +4,10 @@
  * ParaView read; no compression), and a .pvd time index.  The axisymmetric
  * frame: points in the (r, z) plane as x, y; point data displacement and
  * velocity; cell data stress components, equivalent plastic strain and body
- * id.  The 3D frame is fem3d_vtk.c's, through the same writer. */
+ * id.  Points, displacement and velocity are Float64 (the solver's values,
+ * bit for bit); the cell stresses and plastic strains Float32 (7 digits, as
+ * the earlier ASCII files had them).  The 3D frame is fem3d_vtk.c's,
+ * through the same writer. */
 #include "fem_internal.h"
 #include "fem_kernel.h"
 
@@ -110,12 +113,13 @@ static double *planar_to_3d(const double *a, const double *b, long n)
     return p;
 }
 
-/* Cell data of the axisymmetric frame: sigma_rr, sigma_zz, sigma_tt, sigma_rz, plastic strain (5 x n). */
-static double *axi_cell_stress(const fem_mesh *mesh, const double *u, const fem_material mat[2],
-                               const fem_kernel *kernel)
+/* Cell data of the axisymmetric frame: sigma_rr, sigma_zz, sigma_tt, sigma_rz, plastic strain (5 x n),
+ * as Float32. */
+static float *axi_cell_stress(const fem_mesh *mesh, const double *u, const fem_material mat[2],
+                              const fem_kernel *kernel)
 {
     const long n = mesh->n_elems;
-    double *s = malloc((size_t)(n > 0 ? n : 1) * 5 * sizeof *s);
+    float *s = malloc((size_t)(n > 0 ? n : 1) * 5 * sizeof *s);
     for (long e = 0; s && e < n; e++) {
         const int *c = mesh->conn + 4 * e;
         double r[4], z[4], ue[8], se[5] = {0, 0, 0, 0, 0};
@@ -127,7 +131,7 @@ static double *axi_cell_stress(const fem_mesh *mesh, const double *u, const fem_
             fem_element_stress(r, z, &mat[mesh->ebody[e]], ue, se);
         }
         for (int k = 0; k < 5; k++)
-            s[k * n + e] = se[k];
+            s[k * n + e] = (float)se[k];
     }
     return s;
 }
@@ -141,7 +145,7 @@ rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *me
     const long nn = mesh->n_nodes, ne = mesh->n_elems;
     double *pts = g.owned[2] = planar_to_3d(mesh->r, mesh->z, nn);
     double *u3 = g.owned[3] = planar_to_3d(u, NULL, nn), *v3 = g.owned[4] = planar_to_3d(v, NULL, nn);
-    double *s = g.owned[5] = axi_cell_stress(mesh, u, mat, kernel);
+    float *s = g.owned[5] = axi_cell_stress(mesh, u, mat, kernel);
     unsigned char *body = g.owned[6] = malloc((size_t)(ne > 0 ? ne : 1));
     rf_status st = pts && u3 && v3 && s && body ? fem_vtk_cells(&g, mesh->conn, ne, 4, 9, err)
                                                 : rf_fail(err, RF_ENOMEM, "fem vtk: out of memory");
@@ -155,7 +159,7 @@ rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *me
         g.point_data[1] = (fem_vtk_array){"velocity", "Float64", 3, v3, (size_t)(3 * nn), sizeof(double)};
         g.n_point_data = 2;
         for (int k = 0; k < 5; k++)
-            g.cell_data[k] = (fem_vtk_array){sn[k], "Float64", 1, s + k * ne, (size_t)ne, sizeof(double)};
+            g.cell_data[k] = (fem_vtk_array){sn[k], "Float32", 1, s + k * ne, (size_t)ne, sizeof(float)};
         g.cell_data[5] = (fem_vtk_array){"body", "UInt8", 1, body, (size_t)ne, 1};
         g.n_cell_data = 6;
         st = fem_vtk_write(path, t, &g, err);
