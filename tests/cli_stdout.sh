@@ -60,7 +60,7 @@ check report "$tmp/run"
 check report "$tmp/tr"
 
 # a long output (many buffers: the failure happens before the final flush)
-check trajectory "$tmp/t.yaml" --json --samples 2000 --max-trajectories 2000
+check trajectory "$tmp/t.yaml" --json --samples 300 --max-trajectories 300
 
 [ "$fails" -eq 0 ] && echo "cli_stdout: all passed"
 exit $((fails > 0))
