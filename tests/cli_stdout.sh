@@ -8,6 +8,7 @@
 set -u
 bin=$1
 src=$2
+export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp" # fontconfig
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fails=0

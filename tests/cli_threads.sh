@@ -7,6 +7,8 @@
 # Usage: bash cli_threads.sh ROCKFUZZ SOURCE_DIR
 set -u
 bin=$1
+src=$2
+export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp" # fontconfig
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fails=0
