@@ -19,7 +19,7 @@ typedef struct {
     long points, cells;
 } vtu_file;
 
-static int vtu_open(const char *path, vtu_file *f)
+static inline int vtu_open(const char *path, vtu_file *f)
 {
     memset(f, 0, sizeof *f);
     FILE *fp = fopen(path, "rb");
@@ -49,7 +49,7 @@ static int vtu_open(const char *path, vtu_file *f)
     return 1;
 }
 
-static void vtu_close(vtu_file *f)
+static inline void vtu_close(vtu_file *f)
 {
     free(f->bytes);
     memset(f, 0, sizeof *f);
@@ -57,9 +57,10 @@ static void vtu_close(vtu_file *f)
 
 /* The DataArray named name: its values as doubles (*n of them, *ncomp per
  * tuple); NULL if absent or malformed. */
-static double *vtu_array(const vtu_file *f, const char *name, size_t *n, int *ncomp)
+static inline double *vtu_array(const vtu_file *f, const char *name, size_t *n, int *ncomp)
 {
     char key[128], type[32];
+    *n = 0, *ncomp = 0;
     snprintf(key, sizeof key, "Name=\"%s\"", name);
     const char *p = strstr(f->bytes, key);
     if (!p || (size_t)(p - f->bytes) > f->header_len)
@@ -105,7 +106,7 @@ static double *vtu_array(const vtu_file *f, const char *name, size_t *n, int *nc
 /* 1 if the header's arrays, in their order, tile the appended block exactly
  * (each offset = the previous one + 8 + its byte count) and the block ends
  * with the closing tags. */
-static int vtu_layout_ok(const vtu_file *f)
+static inline int vtu_layout_ok(const vtu_file *f)
 {
     unsigned long long expect = 0, off;
     const char *p = f->bytes;
@@ -125,7 +126,7 @@ static int vtu_layout_ok(const vtu_file *f)
 }
 
 /* FNV-1a over n bytes from h: the solver's state hash, computed here again. */
-static uint64_t vtu_fnv1a(uint64_t h, const void *data, size_t n)
+static inline uint64_t vtu_fnv1a(uint64_t h, const void *data, size_t n)
 {
     const unsigned char *p = data;
     for (size_t i = 0; i < n; i++)
