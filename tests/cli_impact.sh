@@ -63,7 +63,7 @@ expect_error 2 "solver 'abaqus'" --solver abaqus
 expect_error 2 "--slope-angle 90" --solver rigid --slope-angle 90
 expect_error 2 "--friction -0.2" --solver rigid --friction -0.2
 expect_error 2 "'--velocity' needs a value" --solver hertz --velocity
-expect_error 2 "--threads '0'" --threads 0
+expect_error 2 "--threads '-1'" --threads -1
 expect_error 1 "horizontal_axis" --solver hertz --c 1.2 --slope-angle 30
 # materials: the option and value named
 expect_error 2 "--slope-material 'clay'" --slope-material clay

@@ -174,7 +174,7 @@ grep -q "missing.yaml" "$tmp/missing.err" || fail "missing file: message lacks t
 
 # help documents every option, the file format and the outputs
 "$bin" run --help > "$tmp/help" || fail "run --help exit status"
-for word in --out --jobs --max-evaluations --quiet --progress --no-plots scheme levels parameters tfn trapezoid \
+for word in --out --threads --jobs --max-evaluations --quiet --progress --no-plots scheme levels parameters tfn trapezoid \
             interval gaussian crisp points cuts formula program impact result.json cuts_ influence_ Units; do
     grep -q -- "$word" "$tmp/help" || fail "run --help lacks '$word'"
 done

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "rockfuzz/fem.h"
+#include "vtu_reader.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -35,23 +36,6 @@ static inline rf_impact_input deep_input(void)
     in.slope_cap_pressure = 1e6, in.slope_cap_hardening = 50e6;
     in.gravity = 0;
     return in;
-}
-
-/* n numbers after the '>' that follows the first occurrence of key in s. */
-static inline int deep_numbers(const char *s, const char *key, double *x, long n)
-{
-    const char *p = strstr(s, key);
-    if (!p || !(p = strchr(p + strlen(key), '>')))
-        return -1;
-    p++;
-    for (long i = 0; i < n; i++) {
-        char *e;
-        x[i] = strtod(p, &e);
-        if (e == p)
-            return -1;
-        p = e;
-    }
-    return 0;
 }
 
 /* What the last VTK frame in dir says of the slope nodes against the rigid
@@ -75,25 +59,20 @@ static inline int deep_last_frame(const char *dir, long nb, double r0, double *o
     if (last < 0)
         return -1;
     snprintf(path, sizeof path, "%s/fem_%04d.vtu", dir, last);
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return -1;
-    fseek(fp, 0, SEEK_END);
-    long size = ftell(fp);
-    rewind(fp);
-    char *s = malloc((size_t)size + 1);
+    vtu_file f;
     long n = 0;
     int st = -1;
-    if (s && fread(s, 1, (size_t)size, fp) == (size_t)size) {
-        s[size] = 0;
-        const char *p = strstr(s, "NumberOfPoints=\"");
-        n = p ? atol(p + 16) : 0;
-        sscanf(strstr(s, "<!-- t = ") ? strstr(s, "<!-- t = ") + 9 : "0", "%lf", t);
+    size_t np = 0, nu = 0;
+    int nc = 0;
+    double *x = NULL, *du = NULL;
+    if (vtu_open(path, &f)) {
+        n = f.points;
+        sscanf(strstr(f.bytes, "<!-- t = ") ? strstr(f.bytes, "<!-- t = ") + 9 : "0", "%lf", t);
+        x = vtu_array(&f, "Points", &np, &nc), du = vtu_array(&f, "displacement", &nu, &nc);
     }
-    fclose(fp);
-    double *x = n > nb ? malloc((size_t)(6 * n) * sizeof *x) : NULL;
-    if (x && deep_numbers(s, "<Points>\n<DataArray", x, 3 * n) == 0 && deep_numbers(s, "Name=\"displacement\"", x + 3 * n, 3 * n) == 0) {
-        const double *u = x + 3 * n;
+    vtu_close(&f);
+    if (n > nb && x && du && np == 3 * (size_t)n && nu == np) {
+        const double *u = du;
         double zc = r0 + u[1]; /* the boulder rests on the origin; rigid: one displacement */
         *sink = -u[1];
         *overlap = -HUGE_VAL, *sag = 0;
@@ -116,7 +95,7 @@ static inline int deep_last_frame(const char *dir, long nb, double r0, double *o
             *sag = fmax(*sag, r0 * (1 - cos(0.5 * (ang[a] - ang[a - 1]))));
         st = k > 2 ? 0 : -1;
     }
-    free(x), free(s);
+    free(x), free(du);
     for (int i = 0; i <= last; i++) {
         snprintf(path, sizeof path, "%s/fem_%04d.vtu", dir, i);
         unlink(path);

@@ -19,6 +19,7 @@
 #include <cmocka.h>
 
 #include "rockfuzz/fem.h"
+#include "vtu_reader.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -509,7 +510,59 @@ static void test_bad_input(void **state)
     assert_int_equal(rf_fem_impact(&in, &o, NULL, NULL, &err), RF_EINVAL);
 }
 
-/* VTK output: a .pvd index and readable .vtu frames. */
+/* The nodal 3-vectors of array name with the third component dropped (the
+ * axisymmetric model's (r, z) pairs), NULL if absent or not n x 3. */
+static double *planar(const vtu_file *f, const char *name, long nodes)
+{
+    size_t n;
+    int nc;
+    double *x = vtu_array(f, name, &n, &nc);
+    if (!x || nc != 3 || n != 3 * (size_t)nodes) {
+        free(x);
+        return NULL;
+    }
+    for (long i = 0; i < nodes; i++) {
+        assert_true(x[3 * i + 2] == 0);
+        x[2 * i] = x[3 * i], x[2 * i + 1] = x[3 * i + 1];
+    }
+    return x;
+}
+
+/* One binary frame against the mesh: counts, quads, offsets, node ids, bodies; the
+ * nodal displacement and velocity as the solver's (r, z) pairs into u, v. */
+static void check_frame(const char *path, const rf_impact_output *out, const rf_fem_history *h, double **u,
+                        double **v)
+{
+    vtu_file f;
+    assert_true(vtu_open(path, &f));
+    assert_true(vtu_layout_ok(&f));
+    assert_int_equal(f.points, (long)out->nodes);
+    assert_int_equal(f.cells, (long)out->elements);
+    size_t n, nt, no, nb;
+    int nc;
+    double *conn = vtu_array(&f, "connectivity", &n, &nc), *types = vtu_array(&f, "types", &nt, &nc);
+    double *off = vtu_array(&f, "offsets", &no, &nc), *body = vtu_array(&f, "body", &nb, &nc);
+    double *szz = vtu_array(&f, "sigma_zz", &n, &nc);
+    assert_true(conn && types && off && body && szz && n == (size_t)f.cells);
+    assert_true(nt == (size_t)f.cells && no == (size_t)f.cells && nb == (size_t)f.cells);
+    long boulder = 0;
+    for (long e = 0; e < f.cells; e++) {
+        assert_true(types[e] == 9 && off[e] == 4.0 * (double)(e + 1) && (body[e] == 0 || body[e] == 1));
+        boulder += body[e] == 0;
+        for (int a = 0; a < 4; a++)
+            assert_true(conn[4 * e + a] >= 0 && conn[4 * e + a] < (double)f.points);
+    }
+    assert_int_equal(boulder, h->boulder_elements);
+    *u = planar(&f, "displacement", f.points), *v = planar(&f, "velocity", f.points);
+    assert_true(*u && *v);
+    free(conn), free(types), free(off), free(body), free(szz);
+    vtu_close(&f);
+}
+
+/* VTK output: a .pvd index and binary .vtu frames (appended raw arrays),
+ * decoded by an independent reader: the first frame holds the initial state
+ * (no displacement; the boulder's nodes at -V, the slope's at rest), the last
+ * one the final state, bit for bit (its hash is the solver's state_hash). */
 static void test_vtk(void **state)
 {
     (void)state;
@@ -522,7 +575,8 @@ static void test_vtk(void **state)
     o.vtk_dir = dir;
     o.vtk_frames = 3;
     rf_impact_output out;
-    run(&in, &o, &out, NULL);
+    rf_fem_history h = {0};
+    run(&in, &o, &out, &h);
     char path[512], line[512];
     snprintf(path, sizeof path, "%s/fem.pvd", dir);
     FILE *fp = fopen(path, "r");
@@ -531,18 +585,30 @@ static void test_vtk(void **state)
     while (fgets(line, sizeof line, fp))
         frames += strstr(line, "<DataSet") != NULL;
     fclose(fp);
-    assert_true(frames >= 3);
+    assert_true(frames >= 4); /* about 3, and the final state */
     for (int i = 0; i < frames; i++) {
         snprintf(path, sizeof path, "%s/fem_%04d.vtu", dir, i);
-        fp = fopen(path, "r");
-        assert_non_null(fp);
-        int has_stress = 0;
-        while (fgets(line, sizeof line, fp))
-            has_stress |= strstr(line, "sigma_zz") != NULL;
-        fclose(fp);
-        assert_true(has_stress);
+        double *u, *v;
+        check_frame(path, &out, &h, &u, &v);
+        const long nn = (long)out.nodes;
+        if (i == 0) {
+            long moving = 0;
+            for (long k = 0; k < 2 * nn; k++)
+                assert_true(u[k] == 0);
+            for (long k = 0; k < nn; k++) {
+                assert_true(v[2 * k] == 0 && (v[2 * k + 1] == 0 || v[2 * k + 1] == -in.velocity));
+                moving += v[2 * k + 1] != 0;
+            }
+            assert_int_equal(moving, h.boulder_nodes);
+        }
+        if (i == frames - 1) {
+            const size_t bytes = (size_t)(2 * nn) * sizeof(double);
+            assert_true(vtu_fnv1a(vtu_fnv1a(VTU_FNV_SEED, u, bytes), v, bytes) == h.state_hash);
+        }
+        free(u), free(v);
         unlink(path);
     }
+    rf_fem_history_free(&h);
     snprintf(path, sizeof path, "%s/fem.pvd", dir);
     unlink(path);
     rmdir(dir);

@@ -161,6 +161,12 @@ typedef struct {
     double ale_trigger;        /* rezone when a slope element's size falls below this share of its
                                   reference size, default 0.5, in (0, 1) */
     int ale_sweeps;            /* smoothing sweeps per rezone, default 10 (0: no node moves) */
+    /* NULL (default) or called after every time step with the simulated time t [s] and the
+       expected end t_end [s] of the run: end_time when given, else an estimate from the
+       contact's progress (fem_core.c) that is revised as the impact goes on; for a progress
+       line (rockfuzz impact).  No result depends on it. */
+    void (*progress)(void *ctx, double t, double t_end);
+    void *progress_ctx;
 } rf_fem_options;
 
 void rf_fem_options_default(rf_fem_options *opt);

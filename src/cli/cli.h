@@ -13,5 +13,23 @@ int rf_cli_status(int argc, char **argv);  /* cmd_status.c: progress of a study 
 int rf_cli_report(int argc, char **argv);  /* cmd_report.c: report.html from a finished run */
 int rf_cli_material(int argc, char **argv); /* cmd_material.c: material-point driver */
 int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall trajectories of a trajectory file */
+/* cmd_trajectory.c: `rockfuzz report DIR` of a `rockfuzz trajectory --out DIR` result (DIR holds
+ * RF_CLI_INVOCATION, else *handled = 0): the trajectories run again from the recorded file and
+ * overrides, and only if they reproduce DIR/result.json, the plots and report.html are written. */
+#define RF_CLI_INVOCATION "invocation.json"
+#define RF_CLI_RESULT_MAX (256 << 20) /* bytes of a result.json read back */
+int rf_cli_trajectory_report(const char *dir, int *handled);
+
+/* progress.c: the progress line of one long run (the FE solvers' progress callback). */
+#define RF_CLI_PROGRESS_HZ 4.0    /* redraws per second at most */
+#define RF_CLI_PROGRESS_DELAY 1.0 /* [s] before the first line: short runs stay silent */
+typedef struct {
+    int on, drawn;
+    const char *what;
+    double start, last_draw, t_last; /* monotonic [s]; t_last: the simulated time last seen */
+} rf_cli_progress;
+void rf_cli_progress_begin(rf_cli_progress *p, int on, const char *what);
+void rf_cli_progress_fem(void *ctx, double t, double t_end); /* an rf_fem_options.progress */
+void rf_cli_progress_end(rf_cli_progress *p);                /* erases the line if one was drawn */
 
 #endif

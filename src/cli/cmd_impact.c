@@ -23,7 +23,7 @@
 
 typedef enum {
     O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
-    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_ALE, O_SMASS3, O_SPHERE3, O_DOMAIN, O_END_TIME, O_THREADS, O_VTK, O_JSON,
+    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_ALE, O_SMASS3, O_SPHERE3, O_DOMAIN, O_END_TIME, O_THREADS, O_VTK, O_JSON, O_PROGRESS,
     O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S, O_DCUT_S,
     O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L, O_DCUT_L,
     O_G, O_HELP, O_COUNT
@@ -88,6 +88,7 @@ static const struct {
     {O_THREADS, "threads", NULL},
     {O_VTK, "vtk", NULL},
     {O_JSON, "json", NULL},
+    {O_PROGRESS, "progress", NULL},
     {O_HELP, "help", NULL},
 };
 #define N_OPTIONS (sizeof options / sizeof options[0])
@@ -217,7 +218,7 @@ static void usage(FILE *f)
         "                           the contact's progress, then the run fails rather than\n"
         "                           report an unfinished rebound).  A given end time stops there\n"
         "                           (a warning if the impact has not ended)\n"
-        "  --threads N              fem: threads of the solver, 1..1024 (default: all\n"
+        "  --threads N              fem: threads of the solver, 0..1024 (default or 0: all\n"
         "                           cores for the 3D model, 1 for the axisymmetric one;\n"
         "                           the results are the same bit for bit)\n"
         "  --vtk DIR                fem: write VTK snapshots into DIR (fem.pvd + fem_NNNN.vtu;\n"
@@ -237,6 +238,11 @@ static void usage(FILE *f)
         "                           with --ale on when it rezoned: ale_rezones and\n"
         "                           ale_remap_energy [-, of the initial KE; not in the\n"
         "                           energy error], wall_seconds [s]; NaN -> null\n"
+        "  --progress               fem: the progress line on stderr (simulated time, expected\n"
+        "                           end, time left; redrawn up to 4 times a second, erased at\n"
+        "                           the end) also with --json or when stderr is not a terminal;\n"
+        "                           by default it is drawn on a terminal without --json, from\n"
+        "                           1 s into the run\n"
         "  -h, --help               show this help\n"
         "\n"
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
@@ -260,8 +266,8 @@ static int parse_int(const char *opt, const char *s, int *x)
     char *end = NULL;
     errno = 0;
     long v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE || v < 1 || v > RF_CLI_MAX_THREADS) {
-        fprintf(stderr, "rockfuzz impact: --%s '%s': expected an integer in [1, %d]\n", opt, s, RF_CLI_MAX_THREADS);
+    if (end == s || *end != '\0' || errno == ERANGE || v < 0 || v > RF_CLI_MAX_THREADS) {
+        fprintf(stderr, "rockfuzz impact: --%s '%s': expected an integer in [0, %d]\n", opt, s, RF_CLI_MAX_THREADS);
         return 0;
     }
     *x = (int)v;
@@ -405,8 +411,13 @@ static void print_references(const rf_impact_model_spec *spec, const rf_impact_i
 }
 
 /* The FE run with its history, for the diagnostics the summary shows. */
-static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int json)
+static int run_fem(const rf_impact_model_spec *spec_in, rf_impact_output *out, int json, int progress)
 {
+    rf_impact_model_spec sp = *spec_in;
+    const rf_impact_model_spec *spec = &sp;
+    rf_cli_progress line;
+    rf_cli_progress_begin(&line, progress || (!json && isatty(STDERR_FILENO)), "fem impact");
+    sp.fem.progress = rf_cli_progress_fem, sp.fem.progress_ctx = &line;
     rf_fem_history hist = {0};
     rf_error err = {0};
     double friction_work = 0.0;
@@ -416,7 +427,9 @@ static int run_fem(const rf_impact_model_spec *spec, rf_impact_output *out, int 
         fprintf(stderr, "rockfuzz impact: --vtk: %s\n", err.msg);
         return EXIT_FAILED;
     }
-    if (rf_fem_solve(&spec->base, &spec->fem, out, &hist, &friction_work, &three_d, &err) != RF_OK) {
+    const rf_status solved = rf_fem_solve(&spec->base, &spec->fem, out, &hist, &friction_work, &three_d, &err);
+    rf_cli_progress_end(&line);
+    if (solved != RF_OK) {
         fprintf(stderr, "rockfuzz impact: fem solver failed: %s\n", err.msg);
         rf_fem_history_free(&hist);
         return EXIT_FAILED;
@@ -461,7 +474,7 @@ int rf_cli_impact(int argc, char **argv)
     rf_impact_model_spec spec;
     rf_impact_model_spec_default(&spec);
     rf_impact_input *in = &spec.base;
-    int json = 0;
+    int json = 0, progress = 0;
     const char *given[O_COUNT] = {0}; /* the text the user gave, for messages */
     const char *given_name[O_COUNT] = {0};
 
@@ -486,7 +499,7 @@ int rf_cli_impact(int argc, char **argv)
         }
         opt_id id = options[k].id;
         const char *oname = options[k].name;
-        if (id == O_HELP || id == O_JSON) {
+        if (id == O_HELP || id == O_JSON || id == O_PROGRESS) {
             if (eq) {
                 fprintf(stderr, "rockfuzz impact: option '--%s' takes no value\n", oname);
                 return EXIT_USAGE;
@@ -495,7 +508,7 @@ int rf_cli_impact(int argc, char **argv)
                 usage(stdout);
                 return 0;
             }
-            json = 1;
+            *(id == O_JSON ? &json : &progress) = 1;
             continue;
         }
         const char *val = eq ? eq + 1 : NULL;
@@ -642,7 +655,7 @@ int rf_cli_impact(int argc, char **argv)
     /* the 3D model on all cores (the solvers give the same bits for any count); the axisymmetric
        one on one: its steps (~0.1 ms) are shorter than a thread hand-off, and 2 threads were up to
        2x slower up to 12 600 elements (docs/fem-speed.md section 5) */
-    if (!given[O_THREADS] && rf_fem_needs_3d(in)) {
+    if ((!given[O_THREADS] || spec.fem.threads == 0) && rf_fem_needs_3d(in)) {
         long cores = sysconf(_SC_NPROCESSORS_ONLN);
         spec.fem.threads = cores < 1 ? 1 : cores > RF_CLI_MAX_THREADS ? RF_CLI_MAX_THREADS : (int)cores;
     }
@@ -664,7 +677,7 @@ int rf_cli_impact(int argc, char **argv)
 
     rf_impact_output out;
     if (spec.solver == RF_IMPACT_FEM)
-        return run_fem(&spec, &out, json);
+        return run_fem(&spec, &out, json, progress);
     if (rf_impact_solve(&spec, in, &out, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz impact: %s solver failed: %s\n",
                 rf_impact_solver_name(spec.solver), err.msg);

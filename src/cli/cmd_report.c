@@ -1,5 +1,9 @@
-/* cmd_report.c - `rockfuzz report DIR`: regenerate DIR/report.html from
- * DIR/result.json and the figures already there; nothing is evaluated. */
+/* cmd_report.c - `rockfuzz report DIR`: regenerate DIR/report.html of any
+ * result rockfuzz writes.  A study run (`rockfuzz run`): from DIR/result.json
+ * and the figures already there, nothing is evaluated.  A trajectory run
+ * (`rockfuzz trajectory --out DIR`, recorded in DIR/invocation.json): its
+ * trajectories are run again (the same bits whatever the thread count) and
+ * the plots and report written only if they reproduce DIR/result.json. */
 #include "cli/cli.h"
 
 #include <stdio.h>
@@ -13,8 +17,12 @@ int rf_cli_report(int argc, char **argv)
     for (int a = 1; a < argc; a++) {
         if (!strcmp(argv[a], "-h") || !strcmp(argv[a], "--help")) {
             printf("Usage: rockfuzz report DIR\n\n"
-                   "Write DIR/report.html (self-contained: figures embedded) from DIR/result.json and\n"
-                   "the PNG figures of a finished `rockfuzz run`, without evaluating anything.\n"
+                   "Write DIR/report.html (self-contained: figures embedded) again.\n"
+                   "  a `rockfuzz run` result: from DIR/result.json and the PNG figures, without\n"
+                   "      evaluating anything;\n"
+                   "  a `rockfuzz trajectory --out DIR` result: the trajectories are run again from\n"
+                   "      the file and options recorded in DIR/invocation.json (same bits) and the\n"
+                   "      plots and report.html written only if they reproduce DIR/result.json.\n"
                    "Exit status: 0 on success, 1 on an error, 2 on a usage error.\n");
             return 0;
         }
@@ -30,7 +38,17 @@ int rf_cli_report(int argc, char **argv)
     }
     rf_error err;
     memset(&err, 0, sizeof err);
-    if (rf_report_write_html(dir, &err) != RF_OK) {
+    const rf_status st = rf_report_write_html(dir, &err);
+    if (st == RF_EPARSE) { /* not a study's result: a trajectory run's, if it recorded itself */
+        int trajectory = 0;
+        const int rc = rf_cli_trajectory_report(dir, &trajectory);
+        if (trajectory) {
+            if (rc == 0)
+                printf("%s/report.html\n", dir);
+            return rc;
+        }
+    }
+    if (st != RF_OK) {
         fprintf(stderr, "rockfuzz report: %s\n", err.msg);
         return 1;
     }

@@ -28,8 +28,9 @@ static void usage(FILE *f)
         "Options:\n"
         "  --out DIR              output directory (created if missing; required); locked\n"
         "                         for the run: a second run into it is refused\n"
-        "  --jobs N               worker threads, 0..1024 (default or 0: options.jobs of the\n"
-        "                         study, else cores / threads one model evaluation uses)\n"
+        "  --threads N            worker threads, 0..1024 (default or 0: options.jobs of the\n"
+        "                         study, else cores / threads one model evaluation uses);\n"
+        "                         --jobs N is the same option (an alias)\n"
         "  --max-evaluations N    cap on distinct model evaluations; the run stops before\n"
         "                         evaluating anything if the plan exceeds it (default:\n"
         "                         options.max_evaluations, else 100000; 0 = no cap)\n"
@@ -83,7 +84,7 @@ static void usage(FILE *f)
         "\n"
         "MPI: `mpirun -np K rockfuzz run STUDY.yaml --out DIR` (if built with MPI): rank 0\n"
         "owns the store and hands out points, ranks 1..K-1 evaluate; rank 0 evaluates\n"
-        "with --jobs threads as well (default 1 under MPI).  Same results bit for bit.\n"
+        "with --threads threads as well (default 1 under MPI).  Same results bit for bit.\n"
         "\n"
         "Outputs in DIR:\n"
         "  store.sqlite                every evaluation (parameters, outputs or error, time)\n"
@@ -173,7 +174,8 @@ int rf_cli_run(int argc, char **argv)
         if (!strcmp(arg, "-h") || !strcmp(arg, "--help")) {
             usage(stdout);
             return 0;
-        } else if (!strcmp(arg, "--out") || !strcmp(arg, "--jobs") || !strcmp(arg, "--max-evaluations")) {
+        } else if (!strcmp(arg, "--out") || !strcmp(arg, "--threads") || !strcmp(arg, "--jobs") ||
+                   !strcmp(arg, "--max-evaluations")) {
             if (a + 1 >= argc) {
                 fprintf(stderr, "rockfuzz run: %s needs a value (see `rockfuzz run --help`)\n", arg);
                 return 2;
@@ -181,8 +183,8 @@ int rf_cli_run(int argc, char **argv)
             const char *val = argv[++a];
             if (!strcmp(arg, "--out"))
                 o.out_dir = val;
-            else if (!strcmp(arg, "--jobs") ? parse_count(arg, val, RF_CLI_MAX_THREADS, &jobs)
-                                            : parse_count(arg, val, 1000000000000LL, &cap))
+            else if (strcmp(arg, "--max-evaluations") ? parse_count(arg, val, RF_CLI_MAX_THREADS, &jobs)
+                                                      : parse_count(arg, val, 1000000000000LL, &cap))
                 return 2;
         } else if (!strcmp(arg, "--quiet")) {
             quiet = 1;

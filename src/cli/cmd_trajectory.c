@@ -3,13 +3,20 @@
  * Monte Carlo ensemble), a readable summary or the JSON document, and with
  * --out the CSV files, plots and report.html.  Usage errors exit 2, invalid
  * files or failed runs 1. */
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "cli/cli.h"
 #include "rockfuzz/report.h"
 #include "rockfuzz/trajectory.h"
 
+#include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include <libfyaml.h>
 
 static void usage(FILE *f)
 {
@@ -26,8 +33,10 @@ static void usage(FILE *f)
         "                         impacts, rest point and collector crossings, statistics)\n"
         "  --out DIR              write DIR/result.json, trajectories.csv, samples.csv (every\n"
         "                         sample's runout), crossings.csv, statistics.csv, exceedance.csv,\n"
-        "                         runout_histogram.csv, plots (PNG, SVG) and report.html\n"
-        "  --threads N            worker threads (default: all cores; results do not depend on it)\n"
+        "                         runout_histogram.csv, plots (PNG, SVG), report.html and\n"
+        "                         invocation.json (the file and options, for `rockfuzz report DIR`)\n"
+        "  --threads N            worker threads, 0..1024 (default or 0: all cores; results do\n"
+        "                         not depend on it)\n"
         "  --samples N, --seed S  override the file's samples and seed\n"
         "  --max-trajectories N   trajectories listed in the JSON (default 100)\n"
         "  --no-plots             skip the plots and report.html\n"
@@ -44,12 +53,14 @@ typedef struct {
     size_t max_traj;
 } traj_args;
 
-static int parse_count(const char *opt, const char *v, long long min, long long *out)
+static int parse_count(const char *opt, const char *v, long long min, long long max, long long *out)
 {
-    char *end;
+    char *end = NULL;
+    errno = 0;
     long long n = v ? strtoll(v, &end, 10) : 0;
-    if (!v || *end || n < min) {
-        fprintf(stderr, "rockfuzz trajectory: %s = %s: expected an integer >= %lld\n", opt, v ? v : "(missing)", min);
+    if (!v || end == v || *end || errno || n < min || n > max) {
+        fprintf(stderr, "rockfuzz trajectory: %s = %s: expected an integer in [%lld, %lld]\n", opt,
+                v ? v : "(missing)", min, max);
         return 0;
     }
     *out = n;
@@ -67,10 +78,10 @@ static int parse_args(int argc, char **argv, traj_args *a)
         else if (!strcmp(o, "--quiet")) a->quiet = 1;
         else if (!strcmp(o, "--no-plots")) a->plots = 0;
         else if (!strcmp(o, "--out") && v) a->out = v, i++;
-        else if (!strcmp(o, "--threads")) { if (!parse_count(o, v, 0, &n)) return 0; a->threads = (int)n, i++; }
-        else if (!strcmp(o, "--samples")) { if (!parse_count(o, v, 1, &a->samples)) return 0; i++; }
-        else if (!strcmp(o, "--seed")) { if (!parse_count(o, v, 0, &a->seed)) return 0; i++; }
-        else if (!strcmp(o, "--max-trajectories")) { if (!parse_count(o, v, 0, &n)) return 0; a->max_traj = (size_t)n, i++; }
+        else if (!strcmp(o, "--threads")) { if (!parse_count(o, v, 0, RF_CLI_MAX_THREADS, &n)) return 0; a->threads = (int)n, i++; }
+        else if (!strcmp(o, "--samples")) { if (!parse_count(o, v, 1, LLONG_MAX, &a->samples)) return 0; i++; }
+        else if (!strcmp(o, "--seed")) { if (!parse_count(o, v, 0, LLONG_MAX, &a->seed)) return 0; i++; }
+        else if (!strcmp(o, "--max-trajectories")) { if (!parse_count(o, v, 0, LLONG_MAX, &n)) return 0; a->max_traj = (size_t)n, i++; }
         else if (o[0] != '-' && !a->file) a->file = o;
         else {
             fprintf(stderr, "rockfuzz trajectory: unknown or incomplete option '%s' (try --help)\n", o);
@@ -82,6 +93,41 @@ static int parse_args(int argc, char **argv, traj_args *a)
         return 0;
     }
     return 1;
+}
+
+/* A JSON string. */
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++)
+        if (*p == '"' || *p == '\\')
+            fprintf(f, "\\%c", *p);
+        else if (*p < 0x20)
+            fprintf(f, "\\u%04x", *p);
+        else
+            fputc(*p, f);
+    fputc('"', f);
+}
+
+/* DIR/invocation.json: what ran (the trajectory file's absolute path and the
+ * overrides), for `rockfuzz report DIR` (rf_cli_trajectory_report). */
+static int write_invocation(const traj_args *a)
+{
+    char path[4096], *file = realpath(a->file, NULL);
+    snprintf(path, sizeof path, "%s/" RF_CLI_INVOCATION, a->out);
+    FILE *f = file ? fopen(path, "w") : NULL;
+    if (f) {
+        fputs("{\"command\": \"trajectory\", \"file\": ", f);
+        json_string(f, file);
+        fprintf(f, ", \"samples\": %lld, \"seed\": %lld, \"max_trajectories\": %zu}\n", a->samples, a->seed,
+                a->max_traj);
+    }
+    free(file);
+    if (!f || fclose(f) != 0) {
+        fprintf(stderr, "rockfuzz trajectory: cannot write %s\n", path);
+        return 1;
+    }
+    return 0;
 }
 
 static int write_outputs(const traj_args *a, const rf_traj_spec *s, const rf_traj_ensemble *e,
@@ -104,8 +150,32 @@ static int write_outputs(const traj_args *a, const rf_traj_spec *s, const rf_tra
         fprintf(stderr, "rockfuzz trajectory: cannot write %s\n", path);
         return 1;
     }
+    if (write_invocation(a) != 0)
+        return 1;
     if (a->plots && rf_traj_write_plots(a->out, s, e, st, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
+        return 1;
+    }
+    return 0;
+}
+
+/* Load a.file, apply the command line's overrides, run and compute the
+ * statistics; 1 (message printed, everything freed) on an error. */
+static int run_file(const traj_args *a, rf_traj_spec *spec, rf_traj_ensemble *ens, rf_traj_stats *st)
+{
+    rf_error err;
+    if (rf_traj_load(a->file, spec, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
+        return 1;
+    }
+    if (a->samples > 0)
+        spec->samples = (size_t)a->samples, spec->record = spec->record > spec->samples ? spec->samples : spec->record;
+    if (a->seed >= 0)
+        spec->seed = (uint64_t)a->seed;
+    if (rf_traj_run(spec, a->threads, ens, &err) != RF_OK || rf_traj_stats_compute_spec(spec, ens, st, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
+        rf_traj_ensemble_free(ens);
+        rf_traj_spec_free(spec);
         return 1;
     }
     return 0;
@@ -122,24 +192,11 @@ int rf_cli_trajectory(int argc, char **argv)
     if (!parse_args(argc, argv, &a))
         return 2;
     rf_traj_spec spec;
-    rf_error err;
-    if (rf_traj_load(a.file, &spec, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
-        return 1;
-    }
-    if (a.samples > 0)
-        spec.samples = (size_t)a.samples, spec.record = spec.record > spec.samples ? spec.samples : spec.record;
-    if (a.seed >= 0)
-        spec.seed = (uint64_t)a.seed;
     rf_traj_ensemble ens;
     rf_traj_stats st;
     int rc = 0;
-    if (rf_traj_run(&spec, a.threads, &ens, &err) != RF_OK || rf_traj_stats_compute_spec(&spec, &ens, &st, &err) != RF_OK) {
-        fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
-        rf_traj_ensemble_free(&ens);
-        rf_traj_spec_free(&spec);
+    if (run_file(&a, &spec, &ens, &st) != 0)
         return 1;
-    }
     if (a.json)
         rf_traj_write_json(stdout, &spec, &ens, &st, a.max_traj);
     else if (!a.quiet)
@@ -149,5 +206,124 @@ int rf_cli_trajectory(int argc, char **argv)
     rf_traj_stats_free(&st);
     rf_traj_ensemble_free(&ens);
     rf_traj_spec_free(&spec);
+    return rc;
+}
+
+/* The result document's part that a rerun must reproduce: up to the run's
+ * own counts (the impact table's cache hits, the wall time). */
+static size_t comparable_length(const char *doc)
+{
+    const char *end = strstr(doc, "\n \"impact_table\"");
+    const char *w = strstr(doc, "\n \"wall_seconds\"");
+    if (!end || (w && w < end))
+        end = w;
+    return end ? (size_t)(end - doc) : strlen(doc);
+}
+
+static char *read_text(const char *path, size_t max)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf = f ? malloc(max + 1) : NULL;
+    size_t n = buf ? fread(buf, 1, max + 1, f) : 0;
+    if (f)
+        fclose(f);
+    if (!buf || n > max) {
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    return buf;
+}
+
+/* A scalar of the invocation document (NULL if absent). */
+static const char *invocation_value(struct fy_document *doc, const char *key, char *buf, size_t size)
+{
+    struct fy_node *n = fy_node_by_path(fy_document_root(doc), key, -1, FYNWF_DONT_FOLLOW);
+    size_t len = 0;
+    const char *v = n && fy_node_is_scalar(n) ? fy_node_get_scalar(n, &len) : NULL;
+    if (!v || len >= size)
+        return NULL;
+    memcpy(buf, v, len);
+    buf[len] = '\0';
+    return buf;
+}
+
+static int read_invocation(const char *path, traj_args *a, char *file, size_t size)
+{
+    struct fy_parse_cfg cfg = {.flags = FYPCF_QUIET | FYPCF_JSON_FORCE};
+    struct fy_document *doc = fy_document_build_from_file(&cfg, path);
+    char cmd[32], num[3][32];
+    int ok = doc && invocation_value(doc, "/command", cmd, sizeof cmd) && !strcmp(cmd, "trajectory") &&
+             invocation_value(doc, "/file", file, size) && invocation_value(doc, "/samples", num[0], 32) &&
+             invocation_value(doc, "/seed", num[1], 32) && invocation_value(doc, "/max_trajectories", num[2], 32);
+    fy_document_destroy(doc);
+    memset(a, 0, sizeof *a);
+    a->file = file, a->plots = 1;
+    long long mt = 0;
+    return ok && sscanf(num[0], "%lld", &a->samples) == 1 && sscanf(num[1], "%lld", &a->seed) == 1 &&
+           sscanf(num[2], "%lld", &mt) == 1 && mt >= 0 && (a->max_traj = (size_t)mt, 1);
+}
+
+/* The trajectories again, checked against the stored result; then the plots
+ * and report.html with the stored run's wall time. */
+static int rerun_report(const char *dir, const traj_args *a, const char *stored)
+{
+    rf_traj_spec spec;
+    rf_traj_ensemble ens;
+    rf_traj_stats st;
+    if (run_file(a, &spec, &ens, &st) != 0)
+        return 1;
+    char *doc = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&doc, &len);
+    if (mem) {
+        rf_traj_write_json(mem, &spec, &ens, &st, a->max_traj);
+        fclose(mem);
+    }
+    const size_t n = doc ? comparable_length(doc) : 0;
+    int rc = 0;
+    if (!doc || n != comparable_length(stored) || memcmp(doc, stored, n) != 0) {
+        fprintf(stderr, "rockfuzz report: %s/result.json is not what %s gives now (the file or a file it reads "
+                        "was edited since, or another rockfuzz version wrote it): run `rockfuzz trajectory %s "
+                        "--out %s` again\n", dir, a->file, a->file, dir);
+        rc = 1;
+    } else {
+        const char *w = strstr(stored, "\n \"wall_seconds\": ");
+        if (w)
+            ens.wall_seconds = strtod(w + 18, NULL);
+        rf_error err;
+        if (rf_traj_write_plots(dir, &spec, &ens, &st, &err) != RF_OK) {
+            fprintf(stderr, "rockfuzz report: %s\n", err.msg);
+            rc = 1;
+        }
+    }
+    free(doc);
+    rf_traj_stats_free(&st);
+    rf_traj_ensemble_free(&ens);
+    rf_traj_spec_free(&spec);
+    return rc;
+}
+
+int rf_cli_trajectory_report(const char *dir, int *handled)
+{
+    char path[4096], result[4096], file[4096];
+    snprintf(path, sizeof path, "%s/" RF_CLI_INVOCATION, dir);
+    snprintf(result, sizeof result, "%s/result.json", dir);
+    *handled = access(path, F_OK) == 0;
+    if (!*handled)
+        return 0;
+    traj_args a;
+    if (!read_invocation(path, &a, file, sizeof file)) {
+        fprintf(stderr, "rockfuzz report: %s: not the record of a `rockfuzz trajectory` run\n", path);
+        return 1;
+    }
+    char *stored = read_text(result, RF_CLI_RESULT_MAX);
+    if (!stored) {
+        fprintf(stderr, "rockfuzz report: %s: missing, unreadable or larger than %d MB\n", result,
+                RF_CLI_RESULT_MAX >> 20);
+        return 1;
+    }
+    const int rc = rerun_report(dir, &a, stored);
+    free(stored);
     return rc;
 }

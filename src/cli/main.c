@@ -1,6 +1,7 @@
 /* main.c - the rockfuzz program: dispatches to one file per subcommand. */
 #include "cli/cli.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,7 +21,8 @@ static void usage(FILE *f)
         "  trajectory FILE.yaml       rockfall trajectories on a slope profile; see\n"
         "                             `rockfuzz trajectory --help`\n"
         "  status DIR                 progress of a running or stopped study run in DIR\n"
-        "  report DIR                 write DIR/report.html again from DIR/result.json\n"
+        "  report DIR                 write DIR/report.html again, of a study run or of a\n"
+        "                             `rockfuzz trajectory --out DIR` run\n"
         "  material [OPTIONS]         drive one material point along a strain path; see\n"
         "                             `rockfuzz material --help`\n"
         "\n"
@@ -64,7 +66,24 @@ static void short_openmp_waits(char **argv)
 #endif
 }
 
-int main(int argc, char **argv)
+/* The one check of standard output, for every command: a write that failed
+ * (a full disk, /dev/full, a closed pipe's EIO) is an error, whatever the
+ * command returned.  Both the sticky error flag (a write that failed while
+ * the buffer was flushed along the way) and the final flush are checked. */
+static int stdout_checked(int rc)
+{
+    errno = 0;
+    int failed = fflush(stdout) != 0;
+    int e = errno;
+    failed |= ferror(stdout) != 0;
+    if (!failed)
+        return rc;
+    fprintf(stderr, "rockfuzz: writing to standard output failed: %s\n",
+            e ? strerror(e) : "an earlier write failed");
+    return rc ? rc : 1;
+}
+
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         usage(stderr);
@@ -95,4 +114,9 @@ int main(int argc, char **argv)
         return rf_cli_material(argc - 1, argv + 1);
     fprintf(stderr, "rockfuzz: unknown command '%s' (try `rockfuzz --help`)\n", cmd);
     return 2;
+}
+
+int main(int argc, char **argv)
+{
+    return stdout_checked(dispatch(argc, argv));
 }

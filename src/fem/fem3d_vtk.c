@@ -1,7 +1,7 @@
 /* fem3d_vtk.c - ParaView output of the 3D impact (the half model as it is
- * meshed, slope frame: x down-slope, z the outward slope normal): one ASCII
- * .vtu per frame with 8-node hexahedra (VTK type 12, the same node order),
- * point data displacement and velocity, cell data the six stress components
+ * meshed, slope frame: x down-slope, z the outward slope normal): one binary
+ * .vtu per frame (fem_vtk_write: appended raw arrays) with 8-node hexahedra
+ * (VTK type 12, the same node order), point data displacement and velocity, cell data the six stress components
  * (mean over the Gauss points: the committed stresses of an integration-point
  * kernel, else linear elasticity of the displacement, the boulder's in its
  * co-rotated frame), the equivalent plastic strain and the body id; the .pvd
@@ -11,6 +11,7 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* Mean linear-elastic stress over the element's Gauss points (xx yy zz xy yz zx). */
@@ -36,77 +37,49 @@ static void elastic_cell_stress(const f3_mesh *mesh, long e, const double *u, co
     s[3] = mu * (H[0][1] + H[1][0]) / W, s[4] = mu * (H[1][2] + H[2][1]) / W, s[5] = mu * (H[2][0] + H[0][2]) / W;
 }
 
-static void write_points(FILE *fp, const f3_mesh *mesh)
-{
-    fprintf(fp, "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-    for (long i = 0; i < mesh->n_nodes; i++)
-        fprintf(fp, "%.9g %.9g %.9g\n", mesh->x[3 * i], mesh->x[3 * i + 1], mesh->x[3 * i + 2]);
-    fprintf(fp, "</DataArray>\n</Points>\n<Cells>\n"
-                "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
-    for (long e = 0; e < mesh->n_elems; e++) {
-        const int *c = mesh->conn + 8 * e;
-        fprintf(fp, "%d %d %d %d %d %d %d %d\n", c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]);
-    }
-    fprintf(fp, "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n");
-    for (long e = 0; e < mesh->n_elems; e++)
-        fprintf(fp, "%ld\n", 8 * (e + 1));
-    fprintf(fp, "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    for (long e = 0; e < mesh->n_elems; e++)
-        fprintf(fp, "12\n");
-    fprintf(fp, "</DataArray>\n</Cells>\n");
-}
-
-static void write_cells(FILE *fp, const f3_system *S, const double *u, const f3_material mat[2])
+/* Cell data: the six stresses and the plastic strain (7 x n_elems, Float32 as in fem_vtk.c), and the body ids. */
+static void cell_state(const f3_system *S, const double *u, const f3_material mat[2], float *s, unsigned char *body)
 {
     const f3_mesh *mesh = S->mesh;
-    static const char *const sn[7] = {"sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_yz", "sigma_zx",
-                                      "equivalent_plastic_strain"};
-    fprintf(fp, "<CellData>\n");
-    for (int k = 0; k < 7; k++) {
-        fprintf(fp, "<DataArray type=\"Float64\" Name=\"%s\" format=\"ascii\">\n", sn[k]);
-        for (long e = 0; e < mesh->n_elems; e++) {
-            const int b = e < mesh->boulder_elems ? F3_BOULDER : F3_SLOPE;
-            double s[7] = {0, 0, 0, 0, 0, 0, 0};
-            if (!fem_kernel_points_hex_cell(&S->kernel[b], e, s, &s[6]))
-                elastic_cell_stress(mesh, e, b == F3_BOULDER ? S->ub : u, &mat[b], s);
-            fprintf(fp, "%.7g\n", s[k]);
-        }
-        fprintf(fp, "</DataArray>\n");
+    const long n = mesh->n_elems;
+    for (long e = 0; e < n; e++) {
+        const int b = e < mesh->boulder_elems ? F3_BOULDER : F3_SLOPE;
+        double se[7] = {0, 0, 0, 0, 0, 0, 0};
+        if (!fem_kernel_points_hex_cell(&S->kernel[b], e, se, &se[6]))
+            elastic_cell_stress(mesh, e, b == F3_BOULDER ? S->ub : u, &mat[b], se);
+        for (int k = 0; k < 7; k++)
+            s[k * n + e] = (float)se[k];
+        body[e] = (unsigned char)b;
     }
-    fprintf(fp, "<DataArray type=\"UInt8\" Name=\"body\" format=\"ascii\">\n");
-    for (long e = 0; e < mesh->n_elems; e++)
-        fprintf(fp, "%d\n", e < mesh->boulder_elems ? F3_BOULDER : F3_SLOPE);
-    fprintf(fp, "</DataArray>\n</CellData>\n");
 }
 
 rf_status f3_vtk_frame(const char *dir, int frame, double t, const f3_system *S, const double *u, const double *v,
                        const f3_material mat[2], rf_error *err)
 {
+    static const char *const sn[7] = {"sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_yz", "sigma_zx",
+                                      "equivalent_plastic_strain"};
     char path[4096];
     snprintf(path, sizeof path, "%s/fem_%04d.vtu", dir, frame);
-    FILE *fp = fopen(path, "w");
-    if (!fp)
-        return rf_fail(err, RF_EIO, "fem3d vtk: cannot write %s: %s", path, strerror(errno));
     const f3_mesh *mesh = S->mesh;
-    fprintf(fp, "<?xml version=\"1.0\"?>\n<!-- t = %.9g s -->\n"
-                "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                "<UnstructuredGrid>\n<Piece NumberOfPoints=\"%ld\" NumberOfCells=\"%ld\">\n",
-            t, mesh->n_nodes, mesh->n_elems);
-    write_points(fp, mesh);
-    fprintf(fp, "<PointData Vectors=\"displacement\">\n");
-    const double *arr[2] = {u, v};
-    static const char *const names[2] = {"displacement", "velocity"};
-    for (int k = 0; k < 2; k++) {
-        fprintf(fp, "<DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"3\" format=\"ascii\">\n",
-                names[k]);
-        for (long i = 0; i < mesh->n_nodes; i++)
-            fprintf(fp, "%.9g %.9g %.9g\n", arr[k][3 * i], arr[k][3 * i + 1], arr[k][3 * i + 2]);
-        fprintf(fp, "</DataArray>\n");
+    const long nn = mesh->n_nodes, ne = mesh->n_elems;
+    fem_vtk_grid g = {0};
+    float *s = g.owned[2] = malloc((size_t)(ne > 0 ? ne : 1) * 7 * sizeof *s);
+    unsigned char *body = g.owned[3] = malloc((size_t)(ne > 0 ? ne : 1));
+    rf_status st = s && body ? fem_vtk_cells(&g, mesh->conn, ne, 8, 12, err)
+                             : rf_fail(err, RF_ENOMEM, "fem3d vtk: out of memory");
+    if (st == RF_OK) {
+        cell_state(S, u, mat, s, body);
+        g.n_points = nn, g.n_cells = ne;
+        g.points = (fem_vtk_array){"Points", "Float64", 3, mesh->x, (size_t)(3 * nn), sizeof(double)};
+        g.point_data[0] = (fem_vtk_array){"displacement", "Float64", 3, u, (size_t)(3 * nn), sizeof(double)};
+        g.point_data[1] = (fem_vtk_array){"velocity", "Float64", 3, v, (size_t)(3 * nn), sizeof(double)};
+        g.n_point_data = 2;
+        for (int k = 0; k < 7; k++)
+            g.cell_data[k] = (fem_vtk_array){sn[k], "Float32", 1, s + k * ne, (size_t)ne, sizeof(float)};
+        g.cell_data[7] = (fem_vtk_array){"body", "UInt8", 1, body, (size_t)ne, 1};
+        g.n_cell_data = 8;
+        st = fem_vtk_write(path, t, &g, err);
     }
-    fprintf(fp, "</PointData>\n");
-    write_cells(fp, S, u, mat);
-    fprintf(fp, "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-    if (fclose(fp) != 0)
-        return rf_fail(err, RF_EIO, "fem3d vtk: error writing %s", path);
-    return RF_OK;
+    fem_vtk_grid_free(&g);
+    return st;
 }

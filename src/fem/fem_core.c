@@ -75,6 +75,7 @@ rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, do
     r->steps_estimate = (long)ceil(r->t_min / dt);
     r->stride = o->history_stride > 0 ? o->history_stride : (int)(r->steps_estimate / 5000 + 1);
     r->record = record;
+    r->progress = o->progress, r->progress_ctx = o->progress_ctx;
     r->series.ncol = ncol;
     r->force_cap = r->steps_estimate + 16;
     r->force = malloc((size_t)r->force_cap * sizeof *r->force);
@@ -144,6 +145,27 @@ static void rest_check(fem_run *r, double t)
         r->at_rest = 1;
 }
 
+/* The expected end of the run at time t, for a progress line only: end_time
+ * when given; else at least t_min, and by the state of the impact: while the
+ * boulder approaches, at the mean rate so far the incoming momentum is
+ * reversed at t / p, and the rebound takes at most as long again (elastic);
+ * in a slow spell (gravity) the rest rule's window; after the contact opened,
+ * the 0.1 t_h it must stay open. */
+static double expected_end(const fem_run *r, double t)
+{
+    if (r->end_time > 0)
+        return r->end_time;
+    const double p = r->v_start < 0 ? (r->v_now - r->v_start) / -r->v_start : 1;
+    double e = fmax(r->t_min, t + 0.1 * r->t_h);
+    if (r->in_contact && p > 0.25 && p < 1) /* early, a Hertzian force reverses little: no estimate yet */
+        e = fmax(e, 2 * t / p);
+    if (r->rest_since >= 0 && r->gravity > 0)
+        e = fmax(e, r->rest_since + FEM_REST_WINDOW * r->t_h);
+    if (!r->in_contact && r->episodes > 0)
+        e = fmax(e, r->t_last_contact + 0.1 * r->t_h);
+    return e;
+}
+
 rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp, double closure, double ke0,
                           const double *row, rf_error *err)
 {
@@ -176,6 +198,8 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
         return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
     if (r->gravity > 0 && r->end_time == 0)
         rest_check(r, t);
+    if (r->progress)
+        r->progress(r->progress_ctx, t, expected_end(r, t));
     const double tn = (double)(n + 1) * r->dt;
     if (r->end_time > 0 || tn < r->t_max || run_ended(r) || r->at_rest)
         return RF_OK;

@@ -87,6 +87,8 @@ typedef struct {
     double gravity, v_sep, rest_since;
     int at_rest;
     fem_series series;
+    void (*progress)(void *ctx, double t, double t_end); /* the options' progress callback, or NULL */
+    void *progress_ctx;
 } fem_run;
 
 /* Start the account: time span from the options and the Hertz duration. */

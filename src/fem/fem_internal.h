@@ -76,6 +76,27 @@ rf_status fem_vtk_frame(const char *dir, int frame, double t, const fem_mesh *me
                         const struct fem_kernel *kernel, rf_error *err);
 rf_status fem_vtk_index(const char *dir, int frames, const double *times, rf_error *err);
 
+/* The binary .vtu writer of both models (fem_vtk.c): arrays of count values
+ * of size bytes each (ncomp per tuple), written raw into one appended block. */
+typedef struct {
+    const char *name, *type; /* VTK type name: Float64, Int32, UInt8 */
+    int ncomp;
+    const void *data;
+    size_t count, size;
+} fem_vtk_array;
+typedef struct {
+    long n_points, n_cells;
+    fem_vtk_array points, cells[3]; /* connectivity, offsets, types */
+    fem_vtk_array point_data[4], cell_data[8];
+    int n_point_data, n_cell_data;
+    void *owned[8]; /* buffers freed by fem_vtk_grid_free */
+} fem_vtk_grid;
+rf_status fem_vtk_write(const char *path, double t, const fem_vtk_grid *g, rf_error *err);
+/* g->cells for n elements of k nodes each (conn: k per element), VTK cell type vtk_type;
+ * the offsets and types go to g->owned[0..1]. */
+rf_status fem_vtk_cells(fem_vtk_grid *g, const int *conn, long n, int k, unsigned char vtk_type, rf_error *err);
+void fem_vtk_grid_free(fem_vtk_grid *g);
+
 /* Semi-implicit dashpot (fem_solver.c): the velocity v_{n+1/2} of a node
  * of lumped mass m and velocity v = v_{n-1/2} along one direction, under
  * the other forces g and a dashpot -C v_{n+1/2}:

@@ -853,7 +853,7 @@ static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
     long n = 0;
     for (;; n++) {
         const double t = (double)n * S->dt;
-        if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap) {
+        if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap - 1) {
             if ((st = fem_vtk_frame(o->vtk_dir, vtk_n, t, &S->mesh, S->u, S->v, S->mat, S->kernel, err)) != RF_OK)
                 return st;
             vtk_times[vtk_n++] = t;
@@ -873,7 +873,13 @@ static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
             break;
     }
     *nsteps = n + 1;
-    return o->vtk_dir ? fem_vtk_index(o->vtk_dir, vtk_n, vtk_times, err) : RF_OK;
+    if (!o->vtk_dir)
+        return RF_OK;
+    const double t_end = (double)(n + 1) * S->dt; /* and the final state, as the 3D model writes it */
+    if ((st = fem_vtk_frame(o->vtk_dir, vtk_n, t_end, &S->mesh, S->u, S->v, S->mat, S->kernel, err)) != RF_OK)
+        return st;
+    vtk_times[vtk_n++] = t_end;
+    return fem_vtk_index(o->vtk_dir, vtk_n, vtk_times, err);
 }
 
 /* Outputs and diagnostics of the final state. */

@@ -1,0 +1,64 @@
+/* progress.c - the progress line of a long single run (`rockfuzz impact` FE):
+ * on stderr, redrawn at most RF_CLI_PROGRESS_HZ times per second, first after
+ * RF_CLI_PROGRESS_DELAY s (a short run draws nothing), erased at the end.
+ * Time left = wall time so far x (t_end - t) / t, from the simulated time t
+ * and the solver's expected end t_end. */
+#include "cli/cli.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/util.h"
+
+void rf_cli_progress_begin(rf_cli_progress *p, int on, const char *what)
+{
+    memset(p, 0, sizeof *p);
+    p->on = on;
+    p->what = what;
+    p->start = rf_monotonic_seconds();
+}
+
+/* "12.3 s", "4 min 05 s", "1 h 02 min" */
+static void duration(double s, char *buf, size_t size)
+{
+    if (!(s >= 0) || s > 1e8)
+        snprintf(buf, size, "?");
+    else if (s < 60)
+        snprintf(buf, size, "%.0f s", s);
+    else if (s < 3600)
+        snprintf(buf, size, "%d min %02d s", (int)(s / 60), (int)s % 60);
+    else
+        snprintf(buf, size, "%d h %02d min", (int)(s / 3600), ((int)s % 3600) / 60);
+}
+
+void rf_cli_progress_fem(void *ctx, double t, double t_end)
+{
+    rf_cli_progress *p = ctx;
+    if (!p->on)
+        return;
+    const double now = rf_monotonic_seconds();
+    if (t < p->t_last) /* the solver restarted (a halved time step): measure the rate again */
+        p->start = now;
+    p->t_last = t;
+    if (now - p->start < RF_CLI_PROGRESS_DELAY || now - p->last_draw < 1.0 / RF_CLI_PROGRESS_HZ)
+        return;
+    p->last_draw = now;
+    const double share = t_end > 0 ? fmin(t / t_end, 1) : 0;
+    char el[32], left[32];
+    duration(now - p->start, el, sizeof el);
+    duration(t > 0 ? (now - p->start) * (t_end - t) / t : -1, left, sizeof left);
+    fprintf(stderr, "\r  %s: simulated %.3g of ~%.3g s (%.0f %%), elapsed %s, left ~%s\033[K", p->what, t, t_end,
+            100 * share, el, left);
+    fflush(stderr);
+    p->drawn = 1;
+}
+
+void rf_cli_progress_end(rf_cli_progress *p)
+{
+    if (p->drawn) {
+        fputs("\r\033[K", stderr);
+        fflush(stderr);
+    }
+    p->drawn = 0;
+}
