@@ -184,6 +184,27 @@ typedef struct {
     double p50, p95, p99, max, mean;
 } rf_traj_percentiles;
 
+/* Envelopes along x (envelope.c), from ALL trajectories of a run: at the
+ * edges x_k = x_first + k (x_last - x_first) / (n_edges - 1) of the profile,
+ * each trajectory's state at its first passage of x_k, solved exactly for the
+ * crossing time (a flight is a parabola, a contact stretch uniformly
+ * accelerated).  A trajectory whose path never reaches x_k does not count
+ * there; reached[k] says how many do.  p50 and p95 (Hyndman-Fan type 7 over
+ * the trajectories reaching x_k) come from a streaming log histogram: each is
+ * within RF_TRAJ_ENVELOPE_ACCURACY relative (or the floor below) of the exact
+ * percentile; the max is exact.  NaN where no trajectory reaches x_k. */
+#define RF_TRAJ_ENVELOPE_EDGES 161
+#define RF_TRAJ_ENVELOPE_ACCURACY 0.005     /* relative, of p50 and p95 */
+#define RF_TRAJ_ENVELOPE_HEIGHT_FLOOR 1e-4  /* [m] heights below it count as 0 in p50/p95 */
+#define RF_TRAJ_ENVELOPE_ENERGY_FLOOR 1e-2  /* [J] energies below it count as 0 in p50/p95 */
+typedef struct {
+    size_t n_edges;
+    double *x;                  /* [m] edges x_k */
+    size_t *reached;            /* trajectories whose path reaches x_k */
+    double *height[3];          /* p50, p95, max [m]: y of the block's point minus the ground's y at x_k */
+    double *energy[3];          /* p50, p95, max [J]: translational + rotational kinetic energy */
+} rf_traj_envelope;
+
 typedef struct {
     size_t samples;
     size_t n_collectors;
@@ -198,6 +219,7 @@ typedef struct {
     /* impact_model law: the table built for this run */
     size_t impact_nodes_vn, impact_nodes_theta, impact_evaluations, impact_from_cache;
     double impact_error_estimate;   /* largest |table - model| of R_n, R_t at the cell centres [-] */
+    rf_traj_envelope envelope;      /* from all samples */
 } rf_traj_ensemble;
 
 /* Run spec->samples trajectories on `threads` threads (0 = online cores).
