@@ -12,7 +12,7 @@
  * width set by RF_TRAJ_ENVELOPE_ACCURACY, values below a floor in bin 0),
  * the exact maximum and the count of trajectories reaching it.  Counts and
  * maxima merge in any order to the same bits, so the result does not depend
- * on the thread count.  About 3.3 MB per accumulator (161 edges); counts are
+ * on the thread count.  About 3.4 MB per accumulator (161 edges); counts are
  * 32-bit, i.e. at most 4e9 trajectories per accumulator. */
 #include "trajectory/traj_internal.h"
 

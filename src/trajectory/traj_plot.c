@@ -27,7 +27,7 @@
 #define HIST_H 150
 #define PAD_BOTTOM 55
 #define PROFILE_MIN 200                     /* [px] below this the profile is exaggerated vertically */
-#define PROFILE_MAX 1100                    /* [px] above this it is compressed */
+#define PROFILE_MAX 1200                    /* [px] above this it is compressed */
 #define NRUN 160                            /* bins of the end-point histogram */
 
 typedef struct {
@@ -150,8 +150,9 @@ static void draw_profile_panel(const plot_data *p)
         snprintf(ylab, sizeof ylab, "y [m] (vertical exaggeration %gx)", p->exaggeration);
     plmtex("l", 4.2, 0.5, 0.5, ylab);
     char title[160];
-    snprintf(title, sizeof title, "profile, barriers and %zu of the %zu trajectories",
-             p->e->n_recorded < 100 ? p->e->n_recorded : 100, p->e->samples);
+    size_t shown = p->e->n_recorded < 100 ? p->e->n_recorded : 100;
+    snprintf(title, sizeof title, "profile, barriers and %zu of the %zu trajector%s", shown, p->e->samples,
+             p->e->samples == 1 ? "y" : "ies");
     plmtex("t", 0.6, 0, 0, title);
 }
 
@@ -189,7 +190,7 @@ static void draw_envelope(const plot_data *p, int top, double *const env[3], dou
         plcol0(colour[q]);
         plwidth(q == 1 ? 2 : 1);
         env_line(v, env[q], scale);
-        plmtex("t", 0.6, 0.90 + 0.05 * q, 1, name[q]);
+        plmtex("t", 0.6, 0.88 + 0.06 * q, 1, name[q]);
     }
     plwidth(1);
     plcol0(1);
@@ -231,8 +232,8 @@ static void draw_runout(const plot_data *p, int top)
     free(frac);
     plcol0(1);
     char title[160];
-    snprintf(title, sizeof title, "end points (runout x) of the %zu trajectories per %.3g m; grey: fraction reaching x",
-             p->e->samples, w);
+    snprintf(title, sizeof title, "end points (runout x) per %.3g m, %zu trajector%s; grey: fraction reaching x", w,
+             p->e->samples, p->e->samples == 1 ? "y" : "ies");
     plmtex("t", 0.6, 0, 0, title);
     plmtex("l", 4.2, 0.5, 0.5, "count");
     plmtex("b", 2.8, 0.5, 0.5, "x [m]");
@@ -244,13 +245,14 @@ static void draw_profile(const void *v)
     const rf_traj_envelope *env = &p->e->envelope;
     char title[200];
     pladv(0);
-    plschr(0, 0.7);
+    plschr(0, 0.7 * 2260.0 / (FIG_W + p->height_px)); /* PLplot scales text with width + height */
     draw_profile_panel(p);
     int top = PAD_TOP + p->profile_px + GAP;
-    snprintf(title, sizeof title, "passing height above the ground, all %zu trajectories", p->e->samples);
+    const char *all = p->e->samples == 1 ? "the trajectory" : "all trajectories";
+    snprintf(title, sizeof title, "passing height above the ground, %s (%zu)", all, p->e->samples);
     draw_envelope(p, top, env->height, 1, "height [m]", title);
     top += PANEL_H + GAP;
-    snprintf(title, sizeof title, "kinetic energy (translation + rotation), all %zu trajectories", p->e->samples);
+    snprintf(title, sizeof title, "kinetic energy (translation + rotation), %s (%zu)", all, p->e->samples);
     draw_envelope(p, top, env->energy, 1e-3, "energy [kJ]", title);
     draw_runout(p, top + PANEL_H + GAP);
 }
