@@ -161,7 +161,23 @@ static const char *CSS =
     "th{background:#eee;white-space:nowrap}td.l{text-align:left}td.na{color:#999}"
     ".warn{background:#fde2e1;border:2px solid #c00;padding:.5em 1em;margin:1em 0}"
     ".warn li{margin:.3em 0}.note{color:#666}img{max-width:340px;border:1px solid #ddd}"
-    ".fig{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}";
+    ".fig{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}.wide img{max-width:100%}";
+
+/* A trajectory study: its Monte Carlo rerun at the nominal point (DIR/nominal/, traj_study_report.c). */
+static void nominal_trajectories(FILE *f, const char *dir)
+{
+    char path[4096];
+    struct stat sb;
+    snprintf(path, sizeof path, "%s/nominal/trajectory_profile.png", dir);
+    if (stat(path, &sb) != 0)
+        return;
+    fputs("<h2>Trajectories at the nominal point</h2>\n<p>The Monte Carlo rerun at the end of the study with every "
+          "fuzzy parameter at its nominal value: profile, envelopes from all its trajectories and end points; "
+          "the statistics, collector histograms and CSV files are in <a href=\"nominal/report.html\">"
+          "nominal/report.html</a>.</p>\n<div class=wide>", f);
+    embed_png(f, dir, "nominal/trajectory_profile", "trajectories at the nominal point");
+    fputs("</div>\n", f);
+}
 
 static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
 {
@@ -250,6 +266,7 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
         embed_png(f, dir, stem, a);
     }
     fputs("</div>\n", f);
+    nominal_trajectories(f, dir);
 
     /* outputs */
     struct fy_node *outputs = get(root, "outputs");

@@ -66,6 +66,9 @@ rf_status sp_check_text(const char *name, const char *buf, size_t len, rf_error 
 
 /* The trajectory model block (src/trajectory/traj_study.c). */
 rf_status rf_traj_study_parse(sp_ctx *c, struct fy_node *n, rf_study *study);
+/* A trajectory study's Monte Carlo rerun at the nominal point, written to
+ * DIR/nominal/ (traj_study_report.c); RF_OK and nothing for other models. */
+rf_status rf_traj_study_nominal(const char *dir, const rf_study *s, int threads, int plots, rf_error *err);
 
 char *sp_strdup(const char *s);
 char *sp_strndup(const char *s, size_t len);

@@ -56,10 +56,11 @@ static void *mc_worker(void *arg)
     rf_traj_spec local;
     double **field = calloc(spec->n_random ? spec->n_random : 1, sizeof *field);
     rf_traj_crossing *cross = calloc(ens->n_collectors ? ens->n_collectors : 1, sizeof *cross);
-    rf_traj_result tmp = {0};
-    tmp.events = malloc(64 * sizeof *tmp.events), tmp.events_cap = 64;
+    rf_traj_result tmp = {0}; /* the unrecorded trajectories; events only for the envelopes */
+    if (job->env)
+        tmp.events = malloc(64 * sizeof *tmp.events), tmp.events_cap = 64;
     tmp.crossings = cross;
-    if (!field || !cross || !tmp.events || (job->status = rf_traj_spec_copy(spec, &local, &job->err)) != RF_OK) {
+    if (!field || !cross || (job->env && !tmp.events) || (job->status = rf_traj_spec_copy(spec, &local, &job->err)) != RF_OK) {
         free(field);
         free(cross);
         free(tmp.events);
@@ -79,7 +80,8 @@ static void *mc_worker(void *arg)
         }
         rf_traj_result *res = i < ens->n_recorded ? &ens->recorded[i] : &tmp; /* tmp.events grows, reused */
         job->status = rf_traj_simulate(job->world, &local, spec->seed, i, res, &job->err);
-        traj_env_add(job->env, &local, res);
+        if (job->env)
+            traj_env_add(job->env, &local, res);
         ens->state[i] = (unsigned char)res->state;
         ens->runout_x[i] = res->runout_x;
         ens->rebound_height[i] = res->rebound_height;
@@ -185,13 +187,15 @@ static rf_status collect(mc_job *jobs, int threads, rf_traj_ensemble *ens, rf_er
                 *err = jobs[t].err;
             return jobs[t].status;
         }
+    if (!jobs[0].env)
+        return RF_OK;
     for (int t = 1; t < threads; t++)
         traj_env_merge(jobs[0].env, jobs[t].env);
     return traj_env_finish(jobs[0].env, &ens->envelope, err);
 }
 
 static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, const size_t *perm, int threads,
-                          rf_traj_ensemble *ens, rf_error *err)
+                          int envelopes, rf_traj_ensemble *ens, rf_error *err)
 {
     size_t N = spec->samples;
     if ((size_t)threads > N)
@@ -200,8 +204,8 @@ static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, cons
     rf_status st = jobs ? RF_OK : RF_ENOMEM;
     for (int t = 0; t < threads && st == RF_OK; t++) {
         jobs[t] = (mc_job){spec, w, ens, perm, N * (size_t)t / (size_t)threads, N * (size_t)(t + 1) / (size_t)threads,
-                           traj_env_create(spec, RF_TRAJ_ENVELOPE_EDGES, w), RF_OK, {RF_OK, ""}};
-        if (!jobs[t].env)
+                           envelopes ? traj_env_create(spec, RF_TRAJ_ENVELOPE_EDGES, w) : NULL, RF_OK, {RF_OK, ""}};
+        if (envelopes && !jobs[t].env)
             st = RF_ENOMEM;
     }
     if (st == RF_OK) {
@@ -222,6 +226,12 @@ rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *e
 }
 
 rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf_traj_ensemble *ens, rf_error *err)
+{
+    return traj_run_with(spec, threads, table, 1, ens, err);
+}
+
+rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int envelopes, rf_traj_ensemble *ens,
+                        rf_error *err)
 {
     double t0 = rf_monotonic_seconds();
     rf_status st = rf_traj_spec_validate(spec, err);
@@ -248,7 +258,7 @@ rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf
     }
     traj_impact_table_info(w->impact_table, &ens->impact_nodes_vn, &ens->impact_nodes_theta,
                            &ens->impact_evaluations, &ens->impact_from_cache, &ens->impact_error_estimate);
-    st = run_jobs(spec, w, perm, threads, ens, err);
+    st = run_jobs(spec, w, perm, threads, envelopes, ens, err);
     free(perm);
     rf_traj_world_free(w);
     ens->wall_seconds = rf_monotonic_seconds() - t0;

@@ -39,6 +39,10 @@ rf_status traj_world_create_shared(const rf_traj_spec *spec, void *table, rf_tra
 /* montecarlo.c: rf_traj_run with a shared impact table (NULL: the run builds its own). */
 rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf_traj_ensemble *ens,
                           rf_error *err);
+/* The same, with the envelopes (ens->envelope) only if `envelopes` (they
+ * about double the run time; the study model does not need them). */
+rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int envelopes, rf_traj_ensemble *ens,
+                        rf_error *err);
 
 /* profile.c: x sorted, no repeated point, no self-intersection. */
 rf_status traj_profile_check(const rf_traj_spec *s, rf_error *err);
@@ -104,6 +108,11 @@ void traj_env_free(traj_env_acc *a);
 void traj_envelope_free(rf_traj_envelope *env);
 /* DIR/envelopes.csv: one row per edge x_k (units in the header). */
 rf_status traj_write_envelopes_csv(const char *dir, const rf_traj_ensemble *e, rf_error *err);
+
+/* traj_model.c: the spec (a copy to free) that model m's evaluation at x
+ * runs, and its shared impact table (or NULL); RF_EINVAL if m is not a
+ * trajectory model.  For the study report's nominal run (traj_study_report.c). */
+rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *spec, void **table, rf_error *err);
 
 /* simulate.c */
 void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay);
