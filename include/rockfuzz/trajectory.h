@@ -264,7 +264,7 @@ void rf_traj_write_json(FILE *f, const rf_traj_spec *spec, const rf_traj_ensembl
 void rf_traj_write_summary(FILE *f, const rf_traj_spec *spec, const rf_traj_ensemble *ens, const rf_traj_stats *st);
 /* DIR/trajectories.csv (recorded paths sampled every dt seconds and at every
  * event), DIR/crossings.csv (every sample's collector crossings),
- * DIR/statistics.csv (per collector). */
+ * DIR/statistics.csv (per collector), DIR/envelopes.csv (per edge x_k). */
 rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
                             const rf_traj_stats *st, rf_error *err);
 /* traj_plot.c: DIR/trajectory_profile.{png,svg} (profile, recorded paths,

@@ -315,8 +315,8 @@ rf_status rf_traj_write_plots(const char *dir, const rf_traj_spec *s, const rf_t
     double pad = 0.05 * (p.yhi - p.ylo) + 1;
     p.ylo -= pad, p.yhi += pad;
     layout(&p);
-    rf_status rc = traj_write_envelopes_csv(dir, e, err);
-    if (rc == RF_OK && e->envelope.n_edges)
+    rf_status rc = RF_OK;
+    if (e->envelope.n_edges)
         rc = rf_plot_figure(dir, "trajectory_profile", FIG_W, p.height_px, draw_profile, &p, err);
     for (size_t c = 0; c < s->n_collectors && rc == RF_OK; c++) {
         char stem[300];
