@@ -13,7 +13,7 @@
  * the exact maximum and the count of trajectories reaching it.  Counts and
  * maxima merge in any order to the same bits, so the result does not depend
  * on the thread count.  About 3.4 MB per accumulator (161 edges); counts are
- * 32-bit, i.e. at most 4e9 trajectories per accumulator. */
+ * 32-bit, enough: a run has at most 1e8 samples (traj_yaml.c). */
 #include "trajectory/traj_internal.h"
 
 #include <math.h>
