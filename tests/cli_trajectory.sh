@@ -43,12 +43,19 @@ assert "kinetic_energy" not in b and "height" not in b
 PY
 "$bin" trajectory "$src/examples/trajectory/slope.yaml" --samples 300 --threads 2 --out "$tmp/out" --quiet \
   || fail "slope.yaml --out"
-for f in result.json trajectories.csv crossings.csv statistics.csv report.html trajectory_profile.png \
+for f in result.json trajectories.csv crossings.csv statistics.csv envelopes.csv report.html trajectory_profile.png \
          trajectory_profile.svg trajectory_hist_barrier.png trajectory_hist_road.svg; do
   [ -s "$tmp/out/$f" ] || fail "missing $f"
 done
 grep -q "data:image/png;base64" "$tmp/out/report.html" || fail "report.html does not embed its figures"
 [ "$(grep -c ',barrier,' "$tmp/out/crossings.csv")" = 300 ] || fail "crossings.csv rows"
+# envelopes from all 300 trajectories: at the barrier's x (95 m, an edge) as many reach as cross it
+head -1 "$tmp/out/envelopes.csv" | grep -q '^x_m,reached,fraction_reaching,height_p50_m,.*,energy_max_J$' \
+  || fail "envelopes.csv header"
+[ "$(grep -c . "$tmp/out/envelopes.csv")" = 162 ] || fail "envelopes.csv rows"
+n_cross=$(awk -F, '$4 == "barrier" && $5 == 1' "$tmp/out/crossings.csv" | wc -l)
+[ "$(awk -F, '$1 == 95 {print $2}' "$tmp/out/envelopes.csv")" = "$n_cross" ] || fail "envelope reach at the barrier"
+grep -q "envelopes use all 300" "$tmp/out/report.html" || fail "report: envelopes from all trajectories"
 
 # outputs: chosen percentiles, thresholds and the runout histogram, checked against a
 # brute-force recomputation from the per-sample CSV files (Hyndman-Fan type 7 =

@@ -221,6 +221,27 @@ typedef struct {
     double value[RF_TRAJ_MAX_PERCENTILES];
 } rf_traj_percentiles;
 
+/* Envelopes along x (envelope.c), from ALL trajectories of a run: at the
+ * edges x_k = x_first + k (x_last - x_first) / (n_edges - 1) of the profile,
+ * each trajectory's state at its first passage of x_k, solved exactly for the
+ * crossing time (a flight is a parabola, a contact stretch uniformly
+ * accelerated).  A trajectory whose path never reaches x_k does not count
+ * there; reached[k] says how many do.  p50 and p95 (Hyndman-Fan type 7 over
+ * the trajectories reaching x_k) come from a streaming log histogram: each is
+ * within RF_TRAJ_ENVELOPE_ACCURACY relative (or the floor below) of the exact
+ * percentile; the max is exact.  NaN where no trajectory reaches x_k. */
+#define RF_TRAJ_ENVELOPE_EDGES 161
+#define RF_TRAJ_ENVELOPE_ACCURACY 0.005     /* relative, of p50 and p95 */
+#define RF_TRAJ_ENVELOPE_HEIGHT_FLOOR 1e-4  /* [m] heights below it count as 0 in p50/p95 */
+#define RF_TRAJ_ENVELOPE_ENERGY_FLOOR 1e-2  /* [J] energies below it count as 0 in p50/p95 */
+typedef struct {
+    size_t n_edges;
+    double *x;                  /* [m] edges x_k */
+    size_t *reached;            /* trajectories whose path reaches x_k */
+    double *height[3];          /* p50, p95, max [m]: y of the block's point minus the ground's y at x_k */
+    double *energy[3];          /* p50, p95, max [J]: translational + rotational kinetic energy */
+} rf_traj_envelope;
+
 typedef struct {
     size_t samples;
     size_t n_collectors;
@@ -235,6 +256,7 @@ typedef struct {
     /* impact_model law: the table built for this run */
     size_t impact_nodes_vn, impact_nodes_theta, impact_evaluations, impact_from_cache;
     double impact_error_estimate;   /* largest |table - model| of R_n, R_t at the cell centres [-] */
+    rf_traj_envelope envelope;      /* from all samples */
 } rf_traj_ensemble;
 
 /* Run spec->samples trajectories on `threads` threads (0 = online cores).
@@ -317,7 +339,8 @@ void rf_traj_write_summary(FILE *f, const rf_traj_spec *spec, const rf_traj_ense
  * points inside each stretch), samples.csv (every sample's state, runout_x,
  * rebound height), crossings.csv (every sample's collector crossings),
  * statistics.csv (percentiles per quantity), exceedance.csv (P(quantity >
- * threshold)), runout_histogram.csv.  Every header names its unit. */
+ * threshold)), runout_histogram.csv, envelopes.csv (per edge x_k,
+ * envelope.c).  Every header names its unit. */
 rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
                             const rf_traj_stats *st, rf_error *err);
 /* traj_plot.c: DIR/trajectory_profile.{png,svg} (profile, recorded paths,
@@ -342,6 +365,13 @@ int rf_traj_state_at(const rf_traj_result *res, double t, double *x, double *y, 
  * common random numbers across the TM's points. */
 rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const char *const *param_names,
                                const char *const *bind_paths, rf_model *model, rf_error *err);
+
+/* The Monte Carlo of a trajectory model (rf_traj_model_create) at the point x
+ * of its parameters, written to the existing folder dir as `rockfuzz
+ * trajectory --out` writes a run (result.json, CSV files, and with plots the
+ * figures and report.html); 100 trajectories recorded (traj_run_at.c). */
+rf_status rf_traj_model_write_run(const rf_model *m, const double *x, const char *dir, int threads, int plots,
+                                  rf_error *err);
 
 #ifdef __cplusplus
 }

@@ -163,7 +163,22 @@ static const char *CSS =
     ".warn li{margin:.3em 0}.note{color:#666}img{max-width:340px;border:1px solid #ddd}"
     ".fig{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}"
     ".summary{background:#eef5ff;border:2px solid #36c;padding:.5em 1em;margin:1em 0}"
-    ".summary td.l b{font-weight:600}";
+    ".summary td.l b{font-weight:600}.wide img{max-width:100%}";
+/* A trajectory study: its Monte Carlo rerun at the nominal point (DIR/nominal/, traj_study_report.c). */
+static void nominal_trajectories(FILE *f, const char *dir)
+{
+    char path[4096];
+    struct stat sb;
+    snprintf(path, sizeof path, "%s/nominal/trajectory_profile.png", dir);
+    if (stat(path, &sb) != 0)
+        return;
+    fputs("<h2>Trajectories at the nominal point</h2>\n<p>The Monte Carlo rerun at the end of the study with every "
+          "fuzzy parameter at its nominal value: profile, envelopes from all its trajectories and end points; "
+          "the statistics, collector histograms and CSV files are in <a href=\"nominal/report.html\">"
+          "nominal/report.html</a>.</p>\n<div class=wide>", f);
+    embed_png(f, dir, "nominal/trajectory_profile", "trajectories at the nominal point");
+    fputs("</div>\n", f);
+}
 
 static void output_status(struct fy_node *o, char *buf, size_t size);
 
@@ -261,7 +276,7 @@ static void write_headline(FILE *f, struct fy_node *outputs)
                "(membership 0); with every input at its nominal value it is <b>%.4g %s</b>.",
             round_off(lo, big) * fac, round_off(hi, big) * fac, du, round_off(number(get(o, "nominal")), big) * fac,
             du);
-    if (lo == 0 && strstr(name, "_ke_"))
+    if (lo == 0 && strstr(name, "_energy_"))
         fputs(" (0: at some inputs no block reaches the line.)", f);
     if (!isnan(r)) {
         fputs(" The input with the largest influence is <b>", f);
@@ -438,6 +453,7 @@ static void write_inputs(FILE *f, const char *dir, struct fy_node *root)
         embed_png(f, dir, stem, a);
     }
     fputs("</div>\n", f);
+    nominal_trajectories(f, dir);
 }
 
 /* The cut table of output o, its nominal value and degree of uncertainty. */

@@ -13,5 +13,8 @@ rf_status sp_parse_model(sp_ctx *c, struct fy_node *n, rf_study *study);
 
 /* The trajectory model block (study_traj.c). */
 rf_status rf_traj_study_parse(sp_ctx *c, struct fy_node *n, rf_study *study);
+/* A trajectory study's Monte Carlo rerun at the nominal point, written to
+ * DIR/nominal/ (traj_study_report.c); RF_OK and nothing for other models. */
+rf_status rf_traj_study_nominal(const char *dir, const rf_study *s, int threads, int plots, rf_error *err);
 
 #endif

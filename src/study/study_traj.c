@@ -9,10 +9,13 @@
 #include "rockfuzz/fuzzy.h"
 #include "rockfuzz/trajectory.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 typedef struct {
     char *file;
@@ -157,5 +160,25 @@ rf_status rf_traj_study_parse(sp_ctx *c, struct fy_node *n, rf_study *s)
     free(paths);
     free(b.file);
     rf_traj_spec_free(&spec);
+    return st;
+}
+
+rf_status rf_traj_study_nominal(const char *dir, const rf_study *s, int threads, int plots, rf_error *err)
+{
+    if (s->model_kind != RF_STUDY_MODEL_TRAJECTORY)
+        return RF_OK;
+    char sub[4096], old[4200];
+    snprintf(sub, sizeof sub, "%s/nominal", dir);
+    snprintf(old, sizeof old, "%s/trajectory_profile.png", sub);
+    if (mkdir(sub, 0777) != 0 && errno != EEXIST)
+        return rf_fail(err, RF_EIO, "cannot create %s: %s", sub, strerror(errno));
+    unlink(old); /* the study report embeds it only if this run wrote it */
+    double *x = malloc((s->n_params ? s->n_params : 1) * sizeof *x);
+    if (!x)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    for (size_t i = 0; i < s->n_params; i++)
+        x[i] = rf_fuzzy_nominal(&s->inputs[i]);
+    rf_status st = rf_traj_model_write_run(&s->model, x, sub, threads, plots, err);
+    free(x);
     return st;
 }

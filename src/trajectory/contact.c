@@ -39,6 +39,13 @@ static contact_law law_on(const traj_run *r, const traj_segment *g)
     return L;
 }
 
+int traj_contact_rolls(const traj_run *r, size_t k, double *resist)
+{
+    contact_law L = law_on(r, &r->w->seg[k]);
+    *resist = L.resist;
+    return L.rolling;
+}
+
 /* Smallest tau in [0, tmax] with c2 tau^2 + c1 tau + c0 = 0; INFINITY if none. */
 static double first_root(double c2, double c1, double c0, double tmax)
 {

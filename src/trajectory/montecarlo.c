@@ -5,7 +5,10 @@
  * also drawn from the seed), and writes its results at index i.  So the
  * ensemble is the same bits whatever the thread count or the split over MPI
  * ranks.  Threads take contiguous blocks of samples; each keeps its own deep
- * copy of the spec into which the draws are written. */
+ * copy of the spec into which the draws are written, one events buffer
+ * reused by the trajectories it does not record, and its envelope
+ * accumulator (envelope.c), merged at the end (counts and maxima: the same
+ * bits in any order). */
 #include "trajectory/traj_internal.h"
 
 #include <math.h>
@@ -22,6 +25,7 @@ typedef struct {
     rf_traj_ensemble *ens;
     const size_t *perm;     /* n_random * samples (LHS), or NULL */
     size_t begin, end;
+    traj_env_acc *env;
     rf_status status;
     rf_error err;
 } mc_job;
@@ -52,9 +56,14 @@ static void *mc_worker(void *arg)
     rf_traj_spec local;
     double **field = calloc(spec->n_random ? spec->n_random : 1, sizeof *field);
     rf_traj_crossing *cross = calloc(ens->n_collectors ? ens->n_collectors : 1, sizeof *cross);
-    if (!field || !cross || (job->status = rf_traj_spec_copy(spec, &local, &job->err)) != RF_OK) {
+    rf_traj_result tmp = {0}; /* the unrecorded trajectories; events only for the envelopes */
+    if (job->env)
+        tmp.events = malloc(64 * sizeof *tmp.events), tmp.events_cap = 64;
+    tmp.crossings = cross;
+    if (!field || !cross || (job->env && !tmp.events) || (job->status = rf_traj_spec_copy(spec, &local, &job->err)) != RF_OK) {
         free(field);
         free(cross);
+        free(tmp.events);
         job->status = rf_fail(&job->err, RF_ENOMEM, "out of memory");
         return NULL;
     }
@@ -69,9 +78,10 @@ static void *mc_worker(void *arg)
             if (field[j])
                 *field[j] = draw(&spec->random[j], u);
         }
-        rf_traj_result tmp = {0}, *res = i < ens->n_recorded ? &ens->recorded[i] : &tmp;
-        res->crossings = i < ens->n_recorded ? res->crossings : cross;
+        rf_traj_result *res = i < ens->n_recorded ? &ens->recorded[i] : &tmp; /* tmp.events grows, reused */
         job->status = rf_traj_simulate(job->world, &local, spec->seed, i, res, &job->err);
+        if (job->env)
+            traj_env_add(job->env, &local, res);
         ens->state[i] = (unsigned char)res->state;
         ens->runout_x[i] = res->runout_x;
         ens->rebound_height[i] = res->rebound_height;
@@ -81,6 +91,7 @@ static void *mc_worker(void *arg)
     rf_traj_spec_free(&local);
     free(field);
     free(cross);
+    free(tmp.events);
     return NULL;
 }
 
@@ -145,47 +156,67 @@ void rf_traj_ensemble_free(rf_traj_ensemble *e)
     free(e->runout_x);
     free(e->rebound_height);
     free(e->crossings);
+    traj_envelope_free(&e->envelope);
     memset(e, 0, sizeof *e);
 }
 
+/* Start the jobs (job 0 on this thread) and wait for them. */
+static void start_and_join(mc_job *jobs, int threads)
+{
+    pthread_t *tid = calloc((size_t)threads, sizeof *tid);
+    char *started = calloc((size_t)threads, 1);
+    for (int t = 1; tid && started && t < threads; t++)
+        started[t] = pthread_create(&tid[t], NULL, mc_worker, &jobs[t]) == 0;
+    mc_worker(&jobs[0]);
+    for (int t = 1; t < threads; t++) {
+        if (started && started[t])
+            pthread_join(tid[t], NULL);
+        else
+            mc_worker(&jobs[t]); /* could not start a thread: do its share here */
+    }
+    free(tid);
+    free(started);
+}
+
+/* The first failed job's status, else the merged envelopes into ens. */
+static rf_status collect(mc_job *jobs, int threads, rf_traj_ensemble *ens, rf_error *err)
+{
+    for (int t = 0; t < threads; t++)
+        if (jobs[t].status != RF_OK) {
+            if (err)
+                *err = jobs[t].err;
+            return jobs[t].status;
+        }
+    if (!jobs[0].env)
+        return RF_OK;
+    for (int t = 1; t < threads; t++)
+        traj_env_merge(jobs[0].env, jobs[t].env);
+    return traj_env_finish(jobs[0].env, &ens->envelope, err);
+}
+
 static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, const size_t *perm, int threads,
-                          rf_traj_ensemble *ens, rf_error *err)
+                          int envelopes, rf_traj_ensemble *ens, rf_error *err)
 {
     size_t N = spec->samples;
     if ((size_t)threads > N)
         threads = N ? (int)N : 1;
     mc_job *jobs = calloc((size_t)threads, sizeof *jobs);
-    pthread_t *tid = calloc((size_t)threads, sizeof *tid);
-    char *started = calloc((size_t)threads, 1);
-    if (!jobs || !tid || !started) {
-        free(jobs);
-        free(tid);
-        free(started);
-        return rf_fail(err, RF_ENOMEM, "out of memory");
-    }
-    for (int t = 0; t < threads; t++) {
+    rf_status st = jobs ? RF_OK : RF_ENOMEM;
+    for (int t = 0; t < threads && st == RF_OK; t++) {
         jobs[t] = (mc_job){spec, w, ens, perm, N * (size_t)t / (size_t)threads, N * (size_t)(t + 1) / (size_t)threads,
-                           RF_OK, {RF_OK, ""}};
-        if (t > 0)
-            started[t] = pthread_create(&tid[t], NULL, mc_worker, &jobs[t]) == 0;
+                           envelopes ? traj_env_create(spec, RF_TRAJ_ENVELOPE_EDGES, w) : NULL, RF_OK, {RF_OK, ""}};
+        if (envelopes && !jobs[t].env)
+            st = RF_ENOMEM;
     }
-    mc_worker(&jobs[0]);
-    for (int t = 1; t < threads; t++) {
-        if (started[t])
-            pthread_join(tid[t], NULL);
-        else
-            mc_worker(&jobs[t]); /* could not start a thread: do its share here */
+    if (st == RF_OK) {
+        start_and_join(jobs, threads);
+        st = collect(jobs, threads, ens, err);
+    } else {
+        st = rf_fail(err, RF_ENOMEM, "out of memory for %d threads", threads);
     }
-    rf_status st = RF_OK;
-    for (int t = 0; t < threads && st == RF_OK; t++)
-        if (jobs[t].status != RF_OK) {
-            st = jobs[t].status;
-            if (err)
-                *err = jobs[t].err;
-        }
+    for (int t = 0; jobs && t < threads; t++)
+        traj_env_free(jobs[t].env);
     free(jobs);
-    free(tid);
-    free(started);
     return st;
 }
 
@@ -195,6 +226,12 @@ rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *e
 }
 
 rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf_traj_ensemble *ens, rf_error *err)
+{
+    return traj_run_with(spec, threads, table, 1, ens, err);
+}
+
+rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int envelopes, rf_traj_ensemble *ens,
+                        rf_error *err)
 {
     double t0 = rf_monotonic_seconds();
     rf_status st = rf_traj_spec_validate(spec, err);
@@ -221,7 +258,7 @@ rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf
     }
     traj_impact_table_info(w->impact_table, &ens->impact_nodes_vn, &ens->impact_nodes_theta,
                            &ens->impact_evaluations, &ens->impact_from_cache, &ens->impact_error_estimate);
-    st = run_jobs(spec, w, perm, threads, ens, err);
+    st = run_jobs(spec, w, perm, threads, envelopes, ens, err);
     free(perm);
     rf_traj_world_free(w);
     ens->wall_seconds = rf_monotonic_seconds() - t0;

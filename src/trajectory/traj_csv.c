@@ -248,5 +248,5 @@ rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *s, const rf_tra
         if (fclose(f) != 0 || rc != RF_OK)
             return rf_fail(err, RF_EIO, "cannot write %s", path);
     }
-    return RF_OK;
+    return traj_write_envelopes_csv(dir, e, err); /* envelope.c */
 }

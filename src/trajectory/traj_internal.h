@@ -39,6 +39,10 @@ rf_status traj_world_create_shared(const rf_traj_spec *spec, void *table, rf_tra
 /* montecarlo.c: rf_traj_run with a shared impact table (NULL: the run builds its own). */
 rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf_traj_ensemble *ens,
                           rf_error *err);
+/* The same, with the envelopes (ens->envelope) only if `envelopes` (they
+ * about double the run time; the study model does not need them). */
+rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int envelopes, rf_traj_ensemble *ens,
+                        rf_error *err);
 
 /* profile.c: x sorted, no repeated point, no self-intersection. */
 rf_status traj_profile_check(const rf_traj_spec *s, rf_error *err);
@@ -87,6 +91,28 @@ int traj_bounce(traj_run *r, size_t k, double *vx, double *vy, double *omega);
 /* contact.c: one stretch of contact motion on segment r->k until the block
  * stops, reaches a vertex (then: launch, next segment, or impact) or a barrier. */
 void traj_contact_step(traj_run *r);
+
+/* contact.c: whether contact on segment k rolls (else it slides) and the
+ * resisting deceleration there [m/s^2] (rolling resistance or friction). */
+int traj_contact_rolls(const traj_run *r, size_t k, double *resist);
+
+/* envelope.c: per-thread accumulators of the envelopes along x (rf_traj_envelope).
+ * Counts and maxima only, so merging them in any order gives the same bits. */
+typedef struct traj_env_acc traj_env_acc;
+traj_env_acc *traj_env_create(const rf_traj_spec *spec, size_t n_edges, const rf_traj_world *w);
+/* Add one trajectory (its events) run with the values `values`. */
+void traj_env_add(traj_env_acc *a, const rf_traj_spec *values, const rf_traj_result *res);
+void traj_env_merge(traj_env_acc *into, const traj_env_acc *from);
+rf_status traj_env_finish(const traj_env_acc *a, rf_traj_envelope *env, rf_error *err);
+void traj_env_free(traj_env_acc *a);
+void traj_envelope_free(rf_traj_envelope *env);
+/* DIR/envelopes.csv: one row per edge x_k (units in the header). */
+rf_status traj_write_envelopes_csv(const char *dir, const rf_traj_ensemble *e, rf_error *err);
+
+/* traj_model.c: the spec (a copy to free) that model m's evaluation at x
+ * runs, and its shared impact table (or NULL); RF_EINVAL if m is not a
+ * trajectory model.  For the study report's nominal run (traj_study_report.c). */
+rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *spec, void **table, rf_error *err);
 
 /* simulate.c */
 void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay);

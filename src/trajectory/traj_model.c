@@ -138,7 +138,7 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     s.record = 0;
     rf_traj_ensemble e;
     rf_traj_stats t;
-    if ((st = traj_run_shared(&s, 1, c->table, &e, err)) == RF_OK) {
+    if ((st = traj_run_with(&s, 1, c->table, 0, &e, err)) == RF_OK) { /* no envelopes: not outputs */
         if ((st = rf_traj_stats_compute_spec(&s, &e, &t, err)) == RF_OK) {
             out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0};
             walk_outputs(&o, &s, &t);
@@ -260,5 +260,17 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
         st = set_identity(model, c, err);
     if (st != RF_OK)
         rf_model_free(model);
+    return st;
+}
+
+rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *spec, void **table, rf_error *err)
+{
+    if (m->eval != traj_model_eval)
+        return rf_fail(err, RF_EINVAL, "not a trajectory model");
+    const traj_model_ctx *c = m->ctx;
+    rf_status st = rf_traj_spec_copy(&c->spec, spec, err);
+    for (size_t i = 0; i < c->n_params && st == RF_OK; i++)
+        *rf_traj_spec_field(spec, c->paths[i]) = x[i];
+    *table = c->table;
     return st;
 }

@@ -1,9 +1,11 @@
 /* traj_plot.c - figures of a trajectory run (PLplot, PNG via pngcairo and
- * SVG): the profile with the recorded trajectories and collectors, the
- * envelopes along x of the passing height and of the kinetic energy (p50,
- * p95 and max over the recorded trajectories of each one's maximum in an x
- * bin, every stretch sampled densely from its exact motion), and per
- * collector histograms of energy and height; then report.html.
+ * SVG).  trajectory_profile: one column sharing x, as RocFall users read it:
+ * the profile to scale (equal axes, or a stated round vertical exaggeration
+ * when it would be too flat or too tall to read) with the barriers and the
+ * recorded trajectories; below it the envelopes of the passing height and of
+ * the kinetic energy (p50, p95, max over ALL trajectories, envelope.c); then
+ * the histogram of the end points with the fraction of trajectories reaching
+ * each x.  Per collector: histograms of energy and height.  Then report.html.
  * PLplot streams are global: call from one thread (as report_plot.c). */
 #include "plot/figure.h"
 #include "trajectory/traj_internal.h"
@@ -16,80 +18,85 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#define NBIN 160
+#define FIG_W 1000                         /* [px] */
+#define PAD_L 90
+#define PAD_R 80
+#define PAD_TOP 40
+#define GAP 48
+#define PANEL_H 170
+#define HIST_H 150
+#define PAD_BOTTOM 55
+#define PROFILE_MIN 200                     /* [px] below this the profile is exaggerated vertically */
+#define PROFILE_MAX 1200                    /* [px] above this it is compressed */
+#define NRUN 160                            /* bins of the end-point histogram */
 
 typedef struct {
     const rf_traj_spec *s;
     const rf_traj_ensemble *e;
-    const rf_traj_world *w;
-    double xmin, xmax, mass, inertia;
-    double env_h[3][NBIN], env_ke[3][NBIN];   /* p50, p95, max per bin */
+    double xmin, xmax, ylo, yhi;   /* world of the profile panel [m] */
+    double exaggeration;           /* vertical / horizontal scale of the profile panel */
+    int height_px, profile_px;
 } plot_data;
 
-static int cmp_d(const void *a, const void *b)
+/* Vertical exaggeration: 1 (equal axes) unless the profile would be flatter
+ * than PROFILE_MIN or taller than PROFILE_MAX pixels; then a round factor. */
+static void layout(plot_data *p)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
+    static const double up[] = {2, 3, 4, 5, 10, 20, 50, 100}, down[] = {0.5, 0.25, 0.2, 0.1, 0.05};
+    double natural = (p->yhi - p->ylo) * (FIG_W - PAD_L - PAD_R) / (p->xmax - p->xmin);
+    p->exaggeration = 1;
+    for (size_t i = 0; natural < PROFILE_MIN && i < sizeof up / sizeof *up; i++)
+        if (natural * (p->exaggeration = up[i]) >= PROFILE_MIN)
+            break;
+    for (size_t i = 0; natural > PROFILE_MAX && i < sizeof down / sizeof *down; i++)
+        if (natural * (p->exaggeration = down[i]) <= PROFILE_MAX)
+            break;
+    p->profile_px = (int)lround(natural * p->exaggeration);
+    p->height_px = PAD_TOP + p->profile_px + 3 * GAP + 2 * PANEL_H + HIST_H + PAD_BOTTOM;
 }
 
-/* Per trajectory the largest height and energy in each x bin, then percentiles over trajectories. */
-static void envelopes(plot_data *p)
+/* Viewport of the panel whose top is `top` pixels below the page top, `h` pixels high. */
+static void panel(const plot_data *p, int top, int h, double ylo, double yhi)
 {
-    size_t n = p->e->n_recorded;
-    double *h = malloc((n ? n : 1) * NBIN * sizeof *h), *k = malloc((n ? n : 1) * NBIN * sizeof *k);
-    if (!h || !k) {
-        free(h), free(k);
-        return;
+    double H = p->height_px;
+    plvpor((double)PAD_L / FIG_W, 1 - (double)PAD_R / FIG_W, 1 - (top + h) / H, 1 - top / H);
+    plwind(p->xmin, p->xmax, ylo, yhi);
+    plcol0(1);
+    plbox("bcnst", 0, 0, "bcnstv", 0, 0);
+}
+
+static void collector_lines(const plot_data *p, double ylo, double yhi)
+{
+    plcol0(3);
+    pllsty(2);
+    for (size_t c = 0; c < p->s->n_collectors; c++) {
+        PLFLT x[2] = {p->s->collectors[c].x, p->s->collectors[c].x}, y[2] = {ylo, yhi};
+        plline(2, x, y);
     }
-    for (size_t i = 0; i < n * NBIN; i++)
-        h[i] = k[i] = 0;
-    double dx = (p->xmax - p->xmin) / NBIN;
-    for (size_t i = 0; i < n; i++) {
-        const rf_traj_result *r = &p->e->recorded[i];
-        for (size_t q = 0; q < r->n_events; q++) {
-            const rf_traj_event *ev = &r->events[q];
-            double t1 = q + 1 < r->n_events ? r->events[q + 1].t : ev->t, v0 = hypot(ev->vx, ev->vy);
-            for (int j = 0; j <= 64; j++) {
-                double d = (t1 - ev->t) * j / 64.0;
-                double x = ev->x + ev->vx * d + 0.5 * ev->ax * d * d, y = ev->y + ev->vy * d + 0.5 * ev->ay * d * d;
-                double vx = ev->vx + ev->ax * d, vy = ev->vy + ev->ay * d, v = hypot(vx, vy);
-                double w = ev->flying || v0 == 0 ? ev->omega : ev->omega * v / v0; /* rolling: omega ~ v */
-                long b = (long)floor((x - p->xmin) / dx);
-                double g = traj_ground_y(p->w, x, NULL);
-                if (b < 0 || b >= NBIN || !isfinite(g))
-                    continue;
-                double hh = y - g, kk = 0.5 * p->mass * v * v + 0.5 * p->inertia * w * w;
-                if (hh > h[i * NBIN + b]) h[i * NBIN + b] = hh;
-                if (kk > k[i * NBIN + b]) k[i * NBIN + b] = kk;
-            }
-        }
+    pllsty(1);
+}
+
+static void draw_ground(const plot_data *p)
+{
+    const rf_traj_spec *s = p->s;
+    size_t n = s->n_points;
+    PLFLT *x = malloc((n + 2) * sizeof *x), *y = malloc((n + 2) * sizeof *y);
+    if (x && y) {
+        for (size_t i = 0; i < n; i++)
+            x[i] = s->px[i], y[i] = s->py[i];
+        x[n] = s->px[n - 1], y[n] = p->ylo, x[n + 1] = s->px[0], y[n + 1] = p->ylo;
+        plcol0(5);
+        plfill((PLINT)n + 2, x, y);
+        plcol0(1);
+        plwidth(2);
+        plline((PLINT)n, x, y);
+        plwidth(1);
     }
-    double *col = malloc((n ? n : 1) * sizeof *col);
-    for (int b = 0; col && b < NBIN; b++) {
-        for (int which = 0; which < 2; which++) {
-            double *src = which ? k : h, (*dst)[NBIN] = which ? p->env_ke : p->env_h;
-            for (size_t i = 0; i < n; i++)
-                col[i] = src[i * NBIN + b];
-            qsort(col, n, sizeof *col, cmp_d);
-            dst[0][b] = n ? col[(size_t)(0.50 * (double)(n - 1))] : 0;
-            dst[1][b] = n ? col[(size_t)(0.95 * (double)(n - 1))] : 0;
-            dst[2][b] = n ? col[n - 1] : 0;
-        }
-    }
-    free(col), free(h), free(k);
+    free(x), free(y);
 }
 
 static void draw_paths(const plot_data *p)
 {
-    const rf_traj_spec *s = p->s;
-    double ymin = s->py[0], ymax = s->py[0];
-    for (size_t i = 0; i < s->n_points; i++)
-        ymin = fmin(ymin, s->py[i]), ymax = fmax(ymax, s->py[i]);
-    ymax = fmax(ymax, s->y0);
-    double pad = 0.05 * (ymax - ymin + 1);
-    plcol0(1);
-    plenv(p->xmin, p->xmax, ymin - pad, ymax + pad, 0, 0);
-    pllab("x [m]", "y [m]", "profile and recorded trajectories");
     size_t shown = p->e->n_recorded < 100 ? p->e->n_recorded : 100;
     plcol0(2);
     for (size_t i = 0; i < shown; i++) {
@@ -106,46 +113,148 @@ static void draw_paths(const plot_data *p)
             plline(17, x, y);
         }
     }
-    plcol0(1);
-    plwidth(2);
-    plline((PLINT)s->n_points, s->px, s->py);
-    plwidth(1);
+}
+
+/* Barriers: from the ground up to their height (or the whole panel when unlimited), named. */
+static void draw_barriers(const plot_data *p)
+{
     plcol0(3);
-    for (size_t c = 0; c < s->n_collectors; c++) {
-        PLFLT x[2] = {s->collectors[c].x, s->collectors[c].x}, y[2] = {ymin - pad, ymax + pad};
+    for (size_t c = 0; c < p->s->n_collectors; c++) {
+        const rf_traj_collector *b = &p->s->collectors[c];
+        size_t i = 1;
+        while (i + 1 < p->s->n_points && p->s->px[i] < b->x)
+            i++;
+        double x0 = p->s->px[i - 1], x1 = p->s->px[i], y0 = p->s->py[i - 1], y1 = p->s->py[i];
+        double g = x1 > x0 ? y0 + (y1 - y0) * (b->x - x0) / (x1 - x0) : fmax(y0, y1);
+        double top = b->height > 0 ? g + b->height : p->yhi;
+        PLFLT x[2] = {b->x, b->x}, y[2] = {g, top};
+        plwidth(b->height > 0 ? 4 : 1);
         plline(2, x, y);
-        plptex(s->collectors[c].x, ymax, 0, 1, 1.05, s->collectors[c].name);
+        plwidth(1);
+        plptex(b->x + 0.005 * (p->xmax - p->xmin), fmin(top, p->yhi) - 0.02 * (p->yhi - p->ylo), 1, 0, 0, b->name);
     }
 }
 
-static void draw_envelope(const plot_data *p, const double (*env)[NBIN], double scale, const char *ylab,
+static void draw_profile_panel(const plot_data *p)
+{
+    char ylab[120];
+    panel(p, PAD_TOP, p->profile_px, p->ylo, p->yhi);
+    draw_ground(p);
+    draw_paths(p);
+    draw_barriers(p);
+    plcol0(1);
+    plbox("bcnst", 0, 0, "bcnstv", 0, 0);
+    if (p->exaggeration == 1)
+        snprintf(ylab, sizeof ylab, "y [m] (to scale)");
+    else
+        snprintf(ylab, sizeof ylab, "y [m] (vertical exaggeration %gx)", p->exaggeration);
+    plmtex("l", 4.2, 0.5, 0.5, ylab);
+    char title[160];
+    size_t shown = p->e->n_recorded < 100 ? p->e->n_recorded : 100;
+    snprintf(title, sizeof title, "profile, barriers and %zu of the %zu trajector%s", shown, p->e->samples,
+             p->e->samples == 1 ? "y" : "ies");
+    plmtex("t", 0.6, 0, 0, title);
+}
+
+/* Polylines of env[k] * scale over the edges, broken where it is NaN. */
+static void env_line(const rf_traj_envelope *v, const double *env, double scale)
+{
+    PLFLT *x = malloc(v->n_edges * sizeof *x), *y = malloc(v->n_edges * sizeof *y);
+    size_t m = 0;
+    for (size_t k = 0; x && y && k <= v->n_edges; k++) {
+        if (k < v->n_edges && isfinite(env[k])) {
+            x[m] = v->x[k], y[m++] = env[k] * scale;
+            continue;
+        }
+        if (m > 1)
+            plline((PLINT)m, x, y);
+        m = 0;
+    }
+    free(x), free(y);
+}
+
+static void draw_envelope(const plot_data *p, int top, double *const env[3], double scale, const char *ylab,
                           const char *title)
 {
-    PLFLT x[NBIN], y[3][NBIN];
-    double top = 0;
-    for (int b = 0; b < NBIN; b++) {
-        x[b] = p->xmin + (b + 0.5) * (p->xmax - p->xmin) / NBIN;
-        for (int q = 0; q < 3; q++)
-            y[q][b] = env[q][b] * scale, top = fmax(top, y[q][b]);
-    }
-    plcol0(1);
-    plenv(p->xmin, p->xmax, 0, top > 0 ? 1.08 * top : 1, 0, 0);
-    pllab("x [m]", ylab, title);
+    const rf_traj_envelope *v = &p->e->envelope;
+    double hi = 0;
+    for (size_t k = 0; k < v->n_edges; k++)
+        if (isfinite(env[2][k]))
+            hi = fmax(hi, env[2][k] * scale);
+    hi = hi > 0 ? 1.08 * hi : 1;
+    panel(p, top, PANEL_H, 0, hi);
+    collector_lines(p, 0, hi);
+    static const int colour[3] = {4, 2, 3};
+    static const char *const name[3] = {"p50", "p95", "max"};
     for (int q = 0; q < 3; q++) {
-        plcol0(q == 0 ? 4 : q == 1 ? 2 : 3);
-        plline(NBIN, x, y[q]);
+        plcol0(colour[q]);
+        plwidth(q == 1 ? 2 : 1);
+        env_line(v, env[q], scale);
+        plmtex("t", 0.6, 0.88 + 0.06 * q, 1, name[q]);
     }
+    plwidth(1);
     plcol0(1);
-    plmtex("t", 0.3, 0.98, 1.0, "green p50, blue p95, red max");
+    plmtex("l", 4.2, 0.5, 0.5, ylab);
+    plmtex("t", 0.6, 0, 0, title);
+}
+
+/* End points (runout x) of all samples per x bin, and the fraction of them reaching x (right axis). */
+static void draw_runout(const plot_data *p, int top)
+{
+    PLFLT x[NRUN], n[NRUN] = {0};
+    double w = (p->xmax - p->xmin) / NRUN, hi = 1;
+    for (int b = 0; b < NRUN; b++)
+        x[b] = p->xmin + b * w;
+    for (size_t i = 0; i < p->e->samples; i++) {
+        long b = (long)floor((p->e->runout_x[i] - p->xmin) / w);
+        if (isfinite(p->e->runout_x[i]))
+            n[b < 0 ? 0 : b >= NRUN ? NRUN - 1 : b] += 1;
+    }
+    for (int b = 0; b < NRUN; b++)
+        hi = fmax(hi, 1.08 * n[b]);
+    panel(p, top, HIST_H, 0, hi);
+    collector_lines(p, 0, hi);
+    plcol0(2);
+    plbin(NRUN, x, n, PL_BIN_NOEXPAND);
+    const rf_traj_envelope *v = &p->e->envelope;
+    double *frac = malloc((v->n_edges ? v->n_edges : 1) * sizeof *frac);
+    plwind(p->xmin, p->xmax, 0, 1.08);
+    plcol0(1);
+    plbox("", 0, 0, "cmstv", 0, 0);
+    plmtex("r", 4.0, 0.5, 0.5, "fraction reaching x");
+    for (size_t k = 0; frac && k < v->n_edges; k++)
+        frac[k] = p->e->samples ? (double)v->reached[k] / (double)p->e->samples : NAN;
+    plcol0(5);
+    plwidth(2);
+    if (frac)
+        env_line(v, frac, 1);
+    plwidth(1);
+    free(frac);
+    plcol0(1);
+    char title[160];
+    snprintf(title, sizeof title, "end points (runout x) per %.3g m, %zu trajector%s; grey: fraction reaching x", w,
+             p->e->samples, p->e->samples == 1 ? "y" : "ies");
+    plmtex("t", 0.6, 0, 0, title);
+    plmtex("l", 4.2, 0.5, 0.5, "count");
+    plmtex("b", 2.8, 0.5, 0.5, "x [m]");
 }
 
 static void draw_profile(const void *v)
 {
     const plot_data *p = v;
-    plssub(1, 3);
-    draw_paths(p);
-    draw_envelope(p, (const double (*)[NBIN])p->env_h, 1, "height [m]", "passing height above the ground");
-    draw_envelope(p, (const double (*)[NBIN])p->env_ke, 1e-3, "energy [kJ]", "kinetic energy (translation + rotation)");
+    const rf_traj_envelope *env = &p->e->envelope;
+    char title[200];
+    pladv(0);
+    plschr(0, 0.7 * 2260.0 / (FIG_W + p->height_px)); /* PLplot scales text with width + height */
+    draw_profile_panel(p);
+    int top = PAD_TOP + p->profile_px + GAP;
+    const char *all = p->e->samples == 1 ? "the trajectory" : "all trajectories";
+    snprintf(title, sizeof title, "passing height above the ground, %s (%zu)", all, p->e->samples);
+    draw_envelope(p, top, env->height, 1, "height [m]", title);
+    top += PANEL_H + GAP;
+    snprintf(title, sizeof title, "kinetic energy (translation + rotation), %s (%zu)", all, p->e->samples);
+    draw_envelope(p, top, env->energy, 1e-3, "energy [kJ]", title);
+    draw_runout(p, top + PANEL_H + GAP);
 }
 
 typedef struct {
@@ -199,32 +308,23 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
 rf_status rf_traj_write_plots(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
                               const rf_traj_stats *st, rf_error *err)
 {
-    plot_data *p = calloc(1, sizeof *p);
-    if (!p)
-        return rf_fail(err, RF_ENOMEM, "out of memory");
-    rf_traj_spec geo = *s;
-    geo.law = RF_BOUNCE_CONSTANT; /* geometry only */
-    rf_traj_world *w;
-    rf_status rc = rf_traj_world_create(&geo, &w, err);
-    if (rc != RF_OK) {
-        free(p);
-        return rc;
-    }
-    p->s = s, p->e = e, p->w = w;
-    p->xmin = s->px[0], p->xmax = s->px[s->n_points - 1];
-    p->mass = s->sphere ? 4.0 / 3.0 * RF_PI * pow(s->radius, 3) * s->density : s->mass;
-    p->inertia = s->sphere ? 0.4 * p->mass * s->radius * s->radius : 0;
-    envelopes(p);
-    rc = rf_plot_figure(dir, "trajectory_profile", 900, 640, draw_profile, p, err);
+    plot_data p = {s, e, s->px[0], s->px[s->n_points - 1], s->py[0], s->py[0], 1, 0, 0};
+    for (size_t i = 0; i < s->n_points; i++)
+        p.ylo = fmin(p.ylo, s->py[i]), p.yhi = fmax(p.yhi, s->py[i]);
+    p.yhi = fmax(p.yhi, s->y0);
+    double pad = 0.05 * (p.yhi - p.ylo) + 1;
+    p.ylo -= pad, p.yhi += pad;
+    layout(&p);
+    rf_status rc = RF_OK;
+    if (e->envelope.n_edges)
+        rc = rf_plot_figure(dir, "trajectory_profile", FIG_W, p.height_px, draw_profile, &p, err);
     for (size_t c = 0; c < s->n_collectors && rc == RF_OK; c++) {
         char stem[300];
-        hist_data hd = {p, c};
+        hist_data hd = {&p, c};
         snprintf(stem, sizeof stem, "trajectory_hist_%s", s->collectors[c].name);
         rc = rf_plot_figure(dir, stem, 900, 640, draw_hist, &hd, err);
     }
     if (rc == RF_OK)
         rc = traj_write_report_html(dir, s, e, st, err);
-    rf_traj_world_free(w);
-    free(p);
     return rc;
 }

@@ -79,9 +79,15 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
         snprintf(what, sizeof what, "%s: passing height", s->collectors[c].name);
         row(f, what, "m", &st->collectors[c].height_lowest, 1);
     }
-    fputs("</table><p>Collector statistics are over the trajectories that reach the line; energies include "
-          "rotation. Envelopes use the recorded trajectories.</p>\n<h2>Profile, trajectories, envelopes</h2>"
-          "\n", f);
+    fprintf(f, "</table><p>Collector statistics are over the trajectories that reach the line; energies include "
+               "rotation.</p>\n<h2>Profile, trajectories, envelopes</h2>\n<p>The envelopes use all %zu "
+               "trajectories: at each of %zu evenly spaced x, every trajectory's state where its path first "
+               "reaches that x (solved exactly, not from stored points); one that never reaches it does not "
+               "count there (the grey line gives the fraction that does). Heights are measured as at a collector "
+               "(vertically, above the ground); energies include rotation. p50 and p95 are within %g %% of the exact "
+               "percentiles (streaming histogram), the max is exact; numbers in envelopes.csv. The profile shows "
+               "%zu recorded trajectories.</p>\n", e->samples, e->envelope.n_edges, 100 * RF_TRAJ_ENVELOPE_ACCURACY,
+            e->n_recorded < 100 ? e->n_recorded : 100);
     image(f, dir, "trajectory_profile");
     for (size_t c = 0; c < s->n_collectors; c++) {
         char stem[300];
