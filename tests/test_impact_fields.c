@@ -185,6 +185,49 @@ static void test_study_key_typo(void **state)
     assert_non_null(strstr(err.msg, "did you mean 'slope_E'?"));
 }
 
+/* Each row is an option of `rockfuzz impact` (the name with '-'), listed by --help with its unit. */
+static void test_cli_option_per_field(void **state)
+{
+    (void)state;
+    FILE *p = popen(ROCKFUZZ_CLI " impact --help", "r");
+    assert_non_null(p);
+    static char help[65536];
+    size_t len = fread(help, 1, sizeof help - 1, p);
+    help[len] = '\0';
+    assert_int_equal(pclose(p), 0);
+    for (size_t k = 0; k < rf_impact_n_fields; k++) {
+        const rf_impact_field *f = &rf_impact_fields[k];
+        char opt[80];
+        int n = snprintf(opt, sizeof opt, "\n  --%s ", f->name);
+        for (int q = 5; q < n; q++)
+            opt[q] = opt[q] == '_' ? '-' : opt[q];
+        const char *at = strstr(help, opt);
+        if (!at)
+            fail_msg("--help lacks '%s'", opt + 3);
+        char unit[32];
+        snprintf(unit, sizeof unit, "[%s]", f->unit);
+        const char *next = strstr(at + 1, "\n  --");
+        const char *u = strstr(at, unit);
+        if (f->unit[0] && (!u || (next && u > next)))
+            fail_msg("--help: %s without its unit %s", opt + 3, unit);
+    }
+    /* an option sets its field: the same result as the study's default with that value */
+    p = popen(ROCKFUZZ_CLI " impact --solver hertz --slope-E 30e9 --json", "r");
+    assert_non_null(p);
+    len = fread(help, 1, sizeof help - 1, p);
+    help[len] = '\0';
+    assert_int_equal(pclose(p), 0);
+    rf_impact_input in;
+    rf_impact_input_default(&in);
+    rf_impact_field_store(&in, rf_impact_field_find("slope_E"), 30e9);
+    rf_impact_output out;
+    assert_int_equal(rf_impact_hertz(&in, &out, NULL), RF_OK);
+    char want[96];
+    snprintf(want, sizeof want, "\"contact_force_max\": %.17g", out.contact_force_max);
+    if (!strstr(help, want))
+        fail_msg("'%s' not in %s", want, help);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -193,6 +236,7 @@ int main(void)
         cmocka_unit_test(test_bind_every_bindable),
         cmocka_unit_test(test_study_key_per_field),
         cmocka_unit_test(test_study_key_typo),
+        cmocka_unit_test(test_cli_option_per_field),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -27,6 +27,7 @@ typedef struct {
     int on, drawn;
     const char *what;
     double start, last_draw, t_last; /* monotonic [s]; t_last: the simulated time last seen */
+    double delay;      /* [s] before the first line */
 } rf_cli_progress;
 void rf_cli_progress_begin(rf_cli_progress *p, int on, const char *what);
 void rf_cli_progress_fem(void *ctx, double t, double t_end); /* an rf_fem_options.progress */

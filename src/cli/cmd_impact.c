@@ -21,77 +21,89 @@
 #define EXIT_USAGE 2
 #define EXIT_FAILED 1
 
+/* The options that are not impact inputs; every impact input is an option
+ * named after its row of rf_impact_fields (impact.h) with '-' for '_'
+ * (--slope-friction-angle), read by read_input. */
 typedef enum {
-    O_RADIUS, O_C, O_D, O_RHO_B, O_RHO_S, O_E_B, O_E_S, O_NU_B, O_NU_S, O_V, O_ANGLE, O_MU,
-    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_ALE, O_SMASS3, O_SPHERE3, O_DOMAIN, O_END_TIME, O_THREADS, O_VTK, O_JSON, O_PROGRESS,
-    O_MAT_B, O_Y_B, O_H_B, O_MAT_S, O_Y_S, O_H_S, O_COH_S, O_PHI_S, O_PSI_S, O_CAP_S, O_CAPH_S, O_DCUT_S,
-    O_L_T, O_L_RHO, O_L_E, O_L_NU, O_MAT_L, O_Y_L, O_H_L, O_COH_L, O_PHI_L, O_PSI_L, O_CAP_L, O_CAPH_L, O_DCUT_L,
-    O_G, O_HELP, O_COUNT
+    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_ALE, O_SMASS3, O_SPHERE3, O_DOMAIN, O_END_TIME,
+    O_THREADS, O_VTK, O_JSON, O_PROGRESS, O_MAT_B, O_MAT_S, O_MAT_L, O_HELP, O_COUNT
 } opt_id;
+
+/* Short names of two inputs (the spheroid's semi-axes c and d). */
+static const char *const input_alias[][2] = {{"c", "horizontal_axis"}, {"d", "vertical_axis"}};
 
 static const struct {
     opt_id id;
     const char *name;   /* without the leading dashes */
-    const char *field;  /* rf_impact_input field it sets, for validation messages */
 } options[] = {
-    {O_RADIUS, "radius", "radius"},
-    {O_C, "c", "horizontal_axis"},
-    {O_C, "horizontal-axis", "horizontal_axis"},
-    {O_D, "d", "vertical_axis"},
-    {O_D, "vertical-axis", "vertical_axis"},
-    {O_RHO_B, "boulder-density", "boulder_density"},
-    {O_RHO_S, "slope-density", "slope_density"},
-    {O_E_B, "boulder-E", "boulder_E"},
-    {O_E_S, "slope-E", "slope_E"},
-    {O_NU_B, "boulder-poisson", "boulder_poisson"},
-    {O_NU_S, "slope-poisson", "slope_poisson"},
-    {O_V, "velocity", "velocity"},
-    {O_ANGLE, "slope-angle", "slope_angle"},
-    {O_MU, "friction", "friction"},
-    {O_MAT_B, "boulder-material", "boulder_material"},
-    {O_Y_B, "boulder-yield", "boulder_yield"},
-    {O_H_B, "boulder-hardening", "boulder_hardening"},
-    {O_MAT_S, "slope-material", "slope_material"},
-    {O_Y_S, "slope-yield", "slope_yield"},
-    {O_H_S, "slope-hardening", "slope_hardening"},
-    {O_COH_S, "slope-cohesion", "slope_cohesion"},
-    {O_PHI_S, "slope-friction-angle", "slope_friction_angle"},
-    {O_PSI_S, "slope-dilatancy-angle", "slope_dilatancy_angle"},
-    {O_CAP_S, "slope-cap-pressure", "slope_cap_pressure"},
-    {O_CAPH_S, "slope-cap-hardening", "slope_cap_hardening"},
-    {O_DCUT_S, "slope-dilatancy-cutoff", "slope_dilatancy_cutoff"},
-    {O_L_T, "layer-thickness", "layer_thickness"},
-    {O_L_RHO, "layer-density", "layer_density"},
-    {O_L_E, "layer-E", "layer_E"},
-    {O_L_NU, "layer-poisson", "layer_poisson"},
-    {O_MAT_L, "layer-material", "layer_material"},
-    {O_Y_L, "layer-yield", "layer_yield"},
-    {O_H_L, "layer-hardening", "layer_hardening"},
-    {O_COH_L, "layer-cohesion", "layer_cohesion"},
-    {O_PHI_L, "layer-friction-angle", "layer_friction_angle"},
-    {O_PSI_L, "layer-dilatancy-angle", "layer_dilatancy_angle"},
-    {O_CAP_L, "layer-cap-pressure", "layer_cap_pressure"},
-    {O_CAPH_L, "layer-cap-hardening", "layer_cap_hardening"},
-    {O_DCUT_L, "layer-dilatancy-cutoff", "layer_dilatancy_cutoff"},
-    {O_G, "gravity", "gravity"},
-    {O_SOLVER, "solver", NULL},
-    {O_EN, "e-n", NULL},
-    {O_HUNTER_A, "hunter-A", NULL},
-    {O_REFINEMENT, "refinement", NULL},
-    {O_BOUNDARY, "boundary", NULL},
-    {O_LARGE, "large-deformation", NULL},
-    {O_ALE, "ale", NULL},
-    {O_SMASS3, "surface-mass-3d", NULL},
-    {O_SPHERE3, "sphere-contact-3d", NULL},
-    {O_DOMAIN, "domain-factor", NULL},
-    {O_END_TIME, "end-time", NULL},
-    {O_THREADS, "threads", NULL},
-    {O_VTK, "vtk", NULL},
-    {O_JSON, "json", NULL},
-    {O_PROGRESS, "progress", NULL},
-    {O_HELP, "help", NULL},
+    {O_MAT_B, "boulder-material"},
+    {O_MAT_S, "slope-material"},
+    {O_MAT_L, "layer-material"},
+    {O_SOLVER, "solver"},
+    {O_EN, "e-n"},
+    {O_HUNTER_A, "hunter-A"},
+    {O_REFINEMENT, "refinement"},
+    {O_BOUNDARY, "boundary"},
+    {O_LARGE, "large-deformation"},
+    {O_ALE, "ale"},
+    {O_SMASS3, "surface-mass-3d"},
+    {O_SPHERE3, "sphere-contact-3d"},
+    {O_DOMAIN, "domain-factor"},
+    {O_END_TIME, "end-time"},
+    {O_THREADS, "threads"},
+    {O_VTK, "vtk"},
+    {O_JSON, "json"},
+    {O_PROGRESS, "progress"},
+    {O_HELP, "help"},
 };
 #define N_OPTIONS (sizeof options / sizeof options[0])
+
+/* The placeholder of an input's value in the usage text, from its unit. */
+static const char *value_name(const rf_impact_field *r)
+{
+    static const char *const names[][2] = {{"m", "M"}, {"Pa", "PA"}, {"deg", "DEG"}, {"kg/m^3", "KGM3"},
+                                           {"m/s", "MS"}, {"m/s^2", "G"}};
+    for (size_t k = 0; k < sizeof names / sizeof *names; k++)
+        if (!strcmp(r->unit, names[k][0]))
+            return names[k][1];
+    return "X";
+}
+
+/* The usage of every impact input, from rf_impact_fields: option and value,
+ * then its help, unit and default, wrapped at 90 columns. */
+static void input_usage(FILE *f)
+{
+    for (size_t k = 0; k < rf_impact_n_fields; k++) {
+        const rf_impact_field *r = &rf_impact_fields[k];
+        char opt[80], text[400], def[48];
+        int n = snprintf(opt, sizeof opt, "--%s %s", r->name, value_name(r));
+        for (int q = 2; q < n && opt[q] != ' '; q++)
+            opt[q] = opt[q] == '_' ? '-' : opt[q];
+        if (r->kind == RF_FIELD_GRAVITY && r->def < 0)
+            snprintf(def, sizeof def, "auto");
+        else
+            snprintf(def, sizeof def, "%g", r->def);
+        snprintf(text, sizeof text, "%s%s%s%s (default %s)", r->help, r->unit[0] ? " [" : "", r->unit,
+                 r->unit[0] ? "]" : "", def);
+        fprintf(f, "  %-26s", opt);
+        if (n > 25) /* a long option: its help on the next line */
+            fprintf(f, "\n%28s", "");
+        int col = 28;
+        for (const char *w = text; *w;) {
+            size_t len = strcspn(w, " ");
+            if (col + (int)len > 90 && col > 28) {
+                fprintf(f, "\n%28s", "");
+                col = 28;
+            }
+            fprintf(f, "%s%.*s", col > 28 ? " " : "", (int)len, w);
+            col += (int)len + (col > 28);
+            w += len;
+            while (*w == ' ')
+                w++;
+        }
+        fputc('\n', f);
+    }
+}
 
 static void usage(FILE *f)
 {
@@ -102,54 +114,25 @@ static void usage(FILE *f)
         "and vertical semi-axis d) falling vertically onto an elastic slope (half-space).\n"
         "Units are SI except the angles (degrees).  Defaults: nominal granite, elastic.\n"
         "\n"
-        "Boulder and slope:\n"
-        "  --radius M               sphere radius r0 [m] (default 1)\n"
-        "  --c, --horizontal-axis M spheroid horizontal semi-axis c [m] (default 0 = sphere)\n"
-        "  --d, --vertical-axis M   spheroid vertical semi-axis d [m] (default r0^3/c^2,\n"
-        "                           same volume and mass as the sphere of radius r0)\n"
-        "  --boulder-density KGM3   [kg/m^3] (default 2600)\n"
-        "  --slope-density KGM3     [kg/m^3] (default 2600)\n"
-        "  --boulder-E PA           Young's modulus [Pa] (default 68.2e9)\n"
-        "  --slope-E PA             Young's modulus [Pa] (default 68.2e9)\n"
-        "  --boulder-poisson NU     Poisson's ratio in (-1, 0.5) (default 0.25)\n"
-        "  --slope-poisson NU       Poisson's ratio in (-1, 0.5) (default 0.25)\n"
-        "  --velocity MS            vertical impact speed [m/s] (default 10)\n"
-        "  --slope-angle DEG        slope inclination [degrees] in [0, 90) (default 0)\n"
-        "  --friction MU            Coulomb coefficient >= 0, static = kinetic (default 0)\n"
-        "  --gravity G              auto | value >= 0 [m/s^2] (default auto: 9.81 when a body\n"
-        "                           is elasto-plastic, 0 for elastic bodies, the Hertz model).\n"
-        "                           fem: the boulder's weight and the geostatic stress of the\n"
-        "                           slope and layer (K0 = 1 - sin phi for drucker_prager,\n"
-        "                           nu/(1 - nu) otherwise; 3D: of an infinite slope, a layer\n"
-        "                           that cannot stand on it is refused); R_n is the\n"
-        "                           velocity at separation, 0 when the boulder comes to rest\n"
-        "                           (docs/validation-plastic.md section 11)\n"
+        "Inputs (each also a key of a study's impact block and, but vertical_axis, a fuzzy\n"
+        "parameter; docs/impact.md):\n");
+    input_usage(f);
+    fprintf(f,
+        "  --c, --d                 short for --horizontal-axis, --vertical-axis\n"
+        "  Gravity: with fem, the boulder's weight and the geostatic stress of the slope and\n"
+        "  layer (K0 = 1 - sin phi for drucker_prager, nu/(1 - nu) otherwise; 3D: of an infinite\n"
+        "  slope, a layer that cannot stand on it is refused); R_n is the velocity at\n"
+        "  separation, 0 when the boulder comes to rest (docs/validation-plastic.md section 11).\n"
+        "  A layer (--layer-thickness > 0, fem only) lies over the slope (the bedrock); the 3D\n"
+        "  model meshes it with a node plane at its bottom, at least one contact element thick.\n"
         "\n"
         "Materials (docs/materials.md; fem solver only when not elastic; axisymmetric and 3D):\n"
         "  --boulder-material M     elastic | von_mises | rigid (default elastic; rigid: exact\n"
         "                           mass and inertia, no deformation, E* from the slope alone,\n"
         "                           the time step from the slope)\n"
-        "  --boulder-yield PA       von_mises: initial yield stress Y [Pa]\n"
-        "  --boulder-hardening PA   von_mises: hardening modulus H >= 0 [Pa] (default 0)\n"
         "  --slope-material M       elastic | von_mises | drucker_prager (default elastic)\n"
-        "  --slope-yield PA         von_mises: Y [Pa]\n"
-        "  --slope-hardening PA     von_mises: H >= 0 [Pa] (default 0)\n"
-        "  --slope-cohesion PA      drucker_prager: cohesion c >= 0 [Pa]\n"
-        "  --slope-friction-angle DEG   drucker_prager: phi in [0, 90) (outer Mohr-Coulomb cone)\n"
-        "  --slope-dilatancy-angle DEG  drucker_prager: psi in [0, phi] (default 0)\n"
-        "  --slope-cap-pressure PA  drucker_prager: crush pressure X0 of the compaction cap\n"
-        "                           [Pa] (default 0 = no cap)\n"
-        "  --slope-cap-hardening PA drucker_prager: cap hardening modulus H_c >= 0 [Pa]\n"
-        "  --slope-dilatancy-cutoff EPS  drucker_prager: plastic volumetric strain [-] at\n"
-        "                           which the dilatancy stops (critical state; (e_cs - e0)\n"
-        "                           / (1 + e0) from void ratios; default 0 = no cutoff)\n"
-        "  --layer-thickness M      a layer over the slope (the bedrock), [m] (default 0 = none;\n"
-        "                           fem solver; the 3D model meshes it with a node plane at\n"
-        "                           its bottom, at least one contact element thick)\n"
-        "  --layer-density, --layer-E, --layer-poisson, --layer-material, --layer-yield,\n"
-        "  --layer-hardening, --layer-cohesion, --layer-friction-angle, --layer-dilatancy-angle,\n"
-        "  --layer-cap-pressure, --layer-cap-hardening, --layer-dilatancy-cutoff\n"
-        "                           the layer's inputs, as the slope's (default: granite, elastic)\n"
+        "  --layer-material M       as the slope's (default elastic)\n"
+        "  The dilatancy cutoff is the critical state: (e_cs - e0) / (1 + e0) from void ratios.\n"
         "\n"
         "Model:\n"
         "  --solver NAME            fem | hertz | hunter | rigid | mdr (default fem)\n"
@@ -469,6 +452,42 @@ static int run_fem(const rf_impact_model_spec *spec_in, rf_impact_output *out, i
     return 0;
 }
 
+#define RF_CLI_MAX_INPUTS 64 /* > rf_impact_n_fields */
+
+/* The impact input an option names (--slope-E, or an alias such as --c), or NULL. */
+static const rf_impact_field *input_option(const char *name, size_t len)
+{
+    char key[64];
+    if (len >= sizeof key)
+        return NULL;
+    for (size_t q = 0; q < len; q++)
+        key[q] = name[q] == '-' ? '_' : name[q];
+    key[len] = '\0';
+    for (size_t a = 0; a < sizeof input_alias / sizeof *input_alias; a++)
+        if (!strcmp(key, input_alias[a][0]))
+            return rf_impact_field_find(input_alias[a][1]);
+    if (strchr(key, '-') || len == 0 || memchr(name, '_', len))
+        return NULL; /* options are spelt with '-' only */
+    return rf_impact_field_find(key);
+}
+
+/* The value of an input option, as its row says (degrees for angles, auto for gravity). */
+static int read_input(const char *oname, const rf_impact_field *field, const char *val, rf_impact_input *in)
+{
+    double x;
+    if (field->kind == RF_FIELD_GRAVITY) {
+        rf_error err = {0};
+        if (rf_impact_gravity_parse(val, &x, &err) != RF_OK) {
+            fprintf(stderr, "rockfuzz impact: --%s: %s\n", oname, err.msg);
+            return 0;
+        }
+    } else if (!parse_double(oname, val, &x)) {
+        return 0;
+    }
+    rf_impact_field_store(in, field, x);
+    return 1;
+}
+
 int rf_cli_impact(int argc, char **argv)
 {
     rf_impact_model_spec spec;
@@ -476,7 +495,8 @@ int rf_cli_impact(int argc, char **argv)
     rf_impact_input *in = &spec.base;
     int json = 0, progress = 0;
     const char *given[O_COUNT] = {0}; /* the text the user gave, for messages */
-    const char *given_name[O_COUNT] = {0};
+    const char *given_input[RF_CLI_MAX_INPUTS] = {0};
+    char given_input_name[RF_CLI_MAX_INPUTS][48];
 
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -490,6 +510,20 @@ int rf_cli_impact(int argc, char **argv)
         }
         const char *name = arg + 2, *eq = strchr(name, '=');
         size_t len = eq ? (size_t)(eq - name) : strlen(name);
+        const rf_impact_field *field = input_option(name, len);
+        if (field) {
+            const char *val = eq ? eq + 1 : i + 1 < argc ? argv[++i] : NULL;
+            if (!val) {
+                fprintf(stderr, "rockfuzz impact: option '--%.*s' needs a value\n", (int)len, name);
+                return EXIT_USAGE;
+            }
+            size_t f = (size_t)(field - rf_impact_fields);
+            given_input[f] = val;
+            snprintf(given_input_name[f], sizeof given_input_name[f], "%.*s", (int)len, name);
+            if (!read_input(given_input_name[f], field, val, in))
+                return EXIT_USAGE;
+            continue;
+        }
         size_t k = 0;
         while (k < N_OPTIONS && !(strlen(options[k].name) == len && !strncmp(options[k].name, name, len)))
             k++;
@@ -520,8 +554,7 @@ int rf_cli_impact(int argc, char **argv)
             val = argv[++i];
         }
         given[id] = val;
-        given_name[id] = oname;
-        double x = 0.0;
+            double x = 0.0;
         rf_error err = {0};
         switch (id) {
         case O_SOLVER:
@@ -567,12 +600,6 @@ int rf_cli_impact(int argc, char **argv)
         case O_VTK:
             spec.fem.vtk_dir = val;
             break;
-        case O_G:
-            if (rf_impact_gravity_parse(val, &spec.base.gravity, &err) != RF_OK) {
-                fprintf(stderr, "rockfuzz impact: --gravity: %s\n", err.msg);
-                return EXIT_USAGE;
-            }
-            break;
         case O_MAT_B:
         case O_MAT_S:
         case O_MAT_L: {
@@ -589,40 +616,6 @@ int rf_cli_impact(int argc, char **argv)
             if (!parse_double(oname, val, &x))
                 return EXIT_USAGE;
             switch (id) {
-            case O_RADIUS: in->radius = x; break;
-            case O_C: in->horizontal_axis = x; break;
-            case O_D: in->vertical_axis = x; break;
-            case O_RHO_B: in->boulder_density = x; break;
-            case O_RHO_S: in->slope_density = x; break;
-            case O_E_B: in->boulder_E = x; break;
-            case O_E_S: in->slope_E = x; break;
-            case O_NU_B: in->boulder_poisson = x; break;
-            case O_NU_S: in->slope_poisson = x; break;
-            case O_V: in->velocity = x; break;
-            case O_ANGLE: in->slope_angle = x * RF_PI / 180.0; break;
-            case O_MU: in->friction = x; break;
-            case O_Y_B: in->boulder_yield = x; break;
-            case O_H_B: in->boulder_hardening = x; break;
-            case O_Y_S: in->slope_yield = x; break;
-            case O_H_S: in->slope_hardening = x; break;
-            case O_COH_S: in->slope_cohesion = x; break;
-            case O_PHI_S: in->slope_friction_angle = x * RF_PI / 180.0; break;
-            case O_PSI_S: in->slope_dilatancy_angle = x * RF_PI / 180.0; break;
-            case O_CAP_S: in->slope_cap_pressure = x; break;
-            case O_CAPH_S: in->slope_cap_hardening = x; break;
-            case O_DCUT_S: in->slope_dilatancy_cutoff = x; break;
-            case O_L_T: in->layer_thickness = x; break;
-            case O_L_RHO: in->layer_density = x; break;
-            case O_L_E: in->layer_E = x; break;
-            case O_L_NU: in->layer_poisson = x; break;
-            case O_Y_L: in->layer_yield = x; break;
-            case O_H_L: in->layer_hardening = x; break;
-            case O_COH_L: in->layer_cohesion = x; break;
-            case O_PHI_L: in->layer_friction_angle = x * RF_PI / 180.0; break;
-            case O_PSI_L: in->layer_dilatancy_angle = x * RF_PI / 180.0; break;
-            case O_CAP_L: in->layer_cap_pressure = x; break;
-            case O_CAPH_L: in->layer_cap_hardening = x; break;
-            case O_DCUT_L: in->layer_dilatancy_cutoff = x; break;
             case O_EN:
                 if (!(x >= 0.0 && x <= 1.0)) {
                     fprintf(stderr, "rockfuzz impact: --e-n %s: the normal COR must lie in [0, 1]\n", val);
@@ -661,16 +654,12 @@ int rf_cli_impact(int argc, char **argv)
     }
     rf_error err = {0};
     if (rf_impact_input_validate(in, &err) != RF_OK) {
-        const char *field = rf_impact_input_first_invalid(in);
-        for (size_t k = 0; field && k < N_OPTIONS; k++)
-            if (options[k].field && !strcmp(options[k].field, field)) {
-                opt_id id = options[k].id;
-                if (given[id]) {
-                    fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", given_name[id], given[id], err.msg);
-                    return EXIT_USAGE;
-                }
-                break;
-            }
+        const rf_impact_field *bad = rf_impact_field_find(rf_impact_input_first_invalid(in));
+        size_t f = bad ? (size_t)(bad - rf_impact_fields) : 0;
+        if (bad && given_input[f]) {
+            fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", given_input_name[f], given_input[f], err.msg);
+            return EXIT_USAGE;
+        }
         fprintf(stderr, "rockfuzz impact: invalid input: %s\n", err.msg);
         return EXIT_USAGE;
     }

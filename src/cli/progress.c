@@ -1,12 +1,15 @@
 /* progress.c - the progress line of a long single run (`rockfuzz impact` FE):
  * on stderr, redrawn at most RF_CLI_PROGRESS_HZ times per second, first after
- * RF_CLI_PROGRESS_DELAY s (a short run draws nothing), erased at the end.
+ * RF_CLI_PROGRESS_DELAY s (a short run draws nothing; the environment
+ * variable ROCKFUZZ_PROGRESS_DELAY [s] sets another delay, as the tests do),
+ * erased at the end.
  * Time left = wall time so far x (t_end - t) / t, from the simulated time t
  * and the solver's expected end t_end. */
 #include "cli/cli.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/util.h"
@@ -17,6 +20,11 @@ void rf_cli_progress_begin(rf_cli_progress *p, int on, const char *what)
     p->on = on;
     p->what = what;
     p->start = rf_monotonic_seconds();
+    const char *d = getenv("ROCKFUZZ_PROGRESS_DELAY");
+    char *end = NULL;
+    p->delay = d ? strtod(d, &end) : RF_CLI_PROGRESS_DELAY;
+    if (!d || end == d || !(p->delay >= 0 && p->delay <= 3600))
+        p->delay = RF_CLI_PROGRESS_DELAY;
 }
 
 /* "12.3 s", "4 min 05 s", "1 h 02 min" */
@@ -41,7 +49,7 @@ void rf_cli_progress_fem(void *ctx, double t, double t_end)
     if (t < p->t_last) /* the solver restarted (a halved time step): measure the rate again */
         p->start = now;
     p->t_last = t;
-    if (now - p->start < RF_CLI_PROGRESS_DELAY || now - p->last_draw < 1.0 / RF_CLI_PROGRESS_HZ)
+    if (now - p->start < p->delay || now - p->last_draw < 1.0 / RF_CLI_PROGRESS_HZ)
         return;
     p->last_draw = now;
     const double share = t_end > 0 ? fmin(t / t_end, 1) : 0;
