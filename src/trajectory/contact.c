@@ -89,6 +89,8 @@ static int contact_collectors(traj_run *r, const traj_segment *g, double a, doub
 /* Time to cover distance d >= 0 at speed U >= 0 with acceleration A along the motion. */
 static double time_to_cover(double U, double A, double d)
 {
+    if (d <= 0) /* already there (a block at rest at the end it is pulled to) */
+        return 0;
     if (A == 0)
         return U > 0 ? d / U : INFINITY;
     double disc = U * U + 2 * A * d;
@@ -115,7 +117,7 @@ static void at_vertex(traj_run *r, size_t k, int dir)
     const traj_segment *h = &r->w->seg[j];
     double fx = dir > 0 ? h->bx : h->ax, fy = dir > 0 ? h->by : h->ay;
     double side = g->nx * (fx - r->x) + g->ny * (fy - r->y);
-    if (side < -1e-12 * r->w->scale) { /* convex: the ground drops away */
+    if (side < -traj_tol(1e-12, fabs(r->x) + fabs(fx), fabs(r->y) + fabs(fy))) { /* convex: the ground drops away */
         traj_launch(r, k, j, RF_EV_LAUNCH);
         return;
     }
@@ -124,10 +126,13 @@ static void at_vertex(traj_run *r, size_t k, int dir)
         return;
     }
     double u = r->u * (g->tx * h->tx + g->ty * h->ty); /* concave kink: keep the part along h */
-    double pull = -r->g * h->ty * (u > 0 ? 1 : -1);    /* gravity along the motion on h */
+    double away = u * dir, pull = -r->g * h->ty * dir;  /* speed and gravity along h, away from the vertex */
     r->k = j, r->u = u;
     r->vx = u * h->tx, r->vy = u * h->ty;
-    if (fabs(u) < r->s->v_stop && pull <= 0) { /* slow in a hollow: it stays there */
+    /* A hollow: gravity on h pulls back to the vertex and the block is slow; or
+     * a notch (sides meeting at 90 deg or less): no velocity is left that
+     * leaves the vertex, and none is admissible (both sides push it back). */
+    if (pull <= 0 && (away <= 0 || away < r->s->v_stop)) {
         r->vx = r->vy = r->omega = 0;
         traj_finish(r, RF_TRAJ_STOPPED, RF_EV_REST);
         return;
