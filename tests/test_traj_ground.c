@@ -3,7 +3,9 @@
  * it (a wall at either end, in the middle, both directions, in a pit, a
  * rolling sphere), a block sliding into a V-notch with sides of 45 deg or
  * steeper stops at the vertex, and the ground tolerance is local (a far
- * vertex changes nothing near the release; non-physical heights are refused).
+ * vertex changes nothing near the release; non-physical heights are refused),
+ * and a sliding sphere's friction opposes its slip (found by the generated
+ * profiles of tests/traj_gen.h, also run here).
  * References are closed forms of 1D sliding/rolling with friction and the
  * constant bounce law; every run also passes traj_check_invariants. */
 #include <setjmp.h>
@@ -15,6 +17,7 @@
 #include "rockfuzz/trajectory.h"
 #include "test_traj_util.h"
 #include "test_util.h"
+#include "traj_gen.h"
 
 #define G 9.81
 #define DEG (3.14159265358979323846 / 180.0)
@@ -141,6 +144,33 @@ static void test_step_rolling_sphere(void **state)
     release_run(&c);
 }
 
+/* A sphere on a 60 deg slope (too steep to roll with phi = 9 deg), released at
+ * rest spinning forward at w0 = 20 rad/s: its contact point slips backwards,
+ * so friction R = mu N pushes it down the slope and spins it down:
+ * a1 = g_t + R until the slip u - w r reaches 0 at t1 = w0 r / (g_t + R + R/k),
+ * then a2 = g_t - R.  Speed at the collector D = 10 m down the slope:
+ * sqrt(u1^2 + 2 a2 (D - d1)).  (Friction taken along the motion instead of
+ * against the slip spun the sphere further up and gained energy.) */
+static void test_sliding_sphere_spin(void **state)
+{
+    (void)state;
+    double t60 = tan(60 * DEG);
+    char yaml[1024];
+    snprintf(yaml, sizeof yaml,
+             "profile: {points: [[0, %.17g], [10, 0], [60, 0]], material: rock}\n"
+             "materials: {rock: {R_n: 0.3, R_t: 0.8, friction_angle: 9}}\n"
+             "block: {shape: sphere, radius: 0.5, density: 2700}\n"
+             "release: {x: 1, y: %.17g, omega: 20}\n"
+             "collectors: [{name: c, x: 6}]\n", 10 * t60, 9 * t60);
+    run c;
+    simulate(&c, yaml);
+    double gt = G * sin(60 * DEG), R = tan(9 * DEG) * G * cos(60 * DEG), k = 0.4;
+    double t1 = 20 * 0.5 / (gt + R + R / k), u1 = (gt + R) * t1, d1 = 0.5 * (gt + R) * t1 * t1;
+    assert_true(c.cross[0].reached);
+    assert_close(c.cross[0].speed, sqrt(u1 * u1 + 2 * (gt - R) * (10 - d1)), 1e-9);
+    release_run(&c);
+}
+
 /* Sliding from rest down a side of slope angle b (friction phi) over length L
  * into a notch whose other side is at least as steep (sum of the angles >= 90):
  * the kink keeps no velocity that leaves the vertex, so it stops there at
@@ -224,6 +254,26 @@ static void test_bounds_and_release(void **state)
                    "far.yaml:4:", "under the ground");
 }
 
+/* 4000 profiles generated as the fuzzer does (tests/traj_gen.h: slopes,
+ * steps, pits, notches, every analytic law, point block or sphere, release on
+ * the ground or above): every file loads and every trajectory keeps the
+ * invariants. */
+static void test_generated_profiles(void **state)
+{
+    (void)state;
+    for (uint64_t i = 0; i < 4000; i++) {
+        uint8_t bytes[48];
+        for (size_t j = 0; j < sizeof bytes; j++)
+            bytes[j] = (uint8_t)(rf_traj_uniform(31, i, j) * 256);
+        char yaml[8192];
+        size_t len = traj_gen_yaml(bytes, sizeof bytes, yaml, sizeof yaml);
+        rf_error err;
+        int st = traj_gen_run(yaml, len, i, &err);
+        if (st != 0)
+            fail_msg("case %llu %s: %s\n%s", (unsigned long long)i, st < 0 ? "does not load" : "fails", err.msg, yaml);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -231,8 +281,10 @@ int main(void)
         cmocka_unit_test(test_pit),
         cmocka_unit_test(test_step_rolling_sphere),
         cmocka_unit_test(test_notch),
+        cmocka_unit_test(test_sliding_sphere_spin),
         cmocka_unit_test(test_far_vertex_changes_nothing),
         cmocka_unit_test(test_bounds_and_release),
+        cmocka_unit_test(test_generated_profiles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

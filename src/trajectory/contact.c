@@ -140,6 +140,33 @@ static void at_vertex(traj_run *r, size_t k, int dir)
     traj_event(r, RF_EV_VERTEX, 0, 0, 0);
 }
 
+/* Friction opposes the slip of the contact point, s = u - omega r: for a
+ * block or a rolling sphere that is the direction of motion `dir`; a sliding
+ * sphere spinning faster than it moves is pushed forward and spun down.
+ * With no slip (it just ended on a slope too steep to roll) the slip grows
+ * the way gravity pulls. */
+static int friction_dir(const traj_run *r, const contact_law *L, int dir)
+{
+    if (!r->s->sphere || L->rolling)
+        return dir;
+    double slip = r->u - r->omega * r->radius;
+    if (fabs(slip) <= 1e-12 * (fabs(r->u) + fabs(r->omega * r->radius)))
+        return L->gt > 0 ? 1 : -1;
+    return slip > 0 ? 1 : -1;
+}
+
+/* Sliding sphere: time until the slip reaches zero (ds/dt = g_t - f mu N (1 + 1/k)). */
+static double slip_end(const traj_run *r, const contact_law *L, int f)
+{
+    if (!r->s->sphere || L->rolling)
+        return INFINITY;
+    double slip = r->u - r->omega * r->radius, k = r->inertia / (r->mass * r->radius * r->radius);
+    double rate = L->gt - f * L->resist * (1 + 1 / k);
+    if (fabs(slip) <= 1e-12 * (fabs(r->u) + fabs(r->omega * r->radius)) || !(slip * rate < 0))
+        return INFINITY;
+    return -slip / rate;
+}
+
 void traj_contact_step(traj_run *r)
 {
     const traj_segment *g = &r->w->seg[r->k];
@@ -162,13 +189,15 @@ void traj_contact_step(traj_run *r)
         }
         dir = L.gt > 0 ? 1 : -1;
     }
-    double a = (L.gt - dir * L.resist) * L.inv;
+    int f = friction_dir(r, &L, dir);
+    double a = (L.gt - f * L.resist) * L.inv;
     double s = g->tx * (r->x - g->ax) + g->ty * (r->y - g->ay);
     double d = dir > 0 ? g->len - s : s;
     double U = fabs(r->u), A = a * dir;
     double tau_v = time_to_cover(U, A, d < 0 ? 0 : d);
     double tau_s = A < 0 ? U / -A : INFINITY;
-    double tau = fmin(tau_v, tau_s);
+    double tau_k = slip_end(r, &L, f);
+    double tau = fmin(fmin(tau_v, tau_s), tau_k);
     r->vx = r->u * g->tx, r->vy = r->u * g->ty;
     if (L.rolling)
         r->omega = r->u / r->radius;
@@ -182,8 +211,13 @@ void traj_contact_step(traj_run *r)
     double ds = r->u * tau + 0.5 * a * tau * tau;
     r->t += tau;
     r->x += ds * g->tx, r->y += ds * g->ty;
-    if (r->s->sphere && !L.rolling) /* sliding sphere: friction spins it up, dw/dt = mu N m r / I */
-        r->omega += dir * (L.resist * r->mass * r->radius / r->inertia) * tau;
+    if (r->s->sphere && !L.rolling) /* sliding sphere: friction spins it, dw/dt = f mu N m r / I */
+        r->omega += f * (L.resist * r->mass * r->radius / r->inertia) * tau;
+    if (tau_k < fmin(tau_v, tau_s)) { /* the slip ends: next step with the new friction */
+        r->u += a * tau;
+        r->omega = r->u / r->radius;
+        return;
+    }
     if (tau_s <= tau_v) {
         r->u = 0;
         r->vx = r->vy = 0;

@@ -84,9 +84,10 @@ static rf_status check_flight(const rf_traj_spec *s, const rf_traj_event *a, con
 {
     if (a->vx == 0)
         return RF_OK; /* vertical: y(t) is concave, its ends are checked */
-    double x0 = fmin(a->x, b->x), x1 = fmax(a->x, b->x);
-    for (size_t i = lower_index(s, x0); i < s->n_points && s->px[i] < x1; i++) {
-        if (!(s->px[i] > x0))
+    /* a vertex within round-off of an end (a flight starting at a step's face) is not passed over */
+    double x0 = fmin(a->x, b->x), x1 = fmax(a->x, b->x), t0 = tolerance(x0, 0), t1 = tolerance(x1, 0);
+    for (size_t i = lower_index(s, x0 + t0); i < s->n_points && s->px[i] < x1 - t1; i++) {
+        if (!(s->px[i] > x0 + t0))
             continue;
         double t = (s->px[i] - a->x) / a->vx, y = a->y + a->vy * t - 0.5 * s->gravity * t * t;
         double tol = TRAJ_INV_REL * (1 + fabs(s->px[i]) + fabs(a->y) + fabs(a->vy * t) + s->gravity * t * t);
