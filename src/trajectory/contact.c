@@ -2,7 +2,8 @@
  * Along the tangent the acceleration is constant between events, so every
  * event time is a closed-form root:
  *   sliding (point block, or a sphere where rolling would need more friction
- *   than mu N):  a = g_t - sgn(u) mu N,             mu = tan(friction_angle)
+ *   than mu N):  a = g_t - sgn(s) mu N,             mu = tan(friction_angle)
+ *   with s = u - omega r the slip of the contact point (s = u for a block)
  *   rolling (sphere):  a = (g_t - sgn(u) mu_r N) / (1 + k),  k = I/(m r^2) = 2/5
  * with g_t = -g t_y the pull of gravity along t and N = g n_y the normal load
  * per unit mass.  mu_r is the dimensionless rolling-resistance coefficient
@@ -13,8 +14,9 @@
  * point: u' = (u + k r omega)/(1 + k) (energy can only drop).
  * Events: rest (u = 0 and |g_t| within the static resistance), a vertex
  * (convex: launch along the old tangent; concave: keep the component of the
- * velocity along the new segment, a plastic kink; a wall that cannot carry
- * contact: an impact), a collector line, a barrier. */
+ * velocity along the new segment, a plastic kink, and rest in a hollow or a
+ * notch; a wall that cannot carry contact: an impact), the end of a sliding
+ * sphere's slip, a collector line, a barrier. */
 #include "trajectory/traj_internal.h"
 
 #include <math.h>

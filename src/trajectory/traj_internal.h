@@ -96,7 +96,8 @@ void traj_contact_step(traj_run *r);
 /* simulate.c */
 void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay);
 void traj_finish(traj_run *r, rf_traj_state state, rf_traj_event_kind kind);
-/* Launch a flight from the current state (point on segments a, b). */
+/* Launch a flight from the current state (point on segments a, b); a velocity
+ * along one of them, into it, continues in contact on it instead. */
 void traj_launch(traj_run *r, size_t a, size_t b, rf_traj_event_kind kind);
 /* The block at the current state hits segment k: bounce, stop, or contact. */
 void traj_impact(traj_run *r, size_t k);
