@@ -12,6 +12,7 @@
 
 #include "rockfuzz/impact.h"
 #include "rockfuzz/trajectory.h"
+#include "test_traj_util.h"
 #include "test_util.h"
 
 #define G 9.81
@@ -38,6 +39,7 @@ static void run_case(traj_case *c, const char *yaml)
     c->res.events = malloc(16 * sizeof *c->res.events);
     c->res.events_cap = 16;
     assert_int_equal(rf_traj_simulate(c->world, &c->spec, c->spec.seed, 0, &c->res, &err), RF_OK);
+    assert_traj_invariants(&c->spec, &c->res);
 }
 
 static void free_case(traj_case *c)
@@ -337,6 +339,7 @@ static void test_energy_never_gained(void **state)
             fail_msg("%s", err.msg);
         rf_traj_ensemble e;
         assert_int_equal(rf_traj_run(&s, 2, &e, &err), RF_OK);
+        assert_ensemble_invariants(&s, &e);
         double m = 4.0 / 3.0 * 3.14159265358979323846 * 0.064 * 2700, I = 0.4 * m * 0.16;
         for (size_t i = 0; i < e.n_recorded; i++) {
             const rf_traj_result *r = &e.recorded[i];

@@ -11,6 +11,7 @@
 #include <cmocka.h>
 
 #include "rockfuzz/trajectory.h"
+#include "test_traj_util.h"
 #include "test_util.h"
 #include "trajectory/traj_impact.h"
 #include "trajectory/traj_internal.h"
@@ -66,7 +67,9 @@ static void test_bounce_uses_table(void **state)
     rf_traj_result r = {0};
     r.crossings = cr;
     r.impacts = malloc(16 * sizeof *r.impacts), r.impacts_cap = 16;
+    r.events = malloc(16 * sizeof *r.events), r.events_cap = 16;
     assert_int_equal(rf_traj_simulate(w, &s, 1, 0, &r, &err), RF_OK);
+    assert_traj_invariants(&s, &r);
     const rf_traj_impact *m = &r.impacts[0];
     double b = 30 * 3.14159265358979323846 / 180, nx = sin(b), ny = cos(b);
     double vn_in = -(m->vx_in * nx + m->vy_in * ny), vn_out = m->vx_out * nx + m->vy_out * ny;
@@ -77,6 +80,7 @@ static void test_bounce_uses_table(void **state)
     assert_true(fabs(vn_out / vn_in - an) <= 0.005);
     assert_true(an > 0.5 && an < 1); /* elastic granite: Hunter's small wave loss */
     free(r.impacts);
+    free(r.events);
     rf_traj_world_free(w);
     rf_traj_spec_free(&s);
 }

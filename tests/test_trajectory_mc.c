@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "rockfuzz/trajectory.h"
+#include "test_traj_util.h"
 #include "test_util.h"
 
 static void load(const char *yaml, rf_traj_spec *s)
@@ -35,6 +36,7 @@ static void test_same_bits_any_threads(void **state)
     rf_error err;
     for (int t = 0; t < 3; t++)
         assert_int_equal(rf_traj_run(&s, t + 1, &e[t], &err), RF_OK);
+    assert_ensemble_invariants(&s, &e[0]);
     for (int t = 1; t < 3; t++) {
         assert_memory_equal(e[0].state, e[t].state, s.samples);
         assert_memory_equal(e[0].runout_x, e[t].runout_x, s.samples * sizeof(double));
@@ -117,6 +119,7 @@ static void test_lhs_strata(void **state)
     rf_traj_ensemble e;
     rf_error err;
     assert_int_equal(rf_traj_run(&s, 2, &e, &err), RF_OK);
+    assert_ensemble_invariants(&s, &e);
     int *count = calloc(N, sizeof *count);
     for (size_t i = 0; i < N; i++) {
         double h = e.rebound_height[i]; /* R_n = 1: rebound to the release height */

@@ -32,6 +32,10 @@ extern "C" {
 
 /* ---- the trajectory file (spec) ---- */
 
+/* Largest |x|, |y| of a profile vertex and |y| of the release [m]: beyond it a
+ * value is not a physical height or distance (e.g. a DEM's undeclared no-data). */
+#define RF_TRAJ_MAX_COORD 1e7
+
 typedef struct {
     char *name;
     double R_n;                 /* normal COR [-], in [0, 1] */

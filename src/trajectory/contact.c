@@ -2,7 +2,8 @@
  * Along the tangent the acceleration is constant between events, so every
  * event time is a closed-form root:
  *   sliding (point block, or a sphere where rolling would need more friction
- *   than mu N):  a = g_t - sgn(u) mu N,             mu = tan(friction_angle)
+ *   than mu N):  a = g_t - sgn(s) mu N,             mu = tan(friction_angle)
+ *   with s = u - omega r the slip of the contact point (s = u for a block)
  *   rolling (sphere):  a = (g_t - sgn(u) mu_r N) / (1 + k),  k = I/(m r^2) = 2/5
  * with g_t = -g t_y the pull of gravity along t and N = g n_y the normal load
  * per unit mass.  mu_r is the dimensionless rolling-resistance coefficient
@@ -13,8 +14,9 @@
  * point: u' = (u + k r omega)/(1 + k) (energy can only drop).
  * Events: rest (u = 0 and |g_t| within the static resistance), a vertex
  * (convex: launch along the old tangent; concave: keep the component of the
- * velocity along the new segment, a plastic kink; a wall that cannot carry
- * contact: an impact), a collector line, a barrier. */
+ * velocity along the new segment, a plastic kink, and rest in a hollow or a
+ * notch; a wall that cannot carry contact: an impact), the end of a sliding
+ * sphere's slip, a collector line, a barrier. */
 #include "trajectory/traj_internal.h"
 
 #include <math.h>
@@ -96,6 +98,8 @@ static int contact_collectors(traj_run *r, const traj_segment *g, double a, doub
 /* Time to cover distance d >= 0 at speed U >= 0 with acceleration A along the motion. */
 static double time_to_cover(double U, double A, double d)
 {
+    if (d <= 0) /* already there (a block at rest at the end it is pulled to) */
+        return 0;
     if (A == 0)
         return U > 0 ? d / U : INFINITY;
     double disc = U * U + 2 * A * d;
@@ -122,7 +126,7 @@ static void at_vertex(traj_run *r, size_t k, int dir)
     const traj_segment *h = &r->w->seg[j];
     double fx = dir > 0 ? h->bx : h->ax, fy = dir > 0 ? h->by : h->ay;
     double side = g->nx * (fx - r->x) + g->ny * (fy - r->y);
-    if (side < -1e-12 * r->w->scale) { /* convex: the ground drops away */
+    if (side < -traj_tol(1e-12, fabs(r->x) + fabs(fx), fabs(r->y) + fabs(fy))) { /* convex: the ground drops away */
         traj_launch(r, k, j, RF_EV_LAUNCH);
         return;
     }
@@ -131,15 +135,45 @@ static void at_vertex(traj_run *r, size_t k, int dir)
         return;
     }
     double u = r->u * (g->tx * h->tx + g->ty * h->ty); /* concave kink: keep the part along h */
-    double pull = -r->g * h->ty * (u > 0 ? 1 : -1);    /* gravity along the motion on h */
+    double away = u * dir, pull = -r->g * h->ty * dir;  /* speed and gravity along h, away from the vertex */
     r->k = j, r->u = u;
     r->vx = u * h->tx, r->vy = u * h->ty;
-    if (fabs(u) < r->s->v_stop && pull <= 0) { /* slow in a hollow: it stays there */
+    /* A hollow: gravity on h pulls back to the vertex and the block is slow; or
+     * a notch (sides meeting at 90 deg or less): no velocity is left that
+     * leaves the vertex, and none is admissible (both sides push it back). */
+    if (pull <= 0 && (away <= 0 || away < r->s->v_stop)) {
         r->vx = r->vy = r->omega = 0;
         traj_finish(r, RF_TRAJ_STOPPED, RF_EV_REST);
         return;
     }
     traj_event(r, RF_EV_VERTEX, 0, 0, 0);
+}
+
+/* Friction opposes the slip of the contact point, s = u - omega r: for a
+ * block or a rolling sphere that is the direction of motion `dir`; a sliding
+ * sphere spinning faster than it moves is pushed forward and spun down.
+ * With no slip (it just ended on a slope too steep to roll) the slip grows
+ * the way gravity pulls. */
+static int friction_dir(const traj_run *r, const contact_law *L, int dir)
+{
+    if (!r->s->sphere || L->rolling)
+        return dir;
+    double slip = r->u - r->omega * r->radius;
+    if (fabs(slip) <= 1e-12 * (fabs(r->u) + fabs(r->omega * r->radius)))
+        return L->gt > 0 ? 1 : -1;
+    return slip > 0 ? 1 : -1;
+}
+
+/* Sliding sphere: time until the slip reaches zero (ds/dt = g_t - f mu N (1 + 1/k)). */
+static double slip_end(const traj_run *r, const contact_law *L, int f)
+{
+    if (!r->s->sphere || L->rolling)
+        return INFINITY;
+    double slip = r->u - r->omega * r->radius, k = r->inertia / (r->mass * r->radius * r->radius);
+    double rate = L->gt - f * L->resist * (1 + 1 / k);
+    if (fabs(slip) <= 1e-12 * (fabs(r->u) + fabs(r->omega * r->radius)) || !(slip * rate < 0))
+        return INFINITY;
+    return -slip / rate;
 }
 
 void traj_contact_step(traj_run *r)
@@ -164,13 +198,15 @@ void traj_contact_step(traj_run *r)
         }
         dir = L.gt > 0 ? 1 : -1;
     }
-    double a = (L.gt - dir * L.resist) * L.inv;
+    int f = friction_dir(r, &L, dir);
+    double a = (L.gt - f * L.resist) * L.inv;
     double s = g->tx * (r->x - g->ax) + g->ty * (r->y - g->ay);
     double d = dir > 0 ? g->len - s : s;
     double U = fabs(r->u), A = a * dir;
     double tau_v = time_to_cover(U, A, d < 0 ? 0 : d);
     double tau_s = A < 0 ? U / -A : INFINITY;
-    double tau = fmin(tau_v, tau_s);
+    double tau_k = slip_end(r, &L, f);
+    double tau = fmin(fmin(tau_v, tau_s), tau_k);
     r->vx = r->u * g->tx, r->vy = r->u * g->ty;
     if (L.rolling)
         r->omega = r->u / r->radius;
@@ -184,8 +220,13 @@ void traj_contact_step(traj_run *r)
     double ds = r->u * tau + 0.5 * a * tau * tau;
     r->t += tau;
     r->x += ds * g->tx, r->y += ds * g->ty;
-    if (r->s->sphere && !L.rolling) /* sliding sphere: friction spins it up, dw/dt = mu N m r / I */
-        r->omega += dir * (L.resist * r->mass * r->radius / r->inertia) * tau;
+    if (r->s->sphere && !L.rolling) /* sliding sphere: friction spins it, dw/dt = f mu N m r / I */
+        r->omega += f * (L.resist * r->mass * r->radius / r->inertia) * tau;
+    if (tau_k < fmin(tau_v, tau_s)) { /* the slip ends: next step with the new friction */
+        r->u += a * tau;
+        r->omega = r->u / r->radius;
+        return;
+    }
     if (tau_s <= tau_v) {
         r->u = 0;
         r->vx = r->vy = 0;

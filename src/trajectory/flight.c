@@ -64,7 +64,7 @@ static double segment_root(const traj_segment *g, double x, double y, double vx,
 size_t traj_first_impact(const rf_traj_world *w, double x, double y, double vx, double vy, double g,
                          const size_t on[2], double *tau)
 {
-    double best = INFINITY, slack = 1e-12 * (w->scale + fabs(x));
+    double best = INFINITY, slack = traj_tol(1e-12, x, 0);
     size_t hit = TRAJ_NONE, n = w->nseg;
     if (vx == 0) {
         for (size_t i = 0; i < n; i++) {

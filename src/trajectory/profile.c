@@ -41,6 +41,10 @@ rf_status traj_profile_check(const rf_traj_spec *s, rf_error *err)
     for (size_t i = 0; i < s->n_points; i++)
         if (!isfinite(x[i]) || !isfinite(y[i]))
             return rf_fail(err, RF_EINVAL, "profile.points[%zu] = [%g, %g]: not finite", i, x[i], y[i]);
+        else if (!(fabs(x[i]) <= RF_TRAJ_MAX_COORD && fabs(y[i]) <= RF_TRAJ_MAX_COORD))
+            return rf_fail(err, RF_EINVAL, "profile.points[%zu] = [%g, %g]: beyond %g m; coordinates must lie "
+                           "within +-%g m (a no-data value taken as a height?)", i, x[i], y[i], RF_TRAJ_MAX_COORD,
+                           RF_TRAJ_MAX_COORD);
     for (size_t i = 0; i + 1 < s->n_points; i++) {
         if (x[i + 1] < x[i])
             return rf_fail(err, RF_EINVAL, "profile.points[%zu] = [%g, %g]: x decreases (previous x = %g); "
@@ -126,14 +130,9 @@ rf_status traj_world_create_shared(const rf_traj_spec *s, void *table, rf_traj_w
         rf_traj_world_free(w);
         return rf_fail(err, RF_ENOMEM, "out of memory");
     }
-    double xmin = s->px[0], xmax = s->px[0], ymin = s->py[0], ymax = s->py[0];
+    double xmin = s->px[0], xmax = s->px[s->n_points - 1];
     for (size_t i = 0; i < w->nseg; i++)
         prepare_segment(s, i, &w->seg[i]);
-    for (size_t i = 0; i < s->n_points; i++) {
-        xmin = fmin(xmin, s->px[i]), xmax = fmax(xmax, s->px[i]);
-        ymin = fmin(ymin, s->py[i]), ymax = fmax(ymax, s->py[i]);
-    }
-    w->scale = fmax(xmax - xmin, ymax - ymin);
     for (size_t c = 0; c < w->ncol; c++) {
         w->col[c].x = s->collectors[c].x;
         w->col[c].ground_y = traj_ground_y(w, w->col[c].x, &w->col[c].segment);

@@ -50,8 +50,37 @@ void traj_finish(traj_run *r, rf_traj_state state, rf_traj_event_kind kind)
     traj_event(r, kind, 0, 0, 0);
 }
 
+/* The block, on segment k at the current point, moves along it (no normal
+ * speed beyond round-off) into the segment rather than off its end, on
+ * ground that can carry it: it is in contact, not in flight. */
+static int slides_on(const traj_run *r, size_t k)
+{
+    const traj_segment *g = &r->w->seg[k];
+    double vn = g->nx * r->vx + g->ny * r->vy, vt = g->tx * r->vx + g->ty * r->vy;
+    if (g->ny <= 0 || fabs(vn) > 1e-9 * hypot(r->vx, r->vy))
+        return 0;
+    double u = (g->tx * (r->x - g->ax) + g->ty * (r->y - g->ay)) / g->len;
+    double d = vt != 0 ? vt : -r->g * g->ty; /* at rest: where gravity takes it */
+    return d > 0 ? u < 1 - 1e-9 : d < 0 ? u > 1e-9 : 1;
+}
+
+/* A launch exactly along a segment the block is on is no flight: the
+ * parabola leaves that segment's line downwards at once (into the ground),
+ * and the flight, which never takes the t = 0 root of the segments it starts
+ * on, would not find it again (a rebound off a wall at its foot, along the
+ * floor, fell through the floor).  Such a launch continues in contact. */
 void traj_launch(traj_run *r, size_t a, size_t b, rf_traj_event_kind kind)
 {
+    size_t on[2] = {a, b};
+    for (int i = 0; i < 2; i++)
+        if (on[i] != TRAJ_NONE && slides_on(r, on[i])) {
+            const traj_segment *g = &r->w->seg[on[i]];
+            r->phase = TRAJ_CONTACT;
+            r->k = on[i];
+            r->u = g->tx * r->vx + g->ty * r->vy;
+            traj_event(r, kind, 0, 0, 0);
+            return;
+        }
     r->phase = TRAJ_FLY;
     r->on[0] = a, r->on[1] = b;
     r->from_impact = kind == RF_EV_IMPACT;
@@ -89,7 +118,7 @@ void traj_impact(traj_run *r, size_t k)
         return;
     }
     record_impact(r, k, vx_in, vy_in);
-    if (hypot(r->vx, r->vy) < r->s->v_stop) {
+    if (hypot(r->vx, r->vy) < r->s->v_stop || (r->vx == 0 && r->vy == 0)) {
         r->vx = r->vy = r->omega = 0;
         traj_event(r, RF_EV_IMPACT, 0, 0, 0);
         traj_finish(r, RF_TRAJ_STOPPED, RF_EV_REST);
@@ -162,7 +191,7 @@ static void release(traj_run *r)
     double gy = traj_ground_y(r->w, s->x0, &k);
     r->on[0] = r->on[1] = TRAJ_NONE;
     r->from_impact = 0;
-    if (k != TRAJ_NONE && fabs(s->y0 - gy) <= 1e-9 * (1 + r->w->scale)) {
+    if (k != TRAJ_NONE && fabs(s->y0 - gy) <= traj_tol(1e-9, s->x0, gy)) {
         const traj_segment *g = &r->w->seg[k];
         r->y = gy;
         r->phase = TRAJ_CONTACT;

@@ -171,6 +171,9 @@ static rf_status check_block(const rf_traj_spec *s, rf_error *err)
     for (int i = 0; i < 5; i++)
         if (!isfinite(v[i]))
             return rf_fail(err, RF_EINVAL, "release.%s = %g: must be finite", n[i], v[i]);
+    if (!(fabs(s->y0) <= RF_TRAJ_MAX_COORD))
+        return rf_fail(err, RF_EINVAL, "release.y = %g: beyond %g m; heights must lie within +-%g m", s->y0,
+                       RF_TRAJ_MAX_COORD, RF_TRAJ_MAX_COORD);
     if (!(s->scale_speed > 0))
         return rf_fail(err, RF_EINVAL, "bounce.scale_speed = %g: must be > 0", s->scale_speed);
     if (!(s->contact_speed >= 0))
@@ -188,7 +191,7 @@ static rf_status check_release(const rf_traj_spec *s, const rf_traj_world *w, rf
     if (k == TRAJ_NONE)
         return rf_fail(err, RF_EINVAL, "release.x = %g: outside the profile's x-range [%g, %g]", s->x0, s->px[0],
                        s->px[s->n_points - 1]);
-    if (s->y0 < gy - 1e-9 * (1 + w->scale))
+    if (s->y0 < gy - traj_tol(1e-9, s->x0, gy))
         return rf_fail(err, RF_EINVAL, "release.y = %g: under the ground (y = %g at x = %g)", s->y0, gy, s->x0);
     return RF_OK;
 }

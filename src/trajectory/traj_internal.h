@@ -8,6 +8,7 @@
 #include "rockfuzz/trajectory.h"
 #include "core/util.h"
 
+#include <math.h>
 #include <stdint.h>
 
 #define TRAJ_NONE ((size_t)-1)
@@ -29,7 +30,6 @@ struct rf_traj_world {
     traj_segment *seg;
     size_t ncol;
     traj_collector_geo *col;
-    double scale;            /* size of the profile [m], for geometric tolerances */
     void *impact_table;      /* impact_model law: traj_impact_table */
     int owns_table;          /* 0: shared by the caller (traj_world_create_shared) */
 };
@@ -43,6 +43,11 @@ rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf
  * about double the run time; the study model does not need them). */
 rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int envelopes, rf_traj_ensemble *ens,
                         rf_error *err);
+
+/* Round-off allowance [m] of a geometric test near (x, y): relative to the
+ * local coordinates, never to the profile's extent (a far vertex must not
+ * change the motion here). */
+static inline double traj_tol(double rel, double x, double y) { return rel * (1 + fabs(x) + fabs(y)); }
 
 /* profile.c: x sorted, no repeated point, no self-intersection. */
 rf_status traj_profile_check(const rf_traj_spec *s, rf_error *err);
@@ -117,10 +122,16 @@ rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *s
 /* simulate.c */
 void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay);
 void traj_finish(traj_run *r, rf_traj_state state, rf_traj_event_kind kind);
-/* Launch a flight from the current state (point on segments a, b). */
+/* Launch a flight from the current state (point on segments a, b); a velocity
+ * along one of them, into it, continues in contact on it instead. */
 void traj_launch(traj_run *r, size_t a, size_t b, rf_traj_event_kind kind);
 /* The block at the current state hits segment k: bounce, stop, or contact. */
 void traj_impact(traj_run *r, size_t k);
+
+/* traj_invariants.c: a recorded trajectory (res->events) run with the spec's values never
+ * lies inside the ground and never gains mechanical energy between events;
+ * the message names the event. */
+rf_status traj_check_invariants(const rf_traj_spec *spec, const rf_traj_result *res, rf_error *err);
 
 /* traj_csv.c: read "x,y[,material]" lines; *named = 1 if the third column was given. */
 rf_status traj_csv_read(const char *path, rf_traj_spec *spec, int *named, rf_error *err);
