@@ -105,7 +105,7 @@ static size_t contact_segment(const rf_traj_world *w, const rf_traj_event *ev)
     traj_ground_y(w, ev->x, &k);
     if (k == TRAJ_NONE)
         return k;
-    double dx = ev->ax, dy = ev->ay, tol = 1e-9 * (1 + w->scale), best_c = INFINITY;
+    double dx = ev->ax, dy = ev->ay, tol = traj_tol(1e-9, ev->x, ev->y), best_c = INFINITY;
     if (dx == 0 && dy == 0)
         dx = ev->vx, dy = ev->vy;
     size_t best = TRAJ_NONE;
