@@ -116,10 +116,10 @@ rf_status traj_write_envelopes_csv(const char *dir, const rf_traj_ensemble *e, r
 
 /* traj_model.c: the spec (a copy to free) that model m's evaluation at x
  * runs, and its shared impact table (or NULL); RF_EINVAL if m is not a
- * trajectory model.  For the study report's nominal run (traj_study_report.c). */
+ * trajectory model.  For a run at one point (traj_run_at.c). */
 rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *spec, void **table, rf_error *err);
 
-/* simulate.c */
+/* transitions.c */
 void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay);
 void traj_finish(traj_run *r, rf_traj_state state, rf_traj_event_kind kind);
 /* Launch a flight from the current state (point on segments a, b); a velocity
