@@ -49,8 +49,11 @@ typedef enum {
     RF_BOUNCE_CONSTANT = 0,     /* v_n' = -R_n v_n, v_t' = R_t v_t */
     RF_BOUNCE_VELOCITY_SCALED,  /* R_n / (1 + (|v_n|/K)^2), Pfeiffer & Bowen 1989, K = scale_speed */
     RF_BOUNCE_RIGID_SPHERE,     /* rigid sphere with spin and Coulomb friction, e_n = R_n */
-    RF_BOUNCE_IMPACT_MODEL      /* R_n, R_t, spin tabulated from a rockfuzz impact model */
+    RF_BOUNCE_IMPACT_MODEL,     /* R_n, R_t, spin tabulated from a rockfuzz impact model */
+    RF_BOUNCE_N_LAWS
 } rf_bounce_law;
+/* The law's name in a trajectory file and in the outputs (bounce.c). */
+extern const char *const rf_traj_bounce_law_names[RF_BOUNCE_N_LAWS];
 
 /* Pfeiffer & Bowen (1989) / RocFall / CRSP velocity-scaling constant: 30 ft/s. */
 #define RF_TRAJ_PFEIFFER_BOWEN_K 9.144

@@ -6,6 +6,7 @@
  * failures with 1; both print one message on stderr naming the option and
  * value.  Output: a readable summary with units, or one JSON object. */
 #include "cli/cli.h"
+#include "core/json.h"
 #include "core/util.h"
 #include "rockfuzz/impact_model.h"
 #include "rockfuzz/report.h"
@@ -259,10 +260,9 @@ static int parse_int(const char *opt, const char *s, int *x)
 
 static void json_number(const char *key, double x, int last)
 {
-    if (isfinite(x))
-        printf("\"%s\": %.17g%s", key, x, last ? "" : ", ");
-    else
-        printf("\"%s\": null%s", key, last ? "" : ", ");
+    printf("\"%s\": ", key);
+    rf_json_number(stdout, x);
+    fputs(last ? "" : ", ", stdout);
 }
 
 /* friction_work: of the initial KE, NaN (left out) when the run had no friction. */

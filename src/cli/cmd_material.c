@@ -9,6 +9,7 @@
  * Every option is validated; a bad one exits with 2 and a message naming it
  * and its value. */
 #include "cli/cli.h"
+#include "core/json.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -344,15 +345,26 @@ static void path_increment(strain_path path, double ds, double deps[6])
         deps[0] = deps[1] = deps[2] = ds;
 }
 
+/* One "key": number pair of the JSON line (null where the value is not finite). */
+static void json_pair(const char *key, double v, const char *after)
+{
+    printf("\"%s\": ", key);
+    rf_json_number(stdout, v);
+    fputs(after, stdout);
+}
+
 static void print_json(const driver_args *a, const double sig[6], const rf_material_state *st, double work)
 {
-    printf("{\"model\": \"%s\", \"path\": \"%s\", \"strain\": %.17g, \"increments\": %d, ",
-           rf_material_model_name(a->params.model), path_names[a->path], a->strain, a->increments);
-    printf("\"stress_xx\": %.17g, \"stress_yy\": %.17g, \"stress_zz\": %.17g, \"stress_xy\": %.17g, ",
-           sig[0], sig[1], sig[2], sig[3]);
-    printf("\"mean_stress\": %.17g, \"equivalent_plastic_strain\": %.17g, ",
-           (sig[0] + sig[1] + sig[2]) / 3.0, st->plastic_strain_eq);
-    printf("\"plastic_volumetric_strain\": %.17g, \"plastic_work\": %.17g}\n", st->plastic_volumetric, work);
+    printf("{\"model\": \"%s\", \"path\": \"%s\", ", rf_material_model_name(a->params.model), path_names[a->path]);
+    json_pair("strain", a->strain, ", ");
+    printf("\"increments\": %d, ", a->increments);
+    static const char *const keys[4] = {"stress_xx", "stress_yy", "stress_zz", "stress_xy"};
+    for (int k = 0; k < 4; k++)
+        json_pair(keys[k], sig[k], ", ");
+    json_pair("mean_stress", (sig[0] + sig[1] + sig[2]) / 3.0, ", ");
+    json_pair("equivalent_plastic_strain", st->plastic_strain_eq, ", ");
+    json_pair("plastic_volumetric_strain", st->plastic_volumetric, ", ");
+    json_pair("plastic_work", work, "}\n");
 }
 
 static void print_summary(const driver_args *a, const double sig[6], const rf_material_state *st,

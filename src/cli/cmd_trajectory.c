@@ -5,6 +5,7 @@
  * files or failed runs 1. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "cli/cli.h"
+#include "core/json.h"
 #include "rockfuzz/report.h"
 #include "rockfuzz/trajectory.h"
 
@@ -96,20 +97,6 @@ static int parse_args(int argc, char **argv, traj_args *a)
     return 1;
 }
 
-/* A JSON string. */
-static void json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++)
-        if (*p == '"' || *p == '\\')
-            fprintf(f, "\\%c", *p);
-        else if (*p < 0x20)
-            fprintf(f, "\\u%04x", *p);
-        else
-            fputc(*p, f);
-    fputc('"', f);
-}
-
 /* DIR/invocation.json: what ran (the trajectory file's absolute path and the
  * overrides), for `rockfuzz report DIR` (rf_cli_trajectory_report). */
 static int write_invocation(const traj_args *a)
@@ -119,7 +106,7 @@ static int write_invocation(const traj_args *a)
     FILE *f = file ? fopen(path, "w") : NULL;
     if (f) {
         fputs("{\"command\": \"trajectory\", \"file\": ", f);
-        json_string(f, file);
+        rf_json_string(f, file);
         fprintf(f, ", \"samples\": %lld, \"seed\": %lld, \"max_trajectories\": %zu}\n", a->samples, a->seed,
                 a->max_traj);
     }

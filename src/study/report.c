@@ -2,6 +2,7 @@
  * tables (see report.h).  Plots are in report_plot.c.  Undefined values are
  * printed "n/a (reason)" and written as JSON null / CSV "nan". */
 #include "rockfuzz/report.h"
+#include "core/json.h"
 
 #include <errno.h>
 #include <math.h>
@@ -183,43 +184,6 @@ void rf_report_print_summary(FILE *f, const rf_study *s, const rf_tm_result *res
 
 /* ------------------------------------------------------------------- JSON */
 
-static void json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\')
-            fprintf(f, "\\%c", *p);
-        else if (*p == '\n')
-            fputs("\\n", f);
-        else if (*p == '\t')
-            fputs("\\t", f);
-        else if (*p < 0x20)
-            fprintf(f, "\\u%04x", *p);
-        else
-            fputc(*p, f);
-    }
-    fputc('"', f);
-}
-
-static void json_number(FILE *f, double v)
-{
-    if (isfinite(v))
-        fprintf(f, "%.17g", v);
-    else
-        fputs("null", f);
-}
-
-static void json_array(FILE *f, const double *v, size_t count, size_t stride)
-{
-    fputc('[', f);
-    for (size_t j = 0; j < count; j++) {
-        if (j)
-            fputs(", ", f);
-        json_number(f, v[j * stride]);
-    }
-    fputc(']', f);
-}
-
 static void json_levels(FILE *f, size_t m)
 {
     fputc('[', f);
@@ -234,9 +198,9 @@ static void json_point(FILE *f, const rf_study *s, const double *x, size_t n)
     for (size_t i = 0; i < n; i++) {
         if (i)
             fputs(", ", f);
-        json_string(f, s->param_names[i]);
+        rf_json_string(f, s->param_names[i]);
         fputs(": ", f);
-        json_number(f, x[i]);
+        rf_json_number(f, x[i]);
     }
     fputc('}', f);
 }
@@ -245,7 +209,7 @@ static void json_reason(FILE *f, const char *key, double v, rf_na_reason r)
 {
     if (isnan(v) && r != RF_NA_NONE) {
         fprintf(f, ", \"%s\": ", key);
-        json_string(f, rf_na_reason_text(r));
+        rf_json_string(f, rf_na_reason_text(r));
     }
 }
 
@@ -259,9 +223,9 @@ static void write_settings(FILE *f, const rf_study *s)
     fprintf(f, ",\n  \"model_settings_vs_defaults\": %s,\n  \"model_settings\": {", vs_defaults ? "true" : "false");
     for (size_t i = 0; i < n; i++) {
         fputs(i ? ", " : "", f);
-        json_string(f, set[i].key);
+        rf_json_string(f, set[i].key);
         fputs(": ", f);
-        json_string(f, set[i].value);
+        rf_json_string(f, set[i].value);
     }
     fputc('}', f);
     free(set);
@@ -275,7 +239,7 @@ static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res, 
 #define WARN()                                                                                                    \
     do {                                                                                                        \
         fputs(any++ ? ",\n    " : "\n    ", f);                                                               \
-        json_string(f, msg);                                                                                    \
+        rf_json_string(f, msg);                                                                                    \
     } while (0)
     size_t n = res->n_inputs;
     if (res->failed_points > 0) {
@@ -320,37 +284,37 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
         return rf_fail(err, RF_EIO, "%s: cannot write: %s", path, strerror(errno));
     size_t n = res->n_inputs, m = res->levels;
     fputs("{\n  \"version\": ", f);
-    json_string(f, ROCKFUZZ_VERSION);
+    rf_json_string(f, ROCKFUZZ_VERSION);
     fputs(",\n  \"name\": ", f);
-    json_string(f, s->name);
+    rf_json_string(f, s->name);
     fputs(",\n  \"study_file\": ", f);
-    json_string(f, s->path);
+    rf_json_string(f, s->path);
     fprintf(f, ",\n  \"scheme\": \"%s\",\n  \"levels\": %zu,\n  \"left_right\": %s,\n  \"model\": ",
             rf_tm_scheme_name(res->scheme), m, s->left_right ? "true" : "false");
-    json_string(f, s->model_description);
+    rf_json_string(f, s->model_description);
     fputs(",\n  \"model_kind\": ", f);
-    json_string(f, rf_study_model_kind_name(s->model_kind));
+    rf_json_string(f, rf_study_model_kind_name(s->model_kind));
     fputs(",\n  \"model_identity\": ", f);
-    json_string(f, s->model.identity ? s->model.identity : "");
+    rf_json_string(f, s->model.identity ? s->model.identity : "");
     write_settings(f, s);
     fputs(",\n  \"mu\": ", f);
     json_levels(f, m);
     fputs(",\n  \"inputs\": {", f);
     for (size_t i = 0; i < n; i++) {
         fputs(i ? ",\n    " : "\n    ", f);
-        json_string(f, s->param_names[i]);
+        rf_json_string(f, s->param_names[i]);
         fputs(": {\"shape\": ", f);
-        json_string(f, s->param_shapes[i]);
+        rf_json_string(f, s->param_shapes[i]);
         fputs(", \"unit\": ", f);
-        json_string(f, s->param_units[i]);
+        rf_json_string(f, s->param_units[i]);
         fputs(", \"nominal\": ", f);
-        json_number(f, res->in_nominal[i]);
+        rf_json_number(f, res->in_nominal[i]);
         fputs(", \"mu\": ", f);
         json_levels(f, m);
         fputs(", \"lower\": ", f);
-        json_array(f, res->in_lo + i * (m + 1), m + 1, 1);
+        rf_json_array(f, res->in_lo + i * (m + 1), m + 1, 1);
         fputs(", \"upper\": ", f);
-        json_array(f, res->in_hi + i * (m + 1), m + 1, 1);
+        rf_json_array(f, res->in_hi + i * (m + 1), m + 1, 1);
         if (res->scheme == RF_TM_EXTENDED && res->input_class)
             fprintf(f, ", \"class\": \"%s\", \"class_forced\": %s", mono_text(res->input_class[i]),
                     s->param_class[i] != RF_MONO_AUTO ? "true" : "false");
@@ -359,24 +323,24 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
     fputs("\n  },\n  \"outputs\": {", f);
     for (size_t k = 0; k < res->n_outputs; k++) {
         fputs(k ? ",\n    " : "\n    ", f);
-        json_string(f, s->model.output_names[k]);
+        rf_json_string(f, s->model.output_names[k]);
         fputs(": {\n      \"unit\": ", f);
-        json_string(f, s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "");
+        rf_json_string(f, s->model.output_units && s->model.output_units[k] ? s->model.output_units[k] : "");
         char why[512];
         rp_output_kind kind = rp_output_classify(s, res, k, why, sizeof why);
         fprintf(f, ",\n      \"status\": \"%s\"", rp_output_kind_name(kind));
         if (kind != RP_OUTPUT_SHOWN) {
             fputs(", \"status_reason\": ", f);
-            json_string(f, why);
+            rf_json_string(f, why);
         }
         fputs(",\n      \"mu\": ", f);
         json_levels(f, m);
         fputs(",\n      \"lower\": ", f);
-        json_array(f, res->lo + k * (m + 1), m + 1, 1);
+        rf_json_array(f, res->lo + k * (m + 1), m + 1, 1);
         fputs(",\n      \"upper\": ", f);
-        json_array(f, res->hi + k * (m + 1), m + 1, 1);
+        rf_json_array(f, res->hi + k * (m + 1), m + 1, 1);
         fputs(",\n      \"nominal\": ", f);
-        json_number(f, res->nominal[k]);
+        rf_json_number(f, res->nominal[k]);
         fputs(",\n      \"x_lower\": [", f);
         for (size_t j = 0; j <= m; j++) {
             fputs(j ? ", " : "", f);
@@ -391,25 +355,25 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
         for (size_t i = 0; i < n; i++) {
             size_t q = k * n + i;
             fputs(i ? ",\n        " : "\n        ", f);
-            json_string(f, s->param_names[i]);
+            rf_json_string(f, s->param_names[i]);
             fputs(": {\"rho\": ", f);
-            json_number(f, an->rho[q]);
+            rf_json_number(f, an->rho[q]);
             fputs(", \"kappa\": ", f);
-            json_number(f, an->kappa[q]);
+            rf_json_number(f, an->kappa[q]);
             fputs(", \"rho_left\": ", f);
-            json_number(f, an->rho_left[q]);
+            rf_json_number(f, an->rho_left[q]);
             fputs(", \"rho_right\": ", f);
-            json_number(f, an->rho_right[q]);
+            rf_json_number(f, an->rho_right[q]);
             fputs(", \"kappa_left\": ", f);
-            json_number(f, an->kappa_left[q]);
+            rf_json_number(f, an->kappa_left[q]);
             fputs(", \"kappa_right\": ", f);
-            json_number(f, an->kappa_right[q]);
+            rf_json_number(f, an->kappa_right[q]);
             fputs(", \"mean_gain\": ", f);
-            json_number(f, an->mean_gain[q]);
+            rf_json_number(f, an->mean_gain[q]);
             fputs(", \"std_gain\": ", f);
-            json_number(f, an->std_gain[q]);
+            rf_json_number(f, an->std_gain[q]);
             fputs(", \"gain\": ", f);
-            json_array(f, an->gain + q * an->levels, an->levels, 1);
+            rf_json_array(f, an->gain + q * an->levels, an->levels, 1);
             fprintf(f, ", \"monotonicity\": \"%s\"", mono_text(res->monotonicity[q]));
             json_reason(f, "na_reason", an->rho[q], an->reason_hanss[q]);
             json_reason(f, "na_reason_std", an->std_gain[q], an->reason_std[q]);
@@ -417,12 +381,12 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
             fputc('}', f);
         }
         fputs("\n      },\n      \"degree_of_uncertainty\": ", f);
-        json_number(f, an->degree_of_uncertainty[k]);
+        rf_json_number(f, an->degree_of_uncertainty[k]);
         fputs(",\n      \"interaction\": ", f);
-        json_number(f, an->interaction[k]);
+        rf_json_number(f, an->interaction[k]);
         if (isnan(an->degree_of_uncertainty[k]) && an->reason_nu[k] != RF_NA_NONE) {
             fputs(",\n      \"na_reason_degree_of_uncertainty\": ", f);
-            json_string(f, rf_na_reason_text(an->reason_nu[k]));
+            rf_json_string(f, rf_na_reason_text(an->reason_nu[k]));
         }
         fputs("\n    }", f);
     }
@@ -432,12 +396,12 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
             res->requested, res->distinct, res->probe_evaluations, res->lr_evaluations, opt ? opt->cap : 0,
             opt ? opt->evaluated : 0, opt ? opt->failed : 0, opt ? opt->resumed : 0, res->failed_points,
             opt ? opt->remote : 0);
-    json_number(f, opt ? opt->eval_seconds : NAN);
+    rf_json_number(f, opt ? opt->eval_seconds : NAN);
     fprintf(f, "},\n  \"mpi_ranks\": %d,\n  \"warnings\": [", opt && opt->mpi_ranks > 0 ? opt->mpi_ranks : 1);
     write_warnings(f, s, res, opt);
     fputs("],\n", f);
     fputs("  \"wall_seconds\": ", f);
-    json_number(f, opt ? opt->wall_seconds : NAN);
+    rf_json_number(f, opt ? opt->wall_seconds : NAN);
     fprintf(f, ",\n  \"jobs\": %d,\n  \"measures\": \"rho, kappa: the influence measures of Hanss "
                "(Applied Fuzzy Arithmetic, Springer 2005); rho_left, rho_right, degree_of_uncertainty: left/right "
                "analysis, a project definition after Gauger et al. (2008); see docs/user-guide.md section 3\"\n}\n",

@@ -11,6 +11,9 @@
 
 #include <math.h>
 
+const char *const rf_traj_bounce_law_names[RF_BOUNCE_N_LAWS] = {"constant", "velocity_scaled", "rigid_sphere",
+                                                                 "impact_model"};
+
 /* Rigid sphere with pre-impact spin: slip of the contact point
  * s = v_t - omega r (omega > 0 rolls forward along t); normal impulse per unit
  * mass P_n = (1 + e) |v_n|; the tangential impulse P that stops the slip is
@@ -82,6 +85,7 @@ static void apply_law(traj_run *r, const rf_traj_material *m, double vn, double 
         cap_energy(r, vn, vt, w_in, vn_out, vt_out, omega);
         return;
     }
+    case RF_BOUNCE_N_LAWS: break; /* not a law: refused when the file is read */
     }
 }
 

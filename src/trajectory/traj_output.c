@@ -4,33 +4,12 @@
  * Recorded paths are rebuilt exactly from their events (each stretch is a
  * parabola or a uniformly accelerated motion). */
 #include "trajectory/traj_internal.h"
+#include "core/json.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-static void jnum(FILE *f, double v)
-{
-    if (isfinite(v))
-        fprintf(f, "%.17g", v);
-    else
-        fputs("null", f);
-}
-
-static void jstr(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"' || *s == '\\')
-            fprintf(f, "\\%c", *s);
-        else if ((unsigned char)*s < 0x20)
-            fprintf(f, "\\u%04x", *s);
-        else
-            fputc(*s, f);
-    }
-    fputc('"', f);
-}
 
 /* {"p50": .., <the chosen levels>, "max": .., "mean": ..} */
 static void jpct(FILE *f, const rf_traj_percentiles *p)
@@ -39,10 +18,10 @@ static void jpct(FILE *f, const rf_traj_percentiles *p)
     fputc('{', f);
     for (size_t k = 0; k < p->n; k++) {
         rf_traj_percentile_name(p->level[k], name, sizeof name);
-        fprintf(f, "\"%s\": ", name), jnum(f, p->value[k]), fputs(", ", f);
+        fprintf(f, "\"%s\": ", name), rf_json_number(f, p->value[k]), fputs(", ", f);
     }
-    fputs("\"max\": ", f), jnum(f, p->max);
-    fputs(", \"mean\": ", f), jnum(f, p->mean);
+    fputs("\"max\": ", f), rf_json_number(f, p->max);
+    fputs(", \"mean\": ", f), rf_json_number(f, p->mean);
     fputc('}', f);
 }
 
@@ -51,14 +30,14 @@ static void json_impacts(FILE *f, const rf_traj_result *r)
     fputs("\"impacts\": [", f);
     for (size_t i = 0; i < r->n_impacts && r->impacts; i++) {
         const rf_traj_impact *m = &r->impacts[i];
-        fprintf(f, "%s{\"t\": ", i ? ", " : ""), jnum(f, m->t);
-        fputs(", \"x\": ", f), jnum(f, m->x);
-        fputs(", \"y\": ", f), jnum(f, m->y);
-        fprintf(f, ", \"segment\": %zu, \"vx_in\": ", m->segment), jnum(f, m->vx_in);
-        fputs(", \"vy_in\": ", f), jnum(f, m->vy_in);
-        fputs(", \"vx_out\": ", f), jnum(f, m->vx_out);
-        fputs(", \"vy_out\": ", f), jnum(f, m->vy_out);
-        fputs(", \"omega_out\": ", f), jnum(f, m->omega_out);
+        fprintf(f, "%s{\"t\": ", i ? ", " : ""), rf_json_number(f, m->t);
+        fputs(", \"x\": ", f), rf_json_number(f, m->x);
+        fputs(", \"y\": ", f), rf_json_number(f, m->y);
+        fprintf(f, ", \"segment\": %zu, \"vx_in\": ", m->segment), rf_json_number(f, m->vx_in);
+        fputs(", \"vy_in\": ", f), rf_json_number(f, m->vy_in);
+        fputs(", \"vx_out\": ", f), rf_json_number(f, m->vx_out);
+        fputs(", \"vy_out\": ", f), rf_json_number(f, m->vy_out);
+        fputs(", \"omega_out\": ", f), rf_json_number(f, m->omega_out);
         fputc('}', f);
     }
     fputs("]", f);
@@ -70,14 +49,14 @@ static void json_crossing(FILE *f, const rf_traj_crossing *c)
         fputs("null", f);
         return;
     }
-    fputs("{\"t\": ", f), jnum(f, c->t);
-    fputs(", \"height_lowest\": ", f), jnum(f, c->height_lowest);
-    fputs(", \"height_centre\": ", f), jnum(f, c->height_centre);
-    fputs(", \"normal_height\": ", f), jnum(f, c->normal_height);
-    fputs(", \"speed\": ", f), jnum(f, c->speed);
-    fputs(", \"translational_energy\": ", f), jnum(f, c->translational_energy);
-    fputs(", \"rotational_energy\": ", f), jnum(f, c->rotational_energy);
-    fputs(", \"total_energy\": ", f), jnum(f, c->total_energy);
+    fputs("{\"t\": ", f), rf_json_number(f, c->t);
+    fputs(", \"height_lowest\": ", f), rf_json_number(f, c->height_lowest);
+    fputs(", \"height_centre\": ", f), rf_json_number(f, c->height_centre);
+    fputs(", \"normal_height\": ", f), rf_json_number(f, c->normal_height);
+    fputs(", \"speed\": ", f), rf_json_number(f, c->speed);
+    fputs(", \"translational_energy\": ", f), rf_json_number(f, c->translational_energy);
+    fputs(", \"rotational_energy\": ", f), rf_json_number(f, c->rotational_energy);
+    fputs(", \"total_energy\": ", f), rf_json_number(f, c->total_energy);
     fprintf(f, ", \"stopped_by_barrier\": %s}", c->stopped_by_barrier ? "true" : "false");
 }
 
@@ -86,19 +65,19 @@ static void json_trajectory(FILE *f, const rf_traj_spec *s, const rf_traj_result
     fprintf(f, "{\"state\": \"%s\", \"n_impacts\": %zu, ", rf_traj_state_name(r->state), r->n_impacts);
     json_impacts(f, r);
     if (r->state == RF_TRAJ_STOPPED) {
-        fputs(", \"rest\": {\"t\": ", f), jnum(f, r->t_end);
-        fputs(", \"x\": ", f), jnum(f, r->x_end);
-        fputs(", \"y\": ", f), jnum(f, r->y_end);
+        fputs(", \"rest\": {\"t\": ", f), rf_json_number(f, r->t_end);
+        fputs(", \"x\": ", f), rf_json_number(f, r->x_end);
+        fputs(", \"y\": ", f), rf_json_number(f, r->y_end);
         fputs("}", f);
     } else {
         fputs(", \"rest\": null", f);
     }
-    fputs(", \"end\": {\"t\": ", f), jnum(f, r->t_end);
-    fputs(", \"x\": ", f), jnum(f, r->x_end);
-    fputs(", \"y\": ", f), jnum(f, r->y_end);
+    fputs(", \"end\": {\"t\": ", f), rf_json_number(f, r->t_end);
+    fputs(", \"x\": ", f), rf_json_number(f, r->x_end);
+    fputs(", \"y\": ", f), rf_json_number(f, r->y_end);
     fputs("}, \"collectors\": {", f);
     for (size_t c = 0; c < s->n_collectors; c++) {
-        fputs(c ? ", " : "", f), jstr(f, s->collectors[c].name), fputs(": ", f);
+        fputs(c ? ", " : "", f), rf_json_string(f, s->collectors[c].name), fputs(": ", f);
         json_crossing(f, &r->crossings[c]);
     }
     fputs("}}", f);
@@ -109,8 +88,8 @@ static void json_exceed(FILE *f, const double *t, const double *p, size_t n, int
 {
     fputc('[', f);
     for (size_t k = 0; k < n; k++) {
-        fputs(k ? ", {\"threshold\": " : "{\"threshold\": ", f), jnum(f, t[k]);
-        fprintf(f, ", \"barrier\": %s, \"probability\": ", own && k == 0 ? "true" : "false"), jnum(f, p[k]);
+        fputs(k ? ", {\"threshold\": " : "{\"threshold\": ", f), rf_json_number(f, t[k]);
+        fprintf(f, ", \"barrier\": %s, \"probability\": ", own && k == 0 ? "true" : "false"), rf_json_number(f, p[k]);
         fputc('}', f);
     }
     fputc(']', f);
@@ -120,7 +99,7 @@ static void json_histogram(FILE *f, const rf_traj_histogram *h)
 {
     fputs("{\"edges\": [", f);
     for (size_t k = 0; h->bins && k <= h->bins; k++)
-        fputs(k ? ", " : "", f), jnum(f, h->edge[k]);
+        fputs(k ? ", " : "", f), rf_json_number(f, h->edge[k]);
     fputs("], \"counts\": [", f);
     for (size_t k = 0; k < h->bins; k++)
         fprintf(f, "%s%zu", k ? ", " : "", h->count[k]);
@@ -133,8 +112,8 @@ static void json_collector_stats(FILE *f, const rf_traj_collector *col, const rf
                                        &cs->height_lowest, &cs->height_centre, &cs->speed};
     static const char *const names[6] = {"total_energy", "translational_energy", "rotational_energy",
                                          "height_lowest", "height_centre", "speed"};
-    jstr(f, col->name);
-    fputs(": {\"reach_probability\": ", f), jnum(f, cs->reach_probability);
+    rf_json_string(f, col->name);
+    fputs(": {\"reach_probability\": ", f), rf_json_number(f, cs->reach_probability);
     for (int k = 0; k < 6; k++)
         fprintf(f, ", \"%s\": ", names[k]), jpct(f, q[k]);
     double t[RF_TRAJ_MAX_THRESHOLDS];
@@ -164,7 +143,7 @@ static void json_statistics(FILE *f, const rf_traj_spec *s, const rf_traj_stats 
 void rf_traj_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_traj_stats *st,
                         size_t max_traj)
 {
-    fputs("{\"name\": ", f), jstr(f, s->name ? s->name : "");
+    fputs("{\"name\": ", f), rf_json_string(f, s->name ? s->name : "");
     fprintf(f, ", \"samples\": %zu, \"seed\": %llu, \"sampling\": \"%s\", \"units\": {\"length\": \"m\", "
                "\"time\": \"s\", \"speed\": \"m/s\", \"energy\": \"J\", \"omega\": \"rad/s\"},\n",
             e->samples, (unsigned long long)s->seed, s->lhs ? "lhs" : "random");
@@ -183,7 +162,7 @@ void rf_traj_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *
                    "\"impacts_computed\": %zu, \"impacts_from_cache\": %zu, \"tolerance\": %.6g, \"error_estimate\": ",
                 s->impact_solver, e->impact_nodes_vn, e->impact_nodes_theta, e->impact_evaluations,
                 e->impact_from_cache, s->impact_tolerance);
-        jnum(f, e->impact_error_estimate);
+        rf_json_number(f, e->impact_error_estimate);
         fputs("}", f);
     }
     fprintf(f, ",\n \"wall_seconds\": %.6g}\n", e->wall_seconds);

@@ -56,7 +56,6 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
     FILE *f = fopen(path, "w");
     if (!f)
         return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
-    static const char *const laws[] = {"constant", "velocity_scaled", "rigid_sphere", "impact_model"};
     fputs("<!DOCTYPE html><html><head><meta charset=utf-8><title>", f);
     html_text(f, s->name);
     fputs("</title><style>body{font-family:sans-serif;max-width:960px;margin:auto}td,th{padding:2px 8px;"
@@ -64,7 +63,7 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
     html_text(f, s->name);
     fprintf(f, "</h1><p>%zu trajector%s, %s sampling, seed %llu, bounce law %s, %s block; stopped %zu, exited "
                "%zu, step_limit %zu; %.3g s.</p>\n", e->samples, e->samples == 1 ? "y" : "ies",
-            s->lhs ? "Latin hypercube" : "random", (unsigned long long)s->seed, laws[s->law],
+            s->lhs ? "Latin hypercube" : "random", (unsigned long long)s->seed, rf_traj_bounce_law_names[s->law],
             s->sphere ? "sphere" : "point", st->stopped, st->exited, st->step_limit, e->wall_seconds);
     fputs("<h2>Statistics</h2><table><tr><th>quantity</th><th>unit</th><th>p50</th><th>p95</th><th>p99</th>"
           "<th>max</th></tr>\n", f);

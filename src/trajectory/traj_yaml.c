@@ -74,13 +74,13 @@ static rf_status parse_block(ty_ctx *c, struct fy_node *n)
 
 static rf_status parse_law(ty_ctx *c, struct fy_node *v)
 {
-    static const char *const names[] = {"constant", "velocity_scaled", "rigid_sphere", "impact_model"};
+    const char *const *names = rf_traj_bounce_law_names;
     const char *str;
     size_t len;
     rf_status st = sp_string(&c->sp, v, "bounce.law", &str, &len);
     if (st != RF_OK)
         return st;
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < RF_BOUNCE_N_LAWS; i++)
         if (len == strlen(names[i]) && !strncmp(str, names[i], len)) {
             c->spec->law = (rf_bounce_law)i;
             return RF_OK;
