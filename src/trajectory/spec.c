@@ -163,9 +163,10 @@ static rf_status check_block(const rf_traj_spec *s, rf_error *err)
         return rf_fail(err, RF_EINVAL, "block.radius = %g: must be > 0", s->radius);
     if (s->sphere && !(s->density > 0 && isfinite(s->density)))
         return rf_fail(err, RF_EINVAL, "block.density = %g: must be > 0", s->density);
+    if ((unsigned)s->law >= RF_BOUNCE_N_LAWS)
+        return rf_fail(err, RF_EINVAL, "bounce.law = %d: not a bounce law", (int)s->law);
     if (!s->sphere && (s->law == RF_BOUNCE_RIGID_SPHERE || s->law == RF_BOUNCE_IMPACT_MODEL))
-        return rf_fail(err, RF_EINVAL, "bounce.law = %s: needs block.shape: sphere",
-                       s->law == RF_BOUNCE_RIGID_SPHERE ? "rigid_sphere" : "impact_model");
+        return rf_fail(err, RF_EINVAL, "bounce.law = %s: needs block.shape: sphere", rf_traj_bounce_law_names[s->law]);
     double v[] = {s->x0, s->y0, s->vx0, s->vy0, s->omega0};
     const char *n[] = {"x", "y", "vx", "vy", "omega"};
     for (int i = 0; i < 5; i++)
