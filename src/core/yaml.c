@@ -11,7 +11,7 @@
 #include <string.h>
 #include <strings.h>
 
-char *sp_strndup(const char *s, size_t len)
+char *yr_strndup(const char *s, size_t len)
 {
     char *d = malloc(len + 1);
     if (d) {
@@ -21,9 +21,9 @@ char *sp_strndup(const char *s, size_t len)
     return d;
 }
 
-char *sp_strdup(const char *s) { return sp_strndup(s, strlen(s)); }
+char *yr_strdup(const char *s) { return yr_strndup(s, strlen(s)); }
 
-void sp_pathf(char *buf, size_t size, const char *fmt, ...)
+void yr_pathf(char *buf, size_t size, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -40,7 +40,7 @@ static int scalar_line(struct fy_node *n)
     return m ? m->line + 1 : 0;
 }
 
-int sp_line(struct fy_node *n)
+int yr_line(struct fy_node *n)
 {
     struct fy_node *start = n;
     for (int depth = 0; n && depth < 64; depth++) {
@@ -108,7 +108,7 @@ static void node_text(struct fy_node *n, char *buf, size_t size)
     free(e);
 }
 
-rf_status sp_fail(sp_ctx *c, struct fy_node *n, const char *path, const char *fmt, ...)
+rf_status yr_fail(yr_ctx *c, struct fy_node *n, const char *path, const char *fmt, ...)
 {
     char reason[RF_ERROR_MAX / 2], value[128];
     va_list ap;
@@ -116,7 +116,7 @@ rf_status sp_fail(sp_ctx *c, struct fy_node *n, const char *path, const char *fm
     vsnprintf(reason, sizeof reason, fmt, ap);
     va_end(ap);
     node_text(n, value, sizeof value);
-    int line = sp_line(n ? n : c->last_key);
+    int line = yr_line(n ? n : c->last_key);
     /* An unknown key is its own value: "x.colour: reason", not "x.colour = colour: reason". */
     const char *last = path ? strrchr(path, '.') : NULL;
     last = last ? last + 1 : path;
@@ -127,14 +127,14 @@ rf_status sp_fail(sp_ctx *c, struct fy_node *n, const char *path, const char *fm
     return rf_fail(c->err, RF_EINVAL, "%s:%d: %s", c->file, line, reason);
 }
 
-rf_status sp_prefix(sp_ctx *c, struct fy_node *n, const char *path)
+rf_status yr_prefix(yr_ctx *c, struct fy_node *n, const char *path)
 {
     char old[RF_ERROR_MAX / 2];
-    sp_pathf(old, sizeof old, "%s", c->err ? c->err->msg : "invalid");
+    yr_pathf(old, sizeof old, "%s", c->err ? c->err->msg : "invalid");
     rf_status code = c->err ? c->err->code : RF_EINVAL;
     if (code == RF_OK)
         code = RF_EINVAL;
-    sp_fail(c, n, path, "%s", old);
+    yr_fail(c, n, path, "%s", old);
     if (c->err)
         c->err->code = code;
     return code;
@@ -158,23 +158,23 @@ static const char *type_name(struct fy_node *n)
     }
 }
 
-rf_status sp_mapping(sp_ctx *c, struct fy_node *n, const char *path)
+rf_status yr_mapping(yr_ctx *c, struct fy_node *n, const char *path)
 {
     if (!n || fy_node_get_type(n) != FYNT_MAPPING)
-        return sp_fail(c, n, path, "expected a mapping ({key: value, ...}), got %s", type_name(n));
+        return yr_fail(c, n, path, "expected a mapping ({key: value, ...}), got %s", type_name(n));
     return RF_OK;
 }
 
-rf_status sp_sequence(sp_ctx *c, struct fy_node *n, const char *path, size_t min, size_t max, size_t *count)
+rf_status yr_sequence(yr_ctx *c, struct fy_node *n, const char *path, size_t min, size_t max, size_t *count)
 {
     if (!n || fy_node_get_type(n) != FYNT_SEQUENCE)
-        return sp_fail(c, n, path, "expected a list ([a, b, ...]), got %s", type_name(n));
+        return yr_fail(c, n, path, "expected a list ([a, b, ...]), got %s", type_name(n));
     int k = fy_node_sequence_item_count(n);
     size_t cnt = k < 0 ? 0 : (size_t)k;
     if (cnt < min || cnt > max) {
         if (min == max)
-            return sp_fail(c, n, path, "expected a list of %zu items, got %zu", min, cnt);
-        return sp_fail(c, n, path, "expected a list of %zu to %zu items, got %zu", min, max, cnt);
+            return yr_fail(c, n, path, "expected a list of %zu items, got %zu", min, cnt);
+        return yr_fail(c, n, path, "expected a list of %zu to %zu items, got %zu", min, max, cnt);
     }
     if (count)
         *count = cnt;
@@ -200,50 +200,50 @@ static int is_quoted(struct fy_node *n)
                    (len == sizeof str_tag - 1 && !memcmp(tag, str_tag, len)));
 }
 
-rf_status sp_number(sp_ctx *c, struct fy_node *n, const char *path, double *v)
+rf_status yr_number(yr_ctx *c, struct fy_node *n, const char *path, double *v)
 {
     if (!is_scalar(n) || is_quoted(n))
-        return sp_fail(c, n, path, "expected a number, got %s", type_name(n));
+        return yr_fail(c, n, path, "expected a number, got %s", type_name(n));
     size_t len = 0;
     const char *s = fy_node_get_scalar(n, &len);
     char buf[64];
     if (!s || len == 0 || len >= sizeof buf)
-        return sp_fail(c, n, path, "expected a number");
+        return yr_fail(c, n, path, "expected a number");
     memcpy(buf, s, len);
     buf[len] = '\0';
     if (isspace((unsigned char)buf[0]))
-        return sp_fail(c, n, path, "expected a number");
+        return yr_fail(c, n, path, "expected a number");
     char *end = NULL;
     double d = strtod(buf, &end);
     if (end == buf || *end != '\0')
-        return sp_fail(c, n, path, "expected a number");
+        return yr_fail(c, n, path, "expected a number");
     if (!isfinite(d))
-        return sp_fail(c, n, path, "the number must be finite");
+        return yr_fail(c, n, path, "the number must be finite");
     *v = d;
     return RF_OK;
 }
 
-rf_status sp_integer(sp_ctx *c, struct fy_node *n, const char *path, long long min, long long max, long long *v)
+rf_status yr_integer(yr_ctx *c, struct fy_node *n, const char *path, long long min, long long max, long long *v)
 {
     double d = 0;
-    rf_status st = sp_number(c, n, path, &d);
+    rf_status st = yr_number(c, n, path, &d);
     if (st != RF_OK) {
         if (is_scalar(n) && !is_quoted(n))
-            return sp_fail(c, n, path, "expected an integer");
+            return yr_fail(c, n, path, "expected an integer");
         return st;
     }
     if (d != floor(d))
-        return sp_fail(c, n, path, "expected an integer");
+        return yr_fail(c, n, path, "expected an integer");
     if (d < (double)min || d > (double)max)
-        return sp_fail(c, n, path, "must lie in [%lld, %lld]", min, max);
+        return yr_fail(c, n, path, "must lie in [%lld, %lld]", min, max);
     *v = (long long)d;
     return RF_OK;
 }
 
-rf_status sp_bool(sp_ctx *c, struct fy_node *n, const char *path, int *v)
+rf_status yr_bool(yr_ctx *c, struct fy_node *n, const char *path, int *v)
 {
     if (!is_scalar(n) || is_quoted(n))
-        return sp_fail(c, n, path, "expected true or false, got %s", type_name(n));
+        return yr_fail(c, n, path, "expected true or false, got %s", type_name(n));
     size_t len = 0;
     const char *s = fy_node_get_scalar(n, &len);
     static const char *const yes[] = {"true", "yes", "on"}, *const no[] = {"false", "no", "off"};
@@ -257,59 +257,59 @@ rf_status sp_bool(sp_ctx *c, struct fy_node *n, const char *path, int *v)
             return RF_OK;
         }
     }
-    return sp_fail(c, n, path, "expected true or false");
+    return yr_fail(c, n, path, "expected true or false");
 }
 
-rf_status sp_string(sp_ctx *c, struct fy_node *n, const char *path, const char **s, size_t *len)
+rf_status yr_string(yr_ctx *c, struct fy_node *n, const char *path, const char **s, size_t *len)
 {
     if (!is_scalar(n))
-        return sp_fail(c, n, path, "expected a string, got %s", type_name(n));
+        return yr_fail(c, n, path, "expected a string, got %s", type_name(n));
     size_t l = 0;
     const char *p = fy_node_get_scalar(n, &l);
     if (!p)
         p = "", l = 0;
     if (memchr(p, '\0', l))
-        return sp_fail(c, n, path, "the string contains a NUL character");
+        return yr_fail(c, n, path, "the string contains a NUL character");
     *s = p;
     *len = l;
     return RF_OK;
 }
 
-rf_status sp_word(sp_ctx *c, struct fy_node *n, const char *path, char *buf, size_t size)
+rf_status yr_word(yr_ctx *c, struct fy_node *n, const char *path, char *buf, size_t size)
 {
     const char *s = NULL;
     size_t len = 0;
-    rf_status st = sp_string(c, n, path, &s, &len);
+    rf_status st = yr_string(c, n, path, &s, &len);
     if (st != RF_OK)
         return st;
     snprintf(buf, size, "%.*s", len < size ? (int)len : 0, s);
     return RF_OK;
 }
 
-rf_status sp_string_dup(sp_ctx *c, struct fy_node *n, const char *path, char **out)
+rf_status yr_string_dup(yr_ctx *c, struct fy_node *n, const char *path, char **out)
 {
     const char *s = NULL;
     size_t len = 0;
-    rf_status st = sp_string(c, n, path, &s, &len);
+    rf_status st = yr_string(c, n, path, &s, &len);
     if (st != RF_OK)
         return st;
-    *out = sp_strndup(s, len);
+    *out = yr_strndup(s, len);
     if (!*out)
         return rf_fail(c->err, RF_ENOMEM, "out of memory");
     return RF_OK;
 }
 
-rf_status sp_numbers(sp_ctx *c, struct fy_node *n, const char *path, size_t min, size_t max, double *v,
+rf_status yr_numbers(yr_ctx *c, struct fy_node *n, const char *path, size_t min, size_t max, double *v,
                      size_t *count)
 {
     size_t cnt;
-    rf_status st = sp_sequence(c, n, path, min, max, &cnt);
+    rf_status st = yr_sequence(c, n, path, min, max, &cnt);
     if (st != RF_OK)
         return st;
     for (size_t k = 0; k < cnt; k++) {
         char p[256];
-        sp_pathf(p, sizeof p, "%s[%zu]", path, k);
-        st = sp_number(c, fy_node_sequence_get_by_index(n, (int)k), p, &v[k]);
+        yr_pathf(p, sizeof p, "%s[%zu]", path, k);
+        st = yr_number(c, fy_node_sequence_get_by_index(n, (int)k), p, &v[k]);
         if (st != RF_OK)
             return st;
     }
@@ -318,7 +318,7 @@ rf_status sp_numbers(sp_ctx *c, struct fy_node *n, const char *path, size_t min,
     return RF_OK;
 }
 
-rf_status sp_next(sp_ctx *c, sp_iter *it, const char *path, const char **key, struct fy_node **keynode,
+rf_status yr_next(yr_ctx *c, yr_iter *it, const char *path, const char **key, struct fy_node **keynode,
                   struct fy_node **val)
 {
     *key = NULL;
@@ -328,11 +328,11 @@ rf_status sp_next(sp_ctx *c, sp_iter *it, const char *path, const char **key, st
     struct fy_node *k = fy_node_pair_key(p);
     struct fy_node *v = fy_node_pair_value(p);
     if (!is_scalar(k))
-        return sp_fail(c, k ? k : it->map, path, "keys must be plain names, got %s", type_name(k));
+        return yr_fail(c, k ? k : it->map, path, "keys must be plain names, got %s", type_name(k));
     size_t len = 0;
     const char *s = fy_node_get_scalar(k, &len);
     if (!s || len == 0 || len > 200 || memchr(s, '\0', len))
-        return sp_fail(c, k, path, "keys must be non-empty names of at most 200 characters");
+        return yr_fail(c, k, path, "keys must be non-empty names of at most 200 characters");
     /* Duplicate keys are allowed by the YAML parser so that we can name them here. */
     void *jt = NULL;
     for (size_t j = 0; j < it->index; j++) {
@@ -341,9 +341,9 @@ rf_status sp_next(sp_ctx *c, sp_iter *it, const char *path, const char **key, st
         const char *qs = fy_node_get_scalar(fy_node_pair_key(q), &ql);
         if (qs && ql == len && !memcmp(qs, s, len)) {
             char full[300];
-            sp_pathf(full, sizeof full, "%s%s%.*s", path, *path ? "." : "", (int)len, s);
-            return sp_fail(c, k, "", "%s: duplicate key '%.*s' (first given at line %d)", full, (int)len, s,
-                           sp_line(fy_node_pair_key(q)));
+            yr_pathf(full, sizeof full, "%s%s%.*s", path, *path ? "." : "", (int)len, s);
+            return yr_fail(c, k, "", "%s: duplicate key '%.*s' (first given at line %d)", full, (int)len, s,
+                           yr_line(fy_node_pair_key(q)));
         }
     }
     it->index++;
@@ -355,7 +355,7 @@ rf_status sp_next(sp_ctx *c, sp_iter *it, const char *path, const char **key, st
     return RF_OK;
 }
 
-rf_status sp_check_text(const char *name, const char *buf, size_t len, rf_error *err)
+rf_status yr_check_text(const char *name, const char *buf, size_t len, rf_error *err)
 {
     const unsigned char *p = (const unsigned char *)buf;
     int line = 1;
@@ -397,7 +397,7 @@ rf_status sp_check_text(const char *name, const char *buf, size_t len, rf_error 
     return RF_OK;
 }
 
-static rf_status first_document(sp_doc *d, const char *name, const char *buf, size_t len, const char *what,
+static rf_status first_document(yr_doc *d, const char *name, const char *buf, size_t len, const char *what,
                                 rf_error *err)
 {
     struct fy_parse_cfg pc;
@@ -420,12 +420,12 @@ static rf_status first_document(sp_doc *d, const char *name, const char *buf, si
 }
 
 /* One document per file: a second one would otherwise be ignored without a word. */
-static rf_status no_second_document(sp_doc *d, const char *name, const char *what, rf_error *err)
+static rf_status no_second_document(yr_doc *d, const char *name, const char *what, rf_error *err)
 {
     struct fy_document *more = fy_parse_load_document(d->parser);
     if (!more && !fy_parser_get_stream_error(d->parser))
         return RF_OK;
-    int line = more && fy_document_root(more) ? sp_line(fy_document_root(more)) : 0;
+    int line = more && fy_document_root(more) ? yr_line(fy_document_root(more)) : 0;
     fy_parse_document_destroy(d->parser, more);
     if (line)
         return rf_fail(err, RF_EPARSE, "%s:%d: a second YAML document (after '---'); a %s holds exactly one", name,
@@ -434,10 +434,10 @@ static rf_status no_second_document(sp_doc *d, const char *name, const char *wha
                    "holds exactly one document", name, what);
 }
 
-rf_status sp_doc_load(sp_doc *d, const char *name, const char *buf, size_t len, const char *what, rf_error *err)
+rf_status yr_doc_load(yr_doc *d, const char *name, const char *buf, size_t len, const char *what, rf_error *err)
 {
     memset(d, 0, sizeof *d);
-    rf_status st = sp_check_text(name, buf, len, err);
+    rf_status st = yr_check_text(name, buf, len, err);
     if (st != RF_OK)
         return st;
     struct fy_diag_cfg dc;
@@ -453,7 +453,7 @@ rf_status sp_doc_load(sp_doc *d, const char *name, const char *buf, size_t len, 
     return st;
 }
 
-void sp_doc_free(sp_doc *d)
+void yr_doc_free(yr_doc *d)
 {
     if (d->doc)
         fy_parse_document_destroy(d->parser, d->doc);

@@ -82,48 +82,48 @@ static int is_identifier(const char *s)
 /* Element k of a number list, for located element messages. */
 static struct fy_node *item(struct fy_node *seq, size_t k) { return fy_node_sequence_get_by_index(seq, (int)k); }
 
-static rf_status shape_tfn(sp_ctx *c, struct fy_node *n, const char *path, rf_fuzzy *f, char *desc, size_t dsz)
+static rf_status shape_tfn(yr_ctx *c, struct fy_node *n, const char *path, rf_fuzzy *f, char *desc, size_t dsz)
 {
     double v[3];
-    rf_status st = sp_numbers(c, n, path, 3, 3, v, NULL);
+    rf_status st = yr_numbers(c, n, path, 3, 3, v, NULL);
     if (st != RF_OK)
         return st;
     char p[256];
     for (size_t k = 1; k < 3; k++) {
         if (v[k] < 0) {
-            sp_pathf(p, sizeof p, "%s[%zu]", path, k);
-            return sp_fail(c, item(n, k), p, "the %s deviation must be >= 0 (tfn: [peak, left deviation, right deviation])",
+            yr_pathf(p, sizeof p, "%s[%zu]", path, k);
+            return yr_fail(c, item(n, k), p, "the %s deviation must be >= 0 (tfn: [peak, left deviation, right deviation])",
                            k == 1 ? "left" : "right");
         }
     }
     snprintf(desc, dsz, "tfn(%.15g, %.15g, %.15g)", v[0], v[1], v[2]);
     if (rf_fuzzy_tfn(f, v[0], v[1], v[2], c->err) != RF_OK)
-        return sp_prefix(c, n, path);
+        return yr_prefix(c, n, path);
     return RF_OK;
 }
 
-static rf_status shape_ordered(sp_ctx *c, struct fy_node *n, const char *path, size_t count, double *v)
+static rf_status shape_ordered(yr_ctx *c, struct fy_node *n, const char *path, size_t count, double *v)
 {
-    rf_status st = sp_numbers(c, n, path, count, count, v, NULL);
+    rf_status st = yr_numbers(c, n, path, count, count, v, NULL);
     if (st != RF_OK)
         return st;
     for (size_t k = 1; k < count; k++) {
         if (v[k] < v[k - 1]) {
             char p[256];
-            sp_pathf(p, sizeof p, "%s[%zu]", path, k);
-            return sp_fail(c, item(n, k), p, "must be >= the previous value %.17g (the values must not decrease)",
+            yr_pathf(p, sizeof p, "%s[%zu]", path, k);
+            return yr_fail(c, item(n, k), p, "must be >= the previous value %.17g (the values must not decrease)",
                            v[k - 1]);
         }
     }
     return RF_OK;
 }
 
-static rf_status shape_gaussian(sp_ctx *c, struct fy_node *n, const char *path, double cutoff, rf_fuzzy *f,
+static rf_status shape_gaussian(yr_ctx *c, struct fy_node *n, const char *path, double cutoff, rf_fuzzy *f,
                                 char *desc, size_t dsz)
 {
     double v[3];
     size_t cnt;
-    rf_status st = sp_numbers(c, n, path, 2, 3, v, &cnt);
+    rf_status st = yr_numbers(c, n, path, 2, 3, v, &cnt);
     if (st != RF_OK)
         return st;
     if (cnt == 2)
@@ -131,20 +131,20 @@ static rf_status shape_gaussian(sp_ctx *c, struct fy_node *n, const char *path, 
     char p[256];
     for (size_t k = 1; k < cnt; k++) {
         if (!(v[k] > 0)) {
-            sp_pathf(p, sizeof p, "%s[%zu]", path, k);
-            return sp_fail(c, item(n, k), p, "sigma must be > 0 (gaussian: [peak, sigma left, sigma right])");
+            yr_pathf(p, sizeof p, "%s[%zu]", path, k);
+            return yr_fail(c, item(n, k), p, "sigma must be > 0 (gaussian: [peak, sigma left, sigma right])");
         }
     }
     snprintf(desc, dsz, "gaussian(%.15g, %.15g, %.15g, cutoff %.15g)", v[0], v[1], v[2], cutoff);
     if (rf_fuzzy_gaussian(f, v[0], v[1], v[2], cutoff, c->err) != RF_OK)
-        return sp_prefix(c, n, path);
+        return yr_prefix(c, n, path);
     return RF_OK;
 }
 
-static rf_status shape_points(sp_ctx *c, struct fy_node *n, const char *path, rf_fuzzy *f, char *desc, size_t dsz)
+static rf_status shape_points(yr_ctx *c, struct fy_node *n, const char *path, rf_fuzzy *f, char *desc, size_t dsz)
 {
     size_t cnt;
-    rf_status st = sp_sequence(c, n, path, 2, MAX_POINTS, &cnt);
+    rf_status st = yr_sequence(c, n, path, 2, MAX_POINTS, &cnt);
     if (st != RF_OK)
         return st;
     double *x = malloc(cnt * sizeof *x), *mu = malloc(cnt * sizeof *mu);
@@ -156,43 +156,43 @@ static rf_status shape_points(sp_ctx *c, struct fy_node *n, const char *path, rf
     char p[256];
     for (size_t k = 0; k < cnt && st == RF_OK; k++) {
         double pair[2];
-        sp_pathf(p, sizeof p, "%s[%zu]", path, k);
-        st = sp_numbers(c, item(n, k), p, 2, 2, pair, NULL);
+        yr_pathf(p, sizeof p, "%s[%zu]", path, k);
+        st = yr_numbers(c, item(n, k), p, 2, 2, pair, NULL);
         if (st != RF_OK)
             break;
         x[k] = pair[0];
         mu[k] = pair[1];
         if (mu[k] < 0 || mu[k] > 1) {
-            sp_pathf(p, sizeof p, "%s[%zu][1]", path, k);
-            st = sp_fail(c, item(item(n, k), 1), p, "a membership must lie in [0, 1]");
+            yr_pathf(p, sizeof p, "%s[%zu][1]", path, k);
+            st = yr_fail(c, item(item(n, k), 1), p, "a membership must lie in [0, 1]");
         } else if (k > 0 && x[k] < x[k - 1]) {
-            sp_pathf(p, sizeof p, "%s[%zu][0]", path, k);
-            st = sp_fail(c, item(item(n, k), 0), p, "the abscissae must not decrease (previous x = %.17g)", x[k - 1]);
+            yr_pathf(p, sizeof p, "%s[%zu][0]", path, k);
+            st = yr_fail(c, item(item(n, k), 0), p, "the abscissae must not decrease (previous x = %.17g)", x[k - 1]);
         }
     }
     if (st == RF_OK) {
         snprintf(desc, dsz, "points(%zu points, support [%.15g, %.15g])", cnt, x[0], x[cnt - 1]);
         if (rf_fuzzy_points(f, cnt, x, mu, c->err) != RF_OK)
-            st = sp_prefix(c, n, path);
+            st = yr_prefix(c, n, path);
     }
     free(x);
     free(mu);
     return st;
 }
 
-static rf_status shape_cuts(sp_ctx *c, struct fy_node *n, const char *path, rf_fuzzy *f, char *desc, size_t dsz)
+static rf_status shape_cuts(yr_ctx *c, struct fy_node *n, const char *path, rf_fuzzy *f, char *desc, size_t dsz)
 {
-    rf_status st = sp_mapping(c, n, path);
+    rf_status st = yr_mapping(c, n, path);
     if (st != RF_OK)
         return st;
     struct fy_node *node[3] = {NULL, NULL, NULL};
     static const char *const names[3] = {"mu", "lower", "upper"};
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *kn, *v;
     char p[256];
     for (;;) {
-        if ((st = sp_next(c, &it, path, &key, &kn, &v)) != RF_OK)
+        if ((st = yr_next(c, &it, path, &key, &kn, &v)) != RF_OK)
             return st;
         if (!key)
             break;
@@ -200,19 +200,19 @@ static rf_status shape_cuts(sp_ctx *c, struct fy_node *n, const char *path, rf_f
         for (int k = 0; k < 3; k++)
             if (!strcmp(key, names[k]))
                 found = k;
-        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
         if (found < 0)
-            return sp_fail(c, kn, p, "unknown key; cuts take mu, lower and upper (lists of equal length)");
+            return yr_fail(c, kn, p, "unknown key; cuts take mu, lower and upper (lists of equal length)");
         node[found] = v;
     }
     for (int k = 0; k < 3; k++)
         if (!node[k])
-            return sp_fail(c, n, path, "missing '%s' (cuts take mu, lower and upper lists)", names[k]);
+            return yr_fail(c, n, path, "missing '%s' (cuts take mu, lower and upper lists)", names[k]);
     size_t cnt[3];
     double *arr[3] = {NULL, NULL, NULL};
     for (int k = 0; k < 3 && st == RF_OK; k++) {
-        sp_pathf(p, sizeof p, "%s.%s", path, names[k]);
-        st = sp_sequence(c, node[k], p, 2, MAX_POINTS, &cnt[k]);
+        yr_pathf(p, sizeof p, "%s.%s", path, names[k]);
+        st = yr_sequence(c, node[k], p, 2, MAX_POINTS, &cnt[k]);
         if (st != RF_OK)
             break;
         arr[k] = malloc(cnt[k] * sizeof(double));
@@ -220,27 +220,27 @@ static rf_status shape_cuts(sp_ctx *c, struct fy_node *n, const char *path, rf_f
             st = rf_fail(c->err, RF_ENOMEM, "out of memory");
             break;
         }
-        st = sp_numbers(c, node[k], p, cnt[k], cnt[k], arr[k], NULL);
+        st = yr_numbers(c, node[k], p, cnt[k], cnt[k], arr[k], NULL);
         if (st == RF_OK && k > 0 && cnt[k] != cnt[0])
-            st = sp_fail(c, node[k], p, "has %zu values but mu has %zu", cnt[k], cnt[0]);
+            st = yr_fail(c, node[k], p, "has %zu values but mu has %zu", cnt[k], cnt[0]);
     }
     double *mu = arr[0], *lo = arr[1], *hi = arr[2];
     for (size_t j = 0; st == RF_OK && j < cnt[0]; j++) {
         if (mu[j] < 0 || mu[j] > 1 || (j > 0 && mu[j] <= mu[j - 1])) {
-            sp_pathf(p, sizeof p, "%s.mu[%zu]", path, j);
-            st = sp_fail(c, item(node[0], j), p, "levels must increase strictly from 0 to 1");
+            yr_pathf(p, sizeof p, "%s.mu[%zu]", path, j);
+            st = yr_fail(c, item(node[0], j), p, "levels must increase strictly from 0 to 1");
         } else if (lo[j] > hi[j]) {
-            sp_pathf(p, sizeof p, "%s.lower[%zu]", path, j);
-            st = sp_fail(c, item(node[1], j), p, "the lower bound exceeds the upper bound %.17g at mu = %.17g", hi[j],
+            yr_pathf(p, sizeof p, "%s.lower[%zu]", path, j);
+            st = yr_fail(c, item(node[1], j), p, "the lower bound exceeds the upper bound %.17g at mu = %.17g", hi[j],
                          mu[j]);
         } else if (j > 0 && lo[j] < lo[j - 1]) {
-            sp_pathf(p, sizeof p, "%s.lower[%zu]", path, j);
-            st = sp_fail(c, item(node[1], j), p,
+            yr_pathf(p, sizeof p, "%s.lower[%zu]", path, j);
+            st = yr_fail(c, item(node[1], j), p,
                          "the cuts do not nest: the lower bound at mu = %.17g is below %.17g at mu = %.17g", mu[j],
                          lo[j - 1], mu[j - 1]);
         } else if (j > 0 && hi[j] > hi[j - 1]) {
-            sp_pathf(p, sizeof p, "%s.upper[%zu]", path, j);
-            st = sp_fail(c, item(node[2], j), p,
+            yr_pathf(p, sizeof p, "%s.upper[%zu]", path, j);
+            st = yr_fail(c, item(node[2], j), p,
                          "the cuts do not nest: the upper bound at mu = %.17g is above %.17g at mu = %.17g", mu[j],
                          hi[j - 1], mu[j - 1]);
         }
@@ -248,50 +248,50 @@ static rf_status shape_cuts(sp_ctx *c, struct fy_node *n, const char *path, rf_f
     if (st == RF_OK) {
         snprintf(desc, dsz, "cuts(%zu levels, support [%.15g, %.15g])", cnt[0], lo[0], hi[0]);
         if (rf_fuzzy_cuts(f, cnt[0], mu, lo, hi, c->err) != RF_OK)
-            st = sp_prefix(c, n, path);
+            st = yr_prefix(c, n, path);
     }
     for (int k = 0; k < 3; k++)
         free(arr[k]);
     return st;
 }
 
-static rf_status parse_param(sp_ctx *c, rf_study *s, size_t i, const char *name, struct fy_node *kn,
+static rf_status parse_param(yr_ctx *c, rf_study *s, size_t i, const char *name, struct fy_node *kn,
                              struct fy_node *v)
 {
     char path[300], p[400], desc[256] = "";
-    sp_pathf(path, sizeof path, "parameters.%s", name);
-    s->param_line[i] = sp_line(kn);
+    yr_pathf(path, sizeof path, "parameters.%s", name);
+    s->param_line[i] = yr_line(kn);
     s->param_class[i] = RF_MONO_AUTO;
     rf_fuzzy *f = &s->inputs[i];
     rf_status st;
 
     if (v && fy_node_get_type(v) == FYNT_SCALAR) { /* x: 1.5 is short for {crisp: 1.5} */
         double d;
-        if ((st = sp_number(c, v, path, &d)) != RF_OK)
+        if ((st = yr_number(c, v, path, &d)) != RF_OK)
             return st;
         snprintf(desc, sizeof desc, "crisp(%.15g)", d);
         if (rf_fuzzy_crisp(f, d, c->err) != RF_OK)
-            return sp_prefix(c, v, path);
+            return yr_prefix(c, v, path);
     } else {
-        if ((st = sp_mapping(c, v, path)) != RF_OK)
+        if ((st = yr_mapping(c, v, path)) != RF_OK)
             return st;
         struct fy_node *shape = NULL, *cutoff_node = NULL;
         const char *shape_name = NULL;
-        sp_iter it = {v, NULL, 0, {0}};
+        yr_iter it = {v, NULL, 0, {0}};
         const char *key;
         struct fy_node *k, *val;
         for (;;) {
-            if ((st = sp_next(c, &it, path, &key, &k, &val)) != RF_OK)
+            if ((st = yr_next(c, &it, path, &key, &k, &val)) != RF_OK)
                 return st;
             if (!key)
                 break;
-            sp_pathf(p, sizeof p, "%s.%s", path, key);
+            yr_pathf(p, sizeof p, "%s.%s", path, key);
             int is_shape = 0;
             for (size_t q = 0; q < N_SHAPES; q++)
                 if (!strcmp(key, shape_keys[q])) {
                     is_shape = 1;
                     if (shape)
-                        return sp_fail(c, k, p, "a parameter has one shape, and '%s' is already given", shape_name);
+                        return yr_fail(c, k, p, "a parameter has one shape, and '%s' is already given", shape_name);
                     shape = val;
                     shape_name = shape_keys[q];
                 }
@@ -302,12 +302,12 @@ static rf_status parse_param(sp_ctx *c, rf_study *s, size_t i, const char *name,
             } else if (!strcmp(key, "unit")) {
                 free(s->param_units[i]);
                 s->param_units[i] = NULL;
-                if ((st = sp_string_dup(c, val, p, &s->param_units[i])) != RF_OK)
+                if ((st = yr_string_dup(c, val, p, &s->param_units[i])) != RF_OK)
                     return st;
             } else if (!strcmp(key, "class")) {
                 const char *cls;
                 size_t len;
-                if ((st = sp_string(c, val, p, &cls, &len)) != RF_OK)
+                if ((st = yr_string(c, val, p, &cls, &len)) != RF_OK)
                     return st;
                 if (len == 9 && !strncmp(cls, "monotonic", len))
                     s->param_class[i] = RF_MONO_MONOTONIC;
@@ -316,19 +316,19 @@ static rf_status parse_param(sp_ctx *c, rf_study *s, size_t i, const char *name,
                 else if (len == 4 && !strncmp(cls, "auto", len))
                     s->param_class[i] = RF_MONO_AUTO;
                 else
-                    return sp_fail(c, val, p, "expected monotonic, nonmonotonic or auto");
+                    return yr_fail(c, val, p, "expected monotonic, nonmonotonic or auto");
             } else {
-                return sp_fail(c, k, p,
+                return yr_fail(c, k, p,
                                "unknown key; a parameter takes one shape (tfn, trapezoid, interval, gaussian, "
                                "crisp, points, cuts) and optionally unit, class, cutoff (gaussian)");
             }
         }
         if (!shape)
-            return sp_fail(c, v, path,
+            return yr_fail(c, v, path,
                            "no shape given; use one of tfn, trapezoid, interval, gaussian, crisp, points, cuts");
         if (cutoff_node && strcmp(shape_name, "gaussian"))
-            return sp_fail(c, cutoff_node, "", "%s.cutoff: only a gaussian parameter takes a cutoff", path);
-        sp_pathf(p, sizeof p, "%s.%s", path, shape_name);
+            return yr_fail(c, cutoff_node, "", "%s.cutoff: only a gaussian parameter takes a cutoff", path);
+        yr_pathf(p, sizeof p, "%s.%s", path, shape_name);
         double w[4];
         if (!strcmp(shape_name, "tfn")) {
             st = shape_tfn(c, shape, p, f, desc, sizeof desc);
@@ -337,30 +337,30 @@ static rf_status parse_param(sp_ctx *c, rf_study *s, size_t i, const char *name,
                 return st;
             snprintf(desc, sizeof desc, "trapezoid(%.15g, %.15g, %.15g, %.15g)", w[0], w[1], w[2], w[3]);
             if (rf_fuzzy_trapezoid(f, w[0], w[1], w[2], w[3], c->err) != RF_OK)
-                return sp_prefix(c, shape, p);
+                return yr_prefix(c, shape, p);
         } else if (!strcmp(shape_name, "interval")) {
             if ((st = shape_ordered(c, shape, p, 2, w)) != RF_OK)
                 return st;
             snprintf(desc, sizeof desc, "interval(%.15g, %.15g)", w[0], w[1]);
             if (rf_fuzzy_interval(f, w[0], w[1], c->err) != RF_OK)
-                return sp_prefix(c, shape, p);
+                return yr_prefix(c, shape, p);
         } else if (!strcmp(shape_name, "gaussian")) {
             double cutoff = 3;
             if (cutoff_node) {
                 char cp[320];
-                sp_pathf(cp, sizeof cp, "%s.cutoff", path);
-                if ((st = sp_number(c, cutoff_node, cp, &cutoff)) != RF_OK)
+                yr_pathf(cp, sizeof cp, "%s.cutoff", path);
+                if ((st = yr_number(c, cutoff_node, cp, &cutoff)) != RF_OK)
                     return st;
                 if (!(cutoff > 0))
-                    return sp_fail(c, cutoff_node, cp, "the cutoff must be > 0 (usually 3)");
+                    return yr_fail(c, cutoff_node, cp, "the cutoff must be > 0 (usually 3)");
             }
             st = shape_gaussian(c, shape, p, cutoff, f, desc, sizeof desc);
         } else if (!strcmp(shape_name, "crisp")) {
-            if ((st = sp_number(c, shape, p, &w[0])) != RF_OK)
+            if ((st = yr_number(c, shape, p, &w[0])) != RF_OK)
                 return st;
             snprintf(desc, sizeof desc, "crisp(%.15g)", w[0]);
             if (rf_fuzzy_crisp(f, w[0], c->err) != RF_OK)
-                return sp_prefix(c, shape, p);
+                return yr_prefix(c, shape, p);
         } else if (!strcmp(shape_name, "points")) {
             st = shape_points(c, shape, p, f, desc, sizeof desc);
         } else {
@@ -369,7 +369,7 @@ static rf_status parse_param(sp_ctx *c, rf_study *s, size_t i, const char *name,
         if (st != RF_OK)
             return st;
     }
-    s->param_shapes[i] = sp_strdup(desc);
+    s->param_shapes[i] = yr_strdup(desc);
     if (!s->param_shapes[i])
         return rf_fail(c->err, RF_ENOMEM, "out of memory");
     /* Decompose once now so that a shape that does not nest at these levels fails before any evaluation. */
@@ -383,20 +383,20 @@ static rf_status parse_param(sp_ctx *c, rf_study *s, size_t i, const char *name,
     free(lo);
     free(hi);
     if (st != RF_OK)
-        return sp_prefix(c, v, path);
+        return yr_prefix(c, v, path);
     return RF_OK;
 }
 
-static rf_status parse_parameters(sp_ctx *c, rf_study *s, struct fy_node *n)
+static rf_status parse_parameters(yr_ctx *c, rf_study *s, struct fy_node *n)
 {
-    rf_status st = sp_mapping(c, n, "parameters");
+    rf_status st = yr_mapping(c, n, "parameters");
     if (st != RF_OK)
         return st;
     int cnt = fy_node_mapping_item_count(n);
     if (cnt < 1)
-        return sp_fail(c, n, "parameters", "at least one parameter is needed");
+        return yr_fail(c, n, "parameters", "at least one parameter is needed");
     if (cnt > MAX_PARAMS)
-        return sp_fail(c, n, "parameters", "at most %d parameters are supported, got %d", MAX_PARAMS, cnt);
+        return yr_fail(c, n, "parameters", "at most %d parameters are supported, got %d", MAX_PARAMS, cnt);
     size_t np = (size_t)cnt;
     s->param_names = calloc(np, sizeof(char *));
     s->param_units = calloc(np, sizeof(char *));
@@ -406,25 +406,25 @@ static rf_status parse_parameters(sp_ctx *c, rf_study *s, struct fy_node *n)
     s->param_line = calloc(np, sizeof(int));
     if (!s->param_names || !s->param_units || !s->param_shapes || !s->inputs || !s->param_class || !s->param_line)
         return rf_fail(c->err, RF_ENOMEM, "out of memory");
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     for (size_t i = 0;; i++) {
-        if ((st = sp_next(c, &it, "parameters", &key, &k, &v)) != RF_OK)
+        if ((st = yr_next(c, &it, "parameters", &key, &k, &v)) != RF_OK)
             return st;
         if (!key)
             break;
         if (i >= np)
             return rf_fail(c->err, RF_EINTERNAL, "parameter count changed while parsing");
         char path[300];
-        sp_pathf(path, sizeof path, "parameters.%s", key);
+        yr_pathf(path, sizeof path, "parameters.%s", key);
         if (!is_identifier(key))
-            return sp_fail(c, k, "", "%s: a parameter name must be an identifier (letters, digits, _; not "
+            return yr_fail(c, k, "", "%s: a parameter name must be an identifier (letters, digits, _; not "
                                      "starting with a digit; at most 64 characters)",
                            path);
         s->n_params = i + 1; /* from here rf_study_free releases entry i (also half-filled) */
-        s->param_names[i] = sp_strdup(key);
-        s->param_units[i] = sp_strdup("");
+        s->param_names[i] = yr_strdup(key);
+        s->param_units[i] = yr_strdup("");
         if (!s->param_names[i] || !s->param_units[i])
             return rf_fail(c->err, RF_ENOMEM, "out of memory");
         if ((st = parse_param(c, s, i, s->param_names[i], k, v)) != RF_OK)
@@ -433,81 +433,81 @@ static rf_status parse_parameters(sp_ctx *c, rf_study *s, struct fy_node *n)
     return RF_OK;
 }
 
-static rf_status parse_options(sp_ctx *c, rf_study *s, struct fy_node *n)
+static rf_status parse_options(yr_ctx *c, rf_study *s, struct fy_node *n)
 {
-    rf_status st = sp_mapping(c, n, "options");
+    rf_status st = yr_mapping(c, n, "options");
     if (st != RF_OK)
         return st;
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     char p[300];
     for (;;) {
-        if ((st = sp_next(c, &it, "options", &key, &k, &v)) != RF_OK)
+        if ((st = yr_next(c, &it, "options", &key, &k, &v)) != RF_OK)
             return st;
         if (!key)
             return RF_OK;
-        sp_pathf(p, sizeof p, "options.%s", key);
+        yr_pathf(p, sizeof p, "options.%s", key);
         long long iv;
         if (!strcmp(key, "max_evaluations")) {
-            if ((st = sp_integer(c, v, p, 0, 1000000000000LL, &iv)) != RF_OK)
+            if ((st = yr_integer(c, v, p, 0, 1000000000000LL, &iv)) != RF_OK)
                 return st;
             s->max_evaluations = (size_t)iv;
         } else if (!strcmp(key, "left_right")) {
-            if ((st = sp_bool(c, v, p, &s->left_right)) != RF_OK)
+            if ((st = yr_bool(c, v, p, &s->left_right)) != RF_OK)
                 return st;
         } else if (!strcmp(key, "jobs")) {
-            if ((st = sp_integer(c, v, p, 0, 1024, &iv)) != RF_OK)
+            if ((st = yr_integer(c, v, p, 0, 1024, &iv)) != RF_OK)
                 return st;
             s->jobs = (int)iv;
         } else {
-            return sp_fail(c, k, p, "unknown option; expected max_evaluations, left_right or jobs");
+            return yr_fail(c, k, p, "unknown option; expected max_evaluations, left_right or jobs");
         }
     }
 }
 
-static rf_status parse_document(sp_ctx *c, rf_study *s, struct fy_document *doc)
+static rf_status parse_document(yr_ctx *c, rf_study *s, struct fy_document *doc)
 {
     struct fy_node *root = fy_document_root(doc);
     if (!root)
         return rf_fail(c->err, RF_EINVAL, "%s:1: the study file is empty", c->file);
-    rf_status st = sp_mapping(c, root, "(top level)");
+    rf_status st = yr_mapping(c, root, "(top level)");
     if (st != RF_OK)
         return st;
     struct fy_node *params = NULL, *model = NULL, *options = NULL, *params_key = NULL;
-    sp_iter it = {root, NULL, 0, {0}};
+    yr_iter it = {root, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     /* Scalars first (levels is needed to check the parameters), blocks after. */
     for (;;) {
-        if ((st = sp_next(c, &it, "", &key, &k, &v)) != RF_OK)
+        if ((st = yr_next(c, &it, "", &key, &k, &v)) != RF_OK)
             return st;
         if (!key)
             break;
         if (!strcmp(key, "name")) {
             free(s->name);
             s->name = NULL;
-            if ((st = sp_string_dup(c, v, "name", &s->name)) != RF_OK)
+            if ((st = yr_string_dup(c, v, "name", &s->name)) != RF_OK)
                 return st;
         } else if (!strcmp(key, "description")) {
             const char *d;
             size_t len;
-            if ((st = sp_string(c, v, "description", &d, &len)) != RF_OK)
+            if ((st = yr_string(c, v, "description", &d, &len)) != RF_OK)
                 return st;
         } else if (!strcmp(key, "scheme")) {
             char buf[32];
-            if ((st = sp_word(c, v, "scheme", buf, sizeof buf)) != RF_OK)
+            if ((st = yr_word(c, v, "scheme", buf, sizeof buf)) != RF_OK)
                 return st;
             if (rf_tm_scheme_parse(buf, &s->scheme) != RF_OK)
-                return sp_fail(c, v, "scheme", "unknown scheme; expected general, reduced or extended");
+                return yr_fail(c, v, "scheme", "unknown scheme; expected general, reduced or extended");
         } else if (!strcmp(key, "levels")) {
             long long m;
-            if ((st = sp_integer(c, v, "levels", 1, RF_STUDY_MAX_LEVELS, &m)) != RF_OK) {
+            if ((st = yr_integer(c, v, "levels", 1, RF_STUDY_MAX_LEVELS, &m)) != RF_OK) {
                 double d;
                 rf_error tmp;
-                sp_ctx c2 = {c->file, c->dir, &tmp, NULL};
-                if (sp_number(&c2, v, "levels", &d) == RF_OK && d < 1)
-                    return sp_fail(c, v, "levels", "at least one membership interval is needed (levels >= 1)");
+                yr_ctx c2 = {c->file, c->dir, &tmp, NULL};
+                if (yr_number(&c2, v, "levels", &d) == RF_OK && d < 1)
+                    return yr_fail(c, v, "levels", "at least one membership interval is needed (levels >= 1)");
                 return st;
             }
             s->levels = (size_t)m;
@@ -519,16 +519,16 @@ static rf_status parse_document(sp_ctx *c, rf_study *s, struct fy_document *doc)
         } else if (!strcmp(key, "options")) {
             options = v;
         } else {
-            return sp_fail(c, k, key, "unknown key; the top level takes name, description, scheme, levels, "
+            return yr_fail(c, k, key, "unknown key; the top level takes name, description, scheme, levels, "
                                       "parameters, model, options");
         }
     }
     if (!params)
         return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters: missing (at least one fuzzy parameter is needed)",
-                       c->file, sp_line(root));
+                       c->file, yr_line(root));
     if (!model)
         return rf_fail(c->err, RF_EINVAL, "%s:%d: model: missing (formula, program or impact)", c->file,
-                       sp_line(root));
+                       yr_line(root));
     (void)params_key;
     if (options && (st = parse_options(c, s, options)) != RF_OK)
         return st;
@@ -541,10 +541,10 @@ static rf_status parse_document(sp_ctx *c, rf_study *s, struct fy_document *doc)
 static rf_status split_path(const char *path, char **dir, char **stem, rf_error *err)
 {
     const char *slash = strrchr(path, '/');
-    *dir = slash ? sp_strndup(path, slash == path ? 1 : (size_t)(slash - path)) : sp_strdup(".");
+    *dir = slash ? yr_strndup(path, slash == path ? 1 : (size_t)(slash - path)) : yr_strdup(".");
     const char *base = slash ? slash + 1 : path;
     const char *dot = strrchr(base, '.');
-    *stem = sp_strndup(base, dot && dot != base ? (size_t)(dot - base) : strlen(base));
+    *stem = yr_strndup(base, dot && dot != base ? (size_t)(dot - base) : strlen(base));
     if (!*dir || !*stem)
         return rf_fail(err, RF_ENOMEM, "out of memory");
     return RF_OK;
@@ -565,19 +565,19 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
     s->left_right = 1;
     s->jobs = 0;
     char *stem = NULL;
-    s->path = sp_strdup(name);
+    s->path = yr_strdup(name);
     if (!s->path)
         return rf_fail(err, RF_ENOMEM, "out of memory");
     rf_status st = split_path(name, &s->dir, &stem, err);
     s->name = stem;
-    sp_doc d = {0};
+    yr_doc d = {0};
     if (st == RF_OK)
-        st = sp_doc_load(&d, name, buf, len, "study file", err);
+        st = yr_doc_load(&d, name, buf, len, "study file", err);
     if (st == RF_OK) {
-        sp_ctx c = {name, s->dir, err, NULL};
+        yr_ctx c = {name, s->dir, err, NULL};
         st = parse_document(&c, s, d.doc);
     }
-    sp_doc_free(&d);
+    yr_doc_free(&d);
     if (st != RF_OK)
         rf_study_free(s);
     return st;

@@ -27,7 +27,7 @@ static rf_status set_description(rf_study *s, rf_error *err, const char *fmt, co
 
 /* ---- formula ---- */
 
-static rf_status parse_formula(sp_ctx *c, struct fy_node *n, rf_study *s)
+static rf_status parse_formula(yr_ctx *c, struct fy_node *n, rf_study *s)
 {
     const char *path = "model.formula";
     rf_status st;
@@ -43,16 +43,16 @@ static rf_status parse_formula(sp_ctx *c, struct fy_node *n, rf_study *s)
             st = rf_fail(c->err, RF_ENOMEM, "out of memory");
             goto done;
         }
-        names[0] = sp_strdup("y");
+        names[0] = yr_strdup("y");
         nodes[0] = n;
-        if ((st = sp_string_dup(c, n, path, &exprs[0])) != RF_OK)
+        if ((st = yr_string_dup(c, n, path, &exprs[0])) != RF_OK)
             goto done;
     } else {
-        if ((st = sp_mapping(c, n, path)) != RF_OK)
+        if ((st = yr_mapping(c, n, path)) != RF_OK)
             return st;
         int cnt = fy_node_mapping_item_count(n);
         if (cnt < 1 || cnt > MAX_OUTPUTS)
-            return sp_fail(c, n, path, "expected 1 to %d outputs (name: \"expression\")", MAX_OUTPUTS);
+            return yr_fail(c, n, path, "expected 1 to %d outputs (name: \"expression\")", MAX_OUTPUTS);
         names = calloc((size_t)cnt, sizeof *names);
         exprs = calloc((size_t)cnt, sizeof *exprs);
         nodes = calloc((size_t)cnt, sizeof *nodes);
@@ -60,27 +60,27 @@ static rf_status parse_formula(sp_ctx *c, struct fy_node *n, rf_study *s)
             st = rf_fail(c->err, RF_ENOMEM, "out of memory");
             goto done;
         }
-        sp_iter it = {n, NULL, 0, {0}};
+        yr_iter it = {n, NULL, 0, {0}};
         const char *key;
         struct fy_node *k, *v;
         for (;;) {
-            if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
+            if ((st = yr_next(c, &it, path, &key, &k, &v)) != RF_OK)
                 goto done;
             if (!key)
                 break;
             char p[300];
-            sp_pathf(p, sizeof p, "%s.%s", path, key);
-            names[no] = sp_strdup(key);
+            yr_pathf(p, sizeof p, "%s.%s", path, key);
+            names[no] = yr_strdup(key);
             nodes[no] = v;
             no++;
             if (!names[no - 1]) {
                 st = rf_fail(c->err, RF_ENOMEM, "out of memory");
                 goto done;
             }
-            if ((st = sp_string_dup(c, v, p, &exprs[no - 1])) != RF_OK)
+            if ((st = yr_string_dup(c, v, p, &exprs[no - 1])) != RF_OK)
                 goto done;
             if (exprs[no - 1][0] == '\0') {
-                st = sp_fail(c, v, p, "the expression is empty");
+                st = yr_fail(c, v, p, "the expression is empty");
                 goto done;
             }
         }
@@ -104,12 +104,12 @@ static rf_status parse_formula(sp_ctx *c, struct fy_node *n, rf_study *s)
             rf_model_free(&m);
         }
         char p[300];
-        sp_pathf(p, sizeof p, "%s.%s", path, bad < no ? names[bad] : "");
+        yr_pathf(p, sizeof p, "%s.%s", path, bad < no ? names[bad] : "");
         if (bad == no) {
             *c->err = first;
-            st = sp_prefix(c, n, path);
+            st = yr_prefix(c, n, path);
         } else {
-            st = sp_prefix(c, nodes[bad], p);
+            st = yr_prefix(c, nodes[bad], p);
         }
         goto done;
     }
@@ -158,7 +158,7 @@ static void free_external_spec(rf_external_spec *e)
 static char *resolve(const char *dir, const char *p)
 {
     if (p[0] == '/' || !strcmp(dir, "."))
-        return sp_strdup(p);
+        return yr_strdup(p);
     size_t n = strlen(dir) + strlen(p) + 2;
     char *r = malloc(n);
     if (r)
@@ -228,91 +228,91 @@ static const char *pattern_problem(const char *re)
     return NULL;
 }
 
-static rf_status parse_program_outputs(sp_ctx *c, struct fy_node *n, rf_external_spec *e)
+static rf_status parse_program_outputs(yr_ctx *c, struct fy_node *n, rf_external_spec *e)
 {
     const char *path = "model.program.outputs";
-    rf_status st = sp_mapping(c, n, path);
+    rf_status st = yr_mapping(c, n, path);
     if (st != RF_OK)
         return st;
     int cnt = fy_node_mapping_item_count(n);
     if (cnt < 1 || cnt > MAX_OUTPUTS)
-        return sp_fail(c, n, path, "expected 1 to %d outputs", MAX_OUTPUTS);
+        return yr_fail(c, n, path, "expected 1 to %d outputs", MAX_OUTPUTS);
     e->outputs = calloc((size_t)cnt, sizeof *e->outputs);
     if (!e->outputs)
         return rf_fail(c->err, RF_ENOMEM, "out of memory");
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     for (;;) {
-        if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
+        if ((st = yr_next(c, &it, path, &key, &k, &v)) != RF_OK)
             return st;
         if (!key)
             return RF_OK;
         rf_external_output *o = &e->outputs[e->n_outputs++];
-        o->name = sp_strdup(key);
+        o->name = yr_strdup(key);
         if (!o->name)
             return rf_fail(c->err, RF_ENOMEM, "out of memory");
         char p[300], q[400];
-        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
         if (v && fy_node_get_type(v) == FYNT_SCALAR) {
             size_t len;
             const char *str;
-            if ((st = sp_string(c, v, p, &str, &len)) != RF_OK)
+            if ((st = yr_string(c, v, p, &str, &len)) != RF_OK)
                 return st;
             if (len == 0 || (len == 4 && !strncmp(str, "null", 4)) || (len == 1 && str[0] == '~'))
                 continue; /* name: {} / name: ~ -> "NAME = value" on stdout */
-            return sp_fail(c, v, p, "expected a mapping with file, pattern and unit (all optional)");
+            return yr_fail(c, v, p, "expected a mapping with file, pattern and unit (all optional)");
         }
-        if ((st = sp_mapping(c, v, p)) != RF_OK)
+        if ((st = yr_mapping(c, v, p)) != RF_OK)
             return st;
-        sp_iter jt = {v, NULL, 0, {0}};
+        yr_iter jt = {v, NULL, 0, {0}};
         const char *ok;
         struct fy_node *okn, *ov;
         for (;;) {
-            if ((st = sp_next(c, &jt, p, &ok, &okn, &ov)) != RF_OK)
+            if ((st = yr_next(c, &jt, p, &ok, &okn, &ov)) != RF_OK)
                 return st;
             if (!ok)
                 break;
-            sp_pathf(q, sizeof q, "%s.%s", p, ok);
+            yr_pathf(q, sizeof q, "%s.%s", p, ok);
             char **dst = !strcmp(ok, "file") ? &o->file : !strcmp(ok, "pattern") ? &o->pattern
                        : !strcmp(ok, "unit")  ? &o->unit
                                               : NULL;
             if (!dst)
-                return sp_fail(c, okn, q, "unknown key; an output takes file, pattern and unit");
+                return yr_fail(c, okn, q, "unknown key; an output takes file, pattern and unit");
             free(*dst);
             *dst = NULL;
-            if ((st = sp_string_dup(c, ov, q, dst)) != RF_OK)
+            if ((st = yr_string_dup(c, ov, q, dst)) != RF_OK)
                 return st;
             if (dst == &o->file && ((*dst)[0] == '\0' || (*dst)[0] == '/' || strstr(*dst, "..")))
-                return sp_fail(c, ov, q, "the file must be a relative path inside the working directory");
+                return yr_fail(c, ov, q, "the file must be a relative path inside the working directory");
             const char *why = dst == &o->pattern ? pattern_problem(*dst) : NULL;
             if (why)
-                return sp_fail(c, ov, q, "the pattern has %s; simplify it", why);
+                return yr_fail(c, ov, q, "the pattern has %s; simplify it", why);
         }
     }
 }
 
-static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
+static rf_status parse_program(yr_ctx *c, struct fy_node *n, rf_study *s)
 {
     const char *path = "model.program";
-    rf_status st = sp_mapping(c, n, path);
+    rf_status st = yr_mapping(c, n, path);
     if (st != RF_OK)
         return st;
     rf_external_spec e;
     memset(&e, 0, sizeof e);
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v, *outputs = NULL, *argv_node = NULL, *templates = NULL;
     char p[300], q[400];
     for (;;) {
-        if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
+        if ((st = yr_next(c, &it, path, &key, &k, &v)) != RF_OK)
             goto done;
         if (!key)
             break;
-        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
         if (!strcmp(key, "argv")) {
             size_t cnt;
-            if ((st = sp_sequence(c, v, p, 1, 1000, &cnt)) != RF_OK)
+            if ((st = yr_sequence(c, v, p, 1, 1000, &cnt)) != RF_OK)
                 goto done;
             argv_node = v;
             e.argv = calloc(cnt, sizeof(char *));
@@ -321,17 +321,17 @@ static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
                 goto done;
             }
             for (size_t a = 0; a < cnt; a++) {
-                sp_pathf(q, sizeof q, "%s[%zu]", p, a);
-                if ((st = sp_string_dup(c, fy_node_sequence_get_by_index(v, (int)a), q, &e.argv[a])) != RF_OK)
+                yr_pathf(q, sizeof q, "%s[%zu]", p, a);
+                if ((st = yr_string_dup(c, fy_node_sequence_get_by_index(v, (int)a), q, &e.argv[a])) != RF_OK)
                     goto done;
                 e.argc = a + 1;
             }
             if (e.argv[0][0] == '\0') {
-                st = sp_fail(c, fy_node_sequence_get_by_index(v, 0), p, "the program name is empty");
+                st = yr_fail(c, fy_node_sequence_get_by_index(v, 0), p, "the program name is empty");
                 goto done;
             }
         } else if (!strcmp(key, "templates")) {
-            if ((st = sp_mapping(c, v, p)) != RF_OK)
+            if ((st = yr_mapping(c, v, p)) != RF_OK)
                 goto done;
             templates = v;
             int cnt = fy_node_mapping_item_count(v);
@@ -341,34 +341,34 @@ static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
                 st = rf_fail(c->err, RF_ENOMEM, "out of memory");
                 goto done;
             }
-            sp_iter jt = {v, NULL, 0, {0}};
+            yr_iter jt = {v, NULL, 0, {0}};
             const char *dst;
             struct fy_node *dn, *sn;
             for (;;) {
-                if ((st = sp_next(c, &jt, p, &dst, &dn, &sn)) != RF_OK)
+                if ((st = yr_next(c, &jt, p, &dst, &dn, &sn)) != RF_OK)
                     goto done;
                 if (!dst)
                     break;
-                sp_pathf(q, sizeof q, "%s.%s", p, dst);
+                yr_pathf(q, sizeof q, "%s.%s", p, dst);
                 if (strchr(dst, '/') || !strcmp(dst, ".") || !strcmp(dst, "..")) {
-                    st = sp_fail(c, dn, q, "the destination must be a plain file name in the working directory");
+                    st = yr_fail(c, dn, q, "the destination must be a plain file name in the working directory");
                     goto done;
                 }
                 char *src = NULL;
-                if ((st = sp_string_dup(c, sn, q, &src)) != RF_OK)
+                if ((st = yr_string_dup(c, sn, q, &src)) != RF_OK)
                     goto done;
                 size_t t = e.n_templates++;
-                e.template_dst[t] = sp_strdup(dst);
+                e.template_dst[t] = yr_strdup(dst);
                 e.template_src[t] = src[0] ? resolve(c->dir, src) : NULL;
                 free(src);
                 if (!e.template_dst[t] || !e.template_src[t]) {
                     st = e.template_dst[t] && !e.template_src[t] && sn
-                             ? sp_fail(c, sn, q, "the template path is empty")
+                             ? yr_fail(c, sn, q, "the template path is empty")
                              : rf_fail(c->err, RF_ENOMEM, "out of memory");
                     goto done;
                 }
                 if (access(e.template_src[t], R_OK) != 0) {
-                    st = sp_fail(c, sn, q, "cannot read the template '%s' (paths are relative to the study file)",
+                    st = yr_fail(c, sn, q, "cannot read the template '%s' (paths are relative to the study file)",
                                  e.template_src[t]);
                     goto done;
                 }
@@ -378,34 +378,34 @@ static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
             if ((st = parse_program_outputs(c, v, &e)) != RF_OK)
                 goto done;
         } else if (!strcmp(key, "timeout")) {
-            if ((st = sp_number(c, v, p, &e.timeout)) != RF_OK)
+            if ((st = yr_number(c, v, p, &e.timeout)) != RF_OK)
                 goto done;
             if (e.timeout < 0) {
-                st = sp_fail(c, v, p, "the timeout must be >= 0 seconds (0 = none)");
+                st = yr_fail(c, v, p, "the timeout must be >= 0 seconds (0 = none)");
                 goto done;
             }
         } else if (!strcmp(key, "keep_workdirs")) {
-            if ((st = sp_bool(c, v, p, &e.keep_workdirs)) != RF_OK)
+            if ((st = yr_bool(c, v, p, &e.keep_workdirs)) != RF_OK)
                 goto done;
         } else if (!strcmp(key, "workdir")) {
             char *w = NULL;
-            if ((st = sp_string_dup(c, v, p, &w)) != RF_OK)
+            if ((st = yr_string_dup(c, v, p, &w)) != RF_OK)
                 goto done;
             free(e.workdir_root);
             e.workdir_root = w[0] ? resolve(c->dir, w) : NULL;
             free(w);
         } else {
-            st = sp_fail(c, k, p, "unknown key; a program takes argv, templates, outputs, timeout, keep_workdirs, "
+            st = yr_fail(c, k, p, "unknown key; a program takes argv, templates, outputs, timeout, keep_workdirs, "
                                   "workdir");
             goto done;
         }
     }
     if (!argv_node) {
-        st = sp_fail(c, n, path, "missing argv (the program and its arguments)");
+        st = yr_fail(c, n, path, "missing argv (the program and its arguments)");
         goto done;
     }
     if (!outputs) {
-        st = sp_fail(c, n, path, "missing outputs (name: {file:, pattern:, unit:})");
+        st = yr_fail(c, n, path, "missing outputs (name: {file:, pattern:, unit:})");
         goto done;
     }
     /* workdir_root NULL: the external model's default, $TMPDIR/rockfuzz-eval. */
@@ -422,7 +422,7 @@ static rf_status parse_program(sp_ctx *c, struct fy_node *n, rf_study *s)
             at = argv_node, where = "model.program.argv";
         else if (strstr(msg, "output") && outputs)
             at = outputs, where = "model.program.outputs";
-        st = sp_prefix(c, at, where);
+        st = yr_prefix(c, at, where);
         goto done;
     }
     s->model_kind = RF_STUDY_MODEL_PROGRAM;
@@ -436,28 +436,28 @@ done:
 
 /* gravity: auto, or its magnitude [m/s^2] >= 0 (a negative value, say -9.81 for
    "downward", is refused rather than read as anything). */
-static rf_status parse_gravity(sp_ctx *c, struct fy_node *v, const char *path, double *g)
+static rf_status parse_gravity(yr_ctx *c, struct fy_node *v, const char *path, double *g)
 {
     char buf[63];
-    rf_status st = sp_word(c, v, path, buf, sizeof buf);
+    rf_status st = yr_word(c, v, path, buf, sizeof buf);
     if (st != RF_OK)
         return st;
     rf_error tmp;
     if (rf_impact_gravity_parse(buf, g, &tmp) != RF_OK)
-        return sp_fail(c, v, path, "expected auto or a magnitude >= 0 [m/s^2] (gravity acts along -z)");
+        return yr_fail(c, v, path, "expected auto or a magnitude >= 0 [m/s^2] (gravity acts along -z)");
     return RF_OK;
 }
 
 /* A crisp input of the impact block, as the table says (degrees for angles). */
-static rf_status parse_impact_input(sp_ctx *c, const rf_study *s, const rf_impact_field *f, struct fy_node *v,
+static rf_status parse_impact_input(yr_ctx *c, const rf_study *s, const rf_impact_field *f, struct fy_node *v,
                                     const char *p, rf_impact_input *in)
 {
     for (size_t i = 0; i < s->n_params; i++)
         if (!strcmp(s->param_names[i], f->name))
-            return sp_fail(c, v, p, "'%s' is already a fuzzy parameter (line %d); give it in one place", f->name,
+            return yr_fail(c, v, p, "'%s' is already a fuzzy parameter (line %d); give it in one place", f->name,
                            s->param_line[i]);
     double x;
-    rf_status st = f->kind == RF_FIELD_GRAVITY ? parse_gravity(c, v, p, &x) : sp_number(c, v, p, &x);
+    rf_status st = f->kind == RF_FIELD_GRAVITY ? parse_gravity(c, v, p, &x) : yr_number(c, v, p, &x);
     if (st == RF_OK)
         rf_impact_field_store(in, f, x);
     return st;
@@ -496,7 +496,7 @@ static size_t name_distance(const char *a, const char *b)
 }
 
 /* An unknown key: the nearest input name when it is close (a typo), and where the list is. */
-static rf_status unknown_impact_key(sp_ctx *c, struct fy_node *k, const char *p, const char *key)
+static rf_status unknown_impact_key(yr_ctx *c, struct fy_node *k, const char *p, const char *key)
 {
     const char *near = NULL;
     size_t best = 3; /* at most two edits */
@@ -508,31 +508,31 @@ static rf_status unknown_impact_key(sp_ctx *c, struct fy_node *k, const char *p,
     char hint[128] = "";
     if (near)
         snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
-    return sp_fail(c, k, p, "unknown key; %sthe impact model takes solver, boundary, large_deformation, ale, "
+    return yr_fail(c, k, p, "unknown key; %sthe impact model takes solver, boundary, large_deformation, ale, "
                    "surface_mass_3d, sphere_contact_3d, refinement, domain_factor, end_time [s], threads, e_n, "
                    "hunter_coefficient, boulder_material, slope_material, layer_material and the crisp inputs "
                    "that `rockfuzz impact --help` and docs/impact.md list (radius [m], slope_angle [deg], ...)",
                    hint);
 }
 
-static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
+static rf_status parse_impact(yr_ctx *c, struct fy_node *n, rf_study *s)
 {
     const char *path = "model.impact";
-    rf_status st = sp_mapping(c, n, path);
+    rf_status st = yr_mapping(c, n, path);
     if (st != RF_OK)
         return st;
     rf_impact_model_spec spec;
     rf_impact_model_spec_default(&spec);
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     char p[300];
     for (;;) {
-        if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK)
+        if ((st = yr_next(c, &it, path, &key, &k, &v)) != RF_OK)
             return st;
         if (!key)
             break;
-        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
         const rf_impact_field *field = rf_impact_field_find(key);
         char buf[32];
         if (field) {
@@ -540,66 +540,66 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                 return st;
         } else if (!strcmp(key, "boulder_material") || !strcmp(key, "slope_material") ||
                    !strcmp(key, "layer_material")) {
-            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
+            if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
             rf_error tmp;
             if ((key[0] == 'b' ? rf_impact_boulder_material_parse(buf, &spec.base.boulder_material, &tmp)
                                              : rf_material_model_parse(buf, key[0] == 's' ? &spec.base.slope_material
                                                                                           : &spec.base.layer_material,
                                                                        &tmp)) != RF_OK)
-                return sp_fail(c, v, p, key[0] == 'b' ? "unknown boulder material; expected elastic, von_mises or rigid"
+                return yr_fail(c, v, p, key[0] == 'b' ? "unknown boulder material; expected elastic, von_mises or rigid"
                                                       : "unknown material; expected elastic, von_mises or "
                                                         "drucker_prager");
         } else if (!strcmp(key, "solver") || !strcmp(key, "boundary")) {
-            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
+            if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
             rf_error tmp;
             if ((key[0] == 's' ? rf_impact_solver_parse(buf, &spec.solver, &tmp)
                                             : rf_fem_boundary_parse(buf, &spec.fem.boundary, &tmp)) != RF_OK)
-                return sp_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter, rigid or mdr"
+                return yr_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter, rigid or mdr"
                                                       : "unknown boundary; expected auto, fixed or absorbing");
         } else if (!strcmp(key, "large_deformation")) {
-            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
+            if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
             rf_error tmp;
             if (rf_fem_kinematics_parse(buf, &spec.fem.large_deformation, &tmp) != RF_OK)
-                return sp_fail(c, v, p, "unknown large_deformation; expected auto, on or off");
+                return yr_fail(c, v, p, "unknown large_deformation; expected auto, on or off");
         } else if (!strcmp(key, "ale")) {
-            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
+            if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
             rf_error tmp;
             if (rf_fem_ale_parse(buf, &spec.fem.ale, &tmp) != RF_OK)
-                return sp_fail(c, v, p, "unknown ale; expected auto, on or off");
+                return yr_fail(c, v, p, "unknown ale; expected auto, on or off");
         } else if (!strcmp(key, "surface_mass_3d") || !strcmp(key, "sphere_contact_3d")) {
             int *on = !strcmp(key, "surface_mass_3d") ? &spec.fem.surface_mass_3d : &spec.fem.sphere_contact_3d;
-            if ((st = sp_word(c, v, p, buf, sizeof buf)) != RF_OK)
+            if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
                 return st;
             rf_error tmp;
             if (rf_fem_switch_parse(key, buf, on, &tmp) != RF_OK)
-                return sp_fail(c, v, p, "unknown %s; expected on or off", key);
+                return yr_fail(c, v, p, "unknown %s; expected on or off", key);
         } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor") || !strcmp(key, "end_time")) {
             double *d = key[0] == 'r' ? &spec.fem.refinement : key[0] == 'd' ? &spec.fem.domain_factor
                                                                              : &spec.fem.end_time;
-            if ((st = sp_number(c, v, p, d)) != RF_OK)
+            if ((st = yr_number(c, v, p, d)) != RF_OK)
                 return st;
             rf_error tmp; /* the FE solvers' own rule (fem_options.c) */
             if (rf_fem_options_validate(&spec.fem, 0, &tmp) != RF_OK)
-                return sp_fail(c, v, p, "%s", tmp.msg);
+                return yr_fail(c, v, p, "%s", tmp.msg);
         } else if (!strcmp(key, "threads")) {
             long long t;
-            if ((st = sp_integer(c, v, p, 1, 1024, &t)) != RF_OK)
+            if ((st = yr_integer(c, v, p, 1, 1024, &t)) != RF_OK)
                 return st;
             spec.fem.threads = (int)t;
         } else if (!strcmp(key, "e_n")) {
-            if ((st = sp_number(c, v, p, &spec.e_n)) != RF_OK)
+            if ((st = yr_number(c, v, p, &spec.e_n)) != RF_OK)
                 return st;
             if (spec.e_n < 0 || spec.e_n > 1)
-                return sp_fail(c, v, p, "a coefficient of restitution must lie in [0, 1]");
+                return yr_fail(c, v, p, "a coefficient of restitution must lie in [0, 1]");
         } else if (!strcmp(key, "hunter_coefficient")) {
-            if ((st = sp_number(c, v, p, &spec.hunter_coefficient)) != RF_OK)
+            if ((st = yr_number(c, v, p, &spec.hunter_coefficient)) != RF_OK)
                 return st;
             if (!(spec.hunter_coefficient >= 0))
-                return sp_fail(c, v, p, "must be >= 0");
+                return yr_fail(c, v, p, "must be >= 0");
         } else {
             return unknown_impact_key(c, k, p, key);
         }
@@ -626,21 +626,21 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
                                "for the impact model", c->file, s->param_line[i], bad,
                                rf_fuzzy_nominal(&s->inputs[i]));
         /* A crisp value in the block: find its line. */
-        sp_iter jt = {n, NULL, 0, {0}};
+        yr_iter jt = {n, NULL, 0, {0}};
         for (;;) {
-            if (sp_next(c, &jt, path, &key, &k, &v) != RF_OK || !key)
+            if (yr_next(c, &jt, path, &key, &k, &v) != RF_OK || !key)
                 break;
             if (!strcmp(key, bad)) {
-                sp_pathf(p, sizeof p, "%s.%s", path, key);
+                yr_pathf(p, sizeof p, "%s.%s", path, key);
                 rf_error tmp;
                 rf_impact_input_validate(&probe, &tmp);
-                return sp_fail(c, v, p, "not admissible: %s", tmp.msg);
+                return yr_fail(c, v, p, "not admissible: %s", tmp.msg);
             }
         }
         rf_error tmp;
         rf_impact_input_validate(&probe, &tmp);
         return rf_fail(c->err, RF_EINVAL, "%s:%d: model.impact: the default value of '%s' is not admissible with "
-                       "these inputs: %s", c->file, sp_line(n), bad, tmp.msg);
+                       "these inputs: %s", c->file, yr_line(n), bad, tmp.msg);
     }
     for (size_t i = 0; i < s->n_params; i++) {
         double lo, hi;
@@ -662,26 +662,26 @@ static rf_status parse_impact(sp_ctx *c, struct fy_node *n, rf_study *s)
     st = rf_impact_model_create(&spec, (const char *const *)s->param_names, s->n_params, &s->model, c->err);
     if (st != RF_OK) {
         rf_model_free(&s->model);
-        return sp_prefix(c, n, path);
+        return yr_prefix(c, n, path);
     }
     s->model_kind = RF_STUDY_MODEL_IMPACT;
     return set_description(s, c->err, "impact: %s solver", rf_impact_solver_name(spec.solver));
 }
 
-rf_status sp_parse_model(sp_ctx *c, struct fy_node *n, rf_study *s)
+rf_status sp_parse_model(yr_ctx *c, struct fy_node *n, rf_study *s)
 {
-    rf_status st = sp_mapping(c, n, "model");
+    rf_status st = yr_mapping(c, n, "model");
     if (st != RF_OK)
         return st;
     if (fy_node_mapping_item_count(n) != 1)
-        return sp_fail(c, n, "model", "expected exactly one of formula, program, impact, trajectory");
-    sp_iter it = {n, NULL, 0, {0}};
+        return yr_fail(c, n, "model", "expected exactly one of formula, program, impact, trajectory");
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
-    if ((st = sp_next(c, &it, "model", &key, &k, &v)) != RF_OK)
+    if ((st = yr_next(c, &it, "model", &key, &k, &v)) != RF_OK)
         return st;
     if (!key)
-        return sp_fail(c, n, "model", "expected exactly one of formula, program, impact, trajectory");
+        return yr_fail(c, n, "model", "expected exactly one of formula, program, impact, trajectory");
     if (!strcmp(key, "formula"))
         return parse_formula(c, v, s);
     if (!strcmp(key, "program"))
@@ -691,6 +691,6 @@ rf_status sp_parse_model(sp_ctx *c, struct fy_node *n, rf_study *s)
     if (!strcmp(key, "trajectory"))
         return rf_traj_study_parse(c, v, s);
     char p[300];
-    sp_pathf(p, sizeof p, "model.%s", key);
-    return sp_fail(c, k, p, "unknown model; expected formula, program, impact or trajectory");
+    yr_pathf(p, sizeof p, "model.%s", key);
+    return yr_fail(c, k, p, "unknown model; expected formula, program, impact or trajectory");
 }

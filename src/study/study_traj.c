@@ -24,70 +24,70 @@ typedef struct {
     struct fy_node *bind, *file_node;
 } traj_block;
 
-static rf_status read_block(sp_ctx *c, struct fy_node *n, traj_block *b)
+static rf_status read_block(yr_ctx *c, struct fy_node *n, traj_block *b)
 {
     const char *path = "model.trajectory", *key;
-    rf_status st = sp_mapping(c, n, path);
-    sp_iter it = {n, NULL, 0, {0}};
+    rf_status st = yr_mapping(c, n, path);
+    yr_iter it = {n, NULL, 0, {0}};
     struct fy_node *k, *v;
     char p[300];
     while (st == RF_OK) {
-        if ((st = sp_next(c, &it, path, &key, &k, &v)) != RF_OK || !key)
+        if ((st = yr_next(c, &it, path, &key, &k, &v)) != RF_OK || !key)
             break;
-        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
         if (!strcmp(key, "file")) {
             b->file_node = v;
-            st = sp_string_dup(c, v, p, &b->file);
+            st = yr_string_dup(c, v, p, &b->file);
         } else if (!strcmp(key, "samples")) {
-            st = sp_integer(c, v, p, 1, 100000000, &b->samples);
+            st = yr_integer(c, v, p, 1, 100000000, &b->samples);
         } else if (!strcmp(key, "seed")) {
-            st = sp_integer(c, v, p, 0, 9007199254740992LL, &b->seed);
+            st = yr_integer(c, v, p, 0, 9007199254740992LL, &b->seed);
         } else if (!strcmp(key, "sampling")) {
             const char *s;
             size_t len;
-            if ((st = sp_string(c, v, p, &s, &len)) == RF_OK) {
+            if ((st = yr_string(c, v, p, &s, &len)) == RF_OK) {
                 b->lhs = len == 3 && !strncmp(s, "lhs", 3) ? 1 : len == 6 && !strncmp(s, "random", 6) ? 0 : -2;
                 if (b->lhs == -2)
-                    st = sp_fail(c, v, p, "expected random or lhs");
+                    st = yr_fail(c, v, p, "expected random or lhs");
             }
         } else if (!strcmp(key, "bind")) {
             b->bind = v;
-            st = sp_mapping(c, v, p);
+            st = yr_mapping(c, v, p);
         } else {
-            st = sp_fail(c, k, p, "unknown key; a trajectory model takes file, samples, seed, sampling, bind");
+            st = yr_fail(c, k, p, "unknown key; a trajectory model takes file, samples, seed, sampling, bind");
         }
     }
     if (st == RF_OK && !b->file)
-        st = sp_fail(c, n, path, "missing file (the trajectory file, relative to the study file)");
+        st = yr_fail(c, n, path, "missing file (the trajectory file, relative to the study file)");
     return st;
 }
 
 /* The path bound to parameter `name`, checked against the spec. */
-static rf_status bound_path(sp_ctx *c, traj_block *b, rf_traj_spec *spec, const rf_study *s, size_t i,
+static rf_status bound_path(yr_ctx *c, traj_block *b, rf_traj_spec *spec, const rf_study *s, size_t i,
                             char **out)
 {
     struct fy_node *v = b->bind ? fy_node_mapping_lookup_by_string(b->bind, s->param_names[i], FY_NT) : NULL;
     char p[300];
-    sp_pathf(p, sizeof p, "model.trajectory.bind.%s", s->param_names[i]);
+    yr_pathf(p, sizeof p, "model.trajectory.bind.%s", s->param_names[i]);
     if (!v)
         return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: not bound to an input of the trajectory file "
                        "(model.trajectory.bind: {%s: materials.NAME.R_n, ...})", c->file, s->param_line[i],
                        s->param_names[i], s->param_names[i]);
-    rf_status st = sp_string_dup(c, v, p, out);
+    rf_status st = yr_string_dup(c, v, p, out);
     if (st != RF_OK)
         return st;
     if (!rf_traj_spec_field(spec, *out))
-        return sp_fail(c, v, p, "not a numeric input of %s (e.g. materials.NAME.R_n, release.vx, release.y.lo)",
+        return yr_fail(c, v, p, "not a numeric input of %s (e.g. materials.NAME.R_n, release.vx, release.y.lo)",
                        b->file);
     for (size_t r = 0; r < spec->n_random; r++)
         if (!strcmp(spec->random[r].path, *out))
-            return sp_fail(c, v, p, "this input is random in the trajectory file; bind its distribution "
+            return yr_fail(c, v, p, "this input is random in the trajectory file; bind its distribution "
                                     "(%s.lo/.hi or .mean/.sd)", *out);
     return RF_OK;
 }
 
 /* The nominal values and every support end of each parameter must give a valid spec. */
-static rf_status check_support(sp_ctx *c, rf_traj_spec *spec, const rf_study *s, char **paths)
+static rf_status check_support(yr_ctx *c, rf_traj_spec *spec, const rf_study *s, char **paths)
 {
     for (size_t i = 0; i < s->n_params; i++)
         *rf_traj_spec_field(spec, paths[i]) = rf_fuzzy_nominal(&s->inputs[i]);
@@ -108,7 +108,7 @@ static rf_status check_support(sp_ctx *c, rf_traj_spec *spec, const rf_study *s,
     return RF_OK;
 }
 
-static rf_status load_spec(sp_ctx *c, traj_block *b, rf_traj_spec *spec)
+static rf_status load_spec(yr_ctx *c, traj_block *b, rf_traj_spec *spec)
 {
     char path[4096];
     if (b->file[0] == '/' || !strcmp(c->dir, "."))
@@ -116,7 +116,7 @@ static rf_status load_spec(sp_ctx *c, traj_block *b, rf_traj_spec *spec)
     else
         snprintf(path, sizeof path, "%s/%s", c->dir, b->file);
     if (rf_traj_load(path, spec, c->err) != RF_OK)
-        return sp_prefix(c, b->file_node, "model.trajectory.file");
+        return yr_prefix(c, b->file_node, "model.trajectory.file");
     if (b->samples > 0)
         spec->samples = (size_t)b->samples;
     if (b->seed >= 0)
@@ -127,7 +127,7 @@ static rf_status load_spec(sp_ctx *c, traj_block *b, rf_traj_spec *spec)
     return RF_OK;
 }
 
-rf_status rf_traj_study_parse(sp_ctx *c, struct fy_node *n, rf_study *s)
+rf_status rf_traj_study_parse(yr_ctx *c, struct fy_node *n, rf_study *s)
 {
     traj_block b = {NULL, -1, -1, -1, NULL, NULL};
     rf_traj_spec spec;
@@ -143,7 +143,7 @@ rf_status rf_traj_study_parse(sp_ctx *c, struct fy_node *n, rf_study *s)
     if (st == RF_OK &&
         (st = rf_traj_model_create(&spec, s->n_params, (const char *const *)s->param_names,
                                    (const char *const *)paths, &s->model, c->err)) != RF_OK)
-        st = sp_prefix(c, n, "model.trajectory");
+        st = yr_prefix(c, n, "model.trajectory");
     if (st == RF_OK) {
         s->model_kind = RF_STUDY_MODEL_TRAJECTORY;
         struct fy_node *root = fy_document_root(fy_node_document(n));

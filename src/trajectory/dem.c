@@ -95,7 +95,7 @@ static rf_status cut(ty_ctx *c, struct fy_node *n, const dem_grid *g, const doub
             double f = m ? (double)q / (double)m : 0, x = X[k] + f * (X[k + 1] - X[k]), y = Y[k] + f * (Y[k + 1] - Y[k]);
             double z = elevation(g, x, y);
             if (!isfinite(z))
-                return sp_fail(&c->sp, n, "profile.dem.line", "the point (%.10g, %.10g) lies outside the DEM or on "
+                return yr_fail(&c->sp, n, "profile.dem.line", "the point (%.10g, %.10g) lies outside the DEM or on "
                                                               "a no-data cell", x, y);
             s->px[s->n_points] = dist + f * len, s->py[s->n_points++] = z;
         }
@@ -108,23 +108,23 @@ static rf_status read_spec(ty_ctx *c, struct fy_node *n, char **file, double **X
                            double *step, long long *band)
 {
     const char *path = "profile.dem", *key;
-    rf_status st = sp_mapping(&c->sp, n, path);
-    sp_iter it = {n, NULL, 0, {0}};
+    rf_status st = yr_mapping(&c->sp, n, path);
+    yr_iter it = {n, NULL, 0, {0}};
     struct fy_node *k, *v;
     char p[300];
     while (st == RF_OK) {
-        if ((st = sp_next(&c->sp, &it, path, &key, &k, &v)) != RF_OK || !key)
+        if ((st = yr_next(&c->sp, &it, path, &key, &k, &v)) != RF_OK || !key)
             break;
-        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
         if (!strcmp(key, "file")) {
-            st = sp_string_dup(&c->sp, v, p, file);
+            st = yr_string_dup(&c->sp, v, p, file);
         } else if (!strcmp(key, "step")) {
-            if ((st = sp_number(&c->sp, v, p, step)) == RF_OK && !(*step > 0))
-                st = sp_fail(&c->sp, v, p, "must be > 0 [m]");
+            if ((st = yr_number(&c->sp, v, p, step)) == RF_OK && !(*step > 0))
+                st = yr_fail(&c->sp, v, p, "must be > 0 [m]");
         } else if (!strcmp(key, "band")) {
-            st = sp_integer(&c->sp, v, p, 1, 1000000, band);
+            st = yr_integer(&c->sp, v, p, 1, 1000000, band);
         } else if (!strcmp(key, "line")) {
-            if ((st = sp_sequence(&c->sp, v, p, 2, 100000, nv)) != RF_OK)
+            if ((st = yr_sequence(&c->sp, v, p, 2, 100000, nv)) != RF_OK)
                 break;
             *X = calloc(*nv, sizeof **X), *Y = calloc(*nv, sizeof **Y);
             if (!*X || !*Y)
@@ -132,16 +132,16 @@ static rf_status read_spec(ty_ctx *c, struct fy_node *n, char **file, double **X
             for (size_t i = 0; i < *nv && st == RF_OK; i++) {
                 double xy[2];
                 char q[320];
-                sp_pathf(q, sizeof q, "%s[%zu]", p, i);
-                st = sp_numbers(&c->sp, fy_node_sequence_get_by_index(v, (int)i), q, 2, 2, xy, NULL);
+                yr_pathf(q, sizeof q, "%s[%zu]", p, i);
+                st = yr_numbers(&c->sp, fy_node_sequence_get_by_index(v, (int)i), q, 2, 2, xy, NULL);
                 (*X)[i] = xy[0], (*Y)[i] = xy[1];
             }
         } else {
-            st = sp_fail(&c->sp, k, p, "unknown key; dem takes file, line, step, band");
+            st = yr_fail(&c->sp, k, p, "unknown key; dem takes file, line, step, band");
         }
     }
     if (st == RF_OK && (!*file || !*X))
-        st = sp_fail(&c->sp, n, path, "file and line ([[X, Y], ...] in map metres) are required");
+        st = yr_fail(&c->sp, n, path, "file and line ([[X, Y], ...] in map metres) are required");
     return st;
 }
 
@@ -160,7 +160,7 @@ rf_status ty_dem_profile(ty_ctx *c, struct fy_node *n)
         else
             snprintf(full, sizeof full, "%s/%s", c->sp.dir, file);
         if ((st = read_grid(full, (int)band, &g, c->sp.err)) != RF_OK)
-            st = sp_prefix(&c->sp, n, "profile.dem.file");
+            st = yr_prefix(&c->sp, n, "profile.dem.file");
     }
     if (st == RF_OK)
         st = cut(c, n, &g, X, Y, nv, step);
@@ -174,7 +174,7 @@ rf_status ty_dem_profile(ty_ctx *c, struct fy_node *n)
 
 rf_status ty_dem_profile(ty_ctx *c, struct fy_node *n)
 {
-    return sp_fail(&c->sp, n, "profile.dem", "this rockfuzz was built without GDAL (install libgdal-dev and "
+    return yr_fail(&c->sp, n, "profile.dem", "this rockfuzz was built without GDAL (install libgdal-dev and "
                                              "rebuild), so DEM profiles are not available");
 }
 

@@ -18,37 +18,37 @@
 
 static rf_status parse_materials(ty_ctx *c, struct fy_node *n)
 {
-    rf_status st = sp_mapping(&c->sp, n, "materials");
+    rf_status st = yr_mapping(&c->sp, n, "materials");
     if (st != RF_OK)
         return st;
     int cnt = fy_node_mapping_item_count(n);
     if (cnt < 1 || cnt > 1000)
-        return sp_fail(&c->sp, n, "materials", "expected 1 to 1000 materials");
+        return yr_fail(&c->sp, n, "materials", "expected 1 to 1000 materials");
     c->spec->materials = calloc((size_t)cnt, sizeof *c->spec->materials);
     if (!c->spec->materials)
         return rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     for (;;) {
-        if ((st = sp_next(&c->sp, &it, "materials", &key, &k, &v)) != RF_OK || !key)
+        if ((st = yr_next(&c->sp, &it, "materials", &key, &k, &v)) != RF_OK || !key)
             return st;
         rf_traj_material *m = &c->spec->materials[c->spec->n_materials++];
         if (!(m->name = rf_strdup(key)))
             return rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
         m->R_n = NAN, m->R_t = NAN;
         char p[300];
-        sp_pathf(p, sizeof p, "materials.%s", key);
+        yr_pathf(p, sizeof p, "materials.%s", key);
         if ((st = ty_fields(c, v, p, "R_n R_t friction_angle rolling_resistance roughness", 1)) != RF_OK)
             return st;
         if (isnan(m->R_n) || isnan(m->R_t))
-            return sp_fail(&c->sp, v, p, "R_n and R_t are required");
+            return yr_fail(&c->sp, v, p, "R_n and R_t are required");
     }
 }
 
 static rf_status parse_block(ty_ctx *c, struct fy_node *n)
 {
-    rf_status st = sp_mapping(&c->sp, n, "block");
+    rf_status st = yr_mapping(&c->sp, n, "block");
     if (st != RF_OK)
         return st;
     struct fy_node *shape = fy_node_mapping_lookup_by_string(n, "shape", FY_NT);
@@ -56,19 +56,19 @@ static rf_status parse_block(ty_ctx *c, struct fy_node *n)
     if (shape) {
         const char *str;
         size_t len;
-        if ((st = sp_string(&c->sp, shape, "block.shape", &str, &len)) != RF_OK)
+        if ((st = yr_string(&c->sp, shape, "block.shape", &str, &len)) != RF_OK)
             return st;
         if (len == 6 && !strncmp(str, "sphere", 6))
             s->sphere = 1;
         else if (!(len == 5 && !strncmp(str, "point", 5)))
-            return sp_fail(&c->sp, shape, "block.shape", "expected point or sphere");
+            return yr_fail(&c->sp, shape, "block.shape", "expected point or sphere");
     }
     if ((st = ty_fields(c, n, "block", s->sphere ? "shape radius density" : "shape mass", 1)) != RF_OK)
         return st;
     if (!s->sphere && isnan(s->mass))
-        return sp_fail(&c->sp, n, "block", "a point block needs mass [kg]");
+        return yr_fail(&c->sp, n, "block", "a point block needs mass [kg]");
     if (s->sphere && (isnan(s->radius) || isnan(s->density)))
-        return sp_fail(&c->sp, n, "block", "a sphere needs radius [m] and density [kg/m^3]");
+        return yr_fail(&c->sp, n, "block", "a sphere needs radius [m] and density [kg/m^3]");
     return RF_OK;
 }
 
@@ -77,7 +77,7 @@ static rf_status parse_law(ty_ctx *c, struct fy_node *v)
     const char *const *names = rf_traj_bounce_law_names;
     const char *str;
     size_t len;
-    rf_status st = sp_string(&c->sp, v, "bounce.law", &str, &len);
+    rf_status st = yr_string(&c->sp, v, "bounce.law", &str, &len);
     if (st != RF_OK)
         return st;
     for (int i = 0; i < RF_BOUNCE_N_LAWS; i++)
@@ -85,19 +85,19 @@ static rf_status parse_law(ty_ctx *c, struct fy_node *v)
             c->spec->law = (rf_bounce_law)i;
             return RF_OK;
         }
-    return sp_fail(&c->sp, v, "bounce.law", "expected constant, velocity_scaled, rigid_sphere or impact_model");
+    return yr_fail(&c->sp, v, "bounce.law", "expected constant, velocity_scaled, rigid_sphere or impact_model");
 }
 
 /* A list of numbers under `path`: at most `max`, finite, and increasing if `increasing`. */
 static rf_status number_list(ty_ctx *c, struct fy_node *v, const char *path, size_t max, int increasing,
                              double *out, size_t *count)
 {
-    rf_status st = sp_numbers(&c->sp, v, path, 1, max, out, count);
+    rf_status st = yr_numbers(&c->sp, v, path, 1, max, out, count);
     for (size_t k = 0; st == RF_OK && k < *count; k++) {
         if (!isfinite(out[k]))
-            return sp_fail(&c->sp, v, path, "every value must be finite");
+            return yr_fail(&c->sp, v, path, "every value must be finite");
         if (increasing && k && !(out[k] > out[k - 1]))
-            return sp_fail(&c->sp, v, path, "the values must increase");
+            return yr_fail(&c->sp, v, path, "the values must increase");
     }
     return st;
 }
@@ -111,12 +111,12 @@ static rf_status parse_thresholds(ty_ctx *c, struct fy_node *e, const char *p, r
     for (int k = 0; k < 2; k++) {
         struct fy_node *v = fy_node_mapping_lookup_by_string(e, keys[k], FY_NT);
         char path[400];
-        sp_pathf(path, sizeof path, "%s.%s", p, keys[k]);
+        yr_pathf(path, sizeof path, "%s.%s", p, keys[k]);
         rf_status st = v ? number_list(c, v, path, RF_TRAJ_MAX_THRESHOLDS - 1, 1, dst[k], n[k]) : RF_OK;
         if (st != RF_OK)
             return st;
         if (*n[k] && !(dst[k][0] >= 0))
-            return sp_fail(&c->sp, v, path, "thresholds must be >= 0");
+            return yr_fail(&c->sp, v, path, "thresholds must be >= 0");
     }
     return RF_OK;
 }
@@ -125,29 +125,29 @@ static rf_status parse_thresholds(ty_ctx *c, struct fy_node *e, const char *p, r
 static rf_status parse_outputs(ty_ctx *c, struct fy_node *n)
 {
     rf_traj_outputs *o = &c->spec->outputs;
-    rf_status st = sp_mapping(&c->sp, n, "outputs");
-    sp_iter it = {n, NULL, 0, {0}};
+    rf_status st = yr_mapping(&c->sp, n, "outputs");
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     long long bins;
     while (st == RF_OK) {
-        if ((st = sp_next(&c->sp, &it, "outputs", &key, &k, &v)) != RF_OK || !key)
+        if ((st = yr_next(&c->sp, &it, "outputs", &key, &k, &v)) != RF_OK || !key)
             return st;
         if (!strcmp(key, "percentiles")) {
             st = number_list(c, v, "outputs.percentiles", RF_TRAJ_MAX_PERCENTILES, 1, o->percentiles,
                              &o->n_percentiles);
             if (st == RF_OK && !(o->percentiles[0] > 0 && o->percentiles[o->n_percentiles - 1] < 100))
-                st = sp_fail(&c->sp, v, "outputs.percentiles", "percentiles lie in (0, 100); max is always given");
+                st = yr_fail(&c->sp, v, "outputs.percentiles", "percentiles lie in (0, 100); max is always given");
         } else if (!strcmp(key, "runout_thresholds")) {
             st = number_list(c, v, "outputs.runout_thresholds", RF_TRAJ_MAX_THRESHOLDS, 1, o->runout_thresholds,
                              &o->n_runout_thresholds);
         } else if (!strcmp(key, "runout_bins")) {
-            if ((st = sp_integer(&c->sp, v, "outputs.runout_bins", 1, RF_TRAJ_MAX_BINS, &bins)) == RF_OK)
+            if ((st = yr_integer(&c->sp, v, "outputs.runout_bins", 1, RF_TRAJ_MAX_BINS, &bins)) == RF_OK)
                 o->runout_bins = (size_t)bins;
         } else {
             char p[300];
-            sp_pathf(p, sizeof p, "outputs.%s", key);
-            st = sp_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins");
+            yr_pathf(p, sizeof p, "outputs.%s", key);
+            st = yr_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins");
         }
     }
     return st;
@@ -156,7 +156,7 @@ static rf_status parse_outputs(ty_ctx *c, struct fy_node *n)
 static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
 {
     size_t cnt;
-    rf_status st = sp_sequence(&c->sp, n, "collectors", 0, 1000, &cnt);
+    rf_status st = yr_sequence(&c->sp, n, "collectors", 0, 1000, &cnt);
     if (st != RF_OK)
         return st;
     c->spec->collectors = calloc(cnt ? cnt : 1, sizeof *c->spec->collectors);
@@ -165,25 +165,25 @@ static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
     for (size_t i = 0; i < cnt; i++) {
         struct fy_node *e = fy_node_sequence_get_by_index(n, (int)i);
         char p[300];
-        sp_pathf(p, sizeof p, "collectors[%zu]", i);
-        if ((st = sp_mapping(&c->sp, e, p)) != RF_OK)
+        yr_pathf(p, sizeof p, "collectors[%zu]", i);
+        if ((st = yr_mapping(&c->sp, e, p)) != RF_OK)
             return st;
         struct fy_node *nm = fy_node_mapping_lookup_by_string(e, "name", FY_NT);
         rf_traj_collector *col = &c->spec->collectors[c->spec->n_collectors++];
         if (!nm)
-            return sp_fail(&c->sp, e, p, "a collector needs a name");
-        if ((st = sp_string_dup(&c->sp, nm, p, &col->name)) != RF_OK)
+            return yr_fail(&c->sp, e, p, "a collector needs a name");
+        if ((st = yr_string_dup(&c->sp, nm, p, &col->name)) != RF_OK)
             return st;
         for (size_t j = 0; j < i; j++)
             if (!strcmp(c->spec->collectors[j].name, col->name))
-                return sp_fail(&c->sp, nm, p, "a second collector with this name");
+                return yr_fail(&c->sp, nm, p, "a second collector with this name");
         col->x = NAN;
-        sp_pathf(p, sizeof p, "collectors.%s", col->name);
+        yr_pathf(p, sizeof p, "collectors.%s", col->name);
         if ((st = ty_fields(c, e, p, "name x capacity height energy_thresholds height_thresholds", 0)) != RF_OK ||
             (st = parse_thresholds(c, e, p, col)) != RF_OK)
             return st;
         if (isnan(col->x))
-            return sp_fail(&c->sp, e, p, "a collector needs x [m]");
+            return yr_fail(&c->sp, e, p, "a collector needs x [m]");
     }
     return RF_OK;
 }
@@ -196,39 +196,39 @@ static rf_status parse_top_scalar(ty_ctx *c, const char *key, struct fy_node *k,
     if (!strcmp(key, "name")) {
         free(s->name);
         s->name = NULL;
-        return sp_string_dup(&c->sp, v, "name", &s->name);
+        return yr_string_dup(&c->sp, v, "name", &s->name);
     }
     if (!strcmp(key, "description"))
         return RF_OK;
     if (!strcmp(key, "gravity"))
         return ty_value(c, v, "gravity", &s->gravity, 0);
     if (!strcmp(key, "samples")) {
-        if ((st = sp_integer(&c->sp, v, "samples", 1, 100000000, &n)) == RF_OK)
+        if ((st = yr_integer(&c->sp, v, "samples", 1, 100000000, &n)) == RF_OK)
             s->samples = (size_t)n;
         return st;
     }
     if (!strcmp(key, "seed")) {
-        if ((st = sp_integer(&c->sp, v, "seed", 0, 9007199254740992LL, &n)) == RF_OK)
+        if ((st = yr_integer(&c->sp, v, "seed", 0, 9007199254740992LL, &n)) == RF_OK)
             s->seed = (uint64_t)n;
         return st;
     }
     if (!strcmp(key, "record")) {
-        if ((st = sp_integer(&c->sp, v, "record", 0, 100000, &n)) == RF_OK)
+        if ((st = yr_integer(&c->sp, v, "record", 0, 100000, &n)) == RF_OK)
             s->record = (size_t)n, c->record_given = 1;
         return st;
     }
     if (!strcmp(key, "sampling")) {
         const char *str;
         size_t len;
-        if ((st = sp_string(&c->sp, v, "sampling", &str, &len)) != RF_OK)
+        if ((st = yr_string(&c->sp, v, "sampling", &str, &len)) != RF_OK)
             return st;
         if (len == 3 && !strncmp(str, "lhs", 3))
             s->lhs = 1;
         else if (!(len == 6 && !strncmp(str, "random", 6)))
-            return sp_fail(&c->sp, v, "sampling", "expected random or lhs (Latin hypercube)");
+            return yr_fail(&c->sp, v, "sampling", "expected random or lhs (Latin hypercube)");
         return RF_OK;
     }
-    return sp_fail(&c->sp, k, key, "unknown key; a trajectory file takes name, description, gravity, profile, "
+    return yr_fail(&c->sp, k, key, "unknown key; a trajectory file takes name, description, gravity, profile, "
                                    "materials, block, release, bounce, stop, collectors, outputs, samples, seed, "
                                    "sampling, record");
 }
@@ -249,7 +249,7 @@ static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct
     if (!strcmp(key, "outputs"))
         return parse_outputs(c, v);
     if (!strcmp(key, "bounce")) {
-        if ((st = sp_mapping(&c->sp, v, "bounce")) != RF_OK)
+        if ((st = yr_mapping(&c->sp, v, "bounce")) != RF_OK)
             return st;
         struct fy_node *law = fy_node_mapping_lookup_by_string(v, "law", FY_NT);
         if (law && (st = parse_law(c, law)) != RF_OK)
@@ -288,16 +288,16 @@ static void spec_defaults(rf_traj_spec *s)
 
 static rf_status parse_document(ty_ctx *c, struct fy_node *root)
 {
-    rf_status st = sp_mapping(&c->sp, root, "");
+    rf_status st = yr_mapping(&c->sp, root, "");
     if (st != RF_OK)
         return st;
-    sp_iter it = {root, NULL, 0, {0}};
+    yr_iter it = {root, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v, *materials = fy_node_mapping_lookup_by_string(root, "materials", FY_NT);
     if (!materials)
         return rf_fail(c->sp.err, RF_EINVAL, "%s:1: materials: missing (name: {R_n, R_t, ...})", c->sp.file);
     for (;;) {
-        if ((st = sp_next(&c->sp, &it, "", &key, &k, &v)) != RF_OK)
+        if ((st = yr_next(&c->sp, &it, "", &key, &k, &v)) != RF_OK)
             return st;
         if (!key)
             break;
@@ -309,7 +309,7 @@ static rf_status parse_document(ty_ctx *c, struct fy_node *root)
         if (!fy_node_mapping_lookup_by_string(root, need[i], FY_NT))
             return rf_fail(c->sp.err, RF_EINVAL, "%s:1: %s: missing", c->sp.file, need[i]);
     if (isnan(c->spec->x0) || isnan(c->spec->y0))
-        return sp_fail(&c->sp, fy_node_mapping_lookup_by_string(root, "release", FY_NT), "release",
+        return yr_fail(&c->sp, fy_node_mapping_lookup_by_string(root, "release", FY_NT), "release",
                        "x and y are required");
     return ty_parse_profile(c, c->profile);
 }
@@ -324,18 +324,18 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spe
     char *slash = dir ? strrchr(dir, '/') : NULL;
     if (slash)
         *slash = '\0';
-    c.sp = (sp_ctx){name, slash ? dir : ".", err, NULL};
+    c.sp = (yr_ctx){name, slash ? dir : ".", err, NULL};
     s->file = rf_strdup(name);
     s->text_hash = rf_fnv1a(RF_FNV1A_OFFSET, buf, len);
-    sp_doc d = {0};
-    rf_status st = sp_doc_load(&d, name, buf, len, "trajectory file", err);
+    yr_doc d = {0};
+    rf_status st = yr_doc_load(&d, name, buf, len, "trajectory file", err);
     if (st == RF_OK)
         st = parse_document(&c, fy_document_root(d.doc));
     if (st == RF_OK && !c.record_given)
         s->record = s->samples < 200 ? s->samples : 200;
     if (st == RF_OK)
         st = ty_validate(&c);
-    sp_doc_free(&d);
+    yr_doc_free(&d);
     ty_ctx_free(&c);
     free(dir);
     if (st != RF_OK)

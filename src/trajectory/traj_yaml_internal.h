@@ -14,7 +14,7 @@ typedef struct {
 } ty_line;
 
 typedef struct {
-    sp_ctx sp;
+    yr_ctx sp;
     rf_traj_spec *spec;
     struct fy_node *profile;
     int record_given;

@@ -24,7 +24,7 @@ static rf_status alloc_points(ty_ctx *c, size_t n)
 static rf_status inline_points(ty_ctx *c, struct fy_node *n)
 {
     size_t cnt;
-    rf_status st = sp_sequence(&c->sp, n, "profile.points", 2, 1000000, &cnt);
+    rf_status st = yr_sequence(&c->sp, n, "profile.points", 2, 1000000, &cnt);
     if (st != RF_OK || (st = alloc_points(c, cnt)) != RF_OK)
         return st;
     ty_remember(c, "profile.points", n);
@@ -32,8 +32,8 @@ static rf_status inline_points(ty_ctx *c, struct fy_node *n)
         char p[64];
         double xy[2];
         struct fy_node *e = fy_node_sequence_get_by_index(n, (int)i);
-        sp_pathf(p, sizeof p, "profile.points[%zu]", i);
-        if ((st = sp_numbers(&c->sp, e, p, 2, 2, xy, NULL)) != RF_OK)
+        yr_pathf(p, sizeof p, "profile.points[%zu]", i);
+        if ((st = yr_numbers(&c->sp, e, p, 2, 2, xy, NULL)) != RF_OK)
             return st;
         ty_remember(c, p, e);
         c->spec->px[i] = xy[0], c->spec->py[i] = xy[1];
@@ -57,17 +57,17 @@ static rf_status segment_materials(ty_ctx *c, struct fy_node *n, const char *pat
     size_t len;
     rf_status st;
     int single = fy_node_get_type(n) == FYNT_SCALAR;
-    if (!single && (st = sp_sequence(&c->sp, n, path, nseg, nseg, &cnt)) != RF_OK)
-        return sp_fail(&c->sp, n, path, "expected one material per segment (%zu segments)", nseg);
+    if (!single && (st = yr_sequence(&c->sp, n, path, nseg, nseg, &cnt)) != RF_OK)
+        return yr_fail(&c->sp, n, path, "expected one material per segment (%zu segments)", nseg);
     for (size_t i = 0; i < nseg; i++) {
         struct fy_node *e = single ? n : fy_node_sequence_get_by_index(n, (int)i);
         char p[64];
-        sp_pathf(p, sizeof p, single ? "%s" : "%s[%zu]", path, i);
-        if ((st = sp_string(&c->sp, e, p, &str, &len)) != RF_OK)
+        yr_pathf(p, sizeof p, single ? "%s" : "%s[%zu]", path, i);
+        if ((st = yr_string(&c->sp, e, p, &str, &len)) != RF_OK)
             return st;
         size_t m = material_index(s, str, len);
         if (m == TRAJ_NONE)
-            return sp_fail(&c->sp, e, p, "no such material (define it under materials:)");
+            return yr_fail(&c->sp, e, p, "no such material (define it under materials:)");
         s->seg_material[i] = m;
     }
     return RF_OK;
@@ -77,7 +77,7 @@ static rf_status segment_materials(ty_ctx *c, struct fy_node *n, const char *pat
 static rf_status csv_points(ty_ctx *c, struct fy_node *n)
 {
     char *name = NULL, path[4096];
-    rf_status st = sp_string_dup(&c->sp, n, "profile.csv", &name);
+    rf_status st = yr_string_dup(&c->sp, n, "profile.csv", &name);
     if (st != RF_OK)
         return st;
     if (name[0] == '/' || !strcmp(c->sp.dir, "."))
@@ -87,14 +87,14 @@ static rf_status csv_points(ty_ctx *c, struct fy_node *n)
     free(name);
     st = traj_csv_read(path, c->spec, &c->csv_named, c->sp.err);
     if (st != RF_OK)
-        return sp_prefix(&c->sp, n, "profile.csv");
+        return yr_prefix(&c->sp, n, "profile.csv");
     ty_remember(c, "profile.points", n);
     return RF_OK;
 }
 
 rf_status ty_parse_profile(ty_ctx *c, struct fy_node *n)
 {
-    rf_status st = sp_mapping(&c->sp, n, "profile");
+    rf_status st = yr_mapping(&c->sp, n, "profile");
     if (st != RF_OK)
         return st;
     struct fy_node *pts = fy_node_mapping_lookup_by_string(n, "points", FY_NT);
@@ -103,9 +103,9 @@ rf_status ty_parse_profile(ty_ctx *c, struct fy_node *n)
     struct fy_node *mats = fy_node_mapping_lookup_by_string(n, "materials", FY_NT);
     struct fy_node *mat = fy_node_mapping_lookup_by_string(n, "material", FY_NT);
     if (!!pts + !!csv + !!dem != 1)
-        return sp_fail(&c->sp, n, "profile", "give exactly one of points, csv, dem");
+        return yr_fail(&c->sp, n, "profile", "give exactly one of points, csv, dem");
     if (fy_node_mapping_item_count(n) != 1 + !!mats + !!mat)
-        return sp_fail(&c->sp, n, "profile", "unknown key; profile takes points | csv | dem, and materials or "
+        return yr_fail(&c->sp, n, "profile", "unknown key; profile takes points | csv | dem, and materials or "
                                              "material");
     if (pts)
         st = inline_points(c, pts);
@@ -116,13 +116,13 @@ rf_status ty_parse_profile(ty_ctx *c, struct fy_node *n)
     if (st != RF_OK)
         return st;
     if (mats && mat)
-        return sp_fail(&c->sp, mat, "profile.material", "give materials (one per segment) or material, not both");
+        return yr_fail(&c->sp, mat, "profile.material", "give materials (one per segment) or material, not both");
     if (mats || mat)
         return segment_materials(c, mats ? mats : mat, mats ? "profile.materials" : "profile.material");
     if (c->csv_named)
         return RF_OK; /* the CSV's third column named them */
     if (c->spec->n_materials != 1)
-        return sp_fail(&c->sp, n, "profile", "name the material of each segment (materials: [...]) or of all "
+        return yr_fail(&c->sp, n, "profile", "name the material of each segment (materials: [...]) or of all "
                                              "(material: NAME)");
     return RF_OK;
 }

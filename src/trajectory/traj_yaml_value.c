@@ -20,8 +20,8 @@ void ty_remember(ty_ctx *c, const char *path, struct fy_node *n)
         c->lines = p, c->cap_lines = cap;
     }
     ty_line *l = &c->lines[c->n_lines++];
-    sp_pathf(l->path, sizeof l->path, "%s", path);
-    l->line = sp_line(n);
+    yr_pathf(l->path, sizeof l->path, "%s", path);
+    l->line = yr_line(n);
 }
 
 void ty_ctx_free(ty_ctx *c) { free(c->lines); }
@@ -43,39 +43,39 @@ static rf_status add_random(ty_ctx *c, const char *path, rf_traj_random r)
 static rf_status random_value(ty_ctx *c, struct fy_node *n, const char *path, double *dst)
 {
     rf_traj_random r = {NULL, RF_DIST_FIXED, 0, 0, -INFINITY, INFINITY};
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     char p[300];
     double ab[2];
     rf_status st;
     for (;;) {
-        if ((st = sp_next(&c->sp, &it, path, &key, &k, &v)) != RF_OK)
+        if ((st = yr_next(&c->sp, &it, path, &key, &k, &v)) != RF_OK)
             return st;
         if (!key)
             break;
-        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
         if (!strcmp(key, "uniform") || !strcmp(key, "normal")) {
-            if ((st = sp_numbers(&c->sp, v, p, 2, 2, ab, NULL)) != RF_OK)
+            if ((st = yr_numbers(&c->sp, v, p, 2, 2, ab, NULL)) != RF_OK)
                 return st;
             r.dist = key[0] == 'u' ? RF_DIST_UNIFORM : RF_DIST_NORMAL;
             r.a = ab[0], r.b = ab[1];
             if (r.dist == RF_DIST_UNIFORM && !(r.a <= r.b))
-                return sp_fail(&c->sp, v, p, "expected [lo, hi] with lo <= hi");
+                return yr_fail(&c->sp, v, p, "expected [lo, hi] with lo <= hi");
             if (r.dist == RF_DIST_NORMAL && !(r.b >= 0))
-                return sp_fail(&c->sp, v, p, "expected [mean, sd] with sd >= 0");
+                return yr_fail(&c->sp, v, p, "expected [mean, sd] with sd >= 0");
         } else if (!strcmp(key, "min") || !strcmp(key, "max")) {
-            if ((st = sp_number(&c->sp, v, p, key[1] == 'i' ? &r.lo : &r.hi)) != RF_OK)
+            if ((st = yr_number(&c->sp, v, p, key[1] == 'i' ? &r.lo : &r.hi)) != RF_OK)
                 return st;
         } else {
-            return sp_fail(&c->sp, k, p, "unknown key; a random value is {uniform: [lo, hi]} or "
+            return yr_fail(&c->sp, k, p, "unknown key; a random value is {uniform: [lo, hi]} or "
                                          "{normal: [mean, sd], min: lo, max: hi}");
         }
     }
     if (r.dist == RF_DIST_FIXED)
-        return sp_fail(&c->sp, n, path, "expected a number, {uniform: [lo, hi]} or {normal: [mean, sd]}");
+        return yr_fail(&c->sp, n, path, "expected a number, {uniform: [lo, hi]} or {normal: [mean, sd]}");
     if (!(r.lo <= r.hi) || (r.dist == RF_DIST_NORMAL && !(r.a >= r.lo && r.a <= r.hi)))
-        return sp_fail(&c->sp, n, path, "min must be <= max and the mean within them");
+        return yr_fail(&c->sp, n, path, "min must be <= max and the mean within them");
     *dst = r.dist == RF_DIST_UNIFORM ? 0.5 * (r.a + r.b) : r.a;
     return add_random(c, path, r);
 }
@@ -85,10 +85,10 @@ rf_status ty_value(ty_ctx *c, struct fy_node *n, const char *path, double *dst, 
     ty_remember(c, path, n);
     if (n && fy_node_get_type(n) == FYNT_MAPPING) {
         if (!allow_random)
-            return sp_fail(&c->sp, n, path, "expected a number (this input cannot be random)");
+            return yr_fail(&c->sp, n, path, "expected a number (this input cannot be random)");
         return random_value(c, n, path, dst);
     }
-    return sp_number(&c->sp, n, path, dst);
+    return yr_number(&c->sp, n, path, dst);
 }
 
 static int in_list(const char *key, const char *keys)
@@ -103,28 +103,28 @@ static int in_list(const char *key, const char *keys)
 static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
 {
     const char *path = "bounce.impact";
-    rf_status st = sp_mapping(&c->sp, n, path);
-    sp_iter it = {n, NULL, 0, {0}};
+    rf_status st = yr_mapping(&c->sp, n, path);
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key, *str;
     size_t len;
     struct fy_node *k, *v;
     char p[300];
     while (st == RF_OK) {
-        if ((st = sp_next(&c->sp, &it, path, &key, &k, &v)) != RF_OK || !key)
+        if ((st = yr_next(&c->sp, &it, path, &key, &k, &v)) != RF_OK || !key)
             return st;
-        sp_pathf(p, sizeof p, "%s.%s", path, key);
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
         if (!strcmp(key, "solver")) {
-            if ((st = sp_string(&c->sp, v, p, &str, &len)) == RF_OK && len < sizeof c->spec->impact_solver)
+            if ((st = yr_string(&c->sp, v, p, &str, &len)) == RF_OK && len < sizeof c->spec->impact_solver)
                 snprintf(c->spec->impact_solver, sizeof c->spec->impact_solver, "%.*s", (int)len, str);
         } else if (!strcmp(key, "tolerance")) {
-            st = sp_number(&c->sp, v, p, &c->spec->impact_tolerance);
+            st = yr_number(&c->sp, v, p, &c->spec->impact_tolerance);
             if (st == RF_OK && !(c->spec->impact_tolerance > 0 && c->spec->impact_tolerance < 1))
-                st = sp_fail(&c->sp, v, p, "must lie in (0, 1)");
+                st = yr_fail(&c->sp, v, p, "must lie in (0, 1)");
         } else if (!strcmp(key, "friction")) {
-            st = sp_number(&c->sp, v, p, &c->spec->impact_friction);
+            st = yr_number(&c->sp, v, p, &c->spec->impact_friction);
         } else if (!strcmp(key, "cache")) {
             char *f = NULL;
-            if ((st = sp_string_dup(&c->sp, v, p, &f)) == RF_OK) {
+            if ((st = yr_string_dup(&c->sp, v, p, &f)) == RF_OK) {
                 size_t n = strlen(c->sp.dir) + strlen(f) + 2;
                 free(c->spec->impact_cache);
                 c->spec->impact_cache = malloc(n);
@@ -136,21 +136,21 @@ static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
             }
             free(f);
         } else if (!strcmp(key, "max_incidence")) {
-            st = sp_number(&c->sp, v, p, &c->spec->impact_max_incidence);
+            st = yr_number(&c->sp, v, p, &c->spec->impact_max_incidence);
             if (st == RF_OK && !(c->spec->impact_max_incidence > 0 && c->spec->impact_max_incidence <= 80))
-                st = sp_fail(&c->sp, v, p, "must lie in (0, 80] degrees");
+                st = yr_fail(&c->sp, v, p, "must lie in (0, 80] degrees");
         } else if (!strcmp(key, "speeds")) {
             double range[2] = {0, 0};
-            st = sp_numbers(&c->sp, v, p, 2, 2, range, NULL);
+            st = yr_numbers(&c->sp, v, p, 2, 2, range, NULL);
             if (st == RF_OK && !(range[0] > 0 && range[1] > range[0]))
-                st = sp_fail(&c->sp, v, p, "expected [lo, hi] normal speeds [m/s] with 0 < lo < hi");
+                st = yr_fail(&c->sp, v, p, "expected [lo, hi] normal speeds [m/s] with 0 < lo < hi");
             c->spec->impact_speed_min = range[0], c->spec->impact_speed_max = range[1];
         } else if (!strcmp(key, "refinement")) {
-            st = sp_number(&c->sp, v, p, &c->spec->impact_refinement);
+            st = yr_number(&c->sp, v, p, &c->spec->impact_refinement);
             if (st == RF_OK && !(c->spec->impact_refinement >= 0))
-                st = sp_fail(&c->sp, v, p, "must be >= 0 (0: the FE solver's default)");
+                st = yr_fail(&c->sp, v, p, "must be >= 0 (0: the FE solver's default)");
         } else {
-            st = sp_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement, speeds, max_incidence, cache");
+            st = yr_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement, speeds, max_incidence, cache");
         }
     }
     return st;
@@ -161,7 +161,7 @@ static rf_status special_field(ty_ctx *c, const char *key, const char *path, str
     long long n;
     rf_status st;
     if (!strcmp(key, "max_steps")) {
-        if ((st = sp_integer(&c->sp, v, path, 1, 100000000, &n)) == RF_OK)
+        if ((st = yr_integer(&c->sp, v, path, 1, 100000000, &n)) == RF_OK)
             c->spec->max_steps = (size_t)n;
         return st;
     }
@@ -172,19 +172,19 @@ static rf_status special_field(ty_ctx *c, const char *key, const char *path, str
 
 rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *keys, int allow_random)
 {
-    rf_status st = sp_mapping(&c->sp, n, prefix);
+    rf_status st = yr_mapping(&c->sp, n, prefix);
     if (st != RF_OK)
         return st;
-    sp_iter it = {n, NULL, 0, {0}};
+    yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     char p[300];
     for (;;) {
-        if ((st = sp_next(&c->sp, &it, prefix, &key, &k, &v)) != RF_OK || !key)
+        if ((st = yr_next(&c->sp, &it, prefix, &key, &k, &v)) != RF_OK || !key)
             return st;
-        sp_pathf(p, sizeof p, "%s.%s", prefix, key);
+        yr_pathf(p, sizeof p, "%s.%s", prefix, key);
         if (!in_list(key, keys))
-            return sp_fail(&c->sp, k, p, "unknown key; %s takes: %s", prefix, keys);
+            return yr_fail(&c->sp, k, p, "unknown key; %s takes: %s", prefix, keys);
         double *f = rf_traj_spec_field(c->spec, p);
         st = f ? ty_value(c, v, p, f, allow_random) : special_field(c, key, p, v);
         if (st != RF_OK)
