@@ -452,6 +452,102 @@ static int run_fem(const rf_impact_model_spec *spec_in, rf_impact_output *out, i
     return 0;
 }
 
+/* A model setting (not an impact input) given on the command line into spec;
+ * 0, or EXIT_USAGE after a message naming the option and value. */
+static int set_option(opt_id id, const char *oname, const char *val, rf_impact_model_spec *spec)
+{
+    double x = 0.0;
+    rf_error err = {0};
+    switch (id) {
+    case O_SOLVER:
+        if (rf_impact_solver_parse(val, &spec->solver, &err) != RF_OK) {
+            fprintf(stderr, "rockfuzz impact: --solver: %s\n", err.msg);
+            return EXIT_USAGE;
+        }
+        break;
+    case O_BOUNDARY:
+        if (rf_fem_boundary_parse(val, &spec->fem.boundary, &err) != RF_OK) {
+            fprintf(stderr, "rockfuzz impact: --boundary: %s\n", err.msg);
+            return EXIT_USAGE;
+        }
+        break;
+    case O_LARGE:
+        if (rf_fem_kinematics_parse(val, &spec->fem.large_deformation, &err) != RF_OK) {
+            fprintf(stderr, "rockfuzz impact: --large-deformation: %s\n", err.msg);
+            return EXIT_USAGE;
+        }
+        break;
+    case O_ALE:
+        if (rf_fem_ale_parse(val, &spec->fem.ale, &err) != RF_OK) {
+            fprintf(stderr, "rockfuzz impact: --ale: %s\n", err.msg);
+            return EXIT_USAGE;
+        }
+        break;
+    case O_SMASS3:
+        if (rf_fem_switch_parse("surface_mass_3d", val, &spec->fem.surface_mass_3d, &err) != RF_OK) {
+            fprintf(stderr, "rockfuzz impact: --surface-mass-3d: %s\n", err.msg);
+            return EXIT_USAGE;
+        }
+        break;
+    case O_SPHERE3:
+        if (rf_fem_switch_parse("sphere_contact_3d", val, &spec->fem.sphere_contact_3d, &err) != RF_OK) {
+            fprintf(stderr, "rockfuzz impact: --sphere-contact-3d: %s\n", err.msg);
+            return EXIT_USAGE;
+        }
+        break;
+    case O_THREADS:
+        if (!parse_int(oname, val, &spec->fem.threads))
+            return EXIT_USAGE;
+        break;
+    case O_VTK:
+        spec->fem.vtk_dir = val;
+        break;
+    case O_MAT_B:
+    case O_MAT_S:
+    case O_MAT_L: {
+        if ((id == O_MAT_B ? rf_impact_boulder_material_parse(val, &spec->base.boulder_material, &err)
+                           : rf_material_model_parse(val, id == O_MAT_S ? &spec->base.slope_material : &spec->base.layer_material,
+                                                     &err)) != RF_OK) {
+            fprintf(stderr, "rockfuzz impact: --%s '%s': expected %s\n", oname, val,
+                    id == O_MAT_B ? "elastic, von_mises or rigid" : "elastic, von_mises or drucker_prager");
+            return EXIT_USAGE;
+        }
+        break;
+    }
+    default:
+        if (!parse_double(oname, val, &x))
+            return EXIT_USAGE;
+        switch (id) {
+        case O_EN:
+            if (!(x >= 0.0 && x <= 1.0)) {
+                fprintf(stderr, "rockfuzz impact: --e-n %s: the normal COR must lie in [0, 1]\n", val);
+                return EXIT_USAGE;
+            }
+            spec->e_n = x;
+            break;
+        case O_HUNTER_A:
+            if (!(x >= 0.0)) {
+                fprintf(stderr, "rockfuzz impact: --hunter-A %s: must be >= 0\n", val);
+                return EXIT_USAGE;
+            }
+            spec->hunter_coefficient = x;
+            break;
+        case O_REFINEMENT:
+        case O_DOMAIN:
+        case O_END_TIME:
+            *(id == O_REFINEMENT ? &spec->fem.refinement : id == O_DOMAIN ? &spec->fem.domain_factor
+                                                                         : &spec->fem.end_time) = x;
+            if (rf_fem_options_validate(&spec->fem, 0, &err) != RF_OK) { /* the solvers' own rule */
+                fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", oname, val, err.msg);
+                return EXIT_USAGE;
+            }
+            break;
+        default: break;
+        }
+    }
+    return 0;
+}
+
 #define RF_CLI_MAX_INPUTS 64 /* > rf_impact_n_fields */
 
 /* The impact input an option names (--slope-E, or an alias such as --c), or NULL. */
@@ -554,95 +650,8 @@ int rf_cli_impact(int argc, char **argv)
             val = argv[++i];
         }
         given[id] = val;
-            double x = 0.0;
-        rf_error err = {0};
-        switch (id) {
-        case O_SOLVER:
-            if (rf_impact_solver_parse(val, &spec.solver, &err) != RF_OK) {
-                fprintf(stderr, "rockfuzz impact: --solver: %s\n", err.msg);
-                return EXIT_USAGE;
-            }
-            break;
-        case O_BOUNDARY:
-            if (rf_fem_boundary_parse(val, &spec.fem.boundary, &err) != RF_OK) {
-                fprintf(stderr, "rockfuzz impact: --boundary: %s\n", err.msg);
-                return EXIT_USAGE;
-            }
-            break;
-        case O_LARGE:
-            if (rf_fem_kinematics_parse(val, &spec.fem.large_deformation, &err) != RF_OK) {
-                fprintf(stderr, "rockfuzz impact: --large-deformation: %s\n", err.msg);
-                return EXIT_USAGE;
-            }
-            break;
-        case O_ALE:
-            if (rf_fem_ale_parse(val, &spec.fem.ale, &err) != RF_OK) {
-                fprintf(stderr, "rockfuzz impact: --ale: %s\n", err.msg);
-                return EXIT_USAGE;
-            }
-            break;
-        case O_SMASS3:
-            if (rf_fem_switch_parse("surface_mass_3d", val, &spec.fem.surface_mass_3d, &err) != RF_OK) {
-                fprintf(stderr, "rockfuzz impact: --surface-mass-3d: %s\n", err.msg);
-                return EXIT_USAGE;
-            }
-            break;
-        case O_SPHERE3:
-            if (rf_fem_switch_parse("sphere_contact_3d", val, &spec.fem.sphere_contact_3d, &err) != RF_OK) {
-                fprintf(stderr, "rockfuzz impact: --sphere-contact-3d: %s\n", err.msg);
-                return EXIT_USAGE;
-            }
-            break;
-        case O_THREADS:
-            if (!parse_int(oname, val, &spec.fem.threads))
-                return EXIT_USAGE;
-            break;
-        case O_VTK:
-            spec.fem.vtk_dir = val;
-            break;
-        case O_MAT_B:
-        case O_MAT_S:
-        case O_MAT_L: {
-            if ((id == O_MAT_B ? rf_impact_boulder_material_parse(val, &in->boulder_material, &err)
-                               : rf_material_model_parse(val, id == O_MAT_S ? &in->slope_material : &in->layer_material,
-                                                         &err)) != RF_OK) {
-                fprintf(stderr, "rockfuzz impact: --%s '%s': expected %s\n", oname, val,
-                        id == O_MAT_B ? "elastic, von_mises or rigid" : "elastic, von_mises or drucker_prager");
-                return EXIT_USAGE;
-            }
-            break;
-        }
-        default:
-            if (!parse_double(oname, val, &x))
-                return EXIT_USAGE;
-            switch (id) {
-            case O_EN:
-                if (!(x >= 0.0 && x <= 1.0)) {
-                    fprintf(stderr, "rockfuzz impact: --e-n %s: the normal COR must lie in [0, 1]\n", val);
-                    return EXIT_USAGE;
-                }
-                spec.e_n = x;
-                break;
-            case O_HUNTER_A:
-                if (!(x >= 0.0)) {
-                    fprintf(stderr, "rockfuzz impact: --hunter-A %s: must be >= 0\n", val);
-                    return EXIT_USAGE;
-                }
-                spec.hunter_coefficient = x;
-                break;
-            case O_REFINEMENT:
-            case O_DOMAIN:
-            case O_END_TIME:
-                *(id == O_REFINEMENT ? &spec.fem.refinement : id == O_DOMAIN ? &spec.fem.domain_factor
-                                                                             : &spec.fem.end_time) = x;
-                if (rf_fem_options_validate(&spec.fem, 0, &err) != RF_OK) { /* the solvers' own rule */
-                    fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", oname, val, err.msg);
-                    return EXIT_USAGE;
-                }
-                break;
-            default: break;
-            }
-        }
+        if (set_option(id, oname, val, &spec) != 0)
+            return EXIT_USAGE;
     }
 
     /* the 3D model on all cores (the solvers give the same bits for any count); the axisymmetric
