@@ -48,28 +48,6 @@ int traj_contact_rolls(const traj_run *r, size_t k, double *resist)
     return L.rolling;
 }
 
-/* Smallest tau in [0, tmax] with c2 tau^2 + c1 tau + c0 = 0; INFINITY if none. */
-static double first_root(double c2, double c1, double c0, double tmax)
-{
-    double r[2] = {INFINITY, INFINITY};
-    if (c2 == 0) {
-        if (c1 != 0)
-            r[0] = -c0 / c1;
-    } else {
-        double disc = c1 * c1 - 4 * c2 * c0;
-        if (disc >= 0) {
-            double q = -0.5 * (c1 + copysign(sqrt(disc), c1));
-            r[0] = q / c2;
-            r[1] = q != 0 ? c0 / q : r[0];
-        }
-    }
-    double best = INFINITY;
-    for (int i = 0; i < 2; i++)
-        if (r[i] >= 0 && r[i] <= tmax && r[i] < best)
-            best = r[i];
-    return best;
-}
-
 /* Collectors crossed while moving along g over [0, tau]; 1 if a barrier stopped the block. */
 static int contact_collectors(traj_run *r, const traj_segment *g, double a, double tau)
 {
@@ -79,7 +57,7 @@ static int contact_collectors(traj_run *r, const traj_segment *g, double a, doub
         for (size_t c = 0; c < r->w->ncol; c++) {
             if (r->res->crossings[c].reached)
                 continue;
-            double tc = first_root(0.5 * a * g->tx, r->u * g->tx, r->x - r->w->col[c].x, tau);
+            double tc = traj_first_root(0.5 * a * g->tx, r->u * g->tx, r->x - r->w->col[c].x, tau);
             if (tc < tf)
                 tf = tc, first = c;
         }

@@ -145,28 +145,6 @@ static spin_model stretch_spin(const traj_run *r, const rf_traj_event *ev)
     return m;
 }
 
-/* Smallest d in [0, dmax] with c2 d^2 + c1 d + c0 = 0; INFINITY if none. */
-static double first_root(double c2, double c1, double c0, double dmax)
-{
-    double r[2] = {INFINITY, INFINITY};
-    if (c2 == 0) {
-        if (c1 != 0)
-            r[0] = -c0 / c1;
-    } else {
-        double disc = c1 * c1 - 4 * c2 * c0;
-        if (disc >= 0) {
-            double q = -0.5 * (c1 + copysign(sqrt(disc), c1));
-            r[0] = q / c2;
-            r[1] = q != 0 ? c0 / q : r[0];
-        }
-    }
-    double best = INFINITY;
-    for (int i = 0; i < 2; i++)
-        if (r[i] >= 0 && r[i] <= dmax && r[i] < best)
-            best = r[i];
-    return best;
-}
-
 static void record(traj_env_acc *a, size_t k, double h, double e)
 {
     uint32_t *hist = a->hist + k * (a->bh.nb + a->be.nb);
@@ -199,7 +177,7 @@ static void stretch(traj_env_acc *a, const traj_run *r, const rf_traj_event *ev,
     for (size_t k = kb; k <= ke; k++) {
         if (a->seen[k] || a->x[k] < lo || a->x[k] > hi)
             continue;
-        double d = first_root(0.5 * ev->ax, ev->vx, ev->x - a->x[k], T);
+        double d = traj_first_root(0.5 * ev->ax, ev->vx, ev->x - a->x[k], T);
         if (!isfinite(d)) /* on a rounding gap at either end */
             d = fabs(ev->x - a->x[k]) <= fabs(xe - a->x[k]) ? 0 : T;
         double vx = ev->vx + ev->ax * d, vy = ev->vy + ev->ay * d;

@@ -119,6 +119,9 @@ rf_status traj_write_envelopes_csv(const char *dir, const rf_traj_ensemble *e, r
  * trajectory model.  For a run at one point (traj_run_at.c). */
 rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *spec, void **table, rf_error *err);
 
+/* roots.c: the smallest tau in [0, tmax] with c2 tau^2 + c1 tau + c0 = 0; INFINITY if none. */
+double traj_first_root(double c2, double c1, double c0, double tmax);
+
 /* transitions.c */
 void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay);
 void traj_finish(traj_run *r, rf_traj_state state, rf_traj_event_kind kind);
