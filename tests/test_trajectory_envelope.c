@@ -19,6 +19,7 @@
 
 #include "rockfuzz/trajectory.h"
 #include "test_util.h"
+#include "test_traj_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -54,6 +55,7 @@ static void run(const rf_traj_spec *s, int threads, rf_traj_ensemble *e)
     if (rf_traj_run(s, threads, e, &err) != RF_OK)
         fail_msg("%s", err.msg);
     assert_int_equal(e->envelope.n_edges, RF_TRAJ_ENVELOPE_EDGES);
+    assert_ensemble_invariants(s, e);
 }
 
 /* Ground under x by linear interpolation between the profile points. */

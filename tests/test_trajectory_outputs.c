@@ -12,6 +12,7 @@
 
 #include "rockfuzz/trajectory.h"
 #include "test_util.h"
+#include "test_traj_util.h"
 
 #define PI 3.14159265358979323846
 
@@ -120,6 +121,7 @@ static void test_total_energy_every_crossing(void **state)
     rf_traj_ensemble e;
     rf_error err;
     assert_int_equal(rf_traj_run(&s, 2, &e, &err), RF_OK);
+    assert_ensemble_invariants(&s, &e);
     size_t reached = 0;
     double I_over_m = 0.4 * 0.4 * 0.4, m = 4.0 / 3.0 * PI * 0.064 * 2700;
     for (size_t i = 0; i < e.samples * 2; i++) {
@@ -212,6 +214,7 @@ static void test_percentiles_exceedance_brute_force(void **state)
     rf_traj_stats st;
     rf_error err;
     assert_int_equal(rf_traj_run(&s, 2, &e, &err), RF_OK);
+    assert_ensemble_invariants(&s, &e);
     assert_int_equal(rf_traj_stats_compute_spec(&s, &e, &st, &err), RF_OK);
     size_t N = e.samples;
     check_pct(&st.runout_x, e.runout_x, N, &s.outputs);
@@ -248,6 +251,7 @@ static void test_runout_histogram(void **state)
     rf_traj_stats st;
     rf_error err;
     assert_int_equal(rf_traj_run(&s, 1, &e, &err), RF_OK);
+    assert_ensemble_invariants(&s, &e);
     assert_int_equal(rf_traj_stats_compute_spec(&s, &e, &st, &err), RF_OK);
     const rf_traj_histogram *h = &st.runout_histogram;
     size_t N = e.samples, sum = 0;
@@ -379,6 +383,7 @@ static void test_study_model_outputs(void **state)
     rf_traj_ensemble e;
     rf_traj_stats st;
     assert_int_equal(rf_traj_run(&s2, 1, &e, &err), RF_OK);
+    assert_ensemble_invariants(&s2, &e);
     assert_int_equal(rf_traj_stats_compute_spec(&s2, &e, &st, &err), RF_OK);
     const rf_traj_collector_stats *a = &st.collectors[0], *b = &st.collectors[1];
     double want[] = {a->total_energy.value[0], a->total_energy.value[5], a->total_energy.max, a->height_lowest.value[2],
