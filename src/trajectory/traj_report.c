@@ -94,7 +94,13 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
         html_text(f, s->collectors[c].name);
         fputs("</h2>", f);
         snprintf(stem, sizeof stem, "trajectory_hist_%s", s->collectors[c].name);
-        image(f, dir, stem);
+        size_t reached = 0;
+        for (size_t i = 0; i < e->samples; i++)
+            reached += e->crossings[i * e->n_collectors + c].reached != 0;
+        if (reached)
+            image(f, dir, stem);
+        else
+            fprintf(f, "<p>No trajectory of the %zu reached this line: no energy or height to show.</p>", e->samples);
     }
     fputs("</body></html>\n", f);
     if (fclose(f) != 0)
