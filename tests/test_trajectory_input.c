@@ -82,6 +82,33 @@ static void test_bad_inputs(void **state)
     expect_error("mass: 1000", "mass: -1", "t.yaml:8:", "block.mass = -1");
 }
 
+/* A material or collector name becomes part of output names, CSV fields, file
+ * names and binding paths: markup, separators, quotes and path characters are
+ * refused where they are given (they reached report.html unescaped, broke
+ * CSV rows and made PLplot abort on '/'). */
+static void test_names(void **state)
+{
+    (void)state;
+    const char *bad[] = {"\"<img src=x onerror=alert(1)>\"", "../x", "a/b", "\"a,b\"", "\"a b\"", "a.b",
+                         "\"\"", "x23456789012345678901234567890123456789012345678901234567890123456"};
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        char to[128];
+        snprintf(to, sizeof to, "name: %s, x: 6", bad[k]);
+        expect_error("name: barrier, x: 6", to, "t.yaml:12:", "collectors[0].name");
+        snprintf(to, sizeof to, "  %s: {R_n", bad[k]);
+        if (bad[k][0] != '"' || bad[k][1] != '"') /* an empty key is YAML's own error */
+            expect_error("  rock: {R_n", to, "t.yaml:7:", "is not a name");
+    }
+    rf_traj_spec s;
+    rf_error err;
+    assert_int_equal(load_edit("name: barrier, x: 6", "name: Barrier-2_b, x: 6", &s, &err), RF_OK);
+    free(s.collectors[0].name); /* a spec built in code is held to the same rule */
+    s.collectors[0].name = strdup("a/b");
+    assert_int_not_equal(rf_traj_spec_validate(&s, &err), RF_OK);
+    assert_non_null(strstr(err.msg, "collectors[0].name = a/b"));
+    rf_traj_spec_free(&s);
+}
+
 /* With x sorted, a profile can only cross itself by folding back along a vertical step. */
 static void test_self_intersection(void **state)
 {
@@ -116,6 +143,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_minimal_file),
         cmocka_unit_test(test_bad_inputs),
+        cmocka_unit_test(test_names),
         cmocka_unit_test(test_self_intersection),
         cmocka_unit_test(test_fields_and_copy),
     };

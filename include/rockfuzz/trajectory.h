@@ -153,6 +153,15 @@ rf_status rf_traj_profile_read_csv(const char *path, rf_traj_spec *spec, rf_erro
  * input P: P.lo / P.hi (uniform), P.mean / P.sd (normal).  NULL if unknown. */
 double *rf_traj_spec_field(rf_traj_spec *spec, const char *path);
 
+/* Material and collector names: 1 to RF_TRAJ_NAME_MAX letters, digits, '_'
+ * or '-', because a name becomes part of output names, CSV fields, file names
+ * (trajectory_hist_NAME.png) and binding paths (collectors.NAME.x); nothing
+ * else can then break a CSV row, a page or a path. */
+#define RF_TRAJ_NAME_MAX 64
+#define RF_TRAJ_NAME_RULE "a name holds 1 to 64 letters, digits, '_' or '-' (it becomes part of output " \
+                          "names, file names and binding paths)"
+int rf_traj_name_valid(const char *name);
+
 /* Check the spec (profile sorted and not self-intersecting, materials,
  * release above the ground, ...); the message names the field and value. */
 rf_status rf_traj_spec_validate(const rf_traj_spec *spec, rf_error *err);

@@ -298,8 +298,38 @@ static rf_status check_random_ranges(const rf_traj_spec *s, rf_error *err)
     return RF_OK;
 }
 
+int rf_traj_name_valid(const char *name)
+{
+    size_t n = name ? strlen(name) : 0;
+    if (n == 0 || n > RF_TRAJ_NAME_MAX)
+        return 0;
+    for (size_t i = 0; i < n; i++) {
+        unsigned char ch = (unsigned char)name[i];
+        if (!((ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_' ||
+              ch == '-'))
+            return 0;
+    }
+    return 1;
+}
+
+/* The first material or collector whose name breaks the rule, in msg. */
+static rf_status names_valid(const rf_traj_spec *s, rf_error *err)
+{
+    for (size_t m = 0; m < s->n_materials; m++)
+        if (!rf_traj_name_valid(s->materials[m].name))
+            return rf_fail(err, RF_EINVAL, "materials.%s: %s", s->materials[m].name ? s->materials[m].name : "",
+                           RF_TRAJ_NAME_RULE);
+    for (size_t c = 0; c < s->n_collectors; c++)
+        if (!rf_traj_name_valid(s->collectors[c].name))
+            return rf_fail(err, RF_EINVAL, "collectors[%zu].name = %s: %s", c,
+                           s->collectors[c].name ? s->collectors[c].name : "", RF_TRAJ_NAME_RULE);
+    return RF_OK;
+}
+
 rf_status rf_traj_spec_validate(const rf_traj_spec *s, rf_error *err)
 {
-    rf_status st = validate_values(s, err);
+    rf_status st = names_valid(s, err);
+    if (st == RF_OK)
+        st = validate_values(s, err);
     return st != RF_OK ? st : check_random_ranges(s, err);
 }

@@ -33,6 +33,8 @@ static rf_status parse_materials(ty_ctx *c, struct fy_node *n)
     for (;;) {
         if ((st = yr_next(&c->sp, &it, "materials", &key, &k, &v)) != RF_OK || !key)
             return st;
+        if (!rf_traj_name_valid(key))
+            return yr_fail(&c->sp, k, "materials", "%s is not a name: %s", key, RF_TRAJ_NAME_RULE);
         rf_traj_material *m = &c->spec->materials[c->spec->n_materials++];
         if (!(m->name = rf_strdup(key)))
             return rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
@@ -174,6 +176,10 @@ static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
             return yr_fail(&c->sp, e, p, "a collector needs a name");
         if ((st = yr_string_dup(&c->sp, nm, p, &col->name)) != RF_OK)
             return st;
+        if (!rf_traj_name_valid(col->name)) {
+            yr_pathf(p, sizeof p, "collectors[%zu].name", i);
+            return yr_fail(&c->sp, nm, p, "%s", RF_TRAJ_NAME_RULE);
+        }
         for (size_t j = 0; j < i; j++)
             if (!strcmp(c->spec->collectors[j].name, col->name))
                 return yr_fail(&c->sp, nm, p, "a second collector with this name");
