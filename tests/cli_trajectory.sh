@@ -143,5 +143,19 @@ grep -q "bad.yaml:2: materials.m.R_n = 2: must lie in \[0, 1\]" "$tmp/err.txt" |
 "$bin" run "$src/examples/trajectory/hybrid.yaml" --out "$tmp/h" --max-evaluations 1 > /dev/null 2> "$tmp/h.txt"
 grep -q "general" "$tmp/h.txt" || grep -q "evaluations" "$tmp/h.txt" || fail "hybrid study: $(cat "$tmp/h.txt")"
 
+# --out into a user's folder (their own report.html and result.json, no invocation.json) is
+# refused before anything runs, and nothing there is touched; --force writes; a folder that
+# holds a trajectory run (invocation.json) is written again without --force
+mkdir -p "$tmp/mine"
+echo "<p>my report</p>" > "$tmp/mine/report.html"
+echo '{"mine": 1}' > "$tmp/mine/result.json"
+"$bin" trajectory "$src/examples/trajectory/slope.yaml" --out "$tmp/mine" --quiet 2> "$tmp/mine.err"
+[ $? = 2 ] || fail "--out into a user's folder: not refused with exit 2"
+grep -q "holds no rockfuzz run (no invocation.json).*--force" "$tmp/mine.err" || fail "--out refusal: $(cat "$tmp/mine.err")"
+grep -q "my report" "$tmp/mine/report.html" && grep -q '"mine"' "$tmp/mine/result.json" || fail "--out touched the user's files"
+"$bin" trajectory "$src/examples/trajectory/slope.yaml" --out "$tmp/mine" --quiet --force || fail "--out --force"
+[ -f "$tmp/mine/invocation.json" ] || fail "--force wrote no invocation.json"
+"$bin" trajectory "$src/examples/trajectory/slope.yaml" --out "$tmp/mine" --quiet || fail "--out into its own run again"
+
 [ $fails = 0 ] && echo "cli_trajectory: all checks passed"
 exit $fails

@@ -6,6 +6,7 @@
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "cli/cli.h"
 #include "core/json.h"
+#include "core/outdir.h"
 #include "rockfuzz/report.h"
 #include "rockfuzz/trajectory.h"
 
@@ -42,6 +43,8 @@ static void usage(FILE *f)
         "  --samples N, --seed S  override the file's samples and seed\n"
         "  --max-trajectories N   trajectories listed in the JSON (default 100)\n"
         "  --no-plots             skip the plots and report.html\n"
+        "  --force                write into a non-empty DIR that holds no rockfuzz trajectory\n"
+        "                         run (no invocation.json)\n"
         "  --quiet                no summary\n"
         "\n"
         "Units: m, s, m/s, rad/s, kg, J (the summary shows energies in kJ); angles in the file\n"
@@ -50,7 +53,7 @@ static void usage(FILE *f)
 
 typedef struct {
     const char *file, *out;
-    int json, quiet, plots, threads;
+    int json, quiet, plots, threads, force;
     long long samples, seed;
     size_t max_traj;
 } traj_args;
@@ -79,6 +82,7 @@ static int parse_args(int argc, char **argv, traj_args *a)
         if (!strcmp(o, "--json")) a->json = 1;
         else if (!strcmp(o, "--quiet")) a->quiet = 1;
         else if (!strcmp(o, "--no-plots")) a->plots = 0;
+        else if (!strcmp(o, "--force")) a->force = 1;
         else if (!strcmp(o, "--out") && v) a->out = v, i++;
         else if (!strcmp(o, "--threads")) { if (!parse_count(o, v, 0, RF_CLI_MAX_THREADS, &n)) return 0; a->threads = (int)n, i++; }
         else if (!strcmp(o, "--samples")) { if (!parse_count(o, v, 1, LLONG_MAX, &a->samples)) return 0; i++; }
@@ -179,6 +183,13 @@ int rf_cli_trajectory(int argc, char **argv)
     traj_args a;
     if (!parse_args(argc, argv, &a))
         return 2;
+    /* the folder is checked before anything runs: a user's own files are never overwritten */
+    const char *const markers[] = {"invocation.json"};
+    rf_error ferr = {0};
+    if (a.out && rf_check_out_dir(a.out, a.force, markers, 1, &ferr) != RF_OK) {
+        fprintf(stderr, "rockfuzz trajectory: %s\n", ferr.msg);
+        return 2;
+    }
     rf_traj_spec spec;
     rf_traj_ensemble ens;
     rf_traj_stats st;

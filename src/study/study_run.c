@@ -7,6 +7,7 @@
  *   integrity, key) -> plan and cap -> TM -> analysis -> report, result.json
  *   last.  The lock is released only when everything is closed. */
 #include "rockfuzz/study_run.h"
+#include "core/outdir.h"
 #include "study/study_internal.h"
 
 #include <dirent.h>
@@ -40,42 +41,13 @@ void rf_study_run_options_default(rf_study_run_options *opt)
 
 /* ---- the output folder ------------------------------------------------ */
 
-/* A file that only a rockfuzz run leaves in its folder. */
-static int is_run_marker(const char *name)
-{
-    return !strcmp(name, RF_STORE_FILE) || !strcmp(name, RF_RUN_LOCK_FILE) || !strcmp(name, "result.json");
-}
 
-/* The folder must be missing, empty, a rockfuzz run folder, or accepted by force. */
+/* The folder must be missing, empty, a rockfuzz run folder (one of the files
+ * only a study run leaves there), or accepted by force. */
 static rf_status check_out_dir(const char *dir, int force, rf_error *err)
 {
-    struct stat sb;
-    if (stat(dir, &sb) != 0)
-        return errno == ENOENT ? RF_OK : rf_fail(err, RF_EIO, "--out %s: %s", dir, strerror(errno));
-    if (!S_ISDIR(sb.st_mode))
-        return rf_fail(err, RF_EINVAL, "--out %s: exists and is not a folder", dir);
-    DIR *d = opendir(dir);
-    if (!d)
-        return rf_fail(err, RF_EIO, "--out %s: cannot list the folder: %s", dir, strerror(errno));
-    size_t others = 0, markers = 0;
-    char example[256] = "";
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-            continue;
-        if (is_run_marker(e->d_name))
-            markers++;
-        else if (others++ == 0)
-            snprintf(example, sizeof example, "%s", e->d_name);
-    }
-    closedir(d);
-    if (others == 0 || markers > 0 || force)
-        return RF_OK;
-    return rf_fail(err, RF_EINVAL,
-                   "--out %s: the folder is not empty (%zu entr%s, e.g. '%s') and holds no rockfuzz run (no %s, %s "
-                   "or result.json); rockfuzz would overwrite files there. Choose a new folder, or pass --force "
-                   "to write into it anyway",
-                   dir, others, others == 1 ? "y" : "ies", example, RF_STORE_FILE, RF_RUN_LOCK_FILE);
+    const char *const markers[] = {RF_STORE_FILE, RF_RUN_LOCK_FILE, "result.json"};
+    return rf_check_out_dir(dir, force, markers, 3, err);
 }
 
 /* Take DIR/rockfuzz.lock (exclusive flock, released when *fd is closed or
