@@ -22,39 +22,7 @@
 #define G 9.81
 #define DEG (3.14159265358979323846 / 180.0)
 
-typedef struct {
-    rf_traj_spec spec;
-    rf_traj_world *world;
-    rf_traj_result res;
-    rf_traj_crossing cross[4];
-} run;
-
-static void simulate(run *c, const char *yaml)
-{
-    rf_error err;
-    memset(c, 0, sizeof *c);
-    if (rf_traj_load_buffer("ground.yaml", yaml, strlen(yaml), &c->spec, &err) != RF_OK)
-        fail_msg("load: %s", err.msg);
-    if (rf_traj_world_create(&c->spec, &c->world, &err) != RF_OK)
-        fail_msg("world: %s", err.msg);
-    c->res.crossings = c->cross;
-    c->res.impacts = malloc(16 * sizeof *c->res.impacts);
-    c->res.impacts_cap = 16;
-    c->res.events = malloc(16 * sizeof *c->res.events);
-    c->res.events_cap = 16;
-    assert_int_equal(rf_traj_simulate(c->world, &c->spec, c->spec.seed, 0, &c->res, &err), RF_OK);
-    assert_traj_invariants(&c->spec, &c->res);
-}
-
-static void release_run(run *c)
-{
-    free(c->res.impacts);
-    free(c->res.events);
-    rf_traj_world_free(c->world);
-    rf_traj_spec_free(&c->spec);
-}
-
-static void expect_rest(const run *c, double x, double y, double tol)
+static void expect_rest(const traj_case *c, double x, double y, double tol)
 {
     if (c->res.state != RF_TRAJ_STOPPED || !(fabs(c->res.x_end - x) <= tol) || !(fabs(c->res.y_end - y) <= tol))
         fail_msg("%s at (%.12g, %.12g) after %zu events; expected stopped at (%.12g, %.12g)",
@@ -88,13 +56,13 @@ static void test_step_point_block(void **state)
                  "release: {x: 5, y: 0, vx: %g}\n"
                  "collectors: [{name: a, x: %g}]\n",
                  profiles[k], vx[k], far[k]);
-        run c;
-        simulate(&c, yaml);
+        traj_case c;
+        traj_case_run(&c, yaml);
         double back = v1 * v1 / (2 * a);
         expect_rest(&c, wall[k] + (vx[k] > 0 ? -back : back), 0, 1e-9);
         assert_int_equal(c.res.n_impacts, 1);
         assert_int_equal(c.cross[0].reached, 0);
-        release_run(&c);
+        traj_case_free(&c);
     }
 }
 
@@ -104,8 +72,8 @@ static void test_step_point_block(void **state)
 static void test_pit(void **state)
 {
     (void)state;
-    run c;
-    simulate(&c, "profile: {points: [[-20, 5], [0, 5], [0, 0], [10, 0], [10, 5], [20, 5]], material: rock}\n"
+    traj_case c;
+    traj_case_run(&c, "profile: {points: [[-20, 5], [0, 5], [0, 0], [10, 0], [10, 5], [20, 5]], material: rock}\n"
                  "materials: {rock: {R_n: 0.7, R_t: 0.8, friction_angle: 1}}\n"
                  "block: {shape: point, mass: 1000}\n"
                  "release: {x: 5, y: 0, vx: 8}\n");
@@ -125,7 +93,7 @@ static void test_pit(void **state)
     assert_true(walls >= 3);
     assert_int_equal(c.res.n_impacts, walls);
     expect_rest(&c, p, 0, 1e-9);
-    release_run(&c);
+    traj_case_free(&c);
 }
 
 /* A rolling sphere (rolling resistance mu_r): released with vx = 5 and no spin,
@@ -134,14 +102,14 @@ static void test_pit(void **state)
 static void test_step_rolling_sphere(void **state)
 {
     (void)state;
-    run c;
-    simulate(&c, "profile: {points: [[-20, 5], [0, 0], [10, 0], [10, 10], [20, 10]], material: rock}\n"
+    traj_case c;
+    traj_case_run(&c, "profile: {points: [[-20, 5], [0, 0], [10, 0], [10, 10], [20, 10]], material: rock}\n"
                  "materials: {rock: {R_n: 0.5, R_t: 0.8, friction_angle: 30, rolling_resistance: 0.1}}\n"
                  "block: {shape: sphere, radius: 0.5, density: 2700}\n"
                  "release: {x: 5, y: 0, vx: 5}\n");
     double k = 0.4, a = 0.1 * G / (1 + k), u1 = rebound_after(5 / (1 + k), 5, a, 0.5) / (1 + k);
     expect_rest(&c, 10 - u1 * u1 / (2 * a), 0, 1e-9);
-    release_run(&c);
+    traj_case_free(&c);
 }
 
 /* A sphere on a 60 deg slope (too steep to roll with phi = 9 deg), released at
@@ -162,13 +130,13 @@ static void test_sliding_sphere_spin(void **state)
              "block: {shape: sphere, radius: 0.5, density: 2700}\n"
              "release: {x: 1, y: %.17g, omega: 20}\n"
              "collectors: [{name: c, x: 6}]\n", 10 * t60, 9 * t60);
-    run c;
-    simulate(&c, yaml);
+    traj_case c;
+    traj_case_run(&c, yaml);
     double gt = G * sin(60 * DEG), R = tan(9 * DEG) * G * cos(60 * DEG), k = 0.4;
     double t1 = 20 * 0.5 / (gt + R + R / k), u1 = (gt + R) * t1, d1 = 0.5 * (gt + R) * t1 * t1;
     assert_true(c.cross[0].reached);
     assert_close(c.cross[0].speed, sqrt(u1 * u1 + 2 * (gt - R) * (10 - d1)), 1e-9);
-    release_run(&c);
+    traj_case_free(&c);
 }
 
 /* Sliding from rest down a side of slope angle b (friction phi) over length L
@@ -189,14 +157,14 @@ static void test_notch(void **state)
                  "release: {x: -9, y: %.17g}\n",
                  10 * tl, 10 * tr, cases[k].sphere ? "{shape: sphere, radius: 0.5, density: 2700}"
                                                    : "{shape: point, mass: 1000}", 9 * tl);
-        run c;
-        simulate(&c, yaml);
+        traj_case c;
+        traj_case_run(&c, yaml);
         double b = cases[k].left * DEG, L = 9 / cos(b);
         double acc = cases[k].sphere ? G * sin(b) / 1.4 : G * (sin(b) - tan(30 * DEG) * cos(b));
         expect_rest(&c, 0, 0, 1e-9);
         assert_close(c.res.t_end, sqrt(2 * L / acc), 1e-9);
         assert_true(c.res.n_steps < 10);
-        release_run(&c);
+        traj_case_free(&c);
     }
 }
 
@@ -207,7 +175,7 @@ static void test_far_vertex_changes_nothing(void **state)
 {
     (void)state;
     const char *tail[2] = {"", ", [9e6, 0]"};
-    run c[2];
+    traj_case c[2];
     for (int k = 0; k < 2; k++) {
         char yaml[1024];
         snprintf(yaml, sizeof yaml,
@@ -215,7 +183,7 @@ static void test_far_vertex_changes_nothing(void **state)
                  "materials: {rock: {R_n: 0.3, R_t: 0.8, friction_angle: 20}}\n"
                  "block: {shape: point, mass: 1000}\n"
                  "release: {x: 2, y: 9.005}\n", tail[k]);
-        simulate(&c[k], yaml);
+        traj_case_run(&c[k], yaml);
         assert_true(c[k].res.n_impacts >= 1);
         assert_close(c[k].res.impacts[0].t, sqrt(2 * 0.005 / G), 1e-9);
     }
@@ -223,8 +191,8 @@ static void test_far_vertex_changes_nothing(void **state)
     assert_int_equal(c[0].res.n_events, c[1].res.n_events);
     for (size_t i = 0; i < c[0].res.n_events; i++)
         assert_memory_equal(&c[0].res.events[i], &c[1].res.events[i], sizeof c[0].res.events[i]);
-    release_run(&c[0]);
-    release_run(&c[1]);
+    traj_case_free(&c[0]);
+    traj_case_free(&c[1]);
 }
 
 static void expect_refused(const char *yaml, const char *want1, const char *want2)

@@ -18,38 +18,6 @@
 #define G 9.81
 #define DEG (3.14159265358979323846 / 180.0)
 
-typedef struct {
-    rf_traj_spec spec;
-    rf_traj_world *world;
-    rf_traj_result res;
-    rf_traj_crossing cross[4];
-} traj_case;
-
-static void run_case(traj_case *c, const char *yaml)
-{
-    rf_error err;
-    memset(c, 0, sizeof *c);
-    if (rf_traj_load_buffer("case.yaml", yaml, strlen(yaml), &c->spec, &err) != RF_OK)
-        fail_msg("load: %s", err.msg);
-    if (rf_traj_world_create(&c->spec, &c->world, &err) != RF_OK)
-        fail_msg("world: %s", err.msg);
-    c->res.crossings = c->cross;
-    c->res.impacts = malloc(16 * sizeof *c->res.impacts);
-    c->res.impacts_cap = 16;
-    c->res.events = malloc(16 * sizeof *c->res.events);
-    c->res.events_cap = 16;
-    assert_int_equal(rf_traj_simulate(c->world, &c->spec, c->spec.seed, 0, &c->res, &err), RF_OK);
-    assert_traj_invariants(&c->spec, &c->res);
-}
-
-static void free_case(traj_case *c)
-{
-    free(c->res.impacts);
-    free(c->res.events);
-    rf_traj_world_free(c->world);
-    rf_traj_spec_free(&c->spec);
-}
-
 /* Thrown from (x0, y0) = (-0.5, 20.5) at (5, 2) m/s off a 20 m ledge onto flat
  * ground: T = (vy + sqrt(vy^2 + 2 g y0)) / g, x = x0 + vx T, v_n = sqrt(vy^2 + 2 g y0);
  * after: (R_t vx, R_n v_n); rebound apex R_n^2 v_n^2 / (2 g); collector at
@@ -58,7 +26,7 @@ static void test_ledge(void **state)
 {
     (void)state;
     traj_case c;
-    run_case(&c, "profile: {points: [[-10, 20], [0, 20], [0, 0], [100, 0]], materials: [rock, rock, rock]}\n"
+    traj_case_run(&c, "profile: {points: [[-10, 20], [0, 20], [0, 0], [100, 0]], materials: [rock, rock, rock]}\n"
                  "materials: {rock: {R_n: 0.4, R_t: 0.7, friction_angle: 30}}\n"
                  "block: {shape: point, mass: 1000}\n"
                  "release: {x: -0.5, y: 20.5, vx: 5, vy: 2}\n"
@@ -82,7 +50,7 @@ static void test_ledge(void **state)
     assert_close(c.cross[0].translational_energy, 500 * (25 + vyc * vyc), 1e-12);
     assert_true(c.cross[0].rotational_energy == 0);
     assert_int_equal(c.res.state, RF_TRAJ_STOPPED);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* A vertical wall at x = 10 (0..5 m): from (2, 1) at (10, 5) it is hit at
@@ -92,7 +60,7 @@ static void test_vertical_wall(void **state)
 {
     (void)state;
     traj_case c;
-    run_case(&c, "profile: {points: [[0, 0], [10, 0], [10, 5], [20, 5]], material: rock}\n"
+    traj_case_run(&c, "profile: {points: [[0, 0], [10, 0], [10, 5], [20, 5]], material: rock}\n"
                  "materials: {rock: {R_n: 0.5, R_t: 0.8, friction_angle: 30}}\n"
                  "block: {shape: point, mass: 1}\n"
                  "release: {x: 2, y: 1, vx: 10, vy: 5}\n");
@@ -103,7 +71,7 @@ static void test_vertical_wall(void **state)
     assert_close(m->y, 5 - 0.32 * G, 1e-12);
     assert_close(m->vx_out, -5, 1e-12);
     assert_close(m->vy_out, 0.8 * (5 - 0.8 * G), 1e-12);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* Dropped at (0, h) with vx = U on flat ground: impact k (k >= 1) at
@@ -115,7 +83,7 @@ static void test_bounce_series(void **state)
 {
     (void)state;
     traj_case c;
-    run_case(&c, "profile: {points: [[-1, 0], [1000, 0]], material: m}\n"
+    traj_case_run(&c, "profile: {points: [[-1, 0], [1000, 0]], material: m}\n"
                  "materials: {m: {R_n: 0.6, R_t: 0.9, friction_angle: 45}}\n"
                  "block: {shape: point, mass: 1}\n"
                  "release: {x: 0, y: 5, vx: 3, vy: 0}\n"
@@ -142,7 +110,7 @@ static void test_bounce_series(void **state)
     assert_true(fabs(x - xinf) < 2 * U * v0 / G * pow(rho, (double)K) / (1 - rho) + 1e-12);
     assert_int_equal(c.res.state, RF_TRAJ_STOPPED);
     assert_close(c.res.x_end, x + vt * vt / (2 * G * 1.0), 1e-9);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* From rest at the top of a 3:4 incline (beta = atan(3/4), D = 5 m) onto a
@@ -152,7 +120,7 @@ static void test_slide_incline_floor(void **state)
 {
     (void)state;
     traj_case c;
-    run_case(&c, "profile: {points: [[0, 3], [4, 0], [100, 0]], material: m}\n"
+    traj_case_run(&c, "profile: {points: [[0, 3], [4, 0], [100, 0]], material: m}\n"
                  "materials: {m: {R_n: 0.3, R_t: 0.8, friction_angle: 20}}\n"
                  "block: {shape: point, mass: 2}\n"
                  "release: {x: 0, y: 3, vx: 0, vy: 0}\n"
@@ -168,7 +136,7 @@ static void test_slide_incline_floor(void **state)
     assert_close(c.cross[0].speed, sqrt(2 * a * 2.5), 1e-9);   /* x = 2: half way, 2.5 m along */
     assert_true(fabs(c.cross[0].height_lowest) < 1e-12);
     assert_close(c.cross[1].speed, sqrt(v1 * v1 - 2 * mu * G * 1), 1e-9);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* Thrown down a gentle incline (10 deg, mu = tan 30) at 4 m/s along it:
@@ -185,12 +153,12 @@ static void test_slide_to_rest(void **state)
              "block: {shape: point, mass: 2}\n"
              "release: {x: 10, y: %.17g, vx: %.17g, vy: %.17g}\n",
              100 * tan(b), 90 * tan(b), v * cos(b), -v * sin(b));
-    run_case(&c, yaml);
+    traj_case_run(&c, yaml);
     double a = G * (sin(b) - tan(30 * DEG) * cos(b));
     assert_int_equal(c.res.state, RF_TRAJ_STOPPED);
     assert_close(c.res.x_end, 10 + v * v / (2 * -a) * cos(b), 1e-9);
     assert_close(c.res.t_end, v / -a, 1e-9);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* A sphere rolling from rest down a 20 deg incline (tan b <= 3.5 mu: no
@@ -209,14 +177,14 @@ static void test_rolling(void **state)
              "release: {x: 0, y: %.17g}\n"
              "collectors: [{name: c, x: 50}]\n",
              100 * tan(b), 100 * tan(b));
-    run_case(&c, yaml);
+    traj_case_run(&c, yaml);
     double a = 5.0 / 7.0 * G * (sin(b) - 0.1 * cos(b)), s = 50 / cos(b), v = sqrt(2 * a * s);
     double m = 4.0 / 3.0 * 3.14159265358979323846 * 0.125 * 2600;
     assert_close(c.cross[0].speed, v, 1e-9);
     assert_close(c.cross[0].translational_energy, 0.5 * m * v * v, 1e-9);
     assert_close(c.cross[0].rotational_energy, 0.2 * m * v * v, 1e-9);
     assert_int_equal(c.res.state, RF_TRAJ_EXITED);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* Sliding without friction at U = 10 m/s off a convex edge at (10, 10) above
@@ -226,7 +194,7 @@ static void test_convex_overflown(void **state)
 {
     (void)state;
     traj_case c;
-    run_case(&c, "profile: {points: [[0, 10], [10, 10], [20, 0], [100, 0]], material: m}\n"
+    traj_case_run(&c, "profile: {points: [[0, 10], [10, 10], [20, 0], [100, 0]], material: m}\n"
                  "materials: {m: {R_n: 0.3, R_t: 0.8, friction_angle: 0}}\n"
                  "block: {shape: point, mass: 1}\n"
                  "release: {x: 5, y: 10, vx: 10, vy: 0}\n"
@@ -240,7 +208,7 @@ static void test_convex_overflown(void **state)
     /* at x = 15 the block is g (0.5)^2/2 below the edge, the face is 5 m below */
     assert_close(c.cross[0].height_lowest, 10 - 0.5 * G * 0.25 - 5, 1e-12);
     assert_close(c.cross[0].normal_height, (10 - 0.5 * G * 0.25 - 5) * cos(45 * DEG), 1e-12);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* Thrown fast over a short slope: no root on any segment -> exited at the end of the profile. */
@@ -248,7 +216,7 @@ static void test_exit(void **state)
 {
     (void)state;
     traj_case c;
-    run_case(&c, "profile: {points: [[0, 10], [10, 0]], material: m}\n"
+    traj_case_run(&c, "profile: {points: [[0, 10], [10, 0]], material: m}\n"
                  "materials: {m: {R_n: 0.3, R_t: 0.8, friction_angle: 30}}\n"
                  "block: {shape: point, mass: 1}\n"
                  "release: {x: 5, y: 20, vx: 100, vy: 0}\n");
@@ -256,7 +224,7 @@ static void test_exit(void **state)
     assert_int_equal(c.res.n_impacts, 0);
     assert_close(c.res.x_end, 10, 1e-15);
     assert_close(c.res.y_end, 20 - 0.5 * G * 0.05 * 0.05, 1e-12);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* Falling vertically onto flat ground at |v_n| = K = 9.144 m/s: velocity
@@ -273,10 +241,10 @@ static void test_velocity_scaling(void **state)
              "block: {shape: point, mass: 1}\n"
              "release: {x: 0, y: %.17g}\n"
              "bounce: {law: velocity_scaled}\n", h);
-    run_case(&c, yaml);
+    traj_case_run(&c, yaml);
     assert_close(c.res.impacts[0].vy_in, -K, 1e-12);
     assert_close(c.res.impacts[0].vy_out, 0.8 * K / 2, 1e-12);
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 /* rigid_sphere without spin = src/impact's rf_impact_rigid (vertical fall onto a 30 deg slope). */
@@ -294,7 +262,7 @@ static void test_rigid_sphere_matches_impact(void **state)
                  "block: {shape: sphere, radius: 1, density: 2600}\n"
                  "release: {x: 0, y: %.17g}\n"
                  "bounce: {law: rigid_sphere}\n", 10 * tan(b), -10 * tan(b), atan(fr[k]) / DEG, h);
-        run_case(&c, yaml);
+        traj_case_run(&c, yaml);
         rf_impact_input in;
         rf_impact_input_default(&in);
         in.velocity = V, in.slope_angle = b, in.friction = fr[k];
@@ -306,7 +274,7 @@ static void test_rigid_sphere_matches_impact(void **state)
         assert_close(m->vx_out * nx + m->vy_out * ny, out.v_n_after, 1e-12);
         assert_close(m->vx_out * tx + m->vy_out * ty, out.v_t_after, 1e-12);
         assert_close(m->omega_out, out.omega_after, 1e-12);
-        free_case(&c);
+        traj_case_free(&c);
     }
 }
 
@@ -392,7 +360,7 @@ static void test_barrier(void **state)
                  "release: {x: -0.5, y: 20.5, vx: 5, vy: 2}\n"
                  "collectors: [{name: net, x: 6, capacity: %.17g, height: %.17g}]\n", c[k].cap, c[k].height);
         traj_case t;
-        run_case(&t, yaml);
+        traj_case_run(&t, yaml);
         assert_int_equal(t.cross[0].stopped_by_barrier, c[k].held);
         assert_close(t.cross[0].translational_energy, E, 1e-12);
         if (c[k].held) {
@@ -403,7 +371,7 @@ static void test_barrier(void **state)
         } else {
             assert_true(t.res.n_impacts > 0 && t.res.x_end > 6);
         }
-        free_case(&t);
+        traj_case_free(&t);
     }
 }
 
@@ -412,7 +380,7 @@ static void test_step_limit(void **state)
 {
     (void)state;
     traj_case c;
-    run_case(&c, "profile: {points: [[-1, 0], [1, 0]], material: m}\n"
+    traj_case_run(&c, "profile: {points: [[-1, 0], [1, 0]], material: m}\n"
                  "materials: {m: {R_n: 1, R_t: 1, friction_angle: 30}}\n"
                  "block: {shape: point, mass: 1}\n"
                  "release: {x: 0, y: 1}\n"
@@ -421,7 +389,7 @@ static void test_step_limit(void **state)
     assert_int_equal(c.res.n_steps, 51);
     assert_int_equal(c.res.n_impacts, 50);
     assert_close(c.res.t_end, sqrt(2 / G) * 99, 1e-9); /* 1 fall + 49 round trips of 2 sqrt(2 h / g) */
-    free_case(&c);
+    traj_case_free(&c);
 }
 
 int main(void)
