@@ -205,6 +205,16 @@ static void check_collector(const rf_traj_spec *s, const rf_traj_ensemble *e, co
     free(E), free(H), free(V);
 }
 
+/* The ensemble of spec s on `threads` threads, its invariants asserted, and
+ * its statistics with the spec's outputs settings. */
+static void run_stats(const rf_traj_spec *s, int threads, rf_traj_ensemble *e, rf_traj_stats *st)
+{
+    rf_error err;
+    assert_int_equal(rf_traj_run(s, threads, e, &err), RF_OK);
+    assert_ensemble_invariants(s, e);
+    assert_int_equal(rf_traj_stats_compute_spec(s, e, st, &err), RF_OK);
+}
+
 static void test_percentiles_exceedance_brute_force(void **state)
 {
     (void)state;
@@ -212,10 +222,7 @@ static void test_percentiles_exceedance_brute_force(void **state)
     load(ensemble_yaml, &s);
     rf_traj_ensemble e;
     rf_traj_stats st;
-    rf_error err;
-    assert_int_equal(rf_traj_run(&s, 2, &e, &err), RF_OK);
-    assert_ensemble_invariants(&s, &e);
-    assert_int_equal(rf_traj_stats_compute_spec(&s, &e, &st, &err), RF_OK);
+    run_stats(&s, 2, &e, &st);
     size_t N = e.samples;
     check_pct(&st.runout_x, e.runout_x, N, &s.outputs);
     check_pct(&st.rebound_height, e.rebound_height, N, &s.outputs);
@@ -249,10 +256,7 @@ static void test_runout_histogram(void **state)
     load(ensemble_yaml, &s);
     rf_traj_ensemble e;
     rf_traj_stats st;
-    rf_error err;
-    assert_int_equal(rf_traj_run(&s, 1, &e, &err), RF_OK);
-    assert_ensemble_invariants(&s, &e);
-    assert_int_equal(rf_traj_stats_compute_spec(&s, &e, &st, &err), RF_OK);
+    run_stats(&s, 1, &e, &st);
     const rf_traj_histogram *h = &st.runout_histogram;
     size_t N = e.samples, sum = 0;
     assert_int_equal(h->bins, 9);
@@ -382,9 +386,7 @@ static void test_study_model_outputs(void **state)
     s2.record = 0;
     rf_traj_ensemble e;
     rf_traj_stats st;
-    assert_int_equal(rf_traj_run(&s2, 1, &e, &err), RF_OK);
-    assert_ensemble_invariants(&s2, &e);
-    assert_int_equal(rf_traj_stats_compute_spec(&s2, &e, &st, &err), RF_OK);
+    run_stats(&s2, 1, &e, &st);
     const rf_traj_collector_stats *a = &st.collectors[0], *b = &st.collectors[1];
     double want[] = {a->total_energy.value[0], a->total_energy.value[5], a->total_energy.max, a->height_lowest.value[2],
                      a->height_centre.value[3], a->speed.value[4], a->reach_probability, a->p_energy_above[0],
