@@ -109,20 +109,27 @@ static void test_model_shares_table(void **state)
     rf_traj_spec_free(&s);
 }
 
-/* bounce.impact.cache: the second table reads every impact from the file
- * the first wrote, computes none, and is the same table. */
-static void test_cache(void **state)
+/* The test file with bounce.impact.cache: traj_impact_cache.txt, which starts empty. */
+static void load_with_cache(rf_traj_spec *s)
 {
-    (void)state;
     remove("traj_impact_cache.txt");
     char buf[2048];
     snprintf(buf, sizeof buf, "%s", yaml);
     char *p = strstr(buf, "tolerance: 0.005}");
     snprintf(p, sizeof buf - (size_t)(p - buf), "tolerance: 0.005, cache: traj_impact_cache.txt}}\n");
+    rf_error err;
+    if (rf_traj_load_buffer("im.yaml", buf, strlen(buf), s, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+}
+
+/* bounce.impact.cache: the second table reads every impact from the file
+ * the first wrote, computes none, and is the same table. */
+static void test_cache(void **state)
+{
+    (void)state;
     rf_traj_spec s;
     rf_error err;
-    if (rf_traj_load_buffer("im.yaml", buf, strlen(buf), &s, &err) != RF_OK)
-        fail_msg("%s", err.msg);
+    load_with_cache(&s);
     traj_impact_table *t[2];
     size_t nv, nt, evals[2], cached[2];
     double est;
@@ -162,15 +169,9 @@ static rf_status build_cached(const rf_traj_spec *s, size_t *evals, size_t *cach
 static void test_cache_rows_checked(void **state)
 {
     (void)state;
-    remove("traj_impact_cache.txt");
-    char buf[2048];
-    snprintf(buf, sizeof buf, "%s", yaml);
-    char *p = strstr(buf, "tolerance: 0.005}");
-    snprintf(p, sizeof buf - (size_t)(p - buf), "tolerance: 0.005, cache: traj_impact_cache.txt}}\n");
     rf_traj_spec s;
     rf_error err;
-    if (rf_traj_load_buffer("im.yaml", buf, strlen(buf), &s, &err) != RF_OK)
-        fail_msg("%s", err.msg);
+    load_with_cache(&s);
     size_t evals, cached, n0;
     assert_int_equal(build_cached(&s, &n0, &cached, &err), RF_OK);
     /* the whole file once more: the same impacts, kept and counted once */
