@@ -144,6 +144,9 @@ void rf_impact_field_store(rf_impact_input *in, const rf_impact_field *f, double
 void rf_impact_field_set(rf_impact_input *in, const rf_impact_field *f, double given);
 /* The field's value as given (degrees for angles). */
 double rf_impact_field_get(const rf_impact_input *in, const rf_impact_field *f);
+/* "radius [m], horizontal_axis [m], ...": the inputs a fuzzy parameter may
+ * drive, with their units, for messages (truncated to size). */
+void rf_impact_bindable_list(char *buf, size_t size);
 /* 1 if x (as stored) satisfies the field's check. */
 int rf_impact_field_ok(const rf_impact_field *f, double stored);
 

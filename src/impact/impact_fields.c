@@ -7,6 +7,7 @@
 #include "rockfuzz/impact.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stddef.h>
 #include <string.h>
 
@@ -68,6 +69,18 @@ const rf_impact_field *rf_impact_field_find(const char *name)
         if (!strcmp(name, rf_impact_fields[k].name))
             return &rf_impact_fields[k];
     return NULL;
+}
+
+void rf_impact_bindable_list(char *buf, size_t size)
+{
+    size_t len = 0;
+    buf[0] = '\0';
+    for (size_t k = 0; k < rf_impact_n_fields && len < size; k++) {
+        const rf_impact_field *f = &rf_impact_fields[k];
+        if (f->bindable)
+            len += (size_t)snprintf(buf + len, size - len, "%s%s%s%s%s", len ? ", " : "", f->name,
+                                    f->unit[0] ? " [" : "", f->unit, f->unit[0] ? "]" : "");
+    }
 }
 
 static double *place(rf_impact_input *in, const rf_impact_field *f)

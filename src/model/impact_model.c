@@ -440,17 +440,6 @@ static int may_run_3d(const impact_ctx *c)
     return 0;
 }
 
-/* The bindable inputs, listed for a message. */
-static void bindable_list(char *buf, size_t size)
-{
-    size_t len = 0;
-    buf[0] = '\0';
-    for (size_t k = 0; k < rf_impact_n_fields && len < size; k++)
-        if (rf_impact_fields[k].bindable)
-            len += (size_t)snprintf(buf + len, size - len, "%s%s%s", len ? ", " : "", rf_impact_fields[k].name,
-                                    rf_impact_fields[k].kind == RF_FIELD_DEGREES ? " [deg]" : "");
-}
-
 /* c->field[i] = the input param_names[i] names: a bindable row, each at most once. */
 static rf_status bind_names(impact_ctx *c, const char *const *param_names, size_t n_params, rf_error *err)
 {
@@ -458,7 +447,7 @@ static rf_status bind_names(impact_ctx *c, const char *const *param_names, size_
         const rf_impact_field *f = rf_impact_field_find(param_names[i]);
         if (!f || !f->bindable) {
             char list[1024];
-            bindable_list(list, sizeof list);
+            rf_impact_bindable_list(list, sizeof list);
             return rf_fail(err, RF_EINVAL, "impact model: parameter '%s' is unknown (accepted: %s)",
                            param_names[i] ? param_names[i] : "(null)", list);
         }

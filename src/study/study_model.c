@@ -463,19 +463,6 @@ static rf_status parse_impact_input(yr_ctx *c, const rf_study *s, const rf_impac
     return st;
 }
 
-/* The impact inputs a fuzzy parameter may drive, with their units, for messages. */
-static void impact_keys(char *buf, size_t size)
-{
-    size_t len = 0;
-    buf[0] = '\0';
-    for (size_t k = 0; k < rf_impact_n_fields && len < size; k++) {
-        const rf_impact_field *f = &rf_impact_fields[k];
-        if (f->bindable)
-            len += (size_t)snprintf(buf + len, size - len, "%s%s%s%s%s", len ? ", " : "", f->name,
-                                    f->unit[0] ? " [" : "", f->unit, f->unit[0] ? "]" : "");
-    }
-}
-
 /* Levenshtein distance of two short names (capped at 64 characters). */
 static size_t name_distance(const char *a, const char *b)
 {
@@ -518,9 +505,8 @@ static rf_status unknown_impact_key(yr_ctx *c, struct fy_node *k, const char *p,
 /* A model setting of the impact block (solver, materials, FE options, e_n,
  * hunter_coefficient) into spec; *known = 0 for a key that is none of them. */
 static rf_status parse_impact_setting(yr_ctx *c, const char *key, struct fy_node *v, const char *p,
-                                      rf_impact_model_spec *spec_out, int *known)
+                                      rf_impact_model_spec *spec, int *known)
 {
-    rf_impact_model_spec spec = *spec_out;
     rf_status st = RF_OK;
     char buf[32];
     *known = 1;
@@ -528,9 +514,9 @@ static rf_status parse_impact_setting(yr_ctx *c, const char *key, struct fy_node
         if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
             return st;
         rf_error tmp;
-        if ((key[0] == 'b' ? rf_impact_boulder_material_parse(buf, &spec.base.boulder_material, &tmp)
-                                         : rf_material_model_parse(buf, key[0] == 's' ? &spec.base.slope_material
-                                                                                      : &spec.base.layer_material,
+        if ((key[0] == 'b' ? rf_impact_boulder_material_parse(buf, &spec->base.boulder_material, &tmp)
+                                         : rf_material_model_parse(buf, key[0] == 's' ? &spec->base.slope_material
+                                                                                      : &spec->base.layer_material,
                                                                    &tmp)) != RF_OK)
             return yr_fail(c, v, p, key[0] == 'b' ? "unknown boulder material; expected elastic, von_mises or rigid"
                                                   : "unknown material; expected elastic, von_mises or "
@@ -539,57 +525,55 @@ static rf_status parse_impact_setting(yr_ctx *c, const char *key, struct fy_node
         if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
             return st;
         rf_error tmp;
-        if ((key[0] == 's' ? rf_impact_solver_parse(buf, &spec.solver, &tmp)
-                                        : rf_fem_boundary_parse(buf, &spec.fem.boundary, &tmp)) != RF_OK)
+        if ((key[0] == 's' ? rf_impact_solver_parse(buf, &spec->solver, &tmp)
+                                        : rf_fem_boundary_parse(buf, &spec->fem.boundary, &tmp)) != RF_OK)
             return yr_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter, rigid or mdr"
                                                   : "unknown boundary; expected auto, fixed or absorbing");
     } else if (!strcmp(key, "large_deformation")) {
         if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
             return st;
         rf_error tmp;
-        if (rf_fem_kinematics_parse(buf, &spec.fem.large_deformation, &tmp) != RF_OK)
+        if (rf_fem_kinematics_parse(buf, &spec->fem.large_deformation, &tmp) != RF_OK)
             return yr_fail(c, v, p, "unknown large_deformation; expected auto, on or off");
     } else if (!strcmp(key, "ale")) {
         if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
             return st;
         rf_error tmp;
-        if (rf_fem_ale_parse(buf, &spec.fem.ale, &tmp) != RF_OK)
+        if (rf_fem_ale_parse(buf, &spec->fem.ale, &tmp) != RF_OK)
             return yr_fail(c, v, p, "unknown ale; expected auto, on or off");
     } else if (!strcmp(key, "surface_mass_3d") || !strcmp(key, "sphere_contact_3d")) {
-        int *on = !strcmp(key, "surface_mass_3d") ? &spec.fem.surface_mass_3d : &spec.fem.sphere_contact_3d;
+        int *on = !strcmp(key, "surface_mass_3d") ? &spec->fem.surface_mass_3d : &spec->fem.sphere_contact_3d;
         if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
             return st;
         rf_error tmp;
         if (rf_fem_switch_parse(key, buf, on, &tmp) != RF_OK)
             return yr_fail(c, v, p, "unknown %s; expected on or off", key);
     } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor") || !strcmp(key, "end_time")) {
-        double *d = key[0] == 'r' ? &spec.fem.refinement : key[0] == 'd' ? &spec.fem.domain_factor
-                                                                         : &spec.fem.end_time;
+        double *d = key[0] == 'r' ? &spec->fem.refinement : key[0] == 'd' ? &spec->fem.domain_factor
+                                                                         : &spec->fem.end_time;
         if ((st = yr_number(c, v, p, d)) != RF_OK)
             return st;
         rf_error tmp; /* the FE solvers' own rule (fem_options.c) */
-        if (rf_fem_options_validate(&spec.fem, 0, &tmp) != RF_OK)
+        if (rf_fem_options_validate(&spec->fem, 0, &tmp) != RF_OK)
             return yr_fail(c, v, p, "%s", tmp.msg);
     } else if (!strcmp(key, "threads")) {
         long long t;
         if ((st = yr_integer(c, v, p, 1, 1024, &t)) != RF_OK)
             return st;
-        spec.fem.threads = (int)t;
+        spec->fem.threads = (int)t;
     } else if (!strcmp(key, "e_n")) {
-        if ((st = yr_number(c, v, p, &spec.e_n)) != RF_OK)
+        if ((st = yr_number(c, v, p, &spec->e_n)) != RF_OK)
             return st;
-        if (spec.e_n < 0 || spec.e_n > 1)
+        if (spec->e_n < 0 || spec->e_n > 1)
             return yr_fail(c, v, p, "a coefficient of restitution must lie in [0, 1]");
     } else if (!strcmp(key, "hunter_coefficient")) {
-        if ((st = yr_number(c, v, p, &spec.hunter_coefficient)) != RF_OK)
+        if ((st = yr_number(c, v, p, &spec->hunter_coefficient)) != RF_OK)
             return st;
-        if (!(spec.hunter_coefficient >= 0))
+        if (!(spec->hunter_coefficient >= 0))
             return yr_fail(c, v, p, "must be >= 0");
     } else {
         *known = 0;
     }
-    if (st == RF_OK)
-        *spec_out = spec;
     return st;
 }
 
@@ -628,7 +612,7 @@ static rf_status parse_impact(yr_ctx *c, struct fy_node *n, rf_study *s)
         const rf_impact_field *f = rf_impact_field_find(s->param_names[i]);
         if (!f || !f->bindable) {
             char list[1024];
-            impact_keys(list, sizeof list);
+            rf_impact_bindable_list(list, sizeof list);
             return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: '%s' is not an input of the impact model "
                            "(inputs: %s)", c->file, s->param_line[i], s->param_names[i], s->param_names[i], list);
         }
