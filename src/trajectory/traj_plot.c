@@ -305,15 +305,6 @@ static void draw_hist(const void *v)
 rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
                                  const rf_traj_stats *st, rf_error *err);
 
-/* How many samples crossed collector c. */
-static size_t crossings_of(const rf_traj_ensemble *e, size_t c)
-{
-    size_t m = 0;
-    for (size_t i = 0; i < e->samples; i++)
-        m += e->crossings[i * e->n_collectors + c].reached != 0;
-    return m;
-}
-
 rf_status rf_traj_write_plots(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
                               const rf_traj_stats *st, rf_error *err)
 {
@@ -331,7 +322,7 @@ rf_status rf_traj_write_plots(const char *dir, const rf_traj_spec *s, const rf_t
         char stem[300];
         hist_data hd = {&p, c};
         snprintf(stem, sizeof stem, "trajectory_hist_%s", s->collectors[c].name);
-        if (crossings_of(e, c) > 0) {
+        if (st->collectors[c].reach_probability > 0) {
             rc = rf_plot_figure(dir, stem, 900, 640, draw_hist, &hd, err);
             continue;
         }

@@ -94,10 +94,7 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
         html_text(f, s->collectors[c].name);
         fputs("</h2>", f);
         snprintf(stem, sizeof stem, "trajectory_hist_%s", s->collectors[c].name);
-        size_t reached = 0;
-        for (size_t i = 0; i < e->samples; i++)
-            reached += e->crossings[i * e->n_collectors + c].reached != 0;
-        if (reached)
+        if (st->collectors[c].reach_probability > 0)
             image(f, dir, stem);
         else
             fprintf(f, "<p>No trajectory of the %zu reached this line: no energy or height to show.</p>", e->samples);
