@@ -66,7 +66,7 @@ int main(int argc, char **argv)
         p.materials[m].roughness = 0;
     for (size_t i = 0; i < p.n_random; i++)
         if (p.random[i].dist == RF_DIST_FIXED)
-            *rf_traj_spec_field(&p, p.random[i].path) = p.random[i].a;
+            rf_traj_spec_set(&p, p.random[i].path, p.random[i].a);
     rc |= run("point block, fixed R_n/R_t", &p, samples, threads);
     rf_traj_spec_free(&p);
     rf_traj_spec_free(&s);

@@ -4,8 +4,10 @@
  * studies bind fuzzy parameters to.  Algorithm and conventions:
  * docs/trajectories.md.
  *
- * Units SI: m, kg, s, m/s, rad/s, J.  Angles in the spec are in DEGREES
- * (friction_angle, roughness).  Axes: x to the right, y up; the profile is a
+ * Units SI: m, kg, s, m/s, rad/s, J.  Angles are given in DEGREES in a
+ * trajectory file and in bindings (friction_angle, roughness, release.angle,
+ * bounce.impact.max_incidence) and stored in RADIANS in the structs: the
+ * input tables (rf_traj_field_tables) convert them once, at parse.  Axes: x to the right, y up; the profile is a
  * polyline with x non-decreasing; segment i joins point i to point i+1, its
  * tangent t points from i to i+1 and its normal n = (-t_y, t_x) points out of
  * the ground.  Spin omega is positive when it rolls the block forward along t
@@ -40,9 +42,9 @@ typedef struct {
     char *name;
     double R_n;                 /* normal COR [-], in [0, 1] */
     double R_t;                 /* tangential COR [-], in [0, 1] */
-    double friction_angle;      /* [deg], sliding mu = tan(phi); also the impact friction of rigid_sphere */
+    double friction_angle;      /* [rad] (given in deg), sliding mu = tan(phi); also the impact friction of rigid_sphere */
     double rolling_resistance;  /* [-] rolling resistance coefficient mu_r (force mu_r N) */
-    double roughness;           /* [deg] SD of the slope-angle perturbation at each impact */
+    double roughness;           /* [rad] (given in deg) SD of the slope-angle perturbation at each impact */
 } rf_traj_material;
 
 typedef enum {
@@ -57,6 +59,11 @@ extern const char *const rf_traj_bounce_law_names[RF_BOUNCE_N_LAWS];
 
 /* Pfeiffer & Bowen (1989) / RocFall / CRSP velocity-scaling constant: 30 ft/s. */
 #define RF_TRAJ_PFEIFFER_BOWEN_K 9.144
+
+/* Where a trajectory starts: the point (x0, y0); a point drawn uniformly (by
+ * length) along a polyline; or one drawn uniformly along the ground inside a
+ * zone (a polygon, or an x-range), on the ground. */
+typedef enum { RF_TRAJ_RELEASE_POINT = 0, RF_TRAJ_RELEASE_LINE, RF_TRAJ_RELEASE_ZONE } rf_traj_release_kind;
 
 typedef enum { RF_DIST_FIXED = 0, RF_DIST_UNIFORM, RF_DIST_NORMAL } rf_traj_dist;
 
@@ -112,6 +119,12 @@ typedef struct {
     double mass;                /* [kg] (point: given; sphere: from radius and density) */
     double radius, density;     /* [m], [kg/m^3] (sphere) */
     double x0, y0, vx0, vy0, omega0;  /* release [m], [m/s], [rad/s] */
+    int release_by_speed;       /* the release velocity is speed0 at angle0 (not vx0, vy0) */
+    double speed0, angle0;      /* [m/s], [rad] from the horizontal (given in deg), up positive */
+    rf_traj_release_kind release_kind;
+    size_t n_release;           /* LINE: polyline vertices; ZONE polygon: its vertices (0: an x-range) */
+    double *release_px, *release_py;  /* [m] */
+    double zone_x0, zone_x1;    /* ZONE without polygon: the ground over [zone_x0, zone_x1] [m] */
     rf_bounce_law law;
     double scale_speed;         /* K of velocity_scaled [m/s], default RF_TRAJ_PFEIFFER_BOWEN_K */
     double contact_speed;       /* normal rebound speed below which the block stays on the ground [m/s], default 0.1 */
@@ -132,7 +145,7 @@ typedef struct {
     double impact_friction;     /* Coulomb coefficient inside the impact model; NaN = tan(friction_angle) of material 0 */
     double impact_refinement;   /* FE solver: a/h in the fine zone, 0 = the solver's default */
     double impact_speed_min, impact_speed_max; /* normal speeds tabulated [m/s], default 0.25 .. 40 */
-    double impact_max_incidence;  /* largest incidence tabulated [deg] from the normal, default 80 */
+    double impact_max_incidence;  /* largest incidence tabulated [rad] from the normal (given in deg), default 80 deg */
     char *impact_cache;         /* file of impacts already computed (read, then appended), or NULL */
 } rf_traj_spec;
 
@@ -146,12 +159,81 @@ rf_status rf_traj_load_buffer(const char *name, const char *buf, size_t len, rf_
 /* Read "x,y[,material]" lines (a header line is allowed) into the spec's profile. */
 rf_status rf_traj_profile_read_csv(const char *path, rf_traj_spec *spec, rf_error *err);
 
-/* Address of a numeric input by path: gravity, block.mass, block.radius,
- * block.density, release.x|y|vx|vy|omega, bounce.scale_speed,
- * bounce.contact_speed, stop.v_stop, materials.NAME.FIELD,
- * collectors.NAME.x|capacity|height, profile.points.I.x|y, and for a random
- * input P: P.lo / P.hi (uniform), P.mean / P.sd (normal).  NULL if unknown. */
+/* Address of a numeric input by path: a row of the input tables below
+ * (gravity, block.mass, release.vx, materials.NAME.R_n, collectors.NAME.x,
+ * ...), profile.points.I.x|y, and for a random input P: P.lo / P.hi
+ * (uniform), P.mean / P.sd (normal).  NULL if unknown.  The value there is as
+ * stored: an angle in RADIANS; rf_traj_spec_set / _get take it as given. */
 double *rf_traj_spec_field(rf_traj_spec *spec, const char *path);
+
+/* ---- the trajectory inputs: one table per family (traj_fields.c) ----
+ * Every numeric input of a trajectory file is one row: its key, place, unit
+ * as given, default, check, whether it may be random or bound, and a help
+ * line.  The file reader, the defaults, the validation messages, the paths a
+ * study may bind (with its did-you-mean message), the model identity and the
+ * key table of docs/trajectories.md come from these rows.  A row marked
+ * `degrees` is given (file, binding, messages) in degrees and stored in
+ * radians. */
+typedef enum { RF_TRAJ_OWNER_SPEC = 0, RF_TRAJ_OWNER_MATERIAL, RF_TRAJ_OWNER_COLLECTOR } rf_traj_field_owner;
+typedef enum {
+    RF_TRAJ_CHECK_NONE = 0, RF_TRAJ_CHECK_FINITE, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_CHECK_NONNEGATIVE,
+    RF_TRAJ_CHECK_UNIT,         /* in [0, 1] */
+    RF_TRAJ_CHECK_ANGLE_90,     /* in [0, 90) deg */
+    RF_TRAJ_CHECK_ANGLE_45,     /* in [0, 45] deg */
+    RF_TRAJ_CHECK_ANGLE_180,    /* in [-180, 180] deg */
+    RF_TRAJ_CHECK_HEIGHT        /* finite, |y| <= RF_TRAJ_MAX_COORD */
+} rf_traj_check;
+/* When a row is used (and checked): always, for a point block, a sphere, a
+ * release given by vx/vy, by speed/angle, or at a point. */
+typedef enum { RF_TRAJ_WHEN_ALWAYS = 0, RF_TRAJ_WHEN_POINT, RF_TRAJ_WHEN_SPHERE, RF_TRAJ_WHEN_VXVY,
+               RF_TRAJ_WHEN_SPEED, RF_TRAJ_WHEN_AT_POINT } rf_traj_when;
+typedef struct {
+    const char *key;            /* path below its table's prefix: "mass", "R_n", "bounce.scale_speed" */
+    size_t offset;              /* in rf_traj_spec, rf_traj_material or rf_traj_collector (owner) */
+    int degrees;                /* given in degrees, stored in radians */
+    const char *unit;           /* as given ("deg" for angles; "" dimensionless) */
+    double def;                 /* default; NaN: required (or from elsewhere, see help) */
+    rf_traj_check check;
+    rf_traj_when when;
+    int random;                 /* may be written {uniform: ..} / {normal: ..} */
+    int bindable;               /* a study may bind a fuzzy parameter to it */
+    const char *help;
+} rf_traj_field;
+typedef struct {
+    const char *family;         /* "block", "release", "material", "run", "collector" */
+    const char *prefix;         /* of the paths: "block.", "release.", "materials.NAME.", "", "collectors.NAME." */
+    rf_traj_field_owner owner;
+    const rf_traj_field *rows;
+    size_t n_rows;
+} rf_traj_field_table;
+extern const rf_traj_field_table rf_traj_field_tables[];
+extern const size_t rf_traj_n_field_tables;
+
+/* The row of a path and where it is stored (NULL if the path is no row, e.g.
+ * a random input's lo/hi or a profile point). */
+const rf_traj_field *rf_traj_field_at(rf_traj_spec *spec, const char *path, double **place);
+/* Set / get an input by path in the units it is given in (degrees for
+ * angles): rows, random parameters (P.lo|hi|mean|sd, as given), profile
+ * points.  0 if the path is unknown. */
+int rf_traj_spec_set(rf_traj_spec *spec, const char *path, double given);
+int rf_traj_spec_get(const rf_traj_spec *spec, const char *path, double *given);
+/* The check of a row on a value as given: NULL if admissible, else the rule
+ * ("must lie in [0, 1]"). */
+const char *rf_traj_field_rule(const rf_traj_field *f, double given);
+/* Whether a study may bind `path` of this spec; if not, *why says why (with
+ * the nearest bindable path when one is close: a typo). */
+int rf_traj_path_bindable(const rf_traj_spec *spec, const char *path, char *why, size_t size);
+/* The bindable paths of this spec, comma-separated, with their units. */
+void rf_traj_bindable_list(const rf_traj_spec *spec, char *buf, size_t size);
+/* The key table of docs/trajectories.md (markdown rows), from the tables. */
+void rf_traj_fields_markdown(FILE *f);
+/* FNV-1a over every row of every table (each material and collector), the
+ * random inputs, the release geometry and the law: the values a run reads. */
+uint64_t rf_traj_spec_values_hash(const rf_traj_spec *spec);
+
+/* The bounce laws: a registry of {name, parameters, validate, apply}
+ * (bounce.c); the names come from it. */
+const char *rf_traj_bounce_law_parameters(rf_bounce_law law);
 
 /* Material and collector names: 1 to RF_TRAJ_NAME_MAX letters, digits, '_'
  * or '-', because a name becomes part of output names, CSV fields, file names

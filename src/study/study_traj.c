@@ -76,13 +76,9 @@ static rf_status bound_path(yr_ctx *c, traj_block *b, rf_traj_spec *spec, const 
     rf_status st = yr_string_dup(c, v, p, out);
     if (st != RF_OK)
         return st;
-    if (!rf_traj_spec_field(spec, *out))
-        return yr_fail(c, v, p, "not a numeric input of %s (e.g. materials.NAME.R_n, release.vx, release.y.lo)",
-                       b->file);
-    for (size_t r = 0; r < spec->n_random; r++)
-        if (!strcmp(spec->random[r].path, *out))
-            return yr_fail(c, v, p, "this input is random in the trajectory file; bind its distribution "
-                                    "(%s.lo/.hi or .mean/.sd)", *out);
+    char why[2400];
+    if (!rf_traj_path_bindable(spec, *out, why, sizeof why))
+        return yr_fail(c, v, p, "%s (%s)", why, b->file);
     return RF_OK;
 }
 
@@ -90,20 +86,21 @@ static rf_status bound_path(yr_ctx *c, traj_block *b, rf_traj_spec *spec, const 
 static rf_status check_support(yr_ctx *c, rf_traj_spec *spec, const rf_study *s, char **paths)
 {
     for (size_t i = 0; i < s->n_params; i++)
-        *rf_traj_spec_field(spec, paths[i]) = rf_fuzzy_nominal(&s->inputs[i]);
+        rf_traj_spec_set(spec, paths[i], rf_fuzzy_nominal(&s->inputs[i]));
     for (size_t i = 0; i < s->n_params; i++) {
-        double lo, hi, *f = rf_traj_spec_field(spec, paths[i]), keep = *f;
+        double lo, hi, keep;
+        rf_traj_spec_get(spec, paths[i], &keep); /* as given: an angle in degrees */
         rf_fuzzy_cut(&s->inputs[i], 0.0, &lo, &hi);
         double ends[3] = {keep, lo, hi};
         for (int e = 0; e < 3; e++) {
-            *f = ends[e];
+            rf_traj_spec_set(spec, paths[i], ends[e]);
             rf_error tmp;
             if (rf_traj_spec_validate(spec, &tmp) != RF_OK)
                 return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: the value %.17g (bound to %s) is not "
                                "admissible: %s", c->file, s->param_line[i], s->param_names[i], ends[e], paths[i],
                                tmp.msg);
         }
-        *f = keep;
+        rf_traj_spec_set(spec, paths[i], keep);
     }
     return RF_OK;
 }

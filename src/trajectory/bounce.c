@@ -1,5 +1,7 @@
-/* bounce.c - the bounce laws, in the frame (n, t) of the hit segment,
- * optionally tilted by the random roughness angle:
+/* bounce.c - the bounce laws, a registry of {name, parameters, validate,
+ * apply} (BOUNCE_LAWS below: adding a law is its apply function, one line
+ * there and its name in rf_bounce_law), in the frame (n, t) of the hit
+ * segment, optionally tilted by the random roughness angle:
  *   constant         v_n' = -R_n v_n, v_t' = R_t v_t (no spin)
  *   velocity_scaled  R_n / (1 + (|v_n|/K)^2) (Pfeiffer & Bowen 1989, K = 9.144 m/s)
  *   rigid_sphere     rigid sphere with spin and Coulomb friction mu = tan(phi),
@@ -10,9 +12,6 @@
 #include "trajectory/traj_internal.h"
 
 #include <math.h>
-
-const char *const rf_traj_bounce_law_names[RF_BOUNCE_N_LAWS] = {"constant", "velocity_scaled", "rigid_sphere",
-                                                                 "impact_model"};
 
 /* Rigid sphere with pre-impact spin: slip of the contact point
  * s = v_t - omega r (omega > 0 rolls forward along t); normal impulse per unit
@@ -34,12 +33,12 @@ static void rigid_sphere(double vn_in, double vt, double omega, double e, double
  * a tilt the block does not approach, or after which it would not leave the
  * true segment, is replaced by no tilt (so roughness never creates energy nor
  * sends the block into the ground). */
-static double roughness_angle(traj_run *r, double sd_deg)
+static double roughness_angle(traj_run *r, double sd)
 {
-    if (!(sd_deg > 0))
+    if (!(sd > 0))
         return 0;
     double u = rf_traj_uniform(r->seed, r->sample * 2 + 1, r->n_rough++);
-    return rf_traj_normal_quantile(u) * sd_deg * (RF_PI / 180);
+    return rf_traj_normal_quantile(u) * sd;
 }
 
 /* An interpolated (R_n, R_t, spin) may not be exactly energy-consistent: the
@@ -57,36 +56,88 @@ static void cap_energy(const traj_run *r, double vn, double vt, double w_in, dou
     }
 }
 
-static void apply_law(traj_run *r, const rf_traj_material *m, double vn, double vt, double *vn_out,
-                      double *vt_out, double *omega)
+static void law_constant(traj_run *r, const rf_traj_material *m, double vn, double vt, double *vn_out,
+                         double *vt_out, double *omega)
 {
-    double Rn = m->R_n;
-    switch (r->s->law) {
-    case RF_BOUNCE_VELOCITY_SCALED: {
-        double q = vn / r->s->scale_speed;
-        Rn /= 1 + q * q;
-    } /* fall through */
-    case RF_BOUNCE_CONSTANT:
-        *vn_out = Rn * fabs(vn);
-        *vt_out = m->R_t * vt;
-        *omega = 0; /* lumped mass: no spin */
-        return;
-    case RF_BOUNCE_RIGID_SPHERE:
-        rigid_sphere(vn, vt, *omega, Rn, tan(m->friction_angle * (RF_PI / 180)),
-                     r->inertia / (r->mass * r->radius * r->radius), r->radius, vn_out, vt_out, omega);
-        return;
-    case RF_BOUNCE_IMPACT_MODEL: {
-        double rn, rt, spin;
-        traj_impact_table_eval(r->w->impact_table, fabs(vn), atan2(fabs(vt), fabs(vn)), &rn, &rt, &spin);
-        *vn_out = rn * fabs(vn);
-        *vt_out = rt * vt;
-        double w_in = *omega;
-        *omega = r->radius > 0 ? spin * *vt_out / r->radius : 0;
-        cap_energy(r, vn, vt, w_in, vn_out, vt_out, omega);
-        return;
-    }
-    case RF_BOUNCE_N_LAWS: break; /* not a law: refused when the file is read */
-    }
+    (void)r;
+    *vn_out = m->R_n * fabs(vn);
+    *vt_out = m->R_t * vt;
+    *omega = 0; /* lumped mass: no spin */
+}
+
+static void law_velocity_scaled(traj_run *r, const rf_traj_material *m, double vn, double vt, double *vn_out,
+                                double *vt_out, double *omega)
+{
+    double q = vn / r->s->scale_speed, Rn = m->R_n;
+    Rn /= 1 + q * q;
+    *vn_out = Rn * fabs(vn);
+    *vt_out = m->R_t * vt;
+    *omega = 0;
+}
+
+static void law_rigid_sphere(traj_run *r, const rf_traj_material *m, double vn, double vt, double *vn_out,
+                             double *vt_out, double *omega)
+{
+    rigid_sphere(vn, vt, *omega, m->R_n, tan(m->friction_angle), r->inertia / (r->mass * r->radius * r->radius),
+                 r->radius, vn_out, vt_out, omega);
+}
+
+static void law_impact_model(traj_run *r, const rf_traj_material *m, double vn, double vt, double *vn_out,
+                             double *vt_out, double *omega)
+{
+    (void)m;
+    double rn, rt, spin;
+    traj_impact_table_eval(r->w->impact_table, fabs(vn), atan2(fabs(vt), fabs(vn)), &rn, &rt, &spin);
+    *vn_out = rn * fabs(vn);
+    *vt_out = rt * vt;
+    double w_in = *omega;
+    *omega = r->radius > 0 ? spin * *vt_out / r->radius : 0;
+    cap_energy(r, vn, vt, w_in, vn_out, vt_out, omega);
+}
+
+static rf_status any_block(const rf_traj_spec *s, rf_error *err)
+{
+    (void)s, (void)err;
+    return RF_OK;
+}
+
+static rf_status needs_sphere(const rf_traj_spec *s, rf_error *err)
+{
+    if (!s->sphere)
+        return rf_fail(err, RF_EINVAL, "bounce.law = %s: needs block.shape: sphere", rf_traj_bounce_law_names[s->law]);
+    return RF_OK;
+}
+
+typedef void (*bounce_apply)(traj_run *r, const rf_traj_material *m, double vn, double vt, double *vn_out,
+                             double *vt_out, double *omega);
+typedef struct {
+    const char *name;
+    const char *parameters;  /* the inputs it reads */
+    rf_status (*validate)(const rf_traj_spec *s, rf_error *err);
+    bounce_apply apply;
+} bounce_law;
+
+/* In the order of rf_bounce_law. */
+#define BOUNCE_LAWS(X) \
+    X("constant", "materials.NAME.R_n, R_t", any_block, law_constant) \
+    X("velocity_scaled", "materials.NAME.R_n, R_t; bounce.scale_speed", any_block, law_velocity_scaled) \
+    X("rigid_sphere", "materials.NAME.R_n, friction_angle; the sphere's radius", needs_sphere, law_rigid_sphere) \
+    X("impact_model", "bounce.impact; the sphere's radius and density", needs_sphere, law_impact_model)
+
+#define LAW_ROW(name, params, validate, apply) {name, params, validate, apply},
+#define LAW_NAME(name, params, validate, apply) name,
+static const bounce_law laws[] = {BOUNCE_LAWS(LAW_ROW)};
+const char *const rf_traj_bounce_law_names[RF_BOUNCE_N_LAWS] = {BOUNCE_LAWS(LAW_NAME)};
+_Static_assert(sizeof laws / sizeof laws[0] == RF_BOUNCE_N_LAWS, "one registry row per rf_bounce_law");
+
+const char *rf_traj_bounce_law_parameters(rf_bounce_law law)
+{
+    return (unsigned)law < RF_BOUNCE_N_LAWS ? laws[law].parameters : "";
+}
+
+rf_status traj_bounce_law_validate(const rf_traj_spec *s, rf_error *err)
+{
+    return laws[s->law].validate(s, err);
 }
 
 int traj_bounce(traj_run *r, size_t k, double *vx, double *vy, double *omega)
@@ -106,7 +157,7 @@ int traj_bounce(traj_run *r, size_t k, double *vx, double *vy, double *omega)
         double vn = nx * *vx + ny * *vy, vt = tx * *vx + ty * *vy;
         if (vn < 0) {
             double vn_out = 0, vt_out = 0, w = *omega;
-            apply_law(r, m, vn, vt, &vn_out, &vt_out, &w);
+            laws[r->s->law].apply(r, m, vn, vt, &vn_out, &vt_out, &w);
             double ox = vn_out * nx + vt_out * tx, oy = vn_out * ny + vt_out * ty;
             if (attempt == 1 || g->nx * ox + g->ny * oy >= 0) {
                 *vx = ox, *vy = oy, *omega = w;

@@ -33,7 +33,7 @@ static contact_law law_on(const traj_run *r, const traj_segment *g)
     contact_law L;
     L.gt = -r->g * g->ty;
     L.N = r->g * g->ny;
-    double mu = tan(m->friction_angle * (RF_PI / 180));
+    double mu = tan(m->friction_angle);
     double k = r->s->sphere ? r->inertia / (r->mass * r->radius * r->radius) : 0;
     L.rolling = r->s->sphere && fabs(L.gt) * k / (1 + k) <= mu * L.N;
     L.inv = L.rolling ? 1 / (1 + k) : 1;

@@ -48,6 +48,15 @@ static double draw(const rf_traj_random *r, double u)
     return r->a;
 }
 
+/* The uniform of input dimension j of sample i (the release point of a line
+ * or zone is dimension n_random), stratified by the Latin hypercube. */
+static double sample_u(const mc_job *job, size_t i, size_t j)
+{
+    double u = rf_traj_uniform(job->spec->seed, 2 * (uint64_t)i, j);
+    size_t N = job->spec->samples;
+    return job->perm ? ((double)job->perm[j * N + i] + u) / (double)N : u;
+}
+
 static void *mc_worker(void *arg)
 {
     mc_job *job = arg;
@@ -55,29 +64,29 @@ static void *mc_worker(void *arg)
     rf_traj_ensemble *ens = job->ens;
     rf_traj_spec local;
     double **field = calloc(spec->n_random ? spec->n_random : 1, sizeof *field);
+    const rf_traj_field **row = calloc(spec->n_random ? spec->n_random : 1, sizeof *row);
     rf_traj_crossing *cross = calloc(ens->n_collectors ? ens->n_collectors : 1, sizeof *cross);
     rf_traj_result tmp = {0}; /* the unrecorded trajectories; events only for the envelopes */
     if (job->env)
         tmp.events = malloc(64 * sizeof *tmp.events), tmp.events_cap = 64;
     tmp.crossings = cross;
-    if (!field || !cross || (job->env && !tmp.events) || (job->status = rf_traj_spec_copy(spec, &local, &job->err)) != RF_OK) {
+    int nomem = !field || !row || !cross;
+    if (nomem || (job->env && !tmp.events) || (job->status = rf_traj_spec_copy(spec, &local, &job->err)) != RF_OK) {
         free(field);
+        free(row);
         free(cross);
         free(tmp.events);
         job->status = rf_fail(&job->err, RF_ENOMEM, "out of memory");
         return NULL;
     }
     for (size_t j = 0; j < spec->n_random; j++)
-        field[j] = rf_traj_spec_field(&local, spec->random[j].path);
-    size_t N = spec->samples;
+        row[j] = rf_traj_field_at(&local, spec->random[j].path, &field[j]);
     for (size_t i = job->begin; i < job->end && job->status == RF_OK; i++) {
-        for (size_t j = 0; j < spec->n_random; j++) {
-            double u = rf_traj_uniform(spec->seed, 2 * (uint64_t)i, j);
-            if (job->perm)
-                u = ((double)job->perm[j * N + i] + u) / (double)N;
-            if (field[j])
-                *field[j] = draw(&spec->random[j], u);
-        }
+        for (size_t j = 0; j < spec->n_random; j++)
+            if (row[j]) /* in the row's units: an angle drawn in degrees, stored in radians */
+                *field[j] = traj_field_store(row[j], draw(&spec->random[j], sample_u(job, i, j)));
+        if (job->world->release)
+            traj_release_point(job->world, sample_u(job, i, spec->n_random), &local.x0, &local.y0);
         rf_traj_result *res = i < ens->n_recorded ? &ens->recorded[i] : &tmp; /* tmp.events grows, reused */
         job->status = rf_traj_simulate(job->world, &local, spec->seed, i, res, &job->err);
         if (job->env)
@@ -90,6 +99,7 @@ static void *mc_worker(void *arg)
     }
     rf_traj_spec_free(&local);
     free(field);
+    free(row);
     free(cross);
     free(tmp.events);
     return NULL;
@@ -98,7 +108,7 @@ static void *mc_worker(void *arg)
 /* Latin hypercube: for each input an independent random permutation of 0..N-1. */
 static size_t *lhs_permutations(const rf_traj_spec *s)
 {
-    size_t N = s->samples, n = s->n_random;
+    size_t N = s->samples, n = s->n_random + (s->release_kind != RF_TRAJ_RELEASE_POINT);
     size_t *p = malloc((n * N > 0 ? n * N : 1) * sizeof *p);
     if (!p)
         return NULL;
@@ -247,7 +257,8 @@ rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int 
         return st;
     }
     size_t *perm = NULL;
-    if (spec->lhs && spec->n_random && !(perm = lhs_permutations(spec))) {
+    int dims = spec->n_random || spec->release_kind != RF_TRAJ_RELEASE_POINT;
+    if (spec->lhs && dims && !(perm = lhs_permutations(spec))) {
         rf_traj_world_free(w);
         rf_traj_ensemble_free(ens);
         return rf_fail(err, RF_ENOMEM, "out of memory");

@@ -142,6 +142,10 @@ rf_status traj_world_create_shared(const rf_traj_spec *s, void *table, rf_traj_w
                            s->collectors[c].name, s->collectors[c].x, xmin, xmax);
         }
     }
+    if ((st = traj_release_prepare(s, w, err)) != RF_OK) {
+        rf_traj_world_free(w);
+        return st;
+    }
     w->impact_table = table;
     if (s->law == RF_BOUNCE_IMPACT_MODEL && !table) {
         w->owns_table = 1;
@@ -161,6 +165,7 @@ void rf_traj_world_free(rf_traj_world *w)
         return;
     if (w->owns_table)
         traj_impact_table_free(w->impact_table);
+    traj_release_free(w->release);
     free(w->seg);
     free(w->col);
     free(w);

@@ -67,7 +67,9 @@ static void fly_step(traj_run *r)
 static void release(traj_run *r)
 {
     const rf_traj_spec *s = r->s;
-    r->t = 0, r->x = s->x0, r->y = s->y0, r->vx = s->vx0, r->vy = s->vy0, r->omega = s->omega0;
+    double vx, vy;
+    traj_release_velocity(s, &vx, &vy);
+    r->t = 0, r->x = s->x0, r->y = s->y0, r->vx = vx, r->vy = vy, r->omega = s->omega0;
     size_t k;
     double gy = traj_ground_y(r->w, s->x0, &k);
     r->on[0] = r->on[1] = TRAJ_NONE;
@@ -77,8 +79,8 @@ static void release(traj_run *r)
         r->y = gy;
         r->phase = TRAJ_CONTACT;
         r->k = k;
-        r->u = g->tx * s->vx0 + g->ty * s->vy0;
-        double vn = g->nx * s->vx0 + g->ny * s->vy0;
+        r->u = g->tx * vx + g->ty * vy;
+        double vn = g->nx * vx + g->ny * vy;
         traj_event(r, RF_EV_RELEASE, 0, 0, 0);
         if (vn > r->s->contact_speed) /* thrown off the ground */
             traj_launch(r, k, TRAJ_NONE, RF_EV_LAUNCH);

@@ -18,6 +18,8 @@ void rf_traj_spec_free(rf_traj_spec *s)
     free(s->impact_cache);
     free(s->px);
     free(s->py);
+    free(s->release_px);
+    free(s->release_py);
     free(s->seg_material);
     for (size_t i = 0; i < s->n_materials; i++)
         free(s->materials[i].name);
@@ -47,11 +49,14 @@ rf_status rf_traj_spec_copy(const rf_traj_spec *src, rf_traj_spec *d, rf_error *
     d->impact_cache = rf_strdup(src->impact_cache);
     d->px = dup_mem(src->px, src->n_points * sizeof *d->px);
     d->py = dup_mem(src->py, src->n_points * sizeof *d->py);
+    d->release_px = dup_mem(src->release_px, src->n_release * sizeof *d->release_px);
+    d->release_py = dup_mem(src->release_py, src->n_release * sizeof *d->release_py);
     d->seg_material = dup_mem(src->seg_material, (src->n_points ? src->n_points - 1 : 0) * sizeof *d->seg_material);
     d->materials = dup_mem(src->materials, src->n_materials * sizeof *d->materials);
     d->collectors = dup_mem(src->collectors, src->n_collectors * sizeof *d->collectors);
     d->random = dup_mem(src->random, src->n_random * sizeof *d->random);
-    int ok = (d->impact_cache || !src->impact_cache) && d->px && d->py && d->seg_material && d->materials && d->collectors && d->random;
+    int ok = (d->impact_cache || !src->impact_cache) && d->px && d->py && d->release_px && d->release_py &&
+             d->seg_material && d->materials && d->collectors && d->random;
     for (size_t i = 0; i < src->n_materials; i++)
         if (d->materials)
             ok &= (d->materials[i].name = rf_strdup(src->materials[i].name)) != NULL;
@@ -70,14 +75,6 @@ rf_status rf_traj_spec_copy(const rf_traj_spec *src, rf_traj_spec *d, rf_error *
         return rf_fail(err, RF_ENOMEM, "out of memory");
     }
     return RF_OK;
-}
-
-static double *material_field(rf_traj_material *m, const char *f)
-{
-    return !strcmp(f, "R_n") ? &m->R_n : !strcmp(f, "R_t") ? &m->R_t
-         : !strcmp(f, "friction_angle") ? &m->friction_angle
-         : !strcmp(f, "rolling_resistance") ? &m->rolling_resistance
-         : !strcmp(f, "roughness") ? &m->roughness : NULL;
 }
 
 /* "prefix.NAME.field": the NAME part and the field after it. */
@@ -107,26 +104,9 @@ static double *random_field(rf_traj_spec *s, const char *path)
 
 double *rf_traj_spec_field(rf_traj_spec *s, const char *path)
 {
-    struct { const char *name; double *field; } f[] = {
-        {"gravity", &s->gravity}, {"block.mass", &s->mass}, {"block.radius", &s->radius},
-        {"block.density", &s->density}, {"release.x", &s->x0}, {"release.y", &s->y0},
-        {"release.vx", &s->vx0}, {"release.vy", &s->vy0}, {"release.omega", &s->omega0},
-        {"bounce.scale_speed", &s->scale_speed}, {"bounce.contact_speed", &s->contact_speed},
-        {"stop.v_stop", &s->v_stop},
-    };
-    for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
-        if (!strcmp(path, f[k].name))
-            return f[k].field;
-    const char *field;
-    for (size_t i = 0; i < s->n_materials; i++)
-        if (split_named(path, "materials.", s->materials[i].name, &field) && material_field(&s->materials[i], field))
-            return material_field(&s->materials[i], field);
-    for (size_t i = 0; i < s->n_collectors; i++)
-        if (split_named(path, "collectors.", s->collectors[i].name, &field)) {
-            rf_traj_collector *c = &s->collectors[i];
-            return !strcmp(field, "x") ? &c->x : !strcmp(field, "capacity") ? &c->capacity
-                 : !strcmp(field, "height") ? &c->height : NULL;
-        }
+    double *place;
+    if (rf_traj_field_at(s, path, &place))
+        return place;
     size_t idx;
     char xy[3];
     int n = 0;
@@ -135,53 +115,39 @@ double *rf_traj_spec_field(rf_traj_spec *s, const char *path)
     return random_field(s, path);
 }
 
-static rf_status check_material(const rf_traj_material *m, rf_error *err)
+/* The rows of one table over the object at base (the spec, a material or a
+ * collector named `name`): each used row's value, as given, against its check. */
+static rf_status check_rows(const rf_traj_spec *s, const rf_traj_field_table *tb, const void *base,
+                            const char *name, rf_error *err)
 {
-    if (!(m->R_n >= 0 && m->R_n <= 1))
-        return rf_fail(err, RF_EINVAL, "materials.%s.R_n = %g: must lie in [0, 1]", m->name, m->R_n);
-    if (!(m->R_t >= 0 && m->R_t <= 1))
-        return rf_fail(err, RF_EINVAL, "materials.%s.R_t = %g: must lie in [0, 1]", m->name, m->R_t);
-    if (!(m->friction_angle >= 0 && m->friction_angle < 90))
-        return rf_fail(err, RF_EINVAL, "materials.%s.friction_angle = %g: must lie in [0, 90) degrees", m->name,
-                       m->friction_angle);
-    if (!(m->rolling_resistance >= 0 && isfinite(m->rolling_resistance)))
-        return rf_fail(err, RF_EINVAL, "materials.%s.rolling_resistance = %g: must be >= 0", m->name,
-                       m->rolling_resistance);
-    if (!(m->roughness >= 0 && m->roughness <= 45))
-        return rf_fail(err, RF_EINVAL, "materials.%s.roughness = %g: must lie in [0, 45] degrees", m->name,
-                       m->roughness);
+    for (size_t k = 0; k < tb->n_rows; k++) {
+        const rf_traj_field *f = &tb->rows[k];
+        double x = traj_field_given(f, *(const double *)((const char *)base + f->offset));
+        const char *rule = traj_field_used(s, f) ? rf_traj_field_rule(f, x) : NULL;
+        if (!rule)
+            continue;
+        if (tb->owner == RF_TRAJ_OWNER_SPEC)
+            return rf_fail(err, RF_EINVAL, "%s%s = %g: %s", tb->prefix, f->key, x, rule);
+        return rf_fail(err, RF_EINVAL, "%s.%s.%s = %g: %s", tb->owner == RF_TRAJ_OWNER_MATERIAL ? "materials"
+                       : "collectors", name, f->key, x, rule);
+    }
     return RF_OK;
 }
 
-static rf_status check_block(const rf_traj_spec *s, rf_error *err)
+/* Every row of every table: the spec's own, each material's, each collector's. */
+static rf_status check_all_rows(const rf_traj_spec *s, rf_error *err)
 {
-    if (!(s->gravity > 0 && isfinite(s->gravity)))
-        return rf_fail(err, RF_EINVAL, "gravity = %g: must be > 0", s->gravity);
-    if (!s->sphere && !(s->mass > 0 && isfinite(s->mass)))
-        return rf_fail(err, RF_EINVAL, "block.mass = %g: must be > 0", s->mass);
-    if (s->sphere && !(s->radius > 0 && isfinite(s->radius)))
-        return rf_fail(err, RF_EINVAL, "block.radius = %g: must be > 0", s->radius);
-    if (s->sphere && !(s->density > 0 && isfinite(s->density)))
-        return rf_fail(err, RF_EINVAL, "block.density = %g: must be > 0", s->density);
-    if ((unsigned)s->law >= RF_BOUNCE_N_LAWS)
-        return rf_fail(err, RF_EINVAL, "bounce.law = %d: not a bounce law", (int)s->law);
-    if (!s->sphere && (s->law == RF_BOUNCE_RIGID_SPHERE || s->law == RF_BOUNCE_IMPACT_MODEL))
-        return rf_fail(err, RF_EINVAL, "bounce.law = %s: needs block.shape: sphere", rf_traj_bounce_law_names[s->law]);
-    double v[] = {s->x0, s->y0, s->vx0, s->vy0, s->omega0};
-    const char *n[] = {"x", "y", "vx", "vy", "omega"};
-    for (int i = 0; i < 5; i++)
-        if (!isfinite(v[i]))
-            return rf_fail(err, RF_EINVAL, "release.%s = %g: must be finite", n[i], v[i]);
-    if (!(fabs(s->y0) <= RF_TRAJ_MAX_COORD))
-        return rf_fail(err, RF_EINVAL, "release.y = %g: beyond %g m; heights must lie within +-%g m", s->y0,
-                       RF_TRAJ_MAX_COORD, RF_TRAJ_MAX_COORD);
-    if (!(s->scale_speed > 0))
-        return rf_fail(err, RF_EINVAL, "bounce.scale_speed = %g: must be > 0", s->scale_speed);
-    if (!(s->contact_speed >= 0))
-        return rf_fail(err, RF_EINVAL, "bounce.contact_speed = %g: must be >= 0", s->contact_speed);
-    if (!(s->v_stop >= 0))
-        return rf_fail(err, RF_EINVAL, "stop.v_stop = %g: must be >= 0", s->v_stop);
-    return RF_OK;
+    rf_status st = RF_OK;
+    for (size_t t = 0; t < rf_traj_n_field_tables && st == RF_OK; t++) {
+        const rf_traj_field_table *tb = &rf_traj_field_tables[t];
+        if (tb->owner == RF_TRAJ_OWNER_SPEC)
+            st = check_rows(s, tb, s, "", err);
+        for (size_t i = 0; tb->owner == RF_TRAJ_OWNER_MATERIAL && i < s->n_materials && st == RF_OK; i++)
+            st = check_rows(s, tb, &s->materials[i], s->materials[i].name, err);
+        for (size_t i = 0; tb->owner == RF_TRAJ_OWNER_COLLECTOR && i < s->n_collectors && st == RF_OK; i++)
+            st = check_rows(s, tb, &s->collectors[i], s->collectors[i].name, err);
+    }
+    return st;
 }
 
 /* The release point must not lie under the ground. */
@@ -241,23 +207,23 @@ static rf_status check_outputs(const rf_traj_spec *s, rf_error *err)
 static rf_status validate_values(const rf_traj_spec *s, rf_error *err)
 {
     rf_status st;
-    for (size_t i = 0; i < s->n_materials; i++)
-        if ((st = check_material(&s->materials[i], err)) != RF_OK)
-            return st;
+    if ((st = check_all_rows(s, err)) != RF_OK)
+        return st;
     for (size_t i = 0; s->seg_material && i + 1 < s->n_points; i++)
         if (s->seg_material[i] >= s->n_materials)
             return rf_fail(err, RF_EINVAL, "profile.materials[%zu]: no such material", i);
-    if ((st = check_block(s, err)) != RF_OK || (st = check_outputs(s, err)) != RF_OK)
+    if ((unsigned)s->law >= RF_BOUNCE_N_LAWS)
+        return rf_fail(err, RF_EINVAL, "bounce.law = %d: not a bounce law", (int)s->law);
+    if ((st = traj_bounce_law_validate(s, err)) != RF_OK || (st = check_outputs(s, err)) != RF_OK)
         return st;
-    for (size_t c = 0; c < s->n_collectors; c++)
-        if (!(s->collectors[c].capacity >= 0 && s->collectors[c].height >= 0))
-            return rf_fail(err, RF_EINVAL, "collectors.%s: capacity and height must be >= 0", s->collectors[c].name);
     rf_traj_world *w;
     rf_traj_spec probe = *s;
     probe.law = RF_BOUNCE_CONSTANT; /* geometry only: no impact table here */
     if ((st = rf_traj_world_create(&probe, &w, err)) != RF_OK)
         return st;
     st = check_release(s, w, err);
+    if (st == RF_OK)
+        st = traj_release_check(s, w, err);
     rf_traj_world_free(w);
     return st;
 }
@@ -280,13 +246,13 @@ static rf_status check_random_ranges(const rf_traj_spec *s, rf_error *err)
             return rf_fail(err, RF_EINVAL, "%s: normal sd = %g must be >= 0", r->path, r->b);
         double lo = r->dist == RF_DIST_UNIFORM ? r->a : fmax(r->lo, r->a - 6 * r->b);
         double hi = r->dist == RF_DIST_UNIFORM ? r->b : fmin(r->hi, r->a + 6 * r->b);
-        double ends[2] = {lo, hi}, *f = rf_traj_spec_field(&probe, r->path);
-        if (!f || f == &probe.px[0] || (f >= probe.px && f < probe.px + probe.n_points) ||
-            (f >= probe.py && f < probe.py + probe.n_points))
+        double ends[2] = {lo, hi}, *f;
+        const rf_traj_field *row = rf_traj_field_at(&probe, r->path, &f);
+        if (!row || !row->random)
             return rf_fail(err, RF_EINVAL, "%s: this input cannot be random", r->path);
         double keep = *f;
         for (int e = 0; e < 2; e++) {
-            *f = ends[e];
+            *f = traj_field_store(row, ends[e]);
             rf_error tmp;
             rf_status st = validate_values(&probe, &tmp);
             *f = keep;

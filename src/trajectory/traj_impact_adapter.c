@@ -32,7 +32,7 @@ rf_status traj_impact_setup_init(traj_impact_setup *s, const rf_traj_spec *spec,
     s->refinement = spec->impact_refinement;
     s->density = spec->density;
     double phi = spec->n_materials ? spec->materials[0].friction_angle : 0;
-    s->friction = isnan(spec->impact_friction) ? tan(phi * RF_PI / 180) : spec->impact_friction;
+    s->friction = isnan(spec->impact_friction) ? tan(phi) : spec->impact_friction;
     return RF_OK;
 }
 

@@ -198,7 +198,7 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
     t->nv = t->nt = 5;
     for (size_t i = 0; i < 5; i++) { /* v_n geometric, theta uniform */
         t->v[i] = spec->impact_speed_min * pow(spec->impact_speed_max / spec->impact_speed_min, (double)i / 4);
-        t->th[i] = spec->impact_max_incidence * (RF_PI / 180) * (double)i / 4;
+        t->th[i] = spec->impact_max_incidence * (double)i / 4;
     }
     if (st == RF_OK)
         st = traj_impact_cache_load(spec->impact_cache, &b.setup, &b.memo, &b.n_memo, &b.cap_memo, err);

@@ -25,6 +25,8 @@ typedef struct {
     size_t segment;          /* the segment carrying that ground */
 } traj_collector_geo;
 
+typedef struct traj_release_set traj_release_set;
+
 struct rf_traj_world {
     size_t nseg;
     traj_segment *seg;
@@ -32,7 +34,20 @@ struct rf_traj_world {
     traj_collector_geo *col;
     void *impact_table;      /* impact_model law: traj_impact_table */
     int owns_table;          /* 0: shared by the caller (traj_world_create_shared) */
+    traj_release_set *release;  /* release line or zone: the pieces a point is drawn on (release.c) */
 };
+
+/* release.c: the release velocity (vx, vy, or speed and angle); the pieces
+ * of a release line or zone (w->release, NULL for a point; an empty zone is
+ * an error); the point at u in (0, 1), uniform by length over the pieces; a
+ * release line on or above the ground; x0, y0 of a line or zone set to its
+ * point at u = 0.5 (the nominal release, e.g. of a single trajectory). */
+void traj_release_velocity(const rf_traj_spec *s, double *vx, double *vy);
+rf_status traj_release_prepare(const rf_traj_spec *s, rf_traj_world *w, rf_error *err);
+void traj_release_free(traj_release_set *r);
+void traj_release_point(const rf_traj_world *w, double u, double *x, double *y);
+rf_status traj_release_check(const rf_traj_spec *s, const rf_traj_world *w, rf_error *err);
+void traj_release_nominal(rf_traj_spec *s);
 
 /* A world that uses the given impact table (not owned; NULL: built if the law needs it). */
 rf_status traj_world_create_shared(const rf_traj_spec *spec, void *table, rf_traj_world **world, rf_error *err);
@@ -43,6 +58,19 @@ rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf
  * about double the run time; the study model does not need them). */
 rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int envelopes, rf_traj_ensemble *ens,
                         rf_error *err);
+
+/* traj_fields.c: a row's value as stored (radians for an angle) from the
+ * value as given (degrees), and back; whether the row is used by this spec
+ * (e.g. block.mass only for a point block); every input path of the spec
+ * (rows per material and collector, then the random inputs' parameters with
+ * row NULL). */
+double traj_field_store(const rf_traj_field *f, double given);
+double traj_field_given(const rf_traj_field *f, double stored);
+int traj_field_used(const rf_traj_spec *s, const rf_traj_field *f);
+/* Why a row is not used (f->when does not hold), for messages. */
+const char *traj_field_unused_reason(const rf_traj_field *f);
+void traj_each_path(const rf_traj_spec *s, void (*fn)(void *ctx, const char *path, const rf_traj_field *f),
+                    void *ctx);
 
 /* Round-off allowance [m] of a geometric test near (x, y): relative to the
  * local coordinates, never to the profile's extent (a far vertex must not
@@ -92,6 +120,8 @@ void traj_record_crossing(traj_run *r, size_t c, double t, double x, double y, d
  * soft landing (normal speed below contact_speed: only the velocity along the
  * segment is kept, no bounce law applied), else 0. */
 int traj_bounce(traj_run *r, size_t k, double *vx, double *vy, double *omega);
+/* bounce.c: the law's own check of the spec (e.g. needs a sphere); law in range. */
+rf_status traj_bounce_law_validate(const rf_traj_spec *s, rf_error *err);
 
 /* contact.c: one stretch of contact motion on segment r->k until the block
  * stops, reaches a vertex (then: launch, next segment, or impact) or a barrier. */

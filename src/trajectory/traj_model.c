@@ -134,7 +134,7 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     if (st != RF_OK)
         return st;
     for (size_t i = 0; i < c->n_params; i++)
-        *rf_traj_spec_field(&s, c->paths[i]) = x[i];
+        rf_traj_spec_set(&s, c->paths[i], x[i]); /* as given: an angle in degrees */
     s.record = 0;
     rf_traj_ensemble e;
     rf_traj_stats t;
@@ -201,9 +201,10 @@ static rf_status init_outputs(rf_model *m, const rf_traj_spec *s, rf_error *err)
 }
 
 /* The identity names the content, not the file name: the trajectory file's
- * text (every value it gives) and the profile's vertices and segment
- * materials as read (a profile CSV or a DEM cut enters through them), so an
- * edited file is never served from a store. */
+ * text, the profile's vertices and segment materials as read (a profile CSV
+ * or a DEM cut enters through them) and every value a run reads, walked over
+ * the input tables (rf_traj_spec_values_hash), so an edited file or a spec
+ * changed in memory is never served from a store. */
 static rf_status set_identity(rf_model *m, const traj_model_ctx *c, rf_error *err)
 {
     const rf_traj_spec *s = &c->spec;
@@ -211,9 +212,10 @@ static rf_status set_identity(rf_model *m, const traj_model_ctx *c, rf_error *er
     profile = rf_fnv1a(profile, s->py, s->n_points * sizeof *s->py);
     profile = rf_fnv1a(profile, s->seg_material, (s->n_points ? s->n_points - 1 : 0) * sizeof *s->seg_material);
     char buf[2048];
-    int len = snprintf(buf, sizeof buf, "trajectory v2: file=%s text=%016llx profile=%016llx samples=%zu "
-                       "seed=%llu lhs=%d bind=", s->file ? s->file : "?", (unsigned long long)s->text_hash,
-                       (unsigned long long)profile, s->samples, (unsigned long long)s->seed, s->lhs);
+    int len = snprintf(buf, sizeof buf, "trajectory v3: file=%s text=%016llx profile=%016llx values=%016llx "
+                       "samples=%zu seed=%llu lhs=%d bind=", s->file ? s->file : "?", (unsigned long long)s->text_hash,
+                       (unsigned long long)profile, (unsigned long long)rf_traj_spec_values_hash(s), s->samples,
+                       (unsigned long long)s->seed, s->lhs);
     for (size_t i = 0; i < c->n_params && len > 0 && (size_t)len < sizeof buf; i++)
         len += snprintf(buf + len, sizeof buf - (size_t)len, "%s%s", i ? "," : "", c->paths[i]);
     return rf_model_set_identity(m, buf, err);
@@ -240,9 +242,9 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
         st = rf_fail(err, RF_ENOMEM, "out of memory");
     for (size_t i = 0; i < n_params && st == RF_OK; i++) {
         c->n_params = i + 1;
-        if (!rf_traj_spec_field(&c->spec, bind_paths[i]))
-            st = rf_fail(err, RF_EINVAL, "parameter %s: '%s' is not a numeric input of the trajectory file",
-                         param_names[i], bind_paths[i]);
+        char why[2400];
+        if (!rf_traj_path_bindable(&c->spec, bind_paths[i], why, sizeof why))
+            st = rf_fail(err, RF_EINVAL, "parameter %s: '%s': %s", param_names[i], bind_paths[i], why);
         else if (!(c->paths[i] = rf_strdup(bind_paths[i])))
             st = rf_fail(err, RF_ENOMEM, "out of memory");
     }
@@ -270,7 +272,7 @@ rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *s
     const traj_model_ctx *c = m->ctx;
     rf_status st = rf_traj_spec_copy(&c->spec, spec, err);
     for (size_t i = 0; i < c->n_params && st == RF_OK; i++)
-        *rf_traj_spec_field(spec, c->paths[i]) = x[i];
+        rf_traj_spec_set(spec, c->paths[i], x[i]);
     *table = c->table;
     return st;
 }

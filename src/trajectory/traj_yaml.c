@@ -38,10 +38,10 @@ static rf_status parse_materials(ty_ctx *c, struct fy_node *n)
         rf_traj_material *m = &c->spec->materials[c->spec->n_materials++];
         if (!(m->name = rf_strdup(key)))
             return rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
-        m->R_n = NAN, m->R_t = NAN;
+        ty_row_defaults(RF_TRAJ_OWNER_MATERIAL, m);
         char p[300];
         yr_pathf(p, sizeof p, "materials.%s", key);
-        if ((st = ty_fields(c, v, p, "R_n R_t friction_angle rolling_resistance roughness", 1)) != RF_OK)
+        if ((st = ty_fields(c, v, p, "")) != RF_OK)
             return st;
         if (isnan(m->R_n) || isnan(m->R_t))
             return yr_fail(&c->sp, v, p, "R_n and R_t are required");
@@ -65,7 +65,7 @@ static rf_status parse_block(ty_ctx *c, struct fy_node *n)
         else if (!(len == 5 && !strncmp(str, "point", 5)))
             return yr_fail(&c->sp, shape, "block.shape", "expected point or sphere");
     }
-    if ((st = ty_fields(c, n, "block", s->sphere ? "shape radius density" : "shape mass", 1)) != RF_OK)
+    if ((st = ty_fields(c, n, "block", "shape")) != RF_OK)
         return st;
     if (!s->sphere && isnan(s->mass))
         return yr_fail(&c->sp, n, "block", "a point block needs mass [kg]");
@@ -87,7 +87,12 @@ static rf_status parse_law(ty_ctx *c, struct fy_node *v)
             c->spec->law = (rf_bounce_law)i;
             return RF_OK;
         }
-    return yr_fail(&c->sp, v, "bounce.law", "expected constant, velocity_scaled, rigid_sphere or impact_model");
+    char list[200];
+    size_t n = 0;
+    for (int i = 0; i < RF_BOUNCE_N_LAWS && n < sizeof list; i++)
+        n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? (i + 1 < RF_BOUNCE_N_LAWS ? ", " : " or ") : "",
+                              names[i]);
+    return yr_fail(&c->sp, v, "bounce.law", "expected %s", list);
 }
 
 /* A list of numbers under `path`: at most `max`, finite, and increasing if `increasing`. */
@@ -183,9 +188,9 @@ static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
         for (size_t j = 0; j < i; j++)
             if (!strcmp(c->spec->collectors[j].name, col->name))
                 return yr_fail(&c->sp, nm, p, "a second collector with this name");
-        col->x = NAN;
+        ty_row_defaults(RF_TRAJ_OWNER_COLLECTOR, col);
         yr_pathf(p, sizeof p, "collectors.%s", col->name);
-        if ((st = ty_fields(c, e, p, "name x capacity height energy_thresholds height_thresholds", 0)) != RF_OK ||
+        if ((st = ty_fields(c, e, p, "name energy_thresholds height_thresholds")) != RF_OK ||
             (st = parse_thresholds(c, e, p, col)) != RF_OK)
             return st;
         if (isnan(col->x))
@@ -207,7 +212,7 @@ static rf_status parse_top_scalar(ty_ctx *c, const char *key, struct fy_node *k,
     if (!strcmp(key, "description"))
         return RF_OK;
     if (!strcmp(key, "gravity"))
-        return ty_value(c, v, "gravity", &s->gravity, 0);
+        return ty_row_value(c, v, "gravity");
     if (!strcmp(key, "samples")) {
         if ((st = yr_integer(&c->sp, v, "samples", 1, 100000000, &n)) == RF_OK)
             s->samples = (size_t)n;
@@ -247,9 +252,9 @@ static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct
     if (!strcmp(key, "block"))
         return parse_block(c, v);
     if (!strcmp(key, "release"))
-        return ty_fields(c, v, "release", "x y vx vy omega", 1);
+        return ty_parse_release(c, v);
     if (!strcmp(key, "stop"))
-        return ty_fields(c, v, "stop", "v_stop max_steps", 0);
+        return ty_fields(c, v, "stop", "max_steps");
     if (!strcmp(key, "collectors"))
         return parse_collectors(c, v);
     if (!strcmp(key, "outputs"))
@@ -260,7 +265,7 @@ static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct
         struct fy_node *law = fy_node_mapping_lookup_by_string(v, "law", FY_NT);
         if (law && (st = parse_law(c, law)) != RF_OK)
             return st;
-        return ty_fields(c, v, "bounce", "law scale_speed contact_speed impact", 0);
+        return ty_fields(c, v, "bounce", "law impact");
     }
     if (!strcmp(key, "profile")) {
         c->profile = v;
@@ -272,13 +277,8 @@ static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct
 static void spec_defaults(rf_traj_spec *s)
 {
     memset(s, 0, sizeof *s);
-    s->gravity = 9.81;
-    s->mass = s->radius = s->density = NAN;
-    s->x0 = s->y0 = NAN;
+    ty_row_defaults(RF_TRAJ_OWNER_SPEC, s); /* gravity, block, release, bounce and stop numbers */
     s->law = RF_BOUNCE_CONSTANT;
-    s->scale_speed = RF_TRAJ_PFEIFFER_BOWEN_K;
-    s->contact_speed = 0.1;
-    s->v_stop = 0.1;
     s->max_steps = 10000;
     s->samples = 1;
     s->seed = 1;
@@ -286,7 +286,7 @@ static void spec_defaults(rf_traj_spec *s)
     s->impact_tolerance = 0.01;
     s->impact_friction = NAN;
     s->impact_speed_min = 0.25, s->impact_speed_max = 40;
-    s->impact_max_incidence = 80;
+    s->impact_max_incidence = 80 * (RF_PI / 180); /* stored in radians */
     s->outputs.n_percentiles = 3;
     s->outputs.percentiles[0] = 50, s->outputs.percentiles[1] = 95, s->outputs.percentiles[2] = 99;
     s->outputs.runout_bins = 20;
@@ -314,10 +314,12 @@ static rf_status parse_document(ty_ctx *c, struct fy_node *root)
     for (int i = 0; i < 3; i++)
         if (!fy_node_mapping_lookup_by_string(root, need[i], FY_NT))
             return rf_fail(c->sp.err, RF_EINVAL, "%s:1: %s: missing", c->sp.file, need[i]);
-    if (isnan(c->spec->x0) || isnan(c->spec->y0))
+    if (c->spec->release_kind == RF_TRAJ_RELEASE_POINT && (isnan(c->spec->x0) || isnan(c->spec->y0)))
         return yr_fail(&c->sp, fy_node_mapping_lookup_by_string(root, "release", FY_NT), "release",
-                       "x and y are required");
-    return ty_parse_profile(c, c->profile);
+                       "x and y are required (or a line or zone)");
+    if ((st = ty_parse_profile(c, c->profile)) == RF_OK)
+        traj_release_nominal(c->spec);
+    return st;
 }
 
 static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spec *s, rf_error *err)

@@ -18,6 +18,7 @@ typedef struct {
     rf_traj_spec *spec;
     struct fy_node *profile;
     int record_given;
+    struct fy_node *release;     /* the release: mapping (its line/zone are read after the profile) */
     int csv_named;               /* the CSV profile named the segment materials */
     ty_line *lines;
     size_t n_lines, cap_lines;
@@ -31,9 +32,22 @@ void ty_ctx_free(ty_ctx *c);
  * added to spec->random under `path`; *dst gets the nominal value. */
 rf_status ty_value(ty_ctx *c, struct fy_node *n, const char *path, double *dst, int allow_random);
 
-/* The mapping n under `prefix`: every key must be in the space-separated
- * list `keys`; numeric ones go to rf_traj_spec_field(prefix.key). */
-rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *keys, int allow_random);
+/* The number at `path`, a row of the input tables (traj_fields.c): random
+ * if the row allows it; stored in the row's units (radians for an angle). */
+rf_status ty_row_value(ty_ctx *c, struct fy_node *n, const char *path);
+
+/* The mapping n under `prefix`: every key is a row of the input tables
+ * (prefix.key) or one of the space-separated `extra` keys (read by the
+ * caller, or here: max_steps, impact). */
+rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *extra);
+
+/* The defaults of the rows of the tables owned by `owner` into obj (an
+ * rf_traj_spec, rf_traj_material or rf_traj_collector). */
+void ty_row_defaults(rf_traj_field_owner owner, void *obj);
+
+/* release: {x, y | line: [[x, y], ...] | zone: {x: [x0, x1]} | {polygon: [[x, y], ...]},
+ * vx, vy | speed, angle, omega} (traj_yaml_release.c) */
+rf_status ty_parse_release(ty_ctx *c, struct fy_node *n);
 
 /* profile: {points: [[x, y], ...] | csv: FILE | dem: {...}, materials: [..] | NAME} */
 rf_status ty_parse_profile(ty_ctx *c, struct fy_node *n);

@@ -91,6 +91,27 @@ rf_status ty_value(ty_ctx *c, struct fy_node *n, const char *path, double *dst, 
     return yr_number(&c->sp, n, path, dst);
 }
 
+rf_status ty_row_value(ty_ctx *c, struct fy_node *n, const char *path)
+{
+    double *dst;
+    const rf_traj_field *f = rf_traj_field_at(c->spec, path, &dst);
+    if (!f)
+        return yr_fail(&c->sp, n, path, "not an input of a trajectory file");
+    rf_status st = ty_value(c, n, path, dst, f->random);
+    if (st == RF_OK)
+        *dst = traj_field_store(f, *dst); /* angles: given in degrees, stored in radians */
+    return st;
+}
+
+void ty_row_defaults(rf_traj_field_owner owner, void *obj)
+{
+    for (size_t t = 0; t < rf_traj_n_field_tables; t++) {
+        const rf_traj_field_table *tb = &rf_traj_field_tables[t];
+        for (size_t k = 0; tb->owner == owner && k < tb->n_rows; k++)
+            *(double *)((char *)obj + tb->rows[k].offset) = traj_field_store(&tb->rows[k], tb->rows[k].def);
+    }
+}
+
 static int in_list(const char *key, const char *keys)
 {
     size_t len = strlen(key);
@@ -98,6 +119,28 @@ static int in_list(const char *key, const char *keys)
         if ((p == keys || p[-1] == ' ') && (p[len] == ' ' || p[len] == '\0'))
             return 1;
     return 0;
+}
+
+/* The row keys under `prefix` ("block", "materials.rock", "bounce") then `extra`. */
+static void keys_under(const char *prefix, const char *extra, char *buf, size_t size)
+{
+    size_t len = 0, lp = strlen(prefix);
+    rf_traj_field_owner owner = !strncmp(prefix, "materials.", 10)    ? RF_TRAJ_OWNER_MATERIAL
+                                : !strncmp(prefix, "collectors.", 11) ? RF_TRAJ_OWNER_COLLECTOR
+                                                                      : RF_TRAJ_OWNER_SPEC;
+    buf[0] = '\0';
+    for (size_t t = 0; t < rf_traj_n_field_tables; t++) {
+        const rf_traj_field_table *tb = &rf_traj_field_tables[t];
+        for (size_t k = 0; tb->owner == owner && k < tb->n_rows && len < size; k++) {
+            char full[200];
+            snprintf(full, sizeof full, "%s%s", owner == RF_TRAJ_OWNER_SPEC ? tb->prefix : "", tb->rows[k].key);
+            const char *key = owner == RF_TRAJ_OWNER_SPEC ? full + lp + 1 : full;
+            if (owner != RF_TRAJ_OWNER_SPEC || (!strncmp(full, prefix, lp) && full[lp] == '.' && !strchr(key, '.')))
+                len += (size_t)snprintf(buf + len, size - len, "%s%s", len ? " " : "", key);
+        }
+    }
+    if (len < size && extra[0])
+        snprintf(buf + len, size - len, "%s%s", len ? " " : "", extra);
 }
 
 static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
@@ -136,9 +179,11 @@ static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
             }
             free(f);
         } else if (!strcmp(key, "max_incidence")) {
-            st = yr_number(&c->sp, v, p, &c->spec->impact_max_incidence);
-            if (st == RF_OK && !(c->spec->impact_max_incidence > 0 && c->spec->impact_max_incidence <= 80))
+            double deg = 0;
+            st = yr_number(&c->sp, v, p, &deg);
+            if (st == RF_OK && !(deg > 0 && deg <= 80))
                 st = yr_fail(&c->sp, v, p, "must lie in (0, 80] degrees");
+            c->spec->impact_max_incidence = deg * (RF_PI / 180); /* stored in radians */
         } else if (!strcmp(key, "speeds")) {
             double range[2] = {0, 0};
             st = yr_numbers(&c->sp, v, p, 2, 2, range, NULL);
@@ -170,7 +215,7 @@ static rf_status special_field(ty_ctx *c, const char *key, const char *path, str
     return RF_OK; /* shape, name, law: read by the caller */
 }
 
-rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *keys, int allow_random)
+rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *extra)
 {
     rf_status st = yr_mapping(&c->sp, n, prefix);
     if (st != RF_OK)
@@ -178,15 +223,22 @@ rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char
     yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
-    char p[300];
+    char p[300], keys[600];
     for (;;) {
         if ((st = yr_next(&c->sp, &it, prefix, &key, &k, &v)) != RF_OK || !key)
             return st;
         yr_pathf(p, sizeof p, "%s.%s", prefix, key);
-        if (!in_list(key, keys))
+        const rf_traj_field *f = rf_traj_field_at(c->spec, p, NULL);
+        if (f && !traj_field_used(c->spec, f))
+            return yr_fail(&c->sp, k, p, "not used here: %s", traj_field_unused_reason(f));
+        if (f)
+            st = ty_row_value(c, v, p);
+        else if (in_list(key, extra))
+            st = special_field(c, key, p, v);
+        else {
+            keys_under(prefix, extra, keys, sizeof keys);
             return yr_fail(&c->sp, k, p, "unknown key; %s takes: %s", prefix, keys);
-        double *f = rf_traj_spec_field(c->spec, p);
-        st = f ? ty_value(c, v, p, f, allow_random) : special_field(c, key, p, v);
+        }
         if (st != RF_OK)
             return st;
     }

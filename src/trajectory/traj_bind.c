@@ -1,0 +1,171 @@
+/* traj_bind.c - what a study may bind in a trajectory file, from the input
+ * tables (traj_fields.c): the bindable paths of a spec, their list with
+ * units for messages, the reason a path is refused with the nearest bindable
+ * path (a typo), the key table of the docs and the hash of every value a run
+ * reads (the model identity). */
+#include "trajectory/traj_internal.h"
+#include "core/hash.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int is_random(const rf_traj_spec *s, const char *path)
+{
+    for (size_t r = 0; r < s->n_random; r++)
+        if (!strcmp(s->random[r].path, path))
+            return 1;
+    return 0;
+}
+
+static int bindable_row(const rf_traj_spec *s, const char *path, const rf_traj_field *f)
+{
+    return !f || (f->bindable && traj_field_used(s, f) && !is_random(s, path));
+}
+
+typedef struct {
+    const rf_traj_spec *s;
+    char *buf;
+    size_t size, len;
+    const char *want;        /* suggestion: the path asked for */
+    char near[300];
+    size_t best;
+} path_walk;
+
+static void add_to_list(void *ctx, const char *path, const rf_traj_field *f)
+{
+    path_walk *w = ctx;
+    if (!bindable_row(w->s, path, f) || w->len >= w->size)
+        return;
+    const char *unit = f ? f->unit : "";
+    w->len += (size_t)snprintf(w->buf + w->len, w->size - w->len, "%s%s%s%s%s", w->len ? ", " : "", path,
+                               unit[0] ? " [" : "", unit, unit[0] ? "]" : "");
+}
+
+void rf_traj_bindable_list(const rf_traj_spec *s, char *buf, size_t size)
+{
+    path_walk w = {s, buf, size, 0, NULL, "", 0};
+    buf[0] = '\0';
+    traj_each_path(s, add_to_list, &w);
+    if (s->n_points && w.len < size)
+        snprintf(buf + w.len, size - w.len, "%sprofile.points.I.x|y [m] (I < %zu)", w.len ? ", " : "", s->n_points);
+}
+
+static void nearest(void *ctx, const char *path, const rf_traj_field *f)
+{
+    path_walk *w = ctx;
+    size_t d = rf_name_distance(w->want, path);
+    if (bindable_row(w->s, path, f) && d < w->best)
+        w->best = d, snprintf(w->near, sizeof w->near, "%s", path);
+}
+
+const char *traj_field_unused_reason(const rf_traj_field *f)
+{
+    switch (f->when) {
+    case RF_TRAJ_WHEN_POINT: return "only a point block has it (a sphere's mass comes from radius and density)";
+    case RF_TRAJ_WHEN_SPHERE: return "only a sphere has it";
+    case RF_TRAJ_WHEN_VXVY: return "the release velocity is given by speed and angle";
+    case RF_TRAJ_WHEN_SPEED: return "the release velocity is given by vx and vy";
+    case RF_TRAJ_WHEN_AT_POINT: return "the release is drawn along a line or in a zone";
+    case RF_TRAJ_WHEN_ALWAYS: break;
+    }
+    return "";
+}
+
+int rf_traj_path_bindable(const rf_traj_spec *s, const char *path, char *why, size_t size)
+{
+    rf_traj_spec *w = (rf_traj_spec *)s; /* looked up, not written */
+    const rf_traj_field *f = rf_traj_field_at(w, path, NULL);
+    if (f && !f->bindable)
+        return snprintf(why, size, "%s cannot be bound", path), 0;
+    if (f && !traj_field_used(s, f))
+        return snprintf(why, size, "%s is not used by this file: %s", path, traj_field_unused_reason(f)), 0;
+    if (is_random(s, path))
+        return snprintf(why, size, "this input is random in the trajectory file; bind its distribution "
+                        "(%s.lo/.hi or .mean/.sd)", path), 0;
+    if (f || rf_traj_spec_field(w, path))
+        return 1;
+    path_walk pw = {s, NULL, 0, 0, path, "", 4}; /* at most three edits: a typo */
+    traj_each_path(s, nearest, &pw);
+    char list[2048];
+    rf_traj_bindable_list(s, list, sizeof list);
+    snprintf(why, size, "not a numeric input of the trajectory file; %s%s%sit takes: %s",
+             pw.near[0] ? "did you mean '" : "", pw.near, pw.near[0] ? "'? " : "", list);
+    return 0;
+}
+
+static const char *check_text(rf_traj_check c)
+{
+    static const char *const text[] = {"", "finite", "> 0", ">= 0", "[0, 1]", "[0, 90)", "[0, 45]", "[-180, 180]",
+                                       "\\|y\\| <= 1e7"};
+    return (unsigned)c < sizeof text / sizeof text[0] ? text[c] : "";
+}
+
+void rf_traj_fields_markdown(FILE *f)
+{
+    fprintf(f, "| key | unit | default | range | random | bindable | meaning |\n|---|---|---|---|---|---|---|\n");
+    for (size_t t = 0; t < rf_traj_n_field_tables; t++) {
+        const rf_traj_field_table *tb = &rf_traj_field_tables[t];
+        for (size_t k = 0; k < tb->n_rows; k++) {
+            const rf_traj_field *r = &tb->rows[k];
+            char def[32] = "required";
+            if (!isnan(r->def))
+                snprintf(def, sizeof def, "%g", r->def);
+            fprintf(f, "| `%s%s` | %s | %s | %s | %s | %s | %s |\n", tb->prefix, r->key,
+                    r->unit[0] ? r->unit : "-", def, check_text(r->check), r->random ? "yes" : "no",
+                    r->bindable ? "yes" : "no", r->help);
+        }
+    }
+}
+
+static uint64_t hash_rows(uint64_t h, const rf_traj_field_table *tb, const void *base)
+{
+    for (size_t k = 0; k < tb->n_rows; k++)
+        h = rf_fnv1a(h, (const char *)base + tb->rows[k].offset, sizeof(double));
+    return h;
+}
+
+static uint64_t hash_str(uint64_t h, const char *s) { return rf_fnv1a(h, s ? s : "", s ? strlen(s) + 1 : 1); }
+
+static uint64_t hash_release_and_law(uint64_t h, const rf_traj_spec *s)
+{
+    int ints[5] = {s->sphere, (int)s->law, s->release_by_speed, (int)s->release_kind, s->lhs};
+    h = rf_fnv1a(h, ints, sizeof ints);
+    h = rf_fnv1a(h, s->release_px, s->n_release * sizeof *s->release_px);
+    h = rf_fnv1a(h, s->release_py, s->n_release * sizeof *s->release_py);
+    double z[7] = {s->zone_x0, s->zone_x1, s->impact_tolerance, s->impact_friction, s->impact_refinement,
+                   s->impact_speed_min, s->impact_speed_max};
+    h = rf_fnv1a(h, z, sizeof z);
+    h = rf_fnv1a(h, &s->impact_max_incidence, sizeof s->impact_max_incidence);
+    h = hash_str(h, s->impact_solver);
+    size_t counts[3] = {s->max_steps, s->samples, s->record};
+    h = rf_fnv1a(h, counts, sizeof counts);
+    const rf_traj_outputs *o = &s->outputs;
+    h = rf_fnv1a(h, o->percentiles, o->n_percentiles * sizeof(double));
+    h = rf_fnv1a(h, o->runout_thresholds, o->n_runout_thresholds * sizeof(double));
+    return rf_fnv1a(h, &o->runout_bins, sizeof o->runout_bins);
+}
+
+uint64_t rf_traj_spec_values_hash(const rf_traj_spec *s)
+{
+    uint64_t h = RF_FNV1A_OFFSET;
+    for (size_t t = 0; t < rf_traj_n_field_tables; t++) {
+        const rf_traj_field_table *tb = &rf_traj_field_tables[t];
+        if (tb->owner == RF_TRAJ_OWNER_SPEC)
+            h = hash_rows(h, tb, s);
+        for (size_t i = 0; tb->owner == RF_TRAJ_OWNER_MATERIAL && i < s->n_materials; i++)
+            h = hash_rows(hash_str(h, s->materials[i].name), tb, &s->materials[i]);
+        for (size_t i = 0; tb->owner == RF_TRAJ_OWNER_COLLECTOR && i < s->n_collectors; i++) {
+            const rf_traj_collector *c = &s->collectors[i];
+            h = hash_rows(hash_str(h, c->name), tb, c);
+            h = rf_fnv1a(h, c->energy_thresholds, c->n_energy_thresholds * sizeof(double));
+            h = rf_fnv1a(h, c->height_thresholds, c->n_height_thresholds * sizeof(double));
+        }
+    }
+    for (size_t r = 0; r < s->n_random; r++) {
+        const rf_traj_random *q = &s->random[r];
+        double v[5] = {(double)q->dist, q->a, q->b, q->lo, q->hi};
+        h = rf_fnv1a(hash_str(h, q->path), v, sizeof v);
+    }
+    return hash_release_and_law(h, s);
+}
