@@ -193,6 +193,7 @@ typedef struct {
     int degrees;                /* given in degrees, stored in radians */
     const char *unit;           /* as given ("deg" for angles; "" dimensionless) */
     double def;                 /* default; NaN: required (or from elsewhere, see help) */
+    double probe;               /* an admissible value other than the default, as given (the tests) */
     rf_traj_check check;
     rf_traj_when when;
     int random;                 /* may be written {uniform: ..} / {normal: ..} */

@@ -122,8 +122,9 @@ static rf_status check_rows(const rf_traj_spec *s, const rf_traj_field_table *tb
 {
     for (size_t k = 0; k < tb->n_rows; k++) {
         const rf_traj_field *f = &tb->rows[k];
-        double x = traj_field_given(f, *(const double *)((const char *)base + f->offset));
-        const char *rule = traj_field_used(s, f) ? rf_traj_field_rule(f, x) : NULL;
+        double x = *(const double *)((const char *)base + f->offset);
+        const char *rule = traj_field_used(s, f) ? traj_field_rule_stored(f, x) : NULL;
+        x = traj_field_given(f, x); /* the message names the value as given */
         if (!rule)
             continue;
         if (tb->owner == RF_TRAJ_OWNER_SPEC)

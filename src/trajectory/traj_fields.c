@@ -14,60 +14,61 @@
 #include <stdio.h>
 #include <string.h>
 
-#define ROW(key, field, deg, unit, def, check, when, random, bind, help) \
-    {key, offsetof(rf_traj_spec, field), deg, unit, def, check, when, random, bind, help}
-#define MAT(field, deg, unit, def, check, help) \
-    {#field, offsetof(rf_traj_material, field), deg, unit, def, check, RF_TRAJ_WHEN_ALWAYS, 1, 1, help}
-#define COL(field, unit, def, check, help) \
-    {#field, offsetof(rf_traj_collector, field), 0, unit, def, check, RF_TRAJ_WHEN_ALWAYS, 0, 1, help}
+#define ROW(key, field, deg, unit, def, probe, check, when, random, bind, help) \
+    {key, offsetof(rf_traj_spec, field), deg, unit, def, probe, check, when, random, bind, help}
+#define MAT(field, deg, unit, def, probe, check, help) \
+    {#field, offsetof(rf_traj_material, field), deg, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 1, 1, help}
+#define COL(field, unit, def, probe, check, help) \
+    {#field, offsetof(rf_traj_collector, field), 0, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 0, 1, help}
 
 static const rf_traj_field block_rows[] = {
-    ROW("mass", mass, 0, "kg", NAN, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_POINT, 1, 1,
+    ROW("mass", mass, 0, "kg", NAN, 1234.0, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_POINT, 1, 1,
         "mass of a point block (required with shape: point)"),
-    ROW("radius", radius, 0, "m", NAN, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_SPHERE, 1, 1,
+    ROW("radius", radius, 0, "m", NAN, 0.7, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_SPHERE, 1, 1,
         "radius of a sphere (required with shape: sphere)"),
-    ROW("density", density, 0, "kg/m^3", NAN, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_SPHERE, 1, 1,
+    ROW("density", density, 0, "kg/m^3", NAN, 2700.0, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_SPHERE, 1, 1,
         "density of a sphere (required with shape: sphere)"),
 };
 
 static const rf_traj_field release_rows[] = {
-    ROW("x", x0, 0, "m", NAN, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_AT_POINT, 1, 1,
+    ROW("x", x0, 0, "m", NAN, 1.5, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_AT_POINT, 1, 1,
         "release point (required unless `line` or `zone` is given)"),
-    ROW("y", y0, 0, "m", NAN, RF_TRAJ_CHECK_HEIGHT, RF_TRAJ_WHEN_AT_POINT, 1, 1,
+    ROW("y", y0, 0, "m", NAN, 25.0, RF_TRAJ_CHECK_HEIGHT, RF_TRAJ_WHEN_AT_POINT, 1, 1,
         "release height, on or above the ground (required with x)"),
-    ROW("vx", vx0, 0, "m/s", 0.0, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_VXVY, 1, 1, "release velocity, horizontal"),
-    ROW("vy", vy0, 0, "m/s", 0.0, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_VXVY, 1, 1, "release velocity, vertical (up)"),
-    ROW("speed", speed0, 0, "m/s", NAN, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_SPEED, 1, 1,
+    ROW("vx", vx0, 0, "m/s", 0.0, 1.5, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_VXVY, 1, 1, "release velocity, horizontal"),
+    ROW("vy", vy0, 0, "m/s", 0.0, 0.5, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_VXVY, 1, 1,
+        "release velocity, vertical (up)"),
+    ROW("speed", speed0, 0, "m/s", NAN, 3.0, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_SPEED, 1, 1,
         "release speed, instead of vx and vy (with angle)"),
-    ROW("angle", angle0, 1, "deg", 0.0, RF_TRAJ_CHECK_ANGLE_180, RF_TRAJ_WHEN_SPEED, 1, 1,
+    ROW("angle", angle0, 1, "deg", 0.0, 20.0, RF_TRAJ_CHECK_ANGLE_180, RF_TRAJ_WHEN_SPEED, 1, 1,
         "direction of the release speed from the horizontal, up positive: vx = speed cos, vy = speed sin"),
-    ROW("omega", omega0, 0, "rad/s", 0.0, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_ALWAYS, 1, 1, "release spin"),
+    ROW("omega", omega0, 0, "rad/s", 0.0, 1.0, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_ALWAYS, 1, 1, "release spin"),
 };
 
 static const rf_traj_field material_rows[] = {
-    MAT(R_n, 0, "", NAN, RF_TRAJ_CHECK_UNIT, "normal coefficient of restitution (required)"),
-    MAT(R_t, 0, "", NAN, RF_TRAJ_CHECK_UNIT, "tangential coefficient of restitution (required)"),
-    MAT(friction_angle, 1, "deg", 0.0, RF_TRAJ_CHECK_ANGLE_90,
+    MAT(R_n, 0, "", NAN, 0.45, RF_TRAJ_CHECK_UNIT, "normal coefficient of restitution (required)"),
+    MAT(R_t, 0, "", NAN, 0.75, RF_TRAJ_CHECK_UNIT, "tangential coefficient of restitution (required)"),
+    MAT(friction_angle, 1, "deg", 0.0, 33.0, RF_TRAJ_CHECK_ANGLE_90,
         "sliding friction mu = tan(phi); the impact friction of rigid_sphere"),
-    MAT(rolling_resistance, 0, "", 0.0, RF_TRAJ_CHECK_NONNEGATIVE,
+    MAT(rolling_resistance, 0, "", 0.0, 0.07, RF_TRAJ_CHECK_NONNEGATIVE,
         "rolling resistance coefficient mu_r (force mu_r N)"),
-    MAT(roughness, 1, "deg", 0.0, RF_TRAJ_CHECK_ANGLE_45, "SD of the slope-angle tilt drawn at each impact"),
+    MAT(roughness, 1, "deg", 0.0, 4.0, RF_TRAJ_CHECK_ANGLE_45, "SD of the slope-angle tilt drawn at each impact"),
 };
 
 static const rf_traj_field run_rows[] = {
-    ROW("gravity", gravity, 0, "m/s^2", 9.81, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_ALWAYS, 1, 1, "gravity g"),
-    ROW("bounce.scale_speed", scale_speed, 0, "m/s", RF_TRAJ_PFEIFFER_BOWEN_K, RF_TRAJ_CHECK_POSITIVE,
+    ROW("gravity", gravity, 0, "m/s^2", 9.81, 9.7, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_ALWAYS, 1, 1, "gravity g"),
+    ROW("bounce.scale_speed", scale_speed, 0, "m/s", RF_TRAJ_PFEIFFER_BOWEN_K, 8.0, RF_TRAJ_CHECK_POSITIVE,
         RF_TRAJ_WHEN_ALWAYS, 0, 1, "K of velocity_scaled (Pfeiffer & Bowen 1989: 30 ft/s)"),
-    ROW("bounce.contact_speed", contact_speed, 0, "m/s", 0.1, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_ALWAYS, 0, 1,
+    ROW("bounce.contact_speed", contact_speed, 0, "m/s", 0.1, 0.2, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_ALWAYS, 0, 1,
         "rebound normal speed below which the block stays on the ground"),
-    ROW("stop.v_stop", v_stop, 0, "m/s", 0.1, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_ALWAYS, 0, 1,
+    ROW("stop.v_stop", v_stop, 0, "m/s", 0.1, 0.15, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_ALWAYS, 0, 1,
         "speed after an impact below which the block stops"),
 };
 
 static const rf_traj_field collector_rows[] = {
-    COL(x, "m", NAN, RF_TRAJ_CHECK_FINITE, "the line x = const (required)"),
-    COL(capacity, "J", 0.0, RF_TRAJ_CHECK_NONNEGATIVE, "barrier energy capacity; 0 = a pure collector"),
-    COL(height, "m", 0.0, RF_TRAJ_CHECK_NONNEGATIVE, "barrier height; 0 = unlimited"),
+    COL(x, "m", NAN, 50.0, RF_TRAJ_CHECK_FINITE, "the line x = const (required)"),
+    COL(capacity, "J", 0.0, 1e5, RF_TRAJ_CHECK_NONNEGATIVE, "barrier energy capacity; 0 = a pure collector"),
+    COL(height, "m", 0.0, 2.0, RF_TRAJ_CHECK_NONNEGATIVE, "barrier height; 0 = unlimited"),
 };
 
 #define TABLE(family, prefix, owner, rows) {family, prefix, owner, rows, sizeof rows / sizeof rows[0]}
@@ -161,23 +162,32 @@ int rf_traj_spec_get(const rf_traj_spec *s, const char *path, double *given)
     return 1;
 }
 
-const char *rf_traj_field_rule(const rf_traj_field *f, double x)
+/* The check on a value as stored: an angle against its limits converted the
+ * same way (conversion is monotonic, so a value given inside the limits is
+ * never refused by round-off, and one given outside never passes). */
+const char *traj_field_rule_stored(const rf_traj_field *f, double x)
 {
+    double d90 = traj_field_store(f, 90), d45 = traj_field_store(f, 45), d180 = traj_field_store(f, 180);
     switch (f->check) {
     case RF_TRAJ_CHECK_NONE: return NULL;
     case RF_TRAJ_CHECK_FINITE: return isfinite(x) ? NULL : "must be finite";
     case RF_TRAJ_CHECK_POSITIVE: return isfinite(x) && x > 0 ? NULL : "must be > 0";
     case RF_TRAJ_CHECK_NONNEGATIVE: return isfinite(x) && x >= 0 ? NULL : "must be >= 0";
     case RF_TRAJ_CHECK_UNIT: return x >= 0 && x <= 1 ? NULL : "must lie in [0, 1]";
-    case RF_TRAJ_CHECK_ANGLE_90: return x >= 0 && x < 90 ? NULL : "must lie in [0, 90) degrees";
-    case RF_TRAJ_CHECK_ANGLE_45: return x >= 0 && x <= 45 ? NULL : "must lie in [0, 45] degrees";
-    case RF_TRAJ_CHECK_ANGLE_180: return x >= -180 && x <= 180 ? NULL : "must lie in [-180, 180] degrees";
+    case RF_TRAJ_CHECK_ANGLE_90: return x >= 0 && x < d90 ? NULL : "must lie in [0, 90) degrees";
+    case RF_TRAJ_CHECK_ANGLE_45: return x >= 0 && x <= d45 ? NULL : "must lie in [0, 45] degrees";
+    case RF_TRAJ_CHECK_ANGLE_180: return x >= -d180 && x <= d180 ? NULL : "must lie in [-180, 180] degrees";
     case RF_TRAJ_CHECK_HEIGHT:
         if (!isfinite(x))
             return "must be finite";
         return fabs(x) <= RF_TRAJ_MAX_COORD ? NULL : "beyond 1e+07 m; heights must lie within +-1e+07 m";
     }
     return "unknown check";
+}
+
+const char *rf_traj_field_rule(const rf_traj_field *f, double given)
+{
+    return traj_field_rule_stored(f, traj_field_store(f, given));
 }
 
 int traj_field_used(const rf_traj_spec *s, const rf_traj_field *f)

@@ -67,6 +67,8 @@ rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int 
 double traj_field_store(const rf_traj_field *f, double given);
 double traj_field_given(const rf_traj_field *f, double stored);
 int traj_field_used(const rf_traj_spec *s, const rf_traj_field *f);
+/* rf_traj_field_rule on the value as stored. */
+const char *traj_field_rule_stored(const rf_traj_field *f, double stored);
 /* Why a row is not used (f->when does not hold), for messages. */
 const char *traj_field_unused_reason(const rf_traj_field *f);
 void traj_each_path(const rf_traj_spec *s, void (*fn)(void *ctx, const char *path, const rf_traj_field *f),
