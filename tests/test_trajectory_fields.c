@@ -340,6 +340,40 @@ static void test_bound_angle_in_degrees(void **state)
     rf_traj_spec_free(&s), rf_traj_spec_free(&s2);
 }
 
+/* The bounce-law registry: every law by its name selects itself, names its
+ * parameters, and its own check (a sphere for rigid_sphere and impact_model)
+ * refuses a point block. */
+static void test_bounce_law_registry(void **state)
+{
+    (void)state;
+    for (int law = 0; law < RF_BOUNCE_N_LAWS; law++) {
+        const char *name = rf_traj_bounce_law_names[law];
+        assert_true(name && name[0] && rf_traj_bounce_law_parameters((rf_bounce_law)law)[0]);
+        for (int other = 0; other < law; other++)
+            assert_string_not_equal(name, rf_traj_bounce_law_names[other]);
+        for (int sphere = 0; sphere < 2; sphere++) {
+            char y[1024];
+            snprintf(y, sizeof y, "profile: {points: [[0, 20], [10, 0], [100, 0]], material: m}\n"
+                     "materials: {m: {R_n: 0.4, R_t: 0.7, friction_angle: 30}}\nblock: %s\n"
+                     "release: {x: 0.5, y: 21}\nbounce: {law: %s, impact: {speeds: [1, 2]}}\n",
+                     sphere ? "{shape: sphere, radius: 0.5, density: 2600}" : "{shape: point, mass: 10}", name);
+            rf_traj_spec s;
+            rf_error err;
+            rf_status st = rf_traj_load_buffer("t.yaml", y, strlen(y), &s, &err);
+            int needs_sphere = law == RF_BOUNCE_RIGID_SPHERE || law == RF_BOUNCE_IMPACT_MODEL;
+            if (!sphere && needs_sphere) {
+                assert_int_not_equal(st, RF_OK);
+                assert_non_null(strstr(err.msg, "needs block.shape: sphere"));
+                continue;
+            }
+            if (st != RF_OK)
+                fail_msg("%s: %s", name, err.msg);
+            assert_int_equal(s.law, law);
+            rf_traj_spec_free(&s);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -349,6 +383,7 @@ int main(void)
         cmocka_unit_test(test_identity_covers_every_row),
         cmocka_unit_test(test_docs_table),
         cmocka_unit_test(test_bound_angle_in_degrees),
+        cmocka_unit_test(test_bounce_law_registry),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
