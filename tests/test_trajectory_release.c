@@ -37,7 +37,8 @@ static void run(rf_traj_spec *s, rf_traj_ensemble *e)
 /* A cliff, a 3:4 talus and a floor, a sphere with random restitution and roughness. */
 static const char *speed_file =
     "profile: {points: [[0, 40], [10, 40], [10, 20], [50, -10], [120, -10]], material: m}\n"
-    "materials: {m: {R_n: {uniform: [0.2, 0.5]}, R_t: 0.8, friction_angle: 35, roughness: 6, rolling_resistance: 0.1}}\n"
+    "materials: {m: {R_n: {uniform: [0.2, 0.5]}, R_t: 0.8, friction_angle: 35, roughness: 6,\n"
+    "                rolling_resistance: 0.1}}\n"
     "block: {shape: sphere, radius: 0.5, density: 2600}\n"
     "release: {x: 8, y: 41, %s}\n"
     "bounce: {law: rigid_sphere}\n"
@@ -193,7 +194,8 @@ static void test_zone_on_the_ground_uniform(void **state)
     check_zone("{x: [4, 20]}", "lhs");
     check_zone("{polygon: [[4, 50], [4, 0], [20, 0], [20, 50]]}", "random");
     /* a slanted edge through the ground at (20, 12.5): y = 12.5 + 9.5 (x - 20) */
-    check_zone("{polygon: [[4, 60], [25, 60], [13.421052631578947, -50], [4, -50]]}", "random");
+    check_zone("{polygon: [[4, 60], [25, 60], [13.421052631578947, -50], [4, -50]]}",
+               "random");
 }
 
 static void expect_refused(const char *release, const char *want1, const char *want2)
@@ -215,7 +217,8 @@ static void test_refused(void **state)
     (void)state;
     expect_refused("{line: [[2, 45], [20, 5]]}", "r.yaml:4:", "release.line[1] = [20, 5]: under the ground");
     expect_refused("{line: [[2, 45], [130, 5]]}", "r.yaml:4:", "outside the profile's x-range");
-    expect_refused("{line: [[5, 41], [30, 10]]}", "r.yaml:4:", "passes under the ground at profile.points[1] = [10, 40]");
+    expect_refused("{line: [[5, 41], [30, 10]]}", "r.yaml:4:",
+                   "passes under the ground at profile.points[1] = [10, 40]");
     expect_refused("{line: [[2, 45]]}", "r.yaml:4:", "release.line");
     expect_refused("{zone: {x: [200, 300]}}", "r.yaml:4:", "release.zone: holds no ground");
     expect_refused("{zone: {x: [20, 5]}}", "r.yaml:4:", "x0 < x1");

@@ -148,6 +148,14 @@ static void test_binding_errors(void **state)
                                     "model: {trajectory: {file: traj_drop.yaml, bind: {Rn: materials.ground.Q}}}\n",
                                     &s, &err), RF_OK);
     assert_non_null(strstr(err.msg, "traj_study.yaml:2: model.trajectory.bind.Rn = materials.ground.Q"));
+    /* a typo: the nearest bindable path (from the input tables) and the list */
+    assert_int_not_equal(load_study("parameters: {Rn: {tfn: [0.5, 0.2, 0.2]}}\n"
+                                    "model: {trajectory: {file: traj_drop.yaml, bind: {Rn: materials.ground.Rn}}}\n",
+                                    &s, &err), RF_OK);
+    if (!strstr(err.msg, "traj_study.yaml:2: model.trajectory.bind.Rn = materials.ground.Rn") ||
+        !strstr(err.msg, "did you mean 'materials.ground.R_n'?") ||
+        !strstr(err.msg, "materials.ground.friction_angle [deg]"))
+        fail_msg("%s", err.msg);
     assert_int_not_equal(load_study("parameters: {Rn: {tfn: [0.9, 0.2, 0.2]}}\n"
                                     "model: {trajectory: {file: traj_drop.yaml, bind: {Rn: materials.ground.R_n}}}\n",
                                     &s, &err), RF_OK);
