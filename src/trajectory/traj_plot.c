@@ -312,6 +312,8 @@ rf_status rf_traj_write_plots(const char *dir, const rf_traj_spec *s, const rf_t
     for (size_t i = 0; i < s->n_points; i++)
         p.ylo = fmin(p.ylo, s->py[i]), p.yhi = fmax(p.yhi, s->py[i]);
     p.yhi = fmax(p.yhi, s->y0);
+    for (size_t i = 0; s->release_kind == RF_TRAJ_RELEASE_LINE && i < s->n_release; i++)
+        p.yhi = fmax(p.yhi, s->release_py[i]); /* every release of a line lies in the picture */
     double pad = 0.05 * (p.yhi - p.ylo) + 1;
     p.ylo -= pad, p.yhi += pad;
     layout(&p);
