@@ -40,6 +40,7 @@ EOF2
 chmod +x "$tmp/model.sh"
 cat > "$tmp/s.yaml" <<EOF2
 name: reliability
+scheme: reduced
 levels: 8
 parameters:
   a: {tfn: [2, 1, 1]}

@@ -31,7 +31,9 @@ typedef struct {
     char *path;                  /* file name as given (used in messages) */
     char *dir;                   /* directory of the study file (relative paths resolve here) */
     char *name;                  /* `name:`, default: file name without extension */
-    rf_tm_scheme scheme;         /* default reduced */
+    rf_tm_scheme scheme;         /* default: general for program and trajectory models, else reduced */
+    int scheme_set;              /* the file sets `scheme:` */
+    const char *scheme_reason;   /* why this scheme runs, one line (static text) */
     size_t levels;               /* m, default 10 */
 
     /* Parameters in file order; the model's x[i] is params[i]. */

@@ -292,6 +292,8 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
     fprintf(f, ",\n  \"scheme\": \"%s\",\n  \"levels\": %zu,\n  \"left_right\": %s,\n  \"model\": ",
             rf_tm_scheme_name(res->scheme), m, s->left_right ? "true" : "false");
     rf_json_string(f, s->model_description);
+    fputs(",\n  \"scheme_reason\": ", f);
+    rf_json_string(f, s->scheme_reason ? s->scheme_reason : "");
     fputs(",\n  \"model_kind\": ", f);
     rf_json_string(f, rf_study_model_kind_name(s->model_kind));
     fputs(",\n  \"model_identity\": ", f);

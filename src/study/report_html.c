@@ -385,7 +385,8 @@ static void write_run_table(FILE *f, struct fy_node *root)
     struct fy_node *ev = get(root, "evaluations");
     fputs("<h2>Run</h2>\n<table>\n", f);
     static const char *const meta[][2] = {{"version", "rockfuzz version"}, {"study_file", "study file"},
-                                          {"scheme", "TM scheme"},         {"levels", "levels m"},
+                                          {"scheme", "TM scheme"},         {"scheme_reason", "why this scheme"},
+                                          {"levels", "levels m"},
                                           {"model", "model"},              {"jobs", "threads"},
                                           {"mpi_ranks", "MPI ranks"},      {"wall_seconds", "wall time [s]"}};
     for (size_t k = 0; k < sizeof meta / sizeof *meta; k++) {

@@ -3,6 +3,7 @@
  * validated here, before any evaluation, and every message is located
  * (file:line: field = value: reason). */
 #include "study/study_internal.h"
+#include "study/bind.h"
 #include "core/textfile.h"
 
 #include <ctype.h>
@@ -500,6 +501,7 @@ static rf_status parse_document(yr_ctx *c, rf_study *s, struct fy_document *doc)
                 return st;
             if (rf_tm_scheme_parse(buf, &s->scheme) != RF_OK)
                 return yr_fail(c, v, "scheme", "unknown scheme; expected general, reduced or extended");
+            s->scheme_set = 1;
         } else if (!strcmp(key, "levels")) {
             long long m;
             if ((st = yr_integer(c, v, "levels", 1, RF_STUDY_MAX_LEVELS, &m)) != RF_OK) {
@@ -534,7 +536,10 @@ static rf_status parse_document(yr_ctx *c, rf_study *s, struct fy_document *doc)
         return st;
     if ((st = parse_parameters(c, s, params)) != RF_OK)
         return st;
-    return sp_parse_model(c, model, s);
+    if ((st = sp_parse_model(c, model, s)) != RF_OK)
+        return st;
+    sb_default_scheme(s);
+    return RF_OK;
 }
 
 /* Base name and directory of a path. */

@@ -3,6 +3,7 @@
  * a formula naming an unknown parameter or an impact input bound to an
  * unknown name fails at load time with the constructor's message, located. */
 #include "study/study_internal.h"
+#include "study/bind.h"
 
 #include "rockfuzz/impact_model.h"
 #include "core/util.h"
@@ -292,6 +293,31 @@ static rf_status parse_program_outputs(yr_ctx *c, struct fy_node *n, rf_external
     }
 }
 
+/* sb_check_fn: a {placeholder} name (the external model refuses one its files do not know). */
+static const char *check_placeholder(void *user, const char *to, char *buf, size_t size)
+{
+    (void)user;
+    int ok = (to[0] == '_' || (to[0] >= 'A' && to[0] <= 'Z') || (to[0] >= 'a' && to[0] <= 'z')) && strlen(to) <= 64;
+    for (const char *p = to; ok && *p; p++)
+        ok = *p == '_' || *p == '.' || *p == '-' || (*p >= '0' && *p <= '9') || (*p >= 'A' && *p <= 'Z') ||
+             (*p >= 'a' && *p <= 'z');
+    if (ok)
+        return NULL;
+    snprintf(buf, size, "not a placeholder name (letters, digits, _, . and -, starting with a letter or _, at most 64)");
+    return buf;
+}
+
+/* The program model of the bound placeholders, driven by the study's parameters. */
+static rf_status make_program(const rf_external_spec *e, const sb_binding *b, rf_study *s, rf_error *err)
+{
+    const char **names = sb_names(b);
+    if (!names)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    rf_status st = rf_external_model_create(e, b->n, names, &s->model, err);
+    free(names);
+    return st == RF_OK ? sb_wrap(b, s->n_params, &s->model, err) : st;
+}
+
 static rf_status parse_program(yr_ctx *c, struct fy_node *n, rf_study *s)
 {
     const char *path = "model.program";
@@ -302,8 +328,9 @@ static rf_status parse_program(yr_ctx *c, struct fy_node *n, rf_study *s)
     memset(&e, 0, sizeof e);
     yr_iter it = {n, NULL, 0, {0}};
     const char *key;
-    struct fy_node *k, *v, *outputs = NULL, *argv_node = NULL, *templates = NULL;
+    struct fy_node *k, *v, *outputs = NULL, *argv_node = NULL, *templates = NULL, *bind = NULL;
     char p[300], q[400];
+    sb_binding b = {0, NULL};
     for (;;) {
         if ((st = yr_next(c, &it, path, &key, &k, &v)) != RF_OK)
             goto done;
@@ -394,9 +421,11 @@ static rf_status parse_program(yr_ctx *c, struct fy_node *n, rf_study *s)
             free(e.workdir_root);
             e.workdir_root = w[0] ? resolve(c->dir, w) : NULL;
             free(w);
+        } else if (!strcmp(key, "bind")) {
+            bind = v;
         } else {
             st = yr_fail(c, k, p, "unknown key; a program takes argv, templates, outputs, timeout, keep_workdirs, "
-                                  "workdir");
+                                  "workdir, bind");
             goto done;
         }
     }
@@ -408,8 +437,10 @@ static rf_status parse_program(yr_ctx *c, struct fy_node *n, rf_study *s)
         st = yr_fail(c, n, path, "missing outputs (name: {file:, pattern:, unit:})");
         goto done;
     }
+    if ((st = sb_parse(c, bind, "model.program.bind", s, 1, check_placeholder, NULL, &b)) != RF_OK)
+        goto done;
     /* workdir_root NULL: the external model's default, $TMPDIR/rockfuzz-eval. */
-    st = rf_external_model_create(&e, s->n_params, (const char *const *)s->param_names, &s->model, c->err);
+    st = make_program(&e, &b, s, c->err);
     if (st != RF_OK) {
         rf_model_free(&s->model);
         /* Point at the part of the block the constructor's message is about. */
@@ -428,6 +459,7 @@ static rf_status parse_program(yr_ctx *c, struct fy_node *n, rf_study *s)
     s->model_kind = RF_STUDY_MODEL_PROGRAM;
     st = set_description(s, c->err, "program: %s", e.argv[0]);
 done:
+    sb_free(&b);
     free_external_spec(&e);
     return st;
 }
@@ -449,13 +481,13 @@ static rf_status parse_gravity(yr_ctx *c, struct fy_node *v, const char *path, d
 }
 
 /* A crisp input of the impact block, as the table says (degrees for angles). */
-static rf_status parse_impact_input(yr_ctx *c, const rf_study *s, const rf_impact_field *f, struct fy_node *v,
-                                    const char *p, rf_impact_input *in)
+static rf_status parse_impact_input(yr_ctx *c, const rf_study *s, const sb_binding *b, const rf_impact_field *f,
+                                    struct fy_node *v, const char *p, rf_impact_input *in)
 {
-    for (size_t i = 0; i < s->n_params; i++)
-        if (!strcmp(s->param_names[i], f->name))
-            return yr_fail(c, v, p, "'%s' is already a fuzzy parameter (line %d); give it in one place", f->name,
-                           s->param_line[i]);
+    for (size_t j = 0; j < b->n; j++)
+        if (!strcmp(b->t[j].to, f->name))
+            return yr_fail(c, v, p, "'%s' is already driven by the fuzzy parameter %s (line %d); give it in one place",
+                           f->name, s->param_names[b->t[j].param], b->t[j].line);
     double x;
     rf_status st = f->kind == RF_FIELD_GRAVITY ? parse_gravity(c, v, p, &x) : yr_number(c, v, p, &x);
     if (st == RF_OK)
@@ -496,7 +528,7 @@ static rf_status unknown_impact_key(yr_ctx *c, struct fy_node *k, const char *p,
     if (near)
         snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
     return yr_fail(c, k, p, "unknown key; %sthe impact model takes solver, boundary, large_deformation, ale, "
-                   "surface_mass_3d, sphere_contact_3d, refinement, domain_factor, end_time [s], threads, e_n, "
+                   "surface_mass_3d, sphere_contact_3d, refinement, domain_factor, end_time [s], threads, e_n, bind, "
                    "hunter_coefficient, boulder_material, slope_material, layer_material and the crisp inputs "
                    "that `rockfuzz impact --help` and docs/impact.md list (radius [m], slope_angle [deg], ...)",
                    hint);
@@ -577,96 +609,124 @@ static rf_status parse_impact_setting(yr_ctx *c, const char *key, struct fy_node
     return st;
 }
 
-static rf_status parse_impact(yr_ctx *c, struct fy_node *n, rf_study *s)
+/* sb_check_fn: a bindable impact input. */
+static const char *check_impact_name(void *user, const char *to, char *buf, size_t size)
 {
-    const char *path = "model.impact";
-    rf_status st = yr_mapping(c, n, path);
-    if (st != RF_OK)
-        return st;
-    rf_impact_model_spec spec;
-    rf_impact_model_spec_default(&spec);
+    (void)user;
+    const rf_impact_field *f = rf_impact_field_find(to);
+    if (f && f->bindable)
+        return NULL;
+    char list[1024];
+    rf_impact_bindable_list(list, sizeof list);
+    snprintf(buf, size, "'%s' is not an input of the impact model (inputs: %s)", to, list);
+    return buf;
+}
+
+/* sb_validate_fn: the impact input with the bound fields set, in the model's order. */
+static rf_status validate_impact(void *user, const double *xi, rf_error *err)
+{
+    const sb_binding *b = ((const void *const *)user)[0];
+    rf_impact_input in = *(const rf_impact_input *)((const void *const *)user)[1];
+    for (size_t j = 0; j < b->n; j++)
+        rf_impact_field_set(&in, rf_impact_field_find(b->t[j].to), xi[j]);
+    return rf_impact_input_validate(&in, err);
+}
+
+/* The crisp inputs and settings of the block (every key but bind). */
+static rf_status parse_impact_keys(yr_ctx *c, struct fy_node *n, const rf_study *s, const sb_binding *b,
+                                   rf_impact_model_spec *spec)
+{
     yr_iter it = {n, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
     char p[300];
-    for (;;) {
-        if ((st = yr_next(c, &it, path, &key, &k, &v)) != RF_OK)
-            return st;
-        if (!key)
-            break;
-        yr_pathf(p, sizeof p, "%s.%s", path, key);
+    rf_status st;
+    while ((st = yr_next(c, &it, "model.impact", &key, &k, &v)) == RF_OK && key) {
+        yr_pathf(p, sizeof p, "model.impact.%s", key);
         const rf_impact_field *field = rf_impact_field_find(key);
-        if (field) {
-            if ((st = parse_impact_input(c, s, field, v, p, &spec.base)) != RF_OK)
-                return st;
-        } else {
-            int known;
-            if ((st = parse_impact_setting(c, key, v, p, &spec, &known)) != RF_OK)
-                return st;
-            if (!known)
-                return unknown_impact_key(c, k, p, key);
-        }
+        int known = 1;
+        if (!strcmp(key, "bind"))
+            continue;
+        if (field)
+            st = parse_impact_input(c, s, b, field, v, p, &spec->base);
+        else
+            st = parse_impact_setting(c, key, v, p, spec, &known);
+        if (st == RF_OK && !known)
+            st = unknown_impact_key(c, k, p, key);
+        if (st != RF_OK)
+            return st;
     }
-    /* Every parameter must name an impact input. */
-    for (size_t i = 0; i < s->n_params; i++) {
-        const rf_impact_field *f = rf_impact_field_find(s->param_names[i]);
-        if (!f || !f->bindable) {
-            char list[1024];
-            rf_impact_bindable_list(list, sizeof list);
-            return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: '%s' is not an input of the impact model "
-                           "(inputs: %s)", c->file, s->param_line[i], s->param_names[i], s->param_names[i], list);
-        }
-    }
-    /* Check the crisp inputs with the fuzzy ones at their nominal values, then each support end. */
-    rf_impact_input probe = spec.base;
+    return st;
+}
+
+/* The inputs at the nominal point: a refusal names the parameter, the crisp value or the default. */
+static rf_status check_impact_nominal(yr_ctx *c, struct fy_node *n, const rf_study *s, const sb_binding *b,
+                                      const rf_impact_input *base)
+{
+    double x[64], xi[SB_MAX_TARGETS];
     for (size_t i = 0; i < s->n_params; i++)
-        rf_impact_field_set(&probe, rf_impact_field_find(s->param_names[i]), rf_fuzzy_nominal(&s->inputs[i]));
+        x[i] = rf_fuzzy_nominal(&s->inputs[i]);
+    sb_expand(b, x, xi);
+    rf_impact_input probe = *base;
+    for (size_t j = 0; j < b->n; j++)
+        rf_impact_field_set(&probe, rf_impact_field_find(b->t[j].to), xi[j]);
     const char *bad = rf_impact_input_first_invalid(&probe);
-    if (bad) {
-        for (size_t i = 0; i < s->n_params; i++)
-            if (!strcmp(bad, s->param_names[i]))
-                return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: the nominal value %.17g is not admissible "
-                               "for the impact model", c->file, s->param_line[i], bad,
-                               rf_fuzzy_nominal(&s->inputs[i]));
-        /* A crisp value in the block: find its line. */
-        yr_iter jt = {n, NULL, 0, {0}};
-        for (;;) {
-            if (yr_next(c, &jt, path, &key, &k, &v) != RF_OK || !key)
-                break;
-            if (!strcmp(key, bad)) {
-                yr_pathf(p, sizeof p, "%s.%s", path, key);
-                rf_error tmp;
-                rf_impact_input_validate(&probe, &tmp);
-                return yr_fail(c, v, p, "not admissible: %s", tmp.msg);
-            }
-        }
-        rf_error tmp;
-        rf_impact_input_validate(&probe, &tmp);
-        return rf_fail(c->err, RF_EINVAL, "%s:%d: model.impact: the default value of '%s' is not admissible with "
-                       "these inputs: %s", c->file, yr_line(n), bad, tmp.msg);
-    }
-    for (size_t i = 0; i < s->n_params; i++) {
-        double lo, hi;
-        rf_fuzzy_cut(&s->inputs[i], 0.0, &lo, &hi);
-        double ends[2] = {lo, hi};
-        for (int e = 0; e < 2; e++) {
-            rf_impact_input q = probe;
-            rf_impact_field_set(&q, rf_impact_field_find(s->param_names[i]), ends[e]);
-            const char *b = rf_impact_input_first_invalid(&q);
-            if (b && !strcmp(b, s->param_names[i])) {
-                rf_error tmp;
-                rf_impact_input_validate(&q, &tmp);
-                return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: the support [%.17g, %.17g] reaches an "
-                               "inadmissible value %.17g: %s", c->file, s->param_line[i], s->param_names[i], lo, hi,
-                               ends[e], tmp.msg);
-            }
-        }
-    }
-    st = rf_impact_model_create(&spec, (const char *const *)s->param_names, s->n_params, &s->model, c->err);
+    if (!bad)
+        return RF_OK;
+    rf_error tmp;
+    rf_impact_input_validate(&probe, &tmp);
+    for (size_t j = 0; j < b->n; j++)
+        if (!strcmp(bad, b->t[j].to))
+            return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: the nominal value %.17g (%s = %.17g) is not "
+                           "admissible for the impact model: %s", c->file, b->t[j].line,
+                           s->param_names[b->t[j].param], x[b->t[j].param], bad, xi[j], tmp.msg);
+    struct fy_node *v = fy_node_mapping_lookup_by_string(n, bad, FY_NT);
+    char p[300];
+    yr_pathf(p, sizeof p, "model.impact.%s", bad);
+    if (v) /* a crisp value in the block */
+        return yr_fail(c, v, p, "not admissible: %s", tmp.msg);
+    return rf_fail(c->err, RF_EINVAL, "%s:%d: model.impact: the default value of '%s' is not admissible with "
+                   "these inputs: %s", c->file, yr_line(n), bad, tmp.msg);
+}
+
+static rf_status make_impact(yr_ctx *c, struct fy_node *n, rf_study *s, const sb_binding *b,
+                             const rf_impact_model_spec *spec)
+{
+    const char **names = sb_names(b);
+    if (!names)
+        return rf_fail(c->err, RF_ENOMEM, "out of memory");
+    rf_status st = rf_impact_model_create(spec, names, b->n, &s->model, c->err);
+    free(names);
     if (st != RF_OK) {
         rf_model_free(&s->model);
-        return yr_prefix(c, n, path);
+        return yr_prefix(c, n, "model.impact");
     }
+    return sb_wrap(b, s->n_params, &s->model, c->err);
+}
+
+static rf_status parse_impact(yr_ctx *c, struct fy_node *n, rf_study *s)
+{
+    rf_status st = yr_mapping(c, n, "model.impact");
+    if (st != RF_OK)
+        return st;
+    rf_impact_model_spec spec;
+    rf_impact_model_spec_default(&spec);
+    sb_binding b = {0, NULL};
+    struct fy_node *bind = fy_node_mapping_lookup_by_string(n, "bind", FY_NT);
+    st = sb_parse(c, bind, "model.impact.bind", s, 1, check_impact_name, NULL, &b);
+    if (st == RF_OK)
+        st = parse_impact_keys(c, n, s, &b, &spec);
+    if (st == RF_OK)
+        st = check_impact_nominal(c, n, s, &b, &spec.base);
+    const void *user[2] = {&b, &spec.base};
+    if (st == RF_OK)
+        st = sb_check_box(c, bind ? bind : n, bind ? "model.impact.bind" : "model.impact", s, &b, validate_impact,
+                          (void *)user);
+    if (st == RF_OK)
+        st = make_impact(c, n, s, &b, &spec);
+    sb_free(&b);
+    if (st != RF_OK)
+        return st;
     s->model_kind = RF_STUDY_MODEL_IMPACT;
     return set_description(s, c->err, "impact: %s solver", rf_impact_solver_name(spec.solver));
 }

@@ -178,6 +178,7 @@ static rf_status plan(run_state *r, rf_error *err)
         fprintf(out, "Study '%s': %s form, m = %zu, %zu parameter%s; model %s\n", s->name,
                 rf_tm_scheme_name(s->scheme), s->levels, s->n_params, s->n_params == 1 ? "" : "s",
                 s->model_description);
+        fprintf(out, "Scheme: %s, %s\n", rf_tm_scheme_name(s->scheme), s->scheme_reason ? s->scheme_reason : "");
         fprintf(out, "Evaluations: %zu requested, %zu distinct%s%s; %d job%s", requested, distinct,
                 s->scheme == RF_TM_EXTENDED ? " (at most; the probe decides)" : "",
                 s->left_right ? ", including the left/right three-point grid" : "", r->runner.jobs,

@@ -1,10 +1,10 @@
 /* study_traj.c - the `model: {trajectory: ...}` block of a study file
  * (docs/trajectories.md sec. 5): the trajectory file, Monte Carlo overrides,
  * and the binding of every fuzzy parameter to a numeric input of that file.
- * Trajectory outputs are not monotonic in their inputs (a small change moves
- * an impact onto another segment), so unless the study names a scheme the
- * general form is used; the left/right grid keeps the monotonicity check on. */
+ * A parameter may drive several inputs, each as value * scale + offset
+ * (bind.h); the general form is the default scheme (bind_check.c). */
 #include "study/study_internal.h"
+#include "study/bind.h"
 #include "core/util.h"
 #include "rockfuzz/fuzzy.h"
 #include "rockfuzz/trajectory.h"
@@ -62,47 +62,64 @@ static rf_status read_block(yr_ctx *c, struct fy_node *n, traj_block *b)
     return st;
 }
 
-/* The path bound to parameter `name`, checked against the spec. */
-static rf_status bound_path(yr_ctx *c, traj_block *b, rf_traj_spec *spec, const rf_study *s, size_t i,
-                            char **out)
+/* An index written other than as the spec names it ("01", "+1", " 1"):
+ * the canonical path into buf, else NULL. */
+static const char *index_alias(const char *path, char *buf, size_t size)
 {
-    struct fy_node *v = b->bind ? fy_node_mapping_lookup_by_string(b->bind, s->param_names[i], FY_NT) : NULL;
-    char p[300];
-    yr_pathf(p, sizeof p, "model.trajectory.bind.%s", s->param_names[i]);
-    if (!v)
-        return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: not bound to an input of the trajectory file "
-                       "(model.trajectory.bind: {%s: materials.NAME.R_n, ...})", c->file, s->param_line[i],
-                       s->param_names[i], s->param_names[i]);
-    rf_status st = yr_string_dup(c, v, p, out);
-    if (st != RF_OK)
-        return st;
-    char why[2400];
-    if (!rf_traj_path_bindable(spec, *out, why, sizeof why))
-        return yr_fail(c, v, p, "%s (%s)", why, b->file);
-    return RF_OK;
+    size_t idx;
+    char xy[3];
+    int n = 0;
+    if (sscanf(path, "profile.points.%zu.%2[xy]%n", &idx, xy, &n) != 2 || path[n] != '\0')
+        return NULL;
+    snprintf(buf, size, "profile.points.%zu.%s", idx, xy);
+    return strcmp(buf, path) ? buf : NULL;
 }
 
-/* The nominal values and every support end of each parameter must give a valid spec. */
-static rf_status check_support(yr_ctx *c, rf_traj_spec *spec, const rf_study *s, char **paths)
+/* sb_check_fn: a numeric, non-random input of the spec, written canonically. */
+static const char *check_path(void *user, const char *to, char *buf, size_t size)
 {
-    for (size_t i = 0; i < s->n_params; i++)
-        rf_traj_spec_set(spec, paths[i], rf_fuzzy_nominal(&s->inputs[i]));
-    for (size_t i = 0; i < s->n_params; i++) {
-        double lo, hi, keep;
-        rf_traj_spec_get(spec, paths[i], &keep); /* as given: an angle in degrees */
-        rf_fuzzy_cut(&s->inputs[i], 0.0, &lo, &hi);
-        double ends[3] = {keep, lo, hi};
-        for (int e = 0; e < 3; e++) {
-            rf_traj_spec_set(spec, paths[i], ends[e]);
-            rf_error tmp;
-            if (rf_traj_spec_validate(spec, &tmp) != RF_OK)
-                return rf_fail(c->err, RF_EINVAL, "%s:%d: parameters.%s: the value %.17g (bound to %s) is not "
-                               "admissible: %s", c->file, s->param_line[i], s->param_names[i], ends[e], paths[i],
-                               tmp.msg);
-        }
-        rf_traj_spec_set(spec, paths[i], keep);
-    }
-    return RF_OK;
+    rf_traj_spec *spec = user;
+    char canon[128];
+    if (index_alias(to, canon, sizeof canon))
+        return snprintf(buf, size, "write the index as the file numbers it: %s (no sign, space or leading zero)",
+                        canon), buf;
+    if (!rf_traj_path_bindable(spec, to, buf, size))
+        return buf;
+    for (size_t r = 0; r < spec->n_random; r++)
+        if (!strcmp(spec->random[r].path, to))
+            return snprintf(buf, size, "this input is random in the trajectory file; bind its distribution "
+                            "(%s.lo/.hi or .mean/.sd)", to), buf;
+    return NULL;
+}
+
+typedef struct {
+    rf_traj_spec *spec;
+    const sb_binding *b;
+} traj_check;
+
+/* sb_validate_fn: the spec's own validation with the bound inputs set. */
+static rf_status validate_point(void *user, const double *xi, rf_error *err)
+{
+    traj_check *t = user;
+    for (size_t j = 0; j < t->b->n; j++)
+        rf_traj_spec_set(t->spec, t->b->t[j].to, xi[j]); /* as given: an angle in degrees */
+    return rf_traj_spec_validate(t->spec, err);
+}
+
+/* The joint admissibility of the parameters; the spec is left at the nominal point. */
+static rf_status check_support(yr_ctx *c, traj_block *b, rf_traj_spec *spec, const rf_study *s,
+                               const sb_binding *bind)
+{
+    traj_check t = {spec, bind};
+    rf_status st = sb_check_box(c, b->bind ? b->bind : b->file_node, "model.trajectory.bind", s, bind,
+                                validate_point, &t);
+    double x[64], xi[SB_MAX_TARGETS];
+    for (size_t i = 0; i < s->n_params && i < 64; i++)
+        x[i] = rf_fuzzy_nominal(&s->inputs[i]);
+    sb_expand(bind, x, xi);
+    rf_error tmp;
+    validate_point(&t, xi, &tmp);
+    return st;
 }
 
 static rf_status load_spec(yr_ctx *c, traj_block *b, rf_traj_spec *spec)
@@ -124,37 +141,42 @@ static rf_status load_spec(yr_ctx *c, traj_block *b, rf_traj_spec *spec)
     return RF_OK;
 }
 
+static rf_status make_model(yr_ctx *c, struct fy_node *n, rf_traj_spec *spec, rf_study *s, const sb_binding *bind)
+{
+    const char **names = sb_names(bind);
+    if (!names)
+        return rf_fail(c->err, RF_ENOMEM, "out of memory");
+    rf_status st = rf_traj_model_create(spec, bind->n, names, names, &s->model, c->err);
+    free(names);
+    if (st != RF_OK)
+        return yr_prefix(c, n, "model.trajectory");
+    return sb_wrap(bind, s->n_params, &s->model, c->err);
+}
+
 rf_status rf_traj_study_parse(yr_ctx *c, struct fy_node *n, rf_study *s)
 {
     traj_block b = {NULL, -1, -1, -1, NULL, NULL};
     rf_traj_spec spec;
+    sb_binding bind = {0, NULL};
     memset(&spec, 0, sizeof spec);
-    char **paths = calloc(s->n_params ? s->n_params : 1, sizeof *paths);
-    rf_status st = paths ? read_block(c, n, &b) : rf_fail(c->err, RF_ENOMEM, "out of memory");
+    rf_status st = read_block(c, n, &b);
     if (st == RF_OK)
         st = load_spec(c, &b, &spec);
-    for (size_t i = 0; i < s->n_params && st == RF_OK; i++)
-        st = bound_path(c, &b, &spec, s, i, &paths[i]);
     if (st == RF_OK)
-        st = check_support(c, &spec, s, paths);
-    if (st == RF_OK &&
-        (st = rf_traj_model_create(&spec, s->n_params, (const char *const *)s->param_names,
-                                   (const char *const *)paths, &s->model, c->err)) != RF_OK)
-        st = yr_prefix(c, n, "model.trajectory");
+        st = sb_parse(c, b.bind, "model.trajectory.bind", s, 0, check_path, &spec, &bind);
+    if (st == RF_OK)
+        st = check_support(c, &b, &spec, s, &bind);
+    if (st == RF_OK)
+        st = make_model(c, n, &spec, s, &bind);
     if (st == RF_OK) {
         s->model_kind = RF_STUDY_MODEL_TRAJECTORY;
-        struct fy_node *root = fy_document_root(fy_node_document(n));
-        if (!fy_node_mapping_lookup_by_string(root, "scheme", FY_NT))
-            s->scheme = RF_TM_GENERAL; /* not monotonic: the general form unless the study says otherwise */
         char d[512];
         snprintf(d, sizeof d, "trajectory: %s, %zu samples per point, seed %llu (common random numbers)%s", b.file,
                  spec.samples, (unsigned long long)spec.seed, spec.lhs ? ", Latin hypercube" : "");
         if (!(s->model_description = rf_strdup(d)))
             st = rf_fail(c->err, RF_ENOMEM, "out of memory");
     }
-    for (size_t i = 0; paths && i < s->n_params; i++)
-        free(paths[i]);
-    free(paths);
+    sb_free(&bind);
     free(b.file);
     rf_traj_spec_free(&spec);
     return st;
@@ -170,12 +192,9 @@ rf_status rf_traj_study_nominal(const char *dir, const rf_study *s, int threads,
     if (mkdir(sub, 0777) != 0 && errno != EEXIST)
         return rf_fail(err, RF_EIO, "cannot create %s: %s", sub, strerror(errno));
     unlink(old); /* the study report embeds it only if this run wrote it */
-    double *x = malloc((s->n_params ? s->n_params : 1) * sizeof *x);
-    if (!x)
-        return rf_fail(err, RF_ENOMEM, "out of memory");
-    for (size_t i = 0; i < s->n_params; i++)
+    double x[64], xi[SB_MAX_TARGETS];
+    for (size_t i = 0; i < s->n_params && i < 64; i++)
         x[i] = rf_fuzzy_nominal(&s->inputs[i]);
-    rf_status st = rf_traj_model_write_run(&s->model, x, sub, threads, plots, err);
-    free(x);
-    return st;
+    const rf_model *m = sb_unwrap(&s->model, x, xi); /* a bound study's model drives the trajectory model */
+    return rf_traj_model_write_run(m, xi, sub, threads, plots, err);
 }
