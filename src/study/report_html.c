@@ -455,28 +455,47 @@ static int by_name(const void *a, const void *b)
     return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
-/* DIR/SUB/trajectory_hist_*.png embedded in name order (one per collector reached). */
-static void rerun_histograms(FILE *f, const char *dir, const char *sub)
+#define RERUN_HISTS 64
+typedef struct {
+    char *name[RERUN_HISTS]; /* "trajectory_hist_C", sorted */
+    size_t n;
+} hist_list;
+
+/* Add the trajectory_hist_*.png of DIR/SUB to the list (one per collector a block reaches there). */
+static void list_histograms(const char *dir, const char *sub, hist_list *h)
 {
-    char path[4200], *names[64];
-    size_t n = 0;
+    char path[4200];
     snprintf(path, sizeof path, "%s/%s", dir, sub);
     DIR *d = opendir(path);
     struct dirent *e;
-    while (d && (e = readdir(d)) && n < sizeof names / sizeof *names) {
-        size_t len = strlen(e->d_name);
-        if (!strncmp(e->d_name, "trajectory_hist_", 16) && len > 20 && !strcmp(e->d_name + len - 4, ".png"))
-            names[n++] = strndup(e->d_name, len - 4);
+    while (d && (e = readdir(d)) && h->n < RERUN_HISTS) {
+        size_t len = strlen(e->d_name), known = 0;
+        if (strncmp(e->d_name, "trajectory_hist_", 16) || len <= 20 || strcmp(e->d_name + len - 4, ".png"))
+            continue;
+        for (size_t i = 0; i < h->n; i++)
+            known = known || (strlen(h->name[i]) == len - 4 && !strncmp(h->name[i], e->d_name, len - 4));
+        if (!known && (h->name[h->n] = strndup(e->d_name, len - 4)))
+            h->n++;
     }
     if (d)
         closedir(d);
-    qsort(names, n, sizeof *names, by_name);
-    for (size_t i = 0; i < n; i++) {
-        if (names[i]) {
-            snprintf(path, sizeof path, "%s/%s", sub, names[i]);
-            embed_png(f, dir, path, names[i] + 16);
+    qsort(h->name, h->n, sizeof *h->name, by_name);
+}
+
+/* Every collector's histograms in DIR/SUB, in the same rows in every column; a note where no block reaches it. */
+static void rerun_histograms(FILE *f, const char *dir, const char *sub, const hist_list *h)
+{
+    char path[4200];
+    for (size_t i = 0; i < h->n; i++) {
+        snprintf(path, sizeof path, "%s/%s/%s.png", dir, sub, h->name[i]);
+        if (access(path, R_OK) != 0) {
+            fputs("<p class=note>", f);
+            html(f, h->name[i] + 16);
+            fputs(": no block reaches it here (no histogram).</p>\n", f);
+            continue;
         }
-        free(names[i]);
+        snprintf(path, sizeof path, "%s/%s", sub, h->name[i]);
+        embed_png(f, dir, path, h->name[i] + 16);
     }
 }
 
@@ -494,15 +513,18 @@ static void rerun_inputs(FILE *f, struct fy_node *root, struct fy_node *point)
         html(f, a);
         fputs("</td>", f);
         cell_number(f, v);
-        fputs("<td class=l>", f);
-        html(f, text(get(fy_node_pair_value(p), "unit"), b, sizeof b));
-        fputs("</td></tr>", f);
+        if (text(get(fy_node_pair_value(p), "unit"), b, sizeof b)[0]) {
+            fputs("<td class=l>", f);
+            html(f, b);
+            fputs("</td>", f);
+        }
+        fputs("</tr>", f);
     }
     fputs("</table>\n", f);
 }
 
 /* One column: the point's main output (the study's value and the rerun's), inputs, figures. */
-static void rerun_column(FILE *f, const char *dir, struct fy_node *root, int side, double rerun)
+static void rerun_column(FILE *f, const char *dir, struct fy_node *root, int side, double rerun, const hist_list *h)
 {
     static const char *const subs[3] = {"nominal", "bound_lower", "bound_upper"};
     static const char *const titles[3] = {"Nominal point", "Lower bound at membership 0",
@@ -522,6 +544,8 @@ static void rerun_column(FILE *f, const char *dir, struct fy_node *root, int sid
     if (o) {
         html(f, text(fy_node_pair_key(mp), name, sizeof name));
         fprintf(f, " = <b>%.4g %s</b>", round_off(study, big) * fac, du);
+        if (study == 0 && strstr(name, "_energy_"))
+            fputs(" (no block reaches the line)", f);
         if (!isnan(rerun) && rerun != study)
             fprintf(f, " (this rerun gives %.6g %s, not the study's value)", rerun * fac, du);
     }
@@ -530,7 +554,7 @@ static void rerun_column(FILE *f, const char *dir, struct fy_node *root, int sid
     snprintf(name, sizeof name, "%s/trajectory_profile", subs[side]);
     snprintf(alt, sizeof alt, "trajectories: %s", titles[side]);
     embed_png(f, dir, name, alt);
-    rerun_histograms(f, dir, subs[side]);
+    rerun_histograms(f, dir, subs[side], h);
     fputs("</div>\n", f);
 }
 
@@ -558,9 +582,14 @@ static void trajectory_reruns(FILE *f, const char *dir, struct fy_node *root)
               "per collector", f);
     }
     fputs(".</p>\n<div class=reruns>\n", f);
+    hist_list h = {{NULL}, 0};
     for (int k = 0; k < (bounds ? 3 : 1); k++)
-        rerun_column(f, dir, root, k, value[k]);
+        list_histograms(dir, subs[k], &h);
+    for (int k = 0; k < (bounds ? 3 : 1); k++)
+        rerun_column(f, dir, root, k, value[k], &h);
     fputs("</div>\n", f);
+    for (size_t i = 0; i < h.n; i++)
+        free(h.name[i]);
 }
 
 static void write_inputs(FILE *f, const char *dir, struct fy_node *root)
