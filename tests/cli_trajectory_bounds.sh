@@ -6,7 +6,8 @@
 # `rockfuzz trajectory` on the file with those values; the report's summary
 # states them; the three runs' figures share their axes (the widest of the
 # three envelopes); a second run into the folder reruns nothing; `main_output:`
-# chooses the output, a wrong name is refused with file:line.
+# chooses the output, a wrong name is refused with file:line; the page shows
+# no "nan" and renders in headless Chromium with no broken image.
 # Usage: bash cli_trajectory_bounds.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
 bin=$1
@@ -83,6 +84,39 @@ e = [float(x[12]) for x in rows if x[3] == "barrier" and x[4] == "1"]
 assert (v[4], v[5]) == (min(e), max(e)), (v[4:6], min(e), max(e))  # the barrier's energy histograms
 print(sys.argv[1], "ok")
 EOF
+
+# no "nan" shown (the page's text without its images); in a real browser (headless Chromium;
+# skipped without it) the page renders and no image is broken
+python3 - "$tmp/run/report.html" > "$tmp/nan.txt" 2>&1 <<'EOF' || fail "the report shows nan: $(cat "$tmp/nan.txt")"
+import re, sys
+h = re.sub(r'src="data:image/png;base64,[^"]*"', "", open(sys.argv[1]).read())
+t = re.sub(r"<[^>]*>", " ", h)
+m = re.search(r".{0,60}\bnan\b.{0,60}", t, re.I | re.S)
+assert not m, m.group(0)
+EOF
+chrome=$(command -v chromium || command -v chromium-browser || true)
+if [ -z "$chrome" ]; then
+  echo "cli_trajectory_bounds: browser check SKIPPED: chromium not found"
+else
+  prof=$(mktemp -d)
+  flags=(--headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking
+         --disable-component-update --disable-sync --user-data-dir="$prof")
+  sed 's|</body>|<script>addEventListener("load",function(){var b=0,n=0;for(const i of document.images)'\
+'{n++;if(!i.complete\|\|i.naturalWidth==0)b++;}var p=document.createElement("p");p.id="imgcheck";'\
+'p.textContent="images "+n+" broken "+b;document.body.appendChild(p);});</script></body>|' \
+    "$tmp/run/report.html" > "$tmp/run/check.html"
+  got=$(timeout 120 "$chrome" "${flags[@]}" --virtual-time-budget=8000 --dump-dom "file://$tmp/run/check.html" \
+        2> /dev/null | grep -o 'images [0-9]* broken [0-9]*')
+  echo "cli_trajectory_bounds: rendered page: $got"
+  n=$(echo "$got" | awk '{print $2}')
+  [ -n "$n" ] && [ "$n" -ge 7 ] && [ "$(echo "$got" | awk '{print $4}')" = 0 ] \
+    || fail "images in the rendered page: '$got' (expected 7 or more: 2 inputs, 3 profiles, histograms; none broken)"
+  timeout 120 "$chrome" "${flags[@]}" --virtual-time-budget=8000 --screenshot="$tmp/shot.png" --window-size=1200,900 \
+    "file://$tmp/run/report.html" > /dev/null 2>&1
+  [ "$(stat -c %s "$tmp/shot.png" 2> /dev/null || echo 0)" -gt 30000 ] || fail "the screenshot is missing or blank"
+  rm -rf "$prof"
+  rm -f "$tmp/run/check.html"
+fi
 
 # the lower bound's run is `rockfuzz trajectory` on the file with the bound's inputs written in
 read -r rn rt < <(python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['outputs']['barrier_total_energy_p95']['x_lower'][0]; print('%.17g %.17g' % (p['rock_Rn'], p['talus_Rt']))" "$tmp/run/result.json")
