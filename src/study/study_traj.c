@@ -3,7 +3,9 @@
  * and the binding of every fuzzy parameter to a numeric input of that file.
  * Trajectory outputs are not monotonic in their inputs (a small change moves
  * an impact onto another segment), so unless the study names a scheme the
- * general form is used; the left/right grid keeps the monotonicity check on. */
+ * general form is used; the left/right grid keeps the monotonicity check on.
+ * At the end of a study the Monte Carlo is rerun at the nominal point and at
+ * the points giving the bounds of the main output, for the report (below). */
 #define _XOPEN_SOURCE 700 /* open_memstream, getline */
 #include "study/study_internal.h"
 #include "study/report_internal.h"
