@@ -31,7 +31,7 @@ for f in result.json envelopes.csv crossings.csv report.html trajectory_profile.
   [ -s "$tmp/run/nominal/$f" ] || fail "missing nominal/$f"
 done
 grep -q "Trajectories at the nominal point" "$tmp/run/report.html" || fail "study report: no nominal trajectories"
-grep -q 'alt="trajectories at the nominal point" src="data:image/png;base64,' "$tmp/run/report.html" \
+grep -q 'alt="trajectories: Nominal point" src="data:image/png;base64,' "$tmp/run/report.html" \
   || fail "study report: the profile figure is not embedded"
 "$bin" trajectory "$src/examples/trajectory/slope.yaml" --samples 300 --out "$tmp/direct" --quiet || fail "direct run"
 cmp -s "$tmp/run/nominal/envelopes.csv" "$tmp/direct/envelopes.csv" || fail "nominal envelopes differ from a direct run"

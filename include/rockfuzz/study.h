@@ -48,6 +48,8 @@ typedef struct {
     rf_study_model_kind model_kind;
     rf_model model;              /* constructed and ready to evaluate */
     char *model_description;     /* one line, e.g. "formula: y = x1*x2" */
+    long main_output;            /* `main_output:` as an output index, -1 when not given: the report's
+                                  * headline and a trajectory study's bound reruns (rp_main_output) */
 
     /* options: */
     size_t max_evaluations;      /* cap on distinct evaluations, 0 = none (default 100000) */

@@ -362,6 +362,12 @@ typedef struct {
  * Results do not depend on the thread count: sample k uses only its own
  * counter-based random stream. */
 rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *ens, rf_error *err);
+/* rf_traj_run calling progress(ctx, done, samples) on the calling thread
+ * after each sample it runs itself (done counts the samples of every thread):
+ * a progress line (src/cli/progress.c). */
+typedef void (*rf_traj_progress_fn)(void *ctx, size_t done, size_t samples);
+rf_status rf_traj_run_progress(const rf_traj_spec *spec, int threads, rf_traj_progress_fn progress, void *ctx,
+                               rf_traj_ensemble *ens, rf_error *err);
 void rf_traj_ensemble_free(rf_traj_ensemble *ens);
 
 /* Percentiles (linear interpolation between order statistics, Hyndman-Fan
@@ -471,6 +477,33 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
  * figures and report.html); 100 trajectories recorded (traj_run_at.c). */
 rf_status rf_traj_model_write_run(const rf_model *m, const double *x, const char *dir, int threads, int plots,
                                   rf_error *err);
+
+/* Figures of several runs drawn on the same axes (a fuzzy trajectory study's
+ * nominal and bound reruns): the upper ends of the envelope axes and of the
+ * end-point count axis, and per collector (the first RF_TRAJ_SCALE_COLLECTORS)
+ * the ranges of its energy and height histograms.  A zero range or upper
+ * end: the run's own.  rf_traj_plot_scales_add widens sc to cover a run. */
+#define RF_TRAJ_SCALE_COLLECTORS 16
+typedef struct {
+    size_t runs;                     /* runs added (start from a zeroed struct) */
+    double height_max, energy_max;   /* [m], [J]: envelope panels */
+    double runout_count_max;         /* end points per bin */
+    double energy_lo[RF_TRAJ_SCALE_COLLECTORS], energy_hi[RF_TRAJ_SCALE_COLLECTORS]; /* [J] histograms */
+    double height_lo[RF_TRAJ_SCALE_COLLECTORS], height_hi[RF_TRAJ_SCALE_COLLECTORS]; /* [m] */
+} rf_traj_plot_scales;
+
+/* A trajectory model's Monte Carlo at one point x (100 trajectories recorded,
+ * envelopes from all), kept to be written later (traj_run_at.c): y gets the
+ * model's outputs there (n_outputs values, as an evaluation of the model
+ * returns them: same seed, the same bits). */
+typedef struct rf_traj_point_run rf_traj_point_run;
+rf_status rf_traj_model_run_at(const rf_model *m, const double *x, int threads, double *y, rf_traj_point_run **out,
+                               rf_error *err);
+void rf_traj_plot_scales_add(rf_traj_plot_scales *sc, const rf_traj_point_run *r);
+/* Written as rf_traj_model_write_run writes, the figures on the axes sc (NULL: their own). */
+rf_status rf_traj_point_run_write(const rf_traj_point_run *r, const char *dir, int plots,
+                                  const rf_traj_plot_scales *sc, rf_error *err);
+void rf_traj_point_run_free(rf_traj_point_run *r);
 
 #ifdef __cplusplus
 }

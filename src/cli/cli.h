@@ -4,6 +4,8 @@
 #ifndef ROCKFUZZ_CLI_H
 #define ROCKFUZZ_CLI_H
 
+#include <stddef.h>
+
 /* Bound of every thread count option (--jobs, --threads), as in study files. */
 #define RF_CLI_MAX_THREADS 1024
 
@@ -20,7 +22,7 @@ int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall traj
 #define RF_CLI_RESULT_MAX (256 << 20) /* bytes of a result.json read back */
 int rf_cli_trajectory_report(const char *dir, int *handled);
 
-/* progress.c: the progress line of one long run (the FE solvers' progress callback). */
+/* progress.c: the progress line of one long run (the FE solvers', the trajectory Monte Carlo's callback). */
 #define RF_CLI_PROGRESS_HZ 4.0    /* redraws per second at most */
 #define RF_CLI_PROGRESS_DELAY 1.0 /* [s] before the first line: short runs stay silent */
 typedef struct {
@@ -31,6 +33,7 @@ typedef struct {
 } rf_cli_progress;
 void rf_cli_progress_begin(rf_cli_progress *p, int on, const char *what);
 void rf_cli_progress_fem(void *ctx, double t, double t_end); /* an rf_fem_options.progress */
+void rf_cli_progress_count(void *ctx, size_t done, size_t total); /* WHAT: done of total (an rf_traj_progress_fn) */
 void rf_cli_progress_end(rf_cli_progress *p);                /* erases the line if one was drawn */
 
 #endif

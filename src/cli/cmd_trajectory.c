@@ -24,7 +24,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
         "Usage: rockfuzz trajectory FILE.yaml [--json] [--out DIR] [--threads N] [--samples N] [--seed S]\n"
-        "                           [--max-trajectories N] [--no-plots] [--quiet]\n"
+        "                           [--max-trajectories N] [--no-plots] [--progress] [--quiet]\n"
         "\n"
         "Runs the rockfall trajectories of a trajectory file on its 2D slope profile: one\n"
         "deterministic trajectory when nothing is random, else `samples` Monte Carlo\n"
@@ -45,7 +45,10 @@ static void usage(FILE *f)
         "  --no-plots             skip the plots and report.html\n"
         "  --force                write into a non-empty DIR that holds no rockfuzz trajectory\n"
         "                         run (no invocation.json)\n"
-        "  --quiet                no summary\n"
+        "  --progress             the progress line on stderr (trajectories done, time left)\n"
+        "                         even when stderr is not a terminal; on a terminal it is\n"
+        "                         shown for runs longer than a second unless --json or --quiet\n"
+        "  --quiet                no summary, no progress line\n"
         "\n"
         "Units: m, s, m/s, rad/s, kg, J (the summary shows energies in kJ); angles in the file\n"
         "in degrees.\n");
@@ -53,7 +56,7 @@ static void usage(FILE *f)
 
 typedef struct {
     const char *file, *out;
-    int json, quiet, plots, threads, force;
+    int json, quiet, plots, threads, force, progress;
     long long samples, seed;
     size_t max_traj;
 } traj_args;
@@ -81,6 +84,7 @@ static int parse_args(int argc, char **argv, traj_args *a)
         long long n;
         if (!strcmp(o, "--json")) a->json = 1;
         else if (!strcmp(o, "--quiet")) a->quiet = 1;
+        else if (!strcmp(o, "--progress")) a->progress = 1;
         else if (!strcmp(o, "--no-plots")) a->plots = 0;
         else if (!strcmp(o, "--force")) a->force = 1;
         else if (!strcmp(o, "--out") && v) a->out = v, i++;
@@ -164,7 +168,11 @@ static int run_file(const traj_args *a, rf_traj_spec *spec, rf_traj_ensemble *en
         spec->samples = (size_t)a->samples, spec->record = spec->record > spec->samples ? spec->samples : spec->record;
     if (a->seed >= 0)
         spec->seed = (uint64_t)a->seed;
-    if (rf_traj_run(spec, a->threads, ens, &err) != RF_OK || rf_traj_stats_compute_spec(spec, ens, st, &err) != RF_OK) {
+    rf_cli_progress line;
+    rf_cli_progress_begin(&line, a->progress || (!a->json && !a->quiet && isatty(STDERR_FILENO)), "trajectories");
+    rf_status rs = rf_traj_run_progress(spec, a->threads, rf_cli_progress_count, &line, ens, &err);
+    rf_cli_progress_end(&line);
+    if (rs != RF_OK || rf_traj_stats_compute_spec(spec, ens, st, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
         rf_traj_ensemble_free(ens);
         rf_traj_spec_free(spec);

@@ -296,6 +296,12 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
     rf_json_string(f, s->scheme_reason ? s->scheme_reason : "");
     fputs(",\n  \"model_kind\": ", f);
     rf_json_string(f, rf_study_model_kind_name(s->model_kind));
+    long main_k = rp_main_output(s, res);
+    fputs(",\n  \"main_output\": ", f);
+    if (main_k >= 0)
+        rf_json_string(f, s->model.output_names[main_k]);
+    else
+        fputs("null", f);
     fputs(",\n  \"model_identity\": ", f);
     rf_json_string(f, s->model.identity ? s->model.identity : "");
     write_settings(f, s);

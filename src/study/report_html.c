@@ -4,9 +4,13 @@
  * JSON being YAML) and the membership PNGs (embedded as base64 data URIs).
  * The influence bar charts are drawn here as inline SVG from the numbers in
  * result.json, so they exist even after --no-plots.  `rockfuzz report DIR`
- * regenerates the page without evaluating anything. */
+ * regenerates the page without evaluating anything.  A trajectory study's
+ * Monte Carlo reruns (study_traj.c: DIR/nominal, bound_lower, bound_upper)
+ * are shown side by side from their folders. */
+#define _XOPEN_SOURCE 700 /* strndup */
 #include "rockfuzz/report.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <libfyaml.h>
 #include <math.h>
@@ -163,23 +167,9 @@ static const char *CSS =
     ".warn li{margin:.3em 0}.note{color:#666}img{max-width:340px;border:1px solid #ddd}"
     ".fig{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}"
     ".summary{background:#eef5ff;border:2px solid #36c;padding:.5em 1em;margin:1em 0}"
-    ".summary td.l b{font-weight:600}.wide img{max-width:100%}";
-/* A trajectory study: its Monte Carlo rerun at the nominal point (DIR/nominal/, traj_study_report.c). */
-static void nominal_trajectories(FILE *f, const char *dir)
-{
-    char path[4096];
-    struct stat sb;
-    snprintf(path, sizeof path, "%s/nominal/trajectory_profile.png", dir);
-    if (stat(path, &sb) != 0)
-        return;
-    fputs("<h2>Trajectories at the nominal point</h2>\n<p>The Monte Carlo rerun at the end of the study with every "
-          "fuzzy parameter at its nominal value: profile, envelopes from all its trajectories and end points; "
-          "the statistics, collector histograms and CSV files are in <a href=\"nominal/report.html\">"
-          "nominal/report.html</a>.</p>\n<div class=wide>", f);
-    embed_png(f, dir, "nominal/trajectory_profile", "trajectories at the nominal point");
-    fputs("</div>\n", f);
-}
-
+    ".summary td.l b{font-weight:600}.wide img{max-width:100%}"
+    ".reruns{display:grid;grid-template-columns:repeat(3,1fr);gap:10px}.reruns img{max-width:100%}"
+    ".reruns h3{margin:.2em 0}";
 static void output_status(struct fy_node *o, char *buf, size_t size);
 
 /* The outputs that get no section, one line per kind with the reason. */
@@ -247,22 +237,37 @@ static double round_off(double v, double big)
     return fabs(v) < 1e-12 * big ? 0 : v;
 }
 
-/* The headline: the first output called *_total_energy_p95 (a barrier's design energy), else the first shown. */
-static void write_headline(FILE *f, struct fy_node *outputs)
+/* The output the headline answers: result.json's main_output (report_util.c rp_main_output); in a
+ * result without it the first output called *_total_energy_p95 (a barrier's design energy), else the first shown. */
+static struct fy_node_pair *main_output(struct fy_node *root)
 {
     struct fy_node_pair *p, *pick = NULL;
     void *it = NULL;
-    char name[256], st[64], unit[64], top[256];
+    char name[256], st[64], want[256];
     int pick_is_p95 = 0;
-    while ((p = fy_node_mapping_iterate(outputs, &it))) {
+    text(get(root, "main_output"), want, sizeof want);
+    while ((p = fy_node_mapping_iterate(get(root, "outputs"), &it))) {
         output_status(fy_node_pair_value(p), st, sizeof st);
         size_t len = strlen(text(fy_node_pair_key(p), name, sizeof name));
+        if (want[0] && strcmp(want, "null") != 0) {
+            if (!strcmp(name, want))
+                return p;
+            continue;
+        }
         int p95 = len > 17 && !strcmp(name + len - 17, "_total_energy_p95");
         if (!strcmp(st, "shown") && (!pick || (p95 && !pick_is_p95))) {
             pick = p;
             pick_is_p95 = p95;
         }
     }
+    return pick;
+}
+
+/* The headline: the main output's support at membership 0, its nominal value and main input. */
+static void write_headline(FILE *f, struct fy_node *root)
+{
+    struct fy_node_pair *pick = main_output(root);
+    char name[256], unit[64], top[256];
     if (!pick)
         return;
     struct fy_node *o = fy_node_pair_value(pick);
@@ -311,11 +316,16 @@ static void summary_row(FILE *f, const char *name, struct fy_node *o)
 }
 
 /* The answer first: per reported output its support at membership 0, nominal value and main input. */
-static void write_summary(FILE *f, struct fy_node *root)
+static void write_summary(FILE *f, const char *dir, struct fy_node *root)
 {
     struct fy_node *outputs = get(root, "outputs");
     fputs("<div class=summary id=summary><b>Summary: the answer</b>\n", f);
-    write_headline(f, outputs);
+    write_headline(f, root);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/bound_upper/rerun.txt", dir);
+    if (access(path, R_OK) == 0)
+        fputs("<p>The trajectories at the nominal point and at the inputs giving each bound are "
+              "<a href=\"#reruns\">side by side below</a>.</p>\n", f);
     fputs("<p>Each output of the model as a fuzzy "
           "number: the range it can take with the inputs anywhere in their supports (membership 0), its value "
           "with every input at its nominal (peak) value, and the input with the largest share of its "
@@ -422,6 +432,167 @@ static void write_run_table(FILE *f, struct fy_node *root)
     fputs("</table>\n", f);
 }
 
+/* ---- a trajectory study's Monte Carlo reruns (study_traj.c): DIR/nominal, bound_lower, bound_upper ---- */
+
+/* The main output the rerun in DIR/SUB gave (its rerun.txt), NaN if none; 0 if the folder is incomplete. */
+static int rerun_value(const char *dir, const char *sub, double *value)
+{
+    char path[4200], line[256];
+    snprintf(path, sizeof path, "%s/%s/rerun.txt", dir, sub);
+    FILE *in = fopen(path, "r");
+    *value = NAN;
+    if (!in)
+        return 0;
+    while (fgets(line, sizeof line, in))
+        if (!strncmp(line, "value ", 6))
+            *value = strtod(line + 6, NULL);
+    fclose(in);
+    snprintf(path, sizeof path, "%s/%s/trajectory_profile.png", dir, sub);
+    return access(path, R_OK) == 0;
+}
+
+static int by_name(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+#define RERUN_HISTS 64
+typedef struct {
+    char *name[RERUN_HISTS]; /* "trajectory_hist_C", sorted */
+    size_t n;
+} hist_list;
+
+/* Add the trajectory_hist_*.png of DIR/SUB to the list (one per collector a block reaches there). */
+static void list_histograms(const char *dir, const char *sub, hist_list *h)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", dir, sub);
+    DIR *d = opendir(path);
+    struct dirent *e;
+    while (d && (e = readdir(d)) && h->n < RERUN_HISTS) {
+        size_t len = strlen(e->d_name), known = 0;
+        if (strncmp(e->d_name, "trajectory_hist_", 16) || len <= 20 || strcmp(e->d_name + len - 4, ".png"))
+            continue;
+        for (size_t i = 0; i < h->n; i++)
+            known = known || (strlen(h->name[i]) == len - 4 && !strncmp(h->name[i], e->d_name, len - 4));
+        if (!known && (h->name[h->n] = strndup(e->d_name, len - 4)))
+            h->n++;
+    }
+    if (d)
+        closedir(d);
+    qsort(h->name, h->n, sizeof *h->name, by_name);
+}
+
+/* Every collector's histograms in DIR/SUB, in the same rows in every column; a note where no block reaches it. */
+static void rerun_histograms(FILE *f, const char *dir, const char *sub, const hist_list *h)
+{
+    char path[4200];
+    for (size_t i = 0; i < h->n; i++) {
+        snprintf(path, sizeof path, "%s/%s/%s.png", dir, sub, h->name[i]);
+        if (access(path, R_OK) != 0) {
+            fputs("<p class=note>", f);
+            html(f, h->name[i] + 16);
+            fputs(": no block reaches it here (no histogram).</p>\n", f);
+            continue;
+        }
+        snprintf(path, sizeof path, "%s/%s", sub, h->name[i]);
+        embed_png(f, dir, path, h->name[i] + 16);
+    }
+}
+
+/* The inputs of one rerun: name = value unit. */
+static void rerun_inputs(FILE *f, struct fy_node *root, struct fy_node *point)
+{
+    char a[256], b[64];
+    fputs("<table>", f);
+    void *it = NULL;
+    struct fy_node_pair *p;
+    while ((p = fy_node_mapping_iterate(get(root, "inputs"), &it))) {
+        text(fy_node_pair_key(p), a, sizeof a);
+        double v = point ? number(get(point, a)) : number(get(fy_node_pair_value(p), "nominal"));
+        fputs("<tr><td class=l>", f);
+        html(f, a);
+        fputs("</td>", f);
+        cell_number(f, v);
+        if (text(get(fy_node_pair_value(p), "unit"), b, sizeof b)[0]) {
+            fputs("<td class=l>", f);
+            html(f, b);
+            fputs("</td>", f);
+        }
+        fputs("</tr>", f);
+    }
+    fputs("</table>\n", f);
+}
+
+/* One column: the point's main output (the study's value and the rerun's), inputs, figures. */
+static void rerun_column(FILE *f, const char *dir, struct fy_node *root, int side, double rerun, const hist_list *h)
+{
+    static const char *const subs[3] = {"nominal", "bound_lower", "bound_upper"};
+    static const char *const titles[3] = {"Nominal point", "Lower bound at membership 0",
+                                          "Upper bound at membership 0"};
+    struct fy_node_pair *mp = main_output(root);
+    struct fy_node *o = mp ? fy_node_pair_value(mp) : NULL, *point = NULL;
+    char name[256], unit[64], alt[300];
+    double study = number(get(o, "nominal"));
+    if (side) {
+        study = number(fy_node_sequence_get_by_index(get(o, side == 1 ? "lower" : "upper"), 0));
+        point = fy_node_sequence_get_by_index(get(o, side == 1 ? "x_lower" : "x_upper"), 0);
+    }
+    double big = fmax(fabs(number(fy_node_sequence_get_by_index(get(o, "lower"), 0))),
+                      fabs(number(fy_node_sequence_get_by_index(get(o, "upper"), 0)))), fac;
+    const char *du = rp_display_unit(text(get(o, "unit"), unit, sizeof unit), big, &fac);
+    fprintf(f, "<div><h3>%s</h3>\n<p>", titles[side]);
+    if (o) {
+        html(f, text(fy_node_pair_key(mp), name, sizeof name));
+        fprintf(f, " = <b>%.4g %s</b>", round_off(study, big) * fac, du);
+        if (study == 0 && strstr(name, "_energy_"))
+            fputs(" (no block reaches the line)", f);
+        if (!isnan(rerun) && rerun != study)
+            fprintf(f, " (this rerun gives %.6g %s, not the study's value)", rerun * fac, du);
+    }
+    fprintf(f, " &middot; <a href=\"%s/report.html\">statistics, CSV files</a></p>\n", subs[side]);
+    rerun_inputs(f, root, point);
+    snprintf(name, sizeof name, "%s/trajectory_profile", subs[side]);
+    snprintf(alt, sizeof alt, "trajectories: %s", titles[side]);
+    embed_png(f, dir, name, alt);
+    rerun_histograms(f, dir, subs[side], h);
+    fputs("</div>\n", f);
+}
+
+static void trajectory_reruns(FILE *f, const char *dir, struct fy_node *root)
+{
+    static const char *const subs[3] = {"nominal", "bound_lower", "bound_upper"};
+    double value[3];
+    int have[3];
+    for (int k = 0; k < 3; k++)
+        have[k] = rerun_value(dir, subs[k], &value[k]);
+    if (!have[0])
+        return;
+    int bounds = have[1] && have[2];
+    char name[256];
+    struct fy_node_pair *mp = main_output(root);
+    fputs("<h2 id=reruns>Trajectories at the nominal point", f);
+    fputs(bounds ? " and at the bounds</h2>\n" : "</h2>\n", f);
+    fputs("<p>Monte Carlo runs repeated at the end of the study (same samples and seed as every evaluation, 100 "
+          "trajectories drawn): with every fuzzy input at its nominal value", f);
+    if (bounds && mp) {
+        fputs(", and at the inputs the Transformation Method found to give the lower and the upper bound of <b>", f);
+        html(f, text(fy_node_pair_key(mp), name, sizeof name));
+        fputs("</b> at membership 0. The figures of the three share their axes: profile with trajectories, "
+              "envelopes of height and energy along x from all trajectories, end points; then the histograms "
+              "per collector", f);
+    }
+    fputs(".</p>\n<div class=reruns>\n", f);
+    hist_list h = {{NULL}, 0};
+    for (int k = 0; k < (bounds ? 3 : 1); k++)
+        list_histograms(dir, subs[k], &h);
+    for (int k = 0; k < (bounds ? 3 : 1); k++)
+        rerun_column(f, dir, root, k, value[k], &h);
+    fputs("</div>\n", f);
+    for (size_t i = 0; i < h.n; i++)
+        free(h.name[i]);
+}
+
 static void write_inputs(FILE *f, const char *dir, struct fy_node *root)
 {
     char a[2048], b[256], c[256];
@@ -454,7 +625,7 @@ static void write_inputs(FILE *f, const char *dir, struct fy_node *root)
         embed_png(f, dir, stem, a);
     }
     fputs("</div>\n", f);
-    nominal_trajectories(f, dir);
+    trajectory_reruns(f, dir, root);
 }
 
 /* The cut table of output o, its nominal value and degree of uncertainty. */
@@ -549,7 +720,7 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
     fprintf(f, "</title><style>%s</style></head><body>\n<h1>Study ", CSS);
     html(f, a);
     fputs("</h1>\n", f);
-    write_summary(f, root);  /* the answer first */
+    write_summary(f, dir, root); /* the answer first */
     write_warnings(f, root); /* then what changes how it must be read */
     write_run_table(f, root);
     write_inputs(f, dir, root);

@@ -27,6 +27,12 @@ typedef enum { RP_OUTPUT_SHOWN, RP_OUTPUT_UNDEFINED, RP_OUTPUT_ZERO, RP_OUTPUT_B
 /* The kind of output k, and in why (size bytes) the reason if it is not SHOWN. */
 rp_output_kind rp_output_classify(const rf_study *s, const rf_tm_result *res, size_t k, char *why, size_t size);
 
+/* The output the report's headline answers and a trajectory study reruns at
+ * the bounds of: `main_output:` if the study names it, else the first SHOWN
+ * output called *_total_energy_p95 (a barrier's design energy), else the
+ * first SHOWN output; -1 if none is shown. */
+long rp_main_output(const rf_study *s, const rf_tm_result *res);
+
 /* "shown", "undefined", "zero", "below_floor" (result.json's outputs.NAME.status). */
 const char *rp_output_kind_name(rp_output_kind kind);
 

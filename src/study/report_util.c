@@ -213,3 +213,22 @@ int rp_main_input(const double *rho, size_t n)
             best = (int)i;
     return best;
 }
+
+long rp_main_output(const rf_study *s, const rf_tm_result *res)
+{
+    if (s->main_output >= 0 && (size_t)s->main_output < res->n_outputs)
+        return s->main_output;
+    long first = -1;
+    char why[512];
+    for (size_t k = 0; k < res->n_outputs; k++) {
+        if (rp_output_classify(s, res, k, why, sizeof why) != RP_OUTPUT_SHOWN)
+            continue;
+        const char *name = s->model.output_names[k];
+        size_t len = strlen(name);
+        if (len > 17 && !strcmp(name + len - 17, "_total_energy_p95"))
+            return (long)k;
+        if (first < 0)
+            first = (long)k;
+    }
+    return first;
+}

@@ -467,6 +467,26 @@ static rf_status parse_options(yr_ctx *c, rf_study *s, struct fy_node *n)
     }
 }
 
+/* `main_output: NAME`, one of the model's outputs (known once the model is built). */
+static rf_status parse_main_output(yr_ctx *c, rf_study *s, struct fy_node *v)
+{
+    const char *name;
+    size_t len;
+    rf_status st = yr_string(c, v, "main_output", &name, &len);
+    for (size_t k = 0; st == RF_OK && k < s->model.n_outputs; k++)
+        if (strlen(s->model.output_names[k]) == len && !strncmp(s->model.output_names[k], name, len)) {
+            s->main_output = (long)k;
+            return RF_OK;
+        }
+    if (st != RF_OK)
+        return st;
+    char list[1024] = "";
+    size_t used = 0;
+    for (size_t k = 0; k < s->model.n_outputs && used + 1 < sizeof list; k++)
+        used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", k ? ", " : "", s->model.output_names[k]);
+    return yr_fail(c, v, "main_output", "'%.*s' is not an output of the model; its outputs: %s", (int)len, name, list);
+}
+
 static rf_status parse_document(yr_ctx *c, rf_study *s, struct fy_document *doc)
 {
     struct fy_node *root = fy_document_root(doc);
@@ -475,7 +495,7 @@ static rf_status parse_document(yr_ctx *c, rf_study *s, struct fy_document *doc)
     rf_status st = yr_mapping(c, root, "(top level)");
     if (st != RF_OK)
         return st;
-    struct fy_node *params = NULL, *model = NULL, *options = NULL, *params_key = NULL;
+    struct fy_node *params = NULL, *model = NULL, *options = NULL, *params_key = NULL, *main_out = NULL;
     yr_iter it = {root, NULL, 0, {0}};
     const char *key;
     struct fy_node *k, *v;
@@ -520,9 +540,11 @@ static rf_status parse_document(yr_ctx *c, rf_study *s, struct fy_document *doc)
             model = v;
         } else if (!strcmp(key, "options")) {
             options = v;
+        } else if (!strcmp(key, "main_output")) {
+            main_out = v;
         } else {
             return yr_fail(c, k, key, "unknown key; the top level takes name, description, scheme, levels, "
-                                      "parameters, model, options");
+                                      "parameters, model, main_output, options");
         }
     }
     if (!params)
@@ -539,7 +561,7 @@ static rf_status parse_document(yr_ctx *c, rf_study *s, struct fy_document *doc)
     if ((st = sp_parse_model(c, model, s)) != RF_OK)
         return st;
     sb_default_scheme(s);
-    return RF_OK;
+    return main_out ? parse_main_output(c, s, main_out) : RF_OK;
 }
 
 /* Base name and directory of a path. */
@@ -569,6 +591,7 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_study *s
     s->max_evaluations = 100000;
     s->left_right = 1;
     s->jobs = 0;
+    s->main_output = -1;
     char *stem = NULL;
     s->path = yr_strdup(name);
     if (!s->path)

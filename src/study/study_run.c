@@ -269,8 +269,8 @@ static rf_status write_outputs(run_state *r, rf_error *err)
     if (unlink(old) != 0 && errno != ENOENT)
         return rf_fail(err, RF_EIO, "%s: cannot replace the old result: %s", old, strerror(errno));
     rf_status st = rf_report_write(o->out_dir, &r->study, &r->res, &r->an, &ropt, err);
-    if (st == RF_OK) /* a trajectory study: its trajectories at the nominal point, for the report */
-        st = rf_traj_study_nominal(o->out_dir, &r->study, r->runner.jobs, o->plots, err);
+    if (st == RF_OK) /* a trajectory study: its trajectories at the nominal point and the bounds, for the report */
+        st = rf_traj_study_reruns(o->out_dir, &r->study, &r->res, r->runner.jobs, o->plots, err);
     if (st == RF_OK)
         st = rf_report_write_html(o->out_dir, err);
     return st;

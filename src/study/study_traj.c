@@ -2,9 +2,13 @@
  * (docs/trajectories.md sec. 5): the trajectory file, Monte Carlo overrides,
  * and the binding of every fuzzy parameter to a numeric input of that file.
  * A parameter may drive several inputs, each as value * scale + offset
- * (bind.h); the general form is the default scheme (bind_check.c). */
+ * (bind.h); the general form is the default scheme (bind_check.c).
+ * At the end of a study the Monte Carlo is rerun at the nominal point and at
+ * the points giving the bounds of the main output, for the report (below). */
+#define _XOPEN_SOURCE 700 /* open_memstream, getline */
 #include "study/study_internal.h"
 #include "study/bind.h"
+#include "study/report_internal.h"
 #include "core/util.h"
 #include "rockfuzz/fuzzy.h"
 #include "rockfuzz/trajectory.h"
@@ -182,19 +186,243 @@ rf_status rf_traj_study_parse(yr_ctx *c, struct fy_node *n, rf_study *s)
     return st;
 }
 
-rf_status rf_traj_study_nominal(const char *dir, const rf_study *s, int threads, int plots, rf_error *err)
+/* ---- the Monte Carlo reruns behind the report (docs/trajectories.md sec. 7) ----
+ * DIR/nominal/, DIR/bound_lower/, DIR/bound_upper/: the trajectories at the
+ * nominal point and at the points the TM found for the lower and upper bound
+ * of the main output at membership 0.  Each folder's RERUN_MARK, written
+ * last, holds the identity of what ran (model, point, plots), the main output
+ * the rerun gave and the axes of its figures: a folder whose mark matches is
+ * not run again unless the common axes of the three changed. */
+#define RERUN_MARK "rerun.txt"
+#define N_RERUNS 3
+
+typedef struct {
+    const char *sub;
+    const double *x;
+    char *identity;
+    int valid;                   /* the mark matches: nothing to run unless the axes changed */
+    double value;                /* the main output of the rerun */
+    rf_traj_plot_scales own, drawn;
+    rf_traj_point_run *run;
+} rerun;
+
+static void scales_write(FILE *f, const char *tag, const rf_traj_plot_scales *sc)
+{
+    fprintf(f, "%s %zu %.17g %.17g %.17g", tag, sc->runs, sc->height_max, sc->energy_max, sc->runout_count_max);
+    for (size_t c = 0; c < RF_TRAJ_SCALE_COLLECTORS; c++)
+        fprintf(f, " %.17g %.17g %.17g %.17g", sc->energy_lo[c], sc->energy_hi[c], sc->height_lo[c], sc->height_hi[c]);
+    fputc('\n', f);
+}
+
+/* The numbers after "TAG " in line into sc; 0 if the line is not that. */
+static int scales_read(const char *line, const char *tag, rf_traj_plot_scales *sc)
+{
+    size_t len = strlen(tag);
+    if (strncmp(line, tag, len) || line[len] != ' ')
+        return 0;
+    char *end;
+    sc->runs = strtoul(line + len, &end, 10);
+    double *v[3 + 4 * RF_TRAJ_SCALE_COLLECTORS] = {&sc->height_max, &sc->energy_max, &sc->runout_count_max};
+    for (size_t c = 0; c < RF_TRAJ_SCALE_COLLECTORS; c++)
+        v[3 + 4 * c] = &sc->energy_lo[c], v[4 + 4 * c] = &sc->energy_hi[c], v[5 + 4 * c] = &sc->height_lo[c],
+        v[6 + 4 * c] = &sc->height_hi[c];
+    for (size_t q = 0; q < sizeof v / sizeof *v; q++) {
+        const char *at = end;
+        *v[q] = strtod(at, &end);
+        if (end == at)
+            return 0;
+    }
+    return 1;
+}
+
+static int scales_equal(const rf_traj_plot_scales *a, const rf_traj_plot_scales *b)
+{
+    int eq = a->height_max == b->height_max && a->energy_max == b->energy_max &&
+             a->runout_count_max == b->runout_count_max;
+    for (size_t c = 0; c < RF_TRAJ_SCALE_COLLECTORS; c++)
+        eq = eq && a->energy_lo[c] == b->energy_lo[c] && a->energy_hi[c] == b->energy_hi[c] &&
+             a->height_lo[c] == b->height_lo[c] && a->height_hi[c] == b->height_hi[c];
+    return eq;
+}
+
+static void scales_merge(rf_traj_plot_scales *into, const rf_traj_plot_scales *from)
+{
+    into->height_max = fmax(into->height_max, from->height_max);
+    into->energy_max = fmax(into->energy_max, from->energy_max);
+    into->runout_count_max = fmax(into->runout_count_max, from->runout_count_max);
+    for (size_t c = 0; c < RF_TRAJ_SCALE_COLLECTORS; c++) {
+        into->energy_lo[c] = into->runs ? fmin(into->energy_lo[c], from->energy_lo[c]) : from->energy_lo[c];
+        into->energy_hi[c] = into->runs ? fmax(into->energy_hi[c], from->energy_hi[c]) : from->energy_hi[c];
+        into->height_lo[c] = into->runs ? fmin(into->height_lo[c], from->height_lo[c]) : from->height_lo[c];
+        into->height_hi[c] = into->runs ? fmax(into->height_hi[c], from->height_hi[c]) : from->height_hi[c];
+    }
+    into->runs += from->runs;
+}
+
+/* "MODEL-IDENTITY | SUB at NAME=X,... plots=P main=OUTPUT" (malloc'ed). */
+static char *rerun_identity(const rf_study *s, const rerun *r, int plots, long main_k)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    if (!f)
+        return NULL;
+    fprintf(f, "%s | %s at", s->model.identity ? s->model.identity : "", r->sub);
+    for (size_t i = 0; i < s->n_params; i++)
+        fprintf(f, " %s=%.17g", s->param_names[i], r->x[i]);
+    fprintf(f, " plots=%d main=%s", plots, main_k >= 0 ? s->model.output_names[main_k] : "-");
+    fclose(f);
+    return buf;
+}
+
+/* The folder's mark: valid when it names this identity (value, own and drawn axes read back). */
+static void read_mark(const char *dir, rerun *r)
+{
+    char path[4200], *line = NULL;
+    size_t cap = 0;
+    snprintf(path, sizeof path, "%s/%s/" RERUN_MARK, dir, r->sub);
+    FILE *f = fopen(path, "r");
+    int id = 0, val = 0, own = 0, drawn = 0;
+    while (f && getline(&line, &cap, f) > 0) {
+        line[strcspn(line, "\n")] = '\0';
+        if (!strncmp(line, "identity ", 9))
+            id = r->identity && !strcmp(line + 9, r->identity);
+        else if (!strncmp(line, "value ", 6))
+            val = 1, r->value = strtod(line + 6, NULL);
+        own = own || scales_read(line, "own", &r->own);
+        drawn = drawn || scales_read(line, "drawn", &r->drawn);
+    }
+    if (f)
+        fclose(f);
+    free(line);
+    r->valid = id && val && own && drawn;
+}
+
+static rf_status write_mark(const char *dir, const rerun *r, rf_error *err)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s/" RERUN_MARK, dir, r->sub);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
+    fprintf(f, "identity %s\nvalue %.17g\n", r->identity, r->value);
+    scales_write(f, "own", &r->own);
+    scales_write(f, "drawn", &r->drawn);
+    return fclose(f) == 0 ? RF_OK : rf_fail(err, RF_EIO, "cannot write %s", path);
+}
+
+/* Run the Monte Carlo of r (its mark goes first: an interrupted folder is never taken as complete). */
+static rf_status run_point(const char *dir, const rf_study *s, rerun *r, long main_k, int threads, rf_error *err)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", dir, r->sub);
+    if (mkdir(path, 0777) != 0 && errno != EEXIST)
+        return rf_fail(err, RF_EIO, "cannot create %s: %s", path, strerror(errno));
+    snprintf(path, sizeof path, "%s/%s/" RERUN_MARK, dir, r->sub);
+    if (unlink(path) != 0 && errno != ENOENT)
+        return rf_fail(err, RF_EIO, "cannot replace %s: %s", path, strerror(errno));
+    double *y = malloc((s->model.n_outputs ? s->model.n_outputs : 1) * sizeof *y);
+    if (!y)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    double xi[SB_MAX_TARGETS];
+    const rf_model *m = sb_unwrap(&s->model, r->x, xi); /* a bound study's model drives the trajectory model */
+    rf_status st = rf_traj_model_run_at(m, xi, threads, y, &r->run, err);
+    if (st == RF_OK) {
+        r->value = main_k >= 0 ? y[main_k] : NAN;
+        memset(&r->own, 0, sizeof r->own);
+        rf_traj_plot_scales_add(&r->own, r->run);
+    }
+    free(y);
+    return st;
+}
+
+/* The points: nominal, and with a main output whose level-0 bounds are defined, the bounds' points. */
+static size_t rerun_points(const rf_study *s, const rf_tm_result *res, long main_k, const double *nominal,
+                           rerun *r)
+{
+    static const char *const subs[N_RERUNS] = {"nominal", "bound_lower", "bound_upper"};
+    size_t n = s->n_params, m = res ? res->levels : 0, count = 1;
+    r[0].sub = subs[0], r[0].x = nominal;
+    if (main_k >= 0) {
+        const double *lo = res->x_lo + (size_t)main_k * (m + 1) * n, *hi = res->x_hi + (size_t)main_k * (m + 1) * n;
+        int defined = 1;
+        for (size_t i = 0; i < n; i++)
+            defined = defined && isfinite(lo[i]) && isfinite(hi[i]);
+        if (defined) {
+            r[1].sub = subs[1], r[1].x = lo, r[2].sub = subs[2], r[2].x = hi;
+            count = 3;
+        }
+    }
+    return count;
+}
+
+/* Run what is not valid, then write every folder whose figures are not on the common axes. */
+static rf_status rerun_all(const char *dir, const rf_study *s, rerun *r, size_t count, long main_k, int threads,
+                           int plots, rf_error *err)
+{
+    rf_status st = RF_OK;
+    rf_traj_plot_scales common;
+    memset(&common, 0, sizeof common);
+    for (size_t p = 0; p < count && st == RF_OK; p++) {
+        if (!r[p].valid)
+            st = run_point(dir, s, &r[p], main_k, threads, err);
+        if (st == RF_OK)
+            scales_merge(&common, &r[p].own);
+    }
+    for (size_t p = 0; p < count && st == RF_OK; p++) {
+        if (r[p].valid && scales_equal(&r[p].drawn, &common))
+            continue;
+        if (!r[p].run) /* complete, but drawn on other axes: the figures again */
+            st = run_point(dir, s, &r[p], main_k, threads, err);
+        char sub[4200];
+        snprintf(sub, sizeof sub, "%s/%s", dir, r[p].sub);
+        r[p].drawn = common;
+        if (st == RF_OK)
+            st = rf_traj_point_run_write(r[p].run, sub, plots, &common, err);
+        if (st == RF_OK)
+            st = write_mark(dir, &r[p], err);
+    }
+    return st;
+}
+
+rf_status rf_traj_study_reruns(const char *dir, const rf_study *s, const rf_tm_result *res, int threads, int plots,
+                               rf_error *err)
 {
     if (s->model_kind != RF_STUDY_MODEL_TRAJECTORY)
         return RF_OK;
-    char sub[4096], old[4200];
-    snprintf(sub, sizeof sub, "%s/nominal", dir);
-    snprintf(old, sizeof old, "%s/trajectory_profile.png", sub);
-    if (mkdir(sub, 0777) != 0 && errno != EEXIST)
-        return rf_fail(err, RF_EIO, "cannot create %s: %s", sub, strerror(errno));
-    unlink(old); /* the study report embeds it only if this run wrote it */
-    double x[64], xi[SB_MAX_TARGETS];
-    for (size_t i = 0; i < s->n_params && i < 64; i++)
-        x[i] = rf_fuzzy_nominal(&s->inputs[i]);
-    const rf_model *m = sb_unwrap(&s->model, x, xi); /* a bound study's model drives the trajectory model */
-    return rf_traj_model_write_run(m, xi, sub, threads, plots, err);
+    long main_k = res ? rp_main_output(s, res) : -1;
+    double *nominal = malloc((s->n_params ? s->n_params : 1) * sizeof *nominal);
+    rerun r[N_RERUNS];
+    memset(r, 0, sizeof r);
+    if (!nominal)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    for (size_t i = 0; i < s->n_params; i++)
+        nominal[i] = rf_fuzzy_nominal(&s->inputs[i]);
+    size_t count = rerun_points(s, res, main_k, nominal, r);
+    rf_status st = RF_OK;
+    for (size_t p = 0; p < count && st == RF_OK; p++) {
+        if (!(r[p].identity = rerun_identity(s, &r[p], plots, main_k)))
+            st = rf_fail(err, RF_ENOMEM, "out of memory");
+        else
+            read_mark(dir, &r[p]);
+    }
+    for (size_t p = count; p < N_RERUNS; p++) { /* no bounds to show: none from an earlier run either */
+        char path[4200];
+        static const char *const subs[N_RERUNS] = {"nominal", "bound_lower", "bound_upper"};
+        snprintf(path, sizeof path, "%s/%s/" RERUN_MARK, dir, subs[p]);
+        unlink(path);
+    }
+    if (st == RF_OK)
+        st = rerun_all(dir, s, r, count, main_k, threads, plots, err);
+    for (size_t p = 0; p < N_RERUNS; p++) {
+        free(r[p].identity);
+        rf_traj_point_run_free(r[p].run);
+    }
+    free(nominal);
+    return st;
+}
+
+rf_status rf_traj_study_nominal(const char *dir, const rf_study *s, int threads, int plots, rf_error *err)
+{
+    return rf_traj_study_reruns(dir, s, NULL, threads, plots, err);
 }

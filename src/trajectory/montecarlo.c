@@ -13,11 +13,19 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #define LHS_STREAM 0x4000000000000000ULL
+
+/* Samples done by all threads; the first job reports them. */
+typedef struct {
+    rf_traj_progress_fn fn;
+    void *ctx;
+    atomic_size_t done;
+} mc_progress;
 
 typedef struct {
     const rf_traj_spec *spec;
@@ -28,7 +36,18 @@ typedef struct {
     traj_env_acc *env;
     rf_status status;
     rf_error err;
+    mc_progress *progress;  /* NULL: none */
+    int reports;            /* this job (the calling thread's) calls progress->fn */
 } mc_job;
+
+static void count_sample(const mc_job *job)
+{
+    if (!job->progress)
+        return;
+    size_t done = atomic_fetch_add(&job->progress->done, 1) + 1;
+    if (job->reports)
+        job->progress->fn(job->progress->ctx, done, job->spec->samples);
+}
 
 static double normal_cdf(double z) { return 0.5 * erfc(-z / sqrt(2.0)); }
 
@@ -96,6 +115,7 @@ static void *mc_worker(void *arg)
         ens->rebound_height[i] = res->rebound_height;
         if (ens->n_collectors)
             memcpy(&ens->crossings[i * ens->n_collectors], res->crossings, ens->n_collectors * sizeof *cross);
+        count_sample(job);
     }
     rf_traj_spec_free(&local);
     free(field);
@@ -205,7 +225,7 @@ static rf_status collect(mc_job *jobs, int threads, rf_traj_ensemble *ens, rf_er
 }
 
 static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, const size_t *perm, int threads,
-                          int envelopes, rf_traj_ensemble *ens, rf_error *err)
+                          int envelopes, mc_progress *progress, rf_traj_ensemble *ens, rf_error *err)
 {
     size_t N = spec->samples;
     if ((size_t)threads > N)
@@ -214,7 +234,8 @@ static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, cons
     rf_status st = jobs ? RF_OK : RF_ENOMEM;
     for (int t = 0; t < threads && st == RF_OK; t++) {
         jobs[t] = (mc_job){spec, w, ens, perm, N * (size_t)t / (size_t)threads, N * (size_t)(t + 1) / (size_t)threads,
-                           envelopes ? traj_env_create(spec, RF_TRAJ_ENVELOPE_EDGES, w) : NULL, RF_OK, {RF_OK, ""}};
+                           envelopes ? traj_env_create(spec, RF_TRAJ_ENVELOPE_EDGES, w) : NULL, RF_OK, {RF_OK, ""},
+                           progress, t == 0};
         if (envelopes && !jobs[t].env)
             st = RF_ENOMEM;
     }
@@ -230,6 +251,9 @@ static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, cons
     return st;
 }
 
+static rf_status traj_run_full(const rf_traj_spec *spec, int threads, void *table, int envelopes,
+                               mc_progress *progress, rf_traj_ensemble *ens, rf_error *err);
+
 rf_status rf_traj_run(const rf_traj_spec *spec, int threads, rf_traj_ensemble *ens, rf_error *err)
 {
     return traj_run_shared(spec, threads, NULL, ens, err);
@@ -240,8 +264,21 @@ rf_status traj_run_shared(const rf_traj_spec *spec, int threads, void *table, rf
     return traj_run_with(spec, threads, table, 1, ens, err);
 }
 
+rf_status rf_traj_run_progress(const rf_traj_spec *spec, int threads, rf_traj_progress_fn progress, void *ctx,
+                               rf_traj_ensemble *ens, rf_error *err)
+{
+    mc_progress p = {progress, ctx, 0};
+    return traj_run_full(spec, threads, NULL, 1, progress ? &p : NULL, ens, err);
+}
+
 rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int envelopes, rf_traj_ensemble *ens,
                         rf_error *err)
+{
+    return traj_run_full(spec, threads, table, envelopes, NULL, ens, err);
+}
+
+static rf_status traj_run_full(const rf_traj_spec *spec, int threads, void *table, int envelopes,
+                               mc_progress *progress, rf_traj_ensemble *ens, rf_error *err)
 {
     double t0 = rf_monotonic_seconds();
     rf_status st = rf_traj_spec_validate(spec, err);
@@ -269,7 +306,7 @@ rf_status traj_run_with(const rf_traj_spec *spec, int threads, void *table, int 
     }
     traj_impact_table_info(w->impact_table, &ens->impact_nodes_vn, &ens->impact_nodes_theta,
                            &ens->impact_evaluations, &ens->impact_from_cache, &ens->impact_error_estimate);
-    st = run_jobs(spec, w, perm, threads, envelopes, ens, err);
+    st = run_jobs(spec, w, perm, threads, envelopes, progress, ens, err);
     free(perm);
     rf_traj_world_free(w);
     ens->wall_seconds = rf_monotonic_seconds() - t0;

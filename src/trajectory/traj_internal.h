@@ -150,6 +150,15 @@ rf_status traj_write_envelopes_csv(const char *dir, const rf_traj_ensemble *e, r
  * runs, and its shared impact table (or NULL); RF_EINVAL if m is not a
  * trajectory model.  For a run at one point (traj_run_at.c). */
 rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *spec, void **table, rf_error *err);
+/* The outputs of trajectory model m (n_outputs values into y) from the
+ * statistics t of a run of spec s, as its evaluation computes them. */
+void traj_model_outputs(const rf_model *m, const rf_traj_spec *s, const rf_traj_stats *t, double *y);
+
+/* traj_plot.c: rf_traj_write_plots on the axes sc (NULL: each figure its own),
+ * and the axes a run's figures would take on their own, widening sc. */
+rf_status traj_write_plots_scaled(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                                  const rf_traj_stats *st, const rf_traj_plot_scales *sc, rf_error *err);
+void traj_plot_extent(const rf_traj_spec *s, const rf_traj_ensemble *e, rf_traj_plot_scales *sc);
 
 /* roots.c: the smallest tau in [0, tmax] with c2 tau^2 + c1 tau + c0 = 0; INFINITY if none. */
 double traj_first_root(double c2, double c1, double c0, double tmax);

@@ -36,6 +36,7 @@ typedef struct {
     double xmin, xmax, ylo, yhi;   /* world of the profile panel [m] */
     double exaggeration;           /* vertical / horizontal scale of the profile panel */
     int height_px, profile_px;
+    const rf_traj_plot_scales *sc; /* common axes of runs compared side by side, or NULL */
 } plot_data;
 
 /* Vertical exaggeration: 1 (equal axes) unless the profile would be flatter
@@ -173,14 +174,22 @@ static void env_line(const rf_traj_envelope *v, const double *env, double scale)
     free(x), free(y);
 }
 
-static void draw_envelope(const plot_data *p, int top, double *const env[3], double scale, const char *ylab,
-                          const char *title)
+/* The largest finite value of env[0..n-1]; 0 if none. */
+static double env_max(const double *env, size_t n)
+{
+    double hi = 0;
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(env[k]))
+            hi = fmax(hi, env[k]);
+    return hi;
+}
+
+/* common: the upper end of the axis in the envelope's unit shared with other runs, 0: this run's own. */
+static void draw_envelope(const plot_data *p, int top, double *const env[3], double scale, double common,
+                          const char *ylab, const char *title)
 {
     const rf_traj_envelope *v = &p->e->envelope;
-    double hi = 0;
-    for (size_t k = 0; k < v->n_edges; k++)
-        if (isfinite(env[2][k]))
-            hi = fmax(hi, env[2][k] * scale);
+    double hi = (common > 0 ? common : env_max(env[2], v->n_edges)) * scale;
     hi = hi > 0 ? 1.08 * hi : 1;
     panel(p, top, PANEL_H, 0, hi);
     collector_lines(p, 0, hi);
@@ -198,20 +207,30 @@ static void draw_envelope(const plot_data *p, int top, double *const env[3], dou
     plmtex("t", 0.6, 0, 0, title);
 }
 
-/* End points (runout x) of all samples per x bin, and the fraction of them reaching x (right axis). */
-static void draw_runout(const plot_data *p, int top)
+/* The end points per x bin (NRUN bins over the profile) into n; the largest count. */
+static double runout_counts(const rf_traj_ensemble *e, double xmin, double xmax, PLFLT *x, PLFLT *n)
 {
-    PLFLT x[NRUN], n[NRUN] = {0};
-    double w = (p->xmax - p->xmin) / NRUN, hi = 1;
+    double w = (xmax - xmin) / NRUN, most = 0;
     for (int b = 0; b < NRUN; b++)
-        x[b] = p->xmin + b * w;
-    for (size_t i = 0; i < p->e->samples; i++) {
-        long b = (long)floor((p->e->runout_x[i] - p->xmin) / w);
-        if (isfinite(p->e->runout_x[i]))
+        x[b] = xmin + b * w, n[b] = 0;
+    for (size_t i = 0; i < e->samples; i++) {
+        long b = (long)floor((e->runout_x[i] - xmin) / w);
+        if (isfinite(e->runout_x[i]))
             n[b < 0 ? 0 : b >= NRUN ? NRUN - 1 : b] += 1;
     }
     for (int b = 0; b < NRUN; b++)
-        hi = fmax(hi, 1.08 * n[b]);
+        most = fmax(most, n[b]);
+    return most;
+}
+
+/* End points (runout x) of all samples per x bin, and the fraction of them reaching x (right axis). */
+static void draw_runout(const plot_data *p, int top)
+{
+    PLFLT x[NRUN], n[NRUN];
+    double w = (p->xmax - p->xmin) / NRUN, most = runout_counts(p->e, p->xmin, p->xmax, x, n);
+    if (p->sc && p->sc->runout_count_max > 0)
+        most = p->sc->runout_count_max;
+    double hi = fmax(1, 1.08 * most);
     panel(p, top, HIST_H, 0, hi);
     collector_lines(p, 0, hi);
     plcol0(2);
@@ -250,10 +269,10 @@ static void draw_profile(const void *v)
     int top = PAD_TOP + p->profile_px + GAP;
     const char *all = p->e->samples == 1 ? "the trajectory" : "all trajectories";
     snprintf(title, sizeof title, "passing height above the ground, %s (%zu)", all, p->e->samples);
-    draw_envelope(p, top, env->height, 1, "height [m]", title);
+    draw_envelope(p, top, env->height, 1, p->sc ? p->sc->height_max : 0, "height [m]", title);
     top += PANEL_H + GAP;
     snprintf(title, sizeof title, "kinetic energy (translation + rotation), %s (%zu)", all, p->e->samples);
-    draw_envelope(p, top, env->energy, 1e-3, "energy [kJ]", title);
+    draw_envelope(p, top, env->energy, 1e-3, p->sc ? p->sc->energy_max : 0, "energy [kJ]", title);
     draw_runout(p, top + PANEL_H + GAP);
 }
 
@@ -262,11 +281,14 @@ typedef struct {
     size_t c;
 } hist_data;
 
-static void histogram(const double *v, size_t n, const char *xlab, const char *title)
+/* The histogram of v[0..n-1] over [lo, hi] when hi > lo (axes shared with other runs), else over the data. */
+static void histogram(const double *v, size_t n, double lo, double hi, const char *xlab, const char *title)
 {
-    double lo = INFINITY, hi = -INFINITY;
-    for (size_t i = 0; i < n; i++)
-        lo = fmin(lo, v[i]), hi = fmax(hi, v[i]);
+    if (!(hi > lo)) {
+        lo = INFINITY, hi = -INFINITY;
+        for (size_t i = 0; i < n; i++)
+            lo = fmin(lo, v[i]), hi = fmax(hi, v[i]);
+    }
     if (!n || !(hi > lo))
         lo = n ? lo - 0.5 : 0, hi = n ? hi + 0.5 : 1;
     PLFLT *data = malloc((n ? n : 1) * sizeof *data);
@@ -292,23 +314,59 @@ static void draw_hist(const void *v)
             ke[m] = x->total_energy * 1e-3, h[m++] = x->height_lowest;
     }
     char title[300];
+    const rf_traj_plot_scales *sc = hd->c < RF_TRAJ_SCALE_COLLECTORS ? p->sc : NULL;
     plssub(1, 2);
     snprintf(title, sizeof title, "%s: energy of the %zu crossings", p->s->collectors[hd->c].name, m);
     if (ke && h)
-        histogram(ke, m, "energy [kJ]", title);
+        histogram(ke, m, sc ? sc->energy_lo[hd->c] * 1e-3 : 0, sc ? sc->energy_hi[hd->c] * 1e-3 : 0, "energy [kJ]",
+                  title);
     snprintf(title, sizeof title, "%s: passing height", p->s->collectors[hd->c].name);
     if (ke && h)
-        histogram(h, m, "height above the ground [m]", title);
+        histogram(h, m, sc ? sc->height_lo[hd->c] : 0, sc ? sc->height_hi[hd->c] : 0, "height above the ground [m]",
+                  title);
     free(ke), free(h);
 }
 
 rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
                                  const rf_traj_stats *st, rf_error *err);
 
+/* Widen the histogram range [*lo, *hi] (empty: lo > hi) to the reached crossings of collector c. */
+static void crossing_range(const rf_traj_ensemble *e, size_t c, int height, double *lo, double *hi)
+{
+    for (size_t i = 0; i < e->samples; i++) {
+        const rf_traj_crossing *x = &e->crossings[i * e->n_collectors + c];
+        if (x->reached)
+            *lo = fmin(*lo, height ? x->height_lowest : x->total_energy),
+            *hi = fmax(*hi, height ? x->height_lowest : x->total_energy);
+    }
+}
+
+void traj_plot_extent(const rf_traj_spec *s, const rf_traj_ensemble *e, rf_traj_plot_scales *sc)
+{
+    const rf_traj_envelope *v = &e->envelope;
+    PLFLT x[NRUN], n[NRUN];
+    sc->height_max = fmax(sc->height_max, env_max(v->height[2], v->n_edges));
+    sc->energy_max = fmax(sc->energy_max, env_max(v->energy[2], v->n_edges));
+    sc->runout_count_max = fmax(sc->runout_count_max, runout_counts(e, s->px[0], s->px[s->n_points - 1], x, n));
+    for (size_t c = 0; c < s->n_collectors && c < RF_TRAJ_SCALE_COLLECTORS; c++) {
+        if (!sc->runs) /* the first run: the ranges start empty */
+            sc->energy_lo[c] = sc->height_lo[c] = INFINITY, sc->energy_hi[c] = sc->height_hi[c] = -INFINITY;
+        crossing_range(e, c, 0, &sc->energy_lo[c], &sc->energy_hi[c]);
+        crossing_range(e, c, 1, &sc->height_lo[c], &sc->height_hi[c]);
+    }
+    sc->runs++;
+}
+
 rf_status rf_traj_write_plots(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
                               const rf_traj_stats *st, rf_error *err)
 {
-    plot_data p = {s, e, s->px[0], s->px[s->n_points - 1], s->py[0], s->py[0], 1, 0, 0};
+    return traj_write_plots_scaled(dir, s, e, st, NULL, err);
+}
+
+rf_status traj_write_plots_scaled(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                                  const rf_traj_stats *st, const rf_traj_plot_scales *sc, rf_error *err)
+{
+    plot_data p = {s, e, s->px[0], s->px[s->n_points - 1], s->py[0], s->py[0], 1, 0, 0, sc};
     for (size_t i = 0; i < s->n_points; i++)
         p.ylo = fmin(p.ylo, s->py[i]), p.yhi = fmax(p.yhi, s->py[i]);
     p.yhi = fmax(p.yhi, s->y0);

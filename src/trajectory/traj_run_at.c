@@ -2,52 +2,89 @@
  * parameters (100 trajectories recorded), written to a folder as `rockfuzz
  * trajectory --out` writes a run (result.json, CSV files, figures,
  * report.html): the trajectories behind a fuzzy trajectory study
- * (src/study/study_traj.c reruns its nominal point). */
+ * (src/study/study_traj.c reruns its nominal point and the points giving the
+ * bounds of its main output, and draws their figures on common axes). */
 #include "trajectory/traj_internal.h"
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-static rf_status write_run(const char *sub, const rf_traj_spec *spec, const rf_traj_ensemble *e, int plots,
-                           rf_error *err)
+struct rf_traj_point_run {
+    rf_traj_spec spec;
+    rf_traj_ensemble ens;
+    rf_traj_stats stats;
+};
+
+void rf_traj_point_run_free(rf_traj_point_run *r)
 {
-    rf_traj_stats t;
-    rf_status st = rf_traj_stats_compute_spec(spec, e, &t, err);
-    if (st != RF_OK)
+    if (!r)
+        return;
+    rf_traj_stats_free(&r->stats);
+    rf_traj_ensemble_free(&r->ens);
+    rf_traj_spec_free(&r->spec);
+    free(r);
+}
+
+rf_status rf_traj_model_run_at(const rf_model *m, const double *x, int threads, double *y, rf_traj_point_run **out,
+                               rf_error *err)
+{
+    *out = NULL;
+    rf_traj_point_run *r = calloc(1, sizeof *r);
+    if (!r)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    void *table;
+    rf_status st = traj_model_spec_at(m, x, &r->spec, &table, err);
+    if (st != RF_OK) {
+        free(r);
         return st;
+    }
+    r->spec.record = r->spec.samples < 100 ? r->spec.samples : 100;
+    if ((st = traj_run_shared(&r->spec, threads, table, &r->ens, err)) == RF_OK &&
+        (st = rf_traj_stats_compute_spec(&r->spec, &r->ens, &r->stats, err)) == RF_OK) {
+        if (y)
+            traj_model_outputs(m, &r->spec, &r->stats, y);
+        *out = r;
+        return RF_OK;
+    }
+    rf_traj_ensemble_free(&r->ens);
+    rf_traj_spec_free(&r->spec);
+    free(r);
+    return st;
+}
+
+void rf_traj_plot_scales_add(rf_traj_plot_scales *sc, const rf_traj_point_run *r)
+{
+    traj_plot_extent(&r->spec, &r->ens, sc);
+}
+
+rf_status rf_traj_point_run_write(const rf_traj_point_run *r, const char *dir, int plots,
+                                  const rf_traj_plot_scales *sc, rf_error *err)
+{
     char path[4200];
-    snprintf(path, sizeof path, "%s/result.json", sub);
+    snprintf(path, sizeof path, "%s/result.json", dir);
     FILE *f = fopen(path, "w");
-    if (!f)
-        st = rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
-    else {
-        rf_traj_write_json(f, spec, e, &t, 100);
+    rf_status st = f ? RF_OK : rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
+    if (f) {
+        rf_traj_write_json(f, &r->spec, &r->ens, &r->stats, 100);
         if (fclose(f) != 0)
             st = rf_fail(err, RF_EIO, "cannot write %s", path);
     }
     if (st == RF_OK)
-        st = rf_traj_write_csv(sub, spec, e, &t, err);
+        st = rf_traj_write_csv(dir, &r->spec, &r->ens, &r->stats, err);
     if (st == RF_OK && plots)
-        st = rf_traj_write_plots(sub, spec, e, &t, err);
-    rf_traj_stats_free(&t);
+        st = traj_write_plots_scaled(dir, &r->spec, &r->ens, &r->stats, sc, err);
     return st;
 }
 
 rf_status rf_traj_model_write_run(const rf_model *m, const double *x, const char *dir, int threads, int plots,
                                   rf_error *err)
 {
-    rf_traj_spec spec;
-    void *table;
-    rf_status st = traj_model_spec_at(m, x, &spec, &table, err);
-    if (st != RF_OK)
-        return st;
-    spec.record = spec.samples < 100 ? spec.samples : 100;
-    rf_traj_ensemble e;
-    if ((st = traj_run_shared(&spec, threads, table, &e, err)) == RF_OK) {
-        st = write_run(dir, &spec, &e, plots, err);
-        rf_traj_ensemble_free(&e);
-    }
-    rf_traj_spec_free(&spec);
+    rf_traj_point_run *r;
+    rf_status st = rf_traj_model_run_at(m, x, threads, NULL, &r, err);
+    if (st == RF_OK)
+        st = rf_traj_point_run_write(r, dir, plots, NULL, err);
+    rf_traj_point_run_free(r);
     return st;
 }
