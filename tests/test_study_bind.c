@@ -121,7 +121,7 @@ static void test_bound_identity(void **state)
     load_ok("parameters:\n  Rn: {tfn: [0.35, 0.05, 0.05]}\nmodel:\n  trajectory:\n    file: bind_two.yaml\n"
             "    bind: {Rn: [materials.rock.R_n, {to: materials.talus.R_n, scale: 0.5}]}\n",
             &s);
-    assert_non_null(strstr(s.model.identity, "trajectory v2"));
+    assert_non_null(strstr(s.model.identity, "trajectory v3"));
     assert_non_null(strstr(s.model.identity, "x0->materials.talus.R_n*0.5+0"));
     rf_study_free(&s);
 }
