@@ -1,7 +1,7 @@
-/* spec.c - the trajectory spec as data: free, deep copy, numeric inputs
- * addressed by path (for random inputs and for the fuzzy parameters of a
- * study), and validation of the values (the profile's geometry is checked in
- * profile.c). */
+/* spec.c - the trajectory spec as data: free, deep copy, and validation of
+ * the values (each row of the input tables against its check, traj_fields.c;
+ * the release above the ground, a release line above it; the profile's
+ * geometry is checked in profile.c). */
 #include "trajectory/traj_internal.h"
 
 #include <math.h>
@@ -77,44 +77,6 @@ rf_status rf_traj_spec_copy(const rf_traj_spec *src, rf_traj_spec *d, rf_error *
     return RF_OK;
 }
 
-/* "prefix.NAME.field": the NAME part and the field after it. */
-static int split_named(const char *path, const char *prefix, const char *name, const char **field)
-{
-    size_t lp = strlen(prefix), ln = strlen(name);
-    if (strncmp(path, prefix, lp) || strncmp(path + lp, name, ln) || path[lp + ln] != '.')
-        return 0;
-    *field = path + lp + ln + 1;
-    return 1;
-}
-
-static double *random_field(rf_traj_spec *s, const char *path)
-{
-    for (size_t i = 0; i < s->n_random; i++) {
-        const char *f;
-        if (!split_named(path, "", s->random[i].path, &f))
-            continue;
-        rf_traj_random *r = &s->random[i];
-        if (r->dist == RF_DIST_UNIFORM)
-            return !strcmp(f, "lo") ? &r->a : !strcmp(f, "hi") ? &r->b : NULL;
-        if (r->dist == RF_DIST_NORMAL)
-            return !strcmp(f, "mean") ? &r->a : !strcmp(f, "sd") ? &r->b : NULL;
-    }
-    return NULL;
-}
-
-double *rf_traj_spec_field(rf_traj_spec *s, const char *path)
-{
-    double *place;
-    if (rf_traj_field_at(s, path, &place))
-        return place;
-    size_t idx;
-    char xy[3];
-    int n = 0;
-    if (sscanf(path, "profile.points.%zu.%2[xy]%n", &idx, xy, &n) == 2 && path[n] == '\0' && idx < s->n_points)
-        return xy[0] == 'x' ? &s->px[idx] : &s->py[idx];
-    return random_field(s, path);
-}
-
 /* The rows of one table over the object at base (the spec, a material or a
  * collector named `name`): each used row's value, as given, against its check. */
 static rf_status check_rows(const rf_traj_spec *s, const rf_traj_field_table *tb, const void *base,
@@ -149,6 +111,37 @@ static rf_status check_all_rows(const rf_traj_spec *s, rf_error *err)
             st = check_rows(s, tb, &s->collectors[i], s->collectors[i].name, err);
     }
     return st;
+}
+
+/* A release line lies on or above the ground: its vertices, and the profile's
+ * vertices under each of its pieces. */
+static rf_status check_release_line(const rf_traj_spec *s, const rf_traj_world *w, rf_error *err)
+{
+    if (s->release_kind != RF_TRAJ_RELEASE_LINE)
+        return RF_OK;
+    for (size_t i = 0; i < s->n_release; i++) {
+        size_t k;
+        double x = s->release_px[i], y = s->release_py[i], gy = traj_ground_y(w, x, &k);
+        if (k == TRAJ_NONE)
+            return rf_fail(err, RF_EINVAL, "release.line[%zu] = [%g, %g]: outside the profile's x-range [%g, %g]", i,
+                           x, y, s->px[0], s->px[s->n_points - 1]);
+        if (y < gy - traj_tol(1e-9, x, gy))
+            return rf_fail(err, RF_EINVAL, "release.line[%zu] = [%g, %g]: under the ground (y = %g at x = %g)", i, x,
+                           y, gy, x);
+    }
+    for (size_t i = 0; i + 1 < s->n_release; i++) {
+        double ax = s->release_px[i], ay = s->release_py[i], bx = s->release_px[i + 1], by = s->release_py[i + 1];
+        for (size_t p = 0; ax != bx && p < s->n_points; p++) {
+            double x = s->px[p];
+            if (!(x > fmin(ax, bx) && x < fmax(ax, bx)))
+                continue;
+            double y = ay + (x - ax) / (bx - ax) * (by - ay);
+            if (y < s->py[p] - traj_tol(1e-9, x, y))
+                return rf_fail(err, RF_EINVAL, "release.line[%zu]: passes under the ground at profile.points[%zu] = "
+                               "[%g, %g]", i + 1, p, x, s->py[p]);
+        }
+    }
+    return RF_OK;
 }
 
 /* The release point must not lie under the ground. */
@@ -224,7 +217,7 @@ static rf_status validate_values(const rf_traj_spec *s, rf_error *err)
         return st;
     st = check_release(s, w, err);
     if (st == RF_OK)
-        st = traj_release_check(s, w, err);
+        st = check_release_line(s, w, err);
     rf_traj_world_free(w);
     return st;
 }

@@ -4,8 +4,9 @@
  * default, check, whether it may be random or bound, and a help line.  The
  * reader (traj_yaml*.c), the defaults, the validation (spec.c), the study
  * binding and its messages, the model identity (traj_model.c) and the key
- * table of docs/trajectories.md loop over them.  Angles are given in degrees
- * and stored in radians: converted here, once. */
+ * table of docs/trajectories.md loop over them; every input is addressed by
+ * its path here (rf_traj_spec_field, _set, _get).  Angles are given in
+ * degrees and stored in radians: converted here, once. */
 #include "trajectory/traj_internal.h"
 #include "core/hash.h"
 
@@ -139,6 +140,35 @@ const rf_traj_field *rf_traj_field_at(rf_traj_spec *s, const char *path, double 
         }
     }
     return NULL;
+}
+
+static double *random_field(rf_traj_spec *s, const char *path)
+{
+    for (size_t i = 0; i < s->n_random; i++) {
+        const char *f = after_name(path, "", s->random[i].path);
+        if (!f)
+            continue;
+        rf_traj_random *r = &s->random[i];
+        if (r->dist == RF_DIST_UNIFORM)
+            return !strcmp(f, "lo") ? &r->a : !strcmp(f, "hi") ? &r->b : NULL;
+        if (r->dist == RF_DIST_NORMAL)
+            return !strcmp(f, "mean") ? &r->a : !strcmp(f, "sd") ? &r->b : NULL;
+    }
+    return NULL;
+}
+
+double *rf_traj_spec_field(rf_traj_spec *s, const char *path)
+{
+    double *place;
+    if (rf_traj_field_at(s, path, &place))
+        return place;
+    size_t idx;
+    char xy[3];
+    int n = 0;
+    if (sscanf(path, "profile.points.%zu.%2[xy]%n", &idx, xy, &n) == 2 && path[n] == '\0' &&
+        idx < s->n_points)
+        return xy[0] == 'x' ? &s->px[idx] : &s->py[idx];
+    return random_field(s, path);
 }
 
 int rf_traj_spec_set(rf_traj_spec *s, const char *path, double given)

@@ -39,15 +39,12 @@ struct rf_traj_world {
 
 /* release.c: the release velocity (vx, vy, or speed and angle); the pieces
  * of a release line or zone (w->release, NULL for a point; an empty zone is
- * an error); the point at u in (0, 1), uniform by length over the pieces; a
- * release line on or above the ground; x0, y0 of a line or zone set to its
- * point at u = 0.5 (the nominal release, e.g. of a single trajectory). */
+ * an error); the point at u in (0, 1), uniform by length over the pieces. */
 void traj_release_velocity(const rf_traj_spec *s, double *vx, double *vy);
 rf_status traj_release_prepare(const rf_traj_spec *s, rf_traj_world *w, rf_error *err);
 void traj_release_free(traj_release_set *r);
 void traj_release_point(const rf_traj_world *w, double u, double *x, double *y);
-rf_status traj_release_check(const rf_traj_spec *s, const rf_traj_world *w, rf_error *err);
-void traj_release_nominal(rf_traj_spec *s);
+
 
 /* A world that uses the given impact table (not owned; NULL: built if the law needs it). */
 rf_status traj_world_create_shared(const rf_traj_spec *spec, void *table, rf_traj_world **world, rf_error *err);

@@ -318,7 +318,7 @@ static rf_status parse_document(ty_ctx *c, struct fy_node *root)
         return yr_fail(&c->sp, fy_node_mapping_lookup_by_string(root, "release", FY_NT), "release",
                        "x and y are required (or a line or zone)");
     if ((st = ty_parse_profile(c, c->profile)) == RF_OK)
-        traj_release_nominal(c->spec);
+        ty_release_nominal(c->spec);
     return st;
 }
 

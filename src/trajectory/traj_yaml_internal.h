@@ -48,6 +48,10 @@ void ty_row_defaults(rf_traj_field_owner owner, void *obj);
 /* release: {x, y | line: [[x, y], ...] | zone: {x: [x0, x1]} | {polygon: [[x, y], ...]},
  * vx, vy | speed, angle, omega} (traj_yaml_release.c) */
 rf_status ty_parse_release(ty_ctx *c, struct fy_node *n);
+/* x0, y0 of a line or zone release set to its point at u = 0.5 (the nominal
+ * release, e.g. of a single trajectory); left as they are when the profile
+ * is invalid (the validation reports it). */
+void ty_release_nominal(rf_traj_spec *s);
 
 /* profile: {points: [[x, y], ...] | csv: FILE | dem: {...}, materials: [..] | NAME} */
 rf_status ty_parse_profile(ty_ctx *c, struct fy_node *n);

@@ -92,3 +92,18 @@ rf_status ty_parse_release(ty_ctx *c, struct fy_node *n)
         return yr_fail(&c->sp, n, "release", "speed [m/s] is required with angle");
     return st;
 }
+
+void ty_release_nominal(rf_traj_spec *s)
+{
+    if (s->release_kind == RF_TRAJ_RELEASE_POINT)
+        return;
+    rf_traj_spec probe = *s;
+    probe.law = RF_BOUNCE_CONSTANT; /* geometry only */
+    probe.n_collectors = 0;
+    rf_traj_world *w;
+    rf_error err;
+    if (rf_traj_world_create(&probe, &w, &err) != RF_OK)
+        return; /* the validation reports it */
+    traj_release_point(w, 0.5, &s->x0, &s->y0);
+    rf_traj_world_free(w);
+}
