@@ -14,20 +14,9 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/util.h"
 #include "rockfuzz/store.h"
 #include "rockfuzz/study_run.h"
-
-static void duration(double s, char *buf, size_t size)
-{
-    if (!(s >= 0) || s > 1e9)
-        snprintf(buf, size, "unknown");
-    else if (s < 60)
-        snprintf(buf, size, "%.1f s", s);
-    else if (s < 3600)
-        snprintf(buf, size, "%d min %02d s", (int)(s / 60), (int)s % 60);
-    else
-        snprintf(buf, size, "%d h %02d min", (int)(s / 3600), ((int)s % 3600) / 60);
-}
 
 static void when(double t, char *buf, size_t size)
 {
@@ -112,7 +101,8 @@ int rf_cli_status(int argc, char **argv)
     double rate = info.done_this_run > 0 && span > 0 ? (double)info.done_this_run / span : 0;
     size_t left_pts = total > done ? total - done : 0;
     char left[64], last[64], started[64];
-    duration(rate > 0 ? (double)left_pts / rate : (left_pts == 0 ? 0 : -1), left, sizeof left);
+    if (!rf_format_duration(rate > 0 ? (double)left_pts / rate : (left_pts == 0 ? 0 : -1), 0, left, sizeof left))
+        snprintf(left, sizeof left, "unknown");
     when(info.last_update, last, sizeof last);
     when(info.run_started, started, sizeof started);
     printf("Run directory   %s\n", dir);
