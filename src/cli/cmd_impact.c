@@ -106,6 +106,27 @@ static void input_usage(FILE *f)
     }
 }
 
+/* --solver's lines, from the solver registry (impact_model.h). */
+static void solver_usage(FILE *f)
+{
+    fprintf(f, "  --solver NAME            ");
+    for (size_t k = 0; k < rf_impact_n_solvers(); k++)
+        fprintf(f, "%s%s", k ? " | " : "", rf_impact_solver_name((rf_impact_solver)k));
+    fprintf(f, " (default %s)\n", rf_impact_solver_name(RF_IMPACT_FEM));
+    for (size_t k = 0; k < rf_impact_n_solvers(); k++) {
+        const rf_impact_law *law = rf_impact_solver_law((rf_impact_solver)k);
+        char head[32];
+        snprintf(head, sizeof head, "%s:", law->name);
+        fprintf(f, "%27s%-8s", "", head);
+        for (const char *c = law->help; *c; c++)
+            if (*c == '\n')
+                fprintf(f, "\n%35s", "");
+            else
+                fputc(*c, f);
+        fputc('\n', f);
+    }
+}
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -135,17 +156,9 @@ static void usage(FILE *f)
         "  --layer-material M       as the slope's (default elastic)\n"
         "  The dilatancy cutoff is the critical state: (e_cs - e0) / (1 + e0) from void ratios.\n"
         "\n"
-        "Model:\n"
-        "  --solver NAME            fem | hertz | hunter | rigid | mdr (default fem)\n"
-        "                           fem:    explicit FE; axisymmetric for a normal impact\n"
-        "                                   (Coulomb friction on a plastic body), 3D half\n"
-        "                                   model for a slope or friction between elastic\n"
-        "                                   dissimilar bodies (docs/impact.md)\n"
-        "                           hertz:  elastic Hertz, R_n = 1\n"
-        "                           hunter: Hertz + Hunter (1957) wave loss\n"
-        "                           rigid:  rigid-body impact with Coulomb friction\n"
-        "                           mdr:    Hertz + exact Mindlin-Deresiewicz partial slip\n"
-        "                                   (elastic tangential compliance, micro-slip)\n"
+        "Model:\n");
+    solver_usage(f);
+    fprintf(f,
         "  --e-n EN                 rigid, mdr: normal COR in [0, 1] (default: Hunter's\n"
         "                           e_n; --e-n 1 makes the mdr impact purely elastic)\n"
         "  --hunter-A A             Hunter coefficient A (default 1.04; band 1.112-1.171)\n"
