@@ -20,6 +20,10 @@ int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall traj
 #define RF_CLI_RESULT_MAX (256 << 20) /* bytes of a result.json read back */
 int rf_cli_trajectory_report(const char *dir, int *handled);
 
+/* cli_args.c: *x = the number s, the whole text, finite; else 0 with "rockfuzz CMD: --OPT 'S': not a
+ * finite number" on stderr. */
+int rf_cli_parse_double(const char *cmd, const char *opt, const char *s, double *x);
+
 /* progress.c: the progress line of one long run (the FE solvers' progress callback). */
 #define RF_CLI_PROGRESS_HZ 4.0    /* redraws per second at most */
 #define RF_CLI_PROGRESS_DELAY 1.0 /* [s] before the first line: short runs stay silent */

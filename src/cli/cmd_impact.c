@@ -245,19 +245,6 @@ static void usage(FILE *f)
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
 }
 
-static int parse_double(const char *opt, const char *s, double *x)
-{
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) {
-        fprintf(stderr, "rockfuzz impact: --%s '%s': not a finite number\n", opt, s);
-        return 0;
-    }
-    *x = v;
-    return 1;
-}
-
 static int parse_int(const char *opt, const char *s, int *x)
 {
     char *end = NULL;
@@ -528,7 +515,7 @@ static int set_option(opt_id id, const char *oname, const char *val, rf_impact_m
         break;
     }
     default:
-        if (!parse_double(oname, val, &x))
+        if (!rf_cli_parse_double("impact", oname, val, &x))
             return EXIT_USAGE;
         switch (id) {
         case O_EN:
@@ -590,7 +577,7 @@ static int read_input(const char *oname, const rf_impact_field *field, const cha
             fprintf(stderr, "rockfuzz impact: --%s: %s\n", oname, err.msg);
             return 0;
         }
-    } else if (!parse_double(oname, val, &x)) {
+    } else if (!rf_cli_parse_double("impact", oname, val, &x)) {
         return 0;
     }
     rf_impact_field_store(in, field, x);

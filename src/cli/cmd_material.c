@@ -162,19 +162,6 @@ static void usage(FILE *f)
         "Exit status: 0 success, 2 invalid command line or input.\n");
 }
 
-static int parse_double(const char *opt, const char *s, double *x)
-{
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) {
-        fprintf(stderr, "rockfuzz material: --%s '%s': not a finite number\n", opt, s);
-        return 0;
-    }
-    *x = v;
-    return 1;
-}
-
 static int parse_increments(const char *s, int *n)
 {
     char *end = NULL;
@@ -215,7 +202,7 @@ static int set_option(driver_args *a, opt_id id, const char *val)
         return parse_path(val, &a->path);
     if (id == O_INCREMENTS)
         return parse_increments(val, &a->increments);
-    if (!parse_double(option_names[id], val, &x))
+    if (!rf_cli_parse_double("material", option_names[id], val, &x))
         return 0;
     *(id == O_STRAIN ? &a->strain : &a->p0) = x;
     return 1;
@@ -227,7 +214,7 @@ static int set_param(driver_args *a, const char *name, size_t len, const char *v
     double x = 0.0;
     char opt[64];
     snprintf(opt, sizeof opt, "%.*s", (int)len, name);
-    if (!parse_double(opt, val, &x))
+    if (!rf_cli_parse_double("material", opt, val, &x))
         return 0;
     for (size_t k = 0; k < a->mp.n; k++) {
         char t[64];
