@@ -247,20 +247,23 @@ typedef struct {
     void *context;             /* the solver's own state (the FE solver's options and workspace) */
 } rf_impact_law_settings;
 
-typedef struct {
+typedef struct rf_impact_law rf_impact_law;
+struct rf_impact_law {
     const char *name; /* the --solver / study-file name */
     const char *help; /* what it computes; '\n' starts a continuation line in --help */
-    /* what the solver cannot take of a valid input (a layer, a plastic body, ...) */
-    rf_status (*validate)(const rf_impact_input *in, const rf_impact_law_settings *s, rf_error *err);
+    /* what the solver (law itself) cannot take of a valid input (a layer, a plastic body, ...) */
+    rf_status (*validate)(const rf_impact_law *law, const rf_impact_input *in, const rf_impact_law_settings *s,
+                          rf_error *err);
     rf_status (*solve)(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
                        rf_error *err);
-} rf_impact_law;
+};
 
 extern const rf_impact_law rf_impact_law_hertz, rf_impact_law_hunter, rf_impact_law_rigid, rf_impact_law_mdr;
 
-/* What every analytic solver refuses: a layer, a plastic body, gravity (the
- * message names the field, its value and the solver). */
-rf_status rf_impact_analytic_supports(const char *solver, const rf_impact_input *in, rf_error *err);
+/* The validate of the analytic solvers: a layer, a plastic body and gravity
+ * refused (the message names the field, its value and law's name). */
+rf_status rf_impact_analytic_validate(const rf_impact_law *law, const rf_impact_input *in,
+                                      const rf_impact_law_settings *s, rf_error *err);
 
 /* --- the Hertz reference every solver sizes itself from (impact_refs.md sec. 1) --- */
 

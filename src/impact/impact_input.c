@@ -301,8 +301,11 @@ void rf_impact_output_clear(rf_impact_output *out)
 /* The analytic models are elastic and homogeneous: a plastic body or a layer
  * needs the FE solver (a rigid boulder is E* = E_s/(1 - nu_s^2) for Hertz,
  * Hunter and rigid; MDR takes the boulder's own elastic constants). */
-rf_status rf_impact_analytic_supports(const char *solver, const rf_impact_input *in, rf_error *err)
+rf_status rf_impact_analytic_validate(const rf_impact_law *law, const rf_impact_input *in,
+                                      const rf_impact_law_settings *s, rf_error *err)
 {
+    const char *solver = law->name;
+    (void)s;
     if (in->layer_thickness > 0)
         return rf_fail(err, RF_EINVAL, "layer_thickness = %g m: the %s solver has no layer (use solver fem)",
                        in->layer_thickness, solver);

@@ -320,10 +320,10 @@ rf_status rf_impact_mdr_hunter(const rf_impact_input *in, double e_n, double hun
 }
 
 /* The analytic checks, and a rigid boulder refused: MDR needs its tangential compliance. */
-static rf_status mdr_validate(const rf_impact_input *in, const rf_impact_law_settings *s, rf_error *err)
+static rf_status mdr_validate(const rf_impact_law *law, const rf_impact_input *in, const rf_impact_law_settings *s,
+                              rf_error *err)
 {
-    (void)s;
-    rf_status st = rf_impact_analytic_supports("mdr", in, err);
+    rf_status st = rf_impact_analytic_validate(law, in, s, err);
     if (st == RF_OK && in->boulder_material == RF_MATERIAL_RIGID_BODY)
         return rf_fail(err, RF_EINVAL, "boulder_material = rigid: the mdr solver takes the boulder's elastic "
                        "constants (its tangential compliance); use hertz, hunter, rigid or fem");

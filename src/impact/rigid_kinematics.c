@@ -57,29 +57,3 @@ rf_status rf_impact_rigid(const rf_impact_input *in, double e_n, rf_impact_outpu
      * not defined by a rigid-body model and stay NaN. */
     return rf_impact_kinematics_(in, e_n, out, err);
 }
-
-static rf_status rigid_validate(const rf_impact_input *in, const rf_impact_law_settings *s, rf_error *err)
-{
-    (void)s;
-    return rf_impact_analytic_supports("rigid", in, err);
-}
-
-/* e_n = NaN: Hunter's e_n of the input. */
-static rf_status rigid_solve(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
-                             rf_error *err)
-{
-    double e_n = s->e_n;
-    if (isnan(e_n)) {
-        rf_impact_output h;
-        rf_status st = rf_impact_hunter_A(in, s->hunter_coefficient, &h, err);
-        if (st != RF_OK) {
-            rf_impact_output_clear(out);
-            return st;
-        }
-        e_n = h.R_n;
-    }
-    return rf_impact_rigid(in, e_n, out, err);
-}
-
-const rf_impact_law rf_impact_law_rigid = {"rigid", "rigid-body impact with Coulomb friction", rigid_validate,
-                                           rigid_solve};

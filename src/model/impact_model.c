@@ -109,9 +109,10 @@ typedef struct {
     char *warning;
 } fem_context;
 
-static rf_status fem_validate(const rf_impact_input *in, const rf_impact_law_settings *s, rf_error *err)
+static rf_status fem_validate(const rf_impact_law *law, const rf_impact_input *in, const rf_impact_law_settings *s,
+                              rf_error *err)
 {
-    (void)in, (void)s, (void)err;
+    (void)law, (void)in, (void)s, (void)err;
     return RF_OK; /* the FE solver takes every valid input */
 }
 
@@ -141,7 +142,7 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
     const rf_impact_law_settings settings = {spec->e_n, spec->hunter_coefficient, &fc};
     const rf_impact_law *law = solvers[st == RF_OK ? spec->solver : 0];
     if (st == RF_OK)
-        st = law->validate(in, &settings, err);
+        st = law->validate(law, in, &settings, err);
     if (st != RF_OK) {
         rf_impact_output_clear(out);
         return st;
@@ -499,7 +500,8 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
         return rf_fail(err, RF_EINVAL, "impact model base input: %s", local.msg);
     }
     const rf_impact_law_settings settings = {c->spec.e_n, c->spec.hunter_coefficient, NULL};
-    if (solvers[c->spec.solver]->validate(&probe, &settings, &local) != RF_OK) {
+    const rf_impact_law *law = solvers[c->spec.solver];
+    if (law->validate(law, &probe, &settings, &local) != RF_OK) {
         ctx_destroy(c);
         return rf_fail(err, RF_EINVAL, "impact model: %s", local.msg);
     }
