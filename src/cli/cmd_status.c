@@ -50,27 +50,16 @@ static int lock_held(const char *dir, char *holder, size_t size)
 
 int rf_cli_status(int argc, char **argv)
 {
-    const char *dir = NULL;
-    for (int a = 1; a < argc; a++) {
-        if (!strcmp(argv[a], "-h") || !strcmp(argv[a], "--help")) {
-            printf("Usage: rockfuzz status DIR\n\n"
-                   "Progress of the study run whose output directory is DIR, read from\n"
-                   "DIR/store.sqlite without changing it (safe while the run goes on): points\n"
-                   "planned, done, failed, rate, estimated time left, last update, and whether\n"
-                   "the run is running, stopped or finished; the failed evaluations are listed.\n"
-                   "Exit status: 0 on success, 1 if DIR holds no readable rockfuzz store.\n");
-            return 0;
-        }
-        if (argv[a][0] == '-' || dir) {
-            fprintf(stderr, "rockfuzz status: unexpected argument '%s' (see `rockfuzz status --help`)\n", argv[a]);
-            return 2;
-        }
-        dir = argv[a];
-    }
-    if (!dir) {
-        fprintf(stderr, "rockfuzz status: missing the run directory (see `rockfuzz status --help`)\n");
-        return 2;
-    }
+    int status = 0;
+    const char *dir = rf_cli_dir_argument("status", argc, argv,
+        "Usage: rockfuzz status DIR\n\n"
+        "Progress of the study run whose output directory is DIR, read from\n"
+        "DIR/store.sqlite without changing it (safe while the run goes on): points\n"
+        "planned, done, failed, rate, estimated time left, last update, and whether\n"
+        "the run is running, stopped or finished; the failed evaluations are listed.\n"
+        "Exit status: 0 on success, 1 if DIR holds no readable rockfuzz store.\n", &status);
+    if (!dir)
+        return status;
     char path[PATH_MAX], result[PATH_MAX];
     snprintf(path, sizeof path, "%s/%s", dir, RF_STORE_FILE);
     snprintf(result, sizeof result, "%s/result.json", dir);
