@@ -3,9 +3,7 @@
 # Hertz numbers of impact_refs.md sec. 1.2, and bad input rejected with a
 # message naming the option.  Usage: bash cli_impact.sh ROCKFUZZ SOURCE_DIR
 set -u
-bin=$1
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
 
 # --- JSON output parses and matches Hertz at 1, 10, 30 m/s ---
 check_hertz() { # velocity F delta t_c a

@@ -5,9 +5,7 @@
 # with a message naming the option and value.
 # Usage: bash cli_material.sh ROCKFUZZ SOURCE_DIR
 set -u
-bin=$1
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
 
 # check 'python assertion over o (the JSON object)' args...
 check() {

@@ -4,9 +4,7 @@
 # 1e-4), gross sliding equal to the rigid formula, Hunter's e_n as the default,
 # and a bad e_n rejected.  Usage: bash cli_mdr.sh ROCKFUZZ SOURCE_DIR
 set -u
-bin=$1
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
 json_get() { # json key
     echo "$1" | sed -n "s/.*\"$2\": \([-0-9.eE+]*\).*/\1/p"
 }

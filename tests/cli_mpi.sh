@@ -6,8 +6,8 @@
 # message) when mpirun is absent or the binary was built without MPI.
 # Usage: bash cli_mpi.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 if ! command -v mpirun > /dev/null; then
     echo "cli_mpi: SKIPPED: mpirun not found (apt-get install openmpi-bin libopenmpi-dev)"
     exit 0
@@ -28,10 +28,6 @@ fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader OMPI_MCA_rmaps_base_oversubscribe=1
 # sanitizer builds: Open MPI's own allocations at exit are not our leaks
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 mpi() { timeout 120 mpirun --allow-run-as-root --oversubscribe "$@"; }
 
 cat > "$tmp/s.yaml" <<'EOF2'

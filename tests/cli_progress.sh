@@ -6,13 +6,8 @@
 # terminal is a pty from script(1).  `rockfuzz run` follows the same rule.
 # Usage: bash cli_progress.sh ROCKFUZZ SOURCE_DIR
 set -u
-bin=$1
-src=$2
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp" # fontconfig
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 fem=(impact --solver fem --refinement 14) # an axisymmetric run of about 1 s
 # the first line after 0.1 s instead of 1 s, so that the run draws a few lines on a fast machine too
 export ROCKFUZZ_PROGRESS_DELAY=0.1

@@ -13,10 +13,8 @@
 #   count options are bounded on the command line.
 # Usage: bash cli_reliability.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 pid=""
 cleanup() {
     [ -n "$pid" ] && kill -9 "$pid" 2>/dev/null
@@ -25,8 +23,6 @@ cleanup() {
     rm -rf "$tmp"
 }
 trap cleanup EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 
 # A slow model that leaves a setsid grandchild behind (which must not survive).
 cat > "$tmp/model.sh" <<EOF2

@@ -8,13 +8,8 @@
 # refused by name.
 # Usage: bash cli_report_trajectory.sh ROCKFUZZ SOURCE_DIR
 set -u
-bin=$1
-src=$2
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp" # fontconfig
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 mkdir "$tmp/in dir" # a space in the recorded path
 t="$tmp/in dir/t.yaml"

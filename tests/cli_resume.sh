@@ -8,14 +8,10 @@
 # refused and left unchanged, failures stored with --tolerate-failures.
 # Usage: bash cli_resume.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 pid=""
 trap '[ -n "$pid" ] && kill -9 $pid 2>/dev/null; rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 
 cat > "$tmp/model.sh" <<'EOF2'
 #!/bin/sh

@@ -4,14 +4,8 @@
 # output files, and bad inputs (non-zero exit, file:line on stderr, no result.json).
 # Usage: bash cli_run.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-# fontconfig's process-lifetime caches are not our leaks (sanitizer builds only)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 # ---- 6.1: product, reduced form, no left/right grid: 17 evaluations ----
 cat > "$tmp/a.yaml" <<'EOF'

@@ -9,13 +9,8 @@
 # s5_v5 checks the energy bound R_n^2 + W_p/KE <= 1 (+ the energy error).
 # Usage: bash cli_s5_studies.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 for v in 5 10 20; do
     f="$src/examples/s5_v$v.yaml"

@@ -6,13 +6,8 @@
 # the same arguments when stdout is /dev/null (so the failure is the write's).
 # Usage: bash cli_stdout.sh ROCKFUZZ SOURCE_DIR
 set -u
-bin=$1
-src=$2
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp" # fontconfig
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 [ -w /dev/full ] || { echo "SKIP: no /dev/full"; exit 0; }
 
 # check ARGS...: exit 0 into /dev/null, non-zero with the message into /dev/full

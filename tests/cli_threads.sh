@@ -6,13 +6,8 @@
 # option and value named (exit 2); --help says so.
 # Usage: bash cli_threads.sh ROCKFUZZ SOURCE_DIR
 set -u
-bin=$1
-src=$2
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp" # fontconfig
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 cat > "$tmp/s.yaml" <<EOF2
 name: threads

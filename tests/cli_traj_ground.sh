@@ -5,12 +5,8 @@
 # and a vertex at 3.4e38 m (a DEM's no-data) is refused with file:line, the
 # point and its value, exit 1.  Usage: bash cli_traj_ground.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$2/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 cat > "$tmp/step.yaml" <<'Y'
 profile: {points: [[-20, 5], [0, 0], [10, 0], [10, 10], [20, 10]], material: rock}

@@ -5,13 +5,8 @@
 # with file:line: field = value, a bad option exits 2; the hybrid example
 # study loads.  Usage: bash cli_trajectory.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 "$bin" trajectory "$src/examples/trajectory/cliff.yaml" > "$tmp/summary.txt" || fail "cliff.yaml did not run"
 grep -q "stopped at t = " "$tmp/summary.txt" || fail "no rest point in the summary"

@@ -5,13 +5,8 @@
 # The MPI part is skipped when mpirun is absent or the build has no MPI.
 # Usage: bash cli_trajectory_mpi.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 cat > "$tmp/t.yaml" <<'EOF'
 profile: {points: [[0, 30], [20, 18], [30, 17], [50, 5], [90, 0]], materials: [rock, rock, soil, soil]}

@@ -236,6 +236,35 @@ double rf_hunter_loss(const rf_impact_input *in, double A);
 rf_status rf_impact_hunter_A(const rf_impact_input *in, double A, rf_impact_output *out,
                              rf_error *err);
 
+/* --- the analytic impact solvers as a registry (GSL style) ---
+ * Each solver is one rf_impact_law in its own file (hertz.c: hertz, hunter;
+ * rigid_kinematics.c: rigid; mdr.c: mdr), listed once with the FE solver in
+ * the impact model's table (src/model/impact_solvers.c), whose order is
+ * rf_impact_solver's.  `--solver`'s help and error listing loop over it. */
+typedef struct {
+    double e_n;                /* normal COR in [0, 1]; NaN: Hunter's e_n from the input */
+    double hunter_coefficient; /* A of Hunter's loss */
+    void *context;             /* the solver's own state (the FE solver's options and workspace) */
+} rf_impact_law_settings;
+
+typedef struct rf_impact_law rf_impact_law;
+struct rf_impact_law {
+    const char *name; /* the --solver / study-file name */
+    const char *help; /* what it computes; '\n' starts a continuation line in --help */
+    /* what the solver (law itself) cannot take of a valid input (a layer, a plastic body, ...) */
+    rf_status (*validate)(const rf_impact_law *law, const rf_impact_input *in, const rf_impact_law_settings *s,
+                          rf_error *err);
+    rf_status (*solve)(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
+                       rf_error *err);
+};
+
+extern const rf_impact_law rf_impact_law_hertz, rf_impact_law_hunter, rf_impact_law_rigid, rf_impact_law_mdr;
+
+/* The validate of the analytic solvers: a layer, a plastic body and gravity
+ * refused (the message names the field, its value and law's name). */
+rf_status rf_impact_analytic_validate(const rf_impact_law *law, const rf_impact_input *in,
+                                      const rf_impact_law_settings *s, rf_error *err);
+
 /* --- the Hertz reference every solver sizes itself from (impact_refs.md sec. 1) --- */
 
 /* Hertz impact on a half-space with the normal velocity component.  One

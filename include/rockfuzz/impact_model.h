@@ -27,7 +27,12 @@ typedef enum {
     RF_IMPACT_MDR       /* Hertz + Mindlin-Deresiewicz partial slip (rockfuzz/mdr.h), e_n given */
 } rf_impact_solver;
 
-/* "fem" | "hertz" | "hunter" | "rigid" | "mdr" <-> enum. */
+/* The registry of solvers (rf_impact_law, impact.h), in rf_impact_solver
+ * order: their number, and solver s's entry (NULL out of range). */
+size_t rf_impact_n_solvers(void);
+const rf_impact_law *rf_impact_solver_law(rf_impact_solver s);
+
+/* "fem" | "hertz" | "hunter" | "rigid" | "mdr" <-> enum (the registry's names). */
 const char *rf_impact_solver_name(rf_impact_solver s);
 rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err);
 

@@ -78,6 +78,64 @@ typedef struct {
     double compaction;            /* cap hardening variable eps_c >= 0 [-] */
 } rf_material_state;
 
+/* The registry of laws (GSL style): each law is one entry in its own file
+ * (material_elastic.c, material_j2.c, material_dp.c) with its parameter
+ * table, validation and return map, listed once in material_registry.c in
+ * rf_material_model order.  The defaults, the validation of single values,
+ * `rockfuzz material` (its options, --help and required options) and the
+ * names in messages loop over these tables. */
+typedef enum {
+    RF_MATERIAL_RULE_POSITIVE = 0, /* finite and > 0 */
+    RF_MATERIAL_RULE_NONNEGATIVE,  /* finite and >= 0 */
+    RF_MATERIAL_RULE_POISSON,      /* in (-1, 0.5) */
+    RF_MATERIAL_RULE_ANGLE         /* in [0, 90) degrees; given in degrees, stored in radians */
+} rf_material_rule;
+
+enum {
+    RF_MATERIAL_PARAM_REQUIRED = 1, /* the command line needs it with its law */
+    RF_MATERIAL_PARAM_SWITCH = 2    /* 0 = the feature is off: a value given must be > 0 */
+};
+
+/* One parameter: a double of rf_material_params. */
+typedef struct {
+    const char *name;     /* the field's name, the start of its messages ("name = value ...");
+                             the option --name with '-' for '_' */
+    size_t offset;        /* offsetof(rf_material_params, field) */
+    const char *unit;     /* "Pa", "deg" (radians stored) or "-" */
+    const char *metavar;  /* the value's word in --help (PA, DEG, NU, EPS) */
+    double default_value; /* as stored (SI, radians) */
+    rf_material_rule rule;
+    int flags;            /* RF_MATERIAL_PARAM_* */
+    const char *together; /* a parameter that must be given with this one, or NULL */
+    const char *feature;  /* what a switch (or a pair) turns on, for messages ("cap"), or NULL */
+    const char *help;     /* what it is, "{}" where --help shows its rule; '\n' starts a
+                             continuation line */
+} rf_material_param;
+
+/* What a law shows of itself. */
+typedef struct {
+    const char *name;                /* "elastic", "von_mises", "drucker_prager" */
+    const char *help;                /* a few words */
+    const rf_material_param *params; /* its own, besides rf_material_common_params */
+    size_t n_params;
+} rf_material_law_info;
+
+/* E and poisson, which every law takes. */
+extern const rf_material_param rf_material_common_params[2];
+
+/* The number of laws, and law k (k = its rf_material_model); NULL out of range. */
+size_t rf_material_n_laws(void);
+const rf_material_law_info *rf_material_law(rf_material_model model);
+
+/* The parameter called name (common or of any law), or NULL. */
+const rf_material_param *rf_material_param_find(const char *name);
+
+/* The field of p a parameter describes. */
+double *rf_material_param_field(rf_material_params *p, const rf_material_param *param);
+
+/* Checks one value against its rule; the message starts "name = value". */
+rf_status rf_material_param_check(const rf_material_param *param, double value, rf_error *err);
+
 /* Elastic defaults (E = 68.2 GPa, nu = 0.25, granite) and zero for the rest. */
 void rf_material_params_default(rf_material_params *p);
 
@@ -119,6 +177,7 @@ double rf_material_elastic_energy(const rf_material *m, const double sig[6]);
  * tangent stiffness, so this bounds the explicit time step. */
 double rf_material_wave_speed(const rf_material *m, double density);
 
+/* The registry's names <-> rf_material_model ("unknown" out of range). */
 const char *rf_material_model_name(rf_material_model model);
 rf_status rf_material_model_parse(const char *name, rf_material_model *model, rf_error *err);
 

@@ -22,6 +22,13 @@ int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall traj
 #define RF_CLI_RESULT_MAX (256 << 20) /* bytes of a result.json read back */
 int rf_cli_trajectory_report(const char *dir, int *handled);
 
+/* cli_args.c: *x = the number s, the whole text, finite; else 0 with "rockfuzz CMD: --OPT 'S': not a
+ * finite number" on stderr. */
+int rf_cli_parse_double(const char *cmd, const char *opt, const char *s, double *x);
+/* cli_args.c: the one DIR argument of `rockfuzz CMD DIR`; NULL when the command is done, with the exit
+ * status in *status: 0 after -h/--help printed help, 2 after a usage error (message printed). */
+const char *rf_cli_dir_argument(const char *cmd, int argc, char **argv, const char *help, int *status);
+
 /* progress.c: the progress line of one long run (the FE solvers', the trajectory Monte Carlo's callback). */
 #define RF_CLI_PROGRESS_HZ 4.0    /* redraws per second at most */
 #define RF_CLI_PROGRESS_DELAY 1.0 /* [s] before the first line: short runs stay silent */

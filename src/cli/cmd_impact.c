@@ -106,6 +106,27 @@ static void input_usage(FILE *f)
     }
 }
 
+/* --solver's lines, from the solver registry (impact_model.h). */
+static void solver_usage(FILE *f)
+{
+    fprintf(f, "  --solver NAME            ");
+    for (size_t k = 0; k < rf_impact_n_solvers(); k++)
+        fprintf(f, "%s%s", k ? " | " : "", rf_impact_solver_name((rf_impact_solver)k));
+    fprintf(f, " (default %s)\n", rf_impact_solver_name(RF_IMPACT_FEM));
+    for (size_t k = 0; k < rf_impact_n_solvers(); k++) {
+        const rf_impact_law *law = rf_impact_solver_law((rf_impact_solver)k);
+        char head[32];
+        snprintf(head, sizeof head, "%s:", law->name);
+        fprintf(f, "%27s%-8s", "", head);
+        for (const char *c = law->help; *c; c++)
+            if (*c == '\n')
+                fprintf(f, "\n%35s", "");
+            else
+                fputc(*c, f);
+        fputc('\n', f);
+    }
+}
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -135,17 +156,9 @@ static void usage(FILE *f)
         "  --layer-material M       as the slope's (default elastic)\n"
         "  The dilatancy cutoff is the critical state: (e_cs - e0) / (1 + e0) from void ratios.\n"
         "\n"
-        "Model:\n"
-        "  --solver NAME            fem | hertz | hunter | rigid | mdr (default fem)\n"
-        "                           fem:    explicit FE; axisymmetric for a normal impact\n"
-        "                                   (Coulomb friction on a plastic body), 3D half\n"
-        "                                   model for a slope or friction between elastic\n"
-        "                                   dissimilar bodies (docs/impact.md)\n"
-        "                           hertz:  elastic Hertz, R_n = 1\n"
-        "                           hunter: Hertz + Hunter (1957) wave loss\n"
-        "                           rigid:  rigid-body impact with Coulomb friction\n"
-        "                           mdr:    Hertz + exact Mindlin-Deresiewicz partial slip\n"
-        "                                   (elastic tangential compliance, micro-slip)\n"
+        "Model:\n");
+    solver_usage(f);
+    fprintf(f,
         "  --e-n EN                 rigid, mdr: normal COR in [0, 1] (default: Hunter's\n"
         "                           e_n; --e-n 1 makes the mdr impact purely elastic)\n"
         "  --hunter-A A             Hunter coefficient A (default 1.04; band 1.112-1.171)\n"
@@ -230,19 +243,6 @@ static void usage(FILE *f)
         "  -h, --help               show this help\n"
         "\n"
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
-}
-
-static int parse_double(const char *opt, const char *s, double *x)
-{
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) {
-        fprintf(stderr, "rockfuzz impact: --%s '%s': not a finite number\n", opt, s);
-        return 0;
-    }
-    *x = v;
-    return 1;
 }
 
 static int parse_int(const char *opt, const char *s, int *x)
@@ -515,7 +515,7 @@ static int set_option(opt_id id, const char *oname, const char *val, rf_impact_m
         break;
     }
     default:
-        if (!parse_double(oname, val, &x))
+        if (!rf_cli_parse_double("impact", oname, val, &x))
             return EXIT_USAGE;
         switch (id) {
         case O_EN:
@@ -577,7 +577,7 @@ static int read_input(const char *oname, const rf_impact_field *field, const cha
             fprintf(stderr, "rockfuzz impact: --%s: %s\n", oname, err.msg);
             return 0;
         }
-    } else if (!parse_double(oname, val, &x)) {
+    } else if (!rf_cli_parse_double("impact", oname, val, &x)) {
         return 0;
     }
     rf_impact_field_store(in, field, x);

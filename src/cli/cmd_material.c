@@ -26,37 +26,20 @@
 typedef enum { PATH_UNIAXIAL, PATH_SHEAR, PATH_HYDROSTATIC } strain_path;
 static const char *const path_names[] = {"uniaxial_strain", "simple_shear", "hydrostatic"};
 
-typedef enum {
-    O_MODEL, O_E, O_NU, O_YIELD, O_HARDENING, O_COHESION, O_PHI, O_PSI, O_CAP_P, O_CAP_H, O_DCUT,
-    O_PATH, O_STRAIN, O_P0, O_INCREMENTS, O_JSON, O_HISTORY, O_HELP, O_COUNT
-} opt_id;
+typedef enum { O_MODEL, O_PATH, O_STRAIN, O_P0, O_INCREMENTS, O_JSON, O_HISTORY, O_HELP, O_COUNT } opt_id;
+static const char *const option_names[O_COUNT] = {"model", "path", "strain", "initial-mean-stress",
+                                                  "increments", "json", "history", "help"};
 
-/* owner: the model an option belongs to (-1: any). */
-static const struct {
-    opt_id id;
-    const char *name;
-    int owner;
-} options[] = {
-    {O_MODEL, "model", -1},
-    {O_E, "E", -1},
-    {O_NU, "poisson", -1},
-    {O_YIELD, "yield", RF_MATERIAL_VON_MISES},
-    {O_HARDENING, "hardening", RF_MATERIAL_VON_MISES},
-    {O_COHESION, "cohesion", RF_MATERIAL_DRUCKER_PRAGER},
-    {O_PHI, "friction-angle", RF_MATERIAL_DRUCKER_PRAGER},
-    {O_PSI, "dilatancy-angle", RF_MATERIAL_DRUCKER_PRAGER},
-    {O_CAP_P, "cap-pressure", RF_MATERIAL_DRUCKER_PRAGER},
-    {O_CAP_H, "cap-hardening", RF_MATERIAL_DRUCKER_PRAGER},
-    {O_DCUT, "dilatancy-cutoff", RF_MATERIAL_DRUCKER_PRAGER},
-    {O_PATH, "path", -1},
-    {O_STRAIN, "strain", -1},
-    {O_P0, "initial-mean-stress", -1},
-    {O_INCREMENTS, "increments", -1},
-    {O_JSON, "json", -1},
-    {O_HISTORY, "history", -1},
-    {O_HELP, "help", -1},
-};
-#define N_OPTIONS (sizeof options / sizeof options[0])
+/* The material parameters of every law (material.h's registry): their
+ * options are their names with '-' for '_'. */
+#define MAX_PARAMS 64
+typedef struct {
+    const rf_material_param *param[MAX_PARAMS];
+    int owner[MAX_PARAMS];     /* the law (-1: every law) */
+    const char *given[MAX_PARAMS]; /* the value text the user gave */
+    double value[MAX_PARAMS];      /* and its value (SI, radians) */
+    size_t n;
+} param_options;
 
 typedef struct {
     rf_material_params params;
@@ -64,7 +47,83 @@ typedef struct {
     double strain, p0;
     int increments, json, history;
     const char *given[O_COUNT]; /* the value text the user gave */
+    param_options mp;
 } driver_args;
+
+static void collect_params(param_options *o)
+{
+    o->n = 0;
+    for (size_t i = 0; i < 2; i++)
+        o->param[o->n] = &rf_material_common_params[i], o->owner[o->n++] = -1;
+    for (size_t k = 0; k < rf_material_n_laws(); k++) {
+        const rf_material_law_info *law = rf_material_law((rf_material_model)k);
+        for (size_t i = 0; i < law->n_params && o->n < MAX_PARAMS; i++)
+            o->param[o->n] = &law->params[i], o->owner[o->n++] = (int)k;
+    }
+}
+
+/* The option of a parameter: "friction_angle" -> "friction-angle". */
+static const char *option_text(const rf_material_param *p, char *buf, size_t size)
+{
+    size_t i = 0;
+    for (; p->name[i] && i + 1 < size; i++)
+        buf[i] = p->name[i] == '_' ? '-' : p->name[i];
+    buf[i] = '\0';
+    return buf;
+}
+
+/* The index of the parameter an option (len characters of name) sets, of the
+ * law `owner` or any (-2), or -1. */
+static int param_index(const param_options *o, const char *name, size_t len, int owner)
+{
+    char buf[64];
+    for (size_t k = 0; k < o->n; k++) {
+        const char *t = option_text(o->param[k], buf, sizeof buf);
+        if (strlen(t) == len && !strncmp(t, name, len) && (owner == -2 || o->owner[k] < 0 || o->owner[k] == owner))
+            return (int)k;
+    }
+    return -1;
+}
+
+/* The help text of one parameter: its help with the rule at "{}", then required or its default. */
+static void param_usage(FILE *f, const rf_material_param *p)
+{
+    static const char *const rules[] = {"> 0", ">= 0", "in (-1, 0.5)", "in [0, 90)"};
+    const int sw = p->flags & RF_MATERIAL_PARAM_SWITCH;
+    char opt[64], head[96];
+    snprintf(head, sizeof head, "--%s %s", option_text(p, opt, sizeof opt), p->metavar);
+    fprintf(f, "  %-24s ", head);
+    for (const char *c = p->help; *c; c++)
+        if (c[0] == '{' && c[1] == '}')
+            fputs(sw ? "> 0" : rules[p->rule], f), c++;
+        else if (*c == '\n')
+            fprintf(f, "\n%27s", "");
+        else
+            fputc(*c, f);
+    if (p->flags & RF_MATERIAL_PARAM_REQUIRED)
+        fprintf(f, " (required)\n");
+    else if (sw)
+        fprintf(f, " (default: no %s)\n", p->feature);
+    else
+        fprintf(f, " (default %g)\n", p->default_value * (p->rule == RF_MATERIAL_RULE_ANGLE ? 180.0 / RF_PI : 1.0));
+}
+
+static void model_usage(FILE *f)
+{
+    fprintf(f, "Model:\n  --model NAME             ");
+    for (size_t k = 0; k < rf_material_n_laws(); k++)
+        fprintf(f, "%s%s", k ? " | " : "", rf_material_law((rf_material_model)k)->name);
+    fprintf(f, " (required)\n");
+    for (size_t i = 0; i < 2; i++)
+        param_usage(f, &rf_material_common_params[i]);
+    for (size_t k = 0; k < rf_material_n_laws(); k++) {
+        const rf_material_law_info *law = rf_material_law((rf_material_model)k);
+        if (law->n_params)
+            fprintf(f, "  %s (%s):\n", law->name, law->help);
+        for (size_t i = 0; i < law->n_params; i++)
+            param_usage(f, &law->params[i]);
+    }
+}
 
 static void usage(FILE *f)
 {
@@ -75,26 +134,9 @@ static void usage(FILE *f)
         "Drive one material point along a strain path from an isotropic stress state and\n"
         "print the final stress (single-element test; models and equations in\n"
         "docs/materials.md).  Units SI (Pa), angles in degrees, tension positive.\n"
-        "\n"
-        "Model:\n"
-        "  --model NAME             elastic | von_mises | drucker_prager (required)\n"
-        "  --E PA                   Young's modulus > 0 (required)\n"
-        "  --poisson NU             Poisson's ratio in (-1, 0.5) (required)\n"
-        "  von_mises:\n"
-        "  --yield PA               initial yield stress Y > 0 (required)\n"
-        "  --hardening PA           H >= 0, sigma_eq = Y + H eps_p_eq (default 0)\n"
-        "  drucker_prager (cone matched to Mohr-Coulomb in triaxial compression):\n"
-        "  --cohesion PA            c >= 0 (required)\n"
-        "  --friction-angle DEG     phi in [0, 90) (required)\n"
-        "  --dilatancy-angle DEG    psi in [0, phi] (default 0; < phi: non-associated)\n"
-        "  --cap-pressure PA        crush pressure X0 > 0: the compressive mean stress\n"
-        "                           where plastic compaction starts (flat cap)\n"
-        "  --cap-hardening PA       H_c >= 0: X = X0 + H_c eps_c, eps_c the plastic\n"
-        "                           compaction; the cap is on only when both are given\n"
-        "  --dilatancy-cutoff EPS   > 0: the plastic volumetric strain at which the\n"
-        "                           dilatancy stops (critical state); from void ratios,\n"
-        "                           (e_cs - e0) / (1 + e0), e_cs the critical-state\n"
-        "                           void ratio (default: no cutoff)\n"
+        "\n");
+    model_usage(f);
+    fprintf(f,
         "\n"
         "Path:\n"
         "  --path NAME              uniaxial_strain: eps_xx = S, other strains zero\n"
@@ -118,19 +160,6 @@ static void usage(FILE *f)
         "    --path uniaxial_strain --strain -0.05 --json\n"
         "\n"
         "Exit status: 0 success, 2 invalid command line or input.\n");
-}
-
-static int parse_double(const char *opt, const char *s, double *x)
-{
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) {
-        fprintf(stderr, "rockfuzz material: --%s '%s': not a finite number\n", opt, s);
-        return 0;
-    }
-    *x = v;
-    return 1;
 }
 
 static int parse_increments(const char *s, int *n)
@@ -158,14 +187,13 @@ static int parse_path(const char *s, strain_path *path)
     return 0;
 }
 
-/* Stores one valued option; 0 on a bad value (message printed). */
-static int set_option(driver_args *a, opt_id id, const char *name, const char *val)
+/* Stores one valued option of the fixed set; 0 on a bad value (message printed). */
+static int set_option(driver_args *a, opt_id id, const char *val)
 {
-    rf_material_params *p = &a->params;
-    double x = 0.0, deg = RF_PI / 180.0;
+    double x = 0.0;
     if (id == O_MODEL) {
         rf_error err = {0};
-        if (rf_material_model_parse(val, &p->model, &err) == RF_OK)
+        if (rf_material_model_parse(val, &a->params.model, &err) == RF_OK)
             return 1;
         fprintf(stderr, "rockfuzz material: --model: %s\n", err.msg);
         return 0;
@@ -174,24 +202,40 @@ static int set_option(driver_args *a, opt_id id, const char *name, const char *v
         return parse_path(val, &a->path);
     if (id == O_INCREMENTS)
         return parse_increments(val, &a->increments);
-    if (!parse_double(name, val, &x))
+    if (!rf_cli_parse_double("material", option_names[id], val, &x))
         return 0;
-    switch (id) {
-    case O_E: p->E = x; break;
-    case O_NU: p->poisson = x; break;
-    case O_YIELD: p->yield = x; break;
-    case O_HARDENING: p->hardening = x; break;
-    case O_COHESION: p->cohesion = x; break;
-    case O_PHI: p->friction_angle = x * deg; break;
-    case O_PSI: p->dilatancy_angle = x * deg; break;
-    case O_CAP_P: p->cap_pressure = x; break;
-    case O_CAP_H: p->cap_hardening = x; break;
-    case O_DCUT: p->dilatancy_cutoff = x; break;
-    case O_STRAIN: a->strain = x; break;
-    case O_P0: a->p0 = x; break;
-    default: break;
+    *(id == O_STRAIN ? &a->strain : &a->p0) = x;
+    return 1;
+}
+
+/* Stores one material parameter (the same name in every law that has it). */
+static int set_param(driver_args *a, const char *name, size_t len, const char *val)
+{
+    double x = 0.0;
+    char opt[64];
+    snprintf(opt, sizeof opt, "%.*s", (int)len, name);
+    if (!rf_cli_parse_double("material", opt, val, &x))
+        return 0;
+    for (size_t k = 0; k < a->mp.n; k++) {
+        char t[64];
+        if (strlen(option_text(a->mp.param[k], t, sizeof t)) != len || strncmp(t, name, len))
+            continue;
+        const rf_material_param *p = a->mp.param[k];
+        *rf_material_param_field(&a->params, p) = p->rule == RF_MATERIAL_RULE_ANGLE ? x * (RF_PI / 180.0) : x;
+        a->mp.given[k] = val;
+        a->mp.value[k] = *rf_material_param_field(&a->params, p);
     }
     return 1;
+}
+
+/* The option (len characters of name): a fixed one (its id), a material parameter (O_COUNT + 1) or
+ * unknown (O_COUNT). */
+static int find_option(const driver_args *a, const char *name, size_t len)
+{
+    for (int k = 0; k < O_COUNT; k++)
+        if (strlen(option_names[k]) == len && !strncmp(option_names[k], name, len))
+            return k;
+    return param_index(&a->mp, name, len, -2) >= 0 ? O_COUNT + 1 : O_COUNT;
 }
 
 /* -1: error (printed), 0: go on, 1: --help shown. */
@@ -206,17 +250,15 @@ static int parse_args(int argc, char **argv, driver_args *a)
             return -1;
         }
         const char *name = arg + 2, *eq = strchr(name, '=');
-        size_t len = eq ? (size_t)(eq - name) : strlen(name), k = 0;
-        while (k < N_OPTIONS && !(strlen(options[k].name) == len && !strncmp(options[k].name, name, len)))
-            k++;
-        if (k == N_OPTIONS) {
+        size_t len = eq ? (size_t)(eq - name) : strlen(name);
+        const int id = find_option(a, name, len);
+        if (id == O_COUNT) {
             fprintf(stderr, "rockfuzz material: unknown option '--%.*s' (try --help)\n", (int)len, name);
             return -1;
         }
-        opt_id id = options[k].id;
         if (id == O_HELP || id == O_JSON || id == O_HISTORY) {
             if (eq) {
-                fprintf(stderr, "rockfuzz material: option '--%s' takes no value\n", options[k].name);
+                fprintf(stderr, "rockfuzz material: option '--%s' takes no value\n", option_names[id]);
                 return -1;
             }
             if (id == O_HELP)
@@ -226,97 +268,122 @@ static int parse_args(int argc, char **argv, driver_args *a)
         }
         const char *val = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
         if (!val) {
-            fprintf(stderr, "rockfuzz material: option '--%s' needs a value\n", options[k].name);
+            fprintf(stderr, "rockfuzz material: option '--%.*s' needs a value\n", (int)len, name);
             return -1;
         }
-        a->given[id] = val;
-        if (!set_option(a, id, options[k].name, val))
+        if (id < O_COUNT)
+            a->given[id] = val;
+        if (!(id < O_COUNT ? set_option(a, (opt_id)id, val) : set_param(a, name, len, val)))
             return -1;
     }
     return 0;
 }
 
-static const char *option_name(opt_id id)
+/* The value text and option of parameter k. */
+static const char *param_option(const driver_args *a, size_t k, char *buf, size_t size)
 {
-    for (size_t k = 0; k < N_OPTIONS; k++)
-        if (options[k].id == id)
-            return options[k].name;
-    return "?";
+    return option_text(a->mp.param[k], buf, size);
 }
 
-/* 0 (message printed) when the option a model needs is missing. */
-static int require(const driver_args *a, opt_id id)
+/* No option of another law. */
+static int check_foreign(const driver_args *a)
 {
-    if (a->given[id])
+    const rf_material_model model = a->params.model;
+    char opt[64];
+    for (size_t k = 0; k < a->mp.n; k++) {
+        const int mine = a->mp.owner[k] < 0 || a->mp.owner[k] == (int)model;
+        param_option(a, k, opt, sizeof opt);
+        if (a->mp.given[k] && !mine && param_index(&a->mp, opt, strlen(opt), (int)model) < 0) {
+            fprintf(stderr, "rockfuzz material: --%s %s: not an option of --model %s\n", opt, a->mp.given[k],
+                    rf_material_model_name(model));
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* One parameter of the law: given when required, its partner given with it, a switch > 0. */
+static int check_param(const driver_args *a, size_t k)
+{
+    const rf_material_param *p = a->mp.param[k];
+    const char *given = a->mp.given[k];
+    char opt[64], other[64];
+    param_option(a, k, opt, sizeof opt);
+    if (!given && (p->flags & RF_MATERIAL_PARAM_REQUIRED)) {
+        if (a->mp.owner[k] < 0)
+            fprintf(stderr, "rockfuzz material: --%s is required (try --help)\n", opt);
+        else
+            fprintf(stderr, "rockfuzz material: --%s is required with --model %s\n", opt,
+                    rf_material_model_name(a->params.model));
+        return 0;
+    }
+    if (!given)
         return 1;
-    fprintf(stderr, "rockfuzz material: --%s is required with --model %s\n", option_name(id),
-            rf_material_model_name(a->params.model));
-    return 0;
-}
-
-/* Required options present, no option of another model. */
-static int check_presence(const driver_args *a)
-{
-    const opt_id required[] = {O_MODEL, O_E, O_NU, O_PATH, O_STRAIN};
-    for (size_t i = 0; i < sizeof required / sizeof required[0]; i++)
-        if (!a->given[required[i]]) {
-            fprintf(stderr, "rockfuzz material: --%s is required (try --help)\n", option_name(required[i]));
+    if (p->together) {
+        option_text(rf_material_param_find(p->together), other, sizeof other);
+        const int j = param_index(&a->mp, other, strlen(other), (int)a->params.model);
+        if (j >= 0 && !a->mp.given[j]) {
+            const int first = (p->flags & RF_MATERIAL_PARAM_SWITCH) != 0; /* the switch first */
+            fprintf(stderr, "rockfuzz material: --%s %s: the %s needs both --%s and --%s\n", opt, given,
+                    p->feature, first ? opt : other, first ? other : opt);
             return 0;
         }
-    rf_material_model model = a->params.model;
-    for (size_t k = 0; k < N_OPTIONS; k++)
-        if (options[k].owner >= 0 && a->given[options[k].id] && options[k].owner != (int)model) {
-            fprintf(stderr, "rockfuzz material: --%s %s: not an option of --model %s\n", options[k].name,
-                    a->given[options[k].id], rf_material_model_name(model));
-            return 0;
-        }
-    int ok = 1;
-    if (model == RF_MATERIAL_VON_MISES)
-        ok = require(a, O_YIELD);
-    else if (model == RF_MATERIAL_DRUCKER_PRAGER)
-        ok = require(a, O_COHESION) && require(a, O_PHI);
-    if (!ok)
-        return 0;
-    if (!a->given[O_CAP_P] != !a->given[O_CAP_H]) {
-        opt_id id = a->given[O_CAP_P] ? O_CAP_P : O_CAP_H;
-        fprintf(stderr, "rockfuzz material: --%s %s: the cap needs both --cap-pressure and "
-                        "--cap-hardening\n", option_name(id), a->given[id]);
-        return 0;
     }
-    if (a->given[O_DCUT] && !(a->params.dilatancy_cutoff > 0.0)) {
-        fprintf(stderr, "rockfuzz material: --dilatancy-cutoff %s: must be a plastic volumetric strain > 0 "
-                        "(leave the option out for no cutoff)\n", a->given[O_DCUT]);
+    if ((p->flags & RF_MATERIAL_PARAM_SWITCH) && !(a->mp.value[k] > 0.0)) {
+        fprintf(stderr, "rockfuzz material: --%s %s: must be > 0 (leave the option out for no %s)\n", opt, given,
+                p->feature);
         return 0;
     }
     return 1;
 }
 
-/* The option whose value an rf_material_init message names ("field = ..."). */
-static opt_id option_of_field(const char *msg)
+/* Required options present, no option of another law, switches > 0, partners given together. */
+static int check_params(const driver_args *a)
 {
-    static const struct { const char *field; opt_id id; } map[] = {
-        {"E =", O_E}, {"poisson =", O_NU}, {"yield =", O_YIELD}, {"hardening =", O_HARDENING},
-        {"cohesion =", O_COHESION}, {"friction_angle =", O_PHI}, {"dilatancy_angle =", O_PSI},
-        {"cap_pressure =", O_CAP_P}, {"cap_hardening =", O_CAP_H}, {"dilatancy_cutoff =", O_DCUT}};
-    for (size_t i = 0; i < sizeof map / sizeof map[0]; i++)
-        if (!strncmp(msg, map[i].field, strlen(map[i].field)))
-            return map[i].id;
-    return O_COUNT;
+    if (!check_foreign(a))
+        return 0;
+    for (size_t k = 0; k < a->mp.n; k++)
+        if ((a->mp.owner[k] < 0 || a->mp.owner[k] == (int)a->params.model) && !check_param(a, k))
+            return 0;
+    return 1;
+}
+
+/* The fixed options required, then the material's. */
+static int check_presence(const driver_args *a)
+{
+    const opt_id required[] = {O_MODEL, O_PATH, O_STRAIN};
+    for (size_t i = 0; i < sizeof required / sizeof required[0]; i++)
+        if (!a->given[required[i]]) {
+            fprintf(stderr, "rockfuzz material: --%s is required (try --help)\n", option_names[required[i]]);
+            return 0;
+        }
+    return check_params(a);
+}
+
+/* The parameter whose value an rf_material_init message names ("name = ..."): its index, or -1. */
+static int param_of_message(const driver_args *a, const char *msg)
+{
+    const rf_material_law_info *law = rf_material_law(a->params.model);
+    for (size_t k = 0; k < a->mp.n; k++) {
+        const char *name = a->mp.param[k]->name;
+        size_t n = strlen(name);
+        if (!strncmp(msg, name, n) && msg[n] == ' ' && (a->mp.owner[k] < 0 || rf_material_law((rf_material_model)a->mp.owner[k]) == law))
+            return (int)k;
+    }
+    return -1;
 }
 
 static int check_values(const driver_args *a, rf_material *m)
 {
     rf_error err = {0};
     if (rf_material_init(m, &a->params, &err) != RF_OK) {
-        opt_id id = option_of_field(err.msg);
-        if (id != O_COUNT && a->given[id])
-            fprintf(stderr, "rockfuzz material: --%s %s: %s\n", option_name(id), a->given[id], err.msg);
+        const int k = param_of_message(a, err.msg);
+        char opt[64];
+        if (k >= 0 && a->mp.given[k])
+            fprintf(stderr, "rockfuzz material: --%s %s: %s\n", param_option(a, (size_t)k, opt, sizeof opt),
+                    a->mp.given[k], err.msg);
         else
             fprintf(stderr, "rockfuzz material: %s\n", err.msg);
-        return 0;
-    }
-    if (a->given[O_CAP_P] && !(a->params.cap_pressure > 0.0)) {
-        fprintf(stderr, "rockfuzz material: --cap-pressure %s: must be > 0 Pa\n", a->given[O_CAP_P]);
         return 0;
     }
     if (!(fabs(a->strain) <= 1.0)) {
@@ -407,6 +474,7 @@ int rf_cli_material(int argc, char **argv)
     driver_args a;
     memset(&a, 0, sizeof a);
     rf_material_params_default(&a.params);
+    collect_params(&a.mp);
     a.increments = 100;
     int rc = parse_args(argc, argv, &a);
     if (rc != 0)

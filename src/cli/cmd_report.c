@@ -13,29 +13,18 @@
 
 int rf_cli_report(int argc, char **argv)
 {
-    const char *dir = NULL;
-    for (int a = 1; a < argc; a++) {
-        if (!strcmp(argv[a], "-h") || !strcmp(argv[a], "--help")) {
-            printf("Usage: rockfuzz report DIR\n\n"
-                   "Write DIR/report.html (self-contained: figures embedded) again.\n"
-                   "  a `rockfuzz run` result: from DIR/result.json and the PNG figures, without\n"
-                   "      evaluating anything;\n"
-                   "  a `rockfuzz trajectory --out DIR` result: the trajectories are run again from\n"
-                   "      the file and options recorded in DIR/invocation.json (same bits) and the\n"
-                   "      plots and report.html written only if they reproduce DIR/result.json.\n"
-                   "Exit status: 0 on success, 1 on an error, 2 on a usage error.\n");
-            return 0;
-        }
-        if (argv[a][0] == '-' || dir) {
-            fprintf(stderr, "rockfuzz report: unexpected argument '%s' (see `rockfuzz report --help`)\n", argv[a]);
-            return 2;
-        }
-        dir = argv[a];
-    }
-    if (!dir) {
-        fprintf(stderr, "rockfuzz report: missing the run directory (see `rockfuzz report --help`)\n");
-        return 2;
-    }
+    int status = 0;
+    const char *dir = rf_cli_dir_argument("report", argc, argv,
+        "Usage: rockfuzz report DIR\n\n"
+        "Write DIR/report.html (self-contained: figures embedded) again.\n"
+        "  a `rockfuzz run` result: from DIR/result.json and the PNG figures, without\n"
+        "      evaluating anything;\n"
+        "  a `rockfuzz trajectory --out DIR` result: the trajectories are run again from\n"
+        "      the file and options recorded in DIR/invocation.json (same bits) and the\n"
+        "      plots and report.html written only if they reproduce DIR/result.json.\n"
+        "Exit status: 0 on success, 1 on an error, 2 on a usage error.\n", &status);
+    if (!dir)
+        return status;
     rf_error err;
     memset(&err, 0, sizeof err);
     const rf_status st = rf_report_write_html(dir, &err);

@@ -14,20 +14,9 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/util.h"
 #include "rockfuzz/store.h"
 #include "rockfuzz/study_run.h"
-
-static void duration(double s, char *buf, size_t size)
-{
-    if (!(s >= 0) || s > 1e9)
-        snprintf(buf, size, "unknown");
-    else if (s < 60)
-        snprintf(buf, size, "%.1f s", s);
-    else if (s < 3600)
-        snprintf(buf, size, "%d min %02d s", (int)(s / 60), (int)s % 60);
-    else
-        snprintf(buf, size, "%d h %02d min", (int)(s / 3600), ((int)s % 3600) / 60);
-}
 
 static void when(double t, char *buf, size_t size)
 {
@@ -61,27 +50,16 @@ static int lock_held(const char *dir, char *holder, size_t size)
 
 int rf_cli_status(int argc, char **argv)
 {
-    const char *dir = NULL;
-    for (int a = 1; a < argc; a++) {
-        if (!strcmp(argv[a], "-h") || !strcmp(argv[a], "--help")) {
-            printf("Usage: rockfuzz status DIR\n\n"
-                   "Progress of the study run whose output directory is DIR, read from\n"
-                   "DIR/store.sqlite without changing it (safe while the run goes on): points\n"
-                   "planned, done, failed, rate, estimated time left, last update, and whether\n"
-                   "the run is running, stopped or finished; the failed evaluations are listed.\n"
-                   "Exit status: 0 on success, 1 if DIR holds no readable rockfuzz store.\n");
-            return 0;
-        }
-        if (argv[a][0] == '-' || dir) {
-            fprintf(stderr, "rockfuzz status: unexpected argument '%s' (see `rockfuzz status --help`)\n", argv[a]);
-            return 2;
-        }
-        dir = argv[a];
-    }
-    if (!dir) {
-        fprintf(stderr, "rockfuzz status: missing the run directory (see `rockfuzz status --help`)\n");
-        return 2;
-    }
+    int status = 0;
+    const char *dir = rf_cli_dir_argument("status", argc, argv,
+        "Usage: rockfuzz status DIR\n\n"
+        "Progress of the study run whose output directory is DIR, read from\n"
+        "DIR/store.sqlite without changing it (safe while the run goes on): points\n"
+        "planned, done, failed, rate, estimated time left, last update, and whether\n"
+        "the run is running, stopped or finished; the failed evaluations are listed.\n"
+        "Exit status: 0 on success, 1 if DIR holds no readable rockfuzz store.\n", &status);
+    if (!dir)
+        return status;
     char path[PATH_MAX], result[PATH_MAX];
     snprintf(path, sizeof path, "%s/%s", dir, RF_STORE_FILE);
     snprintf(result, sizeof result, "%s/result.json", dir);
@@ -112,7 +90,8 @@ int rf_cli_status(int argc, char **argv)
     double rate = info.done_this_run > 0 && span > 0 ? (double)info.done_this_run / span : 0;
     size_t left_pts = total > done ? total - done : 0;
     char left[64], last[64], started[64];
-    duration(rate > 0 ? (double)left_pts / rate : (left_pts == 0 ? 0 : -1), left, sizeof left);
+    if (!rf_format_duration(rate > 0 ? (double)left_pts / rate : (left_pts == 0 ? 0 : -1), 0, left, sizeof left))
+        snprintf(left, sizeof left, "unknown");
     when(info.last_update, last, sizeof last);
     when(info.run_started, started, sizeof started);
     printf("Run directory   %s\n", dir);

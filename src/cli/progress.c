@@ -28,27 +28,14 @@ void rf_cli_progress_begin(rf_cli_progress *p, int on, const char *what)
         p->delay = RF_CLI_PROGRESS_DELAY;
 }
 
-/* "12.3 s", "4 min 05 s", "1 h 02 min" */
-static void duration(double s, char *buf, size_t size)
-{
-    if (!(s >= 0) || s > 1e8)
-        snprintf(buf, size, "?");
-    else if (s < 60)
-        snprintf(buf, size, "%.0f s", s);
-    else if (s < 3600)
-        snprintf(buf, size, "%d min %02d s", (int)(s / 60), (int)s % 60);
-    else
-        snprintf(buf, size, "%d h %02d min", (int)(s / 3600), ((int)s % 3600) / 60);
-}
-
 /* The line: WHAT: DONE (share), elapsed, time left from the share done so far. */
 static void draw(rf_cli_progress *p, double now, double done, double total, const char *text)
 {
     p->last_draw = now;
     const double share = total > 0 ? fmin(done / total, 1) : 0;
     char el[32], left[32];
-    duration(now - p->start, el, sizeof el);
-    duration(done > 0 ? (now - p->start) * (total - done) / done : -1, left, sizeof left);
+    rf_format_duration(now - p->start, RF_DURATION_WHOLE, el, sizeof el);
+    rf_format_duration(done > 0 ? (now - p->start) * (total - done) / done : -1, RF_DURATION_WHOLE, left, sizeof left);
     fprintf(stderr, "\r  %s: %s (%.0f %%), elapsed %s, left ~%s\033[K", p->what, text, 100 * share, el, left);
     fflush(stderr);
     p->drawn = 1;

@@ -1,6 +1,7 @@
 /* util.c - small helpers shared by every module (see util.h). */
 #include "core/util.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -47,4 +48,34 @@ size_t rf_name_distance(const char *a, const char *b)
         }
     }
     return row[lb];
+}
+
+rf_status rf_name_parse(const char *what, const char *name, const char *(*names)(size_t k), size_t n,
+                        int *index, rf_error *err)
+{
+    for (size_t k = 0; name && k < n; k++)
+        if (!strcmp(name, names(k))) {
+            *index = (int)k;
+            return RF_OK;
+        }
+    char list[512] = "";
+    for (size_t k = 0, len = 0; k < n && len < sizeof list; k++)
+        len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", names(k));
+    return rf_fail(err, RF_EINVAL, "%s '%s' is not one of %s", what, name ? name : "(null)", list);
+}
+
+int rf_format_duration(double s, int style, char *buf, size_t size)
+{
+    const int compact = style & RF_DURATION_COMPACT;
+    if (!(s >= 0) || s > 1e8) {
+        snprintf(buf, size, "?");
+        return 0;
+    }
+    if (s < 60)
+        snprintf(buf, size, "%.*f%s", style & RF_DURATION_WHOLE ? 0 : 1, s, compact ? "s" : " s");
+    else if (s < 3600)
+        snprintf(buf, size, compact ? "%dm%02ds" : "%d min %02d s", (int)(s / 60), (int)s % 60);
+    else
+        snprintf(buf, size, compact ? "%dh%02dm" : "%d h %02d min", (int)(s / 3600), ((int)s % 3600) / 60);
+    return 1;
 }

@@ -108,3 +108,23 @@ rf_status rf_impact_hunter(const rf_impact_input *in, rf_impact_output *out, rf_
 {
     return rf_impact_hunter_A(in, RF_HUNTER_A_JOHNSON, out, err);
 }
+
+static rf_status hertz_solve(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
+                             rf_error *err)
+{
+    (void)s;
+    return rf_impact_hertz(in, out, err);
+}
+
+const rf_impact_law rf_impact_law_hertz = {"hertz", "elastic Hertz, R_n = 1", rf_impact_analytic_validate,
+                                           hertz_solve};
+
+static rf_status hunter_solve(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
+                              rf_error *err)
+{
+    return rf_impact_hunter_A(in, s->hunter_coefficient, out, err);
+}
+
+const rf_impact_law rf_impact_law_hunter = {"hunter", "Hertz + Hunter (1957) wave loss",
+                                            rf_impact_analytic_validate,
+                                            hunter_solve};

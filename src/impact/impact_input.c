@@ -69,47 +69,56 @@ const char *rf_impact_material_name(rf_material_model m)
     return m == RF_MATERIAL_RIGID_BODY ? "rigid" : rf_material_model_name(m);
 }
 
+static const char *const body_names[3] = {"boulder", "slope", "layer"};
+static const rf_material_model *body_model(const rf_impact_input *in, int body)
+{
+    return body == 0 ? &in->boulder_material : body == 2 ? &in->layer_material : &in->slope_material;
+}
+
+/* The input field "<body>_<parameter>" of a material parameter, or NULL (the
+ * boulder has no soil parameters). */
+static const rf_impact_field *body_field(int body, const rf_material_param *param)
+{
+    char name[64];
+    snprintf(name, sizeof name, "%s_%s", body_names[body], param->name);
+    return rf_impact_field_find(name);
+}
+
+/* Copies the body's value of each parameter into p (a parameter every law takes, or of any law). */
+static void copy_param(const rf_impact_input *in, int body, const rf_material_param *param, rf_material_params *p)
+{
+    const rf_impact_field *f = body_field(body, param);
+    if (f)
+        *rf_material_param_field(p, param) = *(const double *)((const char *)in + f->offset);
+}
+
+/* The fields "<body>_<name>" of rf_impact_fields, for every parameter of the material registry. */
 void rf_impact_material_params(const rf_impact_input *in, int body, rf_material_params *p)
 {
     rf_material_params_default(p);
-    if (body == 0) {
-        p->model = in->boulder_material == RF_MATERIAL_RIGID_BODY ? RF_MATERIAL_ELASTIC : in->boulder_material;
-        p->E = in->boulder_E, p->poisson = in->boulder_poisson;
-        p->yield = in->boulder_yield, p->hardening = in->boulder_hardening;
-        return;
+    const rf_material_model model = *body_model(in, body);
+    p->model = body == 0 && model == RF_MATERIAL_RIGID_BODY ? RF_MATERIAL_ELASTIC : model;
+    for (size_t i = 0; i < 2; i++)
+        copy_param(in, body, &rf_material_common_params[i], p);
+    for (size_t k = 0; k < rf_material_n_laws(); k++) {
+        const rf_material_law_info *law = rf_material_law((rf_material_model)k);
+        for (size_t i = 0; i < law->n_params; i++)
+            copy_param(in, body, &law->params[i], p);
     }
-    if (body == 2) {
-        p->model = in->layer_material;
-        p->E = in->layer_E, p->poisson = in->layer_poisson;
-        p->yield = in->layer_yield, p->hardening = in->layer_hardening;
-        p->cohesion = in->layer_cohesion;
-        p->friction_angle = in->layer_friction_angle, p->dilatancy_angle = in->layer_dilatancy_angle;
-        p->cap_pressure = in->layer_cap_pressure, p->cap_hardening = in->layer_cap_hardening;
-        p->dilatancy_cutoff = in->layer_dilatancy_cutoff;
-        return;
-    }
-    p->model = in->slope_material;
-    p->E = in->slope_E, p->poisson = in->slope_poisson;
-    p->yield = in->slope_yield, p->hardening = in->slope_hardening;
-    p->cohesion = in->slope_cohesion;
-    p->friction_angle = in->slope_friction_angle, p->dilatancy_angle = in->slope_dilatancy_angle;
-    p->cap_pressure = in->slope_cap_pressure, p->cap_hardening = in->slope_cap_hardening;
-    p->dilatancy_cutoff = in->slope_dilatancy_cutoff;
 }
 
-/* The material fields of each body, checked by the material library
- * (rf_material_init), whose messages start with the parameter's own name. */
-static const char *const material_fields[3][10][2] = {
-    {{"yield", "boulder_yield"}, {"hardening", "boulder_hardening"}, {"model", "boulder_material"}},
-    {{"yield", "slope_yield"}, {"hardening", "slope_hardening"}, {"cohesion", "slope_cohesion"},
-     {"friction_angle", "slope_friction_angle"}, {"dilatancy_angle", "slope_dilatancy_angle"},
-     {"cap_pressure", "slope_cap_pressure"}, {"cap_hardening", "slope_cap_hardening"},
-     {"dilatancy_cutoff", "slope_dilatancy_cutoff"}, {"model", "slope_material"}},
-    {{"yield", "layer_yield"}, {"hardening", "layer_hardening"}, {"cohesion", "layer_cohesion"},
-     {"friction_angle", "layer_friction_angle"}, {"dilatancy_angle", "layer_dilatancy_angle"},
-     {"cap_pressure", "layer_cap_pressure"}, {"cap_hardening", "layer_cap_hardening"},
-     {"dilatancy_cutoff", "layer_dilatancy_cutoff"}, {"model", "layer_material"}, {"E", "layer_E"}}};
-static const char *const body_names[3] = {"boulder", "slope", "layer"};
+/* The input field a material message ("name = ...", rf_material_init) names:
+ * "<body>_<name>", or "<body>_material". */
+static const char *field_of_message(int body, const char *msg)
+{
+    const rf_material_param *param = NULL;
+    char name[64];
+    size_t n = strcspn(msg, " ");
+    snprintf(name, sizeof name, "%.*s", (int)n, msg);
+    param = rf_material_param_find(name);
+    const rf_impact_field *f = param ? body_field(body, param) : NULL;
+    return f ? f->name : body == 0 ? "boulder_material" : body == 1 ? "slope_material" : "layer_material";
+}
 
 /* NULL if the materials are valid, else the impact field at fault; msg gets
  * the library's message prefixed with the body. */
@@ -141,12 +150,7 @@ static const char *material_invalid(const rf_impact_input *in, rf_error *err)
         rf_impact_material_params(in, b, &p);
         if (p.model == RF_MATERIAL_ELASTIC || rf_material_init(&m, &p, &e) == RF_OK)
             continue;
-        const char *name = b == 0 ? "boulder_material" : b == 1 ? "slope_material" : "layer_material";
-        for (int k = 0; k < 9 && material_fields[b][k][0]; k++) {
-            size_t n = strlen(material_fields[b][k][0]);
-            if (!strncmp(e.msg, material_fields[b][k][0], n) && e.msg[n] == ' ')
-                name = material_fields[b][k][1];
-        }
+        const char *name = field_of_message(b, e.msg);
         rf_fail(err, RF_EINVAL, "%s_%s (%s material %s)", body_names[b], e.msg, body_names[b],
                 rf_material_model_name(p.model));
         return name;
@@ -292,4 +296,27 @@ void rf_impact_output_clear(rf_impact_output *out)
     out->R_n = out->R_t = out->R_ke = NAN;
     out->plastic_work = out->penetration_max = out->indentation_depth = NAN;
     out->equivalent_plastic_strain_max = NAN;
+}
+
+/* The analytic models are elastic and homogeneous: a plastic body or a layer
+ * needs the FE solver (a rigid boulder is E* = E_s/(1 - nu_s^2) for Hertz,
+ * Hunter and rigid; MDR takes the boulder's own elastic constants). */
+rf_status rf_impact_analytic_validate(const rf_impact_law *law, const rf_impact_input *in,
+                                      const rf_impact_law_settings *s, rf_error *err)
+{
+    const char *solver = law->name;
+    (void)s;
+    if (in->layer_thickness > 0)
+        return rf_fail(err, RF_EINVAL, "layer_thickness = %g m: the %s solver has no layer (use solver fem)",
+                       in->layer_thickness, solver);
+    if (in->slope_material != RF_MATERIAL_ELASTIC || in->boulder_material == RF_MATERIAL_VON_MISES)
+        return rf_fail(err, RF_EINVAL, "%s = %s: the %s solver is elastic (use solver fem)",
+                       in->slope_material != RF_MATERIAL_ELASTIC ? "slope_material" : "boulder_material",
+                       in->slope_material != RF_MATERIAL_ELASTIC ? rf_material_model_name(in->slope_material)
+                                                                 : "von_mises",
+                       solver);
+    if (in->gravity > 0)
+        return rf_fail(err, RF_EINVAL, "gravity = %g m/s^2: the %s solver has no gravity (use solver fem, or "
+                       "gravity auto or 0)", in->gravity, solver);
+    return RF_OK;
 }

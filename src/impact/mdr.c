@@ -318,3 +318,24 @@ rf_status rf_impact_mdr_hunter(const rf_impact_input *in, double e_n, double hun
     }
     return rf_impact_mdr(in, e_n, out, err);
 }
+
+/* The analytic checks, and a rigid boulder refused: MDR needs its tangential compliance. */
+static rf_status mdr_validate(const rf_impact_law *law, const rf_impact_input *in, const rf_impact_law_settings *s,
+                              rf_error *err)
+{
+    rf_status st = rf_impact_analytic_validate(law, in, s, err);
+    if (st == RF_OK && in->boulder_material == RF_MATERIAL_RIGID_BODY)
+        return rf_fail(err, RF_EINVAL, "boulder_material = rigid: the mdr solver takes the boulder's elastic "
+                       "constants (its tangential compliance); use hertz, hunter, rigid or fem");
+    return st;
+}
+
+static rf_status mdr_solve(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
+                           rf_error *err)
+{
+    return rf_impact_mdr_hunter(in, s->e_n, s->hunter_coefficient, out, err);
+}
+
+const rf_impact_law rf_impact_law_mdr = {
+    "mdr", "Hertz + exact Mindlin-Deresiewicz partial slip\n(elastic tangential compliance, micro-slip)",
+    mdr_validate, mdr_solve};

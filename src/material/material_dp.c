@@ -25,7 +25,42 @@
 #include "material/material_internal.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
+
+#include "core/util.h"
+
+#define DP_FIELD(f) offsetof(rf_material_params, f)
+static const rf_material_param params[] = {
+    {.name = "cohesion", .offset = DP_FIELD(cohesion), .unit = "Pa", .metavar = "PA",
+     .rule = RF_MATERIAL_RULE_NONNEGATIVE, .flags = RF_MATERIAL_PARAM_REQUIRED, .help = "c {}"},
+    {.name = "friction_angle", .offset = DP_FIELD(friction_angle), .unit = "deg", .metavar = "DEG",
+     .rule = RF_MATERIAL_RULE_ANGLE, .flags = RF_MATERIAL_PARAM_REQUIRED, .help = "phi {}"},
+    {.name = "dilatancy_angle", .offset = DP_FIELD(dilatancy_angle), .unit = "deg", .metavar = "DEG",
+     .rule = RF_MATERIAL_RULE_ANGLE, .help = "psi {}, at most phi\n(< phi: non-associated)"},
+    {.name = "cap_pressure", .offset = DP_FIELD(cap_pressure), .unit = "Pa", .metavar = "PA",
+     .rule = RF_MATERIAL_RULE_NONNEGATIVE, .flags = RF_MATERIAL_PARAM_SWITCH, .together = "cap_hardening",
+     .feature = "cap", .help = "crush pressure X0 {}: the compressive\nmean stress where plastic compaction starts\n(flat cap)"},
+    {.name = "cap_hardening", .offset = DP_FIELD(cap_hardening), .unit = "Pa", .metavar = "PA",
+     .rule = RF_MATERIAL_RULE_NONNEGATIVE, .together = "cap_pressure", .feature = "cap",
+     .help = "H_c {}: X = X0 + H_c eps_c, eps_c the plastic\ncompaction (the cap needs both options)"},
+    {.name = "dilatancy_cutoff", .offset = DP_FIELD(dilatancy_cutoff), .unit = "-", .metavar = "EPS",
+     .rule = RF_MATERIAL_RULE_NONNEGATIVE, .flags = RF_MATERIAL_PARAM_SWITCH, .feature = "cutoff",
+     .help = "{}: the plastic volumetric strain at which the\ndilatancy stops (critical state); from void ratios,\n"
+             "(e_cs - e0) / (1 + e0), e_cs the critical-state\nvoid ratio"},
+};
+
+double rf_material_dp_eta(double angle)
+{
+    double s = sin(angle);
+    return 6.0 * s / (sqrt(3.0) * (3.0 - s));
+}
+
+double rf_material_dp_xi(double angle)
+{
+    double s = sin(angle);
+    return 6.0 * cos(angle) / (sqrt(3.0) * (3.0 - s));
+}
 
 double mat_dp_cone(const rf_material *m, double sqrt_j2, double p)
 {
@@ -93,8 +128,8 @@ static void corner_return(const rf_material *m, double eb, const double s_tr[6],
     r->compaction = dc;
 }
 
-void mat_return_drucker_prager(const rf_material *m, const rf_material_state *st, const double s_tr[6],
-                               double p_tr, mat_return *r)
+static void dp_return(const rf_material *m, const rf_material_state *st, const double s_tr[6], double p_tr,
+                      mat_return *r)
 {
     double compaction = st->compaction;
     double room = fmax(0.0, m->dilatancy_cutoff - st->plastic_volumetric);
@@ -121,3 +156,56 @@ void mat_return_drucker_prager(const rf_material *m, const rf_material_state *st
     }
     corner_return(m, room > 0.0 ? m->eta_bar : 0.0, s_tr, sj2_tr, p_tr, f_cone, f_cap, r);
 }
+
+/* Across fields (each value was checked against its rule). */
+static rf_status dp_validate(const rf_material_params *p, rf_error *err)
+{
+    const double deg = 180.0 / RF_PI;
+    if (p->friction_angle == 0.0 && !(p->cohesion > 0.0))
+        return rf_fail(err, RF_EINVAL, "cohesion = %g: must be > 0 when friction_angle = 0 "
+                       "(the material would have no strength)", p->cohesion);
+    if (!(p->dilatancy_angle <= p->friction_angle))
+        return rf_fail(err, RF_EINVAL, "dilatancy_angle = %g deg: must lie in [0, friction_angle = %g deg]",
+                       p->dilatancy_angle * deg, p->friction_angle * deg);
+    return RF_OK;
+}
+
+static void dp_init(rf_material *m, const rf_material_params *p)
+{
+    m->eta = rf_material_dp_eta(p->friction_angle);
+    m->xi = rf_material_dp_xi(p->friction_angle);
+    m->eta_bar = rf_material_dp_eta(p->dilatancy_angle);
+    m->cohesion = p->cohesion;
+    m->apex_pressure = m->eta > 0.0 ? m->xi * p->cohesion / m->eta : HUGE_VAL;
+    m->cap = p->cap_pressure > 0.0;
+    m->cap_pressure = p->cap_pressure;
+    m->cap_hardening = p->cap_hardening;
+    m->dilatancy_cutoff = p->dilatancy_cutoff > 0.0 ? p->dilatancy_cutoff : HUGE_VAL;
+}
+
+/* Non-associated flow: eps_p_eq from the plastic strain itself. */
+static double dp_eq_increment(const mat_return *r, const double deps_p[6])
+{
+    (void)r;
+    return sqrt(2.0 / 3.0 * mat_ddot(deps_p, deps_p));
+}
+
+static double dp_yield(const rf_material *m, double sj2, double p, const rf_material_state *st)
+{
+    const double f = mat_dp_cone(m, sj2, p);
+    return m->cap ? fmax(f, mat_dp_cap(m, st->compaction, p)) : f;
+}
+
+static int dp_admissible(const rf_material *m, double sj2, double p, const rf_material_state *st, double tol)
+{
+    double scale = fmax(fmax(fabs(p), sj2), fmax(m->xi * m->cohesion, m->cap_pressure));
+    if (mat_dp_cone(m, sj2, p) > tol * scale)
+        return 0;
+    return !m->cap || mat_dp_cap(m, st->compaction, p) <= tol * scale;
+}
+
+const mat_law mat_law_drucker_prager = {
+    {"drucker_prager", "cone matched to Mohr-Coulomb in triaxial compression",
+     params, sizeof params / sizeof params[0]},
+    dp_validate, dp_init, dp_return, dp_eq_increment, dp_yield, dp_admissible,
+};

@@ -34,13 +34,31 @@ static inline double mat_split(const double sig[6], double s[6])
     return p;
 }
 
-/* J2 radial return (material_j2.c). */
-void mat_return_von_mises(const rf_material *m, double eps_p_eq, const double s_tr[6], double p_tr,
-                          mat_return *r);
+/* A law's operations (one entry per file, listed in material_registry.c).
+ * sj2 = sqrt(J2) and p the mean stress of the stress at hand. */
+typedef struct {
+    rf_material_law_info info;
+    /* checks across fields (each single value was checked against its rule) */
+    rf_status (*validate)(const rf_material_params *p, rf_error *err);
+    /* the law's derived constants (G, K, yield, hardening are set) */
+    void (*init)(rf_material *m, const rf_material_params *p);
+    /* the return map of the elastic trial state */
+    void (*ret)(const rf_material *m, const rf_material_state *st, const double s_tr[6], double p_tr,
+                mat_return *r);
+    /* the increment of eps_p_eq from the return and the plastic strain; NULL: an elastic law
+       (no plastic strain, no dissipation) */
+    double (*eq_increment)(const mat_return *r, const double deps_p[6]);
+    double (*yield)(const rf_material *m, double sj2, double p, const rf_material_state *st);
+    int (*admissible)(const rf_material *m, double sj2, double p, const rf_material_state *st, double tol);
+} mat_law;
 
-/* Drucker-Prager cone / apex / cap / corner return (material_dp.c). */
-void mat_return_drucker_prager(const rf_material *m, const rf_material_state *st, const double s_tr[6],
-                               double p_tr, mat_return *r);
+extern const mat_law mat_law_elastic, mat_law_von_mises, mat_law_drucker_prager;
+
+/* The law of a model (NULL when model is not one). */
+const mat_law *mat_law_of(rf_material_model model);
+
+/* E, poisson and the law's own values of p, each against its rule (material_registry.c). */
+rf_status mat_check_values(const mat_law *law, const rf_material_params *p, rf_error *err);
 
 /* Yield functions of the DP cone and cap at (sqrt(J2), p) [Pa]. */
 double mat_dp_cone(const rf_material *m, double sqrt_j2, double p);

@@ -18,22 +18,45 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const solver_names[] = {"fem", "hertz", "hunter", "rigid", "mdr"};
+static const rf_impact_law fem_law; /* below */
+
+/* The solvers, in rf_impact_solver order: adding one is its rf_impact_law (its
+ * own file in src/impact) and its line here (and its name in rf_impact_solver). */
+static const rf_impact_law *const solvers[] = {
+    &fem_law,              /* RF_IMPACT_FEM */
+    &rf_impact_law_hertz,  /* RF_IMPACT_HERTZ */
+    &rf_impact_law_hunter, /* RF_IMPACT_HUNTER */
+    &rf_impact_law_rigid,  /* RF_IMPACT_RIGID */
+    &rf_impact_law_mdr,    /* RF_IMPACT_MDR */
+};
+#define N_SOLVERS (sizeof solvers / sizeof solvers[0])
+
+size_t rf_impact_n_solvers(void)
+{
+    return N_SOLVERS;
+}
+
+const rf_impact_law *rf_impact_solver_law(rf_impact_solver s)
+{
+    return (unsigned)s < N_SOLVERS ? solvers[s] : NULL;
+}
 
 const char *rf_impact_solver_name(rf_impact_solver s)
 {
-    return (unsigned)s < 5 ? solver_names[s] : "unknown";
+    return (unsigned)s < N_SOLVERS ? solvers[s]->name : "unknown";
+}
+
+static const char *solver_name(size_t k)
+{
+    return solvers[k]->name;
 }
 
 rf_status rf_impact_solver_parse(const char *name, rf_impact_solver *s, rf_error *err)
 {
-    const int k = rf_name_index(name, solver_names, 5);
-    if (k >= 0) {
-        *s = (rf_impact_solver)k;
-        return RF_OK;
-    }
-    return rf_fail(err, RF_EINVAL, "solver '%s' is unknown (accepted: fem, hertz, hunter, rigid, mdr)",
-                   name ? name : "(null)");
+    int k = 0;
+    rf_status st = rf_name_parse("solver", name, solver_name, N_SOLVERS, &k, err);
+    *s = st == RF_OK ? (rf_impact_solver)k : *s;
+    return st;
 }
 
 void rf_impact_model_spec_default(rf_impact_model_spec *spec)
@@ -64,7 +87,7 @@ static rf_status solve_fem(const rf_impact_model_spec *spec, rf_fem_workspace *w
 
 rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_error *err)
 {
-    if ((unsigned)spec->solver > RF_IMPACT_MDR)
+    if (!rf_impact_solver_law(spec->solver))
         return rf_fail(err, RF_EINVAL, "impact solver %d is unknown", (int)spec->solver);
     if (!isnan(spec->e_n) && !(spec->e_n >= 0.0 && spec->e_n <= 1.0))
         return rf_fail(err, RF_EINVAL, "e_n = %g: the normal COR must lie in [0, 1] "
@@ -79,30 +102,32 @@ rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_err
     return rf_fem_options_validate(&o, 0, err); /* the 3D limits are checked when a 3D impact runs */
 }
 
-/* The analytic models are elastic and homogeneous: a plastic body or a layer
- * needs the FE solver (a rigid boulder is E* = E_s/(1 - nu_s^2) for Hertz,
- * Hunter and rigid; MDR takes the boulder's own elastic constants). */
-static rf_status analytic_supports(const rf_impact_model_spec *spec, const rf_impact_input *in, rf_error *err)
+/* The FE solver as a registry entry: its context is the spec, a workspace and the warning buffer. */
+typedef struct {
+    const rf_impact_model_spec *spec;
+    rf_fem_workspace *ws;
+    char *warning;
+} fem_context;
+
+static rf_status fem_validate(const rf_impact_law *law, const rf_impact_input *in, const rf_impact_law_settings *s,
+                              rf_error *err)
 {
-    if (spec->solver == RF_IMPACT_FEM)
-        return RF_OK;
-    if (in->layer_thickness > 0)
-        return rf_fail(err, RF_EINVAL, "layer_thickness = %g m: the %s solver has no layer (use solver fem)",
-                       in->layer_thickness, rf_impact_solver_name(spec->solver));
-    if (in->slope_material != RF_MATERIAL_ELASTIC || in->boulder_material == RF_MATERIAL_VON_MISES)
-        return rf_fail(err, RF_EINVAL, "%s = %s: the %s solver is elastic (use solver fem)",
-                       in->slope_material != RF_MATERIAL_ELASTIC ? "slope_material" : "boulder_material",
-                       in->slope_material != RF_MATERIAL_ELASTIC ? rf_material_model_name(in->slope_material)
-                                                                 : "von_mises",
-                       rf_impact_solver_name(spec->solver));
-    if (in->gravity > 0)
-        return rf_fail(err, RF_EINVAL, "gravity = %g m/s^2: the %s solver has no gravity (use solver fem, or "
-                       "gravity auto or 0)", in->gravity, rf_impact_solver_name(spec->solver));
-    if (spec->solver == RF_IMPACT_MDR && in->boulder_material == RF_MATERIAL_RIGID_BODY)
-        return rf_fail(err, RF_EINVAL, "boulder_material = rigid: the mdr solver takes the boulder's elastic "
-                       "constants (its tangential compliance); use hertz, hunter, rigid or fem");
-    return RF_OK;
+    (void)law, (void)in, (void)s, (void)err;
+    return RF_OK; /* the FE solver takes every valid input */
 }
+
+static rf_status fem_law_solve(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
+                               rf_error *err)
+{
+    const fem_context *c = s->context;
+    return solve_fem(c->spec, c->ws, in, out, c->warning, err);
+}
+
+static const rf_impact_law fem_law = {
+    "fem",
+    "explicit FE; axisymmetric for a normal impact\n(Coulomb friction on a plastic body), 3D half\n"
+    "model for a slope or friction between elastic\ndissimilar bodies (docs/impact.md)",
+    fem_validate, fem_law_solve};
 
 /* rf_impact_solve with the FE warning (see solve_fem). */
 static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, const rf_impact_input *in,
@@ -113,34 +138,16 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
     rf_status st = rf_impact_model_spec_validate(spec, err);
     if (st == RF_OK)
         st = rf_impact_input_validate(in, err);
+    fem_context fc = {spec, ws, warning};
+    const rf_impact_law_settings settings = {spec->e_n, spec->hunter_coefficient, &fc};
+    const rf_impact_law *law = solvers[st == RF_OK ? spec->solver : 0];
+    if (st == RF_OK)
+        st = law->validate(law, in, &settings, err);
     if (st != RF_OK) {
         rf_impact_output_clear(out);
         return st;
     }
-    if ((st = analytic_supports(spec, in, err)) != RF_OK) {
-        rf_impact_output_clear(out);
-        return st;
-    }
-    switch (spec->solver) {
-    case RF_IMPACT_HERTZ: return rf_impact_hertz(in, out, err);
-    case RF_IMPACT_HUNTER: return rf_impact_hunter_A(in, spec->hunter_coefficient, out, err);
-    case RF_IMPACT_RIGID: {
-        double e_n = spec->e_n;
-        if (isnan(e_n)) {
-            rf_impact_output h;
-            st = rf_impact_hunter_A(in, spec->hunter_coefficient, &h, err);
-            if (st != RF_OK) {
-                rf_impact_output_clear(out);
-                return st;
-            }
-            e_n = h.R_n;
-        }
-        return rf_impact_rigid(in, e_n, out, err);
-    }
-    case RF_IMPACT_MDR: return rf_impact_mdr_hunter(in, spec->e_n, spec->hunter_coefficient, out, err);
-    case RF_IMPACT_FEM: return solve_fem(spec, ws, in, out, warning, err);
-    }
-    return rf_fail(err, RF_EINTERNAL, "unreachable impact solver");
+    return law->solve(in, &settings, out, err);
 }
 
 rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,
@@ -492,7 +499,9 @@ rf_status rf_impact_model_create(const rf_impact_model_spec *spec, const char *c
         ctx_destroy(c);
         return rf_fail(err, RF_EINVAL, "impact model base input: %s", local.msg);
     }
-    if (analytic_supports(&c->spec, &probe, &local) != RF_OK) {
+    const rf_impact_law_settings settings = {c->spec.e_n, c->spec.hunter_coefficient, NULL};
+    const rf_impact_law *law = solvers[c->spec.solver];
+    if (law->validate(law, &probe, &settings, &local) != RF_OK) {
         ctx_destroy(c);
         return rf_fail(err, RF_EINVAL, "impact model: %s", local.msg);
     }

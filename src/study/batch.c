@@ -3,6 +3,7 @@
  * runner.c (local threads) and mpi.c (rank 0 serving worker ranks); it calls
  * neither, so the two never include each other. */
 #include "study/batch.h"
+#include "core/util.h"
 #include "core/json.h"
 
 #include <math.h>
@@ -41,18 +42,6 @@ void rf_batch_finish_ok(rf_batch *b, size_t n, double seconds)
     atomic_fetch_add(&b->done, n);
 }
 
-static void format_duration(double s, char *buf, size_t size)
-{
-    if (!(s >= 0) || s > 1e8)
-        snprintf(buf, size, "?");
-    else if (s < 60)
-        snprintf(buf, size, "%.1fs", s);
-    else if (s < 3600)
-        snprintf(buf, size, "%dm%02ds", (int)(s / 60), (int)s % 60);
-    else
-        snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
-}
-
 /* Counts over the whole run so far: done (incl. resumed), total, failed, time left. */
 static void run_counts(rf_batch *b, size_t *done, size_t *total, size_t *failed, double *left, double *elapsed)
 {
@@ -80,8 +69,8 @@ void rf_batch_progress(rf_batch *b, int final)
     double left, elapsed;
     run_counts(b, &done, &total, &failed, &left, &elapsed);
     char e[32], l[32];
-    format_duration(elapsed, e, sizeof e);
-    format_duration(left, l, sizeof l);
+    rf_format_duration(elapsed, RF_DURATION_COMPACT, e, sizeof e);
+    rf_format_duration(left, RF_DURATION_COMPACT, l, sizeof l);
     fprintf(f, "\r  evaluations %zu/%zu  failed %zu  elapsed %s  left %s   ", done, total, failed, e,
             final ? "0.0s" : l);
     if (final)
