@@ -130,7 +130,7 @@ static void soil_setup(int soil, rf_impact_input *in, rf_fem_options *o)
     if (soil == 1 || soil == 3) {
         in->slope_material = RF_MATERIAL_VON_MISES, in->slope_yield = 200e6;
         o->end_time = 1e-3;
-        o->ale = soil == 3 ? RF_FEM_ALE_ON : RF_FEM_ALE_AUTO;
+        o->ale = soil == 3 ? RF_FEM_ALE_ON : RF_FEM_ALE_OFF;
         return;
     }
     in->radius = 0.5, in->boulder_material = RF_MATERIAL_RIGID_BODY;

@@ -79,6 +79,7 @@ enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DAS
 typedef struct {
     const rf_impact_input *in;
     rf_fem_options o;
+    rf_fem_tuning t;      /* o.tuning's values, or the defaults */
     rf_hertz_reference H;
     fem_material mat[3];  /* boulder, slope (bedrock), layer */
     rf_wave_speeds w[3];
@@ -130,11 +131,11 @@ static rf_status axi_mesh(axi_run *S, rf_error *err)
 {
     const rf_fem_options *o = &S->o;
     const rf_hertz_reference *H = &S->H;
-    S->h = H->contact_radius / o->refinement, S->hb = S->h * o->boulder_mesh_ratio;
+    S->h = H->contact_radius / o->refinement, S->hb = S->h * S->t.boulder_mesh_ratio;
     const double h = S->h, hb = S->hb;
     /* the uniform fine zone must stay well inside the boulder: shrink it at
        very high speed (a/R > 0.24 with the default 2.5 a) down to 1.5 a */
-    double core = fmin(o->core_factor, 0.55 * fmin(H->c, H->d) / H->contact_radius);
+    double core = fmin(S->t.fine_zone_factor, 0.55 * fmin(H->c, H->d) / H->contact_radius);
     if (core < 1.5)
         return rf_fail(err, RF_EINVAL,
                        "fem: the Hertz contact radius a = %.4g m is too large for the boulder (c = %g m, d = %g m): "
@@ -145,15 +146,15 @@ static rf_status axi_mesh(axi_run *S, rf_error *err)
     ss.n = 3 * (int)ceil(core * o->refinement / 3 - 1e-9);
     while (ss.n > 3 && ss.n * h > 0.6 * fmin(H->c, H->d))
         ss.n -= 3;
-    ss.grading = o->grading;
+    ss.grading = S->t.grading;
     const double c_r = S->layer ? fmin(S->w[1].rayleigh, S->w[2].rayleigh) : S->w[1].rayleigh;
     ss.h_far = fmax(h, fmin(c_r * H->duration / 12, S->L / 8));
     ss.extent = S->L;
     bs.h = hb;
-    bs.n = 3 * (int)ceil(core * o->refinement / o->boulder_mesh_ratio / 3 - 1e-9);
+    bs.n = 3 * (int)ceil(core * o->refinement / S->t.boulder_mesh_ratio / 3 - 1e-9);
     while (bs.n > 3 && bs.n * hb > 0.6 * fmin(H->c, H->d))
         bs.n -= 3;
-    bs.grading = o->grading;
+    bs.grading = S->t.grading;
     bs.h_far = fmax(hb, fmin(H->c, H->d) / 10);
     bs.extent = H->c;
     bs.height = H->d;
@@ -166,7 +167,7 @@ static rf_status axi_mesh(axi_run *S, rf_error *err)
         return rf_fail(err, RF_EINVAL, "fem: domain radius %g m is too small for the fine zone (%g m)", S->L,
                        ss.n * ss.h);
     S->fine_r = ss.n * ss.h;
-    rf_status st = fem_mesh_build(&bs, &ss, &S->mesh, o->max_elements, err);
+    rf_status st = fem_mesh_build(&bs, &ss, &S->mesh, S->t.max_elements, err);
     S->have_mesh = st == RF_OK;
     return st;
 }
@@ -301,7 +302,7 @@ static long axi_surface_mass_shift(axi_run *S, double *elm, const unsigned char 
         }
         if (nt != 2 || !distinct || (top[0] && top[2]) || (top[1] && top[3]))
             continue; /* not one edge on the face, or a collapsed quad */
-        const double alpha = fem_mass_kept(axi_element_lambda(S, elm, fixed, e), S->o.surface_mass_kappa, lam_max);
+        const double alpha = fem_mass_kept(axi_element_lambda(S, elm, fixed, e), S->t.surface_mass_kappa, lam_max);
         if (!(alpha > 0) || alpha >= 1)
             continue;
         for (int a = 0; a < 4; a++)
@@ -353,7 +354,7 @@ static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
         if (lm > lam_max)
             lam_max = lm;
     }
-    if (S->o.surface_mass_kappa > 0 && (S->layer || S->plastic[1]) && /* soil only: section 9e */
+    if (S->t.surface_mass_kappa > 0 && (S->layer || S->plastic[1]) && /* soil only: section 9e */
         (S->mshift = fem_pool_get(S->pool, P_MSHIFT, (size_t)S->nn * sizeof(double), 1)) &&
         (S->shifted_elems = axi_surface_mass_shift(S, elm, fixed, lam_max)) > 0) {
         for (long i = 0; i < S->nn; i++)
@@ -362,7 +363,7 @@ static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
         for (long i = 0; i < S->nn; i++)
             S->mshift[i] += S->mass[2 * i];
     }
-    S->dt = fem_time_step(lam_max, S->o.dt_safety, &S->dt_bound);
+    S->dt = fem_time_step(lam_max, S->t.dt_safety, &S->dt_bound);
 }
 
 /* Dashpots on the outer surface (Lysmer & Kuhlemeyer 1969): each outer face
@@ -426,7 +427,7 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
                 return st;
             continue;
         }
-        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS && !S->large) { /* packed if it pays (the same bits), else per element */
+        if (S->t.kernel[b] == RF_FEM_KERNEL_STIFFNESS && !S->large) { /* packed if it pays (the same bits), else per element */
             double *pk = NULL;
             if (quad4_packed_pays(S->ne) &&
                 !(pk = fem_pool_get(S->pool, P_PACK0 + b, (size_t)quad4_packed_size(count[b]) * sizeof *pk, 0)))
@@ -491,7 +492,7 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
         st = fem_contact_large(&S->C, &S->mesh, S->ndof, err);
     if (st != RF_OK)
         return st;
-    if (S->o.contact_single_pivot)
+    if (S->t.contact_single_pivot)
         S->C.block_rounds = 0;
     if (S->in->friction > 0 && (st = fem_contact_friction_setup(&S->C, S->ndof, S->in->friction, err)) != RF_OK)
         return st;
@@ -507,7 +508,7 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
     if (S->rigid)
         S->C.rigid_invm = 1 / Mb, S->C.rigid_dofs = S->nbd;
     if (S->ale_on) {
-        const fem_ale_params ap = {S->o.ale_trigger, fmin(0.5 * (1 + S->o.ale_trigger), 0.95), S->o.ale_sweeps};
+        const fem_ale_params ap = {S->t.ale_trigger, fmin(0.5 * (1 + S->t.ale_trigger), 0.95), S->t.ale_sweeps};
         if (!(S->ale_delta = fem_pool_get(S->pool, P_ALE, (size_t)S->ndof * sizeof(double), 1)))
             return rf_fail(err, RF_ENOMEM, "fem: out of memory");
         if ((st = fem_ale_setup(&S->ale, &S->mesh, S->mesh.boulder_elems, S->ne, S->emat, S->invm, &ap, err)) != RF_OK)
@@ -844,8 +845,8 @@ static void axi_energy(const axi_run *S, double t, double Fc, double rad, double
 static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
 {
     const rf_fem_options *o = &S->o;
-    int vtk_every = (int)(R->steps_estimate / (o->vtk_frames > 0 ? o->vtk_frames : 60) + 1), vtk_n = 0;
-    const int vtk_cap = 4 * (o->vtk_frames + 8);
+    int vtk_every = (int)(R->steps_estimate / (S->t.vtk_frames > 0 ? S->t.vtk_frames : 60) + 1), vtk_n = 0;
+    const int vtk_cap = 4 * (S->t.vtk_frames + 8);
     double *vtk_times = NULL;
     if (o->vtk_dir && !(vtk_times = fem_pool_get(S->pool, P_VTK, (size_t)vtk_cap * sizeof(double), 0)))
         return rf_fail(err, RF_ENOMEM, "fem: out of memory");
@@ -865,7 +866,7 @@ static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
             return rf_fail(err, RF_EMODEL, "fem: element %ld was compressed below the stability bound of the time "
                            "step dt = %g s (dt_safety = %g) at t = %g s: a mesh that follows the material cannot "
                            "follow this deformation (docs/validation-plastic.md section 8, JGGE24-L1)",
-                           S->unstable, S->dt, o->dt_safety, t);
+                           S->unstable, S->dt, S->t.dt_safety, t);
         axi_energy(S, t, Fc, rad, row, &comp, &closure);
         if ((st = fem_run_account(R, n, Fc, rad, comp, closure, S->ke0, row, err)) != RF_OK)
             return st;
@@ -906,7 +907,7 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     double v_after = pz / S->Mb;
     if (S->g > 0) /* with gravity: the velocity at separation (0 at rest) */
         v_after = R->at_rest ? 0 : !R->in_contact && R->episodes > 0 ? R->v_sep : v_after;
-    fem_run_outputs(R, nsteps, S->o.duration_threshold, S->ke0, 1.0, S->nn, S->ne, out);
+    fem_run_outputs(R, nsteps, S->t.duration_threshold, S->ke0, 1.0, S->nn, S->ne, out);
     out->v_n_before = -V;
     out->v_n_after = v_after;
     out->R_n = -v_after / -V;
@@ -976,6 +977,7 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
         S->o = *opt;
     else
         rf_fem_options_default(&S->o);
+    S->t = *fem_tuning_of(&S->o);
     rf_status st = check_input(in, &S->o, err);
     if (st != RF_OK)
         return st;
