@@ -38,6 +38,7 @@
 #include "fem3d_prof.h"
 #include "fem3d_spec.h"
 #include "fem_core.h"
+#include "fem_driver.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
 
@@ -1124,57 +1125,6 @@ static void solid_separation(solid_run *R)
     R->sep_w = omega[1];
 }
 
-/* The time loop, with VTK frames if asked (about vtk_frames of them, and the
- * final state: its committed plastic strains are the reported ones).  The
- * frames change no result: the extra internal force at u_n only recomputes
- * the trial state that the step computes again. */
-static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *err)
-{
-    const rf_fem_options *o = &R->o;
-    const long vtk_every = (long)(run->steps_estimate / (R->t.vtk_frames > 0 ? R->t.vtk_frames : 60) + 1);
-    const int vtk_cap = 4 * (R->t.vtk_frames + 8);
-    int vtk_n = 0;
-    double *vtk_times = NULL;
-    if (o->vtk_dir && !(vtk_times = fem_pool_get(R->pool, Q_VTK, (size_t)vtk_cap * sizeof(double), 0)))
-        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
-    rf_status st = RF_OK;
-    long n = 0;
-    for (;; n++) {
-        const double t = (double)n * R->dt;
-        if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap - 1) {
-            if ((st = solid_vtk(R, vtk_n, t, err)) != RF_OK)
-                return st;
-            vtk_times[vtk_n++] = t;
-        }
-        double Fc, rad, row[13], comp, closure;
-        if ((st = solid_step(R, &Fc, &rad, err)) != RF_OK)
-            return st;
-        if (R->large && (R->unstable = f3_step_violation(&R->step_check, R->dt, R->u)) >= 0)
-            return rf_fail(err, RF_EMODEL, "fem3d: element %ld was compressed below the stability bound of the time "
-                           "step dt = %g s (dt_safety = %g) at t = %g s", R->unstable, R->dt, R->t.dt_safety, t);
-        F3P_MARK(m);
-        solid_energy(R, t, Fc, rad, row, &comp, &closure);
-        F3P_LAP(F3P_ENERGY, m);
-        const int was_in_contact = run->in_contact;
-        if ((st = fem_run_account(run, n, Fc, rad, comp, closure, R->ke0, row, err)) != RF_OK)
-            return st;
-        if (R->grav.g > 0 && was_in_contact && !run->in_contact)
-            solid_separation(R);
-        const int stop = fem_run_stop(run, n);
-        F3P_LAP(F3P_RUN, m);
-        if (stop)
-            break;
-    }
-    *nsteps = n + 1;
-    F3P_REPORT(*nsteps, R->ne, R->nn, R->nbn);
-    if (!o->vtk_dir)
-        return RF_OK;
-    const double t_end = (double)(n + 1) * R->dt;
-    if ((st = solid_vtk(R, vtk_n, t_end, err)) != RF_OK)
-        return st;
-    vtk_times[vtk_n++] = t_end;
-    return fem_vtk_index(o->vtk_dir, vtk_n, vtk_times, err);
-}
 
 /* Rigid-body state of the boulder after the impact: CM velocity P, angular
  * velocity omega from the angular momentum about the CM with the lumped
@@ -1372,85 +1322,92 @@ static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_out
         solid_report(R, run, P, w_after, Iyy, rep);
 }
 
-/* One run with the options opt; *unstable >= 0 if an element of a
- * large-deformation run outgrew the time step (f3_step_violation). */
-static rf_status solid_attempt(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
-                               const rf_fem3d_options *o3, rf_impact_output *out, rf_fem_history *hist,
-                               rf_fem3d_report *rep, long *unstable, rf_error *err)
+/* The driver's stages (fem_driver.h) over a solid_run. */
+static rf_status solid_stage_prepare(void *run, const fem_attempt *a, rf_error *err)
 {
-    const double wall0 = rf_monotonic_seconds();
-    solid_run R;
-    memset(&R, 0, sizeof R);
-    R.pool = &ws->solid, R.unstable = -1;
-    rf_status st = solid_prepare(&R, in, opt, o3, err);
-    if (st != RF_OK)
-        return st;
-    if (hist)
-        memset(hist, 0, sizeof *hist);
-    if (rep)
-        memset(rep, 0, sizeof *rep);
-    fem_run run;
-    memset(&run, 0, sizeof run);
-    F3P_MARK(m);
-    st = solid_mesh(&R, err);
-    if (st == RF_OK)
-        st = solid_assemble(&R, err);
-    F3P_LAP(F3P_SETUP, m);
-    if (st == RF_OK)
-        st = fem_run_begin(&run, "fem3d", &R.o, R.dt, R.H.duration, hist || rep, 13, err);
-    run.gravity = R.grav.g;
-    long nsteps = 0;
-    if (st == RF_OK)
-        st = solid_loop(&R, &run, &nsteps, err);
-    if (st == RF_OK) {
-        solid_extract(&R, &run, nsteps, out, hist, rep);
-        if (hist)
-            fem_run_history(&run, hist);
-        out->wall_seconds = rf_monotonic_seconds() - wall0;
-    }
-    *unstable = R.unstable;
-    fem_run_free(&run);
-    solid_release(&R);
-    if (st != RF_OK && hist)
-        rf_fem_history_free(hist);
-    if (st != RF_OK && rep)
-        rf_fem3d_report_free(rep);
-    return st;
+    return solid_prepare(run, a->in, a->opt, a->o3, err);
 }
 
-/* One attempt of rf_fem3d_impact_ws (fem_run_halving). */
-typedef struct {
-    rf_fem_workspace *ws;
-    const rf_impact_input *in;
-    const rf_fem3d_options *o3;
-    rf_impact_output *out;
-    rf_fem_history *hist;
-    rf_fem3d_report *rep;
-} solid_attempt_ctx;
+static rf_status solid_stage_mesh(void *run, rf_error *err)
+{
+    return solid_mesh(run, err);
+}
 
+static rf_status solid_stage_assemble(void *run, rf_error *err)
+{
+    return solid_assemble(run, err);
+}
+
+static void solid_params(const void *run, fem_drive_params *p)
+{
+    const solid_run *R = run;
+    *p = (fem_drive_params){R->dt, R->H.duration, R->ke0, R->grav.g, 13};
+}
+
+/* A step, its stability in large deformation, and the energy account's row. */
+static rf_status solid_stage_step(void *run, double t, fem_step_row *r, rf_error *err)
+{
+    solid_run *R = run;
+    rf_status st = solid_step(R, &r->Fc, &r->rad, err);
+    if (st != RF_OK)
+        return st;
+    if (R->large && (R->unstable = f3_step_violation(&R->step_check, R->dt, R->u)) >= 0)
+        return rf_fail(err, RF_EMODEL, "fem3d: element %ld was compressed below the stability bound of the time "
+                       "step dt = %g s (dt_safety = %g) at t = %g s", R->unstable, R->dt, R->t.dt_safety, t);
+    F3P_MARK(m);
+    solid_energy(R, t, r->Fc, r->rad, r->row, &r->comp, &r->closure);
+    F3P_LAP(F3P_ENERGY, m);
+    return RF_OK;
+}
+
+/* Gravity: the boulder leaves the contact (solid_separation). */
+static void solid_accounted(void *run, int was_in_contact, int in_contact)
+{
+    solid_run *R = run;
+    if (R->grav.g > 0 && was_in_contact && !in_contact)
+        solid_separation(R);
+}
+
+static rf_status solid_frame(void *run, int k, double t, rf_error *err)
+{
+    return solid_vtk(run, k, t, err);
+}
+
+static void solid_stage_extract(void *run, fem_run *F, long nsteps, const fem_attempt *a)
+{
+    solid_run *R = run;
+    F3P_REPORT(nsteps, R->ne, R->nn, R->nbn);
+    solid_extract(R, F, nsteps, a->out, a->hist, a->rep);
+}
+
+static long solid_stage_release(void *run)
+{
+    solid_run *R = run;
+    solid_release(R);
+    return R->unstable;
+}
+
+static const fem_geometry solid_geometry = {"fem3d", solid_stage_prepare, solid_stage_mesh, solid_stage_assemble,
+                                            solid_params, solid_stage_step, solid_accounted, solid_frame,
+                                            solid_stage_extract, NULL, solid_stage_release};
+
+/* One attempt of rf_fem3d_impact_ws (fem_run_halving): a fresh run through the driver. */
 static rf_status solid_attempt_fn(void *ctx, const rf_fem_options *o, long *unstable, rf_error *err)
 {
-    const solid_attempt_ctx *c = ctx;
-    return solid_attempt(c->ws, c->in, o, c->o3, c->out, c->hist, c->rep, unstable, err);
+    fem_attempt a = *(const fem_attempt *)ctx;
+    a.opt = o;
+    solid_run R;
+    memset(&R, 0, sizeof R);
+    R.pool = &a.ws->solid, R.unstable = -1;
+    return fem_drive(&solid_geometry, &R, &a, unstable, err);
 }
 
 rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
                              const rf_fem3d_options *o3, rf_impact_output *out, rf_fem_history *hist,
                              rf_fem3d_report *rep, rf_error *err)
 {
-    const double wall0 = rf_monotonic_seconds();
-    if (!out || !ws)
-        return rf_fail(err, RF_EINVAL, "fem3d: NULL output or workspace");
-    rf_fem_options o;
-    if (opt)
-        o = *opt;
-    else
-        rf_fem_options_default(&o);
-    solid_attempt_ctx c = {ws, in, o3, out, hist, rep};
-    const rf_status st = fem_run_halving(solid_attempt_fn, &c, &o, err);
-    if (st == RF_OK)
-        out->wall_seconds = rf_monotonic_seconds() - wall0;
-    return st;
+    fem_attempt a = {ws, in, opt, o3, out, hist, rep};
+    return fem_drive_impact(solid_attempt_fn, &a, "fem3d", err);
 }
 
 rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *opt, const rf_fem3d_options *o3,

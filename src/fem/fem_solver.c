@@ -22,6 +22,7 @@
 #include "rockfuzz/fem.h"
 #include "fem_ale.h"
 #include "fem_core.h"
+#include "fem_driver.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
 #include "quad4_kernel.h"
@@ -842,47 +843,6 @@ static void axi_energy(const axi_run *S, double t, double Fc, double rad, double
 }
 
 /* The time loop (with VTK frames if asked); *nsteps steps made. */
-static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
-{
-    const rf_fem_options *o = &S->o;
-    int vtk_every = (int)(R->steps_estimate / (S->t.vtk_frames > 0 ? S->t.vtk_frames : 60) + 1), vtk_n = 0;
-    const int vtk_cap = 4 * (S->t.vtk_frames + 8);
-    double *vtk_times = NULL;
-    if (o->vtk_dir && !(vtk_times = fem_pool_get(S->pool, P_VTK, (size_t)vtk_cap * sizeof(double), 0)))
-        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
-    rf_status st = RF_OK;
-    long n = 0;
-    for (;; n++) {
-        const double t = (double)n * S->dt;
-        if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap - 1) {
-            if ((st = fem_vtk_frame(o->vtk_dir, vtk_n, t, &S->mesh, S->u, S->v, S->mat, S->kernel, err)) != RF_OK)
-                return st;
-            vtk_times[vtk_n++] = t;
-        }
-        double Fc, rad, row[13], comp, closure;
-        if ((st = axi_step(S, &Fc, &rad, err)) != RF_OK)
-            return st;
-        if (S->large && (S->unstable = axi_step_violation(S)) >= 0)
-            return rf_fail(err, RF_EMODEL, "fem: element %ld was compressed below the stability bound of the time "
-                           "step dt = %g s (dt_safety = %g) at t = %g s: a mesh that follows the material cannot "
-                           "follow this deformation (docs/validation-plastic.md section 8, JGGE24-L1)",
-                           S->unstable, S->dt, S->t.dt_safety, t);
-        axi_energy(S, t, Fc, rad, row, &comp, &closure);
-        if ((st = fem_run_account(R, n, Fc, rad, comp, closure, S->ke0, row, err)) != RF_OK)
-            return st;
-        if (fem_run_stop(R, n))
-            break;
-    }
-    *nsteps = n + 1;
-    if (!o->vtk_dir)
-        return RF_OK;
-    const double t_end = (double)(n + 1) * S->dt; /* and the final state, as the 3D model writes it */
-    if ((st = fem_vtk_frame(o->vtk_dir, vtk_n, t_end, &S->mesh, S->u, S->v, S->mat, S->kernel, err)) != RF_OK)
-        return st;
-    vtk_times[vtk_n++] = t_end;
-    return fem_vtk_index(o->vtk_dir, vtk_n, vtk_times, err);
-}
-
 /* Outputs and diagnostics of the final state. */
 static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_output *out, rf_fem_history *hist)
 {
@@ -1026,82 +986,95 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
     return RF_OK;
 }
 
-/* One run with the options opt (may be NULL); *unstable >= 0 if an element
- * of a large-deformation run outgrew the time step (axi_step_violation). */
-static rf_status axi_attempt(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
-                            rf_impact_output *out, rf_fem_history *hist, long *unstable, rf_error *err)
+/* The driver's stages (fem_driver.h) over an axi_run. */
+static rf_status axi_stage_prepare(void *run, const fem_attempt *a, rf_error *err)
 {
-    const double wall0 = rf_monotonic_seconds();
-    if (hist)
-        memset(hist, 0, sizeof *hist);
-    axi_run S;
-    memset(&S, 0, sizeof S);
-    S.pool = &ws->axi, S.unstable = -1;
-    fem_run R;
-    memset(&R, 0, sizeof R);
-    rf_status st = axi_prepare(&S, in, opt, err);
-    if (st == RF_OK)
-        st = axi_mesh(&S, err);
-    if (st == RF_OK)
-        st = axi_assemble(&S, err);
-    if (st == RF_OK)
-        st = fem_run_begin(&R, "fem", &S.o, S.dt, S.H.duration, hist != NULL, S.ale_on ? 13 : 12, err);
-    R.gravity = S.g;
-    long nsteps = 0;
-    if (st == RF_OK)
-        st = axi_loop(&S, &R, &nsteps, err);
-    if (st == RF_OK) {
-        axi_extract(&S, &R, nsteps, out, hist);
-        if (hist) {
-            fem_run_history(&R, hist);
-            if (S.ale_on)
-                hist->remap = R.series.col[12], R.series.col[12] = NULL;
-        }
-        out->wall_seconds = rf_monotonic_seconds() - wall0;
-    }
-    *unstable = S.unstable;
-    fem_run_free(&R);
-    fem_contact_free(&S.C);
-    fem_ale_free(&S.ale);
-    fem_kernel_release(&S.kernel[0]);
-    fem_kernel_release(&S.kernel[1]);
-    if (S.have_mesh)
-        fem_mesh_free(&S.mesh);
-    if (st != RF_OK && hist)
-        rf_fem_history_free(hist);
-    return st;
+    return axi_prepare(run, a->in, a->opt, err);
 }
 
-/* One attempt of rf_fem_impact_ws (fem_run_halving). */
-typedef struct {
-    rf_fem_workspace *ws;
-    const rf_impact_input *in;
-    rf_impact_output *out;
-    rf_fem_history *hist;
-} axi_attempt_ctx;
+static rf_status axi_stage_mesh(void *run, rf_error *err)
+{
+    return axi_mesh(run, err);
+}
 
+static rf_status axi_stage_assemble(void *run, rf_error *err)
+{
+    return axi_assemble(run, err);
+}
+
+static void axi_params(const void *run, fem_drive_params *p)
+{
+    const axi_run *S = run;
+    *p = (fem_drive_params){S->dt, S->H.duration, S->ke0, S->g, S->ale_on ? 13 : 12};
+}
+
+/* A step, its stability in large deformation, and the energy account's row. */
+static rf_status axi_stage_step(void *run, double t, fem_step_row *r, rf_error *err)
+{
+    axi_run *S = run;
+    rf_status st = axi_step(S, &r->Fc, &r->rad, err);
+    if (st != RF_OK)
+        return st;
+    if (S->large && (S->unstable = axi_step_violation(S)) >= 0)
+        return rf_fail(err, RF_EMODEL, "fem: element %ld was compressed below the stability bound of the time "
+                       "step dt = %g s (dt_safety = %g) at t = %g s: a mesh that follows the material cannot "
+                       "follow this deformation (docs/validation-plastic.md section 8, JGGE24-L1)",
+                       S->unstable, S->dt, S->t.dt_safety, t);
+    axi_energy(S, t, r->Fc, r->rad, r->row, &r->comp, &r->closure);
+    return RF_OK;
+}
+
+static rf_status axi_frame(void *run, int k, double t, rf_error *err)
+{
+    axi_run *S = run;
+    return fem_vtk_frame(S->o.vtk_dir, k, t, &S->mesh, S->u, S->v, S->mat, S->kernel, err);
+}
+
+static void axi_stage_extract(void *run, fem_run *R, long nsteps, const fem_attempt *a)
+{
+    axi_extract(run, R, nsteps, a->out, a->hist);
+}
+
+/* With ALE, the history's energy column of the remaps. */
+static void axi_history(void *run, fem_run *R, rf_fem_history *hist)
+{
+    const axi_run *S = run;
+    if (S->ale_on)
+        hist->remap = R->series.col[12], R->series.col[12] = NULL;
+}
+
+static long axi_release(void *run)
+{
+    axi_run *S = run;
+    fem_contact_free(&S->C);
+    fem_ale_free(&S->ale);
+    fem_kernel_release(&S->kernel[0]);
+    fem_kernel_release(&S->kernel[1]);
+    if (S->have_mesh)
+        fem_mesh_free(&S->mesh);
+    return S->unstable;
+}
+
+static const fem_geometry axi_geometry = {"fem", axi_stage_prepare, axi_stage_mesh, axi_stage_assemble, axi_params,
+                                          axi_stage_step, NULL, axi_frame, axi_stage_extract, axi_history,
+                                          axi_release};
+
+/* One attempt of rf_fem_impact_ws (fem_run_halving): a fresh run through the driver. */
 static rf_status axi_attempt_fn(void *ctx, const rf_fem_options *o, long *unstable, rf_error *err)
 {
-    const axi_attempt_ctx *c = ctx;
-    return axi_attempt(c->ws, c->in, o, c->out, c->hist, unstable, err);
+    fem_attempt a = *(const fem_attempt *)ctx;
+    a.opt = o;
+    axi_run S;
+    memset(&S, 0, sizeof S);
+    S.pool = &a.ws->axi, S.unstable = -1;
+    return fem_drive(&axi_geometry, &S, &a, unstable, err);
 }
 
 rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
                            rf_impact_output *out, rf_fem_history *hist, rf_error *err)
 {
-    if (!out || !ws)
-        return rf_fail(err, RF_EINVAL, "fem: NULL output or workspace");
-    rf_fem_options o;
-    if (opt)
-        o = *opt;
-    else
-        rf_fem_options_default(&o);
-    const double wall0 = rf_monotonic_seconds();
-    axi_attempt_ctx c = {ws, in, out, hist};
-    const rf_status st = fem_run_halving(axi_attempt_fn, &c, &o, err);
-    if (st == RF_OK)
-        out->wall_seconds = rf_monotonic_seconds() - wall0;
-    return st;
+    fem_attempt a = {ws, in, opt, NULL, out, hist, NULL};
+    return fem_drive_impact(axi_attempt_fn, &a, "fem", err);
 }
 
 rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,
