@@ -48,15 +48,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void rf_fem3d_report_free(rf_fem3d_report *rep)
-{
-    if (!rep)
-        return;
-    free(rep->friction_series);
-    rep->friction_series = NULL;
-    rep->n = 0;
-}
-
 /* What the 3D model can do beyond the ranges every impact model shares
  * (rf_impact_input_validate) and the option rules (rf_fem_options_validate). */
 static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o, const rf_fem3d_options *o3,

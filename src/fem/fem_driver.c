@@ -7,6 +7,30 @@
 
 #include "core/util.h"
 
+/* The results' buffers, released here: the driver releases them when a run fails. */
+void rf_fem_history_free(rf_fem_history *h)
+{
+    if (!h)
+        return;
+    free(h->t);
+    free(h->contact_force), free(h->compression), free(h->contact_radius);
+    free(h->kinetic_boulder), free(h->strain_boulder), free(h->kinetic_slope), free(h->strain_slope);
+    free(h->contact_work), free(h->absorbed), free(h->closure), free(h->boulder_velocity), free(h->remap);
+    h->t = h->contact_force = h->compression = h->contact_radius = NULL;
+    h->kinetic_boulder = h->strain_boulder = h->kinetic_slope = h->strain_slope = NULL;
+    h->contact_work = h->absorbed = h->closure = h->boulder_velocity = h->remap = NULL;
+    h->n = 0;
+}
+
+void rf_fem3d_report_free(rf_fem3d_report *rep)
+{
+    if (!rep)
+        return;
+    free(rep->friction_series);
+    rep->friction_series = NULL;
+    rep->n = 0;
+}
+
 /* The VTK frames of a run: about vtk_frames of them, and the final state. */
 typedef struct {
     const char *dir;

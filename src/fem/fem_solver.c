@@ -36,20 +36,6 @@
 #include <omp.h>
 #endif
 
-void rf_fem_history_free(rf_fem_history *h)
-{
-    if (!h)
-        return;
-    free(h->t);
-    free(h->contact_force), free(h->compression), free(h->contact_radius);
-    free(h->kinetic_boulder), free(h->strain_boulder), free(h->kinetic_slope), free(h->strain_slope);
-    free(h->contact_work), free(h->absorbed), free(h->closure), free(h->boulder_velocity), free(h->remap);
-    h->t = h->contact_force = h->compression = h->contact_radius = NULL;
-    h->kinetic_boulder = h->strain_boulder = h->kinetic_slope = h->strain_slope = NULL;
-    h->contact_work = h->absorbed = h->closure = h->boulder_velocity = h->remap = NULL;
-    h->n = 0;
-}
-
 /* What the axisymmetric model can do beyond the ranges every impact model
  * shares (rf_impact_input_validate) and the option rules (rf_fem_options_validate). */
 static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o, rf_error *err)
