@@ -3,7 +3,7 @@
  * axisymmetric model, for the tables of docs/validation-plastic.md section 9c:
  * R_n, penetration, crater, W_p / KE, largest plastic strain, energy error,
  * steps, elements, dt and the CPU time of the process.
- *   bench_fem3d_large E c X0 thickness V refinement core_factor which [kinematics]
+ *   bench_fem3d_large E c X0 thickness V refinement fine_box_factor which [kinematics]
  * E, c, X0 [Pa]: the soil's modulus, cohesion and cap pressure (phi 35 deg,
  * psi 5 deg, H_c = 200 X0, nu 0.3, 1800 kg/m^3); thickness [m] 0: the whole
  * slope, else a layer over granite; V [m/s]; which: 1 3D, 2 axisymmetric,
@@ -16,6 +16,7 @@
 #include <time.h>
 
 #include "rockfuzz/fem.h"
+#include "fem/fem_tuning.h"
 #include "rockfuzz/fem3d.h"
 
 #ifndef M_PI
@@ -25,7 +26,7 @@
 int main(int argc, char **argv)
 {
     if (argc < 9) {
-        fprintf(stderr, "usage: bench_fem3d_large E c X0 thickness V refinement core_factor which [kinematics]\n");
+        fprintf(stderr, "usage: bench_fem3d_large E c X0 thickness V refinement fine_box_factor which [kinematics]\n");
         return 2;
     }
     double E = atof(argv[1]), c = atof(argv[2]), X0 = atof(argv[3]), t = atof(argv[4]), v = atof(argv[5]);
@@ -51,7 +52,7 @@ int main(int argc, char **argv)
     o.large_deformation = (rf_fem_kinematics)kin;
     rf_fem3d_options o3;
     rf_fem3d_options_default(&o3);
-    o3.core_factor = cf;
+    o3.fine_box_factor = cf;
     rf_impact_output out;
     rf_fem_history h;
     rf_error err = {0};

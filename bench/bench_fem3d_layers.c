@@ -5,7 +5,7 @@
  * (waves), friction and normal contact work, closure, all / KE0.
  *   bench_fem3d_layers [key=value ...] A [A ...]
  * keys (bench_fem3d_probe.h, which has them all): model=3d|axi, v= (m/s), angle= (deg), f=, aspect= (layer_aspect),
- * inner= (boulder_inner), core= (core_factor), elong= (elongation),
+ * inner= (boulder_inner), core= (fine_box_factor), elong= (elongation),
  * domain= (domain_factor), full=0|1, dt= (dt_safety), ratio= (boulder_mesh_ratio),
  * threads=. */
 #include <math.h>
@@ -36,7 +36,7 @@ int main(int argc, char **argv)
         const double cpu = probe_run(&p, &out, &H, &rep, "bench_fem3d_layers"), k0 = H.ke0;
         printf("model=%s ref=%g aspect=%g inner=%g core=%g domain=%g elements=%.0f steps=%.0f cpu=%.2f R_n=%.6f "
                "R_t=%.6f R_ke=%.6f omega=%.5f vib=%.3e slope=%.3e fric=%.3e W_n=%.3e closure=%.3e\n",
-               p.axi ? "axi" : "3d", p.o.refinement, p.o3.layer_aspect, p.o3.boulder_inner, p.o3.core_factor,
+               p.axi ? "axi" : "3d", p.o.refinement, p.o3.layer_aspect, p.o3.boulder_inner, p.o3.fine_box_factor,
                rf_fem_domain_factor(&p.o, &p.in), out.elements, out.steps, cpu, out.R_n, out.R_t, out.R_ke,
                out.omega_after,
                H.vibration_energy / k0, H.slope_energy / k0, rep.friction_work / k0, rep.normal_work / k0,

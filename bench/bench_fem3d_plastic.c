@@ -18,6 +18,7 @@
 
 #include "fem/fem_kernel.h"
 #include "rockfuzz/fem3d.h"
+#include "fem/fem_tuning.h"
 
 enum { G = 16, GN = G + 1 };
 
@@ -102,9 +103,10 @@ static int kernels_alone(void)
 
 static void material(int m, rf_impact_input *in, rf_fem_options *o, const char **name)
 {
+    static rf_fem_tuning tu; /* one run at a time */
     *name = "elastic (matrix-free kernel)";
     if (m == 1) {
-        o->kernel[0] = o->kernel[1] = RF_FEM_KERNEL_POINTS;
+        fem_tune(o, &tu)->kernel[0] = tu.kernel[1] = RF_FEM_KERNEL_POINTS;
         *name = "elastic (integration points)";
     } else if (m == 2) {
         in->slope_material = RF_MATERIAL_VON_MISES, in->slope_yield = 200e6;

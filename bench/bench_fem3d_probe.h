@@ -5,11 +5,11 @@
  * Input keys: model=3d|axi, v= (m/s), angle= (deg), f=, E= (layer_E, Pa),
  * X0= (layer cap pressure, Pa), Hc= (layer cap hardening, Pa), t= (layer
  * thickness, m), law=elastic|drucker_prager (the layer's), g= (gravity, m/s^2).
- * Option keys: large=0|1, core= (core_factor), domain= (domain_factor), end=
+ * Option keys: large=0|1, core= (fine_box_factor), domain= (domain_factor), end=
  * (end_time, s), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio),
  * threads=, aspect= (layer_aspect), inner= (boulder_inner), elong=
  * (elongation), full=0|1, dt= (dt_safety),
- * kappa= (surface_mass_kappa; > 0 also turns it on in 3D, 0 off), sphere= (sphere_contact_3d, 1 on). */
+ * kappa= (surface_mass_kappa of src/fem/fem_tuning.h; > 0 also turns it on in 3D, 0 off), sphere= (sphere_contact_3d, 1 on). */
 #ifndef ROCKFUZZ_BENCH_FEM3D_PROBE_H
 #define ROCKFUZZ_BENCH_FEM3D_PROBE_H
 
@@ -20,12 +20,14 @@
 
 #include "core/util.h"
 #include "rockfuzz/fem3d.h"
+#include "fem/fem_tuning.h"
 
 typedef struct {
     int axi;
     rf_impact_input in;
     rf_fem_options o;
     rf_fem3d_options o3;
+    rf_fem_tuning t; /* o's numerics (fem_tune) */
 } probe;
 
 static inline double cpu_seconds(void)
@@ -73,11 +75,11 @@ static inline int probe_set_option(probe *p, const char *arg, size_t n, const ch
     if (PROBE_KEY("large"))
         p->o.large_deformation = x > 0 ? RF_FEM_LARGE_DEFORMATION : RF_FEM_SMALL_STRAIN;
     else if (PROBE_KEY("core"))
-        p->o3.core_factor = x;
+        p->o3.fine_box_factor = x;
     else if (PROBE_KEY("kappa"))
-        p->o.surface_mass_kappa = x, p->o.surface_mass_3d = x > 0;
+        fem_tune(&p->o, &p->t)->surface_mass_kappa = x, p->t.surface_mass_3d = x > 0;
     else if (PROBE_KEY("sphere"))
-        p->o.sphere_contact_3d = x > 0;
+        fem_tune(&p->o, &p->t)->sphere_contact_3d = x > 0;
     else if (PROBE_KEY("domain"))
         p->o.domain_factor = x;
     else if (PROBE_KEY("end"))
@@ -85,7 +87,7 @@ static inline int probe_set_option(probe *p, const char *arg, size_t n, const ch
     else if (PROBE_KEY("boundary"))
         p->o.boundary = strcmp(val, "fixed") ? RF_FEM_BOUNDARY_ABSORBING : RF_FEM_BOUNDARY_FIXED;
     else if (PROBE_KEY("ratio"))
-        p->o.boulder_mesh_ratio = x;
+        fem_tune(&p->o, &p->t)->boulder_mesh_ratio = x;
     else if (PROBE_KEY("threads"))
         p->o.threads = (int)x;
     else if (PROBE_KEY("aspect"))
@@ -97,7 +99,7 @@ static inline int probe_set_option(probe *p, const char *arg, size_t n, const ch
     else if (PROBE_KEY("full"))
         p->o3.full_model = (int)x;
     else if (PROBE_KEY("dt"))
-        p->o.dt_safety = x;
+        fem_tune(&p->o, &p->t)->dt_safety = x;
     else
         return 0;
     return 1;

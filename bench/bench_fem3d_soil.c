@@ -8,7 +8,7 @@
  * keys (bench_fem3d_probe.h, which has them all): model=3d|axi, angle= (deg), f= (friction), large=0|1 (small strain or
  * large deformation, both models; default 0), E= (layer_E),
  * X0= (layer_cap_pressure), Hc= (layer_cap_hardening), t= (thickness),
- * core= (core_factor), domain= (domain_factor), end= (end time, s),
+ * core= (fine_box_factor), domain= (domain_factor), end= (end time, s),
  * law=elastic|dp (the layer's), boundary=fixed|absorbing, ratio= (boulder_mesh_ratio), threads=,
  * g= (gravity [m/s^2]; default 0, -1 = auto 9.81), kappa= (> 0: the mass redistribution at the
  * 3D contact face, the library's default, as kappa=0.1; without it the lumped face), sphere=1 (the
@@ -40,9 +40,9 @@ static void s5_nominal(probe *p)
     p->o.boundary = RF_FEM_BOUNDARY_FIXED, p->o.threads = 1, p->o.large_deformation = RF_FEM_SMALL_STRAIN;
     /* the lumped 3D face unless kappa= > 0 is given (so that the commands of docs/validation-plastic.md
        9e-9f keep their meaning; the library's default since 9e is on, kappa 0.1) */
-    p->o.surface_mass_3d = 0;
+    fem_tune(&p->o, &p->t)->surface_mass_3d = 0;
     /* and the faceted contact unless sphere=1 (the library's default since 9g) */
-    p->o.sphere_contact_3d = 0;
+    p->t.sphere_contact_3d = 0;
     rf_fem3d_options_default(&p->o3);
 }
 

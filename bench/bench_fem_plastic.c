@@ -16,6 +16,7 @@
 #include <time.h>
 
 #include "rockfuzz/fem.h"
+#include "fem/fem_tuning.h"
 
 int main(int argc, char **argv)
 {
@@ -33,11 +34,12 @@ int main(int argc, char **argv)
         in.velocity = V;
         rf_fem_options o;
         rf_fem_options_default(&o);
+        rf_fem_tuning tu;
         o.refinement = ref;
         o.domain_factor = 10;
         const char *name = "elastic (stiffness kernel)";
         if (m == 1) {
-            o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_POINTS;
+            fem_tune(&o, &tu)->kernel[0] = tu.kernel[1] = RF_FEM_KERNEL_POINTS;
             name = "elastic (integration points, 2x2)";
         } else if (m == 2 || m == 4) {
             in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 200e6;

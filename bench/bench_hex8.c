@@ -22,6 +22,7 @@
 #include "fem/hex8_kernel.h"
 #include "fem/hex8_step.h"
 #include "rockfuzz/fem3d.h"
+#include "fem/fem_tuning.h"
 
 typedef struct {
     f3_mesh mesh;

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "rockfuzz/fem3d.h"
+#include "fem/fem_tuning.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

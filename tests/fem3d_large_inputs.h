@@ -16,7 +16,7 @@
  * soil with a cap (E 1 GPa, nu 0.3, 1800 kg/m^3, c 0.2 MPa, phi 35 deg,
  * psi 5 deg, X0 2 MPa, H_c 400 MPa): the whole slope if thickness is 0, else
  * a layer of that thickness over elastic granite.  Its Hertz contact radius
- * (0.19 m) keeps the 3D fine zone inside the boulder at core_factor 1.5. */
+ * (0.19 m) keeps the 3D fine zone inside the boulder at fine_box_factor 1.5. */
 static inline rf_impact_input soft_soil_3d(double thickness)
 {
     rf_impact_input in = granite(0, 0);
@@ -58,7 +58,7 @@ static inline rf_fem3d_options large_options3d(void)
 {
     rf_fem3d_options o3;
     rf_fem3d_options_default(&o3);
-    o3.core_factor = 1.5;
+    o3.fine_box_factor = 1.5;
     return o3;
 }
 

@@ -7,6 +7,7 @@
 #define ROCKFUZZ_FEM3D_PLASTIC_INPUTS_H
 
 #include "rockfuzz/fem3d.h"
+#include "fem/fem_tuning.h"
 
 #define DEG (3.14159265358979323846 / 180)
 

@@ -15,7 +15,9 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fem_tune.h"
 #include "rockfuzz/fem.h"
+#include "fem/fem_tuning.h"
 #include "vtu_reader.h"
 
 #ifndef M_PI
@@ -115,7 +117,7 @@ static inline void deep_run(double refinement, rf_impact_output *out, double *ov
     rf_fem_options o;
     rf_fem_options_default(&o);
     o.refinement = refinement, o.boundary = RF_FEM_BOUNDARY_FIXED;
-    o.end_time = DEEP_END_TIME, o.vtk_dir = dir, o.vtk_frames = 12;
+    o.end_time = DEEP_END_TIME, o.vtk_dir = dir, TUNE(o).vtk_frames = 12;
     rf_fem_history hist;
     rf_error err = {0};
     if (rf_fem_impact(&in, &o, out, &hist, &err) != RF_OK)

@@ -6,6 +6,7 @@
 #define ROCKFUZZ_FEM_PLASTIC_INPUTS_H
 
 #include "rockfuzz/fem.h"
+#include "fem/fem_tuning.h"
 
 static inline rf_impact_input granite(double v)
 {

@@ -18,6 +18,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "fem_tune.h"
 #include "rockfuzz/fem.h"
 #include "vtu_reader.h"
 
@@ -261,14 +262,14 @@ static void test_time_step_bound(void **state)
     rf_fem_options o;
     rf_fem_options_default(&o);
     o.refinement = 3;
-    o.dt_safety = 1.0;
+    TUNE(o).dt_safety = 1.0;
     rf_impact_output out;
     rf_fem_history h;
     run(&in, &o, &out, &h);
     assert_true(out.energy_error < 1e-3);
     assert_true(h.dt == h.dt_bound);
     rf_fem_history_free(&h);
-    o.dt_safety = 1.5;
+    TUNE(o).dt_safety = 1.5;
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EMODEL);
     assert_non_null(strstr(err.msg, "unstable"));
@@ -284,7 +285,7 @@ static void test_non_matching(void **state)
     o.refinement = 4;
     rf_impact_output a, b;
     run(&in, &o, &a, NULL);
-    o.boulder_mesh_ratio = 0.7;
+    TUNE(o).boulder_mesh_ratio = 0.7;
     rf_fem_history h;
     run(&in, &o, &b, &h);
     assert_true(fabs(b.contact_force_max / a.contact_force_max - 1) < 0.01);
@@ -408,7 +409,7 @@ static void test_point_kernel(void **state)
     o.end_time = 2.5e-3;
     rf_impact_output a, b;
     run(&in, &o, &a, NULL);
-    o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_POINTS;
+    TUNE(o).kernel[0] = TUNE(o).kernel[1] = RF_FEM_KERNEL_POINTS;
     run(&in, &o, &b, NULL);
     printf("# point kernel: F %.3g, delta %.3g, v %.3g relative to the stiffness kernel\n",
            b.contact_force_max / a.contact_force_max - 1, b.compression_max / a.compression_max - 1,
@@ -420,7 +421,7 @@ static void test_point_kernel(void **state)
     assert_true(fabs(b.energy_error - a.energy_error) < 1e-10);
     rf_error err = {0}; /* 3D has the point kernel too (test_fem3d_plastic); an unknown kernel is refused */
     assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_OK);
-    o.kernel[0] = (rf_fem_kernel)5;
+    TUNE(o).kernel[0] = (rf_fem_kernel)5;
     assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "kernel[0]"));
 }
@@ -444,7 +445,7 @@ static void test_options_validate(void **state)
     assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "domain_factor = 2"));
     rf_fem_options_default(&o);
-    o.dt_safety = NAN;
+    TUNE(o).dt_safety = NAN;
     assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "dt_safety"));
     rf_fem_options_default(&o);
@@ -498,10 +499,10 @@ static void test_bad_input(void **state)
     o.domain_factor = 1;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
     rf_fem_options_default(&o);
-    o.boulder_mesh_ratio = 2; /* slave side coarser than the master: refused */
+    TUNE(o).boulder_mesh_ratio = 2; /* slave side coarser than the master: refused */
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
     rf_fem_options_default(&o);
-    o.max_elements = 100;
+    TUNE(o).max_elements = 100;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_ECAP);
     rf_fem_options_default(&o);
     in.velocity = 2000; /* contact zone larger than the boulder */
@@ -573,7 +574,7 @@ static void test_vtk(void **state)
     rf_fem_options_default(&o);
     o.refinement = 2;
     o.vtk_dir = dir;
-    o.vtk_frames = 3;
+    TUNE(o).vtk_frames = 3;
     rf_impact_output out;
     rf_fem_history h = {0};
     run(&in, &o, &out, &h);

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fem_tune.h"
 #include "rockfuzz/fem3d.h"
 #include "fem/fem3d_spec.h"
 #include "fem3d_inputs.h"
@@ -216,7 +217,7 @@ static void test_bad_input(void **state)
     assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "refinement"));
     rf_fem_options_default(&o);
-    o.max_elements = 1000;
+    TUNE(o).max_elements = 1000;
     assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_ECAP);
     assert_int_equal(rf_fem3d_impact(&in, &o, NULL, NULL, &err), RF_EINVAL);
     assert_int_equal(rf_fem3d_impact(NULL, &o, &out, NULL, &err), RF_EINVAL);

@@ -103,7 +103,7 @@ static void check_at_rest(const rf_impact_input *inp, rf_fem_boundary bnd, int c
     rf_fem3d_options o3; /* a coarse mesh: the logic, not the accuracy */
     rf_fem3d_options_default(&o3);
     if (coarse_mesh)
-        o3.core_factor = 1, o3.layer_aspect = 3;
+        o3.fine_box_factor = 1, o3.layer_aspect = 3;
     if (fem3d_gravity_free_run(&in, &o, &o3, steps, &c, &err) != RF_OK)
         fail_msg("%s", err.msg);
     const double gt = in.gravity * (double)steps * c.dt; /* an unbalanced weight moves the slope at g t */
@@ -446,7 +446,7 @@ static void test_oblique_friction(void **state)
     (void)state;
     rf_fem3d_options o3; /* a small fine zone: the logic, not the accuracy */
     rf_fem3d_options_default(&o3);
-    o3.core_factor = 1, o3.elongation = 0.5;
+    o3.fine_box_factor = 1, o3.elongation = 0.5;
     const rf_fem_options o = coarse(2, RF_FEM_BOUNDARY_ABSORBING);
     rf_impact_output out[2];
     for (int g = 0; g < 2; g++) {

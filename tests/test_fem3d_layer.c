@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fem_tune.h"
 #include "fem/fem3d_spec.h"       /* f3_layer_contact_estimate */
 #include "fem3d_layer_inputs.h" /* granite, coarse, run3d_ex, show, dp_layer, s5_soil */
 
@@ -26,7 +27,7 @@ static void test_layer_of_slope_material(void **state)
     (void)state;
     rf_impact_input in = granite(0, 0);
     rf_fem_options o = coarse(2);
-    o.kernel[1] = RF_FEM_KERNEL_POINTS;
+    TUNE(o).kernel[1] = RF_FEM_KERNEL_POINTS;
     rf_fem3d_options o3;
     rf_fem3d_options_default(&o3);
     o3.layered_mesh = 1;
@@ -104,7 +105,7 @@ static void test_rigid_oblique_layer(void **state)
     /* the faceted contact (sphere_contact_3d off) on the same problem: the same impact within the
        two discretisations' difference at this coarse mesh (measured 0.013 in R_n, 3e-4 in R_t) */
     rf_impact_output fa;
-    o.sphere_contact_3d = 0;
+    TUNE(o).sphere_contact_3d = 0;
     run3d_ex(&in, &o, NULL, &fa, NULL, NULL);
     show("rigid 45 deg DP, faceted", &fa);
     assert_true(fabs(fa.energy_error) < 5e-3);
@@ -200,7 +201,7 @@ static void test_soft_layer_zone(void **state)
     f3_mesh mesh;
     rf_error err = {0};
     f3_impact_mesh_spec(&in, &o, &o3, &ms, NULL, NULL);
-    assert_int_equal(f3_mesh_build(&ms, &mesh, o.max_elements, &err), RF_OK);
+    assert_int_equal(f3_mesh_build(&ms, &mesh, TUNE(o).max_elements, &err), RF_OK);
     assert_true((double)mesh.n_elems == out.elements);
     f3_mesh_free(&mesh);
     in.boulder_material = RF_MATERIAL_ELASTIC;

@@ -14,6 +14,7 @@
 
 #include <stdlib.h>
 
+#include "fem_tune.h"
 #include "fem3d_layer_inputs.h"
 
 /* (b) A rigid boulder at normal incidence on elastic granite: against Hertz with the rigid body's E*
@@ -47,8 +48,8 @@ static void test_rigid_normal(void **state)
     /* the default (sphere) contact against the faceted one on the same mesh (section 9g): 2e-3 in
        R_n, the solver-to-solver tolerance above (measured 1.2e-4) */
     rf_impact_output fa;
-    assert_int_equal(o.sphere_contact_3d, 1);
-    o.sphere_contact_3d = 0;
+    assert_int_equal(TUNE(o).sphere_contact_3d, 1);
+    TUNE(o).sphere_contact_3d = 0;
     run3d_ex(&in, &o, NULL, &fa, NULL, NULL);
     show("rigid 3D, faceted contact", &fa);
     assert_true(fabs(r3.R_n - fa.R_n) < 2e-3);
@@ -59,7 +60,7 @@ static void test_rigid_normal(void **state)
 }
 
 /* (b) 45 degrees, f = 0.6 (sticking, spinning): the rigid boulder against elastic boulders 100 and
-   1000 times stiffer than granite (coarse: domain 3 r0, core_factor 1).  R_n converges (x100 and
+   1000 times stiffer than granite (coarse: domain 3 r0, fine_box_factor 1).  R_n converges (x100 and
    x1000 within 5e-4 of the rigid value).  R_t and the spin converge at x100 (0.25 % and 0.4 %) but
    the x1000 run is not a sharper reference: the contact closes gaps to 1e-9 h, and that residual
    times the x1000 boulder's stiffness is a force noise that rings the boulder (energy error
@@ -77,10 +78,10 @@ static void test_rigid_vs_stiff(void **state)
     o.domain_factor = 3;
     rf_fem3d_options o3;
     rf_fem3d_options_default(&o3);
-    o3.core_factor = 1;
+    o3.fine_box_factor = 1;
     rf_impact_output rg, s100, s1000;
     in.boulder_material = RF_MATERIAL_RIGID_BODY;
-    o.sphere_contact_3d = 0; /* the elastic boulders' contact: the rigid body is what is compared */
+    TUNE(o).sphere_contact_3d = 0; /* the elastic boulders' contact: the rigid body is what is compared */
     run3d_ex(&in, &o, &o3, &rg, NULL, NULL);
     in.boulder_material = RF_MATERIAL_ELASTIC, in.boulder_E *= 100;
     run3d_ex(&in, &o, &o3, &s100, NULL, NULL);
@@ -207,9 +208,9 @@ static void test_surface_mass_3d(void **state)
     rf_fem3d_options_default(&o3);
     rf_impact_output on, off, soil;
     rf_fem_history hon = {0}, hoff = {0};
-    o.surface_mass_3d = 0;
+    TUNE(o).surface_mass_3d = 0;
     run3d_ex(&in, &o, &o3, &off, &hoff, NULL);
-    o.surface_mass_3d = 1;
+    TUNE(o).surface_mass_3d = 1;
     run3d_ex(&in, &o, &o3, &on, &hon, NULL);
     show("elastic soft layer, redistributed", &on);
     show("elastic soft layer, lumped", &off);
@@ -221,7 +222,7 @@ static void test_surface_mass_3d(void **state)
     s5_soil(&in);
     rf_impact_output lumped;
     run3d_ex(&in, &o, &o3, &soil, NULL, NULL);
-    o.surface_mass_3d = 0;
+    TUNE(o).surface_mass_3d = 0;
     run3d_ex(&in, &o, &o3, &lumped, NULL, NULL);
     show("S5 soil, redistributed", &soil);
     show("S5 soil, lumped", &lumped);
@@ -243,7 +244,7 @@ static void test_redistributed_ploughing(void **state)
     rf_fem_options_default(&o);
     o.refinement = 2, o.threads = 1, o.large_deformation = RF_FEM_LARGE_DEFORMATION;
     o.boundary = RF_FEM_BOUNDARY_ABSORBING;
-    o.surface_mass_3d = 1;
+    TUNE(o).surface_mass_3d = 1;
     rf_impact_output out;
     rf_fem3d_report rep = {0};
     rf_error err = {0};
@@ -258,17 +259,17 @@ static void test_redistributed_ploughing(void **state)
     rf_fem3d_report_free(&rep);
 }
 
-/* 45 deg, f = 0.6 on granite (domain 3 r0, core_factor 1), a rigid boulder at a/h ref with the sphere
+/* 45 deg, f = 0.6 on granite (domain 3 r0, fine_box_factor 1), a rigid boulder at a/h ref with the sphere
    contact on or off. */
 static void granite45(double ref, int sphere, rf_impact_output *out)
 {
     rf_impact_input in = granite(45, 0.6);
     in.boulder_material = RF_MATERIAL_RIGID_BODY;
     rf_fem_options o = coarse(ref);
-    o.domain_factor = 3, o.sphere_contact_3d = sphere;
+    o.domain_factor = 3, TUNE(o).sphere_contact_3d = sphere;
     rf_fem3d_options o3;
     rf_fem3d_options_default(&o3);
-    o3.core_factor = 1;
+    o3.fine_box_factor = 1;
     run3d_ex(&in, &o, &o3, out, NULL, NULL);
 }
 

@@ -20,6 +20,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fem_tune.h"
 #include "rockfuzz/fem3d.h"
 #include "rockfuzz/impact_model.h"
 #include "rockfuzz/model.h"
@@ -37,11 +38,11 @@ static void test_points_kernel_is_matrix_free(void **state)
     o.end_time = 1.5e-3;
     rf_impact_output el, pts, j2;
     run3d(&in, &o, &el, NULL, NULL);
-    o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_POINTS;
+    TUNE(o).kernel[0] = TUNE(o).kernel[1] = RF_FEM_KERNEL_POINTS;
     run3d(&in, &o, &pts, NULL, NULL);
     assert_true(fabs(pts.contact_force_max - el.contact_force_max) < 1e-9 * el.contact_force_max);
     assert_true(fabs(pts.penetration_max - el.penetration_max) < 1e-9 * el.penetration_max);
-    o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_STIFFNESS;
+    TUNE(o).kernel[0] = TUNE(o).kernel[1] = RF_FEM_KERNEL_STIFFNESS;
     in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 1e15;
     run3d(&in, &o, &j2, NULL, NULL);
     assert_true(j2.plastic_work == 0 && j2.equivalent_plastic_strain_max == 0);
@@ -151,7 +152,7 @@ static void test_vtk(void **state)
     uint64_t h0, h1;
     o.end_time = 1.5e-3; /* the loading part of the contact (4.8 ms): the plastic strain is there */
     run3d(&in, &o, &plain, NULL, &h0);
-    o.vtk_dir = dir, o.vtk_frames = 8;
+    o.vtk_dir = dir, TUNE(o).vtk_frames = 8;
     run3d(&in, &o, &out, NULL, &h1);
     assert_true(h0 == h1 && plain.R_t == out.R_t);
     char path[512];
@@ -207,7 +208,7 @@ static void test_solve_vtk(void **state)
     rf_impact_input in = granite(45, 0);
     in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 200e6;
     rf_fem_options o = coarse(2.5);
-    o.end_time = 5e-4, o.vtk_dir = dir, o.vtk_frames = 2;
+    o.end_time = 5e-4, o.vtk_dir = dir, TUNE(o).vtk_frames = 2;
     rf_impact_output out;
     rf_error err = {0};
     int three_d = 0;
@@ -237,10 +238,10 @@ static void test_refusals(void **state)
     rf_impact_output out;
     rf_error err = {0};
     /* (a rigid boulder and a layer run in 3D now: test_fem3d_layer) */
-    o.kernel[1] = (rf_fem_kernel)7;
+    TUNE(o).kernel[1] = (rf_fem_kernel)7;
     assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "kernel[1] = 7"));
-    o.kernel[1] = RF_FEM_KERNEL_STIFFNESS;
+    TUNE(o).kernel[1] = RF_FEM_KERNEL_STIFFNESS;
     o.vtk_dir = "/nonexistent/rockfuzz";
     assert_int_equal(rf_fem3d_impact(&in, &o, &out, NULL, &err), RF_EIO);
     assert_non_null(strstr(err.msg, "/nonexistent/rockfuzz/fem_0000.vtu"));

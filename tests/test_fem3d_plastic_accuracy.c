@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fem_tune.h"
 #include "rockfuzz/fem3d.h"
 #include "fem3d_plastic_inputs.h"
 
@@ -31,11 +32,11 @@ static void test_huge_yield_is_elastic(void **state)
     o.boundary = RF_FEM_BOUNDARY_FIXED; /* one boundary for all three (auto: absorbing for the J2 slope) */
     rf_impact_output el, pts, j2;
     run3d(&in, &o, &el, NULL, NULL);
-    o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_POINTS;
+    TUNE(o).kernel[0] = TUNE(o).kernel[1] = RF_FEM_KERNEL_POINTS;
     run3d(&in, &o, &pts, NULL, NULL);
     assert_true(fabs(pts.R_n - el.R_n) < 1e-10);
     assert_true(fabs(pts.contact_force_max - el.contact_force_max) < 1e-9 * el.contact_force_max);
-    o.kernel[0] = o.kernel[1] = RF_FEM_KERNEL_STIFFNESS;
+    TUNE(o).kernel[0] = TUNE(o).kernel[1] = RF_FEM_KERNEL_STIFFNESS;
     in.slope_material = RF_MATERIAL_VON_MISES, in.slope_yield = 1e15;
     run3d(&in, &o, &j2, NULL, NULL);
     assert_true(fabs(j2.R_n - el.R_n) < 1e-4);

@@ -21,6 +21,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "fem_tune.h"
 #include "fem/fem_ale.h"
 #include "fem/fem_internal.h"
 #include "fem/fem_kernel.h"
@@ -332,7 +333,7 @@ static void test_no_motion_bit_identical(void **state)
     (void)state;
     const rf_impact_input in = j2_soil(4);
     rf_fem_options on = j2_options(RF_FEM_ALE_ON), off = j2_options(RF_FEM_ALE_OFF);
-    on.ale_sweeps = 0;
+    TUNE(on).ale_sweeps = 0;
     rf_impact_output a, b;
     rf_fem_history ha, hb;
     rf_error err = {0};
@@ -406,7 +407,7 @@ static void test_survivor_same_result(void **state)
     assert_true(fabs(b.energy_error - a.energy_error) < 0.01);
 }
 
-/* The option: names, and the validation of its settings. */
+/* The option: off | on (no auto: the default is off, said as such), and the validation of its settings. */
 static void test_option(void **state)
 {
     (void)state;
@@ -414,17 +415,20 @@ static void test_option(void **state)
     rf_error err = {0};
     assert_int_equal(rf_fem_ale_parse("on", &a, &err), RF_OK);
     assert_int_equal(a, RF_FEM_ALE_ON);
-    assert_string_equal(rf_fem_ale_name(RF_FEM_ALE_AUTO), "auto");
+    assert_string_equal(rf_fem_ale_name(RF_FEM_ALE_OFF), "off");
+    assert_int_equal(rf_fem_ale_parse("auto", &a, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "accepted: off | on"));
     assert_int_equal(rf_fem_ale_parse("sometimes", &a, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "sometimes"));
     rf_fem_options o;
     rf_fem_options_default(&o);
-    o.ale_trigger = 1.5;
+    TUNE(o).ale_trigger = 1.5;
     assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "ale_trigger"));
     const rf_impact_input in = j2_soil(8);
     rf_fem_options_default(&o);
-    assert_int_equal(rf_fem_ale_enabled(&o, &in), 0); /* auto: off (section 8b) */
+    assert_int_equal(o.ale, RF_FEM_ALE_OFF);
+    assert_int_equal(rf_fem_ale_enabled(&o, &in), 0); /* off by default (section 8b) */
     o.ale = RF_FEM_ALE_ON, o.large_deformation = RF_FEM_SMALL_STRAIN;
     assert_int_equal(rf_fem_ale_enabled(&o, &in), 0); /* only in large deformation */
 }

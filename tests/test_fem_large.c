@@ -17,6 +17,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "fem_tune.h"
 #include "fem/fem_internal.h"
 #include "fem/fem_kernel.h"
 #include "fem_plastic_inputs.h" /* axi_options */
@@ -211,7 +212,7 @@ static void test_surface_mass_redistribution(void **state)
     rf_fem_history hon, hoff;
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &on, &hon, &err), RF_OK);
-    o.surface_mass_kappa = 0;
+    TUNE(o).surface_mass_kappa = 0;
     assert_int_equal(rf_fem_impact(&in, &o, &off, &hoff, &err), RF_OK);
     printf("S5 soil, a/h 2: closure %.3e redistributed, %.3e lumped; F_max %.4g / %.4g N; R_n %.4f / %.4f; dt %.6g / %.6g\n",
            on.energy_error, off.energy_error, on.contact_force_max, off.contact_force_max, on.R_n, off.R_n, hon.dt,
@@ -225,7 +226,7 @@ static void test_surface_mass_redistribution(void **state)
     rf_impact_input_default(&g); /* granite on granite, 10 m/s */
     o = axi_options(3, RF_FEM_KINEMATICS_AUTO);
     assert_int_equal(rf_fem_impact(&g, &o, &on, NULL, &err), RF_OK);
-    o.surface_mass_kappa = 0;
+    TUNE(o).surface_mass_kappa = 0;
     assert_int_equal(rf_fem_impact(&g, &o, &off, NULL, &err), RF_OK);
     assert_true(on.R_n == off.R_n && on.contact_force_max == off.contact_force_max && on.steps == off.steps);
 }
@@ -243,10 +244,10 @@ static void test_contact_single_pivot(void **state)
     rf_impact_output a, b;
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &a, NULL, &err), RF_OK);
-    o.contact_single_pivot = 2; /* an option, not a global: checked, per call */
+    TUNE(o).contact_single_pivot = 2; /* an option, not a global: checked, per call */
     assert_int_equal(rf_fem_impact(&in, &o, &b, NULL, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "contact_single_pivot = 2"));
-    o.contact_single_pivot = 1; /* single pivoting from the start */
+    TUNE(o).contact_single_pivot = 1; /* single pivoting from the start */
     assert_int_equal(rf_fem_impact(&in, &o, &b, NULL, &err), RF_OK);
     printf("contact LCP: block R_n %.12f, single pivot %.12f; penetration %.9f / %.9f m\n", a.R_n, b.R_n,
            a.penetration_max, b.penetration_max);

@@ -23,6 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "fem_tune.h"
 #include "vtu_reader.h"
 
 #include "fem/fem_internal.h"
@@ -364,7 +365,7 @@ static void test_vtk_plastic_fields(void **state)
     in.slope_yield = 200e6;
     rf_fem_options o = coarse(2);
     o.vtk_dir = dir;
-    o.vtk_frames = 3;
+    TUNE(o).vtk_frames = 3;
     rf_impact_output out;
     rf_error err = {0};
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_OK);

@@ -251,6 +251,7 @@ static void test_errors(void **state)
 
 #if __has_include("rockfuzz/fem.h")
 #include "rockfuzz/fem.h"
+#include "fem/fem_tuning.h" /* a spec with internal tuning, refused */
 /* The identity names the automatic end of section 10a (docs/validation-plastic.md) when a body may be
  * plastic (a study store never mixes results of the old fixed end), not
  * with a given end_time, not for elastic bodies. */
@@ -274,7 +275,8 @@ static void test_fem_identity_end(void **state)
 
 /* The rigid sphere's exact-surface 3D contact (docs/validation-plastic.md 9g) is named in the identity
  * of a study whose boulder is rigid and which may run the 3D model (a store never mixes its results
- * with the faceted contact's); an elastic boulder's identity does not change. */
+ * with the faceted contact's of the stores made before); an elastic boulder's identity does not change.
+ * A model runs the validated numerics only: a spec with internal tuning is refused. */
 static void test_fem_identity_sphere_contact(void **state)
 {
     (void)state;
@@ -286,12 +288,13 @@ static void test_fem_identity_sphere_contact(void **state)
     assert_int_equal(rf_impact_model_create(&spec, names, 1, &c, &err), RF_OK); /* elastic boulder */
     spec.base.boulder_material = RF_MATERIAL_RIGID_BODY;
     assert_int_equal(rf_impact_model_create(&spec, names, 1, &a, &err), RF_OK);
-    spec.fem.sphere_contact_3d = 0;
-    assert_int_equal(rf_impact_model_create(&spec, names, 1, &b, &err), RF_OK);
     assert_non_null(strstr(a.identity, " fem3d_contact=exact_sphere"));
-    assert_null(strstr(b.identity, "fem3d_contact="));
     assert_null(strstr(c.identity, "fem3d_contact="));
-    rf_model_free(&a), rf_model_free(&b), rf_model_free(&c);
+    rf_fem_tuning tu;
+    fem_tune(&spec.fem, &tu);
+    assert_int_equal(rf_impact_model_create(&spec, names, 1, &b, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "fem.tuning"));
+    rf_model_free(&a), rf_model_free(&c);
 }
 
 /* The axisymmetric contact's friction is named where an evaluation may run

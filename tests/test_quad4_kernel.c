@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fem_tune.h"
 #include "fem/fem_internal.h"
 #include "fem/fem_spec.h"
 #include "fem/quad4_kernel.h"
@@ -87,7 +88,7 @@ static void real_mesh(fem_mesh *mesh, fem_material *mat)
     fem_body_spec bs, ss;
     rf_error err = {0};
     assert_int_equal(fem_impact_mesh_spec(&in, &o, &bs, &ss, &err), RF_OK);
-    assert_int_equal(fem_mesh_build(&bs, &ss, mesh, o.max_elements, &err), RF_OK);
+    assert_int_equal(fem_mesh_build(&bs, &ss, mesh, TUNE(o).max_elements, &err), RF_OK);
     o.end_time = 1e-7; /* the spec is the solver's: the same element count */
     rf_impact_output out;
     assert_int_equal(rf_fem_impact(&in, &o, &out, NULL, &err), RF_OK);

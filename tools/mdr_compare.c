@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "rockfuzz/fem3d.h"
+#include "fem/fem_tuning.h"
 #include "rockfuzz/mdr.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
@@ -36,6 +37,7 @@ typedef struct {
     int arm;
     rf_mdr_options mo;
     rf_fem_options fo;
+    rf_fem_tuning tu; /* fo's numerics (fem_tune) */
     int fem;
 } config;
 
@@ -70,7 +72,7 @@ static int parse(config *c, int argc, char **argv)
         else if (KEY("ref")) c->fo.refinement = x;
         else if (KEY("bc")) c->fo.boundary = !strcmp(val, "absorbing") ? RF_FEM_BOUNDARY_ABSORBING : RF_FEM_BOUNDARY_FIXED;
         else if (KEY("dom")) c->fo.domain_factor = x;
-        else if (KEY("dtsafety")) c->fo.dt_safety = x;
+        else if (KEY("dtsafety")) fem_tune(&c->fo, &c->tu)->dt_safety = x;
         else if (KEY("end")) c->fo.end_time = x;
         else if (KEY("threads")) c->fo.threads = (int)x;
         else

@@ -13,12 +13,14 @@
 
 #include "core/util.h"
 #include "rockfuzz/fem.h"
+#include "fem/fem_tuning.h"
 
 int main(int argc, char **argv)
 {
     rf_impact_input in = {.radius = 1, .boulder_density = 2600, .slope_density = 2600, .boulder_E = 68.2e9,
                           .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10};
     rf_fem_options o;
+    rf_fem_tuning tu; /* the numerics (fem_tune) */
     rf_fem_options_default(&o);
     o.domain_factor = 10; /* the documented runs use the seed paper's 10 r0; dom=0 = automatic */
     const char *histfile = NULL;
@@ -42,12 +44,12 @@ int main(int argc, char **argv)
         else if (!strcmp(key, "ref")) o.refinement = x;
         else if (!strcmp(key, "dom")) o.domain_factor = x;
         else if (!strcmp(key, "bc")) o.boundary = !strcmp(val, "absorbing") ? RF_FEM_BOUNDARY_ABSORBING : RF_FEM_BOUNDARY_FIXED;
-        else if (!strcmp(key, "ratio")) o.boulder_mesh_ratio = x;
+        else if (!strcmp(key, "ratio")) fem_tune(&o, &tu)->boulder_mesh_ratio = x;
         else if (!strcmp(key, "end")) o.end_time = x;
         else if (!strcmp(key, "threads")) o.threads = (int)x;
-        else if (!strcmp(key, "dtsafety")) o.dt_safety = x;
-        else if (!strcmp(key, "grading")) o.grading = x;
-        else if (!strcmp(key, "core")) o.core_factor = x;
+        else if (!strcmp(key, "dtsafety")) fem_tune(&o, &tu)->dt_safety = x;
+        else if (!strcmp(key, "grading")) fem_tune(&o, &tu)->grading = x;
+        else if (!strcmp(key, "core")) fem_tune(&o, &tu)->fine_zone_factor = x;
         else if (!strcmp(key, "hist")) histfile = val;
         else if (!strcmp(key, "vtk")) o.vtk_dir = val;
         else {
@@ -77,7 +79,7 @@ int main(int argc, char **argv)
            "Rn=%.7f Rke=%.7f eerr=%.3e pen_rel=%.3e slip_rel_h=%.3e vib=%.4e slope_E=%.4e lost=%.4e "
            "mesh_mass_rel=%.5f nodes=%.0f elems=%.0f steps=%.0f dt=%.4e dt_bound=%.4e dt_edge=%.4e wall=%.3f "
            "ns_per_es=%.2f warning=\"%s\"\n",
-           V, rf_fem_refinement(&o, 0), rf_fem_domain_factor(&o, &in), o.domain_factor == 0, rf_fem_boundary_name(rf_fem_boundary_resolve(o.boundary, &in)), o.boulder_mesh_ratio, c, d,
+           V, rf_fem_refinement(&o, 0), rf_fem_domain_factor(&o, &in), o.domain_factor == 0, rf_fem_boundary_name(rf_fem_boundary_resolve(o.boundary, &in)), fem_tuning_of(&o)->boulder_mesh_ratio, c, d,
            in.radius, aH / R, out.contact_force_max, out.contact_force_max / FH - 1, out.compression_max,
            out.compression_max / dH - 1, out.contact_duration, out.contact_duration / tH - 1, out.contact_radius,
            out.contact_radius / aH - 1, out.R_n, out.R_ke, out.energy_error,

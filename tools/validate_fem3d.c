@@ -14,6 +14,7 @@
 
 #include "core/util.h"
 #include "rockfuzz/fem3d.h"
+#include "fem/fem_tuning.h"
 
 
 int main(int argc, char **argv)
@@ -21,6 +22,7 @@ int main(int argc, char **argv)
     rf_impact_input in = {.radius = 1, .boulder_density = 2600, .slope_density = 2600, .boulder_E = 68.2e9,
                           .slope_E = 68.2e9, .boulder_poisson = 0.25, .slope_poisson = 0.25, .velocity = 10};
     rf_fem_options o;
+    rf_fem_tuning tu; /* the numerics (fem_tune) */
     rf_fem_options_default(&o);
     o.domain_factor = 10; /* the documented runs use the seed paper's 10 r0; dom=0 = automatic */
     o.refinement = 6;
@@ -58,17 +60,17 @@ int main(int argc, char **argv)
         else if (!strcmp(key, "bc"))
             o.boundary = !strcmp(val, "absorbing") ? RF_FEM_BOUNDARY_ABSORBING : RF_FEM_BOUNDARY_FIXED;
         else if (!strcmp(key, "ratio"))
-            o.boulder_mesh_ratio = x;
+            fem_tune(&o, &tu)->boulder_mesh_ratio = x;
         else if (!strcmp(key, "end"))
             o.end_time = x;
         else if (!strcmp(key, "threads"))
             o.threads = (int)x;
         else if (!strcmp(key, "dtsafety"))
-            o.dt_safety = x;
+            fem_tune(&o, &tu)->dt_safety = x;
         else if (!strcmp(key, "full"))
             o3.full_model = (int)x;
         else if (!strcmp(key, "core"))
-            o3.core_factor = x;
+            o3.fine_box_factor = x;
         else if (!strcmp(key, "elong"))
             o3.elongation = x;
         else if (!strcmp(key, "aspect"))

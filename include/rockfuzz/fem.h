@@ -53,15 +53,6 @@ rf_status rf_fem_boundary_parse(const char *name, rf_fem_boundary *b, rf_error *
  * them where dt C / m >= 2 (docs/validation-plastic.md section 10b). */
 rf_fem_boundary rf_fem_boundary_resolve(rf_fem_boundary b, const rf_impact_input *in);
 
-/* Material kernel of a body (src/fem/fem_kernel.h): how its internal force is computed. */
-typedef enum {
-    RF_FEM_KERNEL_STIFFNESS = 0, /* linear elastic, the fastest (default): axisymmetric, precomputed element
-                                    stiffness; 3D, matrix-free at the Gauss points (docs/fem-speed.md) */
-    RF_FEM_KERNEL_POINTS         /* linear elastic stress update at the integration points: the form
-                                    elasto-plastic laws take (~5x slower; in 3D the hexahedron's
-                                    point kernel, without B-bar: the elastic results to round-off) */
-} rf_fem_kernel;
-
 /* Kinematics of the FE models (docs/validation-plastic.md sections 6e, 9c). */
 typedef enum {
     RF_FEM_KINEMATICS_AUTO = 0, /* default: large deformation when a body is elasto-plastic, else small strain */
@@ -76,19 +67,19 @@ typedef enum {
 
 /* ALE rezoning of the axisymmetric large-deformation slope (docs/validation-plastic.md
  * section 8b): where the updated-Lagrangian mesh has become distorted (an element's
- * stable size below ale_trigger of its reference size), its interior nodes are
- * relocated by a smoothing and the stresses, internal variables and velocities
- * remapped (first-order donor cell, conservative; the energy the remap changes is
- * reported as its own term of the closure).  Ignored in small strain and by the 3D model. */
+ * stable size below half its reference size), its interior nodes are relocated by a
+ * smoothing and the stresses, internal variables and velocities remapped (first-order
+ * donor cell, conservative; the energy the remap changes is reported as its own term of
+ * the closure).  Off by default: it changes the peak force of deep runs by a third to a
+ * half, which no reference decides yet; switch it on where a run fails with a crushed
+ * element.  Ignored in small strain and by the 3D model. */
 typedef enum {
-    RF_FEM_ALE_AUTO = 0, /* default: see rf_fem_ale_enabled */
-    RF_FEM_ALE_OFF,
+    RF_FEM_ALE_OFF = 0, /* default: Lagrangian */
     RF_FEM_ALE_ON
 } rf_fem_ale;
+/* "off" | "on" <-> enum. */
 const char *rf_fem_ale_name(rf_fem_ale a);
 rf_status rf_fem_ale_parse(const char *name, rf_fem_ale *a, rf_error *err);
-/* "off" -> 0, "on" -> 1 for the switch named what (surface_mass_3d). */
-rf_status rf_fem_switch_parse(const char *what, const char *name, int *on, rf_error *err);
 
 /* "auto" | "off" | "on" <-> enum. */
 const char *rf_fem_kinematics_name(rf_fem_kinematics k);
@@ -105,69 +96,76 @@ rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_err
 #define RF_FEM_DOMAIN_MARGIN 1.25
 #define RF_FEM_DOMAIN_MIN 10.0
 
+/* The numerical settings that no user chooses (mesh grading, time-step safety, material
+ * kernels, the second methods the validation compares against, ...): src/fem/fem_tuning.h,
+ * for the tests and benchmarks only. */
+typedef struct rf_fem_tuning rf_fem_tuning;
+
+/* The options a user chooses.  Every member but the last four is a row of
+ * rf_fem_option_fields (name, unit, default, range, help); see there. */
 typedef struct {
-    double refinement;         /* elements across the Hertz contact radius a (a/h), >= 2;
-                                  default 0 = RF_FEM_REFINEMENT_AXI / RF_FEM_REFINEMENT_3D */
-    double domain_factor;      /* hemisphere radius / r0, >= 3; default 0 = automatic (see above);
-                                  10 with a fixed boundary is the seed paper's model */
-    rf_fem_boundary boundary;  /* outer curved surface of the half-space, default auto
-                                  (rf_fem_boundary_resolve) */
-    double end_time;           /* [s]; 0 = automatic: >= 1.3 Hertz durations and until the
-                                  contact has stayed open for 0.1 of one while the boulder
-                                  moves away; past 3 durations up to a bound scaled by the
-                                  contact's progress (with gravity: 100 durations; the block
-                                  may come to rest, R_n = 0), where the run fails (RF_EMODEL) */
-    int threads;               /* OpenMP threads for one impact, default 1 (0 = 1) */
+    double refinement;                   /* elements across the Hertz contact radius a (a/h); 0 = automatic */
+    double domain_factor;                /* hemisphere radius / r0; 0 = automatic (see above) */
+    rf_fem_boundary boundary;            /* outer curved surface of the half-space (rf_fem_boundary_resolve) */
+    rf_fem_kinematics large_deformation; /* see rf_fem_kinematics; in the 3D model `on` puts every deformable
+                                            body on the updated-Lagrangian hexahedron kernel, auto the
+                                            elasto-plastic ones, an elastic one keeps its small-strain kernel */
+    rf_fem_ale ale;                      /* axisymmetric large deformation: ALE rezoning of the slope */
+    double end_time;                     /* [s]; 0 = automatic: >= 1.3 Hertz durations and until the
+                                            contact has stayed open for 0.1 of one while the boulder
+                                            moves away; past 3 durations up to a bound scaled by the
+                                            contact's progress (with gravity: 100 durations; the block
+                                            may come to rest, R_n = 0), where the run fails (RF_EMODEL) */
+    int threads;                         /* OpenMP threads for one impact (0 = 1); results do not depend on it */
+    /* --- not model settings (neither in the table nor in a model's identity) --- */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (an existing dir:
                                   the CLI's --vtk creates it) */
-    double boulder_mesh_ratio; /* boulder / slope element size in the fine zone, default 1 (matching);
-                                  [0.25, 1.25]: the boulder nodes are the contact slaves */
-    /* --- expert settings (defaults are the validated ones) --- */
-    double core_factor;        /* uniform fine zone extends core_factor * a, default 2.5 */
-    double grading;            /* element-size growth per element outside the fine zone, default 1.15 */
-    double dt_safety;          /* time step = dt_safety * element eigenvalue bound, default 0.9 */
-    double surface_mass_kappa; /* mass redistribution at the slope's contact face of a soil (a layer, an
-                                  elasto-plastic slope; docs/validation-plastic.md 9e): a face element whose
-                                  eigenvalue is below kappa x the mesh's largest gives its face nodes' mass
-                                  (down to a tenth) to the nodes below until it reaches it (the step is
-                                  unchanged); in [0, 1], 0 = off, default 0.1; the axisymmetric model (the
-                                  3D model only with surface_mass_3d) */
-    int surface_mass_3d;       /* 1: the same redistribution in the 3D model: it closes the energy account
-                                  on soil (0, the lumped face, loses 1-4 % of KE0 at a/h 2-3), but where an
-                                  element is about as deep as the crater (a/h 2) it misplaces the ploughed
-                                  mass (R_t of frictionless ploughing 0.08 low at a/h 2, agreeing with 0
-                                  from a/h 3, the default refinement; docs/validation-plastic.md 9e);
-                                  default 1 */
-    int sphere_contact_3d;     /* 1: a rigid spherical boulder's 3D contact is the slope's face nodes against
-                                  its exact sphere (node to rigid surface); 0: its faceted face's nodes
-                                  against the slope's Catmull-Rom face, which flings light face nodes of a
-                                  soil into the contact (its negative weights) and loses 0.5-0.7 % of KE0
-                                  at 30 deg with friction (docs/validation-plastic.md 9g); acts only on a
-                                  rigid sphere (not a spheroid, not an elastic boulder); default 1 */
-    int vtk_frames;            /* approximate number of VTK frames, default 60 */
-    int history_stride;        /* record every n-th step in rf_fem_history, 0 = auto (<= ~5000 samples) */
-    long max_elements;         /* refuse larger meshes (RF_ECAP), default 2 000 000 */
-    double duration_threshold; /* contact counts while force > this * F_max, default 1e-6 */
-    rf_fem_kernel kernel[2];   /* material kernel of the boulder [0] and the slope [1], default stiffness */
-    rf_fem_kinematics large_deformation; /* default auto (see rf_fem_kinematics); in the 3D model `on`
-                                            puts every deformable body on the updated-Lagrangian
-                                            hexahedron kernel, auto the elasto-plastic ones (a slope
-                                            under a plastic layer with it), an elastic one keeps its
-                                            small-strain kernel; its contact is the same in both */
-    int contact_single_pivot;  /* axisymmetric contact: 1 solves the complementarity problem by single
-                                  pivoting alone (slower; the check of the default block active-set
-                                  method, which falls back to it after 200 rounds), default 0 */
-    rf_fem_ale ale;            /* axisymmetric large deformation: ALE rezoning of the slope, default auto */
-    double ale_trigger;        /* rezone when a slope element's size falls below this share of its
-                                  reference size, default 0.5, in (0, 1) */
-    int ale_sweeps;            /* smoothing sweeps per rezone, default 10 (0: no node moves) */
     /* NULL (default) or called after every time step with the simulated time t [s] and the
        expected end t_end [s] of the run: end_time when given, else an estimate from the
        contact's progress (fem_core.c) that is revised as the impact goes on; for a progress
        line (rockfuzz impact).  No result depends on it. */
     void (*progress)(void *ctx, double t, double t_end);
     void *progress_ctx;
+    const rf_fem_tuning *tuning; /* NULL (default): the validated numerics; tests and benchmarks only */
 } rf_fem_options;
+
+/* The one table of the public FE options: the options and usage of `rockfuzz
+ * impact` (--name, '-' for '_'), the keys of a study's model.impact block, the
+ * defaults, the validation and the impact model's identity all loop over it. */
+typedef enum {
+    RF_FEM_OPTION_REAL = 0, /* a double */
+    RF_FEM_OPTION_COUNT,    /* an int */
+    RF_FEM_OPTION_CHOICE    /* an enum, named by the row's choices (indexed by its value) */
+} rf_fem_option_kind;
+
+typedef struct {
+    const char *name;           /* member of rf_fem_options, study key, CLI option */
+    size_t offset;              /* of the member in rf_fem_options */
+    rf_fem_option_kind kind;
+    const char *unit;           /* SI unit of a REAL row, "" for a ratio or count */
+    const char *value_name;     /* the value's placeholder in the usage */
+    double def;                 /* default (a CHOICE: its enum value) */
+    double lo, hi, lo3, hi3;    /* closed range of a REAL or COUNT, axisymmetric and 3D model */
+    int zero_auto;              /* 1: 0 means automatic and lies outside the range */
+    const char *const *choices; /* a CHOICE's names, NULL-terminated */
+    const char *help;           /* one paragraph: what it does, its default */
+} rf_fem_option_field;
+
+extern const rf_fem_option_field rf_fem_option_fields[];
+extern const size_t rf_fem_n_option_fields;
+
+/* The row named name, or NULL. */
+const rf_fem_option_field *rf_fem_option_find(const char *name);
+/* Stores text (a number, or a choice's name) in f's member of o and checks it
+ * against the row (axisymmetric limits; a 3D run checks its own); on failure o
+ * is unchanged and err names the option and value. */
+rf_status rf_fem_option_parse(rf_fem_options *o, const rf_fem_option_field *f, const char *text, rf_error *err);
+/* The same for a number (REAL and COUNT rows; a COUNT must be an integer). */
+rf_status rf_fem_option_set(rf_fem_options *o, const rf_fem_option_field *f, double x, rf_error *err);
+/* f's value in o as text: %.17g, the count, or the choice's name. */
+void rf_fem_option_format(const rf_fem_options *o, const rf_fem_option_field *f, char *buf, size_t size);
+/* The choices of a CHOICE row as "a | b | c" into buf. */
+void rf_fem_option_choices(const rf_fem_option_field *f, char *buf, size_t size);
 
 void rf_fem_options_default(rf_fem_options *opt);
 
@@ -175,13 +173,14 @@ void rf_fem_options_default(rf_fem_options *opt);
  * opt->large_deformation on, or auto with an elasto-plastic body (the boulder,
  * the slope or a layer); the one rule the solver and the model identity use. */
 int rf_fem_large_deformation(const rf_fem_options *opt, const rf_impact_input *in);
-/* 1 if the axisymmetric model rezones its slope (ALE): opt->ale on, or auto
- * (see fem_options.c); only in large deformation. */
+/* 1 if the axisymmetric model rezones its slope (ALE): opt->ale on, and
+ * only in large deformation. */
 int rf_fem_ale_enabled(const rf_fem_options *opt, const rf_impact_input *in);
 
 
 /* The one check of the options (three_d: for the 3D model, whose limits
- * differ where noted in fem_options.c); messages name the setting and value. */
+ * differ where the table says so; and of opt->tuning when set); messages name
+ * the setting and value. */
 rf_status rf_fem_options_validate(const rf_fem_options *opt, int three_d, rf_error *err);
 
 /* The refinement and the domain radius / r0 actually used for an impact. */

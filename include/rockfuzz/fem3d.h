@@ -38,18 +38,9 @@
 extern "C" {
 #endif
 
-/* Settings that only the 3D model has. */
-typedef struct {
-    int full_model;         /* 0 = half model cut by the plane of motion (default), 1 = full */
-    double core_factor;     /* uniform fine box half-width / Hertz contact radius, default 1.3 */
-    double elongation;      /* extra fine box length down-slope / (v_t * Hertz duration), default 1 */
-    double layer_aspect;    /* radial / tangential element size in the graded layers, default 1.6 */
-    double boulder_inner;   /* boulder: radius (/ r0) of the contact-side half-space image, default 4 */
-    int layered_mesh;       /* 1: the slope as the extruded mesh a layer uses (horizontal node planes, a
-                               cylinder of radius and depth domain) even without a layer; for checks, default 0 */
-} rf_fem3d_options;
-
-void rf_fem3d_options_default(rf_fem3d_options *o3);
+/* The 3D model's own numerical settings (fine box, mesh grading, half or
+ * full model): src/fem/fem_tuning.h, for the tests and benchmarks only. */
+typedef struct rf_fem3d_options rf_fem3d_options;
 
 /* Diagnostics beyond rf_fem_history (energies in J, full body). */
 typedef struct {
@@ -75,12 +66,12 @@ void rf_fem3d_report_free(rf_fem3d_report *rep);
 rf_status rf_fem3d_impact(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,
                           rf_fem_history *hist, rf_error *err);
 
-/* The same with explicit 3D settings (o3 may be NULL) and diagnostics (rep
+/* The same with explicit 3D settings (o3 may be NULL: the defaults) and diagnostics (rep
  * may be NULL; release with rf_fem3d_report_free).  hist->contact_work holds
  * the normal contact work; hist->closure = KE + strain + absorbed + friction
  * work - KE0; hist->boulder_velocity is the CM velocity along the slope
  * normal.  Returns RF_EINVAL for bad inputs, a spheroid on an inclined slope,
- * or a mesh beyond opt->max_elements (RF_ECAP). */
+ * or a mesh beyond the element cap (RF_ECAP). */
 rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *opt, const rf_fem3d_options *o3,
                              rf_impact_output *out, rf_fem_history *hist, rf_fem3d_report *rep, rf_error *err);
 /* The same in a caller's workspace (see rf_fem_workspace in fem.h). */

@@ -14,6 +14,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,12 +23,13 @@
 #define EXIT_USAGE 2
 #define EXIT_FAILED 1
 
-/* The options that are not impact inputs; every impact input is an option
- * named after its row of rf_impact_fields (impact.h) with '-' for '_'
- * (--slope-friction-angle), read by read_input. */
+/* The options that are neither impact inputs nor FE options; every impact
+ * input is an option named after its row of rf_impact_fields (impact.h) with
+ * '-' for '_' (--slope-friction-angle), read by read_input, and so is every FE
+ * option after its row of rf_fem_option_fields (fem.h; --domain-factor), read
+ * by read_fem_option. */
 typedef enum {
-    O_SOLVER, O_EN, O_HUNTER_A, O_REFINEMENT, O_BOUNDARY, O_LARGE, O_ALE, O_SMASS3, O_SPHERE3, O_DOMAIN, O_END_TIME,
-    O_THREADS, O_VTK, O_JSON, O_PROGRESS, O_MAT_B, O_MAT_S, O_MAT_L, O_HELP, O_COUNT
+    O_SOLVER, O_EN, O_HUNTER_A, O_VTK, O_JSON, O_PROGRESS, O_MAT_B, O_MAT_S, O_MAT_L, O_HELP, O_COUNT
 } opt_id;
 
 /* Short names of two inputs (the spheroid's semi-axes c and d). */
@@ -43,15 +45,6 @@ static const struct {
     {O_SOLVER, "solver"},
     {O_EN, "e-n"},
     {O_HUNTER_A, "hunter-A"},
-    {O_REFINEMENT, "refinement"},
-    {O_BOUNDARY, "boundary"},
-    {O_LARGE, "large-deformation"},
-    {O_ALE, "ale"},
-    {O_SMASS3, "surface-mass-3d"},
-    {O_SPHERE3, "sphere-contact-3d"},
-    {O_DOMAIN, "domain-factor"},
-    {O_END_TIME, "end-time"},
-    {O_THREADS, "threads"},
     {O_VTK, "vtk"},
     {O_JSON, "json"},
     {O_PROGRESS, "progress"},
@@ -70,39 +63,67 @@ static const char *value_name(const rf_impact_field *r)
     return "X";
 }
 
+/* One option of the usage: "--name VALUE" (with '-' for '_' in the name),
+ * then text wrapped at 90 columns. */
+static void usage_row(FILE *f, const char *name, const char *value, const char *text)
+{
+    char opt[80];
+    int n = snprintf(opt, sizeof opt, "--%s %s", name, value);
+    for (int q = 2; q < n && opt[q] != ' '; q++)
+        opt[q] = opt[q] == '_' ? '-' : opt[q];
+    fprintf(f, "  %-26s", opt);
+    if (n > 25) /* a long option: its help on the next line */
+        fprintf(f, "\n%28s", "");
+    int col = 28;
+    for (const char *w = text; *w;) {
+        size_t len = strcspn(w, " ");
+        if (col + (int)len > 90 && col > 28) {
+            fprintf(f, "\n%28s", "");
+            col = 28;
+        }
+        fprintf(f, "%s%.*s", col > 28 ? " " : "", (int)len, w);
+        col += (int)len + (col > 28);
+        w += len;
+        while (*w == ' ')
+            w++;
+    }
+    fputc('\n', f);
+}
+
 /* The usage of every impact input, from rf_impact_fields: option and value,
- * then its help, unit and default, wrapped at 90 columns. */
+ * then its help, unit and default. */
 static void input_usage(FILE *f)
 {
     for (size_t k = 0; k < rf_impact_n_fields; k++) {
         const rf_impact_field *r = &rf_impact_fields[k];
-        char opt[80], text[400], def[48];
-        int n = snprintf(opt, sizeof opt, "--%s %s", r->name, value_name(r));
-        for (int q = 2; q < n && opt[q] != ' '; q++)
-            opt[q] = opt[q] == '_' ? '-' : opt[q];
+        char text[400], def[48];
         if (r->kind == RF_FIELD_GRAVITY && r->def < 0)
             snprintf(def, sizeof def, "auto");
         else
             snprintf(def, sizeof def, "%g", r->def);
         snprintf(text, sizeof text, "%s%s%s%s (default %s)", r->help, r->unit[0] ? " [" : "", r->unit,
                  r->unit[0] ? "]" : "", def);
-        fprintf(f, "  %-26s", opt);
-        if (n > 25) /* a long option: its help on the next line */
-            fprintf(f, "\n%28s", "");
-        int col = 28;
-        for (const char *w = text; *w;) {
-            size_t len = strcspn(w, " ");
-            if (col + (int)len > 90 && col > 28) {
-                fprintf(f, "\n%28s", "");
-                col = 28;
-            }
-            fprintf(f, "%s%.*s", col > 28 ? " " : "", (int)len, w);
-            col += (int)len + (col > 28);
-            w += len;
-            while (*w == ' ')
-                w++;
+        usage_row(f, r->name, value_name(r), text);
+    }
+}
+
+/* The usage of every FE option, from rf_fem_option_fields: fem, its choices,
+ * help, unit and default. */
+static void fem_usage(FILE *f)
+{
+    rf_fem_options defaults;
+    rf_fem_options_default(&defaults);
+    for (size_t k = 0; k < rf_fem_n_option_fields; k++) {
+        const rf_fem_option_field *r = &rf_fem_option_fields[k];
+        char text[1200], choices[128] = "", def[64];
+        if (r->kind == RF_FEM_OPTION_CHOICE) {
+            rf_fem_option_choices(r, choices, sizeof choices - 2);
+            strcat(choices, "; ");
         }
-        fputc('\n', f);
+        rf_fem_option_format(&defaults, r, def, sizeof def);
+        snprintf(text, sizeof text, "fem: %s%s%s%s%s (default %s)", choices, r->help, r->unit[0] ? " [" : "",
+                 r->unit, r->unit[0] ? "]" : "", def);
+        usage_row(f, r->name, r->value_name, text);
     }
 }
 
@@ -162,62 +183,9 @@ static void usage(FILE *f)
         "  --e-n EN                 rigid, mdr: normal COR in [0, 1] (default: Hunter's\n"
         "                           e_n; --e-n 1 makes the mdr impact purely elastic)\n"
         "  --hunter-A A             Hunter coefficient A (default 1.04; band 1.112-1.171)\n"
-        "  --refinement A_OVER_H    fem: elements across the Hertz contact radius, >= 2\n"
-        "                           (default 10 axisymmetric, 3 for the 3D model)\n"
-        "  --boundary KIND          fem: auto | fixed | absorbing outer boundary (default\n"
-        "                           auto: absorbing dashpots with a layer or a plastic body,\n"
-        "                           whose contact outlasts the P wave's round trip in the\n"
-        "                           automatic domain; fixed for elastic bodies)\n"
-        "  --large-deformation K    fem: auto | on | off (default auto: on when a body is\n"
-        "                           elasto-plastic).  on: updated Lagrangian (current\n"
-        "                           geometry, objective Hughes-Winget stress rotation, contact on\n"
-        "                           the deformed surfaces); off: small strain on the reference\n"
-        "                           geometry (docs/validation-plastic.md sections 6e, 9c)\n"
-        "  --ale K                  fem, axisymmetric large deformation: auto | on | off\n"
-        "                           (default auto = off).  on: ALE rezoning of the soil: where\n"
-        "                           an element's size falls below half its reference size,\n"
-        "                           the interior nodes around it are smoothed and the stresses,\n"
-        "                           internal variables and velocities remapped (conservative\n"
-        "                           donor cell; the energy it changes is reported as its own\n"
-        "                           term).  Use it when a run fails with \"element N was\n"
-        "                           compressed below the stability bound\" (soil squeezed\n"
-        "                           under the block's tip; docs/validation-plastic.md 8b)\n"
-        "  --surface-mass-3d K      fem, 3D model on a soil (a layer or a plastic slope): on |\n"
-        "                           off (default on).  on: the contact face's mass is moved to\n"
-        "                           the nodes below, as the axisymmetric model does: the energy\n"
-        "                           account closes (off, the lumped face loses 1-4 %% of the\n"
-        "                           kinetic energy at a/h 2-3) and the peak force is not made of\n"
-        "                           capture impulses.  Use a/h >= 3 (the default refinement):\n"
-        "                           at a/h 2, where an element is about as deep as the crater,\n"
-        "                           R_t of frictionless ploughing comes out 0.08 low; at a/h 3\n"
-        "                           or finer it agrees with off to 0.016 at 45 and 60 deg, to\n"
-        "                           0.047 in R_t at 30 deg (neither converged there at a/h 4),\n"
-        "                           and closes the account below 0.5 %% at 45 and 60 deg from\n"
-        "                           a/h 3, at 30 deg with friction from a/h 4 (0.5-0.7 %% at 3)\n"
-        "                           with the faceted contact (--sphere-contact-3d off; on, a\n"
-        "                           rigid sphere's default, see below; docs/validation-plastic.md\n"
-        "                           9e, 9g)\n"
-        "  --sphere-contact-3d K    fem, 3D model, rigid spherical boulder: on | off (default\n"
-        "                           on).  on: the slope's face nodes meet the boulder's exact\n"
-        "                           sphere (node to rigid surface).  off: the faceted boulder's\n"
-        "                           nodes meet the slope's interpolated face, whose negative\n"
-        "                           weights fling light soil face nodes into the contact: on\n"
-        "                           soil it loses 0.1-0.7 %% of the kinetic energy at a/h 3 (on:\n"
-        "                           <= 0.2 %%) and its 30 deg R_t is read to 0.04 (on: 0.01;\n"
-        "                           docs/validation-plastic.md 9g)\n"
-        "  --domain-factor F        fem: slope domain radius / r0 >= 3 (default: sized so that\n"
-        "                           2 L / c_p >= 1.25 Hertz t_c, at least 10: no reflected\n"
-        "                           wave returns into the elastic contact); --boundary fixed\n"
-        "                           --domain-factor 10 is the seed paper's model\n"
-        "  --end-time S             fem: simulated time [s] (default 0 = automatic: until the\n"
-        "                           contact is open and the boulder moves away, at least 1.3\n"
-        "                           Hertz durations; past 3 durations up to a bound scaled by\n"
-        "                           the contact's progress, then the run fails rather than\n"
-        "                           report an unfinished rebound).  A given end time stops there\n"
-        "                           (a warning if the impact has not ended)\n"
-        "  --threads N              fem: threads of the solver, 0..1024 (default or 0: all\n"
-        "                           cores for the 3D model, 1 for the axisymmetric one;\n"
-        "                           the results are the same bit for bit)\n"
+        );
+    fem_usage(f);
+    fprintf(f,
         "  --vtk DIR                fem: write VTK snapshots into DIR (fem.pvd + fem_NNNN.vtu;\n"
         "                           the 3D model writes its half model); DIR and its\n"
         "                           parents are created if missing\n"
@@ -243,19 +211,6 @@ static void usage(FILE *f)
         "  -h, --help               show this help\n"
         "\n"
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
-}
-
-static int parse_int(const char *opt, const char *s, int *x)
-{
-    char *end = NULL;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE || v < 0 || v > RF_CLI_MAX_THREADS) {
-        fprintf(stderr, "rockfuzz impact: --%s '%s': expected an integer in [0, %d]\n", opt, s, RF_CLI_MAX_THREADS);
-        return 0;
-    }
-    *x = (int)v;
-    return 1;
 }
 
 static void json_number(const char *key, double x, int last)
@@ -345,15 +300,13 @@ static void print_summary(const rf_impact_model_spec *spec, const rf_impact_inpu
     if (spec->solver == RF_IMPACT_FEM) {
         int three_d = rf_fem_needs_3d(in);
         printf("  FE settings       %s, refinement a/h = %g, domain = %g r0%s, boundary %s%s, threads %d, "
-               "large deformation %s, ale %s%s%s\n",
+               "large deformation %s, ale %s\n",
                three_d ? "3D half model (inclined slope or friction)" : "axisymmetric",
                rf_fem_refinement(&spec->fem, three_d), rf_fem_domain_factor(&spec->fem, in),
                spec->fem.domain_factor > 0 ? "" : " (automatic)",
                rf_fem_boundary_name(rf_fem_boundary_resolve(spec->fem.boundary, in)),
                spec->fem.boundary == RF_FEM_BOUNDARY_AUTO ? " (automatic)" : "", spec->fem.threads,
-               rf_fem_kinematics_name(spec->fem.large_deformation), rf_fem_ale_name(spec->fem.ale),
-               three_d && spec->fem.surface_mass_3d ? ", surface mass 3d on" : "",
-               three_d && spec->fem.sphere_contact_3d ? ", sphere contact 3d on" : "");
+               rf_fem_kinematics_name(spec->fem.large_deformation), rf_fem_ale_name(spec->fem.ale));
     }
     printf("\nResults\n");
     print_value("max contact force", o->contact_force_max, "N");
@@ -465,40 +418,6 @@ static int set_option(opt_id id, const char *oname, const char *val, rf_impact_m
             return EXIT_USAGE;
         }
         break;
-    case O_BOUNDARY:
-        if (rf_fem_boundary_parse(val, &spec->fem.boundary, &err) != RF_OK) {
-            fprintf(stderr, "rockfuzz impact: --boundary: %s\n", err.msg);
-            return EXIT_USAGE;
-        }
-        break;
-    case O_LARGE:
-        if (rf_fem_kinematics_parse(val, &spec->fem.large_deformation, &err) != RF_OK) {
-            fprintf(stderr, "rockfuzz impact: --large-deformation: %s\n", err.msg);
-            return EXIT_USAGE;
-        }
-        break;
-    case O_ALE:
-        if (rf_fem_ale_parse(val, &spec->fem.ale, &err) != RF_OK) {
-            fprintf(stderr, "rockfuzz impact: --ale: %s\n", err.msg);
-            return EXIT_USAGE;
-        }
-        break;
-    case O_SMASS3:
-        if (rf_fem_switch_parse("surface_mass_3d", val, &spec->fem.surface_mass_3d, &err) != RF_OK) {
-            fprintf(stderr, "rockfuzz impact: --surface-mass-3d: %s\n", err.msg);
-            return EXIT_USAGE;
-        }
-        break;
-    case O_SPHERE3:
-        if (rf_fem_switch_parse("sphere_contact_3d", val, &spec->fem.sphere_contact_3d, &err) != RF_OK) {
-            fprintf(stderr, "rockfuzz impact: --sphere-contact-3d: %s\n", err.msg);
-            return EXIT_USAGE;
-        }
-        break;
-    case O_THREADS:
-        if (!parse_int(oname, val, &spec->fem.threads))
-            return EXIT_USAGE;
-        break;
     case O_VTK:
         spec->fem.vtk_dir = val;
         break;
@@ -532,16 +451,6 @@ static int set_option(opt_id id, const char *oname, const char *val, rf_impact_m
             }
             spec->hunter_coefficient = x;
             break;
-        case O_REFINEMENT:
-        case O_DOMAIN:
-        case O_END_TIME:
-            *(id == O_REFINEMENT ? &spec->fem.refinement : id == O_DOMAIN ? &spec->fem.domain_factor
-                                                                         : &spec->fem.end_time) = x;
-            if (rf_fem_options_validate(&spec->fem, 0, &err) != RF_OK) { /* the solvers' own rule */
-                fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", oname, val, err.msg);
-                return EXIT_USAGE;
-            }
-            break;
         default: break;
         }
     }
@@ -549,6 +458,29 @@ static int set_option(opt_id id, const char *oname, const char *val, rf_impact_m
 }
 
 #define RF_CLI_MAX_INPUTS 64 /* > rf_impact_n_fields */
+
+/* The FE option an option names (--domain-factor), or NULL. */
+static const rf_fem_option_field *fem_option(const char *name, size_t len)
+{
+    char key[64];
+    if (len >= sizeof key || memchr(name, '_', len))
+        return NULL; /* options are spelt with '-' only */
+    for (size_t q = 0; q < len; q++)
+        key[q] = name[q] == '-' ? '_' : name[q];
+    key[len] = '\0';
+    return rf_fem_option_find(key);
+}
+
+/* The value of an FE option, as its row says (the solvers' own rule, fem_options.c). */
+static int read_fem_option(const char *oname, const rf_fem_option_field *row, const char *val, rf_fem_options *o)
+{
+    rf_error err = {0};
+    if (rf_fem_option_parse(o, row, val, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz impact: --%s '%s': %s\n", oname, val, err.msg);
+        return 0;
+    }
+    return 1;
+}
 
 /* The impact input an option names (--slope-E, or an alias such as --c), or NULL. */
 static const rf_impact_field *input_option(const char *name, size_t len)
@@ -589,8 +521,7 @@ int rf_cli_impact(int argc, char **argv)
     rf_impact_model_spec spec;
     rf_impact_model_spec_default(&spec);
     rf_impact_input *in = &spec.base;
-    int json = 0, progress = 0;
-    const char *given[O_COUNT] = {0}; /* the text the user gave, for messages */
+    int json = 0, progress = 0, threads_given = 0;
     const char *given_input[RF_CLI_MAX_INPUTS] = {0};
     char given_input_name[RF_CLI_MAX_INPUTS][48];
 
@@ -618,6 +549,20 @@ int rf_cli_impact(int argc, char **argv)
             snprintf(given_input_name[f], sizeof given_input_name[f], "%.*s", (int)len, name);
             if (!read_input(given_input_name[f], field, val, in))
                 return EXIT_USAGE;
+            continue;
+        }
+        const rf_fem_option_field *fem_row = fem_option(name, len);
+        if (fem_row) {
+            const char *val = eq ? eq + 1 : i + 1 < argc ? argv[++i] : NULL;
+            if (!val) {
+                fprintf(stderr, "rockfuzz impact: option '--%.*s' needs a value\n", (int)len, name);
+                return EXIT_USAGE;
+            }
+            char oname[64];
+            snprintf(oname, sizeof oname, "%.*s", (int)len, name);
+            if (!read_fem_option(oname, fem_row, val, &spec.fem))
+                return EXIT_USAGE;
+            threads_given |= fem_row->offset == offsetof(rf_fem_options, threads);
             continue;
         }
         size_t k = 0;
@@ -649,7 +594,6 @@ int rf_cli_impact(int argc, char **argv)
             }
             val = argv[++i];
         }
-        given[id] = val;
         if (set_option(id, oname, val, &spec) != 0)
             return EXIT_USAGE;
     }
@@ -657,7 +601,7 @@ int rf_cli_impact(int argc, char **argv)
     /* the 3D model on all cores (the solvers give the same bits for any count); the axisymmetric
        one on one: its steps (~0.1 ms) are shorter than a thread hand-off, and 2 threads were up to
        2x slower up to 12 600 elements (docs/fem-speed.md section 5) */
-    if ((!given[O_THREADS] || spec.fem.threads == 0) && rf_fem_needs_3d(in)) {
+    if ((!threads_given || spec.fem.threads == 0) && rf_fem_needs_3d(in)) {
         long cores = sysconf(_SC_NPROCESSORS_ONLN);
         spec.fem.threads = cores < 1 ? 1 : cores > RF_CLI_MAX_THREADS ? RF_CLI_MAX_THREADS : (int)cores;
     }

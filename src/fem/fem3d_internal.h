@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 
+#include "fem_tuning.h"
 #include "rockfuzz/status.h"
 
 #include "core/util.h"

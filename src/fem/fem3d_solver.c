@@ -38,6 +38,7 @@
 #include "fem3d_prof.h"
 #include "fem3d_spec.h"
 #include "fem_core.h"
+#include "fem_driver.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
 
@@ -46,15 +47,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-void rf_fem3d_report_free(rf_fem3d_report *rep)
-{
-    if (!rep)
-        return;
-    free(rep->friction_series);
-    rep->friction_series = NULL;
-    rep->n = 0;
-}
 
 /* What the 3D model can do beyond the ranges every impact model shares
  * (rf_impact_input_validate) and the option rules (rf_fem_options_validate). */
@@ -84,8 +76,8 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
         double c = in->horizontal_axis, d = rf_impact_vertical_semi_axis(in);
         BAD(c / d > 3 || d / c > 3, "fem3d: spheroid aspect c/d = %g outside [1/3, 3] is not supported", c / d);
     }
-    BAD(!(o3->core_factor >= 1 && o3->core_factor <= 4), "fem3d: core_factor must be in [1, 4], got %g",
-        o3->core_factor);
+    BAD(!(o3->fine_box_factor >= 1 && o3->fine_box_factor <= 4), "fem3d: fine_box_factor must be in [1, 4], got %g",
+        o3->fine_box_factor);
     BAD(!(o3->elongation >= 0 && o3->elongation <= 4), "fem3d: elongation must be in [0, 4], got %g", o3->elongation);
     BAD(!(o3->layer_aspect >= 0.5 && o3->layer_aspect <= 4), "fem3d: layer_aspect must be in [0.5, 4], got %g",
         o3->layer_aspect);
@@ -106,6 +98,7 @@ enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM
 typedef struct {
     const rf_impact_input *in;
     rf_fem_options o;
+    rf_fem_tuning t;      /* o.tuning's values, or the defaults */
     rf_fem3d_options o3;
     rf_hertz_reference H;
     f3_material mat[3];   /* boulder, slope (the bedrock under a layer), layer */
@@ -182,7 +175,7 @@ static rf_status solid_prepare_layer(solid_run *R, rf_error *err)
     f3_layer_contact_estimate(in, &R->lc);
     if (R->lc.thick) { /* the boulder stays in the layer: its contact alone sizes the mesh and the run */
         R->H.contact_radius = R->lc.radius, R->H.duration = R->lc.duration;
-        R->a_box = fmax(R->lc.radius, R->lc.zone_radius / R->o3.core_factor);
+        R->a_box = fmax(R->lc.radius, R->lc.zone_radius / R->o3.fine_box_factor);
     }
     return RF_OK;
 }
@@ -201,6 +194,7 @@ static rf_status solid_prepare(solid_run *R, const rf_impact_input *in, const rf
         R->o3 = *o3p;
     else
         rf_fem3d_options_default(&R->o3);
+    R->t = *fem_tuning_of(&R->o);
     rf_status st = check_input(in, &R->o, &R->o3, err);
     if (st != RF_OK)
         return st;
@@ -265,7 +259,7 @@ static rf_status boulder_box_fits(const solid_run *R, rf_error *err)
         if (corner > 0.8 * R->o3.boulder_inner * r0)
             return rf_fail(err, RF_EINVAL,
                            "fem3d: the rigid boulder's fine zone (corner %.3g m in its half-space image) needs "
-                           "boulder_inner >= %.3g (got %g); raise it or lower core_factor",
+                           "boulder_inner >= %.3g (got %g); lower the impact speed or take a stiffer layer",
                            corner, corner / (0.8 * r0), R->o3.boulder_inner);
         return RF_OK;
     }
@@ -273,7 +267,7 @@ static rf_status boulder_box_fits(const solid_run *R, rf_error *err)
     if (box_b > 0.6 * r0)
         return rf_fail(err, RF_EINVAL,
                        "fem3d: the fine zone (%.3g m) does not fit the boulder (r0 = %g m): the contact radius "
-                       "%.3g m%s is too large for an elastic boulder; lower core_factor or the impact speed, or "
+                       "%.3g m%s is too large for an elastic boulder; lower the impact speed, or "
                        "take boulder_material rigid",
                        box_b, r0, R->a_box, R->layer ? " (the larger of the slope's and the layer's)" : "");
     return RF_OK;
@@ -286,13 +280,13 @@ static rf_status solid_mesh(solid_run *R, rf_error *err)
     const rf_fem_options *o = &R->o;
     const rf_fem3d_options *o3 = &R->o3;
     const double a_h = R->H.contact_radius, c = R->H.c, d = R->H.d, r0 = R->in->radius;
-    R->h = a_h / o->refinement, R->hb = R->h * o->boulder_mesh_ratio;
+    R->h = a_h / o->refinement, R->hb = R->h * R->t.boulder_mesh_ratio;
     const double h = R->h, hb = R->hb, travel = o3->elongation * R->Vt * R->H.duration;
     f3_mesh_spec *ms = &R->ms;
     memset(ms, 0, sizeof *ms);
     ms->full = o3->full_model != 0;
     const double a_x = R->a_box; /* = a_h without a layer */
-    int n_s = (int)ceil(o3->core_factor * a_x / h - 1e-9), n_b = (int)ceil(o3->core_factor * a_x / hb - 1e-9);
+    int n_s = (int)ceil(o3->fine_box_factor * a_x / h - 1e-9), n_b = (int)ceil(o3->fine_box_factor * a_x / hb - 1e-9);
     ms->slope = (f3_box){n_s, n_s + (int)ceil(travel / h - 1e-9), n_s, n_s, h};
     ms->extruded = R->layer || o3->layered_mesh;
     ms->layer_depth = R->layer ? R->in->layer_thickness : 0;
@@ -304,7 +298,7 @@ static rf_status solid_mesh(solid_run *R, rf_error *err)
     const double sxy = c / r0, sz = d / r0, hb0 = hb / sxy;
     ms->boulder = (f3_box){n_b, n_b + (int)ceil(travel / hb - 1e-9), n_b, n_b, hb0};
     if (R->rigid && R->lc.thick)
-        f3_soft_boulder_box(&ms->boulder, o3->core_factor * a_x, travel, r0, sxy);
+        f3_soft_boulder_box(&ms->boulder, o3->fine_box_factor * a_x, travel, r0, sxy);
     ms->radius = r0;
     ms->scale_xy = sxy, ms->scale_z = sz;
     ms->boulder_inner = o3->boulder_inner;
@@ -315,7 +309,7 @@ static rf_status solid_mesh(solid_run *R, rf_error *err)
         return st;
     if ((ms->slope.nxm + ms->slope.nxp) * h * 4 > R->L)
         return rf_fail(err, RF_EINVAL, "fem3d: domain radius %g m is too small for the fine zone", R->L);
-    st = f3_mesh_build(ms, &R->mesh, o->max_elements, err);
+    st = f3_mesh_build(ms, &R->mesh, R->t.max_elements, err);
     R->have_mesh = st == RF_OK;
     return st;
 }
@@ -470,7 +464,7 @@ static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
     }
     for (long k = 0; k < (long)R->mesh.nxt_s * R->mesh.nyt_s; k++)
         face[R->mesh.top_s[k]] = !(R->mesh.flags[R->mesh.top_s[k]] & F3_OUTER);
-    R->shifted_elems = f3_surface_mass_shift(&R->mesh, face, R->elm, lam_upper, lam_max, R->o.surface_mass_kappa);
+    R->shifted_elems = f3_surface_mass_shift(&R->mesh, face, R->elm, lam_upper, lam_max, R->t.surface_mass_kappa);
     free(face);
     for (long n = R->nbn; n < R->nn && R->shifted_elems > 0; n++) {
         const double m = node_mass(R, n);
@@ -503,7 +497,7 @@ static void solid_masses(solid_run *R)
         R->invm[dd] = R->fixed[dd] ? 0 : 1 / R->mass[dd];
     double *lam_upper = fem_pool_get(R->pool, Q_LAMU, (size_t)R->ne * sizeof(double), 0);
     const double lam_max = solid_lambda_max(R, lam_upper);
-    if (lam_upper && R->o.surface_mass_kappa > 0 && R->o.surface_mass_3d && (R->layer || R->plastic[1])) /* 9e */
+    if (lam_upper && R->t.surface_mass_kappa > 0 && R->t.surface_mass_3d && (R->layer || R->plastic[1])) /* 9e */
         surface_mass_shift(R, lam_upper, lam_max);
     R->lamu = R->large ? lam_upper : NULL;
     R->dt_edge = DBL_MAX;
@@ -521,7 +515,7 @@ static void solid_masses(solid_run *R)
                 R->dt_edge = l / R->w[b].p;
         }
     }
-    R->dt = fem_time_step(lam_max, R->o.dt_safety, &R->dt_bound);
+    R->dt = fem_time_step(lam_max, R->t.dt_safety, &R->dt_bound);
 }
 
 /* The largest dt C / m of the explicit dashpots (stable below 2): C = the
@@ -594,7 +588,7 @@ static void solid_release(solid_run *R)
 static rf_status solid_contact_setup(solid_run *R, rf_error *err)
 {
     f3_contact *C = &R->C;
-    C->sphere = R->o.sphere_contact_3d && R->rigid && R->H.c == R->H.d;
+    C->sphere = R->t.sphere_contact_3d && R->rigid && R->H.c == R->H.d;
     C->radius = R->H.d;
     const size_t ns = C->sphere ? (size_t)R->mesh.nxt_s * (size_t)R->mesh.nyt_s
                                 : (size_t)R->mesh.nxt_b * (size_t)R->mesh.nyt_b;
@@ -733,7 +727,7 @@ static rf_status solid_kernels(solid_run *R, rf_error *err)
             const fem_point_law law = fem_point_law_material3d(&R->matl[b]);
             st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 1,
                                        err);
-        } else if (R->o.kernel[b] == RF_FEM_KERNEL_POINTS || R->ul[b]) {
+        } else if (R->t.kernel[b] == RF_FEM_KERNEL_POINTS || R->ul[b]) {
             R->lame[b] = (fem_lame){lam, mu};
             const fem_point_law law = fem_point_law_linear3d(&R->lame[b]);
             st = fem_kernel_points_hex(&S->kernel[b], first, count, R->mesh.x, R->mesh.conn, &law, NULL, NULL, 0,
@@ -1122,57 +1116,6 @@ static void solid_separation(solid_run *R)
     R->sep_w = omega[1];
 }
 
-/* The time loop, with VTK frames if asked (about vtk_frames of them, and the
- * final state: its committed plastic strains are the reported ones).  The
- * frames change no result: the extra internal force at u_n only recomputes
- * the trial state that the step computes again. */
-static rf_status solid_loop(solid_run *R, fem_run *run, long *nsteps, rf_error *err)
-{
-    const rf_fem_options *o = &R->o;
-    const long vtk_every = (long)(run->steps_estimate / (o->vtk_frames > 0 ? o->vtk_frames : 60) + 1);
-    const int vtk_cap = 4 * (o->vtk_frames + 8);
-    int vtk_n = 0;
-    double *vtk_times = NULL;
-    if (o->vtk_dir && !(vtk_times = fem_pool_get(R->pool, Q_VTK, (size_t)vtk_cap * sizeof(double), 0)))
-        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
-    rf_status st = RF_OK;
-    long n = 0;
-    for (;; n++) {
-        const double t = (double)n * R->dt;
-        if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap - 1) {
-            if ((st = solid_vtk(R, vtk_n, t, err)) != RF_OK)
-                return st;
-            vtk_times[vtk_n++] = t;
-        }
-        double Fc, rad, row[13], comp, closure;
-        if ((st = solid_step(R, &Fc, &rad, err)) != RF_OK)
-            return st;
-        if (R->large && (R->unstable = f3_step_violation(&R->step_check, R->dt, R->u)) >= 0)
-            return rf_fail(err, RF_EMODEL, "fem3d: element %ld was compressed below the stability bound of the time "
-                           "step dt = %g s (dt_safety = %g) at t = %g s", R->unstable, R->dt, o->dt_safety, t);
-        F3P_MARK(m);
-        solid_energy(R, t, Fc, rad, row, &comp, &closure);
-        F3P_LAP(F3P_ENERGY, m);
-        const int was_in_contact = run->in_contact;
-        if ((st = fem_run_account(run, n, Fc, rad, comp, closure, R->ke0, row, err)) != RF_OK)
-            return st;
-        if (R->grav.g > 0 && was_in_contact && !run->in_contact)
-            solid_separation(R);
-        const int stop = fem_run_stop(run, n);
-        F3P_LAP(F3P_RUN, m);
-        if (stop)
-            break;
-    }
-    *nsteps = n + 1;
-    F3P_REPORT(*nsteps, R->ne, R->nn, R->nbn);
-    if (!o->vtk_dir)
-        return RF_OK;
-    const double t_end = (double)(n + 1) * R->dt;
-    if ((st = solid_vtk(R, vtk_n, t_end, err)) != RF_OK)
-        return st;
-    vtk_times[vtk_n++] = t_end;
-    return fem_vtk_index(o->vtk_dir, vtk_n, vtk_times, err);
-}
 
 /* Rigid-body state of the boulder after the impact: CM velocity P, angular
  * velocity omega from the angular momentum about the CM with the lumped
@@ -1281,7 +1224,8 @@ static void solid_history(solid_run *R, const fem_run *run, double K_after, rf_f
                                 (size_t)R->ndof * sizeof *v);
     char extra[640] = "";
     if (R->outside_contact)
-        snprintf(extra, sizeof extra, "Contact reached the edge of the fine zone: raise core_factor. ");
+        snprintf(extra, sizeof extra, "The contact reached the edge of the uniform fine zone (sized from the elastic "
+                 "contact radius): its outer pairs lie on graded, coarser elements than refinement says. ");
     if (!R->large && (R->plastic[1] || R->plastic[2]))
         snprintf(extra + strlen(extra), sizeof extra - strlen(extra), "Small strain with an elasto-plastic slope "
                  "or layer: the 3D contact follows the deformed face, the soil its reference geometry; where the "
@@ -1351,7 +1295,7 @@ static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_out
         memcpy(P, R->sep_v, sizeof R->sep_v), omega[1] = R->sep_w;
     const double vn_after = P[2], vt_after = P[0], w_after = omega[1];
     const double K_after = 0.5 * R->Mb * (vn_after * vn_after + vt_after * vt_after) + 0.5 * Iyy * w_after * w_after;
-    fem_run_outputs(run, nsteps, R->o.duration_threshold, R->ke0, R->sym_factor, R->nn, R->ne, out);
+    fem_run_outputs(run, nsteps, R->t.duration_threshold, R->ke0, R->sym_factor, R->nn, R->ne, out);
     solid_plastic_outputs(R, out);
     out->v_n_before = -R->Vn;
     out->v_t_before = R->Vt;
@@ -1369,85 +1313,92 @@ static void solid_extract(solid_run *R, fem_run *run, long nsteps, rf_impact_out
         solid_report(R, run, P, w_after, Iyy, rep);
 }
 
-/* One run with the options opt; *unstable >= 0 if an element of a
- * large-deformation run outgrew the time step (f3_step_violation). */
-static rf_status solid_attempt(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
-                               const rf_fem3d_options *o3, rf_impact_output *out, rf_fem_history *hist,
-                               rf_fem3d_report *rep, long *unstable, rf_error *err)
+/* The driver's stages (fem_driver.h) over a solid_run. */
+static rf_status solid_stage_prepare(void *run, const fem_attempt *a, rf_error *err)
 {
-    const double wall0 = rf_monotonic_seconds();
-    solid_run R;
-    memset(&R, 0, sizeof R);
-    R.pool = &ws->solid, R.unstable = -1;
-    rf_status st = solid_prepare(&R, in, opt, o3, err);
-    if (st != RF_OK)
-        return st;
-    if (hist)
-        memset(hist, 0, sizeof *hist);
-    if (rep)
-        memset(rep, 0, sizeof *rep);
-    fem_run run;
-    memset(&run, 0, sizeof run);
-    F3P_MARK(m);
-    st = solid_mesh(&R, err);
-    if (st == RF_OK)
-        st = solid_assemble(&R, err);
-    F3P_LAP(F3P_SETUP, m);
-    if (st == RF_OK)
-        st = fem_run_begin(&run, "fem3d", &R.o, R.dt, R.H.duration, hist || rep, 13, err);
-    run.gravity = R.grav.g;
-    long nsteps = 0;
-    if (st == RF_OK)
-        st = solid_loop(&R, &run, &nsteps, err);
-    if (st == RF_OK) {
-        solid_extract(&R, &run, nsteps, out, hist, rep);
-        if (hist)
-            fem_run_history(&run, hist);
-        out->wall_seconds = rf_monotonic_seconds() - wall0;
-    }
-    *unstable = R.unstable;
-    fem_run_free(&run);
-    solid_release(&R);
-    if (st != RF_OK && hist)
-        rf_fem_history_free(hist);
-    if (st != RF_OK && rep)
-        rf_fem3d_report_free(rep);
-    return st;
+    return solid_prepare(run, a->in, a->opt, a->o3, err);
 }
 
-/* One attempt of rf_fem3d_impact_ws (fem_run_halving). */
-typedef struct {
-    rf_fem_workspace *ws;
-    const rf_impact_input *in;
-    const rf_fem3d_options *o3;
-    rf_impact_output *out;
-    rf_fem_history *hist;
-    rf_fem3d_report *rep;
-} solid_attempt_ctx;
+static rf_status solid_stage_mesh(void *run, rf_error *err)
+{
+    return solid_mesh(run, err);
+}
 
+static rf_status solid_stage_assemble(void *run, rf_error *err)
+{
+    return solid_assemble(run, err);
+}
+
+static void solid_params(const void *run, fem_drive_params *p)
+{
+    const solid_run *R = run;
+    *p = (fem_drive_params){R->dt, R->H.duration, R->ke0, R->grav.g, 13};
+}
+
+/* A step, its stability in large deformation, and the energy account's row. */
+static rf_status solid_stage_step(void *run, double t, fem_step_row *r, rf_error *err)
+{
+    solid_run *R = run;
+    rf_status st = solid_step(R, &r->Fc, &r->rad, err);
+    if (st != RF_OK)
+        return st;
+    if (R->large && (R->unstable = f3_step_violation(&R->step_check, R->dt, R->u)) >= 0)
+        return rf_fail(err, RF_EMODEL, "fem3d: element %ld was compressed below the stability bound of the time "
+                       "step dt = %g s (dt_safety = %g) at t = %g s", R->unstable, R->dt, R->t.dt_safety, t);
+    F3P_MARK(m);
+    solid_energy(R, t, r->Fc, r->rad, r->row, &r->comp, &r->closure);
+    F3P_LAP(F3P_ENERGY, m);
+    return RF_OK;
+}
+
+/* Gravity: the boulder leaves the contact (solid_separation). */
+static void solid_accounted(void *run, int was_in_contact, int in_contact)
+{
+    solid_run *R = run;
+    if (R->grav.g > 0 && was_in_contact && !in_contact)
+        solid_separation(R);
+}
+
+static rf_status solid_frame(void *run, int k, double t, rf_error *err)
+{
+    return solid_vtk(run, k, t, err);
+}
+
+static void solid_stage_extract(void *run, fem_run *F, long nsteps, const fem_attempt *a)
+{
+    solid_run *R = run;
+    F3P_REPORT(nsteps, R->ne, R->nn, R->nbn);
+    solid_extract(R, F, nsteps, a->out, a->hist, a->rep);
+}
+
+static long solid_stage_release(void *run)
+{
+    solid_run *R = run;
+    solid_release(R);
+    return R->unstable;
+}
+
+static const fem_geometry solid_geometry = {"fem3d", solid_stage_prepare, solid_stage_mesh, solid_stage_assemble,
+                                            solid_params, solid_stage_step, solid_accounted, solid_frame,
+                                            solid_stage_extract, NULL, solid_stage_release};
+
+/* One attempt of rf_fem3d_impact_ws (fem_run_halving): a fresh run through the driver. */
 static rf_status solid_attempt_fn(void *ctx, const rf_fem_options *o, long *unstable, rf_error *err)
 {
-    const solid_attempt_ctx *c = ctx;
-    return solid_attempt(c->ws, c->in, o, c->o3, c->out, c->hist, c->rep, unstable, err);
+    fem_attempt a = *(const fem_attempt *)ctx;
+    a.opt = o;
+    solid_run R;
+    memset(&R, 0, sizeof R);
+    R.pool = &a.ws->solid, R.unstable = -1;
+    return fem_drive(&solid_geometry, &R, &a, unstable, err);
 }
 
 rf_status rf_fem3d_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
                              const rf_fem3d_options *o3, rf_impact_output *out, rf_fem_history *hist,
                              rf_fem3d_report *rep, rf_error *err)
 {
-    const double wall0 = rf_monotonic_seconds();
-    if (!out || !ws)
-        return rf_fail(err, RF_EINVAL, "fem3d: NULL output or workspace");
-    rf_fem_options o;
-    if (opt)
-        o = *opt;
-    else
-        rf_fem_options_default(&o);
-    solid_attempt_ctx c = {ws, in, o3, out, hist, rep};
-    const rf_status st = fem_run_halving(solid_attempt_fn, &c, &o, err);
-    if (st == RF_OK)
-        out->wall_seconds = rf_monotonic_seconds() - wall0;
-    return st;
+    fem_attempt a = {ws, in, opt, o3, out, hist, rep};
+    return fem_drive_impact(solid_attempt_fn, &a, "fem3d", err);
 }
 
 rf_status rf_fem3d_impact_ex(const rf_impact_input *in, const rf_fem_options *opt, const rf_fem3d_options *o3,

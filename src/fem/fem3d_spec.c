@@ -37,17 +37,17 @@ void f3_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *o, con
     if (in->layer_thickness > 0)
         f3_layer_contact_estimate(in, &lc);
     if (lc.thick) /* the boulder stays in the layer: its contact alone */
-        a_h = lc.radius, a_x = fmax(lc.radius, lc.zone_radius / o3->core_factor), t_h = lc.duration;
+        a_h = lc.radius, a_x = fmax(lc.radius, lc.zone_radius / o3->fine_box_factor), t_h = lc.duration;
     const double refinement = rf_fem_refinement(o, 1);
-    const double h = a_h / refinement, hb = h * o->boulder_mesh_ratio, travel = o3->elongation * Vt * t_h;
+    const double h = a_h / refinement, hb = h * fem_tuning_of(o)->boulder_mesh_ratio, travel = o3->elongation * Vt * t_h;
     memset(ms, 0, sizeof *ms);
     ms->full = o3->full_model != 0;
-    int n_s = (int)ceil(o3->core_factor * a_x / h - 1e-9), n_b = (int)ceil(o3->core_factor * a_x / hb - 1e-9);
+    int n_s = (int)ceil(o3->fine_box_factor * a_x / h - 1e-9), n_b = (int)ceil(o3->fine_box_factor * a_x / hb - 1e-9);
     ms->slope = (f3_box){n_s, n_s + (int)ceil(travel / h - 1e-9), n_s, n_s, h};
     const double sxy = c / in->radius, sz = d / in->radius;
     ms->boulder = (f3_box){n_b, n_b + (int)ceil(travel / hb - 1e-9), n_b, n_b, hb / sxy};
     if (lc.thick && in->boulder_material == RF_MATERIAL_RIGID_BODY)
-        f3_soft_boulder_box(&ms->boulder, o3->core_factor * a_x, travel, in->radius, sxy);
+        f3_soft_boulder_box(&ms->boulder, o3->fine_box_factor * a_x, travel, in->radius, sxy);
     ms->radius = in->radius;
     ms->scale_xy = sxy, ms->scale_z = sz;
     ms->boulder_inner = o3->boulder_inner;

@@ -55,12 +55,14 @@ double fem_time_step(double lambda_max, double safety, double *dt_bound)
 rf_status fem_run_halving(fem_attempt_fn attempt, void *ctx, const rf_fem_options *o, rf_error *err)
 {
     rf_fem_options oh = *o;
+    rf_fem_tuning th = *fem_tuning_of(o); /* halved below */
+    oh.tuning = &th;
     for (int k = 0;; k++) {
         long unstable = -1;
         const rf_status st = attempt(ctx, &oh, &unstable, err);
         if (unstable < 0 || k == FEM_STEP_HALVINGS)
             return st;
-        oh.dt_safety *= 0.5;
+        th.dt_safety *= 0.5;
     }
 }
 
@@ -73,7 +75,7 @@ rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, do
     r->t_min = o->end_time > 0 ? o->end_time : 1.3 * t_h;
     r->t_max = o->end_time > 0 ? o->end_time : 3.0 * t_h;
     r->steps_estimate = (long)ceil(r->t_min / dt);
-    r->stride = o->history_stride > 0 ? o->history_stride : (int)(r->steps_estimate / 5000 + 1);
+    r->stride = fem_tuning_of(o)->history_stride > 0 ? fem_tuning_of(o)->history_stride : (int)(r->steps_estimate / 5000 + 1);
     r->record = record;
     r->progress = o->progress, r->progress_ctx = o->progress_ctx;
     r->series.ncol = ncol;

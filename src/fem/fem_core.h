@@ -19,6 +19,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fem_tuning.h"
 #include "rockfuzz/fem.h"
 
 /* --- workspace: growable buffers addressed by a solver's slot number --- */

@@ -247,7 +247,7 @@ static rf_status build_pattern(const pattern *pp, refmesh *m, long max_elements,
         if (m->ne > max_elements) {
             free(prev), free(next);
             return rf_fail(err, RF_ECAP,
-                           "fem mesh: more than %ld elements; raise max_elements or lower refinement", max_elements);
+                           "fem mesh: more than %ld elements; lower the refinement", max_elements);
         }
         double sc = radial_scale(p, rho);
         double as = ring_length(p, rho) / N; /* physical angular spacing */

@@ -22,6 +22,7 @@
 #include "rockfuzz/fem.h"
 #include "fem_ale.h"
 #include "fem_core.h"
+#include "fem_driver.h"
 #include "fem_internal.h"
 #include "fem_kernel.h"
 #include "quad4_kernel.h"
@@ -34,20 +35,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-void rf_fem_history_free(rf_fem_history *h)
-{
-    if (!h)
-        return;
-    free(h->t);
-    free(h->contact_force), free(h->compression), free(h->contact_radius);
-    free(h->kinetic_boulder), free(h->strain_boulder), free(h->kinetic_slope), free(h->strain_slope);
-    free(h->contact_work), free(h->absorbed), free(h->closure), free(h->boulder_velocity), free(h->remap);
-    h->t = h->contact_force = h->compression = h->contact_radius = NULL;
-    h->kinetic_boulder = h->strain_boulder = h->kinetic_slope = h->strain_slope = NULL;
-    h->contact_work = h->absorbed = h->closure = h->boulder_velocity = h->remap = NULL;
-    h->n = 0;
-}
 
 /* What the axisymmetric model can do beyond the ranges every impact model
  * shares (rf_impact_input_validate) and the option rules (rf_fem_options_validate). */
@@ -79,6 +66,7 @@ enum { P_K, P_FE, P_INC_PTR, P_INC, P_INVM, P_MASS, P_U, P_V, P_F, P_FEXT, P_DAS
 typedef struct {
     const rf_impact_input *in;
     rf_fem_options o;
+    rf_fem_tuning t;      /* o.tuning's values, or the defaults */
     rf_hertz_reference H;
     fem_material mat[3];  /* boulder, slope (bedrock), layer */
     rf_wave_speeds w[3];
@@ -130,11 +118,11 @@ static rf_status axi_mesh(axi_run *S, rf_error *err)
 {
     const rf_fem_options *o = &S->o;
     const rf_hertz_reference *H = &S->H;
-    S->h = H->contact_radius / o->refinement, S->hb = S->h * o->boulder_mesh_ratio;
+    S->h = H->contact_radius / o->refinement, S->hb = S->h * S->t.boulder_mesh_ratio;
     const double h = S->h, hb = S->hb;
     /* the uniform fine zone must stay well inside the boulder: shrink it at
        very high speed (a/R > 0.24 with the default 2.5 a) down to 1.5 a */
-    double core = fmin(o->core_factor, 0.55 * fmin(H->c, H->d) / H->contact_radius);
+    double core = fmin(S->t.fine_zone_factor, 0.55 * fmin(H->c, H->d) / H->contact_radius);
     if (core < 1.5)
         return rf_fail(err, RF_EINVAL,
                        "fem: the Hertz contact radius a = %.4g m is too large for the boulder (c = %g m, d = %g m): "
@@ -145,15 +133,15 @@ static rf_status axi_mesh(axi_run *S, rf_error *err)
     ss.n = 3 * (int)ceil(core * o->refinement / 3 - 1e-9);
     while (ss.n > 3 && ss.n * h > 0.6 * fmin(H->c, H->d))
         ss.n -= 3;
-    ss.grading = o->grading;
+    ss.grading = S->t.grading;
     const double c_r = S->layer ? fmin(S->w[1].rayleigh, S->w[2].rayleigh) : S->w[1].rayleigh;
     ss.h_far = fmax(h, fmin(c_r * H->duration / 12, S->L / 8));
     ss.extent = S->L;
     bs.h = hb;
-    bs.n = 3 * (int)ceil(core * o->refinement / o->boulder_mesh_ratio / 3 - 1e-9);
+    bs.n = 3 * (int)ceil(core * o->refinement / S->t.boulder_mesh_ratio / 3 - 1e-9);
     while (bs.n > 3 && bs.n * hb > 0.6 * fmin(H->c, H->d))
         bs.n -= 3;
-    bs.grading = o->grading;
+    bs.grading = S->t.grading;
     bs.h_far = fmax(hb, fmin(H->c, H->d) / 10);
     bs.extent = H->c;
     bs.height = H->d;
@@ -166,7 +154,7 @@ static rf_status axi_mesh(axi_run *S, rf_error *err)
         return rf_fail(err, RF_EINVAL, "fem: domain radius %g m is too small for the fine zone (%g m)", S->L,
                        ss.n * ss.h);
     S->fine_r = ss.n * ss.h;
-    rf_status st = fem_mesh_build(&bs, &ss, &S->mesh, o->max_elements, err);
+    rf_status st = fem_mesh_build(&bs, &ss, &S->mesh, S->t.max_elements, err);
     S->have_mesh = st == RF_OK;
     return st;
 }
@@ -301,7 +289,7 @@ static long axi_surface_mass_shift(axi_run *S, double *elm, const unsigned char 
         }
         if (nt != 2 || !distinct || (top[0] && top[2]) || (top[1] && top[3]))
             continue; /* not one edge on the face, or a collapsed quad */
-        const double alpha = fem_mass_kept(axi_element_lambda(S, elm, fixed, e), S->o.surface_mass_kappa, lam_max);
+        const double alpha = fem_mass_kept(axi_element_lambda(S, elm, fixed, e), S->t.surface_mass_kappa, lam_max);
         if (!(alpha > 0) || alpha >= 1)
             continue;
         for (int a = 0; a < 4; a++)
@@ -353,7 +341,7 @@ static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
         if (lm > lam_max)
             lam_max = lm;
     }
-    if (S->o.surface_mass_kappa > 0 && (S->layer || S->plastic[1]) && /* soil only: section 9e */
+    if (S->t.surface_mass_kappa > 0 && (S->layer || S->plastic[1]) && /* soil only: section 9e */
         (S->mshift = fem_pool_get(S->pool, P_MSHIFT, (size_t)S->nn * sizeof(double), 1)) &&
         (S->shifted_elems = axi_surface_mass_shift(S, elm, fixed, lam_max)) > 0) {
         for (long i = 0; i < S->nn; i++)
@@ -362,7 +350,7 @@ static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
         for (long i = 0; i < S->nn; i++)
             S->mshift[i] += S->mass[2 * i];
     }
-    S->dt = fem_time_step(lam_max, S->o.dt_safety, &S->dt_bound);
+    S->dt = fem_time_step(lam_max, S->t.dt_safety, &S->dt_bound);
 }
 
 /* Dashpots on the outer surface (Lysmer & Kuhlemeyer 1969): each outer face
@@ -426,7 +414,7 @@ static rf_status axi_kernels(axi_run *S, rf_error *err)
                 return st;
             continue;
         }
-        if (S->o.kernel[b] == RF_FEM_KERNEL_STIFFNESS && !S->large) { /* packed if it pays (the same bits), else per element */
+        if (S->t.kernel[b] == RF_FEM_KERNEL_STIFFNESS && !S->large) { /* packed if it pays (the same bits), else per element */
             double *pk = NULL;
             if (quad4_packed_pays(S->ne) &&
                 !(pk = fem_pool_get(S->pool, P_PACK0 + b, (size_t)quad4_packed_size(count[b]) * sizeof *pk, 0)))
@@ -491,7 +479,7 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
         st = fem_contact_large(&S->C, &S->mesh, S->ndof, err);
     if (st != RF_OK)
         return st;
-    if (S->o.contact_single_pivot)
+    if (S->t.contact_single_pivot)
         S->C.block_rounds = 0;
     if (S->in->friction > 0 && (st = fem_contact_friction_setup(&S->C, S->ndof, S->in->friction, err)) != RF_OK)
         return st;
@@ -507,7 +495,7 @@ static rf_status axi_assemble(axi_run *S, rf_error *err)
     if (S->rigid)
         S->C.rigid_invm = 1 / Mb, S->C.rigid_dofs = S->nbd;
     if (S->ale_on) {
-        const fem_ale_params ap = {S->o.ale_trigger, fmin(0.5 * (1 + S->o.ale_trigger), 0.95), S->o.ale_sweeps};
+        const fem_ale_params ap = {S->t.ale_trigger, fmin(0.5 * (1 + S->t.ale_trigger), 0.95), S->t.ale_sweeps};
         if (!(S->ale_delta = fem_pool_get(S->pool, P_ALE, (size_t)S->ndof * sizeof(double), 1)))
             return rf_fail(err, RF_ENOMEM, "fem: out of memory");
         if ((st = fem_ale_setup(&S->ale, &S->mesh, S->mesh.boulder_elems, S->ne, S->emat, S->invm, &ap, err)) != RF_OK)
@@ -841,47 +829,6 @@ static void axi_energy(const axi_run *S, double t, double Fc, double rad, double
 }
 
 /* The time loop (with VTK frames if asked); *nsteps steps made. */
-static rf_status axi_loop(axi_run *S, fem_run *R, long *nsteps, rf_error *err)
-{
-    const rf_fem_options *o = &S->o;
-    int vtk_every = (int)(R->steps_estimate / (o->vtk_frames > 0 ? o->vtk_frames : 60) + 1), vtk_n = 0;
-    const int vtk_cap = 4 * (o->vtk_frames + 8);
-    double *vtk_times = NULL;
-    if (o->vtk_dir && !(vtk_times = fem_pool_get(S->pool, P_VTK, (size_t)vtk_cap * sizeof(double), 0)))
-        return rf_fail(err, RF_ENOMEM, "fem: out of memory");
-    rf_status st = RF_OK;
-    long n = 0;
-    for (;; n++) {
-        const double t = (double)n * S->dt;
-        if (o->vtk_dir && n % vtk_every == 0 && vtk_n < vtk_cap - 1) {
-            if ((st = fem_vtk_frame(o->vtk_dir, vtk_n, t, &S->mesh, S->u, S->v, S->mat, S->kernel, err)) != RF_OK)
-                return st;
-            vtk_times[vtk_n++] = t;
-        }
-        double Fc, rad, row[13], comp, closure;
-        if ((st = axi_step(S, &Fc, &rad, err)) != RF_OK)
-            return st;
-        if (S->large && (S->unstable = axi_step_violation(S)) >= 0)
-            return rf_fail(err, RF_EMODEL, "fem: element %ld was compressed below the stability bound of the time "
-                           "step dt = %g s (dt_safety = %g) at t = %g s: a mesh that follows the material cannot "
-                           "follow this deformation (docs/validation-plastic.md section 8, JGGE24-L1)",
-                           S->unstable, S->dt, o->dt_safety, t);
-        axi_energy(S, t, Fc, rad, row, &comp, &closure);
-        if ((st = fem_run_account(R, n, Fc, rad, comp, closure, S->ke0, row, err)) != RF_OK)
-            return st;
-        if (fem_run_stop(R, n))
-            break;
-    }
-    *nsteps = n + 1;
-    if (!o->vtk_dir)
-        return RF_OK;
-    const double t_end = (double)(n + 1) * S->dt; /* and the final state, as the 3D model writes it */
-    if ((st = fem_vtk_frame(o->vtk_dir, vtk_n, t_end, &S->mesh, S->u, S->v, S->mat, S->kernel, err)) != RF_OK)
-        return st;
-    vtk_times[vtk_n++] = t_end;
-    return fem_vtk_index(o->vtk_dir, vtk_n, vtk_times, err);
-}
-
 /* Outputs and diagnostics of the final state. */
 static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_output *out, rf_fem_history *hist)
 {
@@ -906,7 +853,7 @@ static void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_out
     double v_after = pz / S->Mb;
     if (S->g > 0) /* with gravity: the velocity at separation (0 at rest) */
         v_after = R->at_rest ? 0 : !R->in_contact && R->episodes > 0 ? R->v_sep : v_after;
-    fem_run_outputs(R, nsteps, S->o.duration_threshold, S->ke0, 1.0, S->nn, S->ne, out);
+    fem_run_outputs(R, nsteps, S->t.duration_threshold, S->ke0, 1.0, S->nn, S->ne, out);
     out->v_n_before = -V;
     out->v_n_after = v_after;
     out->R_n = -v_after / -V;
@@ -976,6 +923,7 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
         S->o = *opt;
     else
         rf_fem_options_default(&S->o);
+    S->t = *fem_tuning_of(&S->o);
     rf_status st = check_input(in, &S->o, err);
     if (st != RF_OK)
         return st;
@@ -1024,82 +972,95 @@ static rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem
     return RF_OK;
 }
 
-/* One run with the options opt (may be NULL); *unstable >= 0 if an element
- * of a large-deformation run outgrew the time step (axi_step_violation). */
-static rf_status axi_attempt(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
-                            rf_impact_output *out, rf_fem_history *hist, long *unstable, rf_error *err)
+/* The driver's stages (fem_driver.h) over an axi_run. */
+static rf_status axi_stage_prepare(void *run, const fem_attempt *a, rf_error *err)
 {
-    const double wall0 = rf_monotonic_seconds();
-    if (hist)
-        memset(hist, 0, sizeof *hist);
-    axi_run S;
-    memset(&S, 0, sizeof S);
-    S.pool = &ws->axi, S.unstable = -1;
-    fem_run R;
-    memset(&R, 0, sizeof R);
-    rf_status st = axi_prepare(&S, in, opt, err);
-    if (st == RF_OK)
-        st = axi_mesh(&S, err);
-    if (st == RF_OK)
-        st = axi_assemble(&S, err);
-    if (st == RF_OK)
-        st = fem_run_begin(&R, "fem", &S.o, S.dt, S.H.duration, hist != NULL, S.ale_on ? 13 : 12, err);
-    R.gravity = S.g;
-    long nsteps = 0;
-    if (st == RF_OK)
-        st = axi_loop(&S, &R, &nsteps, err);
-    if (st == RF_OK) {
-        axi_extract(&S, &R, nsteps, out, hist);
-        if (hist) {
-            fem_run_history(&R, hist);
-            if (S.ale_on)
-                hist->remap = R.series.col[12], R.series.col[12] = NULL;
-        }
-        out->wall_seconds = rf_monotonic_seconds() - wall0;
-    }
-    *unstable = S.unstable;
-    fem_run_free(&R);
-    fem_contact_free(&S.C);
-    fem_ale_free(&S.ale);
-    fem_kernel_release(&S.kernel[0]);
-    fem_kernel_release(&S.kernel[1]);
-    if (S.have_mesh)
-        fem_mesh_free(&S.mesh);
-    if (st != RF_OK && hist)
-        rf_fem_history_free(hist);
-    return st;
+    return axi_prepare(run, a->in, a->opt, err);
 }
 
-/* One attempt of rf_fem_impact_ws (fem_run_halving). */
-typedef struct {
-    rf_fem_workspace *ws;
-    const rf_impact_input *in;
-    rf_impact_output *out;
-    rf_fem_history *hist;
-} axi_attempt_ctx;
+static rf_status axi_stage_mesh(void *run, rf_error *err)
+{
+    return axi_mesh(run, err);
+}
 
+static rf_status axi_stage_assemble(void *run, rf_error *err)
+{
+    return axi_assemble(run, err);
+}
+
+static void axi_params(const void *run, fem_drive_params *p)
+{
+    const axi_run *S = run;
+    *p = (fem_drive_params){S->dt, S->H.duration, S->ke0, S->g, S->ale_on ? 13 : 12};
+}
+
+/* A step, its stability in large deformation, and the energy account's row. */
+static rf_status axi_stage_step(void *run, double t, fem_step_row *r, rf_error *err)
+{
+    axi_run *S = run;
+    rf_status st = axi_step(S, &r->Fc, &r->rad, err);
+    if (st != RF_OK)
+        return st;
+    if (S->large && (S->unstable = axi_step_violation(S)) >= 0)
+        return rf_fail(err, RF_EMODEL, "fem: element %ld was compressed below the stability bound of the time "
+                       "step dt = %g s (dt_safety = %g) at t = %g s: a mesh that follows the material cannot "
+                       "follow this deformation (docs/validation-plastic.md section 8, JGGE24-L1)",
+                       S->unstable, S->dt, S->t.dt_safety, t);
+    axi_energy(S, t, r->Fc, r->rad, r->row, &r->comp, &r->closure);
+    return RF_OK;
+}
+
+static rf_status axi_frame(void *run, int k, double t, rf_error *err)
+{
+    axi_run *S = run;
+    return fem_vtk_frame(S->o.vtk_dir, k, t, &S->mesh, S->u, S->v, S->mat, S->kernel, err);
+}
+
+static void axi_stage_extract(void *run, fem_run *R, long nsteps, const fem_attempt *a)
+{
+    axi_extract(run, R, nsteps, a->out, a->hist);
+}
+
+/* With ALE, the history's energy column of the remaps. */
+static void axi_history(void *run, fem_run *R, rf_fem_history *hist)
+{
+    const axi_run *S = run;
+    if (S->ale_on)
+        hist->remap = R->series.col[12], R->series.col[12] = NULL;
+}
+
+static long axi_release(void *run)
+{
+    axi_run *S = run;
+    fem_contact_free(&S->C);
+    fem_ale_free(&S->ale);
+    fem_kernel_release(&S->kernel[0]);
+    fem_kernel_release(&S->kernel[1]);
+    if (S->have_mesh)
+        fem_mesh_free(&S->mesh);
+    return S->unstable;
+}
+
+static const fem_geometry axi_geometry = {"fem", axi_stage_prepare, axi_stage_mesh, axi_stage_assemble, axi_params,
+                                          axi_stage_step, NULL, axi_frame, axi_stage_extract, axi_history,
+                                          axi_release};
+
+/* One attempt of rf_fem_impact_ws (fem_run_halving): a fresh run through the driver. */
 static rf_status axi_attempt_fn(void *ctx, const rf_fem_options *o, long *unstable, rf_error *err)
 {
-    const axi_attempt_ctx *c = ctx;
-    return axi_attempt(c->ws, c->in, o, c->out, c->hist, unstable, err);
+    fem_attempt a = *(const fem_attempt *)ctx;
+    a.opt = o;
+    axi_run S;
+    memset(&S, 0, sizeof S);
+    S.pool = &a.ws->axi, S.unstable = -1;
+    return fem_drive(&axi_geometry, &S, &a, unstable, err);
 }
 
 rf_status rf_fem_impact_ws(rf_fem_workspace *ws, const rf_impact_input *in, const rf_fem_options *opt,
                            rf_impact_output *out, rf_fem_history *hist, rf_error *err)
 {
-    if (!out || !ws)
-        return rf_fail(err, RF_EINVAL, "fem: NULL output or workspace");
-    rf_fem_options o;
-    if (opt)
-        o = *opt;
-    else
-        rf_fem_options_default(&o);
-    const double wall0 = rf_monotonic_seconds();
-    axi_attempt_ctx c = {ws, in, out, hist};
-    const rf_status st = fem_run_halving(axi_attempt_fn, &c, &o, err);
-    if (st == RF_OK)
-        out->wall_seconds = rf_monotonic_seconds() - wall0;
-    return st;
+    fem_attempt a = {ws, in, opt, NULL, out, hist, NULL};
+    return fem_drive_impact(axi_attempt_fn, &a, "fem", err);
 }
 
 rf_status rf_fem_impact(const rf_impact_input *in, const rf_fem_options *opt, rf_impact_output *out,

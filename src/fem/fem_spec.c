@@ -26,9 +26,10 @@ rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *
     const double a = sqrt(R * delta), duration = 2.94328 * delta / V, L = rf_fem_domain_factor(o, in) * in->radius;
     const double nu = in->slope_poisson, mu = in->slope_E / (2 * (1 + nu));
     const double cs = sqrt(mu / in->slope_density), cr = cs * (0.87 + 1.12 * nu) / (1 + nu);
+    const rf_fem_tuning *t = fem_tuning_of(o);
     const double refinement = rf_fem_refinement(o, 0); /* automatic settings resolved as the solver does */
-    const double h = a / refinement, hb = h * o->boulder_mesh_ratio;
-    const double core = fmin(o->core_factor, 0.55 * fmin(c, d) / a);
+    const double h = a / refinement, hb = h * t->boulder_mesh_ratio;
+    const double core = fmin(t->fine_zone_factor, 0.55 * fmin(c, d) / a);
     if (core < 1.5)
         return rf_fail(err, RF_EINVAL, "fem spec: the Hertz contact radius %.4g m is too large for the boulder", a);
     memset(bs, 0, sizeof *bs), memset(ss, 0, sizeof *ss);
@@ -36,14 +37,14 @@ rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *
     ss->n = 3 * (int)ceil(core * refinement / 3 - 1e-9);
     while (ss->n > 3 && ss->n * h > 0.6 * fmin(c, d))
         ss->n -= 3;
-    ss->grading = o->grading;
+    ss->grading = t->grading;
     ss->h_far = fmax(h, fmin(cr * duration / 12, L / 8));
     ss->extent = L;
     bs->h = hb;
-    bs->n = 3 * (int)ceil(core * refinement / o->boulder_mesh_ratio / 3 - 1e-9);
+    bs->n = 3 * (int)ceil(core * refinement / t->boulder_mesh_ratio / 3 - 1e-9);
     while (bs->n > 3 && bs->n * hb > 0.6 * fmin(c, d))
         bs->n -= 3;
-    bs->grading = o->grading;
+    bs->grading = t->grading;
     bs->h_far = fmax(hb, fmin(c, d) / 10);
     bs->extent = c;
     bs->height = d;

@@ -12,6 +12,7 @@
 #include "rockfuzz/mdr.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -97,6 +98,8 @@ rf_status rf_impact_model_spec_validate(const rf_impact_model_spec *spec, rf_err
                        spec->hunter_coefficient);
     if (spec->solver != RF_IMPACT_FEM)
         return RF_OK;
+    if (spec->fem.tuning) /* its identity covers the table's options only */
+        return rf_fail(err, RF_EINVAL, "impact model: fem.tuning must be NULL (the model runs the validated numerics)");
     rf_fem_options o = spec->fem;
     o.vtk_dir = NULL; /* the model ignores it (a study writes no VTK frames) */
     return rf_fem_options_validate(&o, 0, err); /* the 3D limits are checked when a 3D impact runs */
@@ -341,12 +344,33 @@ static void base_identity(const impact_ctx *c, char *buf, size_t cap, size_t *le
     }
 }
 
+/* Every public FE option, from the one table (rf_fem_option_fields: a row
+ * cannot be forgotten), and the automatic settings resolved where they depend
+ * on constants of the code.  The numerics of fem_tuning.h are the code's own
+ * (a model runs them at their defaults): a change of them is named below. */
+static void fem_identity(const impact_ctx *c, char *buf, size_t cap, size_t *len)
+{
+    const rf_fem_options *o = &c->spec.fem;
+    append(buf, cap, len, " fem:");
+    for (size_t k = 0; k < rf_fem_n_option_fields; k++) {
+        const rf_fem_option_field *f = &rf_fem_option_fields[k];
+        char value[64];
+        rf_fem_option_format(o, f, value, sizeof value);
+        /* the boundary by its rule: auto where it can only be fixed gives the fixed boundary's results */
+        append(buf, cap, len, " %s=%s", f->name,
+               f->offset == offsetof(rf_fem_options, boundary) ? boundary_identity(c) : value);
+    }
+    append(buf, cap, len, " refinement_axi=%.17g refinement_3d=%.17g", rf_fem_refinement(o, 0), rf_fem_refinement(o, 1));
+    if (o->domain_factor == 0)
+        append(buf, cap, len, " domain_margin=%.17g domain_min=%.17g", RF_FEM_DOMAIN_MARGIN, RF_FEM_DOMAIN_MIN);
+}
+
 static void make_identity(const impact_ctx *c, char *buf, size_t cap)
 {
     const rf_impact_model_spec *s = &c->spec;
     const rf_impact_input *b = &s->base;
     size_t len = 0;
-    append(buf, cap, &len, "impact v2 solver=%s", rf_impact_solver_name(s->solver));
+    append(buf, cap, &len, "impact v3 solver=%s", rf_impact_solver_name(s->solver));
     int en_solver = s->solver == RF_IMPACT_RIGID || s->solver == RF_IMPACT_MDR;
     if (s->solver == RF_IMPACT_HUNTER || (en_solver && isnan(s->e_n)))
         append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
@@ -358,20 +382,8 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
         append(buf, cap, &len, " mdr_springs=%zu mdr_steps=%zu", mo.springs, mo.steps);
     }
     if (s->solver == RF_IMPACT_FEM) {
-        if (s->fem.domain_factor > 0)
-            append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=%.17g boundary=%s threads=%d",
-                   rf_fem_refinement(&s->fem, 0), rf_fem_refinement(&s->fem, 1), s->fem.domain_factor,
-                   boundary_identity(c), s->fem.threads);
-        else
-            append(buf, cap, &len, " refinement_axi=%.17g refinement_3d=%.17g domain_factor=auto domain_margin=%.17g domain_min=%.17g boundary=%s threads=%d",
-                   rf_fem_refinement(&s->fem, 0), rf_fem_refinement(&s->fem, 1), RF_FEM_DOMAIN_MARGIN,
-                   RF_FEM_DOMAIN_MIN, boundary_identity(c), s->fem.threads);
+        fem_identity(c, buf, cap, &len);
         const rf_fem_options *o = &s->fem;
-        append(buf, cap, &len,
-               " boulder_mesh_ratio=%.17g core_factor=%.17g grading=%.17g dt_safety=%.17g end_time=%.17g"
-               " duration_threshold=%.17g max_elements=%ld kernels=%d,%d",
-               o->boulder_mesh_ratio, o->core_factor, o->grading, o->dt_safety, o->end_time,
-               o->duration_threshold, o->max_elements, (int)o->kernel[0], (int)o->kernel[1]);
         /* 3D results changed with the exact boulder I_yy, again with its exact centre of mass and
            with the C1 master face of the contact (issue 9, docs/fem-speed.md section 5): a store
            never mixes them */
@@ -380,10 +392,6 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            small-strain results, whose identity stays as it was */
         if (large_possible(c))
             append(buf, cap, &len, " kinematics=updated_lagrangian");
-        /* ALE rezoning of the axisymmetric slope (option ale on; auto is off): named, so that a store
-           never mixes its results with the Lagrangian ones, whose identity stays as it was */
-        if (large_possible(c) && o->ale == RF_FEM_ALE_ON)
-            append(buf, cap, &len, " ale=on trigger=%.17g sweeps=%d", o->ale_trigger, o->ale_sweeps);
         /* the 3D model takes plastic bodies and measures penetration_max and indentation_depth (NaN
            before, issue 10): a store never mixes results from before and after */
         if (may_run_3d(c))
@@ -406,13 +414,12 @@ static void make_identity(const impact_ctx *c, char *buf, size_t cap)
            point's location (backtracking Newton from the previous point, where plain Newton had
            failed on unevenly stretched faces) */
         if (layer_possible(c) || plastic_possible(c)) {
-            append(buf, cap, &len, " surface_mass_kappa=%.17g", o->surface_mass_kappa);
+            append(buf, cap, &len, " surface_mass_kappa=0.1");
             if (may_run_3d(c))
-                append(buf, cap, &len, " fem3d_locate=warm_backtracking%s",
-                       o->surface_mass_3d ? " fem3d_surface_mass=on" : "");
+                append(buf, cap, &len, " fem3d_locate=warm_backtracking fem3d_surface_mass=on");
         }
         /* a rigid sphere's 3D contact against its exact surface (docs/validation-plastic.md 9g) */
-        if (may_run_3d(c) && o->sphere_contact_3d && b->boulder_material == RF_MATERIAL_RIGID_BODY)
+        if (may_run_3d(c) && b->boulder_material == RF_MATERIAL_RIGID_BODY)
             append(buf, cap, &len, " fem3d_contact=exact_sphere");
         /* the 3D model runs in large deformation too (on, or auto with a plastic body; it was small
            strain in every case before): a store never mixes 3D results of the two kinematics */

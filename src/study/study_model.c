@@ -527,11 +527,37 @@ static rf_status unknown_impact_key(yr_ctx *c, struct fy_node *k, const char *p,
     char hint[128] = "";
     if (near)
         snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
-    return yr_fail(c, k, p, "unknown key; %sthe impact model takes solver, boundary, large_deformation, ale, "
-                   "surface_mass_3d, sphere_contact_3d, refinement, domain_factor, end_time [s], threads, e_n, bind, "
-                   "hunter_coefficient, boulder_material, slope_material, layer_material and the crisp inputs "
-                   "that `rockfuzz impact --help` and docs/impact.md list (radius [m], slope_angle [deg], ...)",
-                   hint);
+    char fem[256];
+    size_t len = 0;
+    fem[0] = '\0';
+    for (size_t q = 0; q < rf_fem_n_option_fields && len < sizeof fem; q++)
+        len += (size_t)snprintf(fem + len, sizeof fem - len, "%s, ", rf_fem_option_fields[q].name);
+    return yr_fail(c, k, p, "unknown key; %sthe impact model takes solver, %se_n, bind, hunter_coefficient, "
+                   "boulder_material, slope_material, layer_material and the crisp inputs that `rockfuzz impact "
+                   "--help` and docs/impact.md list (radius [m], slope_angle [deg], ...)", hint, fem);
+}
+
+/* An FE option (a row of rf_fem_option_fields): a number, or one of its choices. */
+static rf_status parse_fem_option(yr_ctx *c, const rf_fem_option_field *f, struct fy_node *v, const char *p,
+                                  rf_fem_options *o)
+{
+    rf_error tmp; /* the FE solvers' own rule (fem_options.c) */
+    rf_status st;
+    if (f->kind == RF_FEM_OPTION_CHOICE) {
+        char buf[32], list[128];
+        if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
+            return st;
+        rf_fem_option_choices(f, list, sizeof list);
+        if (rf_fem_option_parse(o, f, buf, &tmp) != RF_OK)
+            return yr_fail(c, v, p, "unknown %s; expected %s", f->name, list);
+        return RF_OK;
+    }
+    double x;
+    if ((st = yr_number(c, v, p, &x)) != RF_OK)
+        return st;
+    if (rf_fem_option_set(o, f, x, &tmp) != RF_OK)
+        return yr_fail(c, v, p, "%s", tmp.msg);
+    return RF_OK;
 }
 
 /* A model setting of the impact block (solver, materials, FE options, e_n,
@@ -553,46 +579,14 @@ static rf_status parse_impact_setting(yr_ctx *c, const char *key, struct fy_node
             return yr_fail(c, v, p, key[0] == 'b' ? "unknown boulder material; expected elastic, von_mises or rigid"
                                                   : "unknown material; expected elastic, von_mises or "
                                                     "drucker_prager");
-    } else if (!strcmp(key, "solver") || !strcmp(key, "boundary")) {
+    } else if (!strcmp(key, "solver")) {
         if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
             return st;
         rf_error tmp;
-        if ((key[0] == 's' ? rf_impact_solver_parse(buf, &spec->solver, &tmp)
-                                        : rf_fem_boundary_parse(buf, &spec->fem.boundary, &tmp)) != RF_OK)
-            return yr_fail(c, v, p, key[0] == 's' ? "unknown solver; expected fem, hertz, hunter, rigid or mdr"
-                                                  : "unknown boundary; expected auto, fixed or absorbing");
-    } else if (!strcmp(key, "large_deformation")) {
-        if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
-            return st;
-        rf_error tmp;
-        if (rf_fem_kinematics_parse(buf, &spec->fem.large_deformation, &tmp) != RF_OK)
-            return yr_fail(c, v, p, "unknown large_deformation; expected auto, on or off");
-    } else if (!strcmp(key, "ale")) {
-        if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
-            return st;
-        rf_error tmp;
-        if (rf_fem_ale_parse(buf, &spec->fem.ale, &tmp) != RF_OK)
-            return yr_fail(c, v, p, "unknown ale; expected auto, on or off");
-    } else if (!strcmp(key, "surface_mass_3d") || !strcmp(key, "sphere_contact_3d")) {
-        int *on = !strcmp(key, "surface_mass_3d") ? &spec->fem.surface_mass_3d : &spec->fem.sphere_contact_3d;
-        if ((st = yr_word(c, v, p, buf, sizeof buf)) != RF_OK)
-            return st;
-        rf_error tmp;
-        if (rf_fem_switch_parse(key, buf, on, &tmp) != RF_OK)
-            return yr_fail(c, v, p, "unknown %s; expected on or off", key);
-    } else if (!strcmp(key, "refinement") || !strcmp(key, "domain_factor") || !strcmp(key, "end_time")) {
-        double *d = key[0] == 'r' ? &spec->fem.refinement : key[0] == 'd' ? &spec->fem.domain_factor
-                                                                         : &spec->fem.end_time;
-        if ((st = yr_number(c, v, p, d)) != RF_OK)
-            return st;
-        rf_error tmp; /* the FE solvers' own rule (fem_options.c) */
-        if (rf_fem_options_validate(&spec->fem, 0, &tmp) != RF_OK)
-            return yr_fail(c, v, p, "%s", tmp.msg);
-    } else if (!strcmp(key, "threads")) {
-        long long t;
-        if ((st = yr_integer(c, v, p, 1, 1024, &t)) != RF_OK)
-            return st;
-        spec->fem.threads = (int)t;
+        if (rf_impact_solver_parse(buf, &spec->solver, &tmp) != RF_OK)
+            return yr_fail(c, v, p, "unknown solver; expected fem, hertz, hunter, rigid or mdr");
+    } else if (rf_fem_option_find(key)) {
+        return parse_fem_option(c, rf_fem_option_find(key), v, p, &spec->fem);
     } else if (!strcmp(key, "e_n")) {
         if ((st = yr_number(c, v, p, &spec->e_n)) != RF_OK)
             return st;
