@@ -62,5 +62,34 @@ grep -q "d.yaml:8: model.program.bind.q\[0\] = A: A is already driven by paramet
     fail "input bound twice: $(cat "$tmp/d.err")"
 [ ! -e "$tmp/d/result.json" ] || fail "a refused study wrote result.json"
 
+# ---- a trajectory study's nominal rerun drives the bound inputs: rock R_n = 0.35, talus R_n = 0.35 * 0.5 ----
+two='profile:
+  points: [[0, 20], [10, 10], [20, 5], [40, 0]]
+  materials: [rock, talus, talus]
+block: {shape: point, mass: 100}
+release: {x: 1, y: 30, vx: {uniform: [2, 5]}}
+collectors: [{name: c, x: 15}]
+samples: 100
+seed: 5'
+printf 'name: two\n%s\nmaterials:\n  rock: {R_n: 0.4, R_t: 0.8, friction_angle: 30}\n  talus: {R_n: 0.3, R_t: 0.75, friction_angle: 32}\n' \
+    "$two" > "$tmp/two.yaml"
+printf 'name: two\n%s\nmaterials:\n  rock: {R_n: 0.35, R_t: 0.8, friction_angle: 30}\n  talus: {R_n: 0.175, R_t: 0.75, friction_angle: 32}\n' \
+    "$two" > "$tmp/direct.yaml"
+cat > "$tmp/t.yaml" <<'EOF2'
+levels: 1
+parameters:
+  Rn: {tfn: [0.35, 0.05, 0.05]}
+model:
+  trajectory:
+    file: two.yaml
+    bind: {Rn: [materials.rock.R_n, {to: materials.talus.R_n, scale: 0.5}]}
+options: {left_right: false}
+EOF2
+"$bin" run "$tmp/t.yaml" --out "$tmp/t" --quiet --no-plots > "$tmp/t.out" 2>&1 || fail "trajectory study: $(tail -3 "$tmp/t.out")"
+"$bin" trajectory "$tmp/direct.yaml" --out "$tmp/direct" --quiet > /dev/null 2>&1 || fail "direct trajectory run"
+for f in samples.csv crossings.csv; do
+    cmp -s "$tmp/t/nominal/$f" "$tmp/direct/$f" || fail "nominal $f differs from the inputs set directly"
+done
+
 [ "$fails" -eq 0 ] && echo "cli_bind: all checks passed"
 exit $((fails > 0))
