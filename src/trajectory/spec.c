@@ -249,9 +249,14 @@ static rf_status validate_values(const rf_traj_spec *s, rf_error *err)
             return rf_fail(err, RF_EINVAL, "profile.materials[%zu]: no such material", i);
     if ((st = check_block(s, err)) != RF_OK || (st = check_outputs(s, err)) != RF_OK)
         return st;
-    for (size_t c = 0; c < s->n_collectors; c++)
-        if (!(s->collectors[c].capacity >= 0 && s->collectors[c].height >= 0))
-            return rf_fail(err, RF_EINVAL, "collectors.%s: capacity and height must be >= 0", s->collectors[c].name);
+    for (size_t c = 0; c < s->n_collectors; c++) {
+        if (!(s->collectors[c].capacity >= 0))
+            return rf_fail(err, RF_EINVAL, "collectors.%s.capacity = %g: must be >= 0 [J] (0: a pure collector)",
+                           s->collectors[c].name, s->collectors[c].capacity);
+        if (!(s->collectors[c].height >= 0))
+            return rf_fail(err, RF_EINVAL, "collectors.%s.height = %g: must be >= 0 [m] (0: unlimited)",
+                           s->collectors[c].name, s->collectors[c].height);
+    }
     rf_traj_world *w;
     rf_traj_spec probe = *s;
     probe.law = RF_BOUNCE_CONSTANT; /* geometry only: no impact table here */
