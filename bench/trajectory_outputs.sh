@@ -5,7 +5,7 @@
 # trajectory recorded; the same run with --out (CSV files and envelopes, no
 # plots) and without.  Prints both wall times and their ratio; goal: the
 # outputs cost no more than the simulation.  Also times the profile check
-# on a profile whose vertices share few x values (vertical steps).
+# on a profile with 20 001 vertices on one x (a wall).
 # Usage: bench/trajectory_outputs.sh [build-dir]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,9 +26,7 @@ for i in range(4000):
     y -= 0.25 * (0.7 + 0.3 * math.sin(i / 40)) + random.uniform(-0.05, 0.05)
 with open(d + "/profile.csv", "w") as f:
     f.write("x,y\n" + "".join("%.6f,%.6f\n" % p for p in pts))
-steps = [(0.0, 0.0)]
-for i in range(1, 4001):  # a staircase: 2 vertices per x
-    steps += [(float(i), -float(i - 1)), (float(i), -float(i))]
+steps = [(-10.0, 0.0)] + [(0.0, k / 1000.0) for k in range(20001)] + [(10.0, 20.0)]  # a wall of 20 001 vertices on x = 0
 with open(d + "/steps.csv", "w") as f:
     f.write("x,y\n" + "".join("%g,%g\n" % p for p in steps))
 for name, csv, samples in (("rough", "profile.csv", 200), ("steps", "steps.csv", 1)):
@@ -38,13 +36,13 @@ profile: {csv: %s, material: rock}
 materials:
   rock: {R_n: {uniform: [0.3, 0.4]}, R_t: 0.8, friction_angle: 32, roughness: 3}
 block: {shape: sphere, radius: 0.4, density: 2600}
-release: {x: 1, y: 602, vx: 4}
+release: {x: %s, y: %s, vx: 4}
 bounce: {law: constant}
-collectors: [{name: mid, x: 500}]
+collectors: [{name: mid, x: %s}]
 samples: %d
 record: %d
 seed: 3
-""" % (name, csv, samples, samples))
+""" % (name, csv, 1 if name == "rough" else 5, 602 if name == "rough" else 21, 500 if name == "rough" else 8, samples, samples))
 PY
 t() { local s e; s=$(date +%s.%N); "$@" > /dev/null; e=$(date +%s.%N); echo "$e - $s" | bc; }
 sim=$(t "$build"/rockfuzz trajectory "$tmp/rough.yaml" --threads 1 --quiet)
@@ -54,4 +52,4 @@ echo "  simulation only        $sim s"
 echo "  with --out (no plots)  $out s   (outputs/simulation = $(echo "scale=2; ($out - $sim) / $sim" | bc))"
 echo "  trajectories.csv       $(du -h "$tmp/o/trajectories.csv" | cut -f1)"
 chk=$(t "$build"/rockfuzz trajectory "$tmp/steps.yaml" --threads 1 --quiet)
-echo "staircase profile, 8001 vertices (2 per x), 1 sample: $chk s (load, profile check, run)"
+echo "wall profile, 20 003 vertices (20 001 on one x), 1 sample: $chk s (load, profile check, run)"

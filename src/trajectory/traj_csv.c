@@ -5,10 +5,13 @@
 #include "trajectory/traj_internal.h"
 
 #include <ctype.h>
+#include <math.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define PATH_CHORD_M 0.01 /* [m] trajectories.csv: largest distance of the drawn path from the exact one */
 
 static rf_status write_paths(FILE *f, const rf_traj_ensemble *e)
 {
@@ -21,9 +24,13 @@ static rf_status write_paths(FILE *f, const rf_traj_ensemble *e)
             const rf_traj_event *ev = &r->events[k];
             fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%s\n", i, ev->t, ev->x, ev->y, ev->vx, ev->vy, kinds[ev->kind]);
             double t1 = k + 1 < r->n_events ? r->events[k + 1].t : ev->t;
-            /* 15 points inside a flight; a contact stretch runs straight along its segment, its ends draw it */
-            for (int j = 1; j < 16 && ev->flying && t1 > ev->t; j++) {
-                double d = (t1 - ev->t) * j / 16.0;
+            /* Points inside a flight, so that the polyline is within PATH_CHORD_M of the parabola (its
+             * chord error over a time h is |a_y| h^2 / 8), at most 15; a contact stretch runs straight
+             * along its segment: its ends draw it. */
+            double T = t1 - ev->t, parts = ev->flying ? ceil(T * sqrt(fabs(ev->ay) / (8 * PATH_CHORD_M))) : 1;
+            int n = parts < 16 ? (int)parts : 16;
+            for (int j = 1; j < n && T > 0; j++) {
+                double d = T * j / n;
                 fprintf(f, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,\n", i, ev->t + d, ev->x + ev->vx * d + 0.5 * ev->ax * d * d,
                         ev->y + ev->vy * d + 0.5 * ev->ay * d * d, ev->vx + ev->ax * d, ev->vy + ev->ay * d);
             }
