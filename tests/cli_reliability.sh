@@ -203,7 +203,7 @@ EOF2
 
 # ---- count options are bounded ----
 "$bin" run "$tmp/f.yaml" --out "$tmp/j" --jobs 100000 > /dev/null 2> "$tmp/j.err"; rc=$?
-[ $rc -eq 2 ] && grep -q -- "--jobs '100000'" "$tmp/j.err" || fail "--jobs 100000: status $rc: $(cat "$tmp/j.err")"
+[ $rc -eq 2 ] && grep -q -- "--jobs = 100000: expected an integer in \[0, 1024\]" "$tmp/j.err" || fail "--jobs 100000: status $rc: $(cat "$tmp/j.err")"
 "$bin" impact --solver fem --threads 100000 > /dev/null 2> "$tmp/t.err"; rc=$?
 [ $rc -eq 2 ] && grep -q -- "--threads '100000'" "$tmp/t.err" || fail "--threads 100000: status $rc: $(cat "$tmp/t.err")"
 

@@ -8,6 +8,17 @@
 
 /* Bound of every thread count option (--jobs, --threads), as in study files. */
 #define RF_CLI_MAX_THREADS 1024
+/* Bounds of `trajectory --samples` and `--seed`, as in trajectory files (a seed above 2^53 would
+ * not survive a JSON reader). */
+#define RF_CLI_MAX_SAMPLES 100000000LL
+#define RF_CLI_MAX_SEED 9007199254740992LL
+
+/* cli_args.c: the value of option argv[*i] (then *i points at it), or NULL with a message on
+ * stderr when it has none or the next argument is another option (`--out --quiet`). */
+const char *rf_cli_value(const char *cmd, int argc, char **argv, int *i);
+/* cli_args.c: v as a count in [min, max] (plain decimal digits: no sign, exponent or space), else
+ * 0 with "rockfuzz CMD: OPT = V: expected an integer in [MIN, MAX]" on stderr. */
+int rf_cli_count(const char *cmd, const char *opt, const char *v, long long min, long long max, long long *out);
 
 int rf_cli_run(int argc, char **argv);     /* cmd_run.c: run a study file */
 int rf_cli_impact(int argc, char **argv);  /* cmd_impact.c: one impact */

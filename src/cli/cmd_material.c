@@ -447,7 +447,20 @@ static void print_summary(const driver_args *a, const double sig[6], const rf_ma
     printf("  plastic_work               %.6g J/m^3\n", work);
 }
 
-static void run_path(const driver_args *a, const rf_material *m)
+/* A non-finite state is an error naming the inputs (they exceed what the arithmetic holds). */
+static int finite_state(const driver_args *a, const double sig[6], const rf_material_state *st, double work)
+{
+    int ok = isfinite(st->plastic_strain_eq) && isfinite(st->plastic_volumetric) && isfinite(work);
+    for (int k = 0; k < 6; k++)
+        ok = ok && isfinite(sig[k]);
+    if (!ok)
+        fprintf(stderr, "rockfuzz material: the stresses are not finite (stress_xx = %g Pa) for --E %g Pa, "
+                "--strain %g, initial mean stress %g Pa: the inputs exceed what the arithmetic holds\n", sig[0],
+                a->params.E, a->strain, a->p0);
+    return ok;
+}
+
+static int run_path(const driver_args *a, const rf_material *m)
 {
     double sig[6] = {a->p0, a->p0, a->p0, 0, 0, 0}, deps[6], work = 0.0, d = 0.0;
     rf_material_state st = {0};
@@ -459,6 +472,8 @@ static void run_path(const driver_args *a, const rf_material *m)
     for (int i = 1; i <= a->increments; i++) {
         rf_material_update(m, deps, sig, &st, &d);
         work += d;
+        if (!finite_state(a, sig, &st, work))
+            return 1;
         if (a->history)
             printf("%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", ds * i, sig[0], sig[1], sig[2],
                    sig[3], (sig[0] + sig[1] + sig[2]) / 3.0, st.plastic_strain_eq, work);
@@ -467,6 +482,7 @@ static void run_path(const driver_args *a, const rf_material *m)
         print_json(a, sig, &st, work);
     else if (!a->history)
         print_summary(a, sig, &st, work);
+    return 0;
 }
 
 int rf_cli_material(int argc, char **argv)
@@ -486,6 +502,5 @@ int rf_cli_material(int argc, char **argv)
     rf_material m;
     if (!check_presence(&a) || !check_values(&a, &m))
         return EXIT_USAGE;
-    run_path(&a, &m);
-    return 0;
+    return run_path(&a, &m);
 }

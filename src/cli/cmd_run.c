@@ -112,19 +112,6 @@ static void usage(FILE *f)
         "128 + the signal number after a stop on SIGINT/SIGTERM.\n");
 }
 
-static int parse_count(const char *opt, const char *s, long long max, long long *out)
-{
-    char *end = NULL;
-    errno = 0;
-    long long v = strtoll(s, &end, 10);
-    if (errno || end == s || *end || v < 0 || v > max) {
-        fprintf(stderr, "rockfuzz run: %s '%s': expected an integer in [0, %lld]\n", opt, s, max);
-        return -1;
-    }
-    *out = v;
-    return 0;
-}
-
 /* The one piece of global mutable state in the program: a signal handler can
  * reach nothing else.  The first SIGINT/SIGTERM asks the run to stop cleanly;
  * a second SIGINT (Ctrl-C pressed again) ends the process at once (the
@@ -180,15 +167,13 @@ int rf_cli_run(int argc, char **argv)
             return 0;
         } else if (!strcmp(arg, "--out") || !strcmp(arg, "--threads") || !strcmp(arg, "--jobs") ||
                    !strcmp(arg, "--max-evaluations")) {
-            if (a + 1 >= argc) {
-                fprintf(stderr, "rockfuzz run: %s needs a value (see `rockfuzz run --help`)\n", arg);
+            const char *val = rf_cli_value("run", argc, argv, &a);
+            if (!val)
                 return 2;
-            }
-            const char *val = argv[++a];
             if (!strcmp(arg, "--out"))
                 o.out_dir = val;
-            else if (strcmp(arg, "--max-evaluations") ? parse_count(arg, val, RF_CLI_MAX_THREADS, &jobs)
-                                                      : parse_count(arg, val, 1000000000000LL, &cap))
+            else if (strcmp(arg, "--max-evaluations") ? !rf_cli_count("run", arg, val, 0, RF_CLI_MAX_THREADS, &jobs)
+                                                      : !rf_cli_count("run", arg, val, 0, 1000000000000LL, &cap))
                 return 2;
         } else if (!strcmp(arg, "--quiet")) {
             quiet = 1;

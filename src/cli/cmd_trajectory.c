@@ -40,8 +40,8 @@ static void usage(FILE *f)
         "                         invocation.json (the file and options, for `rockfuzz report DIR`)\n"
         "  --threads N            worker threads, 0..1024 (default or 0: all cores; results do\n"
         "                         not depend on it)\n"
-        "  --samples N, --seed S  override the file's samples and seed\n"
-        "  --max-trajectories N   trajectories listed in the JSON (default 100)\n"
+        "  --samples N, --seed S  override the file's samples (1..10^8) and seed (0..2^53)\n"
+        "  --max-trajectories N   trajectories listed in the JSON, 0..10^8 (default 100)\n"
         "  --no-plots             skip the plots and report.html\n"
         "  --force                write into a non-empty DIR that holds no rockfuzz trajectory\n"
         "                         run (no invocation.json)\n"
@@ -61,37 +61,27 @@ typedef struct {
     size_t max_traj;
 } traj_args;
 
-static int parse_count(const char *opt, const char *v, long long min, long long max, long long *out)
-{
-    char *end = NULL;
-    errno = 0;
-    long long n = v ? strtoll(v, &end, 10) : 0;
-    if (!v || end == v || *end || errno || n < min || n > max) {
-        fprintf(stderr, "rockfuzz trajectory: %s = %s: expected an integer in [%lld, %lld]\n", opt,
-                v ? v : "(missing)", min, max);
-        return 0;
-    }
-    *out = n;
-    return 1;
-}
-
 static int parse_args(int argc, char **argv, traj_args *a)
 {
     memset(a, 0, sizeof *a);
     a->plots = 1, a->samples = -1, a->seed = -1, a->max_traj = 100;
     for (int i = 1; i < argc; i++) {
-        const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        const char *o = argv[i], *v = NULL;
         long long n;
+        int counted = !strcmp(o, "--threads") || !strcmp(o, "--samples") || !strcmp(o, "--seed") ||
+                      !strcmp(o, "--max-trajectories");
+        if ((counted || !strcmp(o, "--out")) && !(v = rf_cli_value("trajectory", argc, argv, &i)))
+            return 0;
         if (!strcmp(o, "--json")) a->json = 1;
         else if (!strcmp(o, "--quiet")) a->quiet = 1;
         else if (!strcmp(o, "--progress")) a->progress = 1;
         else if (!strcmp(o, "--no-plots")) a->plots = 0;
         else if (!strcmp(o, "--force")) a->force = 1;
-        else if (!strcmp(o, "--out") && v) a->out = v, i++;
-        else if (!strcmp(o, "--threads")) { if (!parse_count(o, v, 0, RF_CLI_MAX_THREADS, &n)) return 0; a->threads = (int)n, i++; }
-        else if (!strcmp(o, "--samples")) { if (!parse_count(o, v, 1, LLONG_MAX, &a->samples)) return 0; i++; }
-        else if (!strcmp(o, "--seed")) { if (!parse_count(o, v, 0, LLONG_MAX, &a->seed)) return 0; i++; }
-        else if (!strcmp(o, "--max-trajectories")) { if (!parse_count(o, v, 0, LLONG_MAX, &n)) return 0; a->max_traj = (size_t)n, i++; }
+        else if (!strcmp(o, "--out")) a->out = v;
+        else if (!strcmp(o, "--threads")) { if (!rf_cli_count("trajectory", o, v, 0, RF_CLI_MAX_THREADS, &n)) return 0; a->threads = (int)n; }
+        else if (!strcmp(o, "--samples")) { if (!rf_cli_count("trajectory", o, v, 1, RF_CLI_MAX_SAMPLES, &a->samples)) return 0; }
+        else if (!strcmp(o, "--seed")) { if (!rf_cli_count("trajectory", o, v, 0, RF_CLI_MAX_SEED, &a->seed)) return 0; }
+        else if (!strcmp(o, "--max-trajectories")) { if (!rf_cli_count("trajectory", o, v, 0, RF_CLI_MAX_SAMPLES, &n)) return 0; a->max_traj = (size_t)n; }
         else if (o[0] != '-' && !a->file) a->file = o;
         else {
             fprintf(stderr, "rockfuzz trajectory: unknown or incomplete option '%s' (try --help)\n", o);

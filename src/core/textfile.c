@@ -29,6 +29,18 @@ static const char *unreadable(int fd)
     return NULL;
 }
 
+rf_status rf_require_regular_file(const char *path, const char *what, rf_error *err)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return rf_fail(err, RF_EIO, "%s: cannot open the %s: %s", path, what, strerror(errno));
+    if (S_ISREG(sb.st_mode))
+        return RF_OK;
+    const char *kind = S_ISDIR(sb.st_mode) ? "a directory" : S_ISFIFO(sb.st_mode) ? "a pipe or FIFO"
+                       : S_ISCHR(sb.st_mode) || S_ISBLK(sb.st_mode) ? "a device" : "not a regular file";
+    return rf_fail(err, RF_EIO, "%s: cannot read the %s: it is %s; a regular file is needed", path, what, kind);
+}
+
 static rf_status open_input(const char *path, const char *what, FILE **f, rf_error *err)
 {
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);

@@ -19,4 +19,9 @@
 rf_status rf_read_text_file(const char *path, const char *what, size_t max_bytes, char **buf, size_t *len,
                             rf_error *err);
 
+/* A file read by another library (GDAL) or read and appended (a cache) must
+ * be a regular file: a directory, a FIFO or a device is refused without
+ * opening it (opening a FIFO blocks; /dev/zero never ends). */
+rf_status rf_require_regular_file(const char *path, const char *what, rf_error *err);
+
 #endif

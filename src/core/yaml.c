@@ -4,6 +4,8 @@
 #include "core/yaml.h"
 
 #include <ctype.h>
+#include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -234,9 +236,25 @@ rf_status yr_integer(yr_ctx *c, struct fy_node *n, const char *path, long long m
     }
     if (d != floor(d))
         return yr_fail(c, n, path, "expected an integer");
-    if (d < (double)min || d > (double)max)
+    size_t len = 0;
+    const char *s = fy_node_get_scalar(n, &len);
+    size_t sign = len && (s[0] == '-' || s[0] == '+');
+    long long exact = (long long)d;
+    if (len > sign && len < 32 && strspn(s + sign, "0123456789") == len - sign) { /* plain digits: read exactly */
+        char buf[32];
+        memcpy(buf, s, len);
+        buf[len] = '\0';
+        errno = 0;
+        exact = strtoll(buf, NULL, 10);
+        if (errno)
+            exact = d < 0 ? LLONG_MIN : LLONG_MAX;
+    } else if (fabs(d) >= 9007199254740992.0) { /* 2^53 + 1 rounds to 2^53 */
+        return yr_fail(c, n, path, "from 2^53 on an integer must be written in plain digits (a number "
+                                   "with an exponent is not exact there)");
+    }
+    if (exact < min || exact > max)
         return yr_fail(c, n, path, "must lie in [%lld, %lld]", min, max);
-    *v = (long long)d;
+    *v = exact;
     return RF_OK;
 }
 

@@ -132,8 +132,33 @@ static const rf_impact_law fem_law = {
     "model for a slope or friction between elastic\ndissimilar bodies (docs/impact.md)",
     fem_validate, fem_law_solve};
 
+/* A result every solver defines (the COR, the rebound velocities; R_t only with a tangential
+ * velocity; the Hertz quantities for hertz, hunter and mdr) that is not finite is an error
+ * naming the inputs: they exceed what the arithmetic holds (e.g. radius = 1e300 m). */
+static rf_status check_finite(const rf_impact_model_spec *spec, const rf_impact_input *in,
+                              const rf_impact_output *o, rf_error *err)
+{
+    if (spec->solver == RF_IMPACT_FEM)
+        return RF_OK; /* the FE solvers check their own state as they go */
+    const int hertz = spec->solver == RF_IMPACT_HERTZ || spec->solver == RF_IMPACT_HUNTER ||
+                      spec->solver == RF_IMPACT_MDR;
+    const double v[9] = {o->R_n, o->R_ke, o->v_n_after, o->omega_after, o->v_t_before != 0 ? o->R_t : 0,
+                         hertz ? o->contact_force_max : 0, hertz ? o->compression_max : 0,
+                         hertz ? o->contact_duration : 0, hertz ? o->contact_radius : 0};
+    static const char *const names[9] = {"R_n", "R_ke", "v_n_after [m/s]", "omega_after [rad/s]", "R_t",
+                                         "contact_force_max [N]", "compression_max [m]", "contact_duration [s]",
+                                         "contact_radius [m]"};
+    for (int k = 0; k < 9; k++)
+        if (!isfinite(v[k]))
+            return rf_fail(err, RF_EMODEL, "the %s result %s = %g is not finite: the inputs exceed what the "
+                           "arithmetic holds (radius = %g m, velocity = %g m/s, boulder_density = %g kg/m^3, "
+                           "boulder_E = %g Pa, slope_E = %g Pa)", rf_impact_solver_name(spec->solver), names[k],
+                           v[k], in->radius, in->velocity, in->boulder_density, in->boulder_E, in->slope_E);
+    return RF_OK;
+}
+
 /* rf_impact_solve with the FE warning (see solve_fem). */
-static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, const rf_impact_input *in,
+static rf_status solve_any(const rf_impact_model_spec *spec, rf_fem_workspace *ws, const rf_impact_input *in,
                        rf_impact_output *out, char *warning, rf_error *err)
 {
     if (warning)
@@ -151,6 +176,13 @@ static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, c
         return st;
     }
     return law->solve(in, &settings, out, err);
+}
+
+static rf_status solve(const rf_impact_model_spec *spec, rf_fem_workspace *ws, const rf_impact_input *in,
+                       rf_impact_output *out, char *warning, rf_error *err)
+{
+    rf_status st = solve_any(spec, ws, in, out, warning, err);
+    return st == RF_OK ? check_finite(spec, in, out, err) : st;
 }
 
 rf_status rf_impact_solve(const rf_impact_model_spec *spec, const rf_impact_input *in,

@@ -9,6 +9,7 @@
  * are shown side by side from their folders. */
 #define _XOPEN_SOURCE 700 /* strndup */
 #include "rockfuzz/report.h"
+#include "core/textfile.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -731,6 +732,46 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
     return RF_OK;
 }
 
+#define RESULT_MAX_BYTES (256u << 20) /* a result.json read back */
+#define RESULT_MAX_DEPTH 64            /* nesting of [ and { in it (ours: under 10) */
+
+/* The deepest nesting of arrays and objects outside strings: a parser's memory grows with it
+ * (10 MB of '[' took 3.5 GB), so a too deep document is refused before it is parsed. */
+static int json_depth(const char *s, size_t len)
+{
+    int depth = 0, deepest = 0, in_string = 0;
+    for (size_t i = 0; i < len; i++) {
+        char ch = s[i];
+        if (in_string)
+            in_string = ch == '\\' ? (i++, 1) : ch != '"';
+        else if (ch == '"')
+            in_string = 1;
+        else if (ch == '[' || ch == '{')
+            deepest = ++depth > deepest ? depth : deepest;
+        else if (ch == ']' || ch == '}')
+            depth--;
+    }
+    return deepest;
+}
+
+/* result.json parsed, if it is a regular file within the size and depth limits; *text (the
+ * document's text, freed by the caller after the document) is set whenever the file was read. */
+static struct fy_document *read_result(const char *json, char **text, rf_error *err)
+{
+    size_t len = 0;
+    *text = NULL;
+    if (rf_read_text_file(json, "result", RESULT_MAX_BYTES, text, &len, err) != RF_OK)
+        return NULL;
+    if (json_depth(*text, len) > RESULT_MAX_DEPTH) {
+        rf_fail(err, RF_EPARSE, "%s: nested deeper than %d levels: not a rockfuzz result", json, RESULT_MAX_DEPTH);
+        return NULL;
+    }
+    struct fy_parse_cfg cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.flags = FYPCF_QUIET | FYPCF_JSON_FORCE;
+    return fy_document_build_from_string(&cfg, *text, len);
+}
+
 rf_status rf_report_write_html(const char *dir, rf_error *err)
 {
     char json[4096], out[4096], tmp[4096];
@@ -740,23 +781,27 @@ rf_status rf_report_write_html(const char *dir, rf_error *err)
     struct stat sb;
     if (stat(json, &sb) != 0)
         return rf_fail(err, RF_EIO, "%s: %s (a report needs a finished run)", json, strerror(errno));
-    struct fy_parse_cfg cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.flags = FYPCF_QUIET | FYPCF_JSON_FORCE;
-    struct fy_document *doc = fy_document_build_from_file(&cfg, json);
+    rf_error why = {RF_OK, ""};
+    char *text = NULL;
+    struct fy_document *doc = read_result(json, &text, &why);
     struct fy_node *root = doc ? fy_document_root(doc) : NULL;
     if (!root || fy_node_get_type(root) != FYNT_MAPPING || !get(root, "outputs") || !get(root, "inputs")) {
         fy_document_destroy(doc);
+        free(text);
+        if (why.msg[0])
+            return rf_fail(err, RF_EPARSE, "%s", why.msg);
         return rf_fail(err, RF_EPARSE, "%s: not a rockfuzz result (cannot read it as JSON with inputs and outputs)",
                        json);
     }
     FILE *f = fopen(tmp, "w");
     if (!f) {
         fy_document_destroy(doc);
+        free(text);
         return rf_fail(err, RF_EIO, "%s: cannot write: %s", tmp, strerror(errno));
     }
     write_page(f, dir, root);
     fy_document_destroy(doc);
+    free(text);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad) {
         unlink(tmp);

@@ -5,11 +5,16 @@
  * `step` metres and at every vertex of the polyline, by bilinear
  * interpolation between cell centres (exact for a planar DEM; cells are
  * clamped at the raster's edge).  A cell holding the raster's no-data value
- * anywhere on the line is an error.  Map units must be metres.  (GDAL reads
+ * anywhere on the line is an error.  Map units must be metres (a geographic or
+ * foot-based CRS is refused); only the window of cells the line needs is read
+ * (refused beyond DEM_MAX_WINDOW_BYTES, with the figure), and a step that
+ * would give more than DEM_MAX_POINTS vertices is refused before reading.
+ * GDAL's own messages are kept off the console and added to ours.  (GDAL reads
  * an ASCII grid with decimals as Float32, ~1e-7 relative, unless the
  * environment sets AAIGRID_DATATYPE=Float64.)
  *   profile: {dem: {file: F, line: [[X, Y], ...], step: 1, band: 1}, material: rock} */
 #include "trajectory/traj_yaml_internal.h"
+#include "core/textfile.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -19,47 +24,125 @@
 #ifdef ROCKFUZZ_HAVE_GDAL
 #include <gdal.h>
 
+#include <cpl_error.h>
+#include <ogr_srs_api.h>
+
+#define DEM_MAX_POINTS 1000000     /* profile vertices, as an inline profile */
+#define DEM_MAX_WINDOW_BYTES (1024.0 * 1024 * 1024)
+
 typedef struct {
-    double inv[6];        /* map -> pixel */
-    int nx, ny;
-    double *z;            /* ny rows of nx values */
+    double inv[6];        /* map -> pixel of the whole raster */
+    int nx, ny;           /* the whole raster */
+    int c0, r0, wx, wy;   /* the window read: columns c0..c0+wx-1, rows r0..r0+wy-1 */
+    double *z;            /* wy rows of wx values */
     int has_nodata;
     double nodata;
 } dem_grid;
 
-static rf_status read_grid(const char *path, int band_no, dem_grid *g, rf_error *err)
+/* GDAL's messages go here, not to the console: the first failure is kept for ours. */
+static void CPL_STDCALL keep_error(CPLErr cls, CPLErrorNum no, const char *msg)
 {
-    GDALAllRegister();
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
-    CPLPopErrorHandler();
-    if (!ds)
-        return rf_fail(err, RF_EIO, "cannot read the DEM '%s' with GDAL", path);
+    (void)no;
+    char *buf = CPLGetErrorHandlerUserData();
+    if (cls >= CE_Failure && buf && !buf[0] && msg)
+        snprintf(buf, 256, " (GDAL: %s)", msg);
+}
+
+/* Fractional pixel (column, row) of map point (X, Y), relative to cell centres. */
+static void to_pixel(const double inv[6], double X, double Y, double *c, double *r)
+{
+    *c = inv[0] + inv[1] * X + inv[2] * Y - 0.5;
+    *r = inv[3] + inv[4] * X + inv[5] * Y - 0.5;
+}
+
+/* The cells bilinear interpolation along the line needs (its vertices' bounding box, clamped). */
+static void line_window(dem_grid *g, const double *X, const double *Y, size_t nv)
+{
+    double cmin = INFINITY, cmax = -INFINITY, rmin = INFINITY, rmax = -INFINITY, c, r;
+    for (size_t k = 0; k < nv; k++) {
+        to_pixel(g->inv, X[k], Y[k], &c, &r);
+        cmin = fmin(cmin, c), cmax = fmax(cmax, c), rmin = fmin(rmin, r), rmax = fmax(rmax, r);
+    }
+    double lo[2] = {floor(cmin) - 1, floor(rmin) - 1}, hi[2] = {floor(cmax) + 2, floor(rmax) + 2};
+    int n[2] = {g->nx, g->ny}, w0[2], w1[2];
+    for (int d = 0; d < 2; d++) {
+        w0[d] = (int)fmin(fmax(lo[d], 0), n[d] - 1);
+        w1[d] = (int)fmin(fmax(hi[d], 0), n[d] - 1);
+    }
+    g->c0 = w0[0], g->r0 = w0[1], g->wx = w1[0] - w0[0] + 1, g->wy = w1[1] - w0[1] + 1;
+}
+
+/* Map units must be metres: a geographic (degrees) or foot-based raster is refused. */
+static rf_status check_units(GDALDatasetH ds, const char *path, rf_error *err)
+{
+    OGRSpatialReferenceH srs = GDALGetSpatialRef(ds);
+    if (!srs)
+        return RF_OK; /* no CRS given (e.g. an ASCII grid): taken as metres, as documented */
+    if (OSRIsGeographic(srs))
+        return rf_fail(err, RF_EINVAL, "the DEM '%s' is in geographic coordinates (degrees), not metres; "
+                       "reproject it to a projected CRS in metres (e.g. gdalwarp -t_srs EPSG:32632)", path);
+    double m = OSRGetLinearUnits(srs, NULL);
+    if (fabs(m - 1) > 1e-9)
+        return rf_fail(err, RF_EINVAL, "the DEM '%s' has map units of %g m, not metres; reproject it to a CRS "
+                       "in metres", path, m);
+    return RF_OK;
+}
+
+/* The window of band band_no the line (X, Y) needs, as Float64. */
+static rf_status read_window(GDALDatasetH ds, const char *path, int band_no, const double *X, const double *Y,
+                             size_t nv, dem_grid *g, rf_error *err)
+{
     double gt[6];
-    rf_status st = RF_OK;
     GDALRasterBandH band = band_no <= GDALGetRasterCount(ds) ? GDALGetRasterBand(ds, band_no) : NULL;
     if (!band)
-        st = rf_fail(err, RF_EINVAL, "the DEM '%s' has no band %d", path, band_no);
-    else if (GDALGetGeoTransform(ds, gt) != CE_None || !GDALInvGeoTransform(gt, g->inv))
-        st = rf_fail(err, RF_EINVAL, "the DEM '%s' has no usable georeferencing", path);
-    if (st == RF_OK) {
-        g->nx = GDALGetRasterXSize(ds), g->ny = GDALGetRasterYSize(ds);
-        g->z = malloc((size_t)g->nx * (size_t)g->ny * sizeof *g->z);
-        if (!g->z)
-            st = rf_fail(err, RF_ENOMEM, "out of memory for the DEM (%d x %d)", g->nx, g->ny);
-        else if (GDALRasterIO(band, GF_Read, 0, 0, g->nx, g->ny, g->z, g->nx, g->ny, GDT_Float64, 0, 0) != CE_None)
-            st = rf_fail(err, RF_EIO, "cannot read the elevations of '%s'", path);
-        g->nodata = GDALGetRasterNoDataValue(band, &g->has_nodata);
-    }
-    GDALClose(ds);
+        return rf_fail(err, RF_EINVAL, "the DEM '%s' has no band %d", path, band_no);
+    if (GDALGetGeoTransform(ds, gt) != CE_None || !GDALInvGeoTransform(gt, g->inv))
+        return rf_fail(err, RF_EINVAL, "the DEM '%s' has no usable georeferencing", path);
+    rf_status st = check_units(ds, path, err);
+    if (st != RF_OK)
+        return st;
+    g->nx = GDALGetRasterXSize(ds), g->ny = GDALGetRasterYSize(ds);
+    line_window(g, X, Y, nv);
+    double bytes = (double)g->wx * (double)g->wy * sizeof *g->z;
+    if (bytes > DEM_MAX_WINDOW_BYTES)
+        return rf_fail(err, RF_EINVAL, "the DEM '%s': the line's bounding box covers %d x %d cells (%.0f MB as "
+                       "doubles), more than %.0f MB; cut the line into shorter profiles", path, g->wx, g->wy,
+                       bytes / 1048576, DEM_MAX_WINDOW_BYTES / 1048576);
+    if (!(g->z = malloc((size_t)bytes)))
+        return rf_fail(err, RF_ENOMEM, "out of memory for the DEM window (%d x %d cells)", g->wx, g->wy);
+    if (GDALRasterIO(band, GF_Read, g->c0, g->r0, g->wx, g->wy, g->z, g->wx, g->wy, GDT_Float64, 0, 0) != CE_None)
+        return rf_fail(err, RF_EIO, "cannot read the elevations of '%s'", path);
+    g->nodata = GDALGetRasterNoDataValue(band, &g->has_nodata);
+    return RF_OK;
+}
+
+static rf_status read_grid(const char *path, int band_no, const double *X, const double *Y, size_t nv,
+                           dem_grid *g, rf_error *err)
+{
+    rf_status st = rf_require_regular_file(path, "DEM", err);
+    if (st != RF_OK)
+        return st;
+    char gdal_msg[256] = "";
+    GDALAllRegister();
+    CPLPushErrorHandlerEx(keep_error, gdal_msg);
+    GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
+    if (!ds)
+        st = rf_fail(err, RF_EIO, "cannot read the DEM '%s' with GDAL%s", path, gdal_msg);
+    else
+        st = read_window(ds, path, band_no, X, Y, nv, g, err);
+    if (st != RF_OK && gdal_msg[0] && ds && strlen(err->msg) + strlen(gdal_msg) < sizeof err->msg)
+        strcat(err->msg, gdal_msg);
+    if (ds)
+        GDALClose(ds);
+    CPLPopErrorHandler();
     return st;
 }
 
 /* Bilinear elevation at map point (X, Y); NAN on no-data or outside. */
 static double elevation(const dem_grid *g, double X, double Y)
 {
-    double c = g->inv[0] + g->inv[1] * X + g->inv[2] * Y - 0.5; /* relative to cell centres */
-    double r = g->inv[3] + g->inv[4] * X + g->inv[5] * Y - 0.5;
+    double c, r;
+    to_pixel(g->inv, X, Y, &c, &r);
     if (c < -0.5 || r < -0.5 || c > g->nx - 0.5 || r > g->ny - 0.5)
         return NAN;
     c = fmin(fmax(c, 0), g->nx - 1), r = fmin(fmax(r, 0), g->ny - 1);
@@ -67,8 +150,11 @@ static double elevation(const dem_grid *g, double X, double Y)
     if (i >= g->nx - 1) i = g->nx > 1 ? g->nx - 2 : 0;
     if (j >= g->ny - 1) j = g->ny > 1 ? g->ny - 2 : 0;
     int i1 = g->nx > 1 ? i + 1 : i, j1 = g->ny > 1 ? j + 1 : j;
-    double u = c - i, v = r - j, z[4] = {g->z[(size_t)j * g->nx + i], g->z[(size_t)j * g->nx + i1],
-                                         g->z[(size_t)j1 * g->nx + i], g->z[(size_t)j1 * g->nx + i1]};
+    if (i < g->c0 || i1 >= g->c0 + g->wx || j < g->r0 || j1 >= g->r0 + g->wy)
+        return NAN; /* not reached: the window holds every cell the line needs */
+    double u = c - i, v = r - j;
+    size_t a = (size_t)(i - g->c0), b = (size_t)(i1 - g->c0), p = (size_t)(j - g->r0), q = (size_t)(j1 - g->r0);
+    double z[4] = {g->z[p * g->wx + a], g->z[p * g->wx + b], g->z[q * g->wx + a], g->z[q * g->wx + b]};
     for (int k = 0; k < 4; k++)
         if (g->has_nodata && z[k] == g->nodata)
             return NAN;
@@ -83,6 +169,8 @@ static rf_status cut(ty_ctx *c, struct fy_node *n, const dem_grid *g, const doub
     for (size_t k = 0; k + 1 < nv; k++)
         cap += (size_t)ceil(hypot(X[k + 1] - X[k], Y[k + 1] - Y[k]) / step) + 1;
     rf_traj_spec *s = c->spec;
+    if (cap > DEM_MAX_POINTS) /* checked before: not reached */
+        return yr_fail(&c->sp, n, "profile.dem.step", "too many points");
     s->px = calloc(cap, sizeof *s->px), s->py = calloc(cap, sizeof *s->py);
     s->seg_material = calloc(cap, sizeof *s->seg_material);
     if (!s->px || !s->py || !s->seg_material)
@@ -108,6 +196,7 @@ static rf_status read_spec(ty_ctx *c, struct fy_node *n, char **file, double **X
                            double *step, long long *band)
 {
     const char *path = "profile.dem", *key;
+    struct fy_node *step_node = NULL;
     rf_status st = yr_mapping(&c->sp, n, path);
     yr_iter it = {n, NULL, 0, {0}};
     struct fy_node *k, *v;
@@ -119,6 +208,7 @@ static rf_status read_spec(ty_ctx *c, struct fy_node *n, char **file, double **X
         if (!strcmp(key, "file")) {
             st = yr_string_dup(&c->sp, v, p, file);
         } else if (!strcmp(key, "step")) {
+            step_node = v;
             if ((st = yr_number(&c->sp, v, p, step)) == RF_OK && !(*step > 0))
                 st = yr_fail(&c->sp, v, p, "must be > 0 [m]");
         } else if (!strcmp(key, "band")) {
@@ -142,6 +232,12 @@ static rf_status read_spec(ty_ctx *c, struct fy_node *n, char **file, double **X
     }
     if (st == RF_OK && (!*file || !*X))
         st = yr_fail(&c->sp, n, path, "file and line ([[X, Y], ...] in map metres) are required");
+    double points = 1;
+    for (size_t k = 0; st == RF_OK && k + 1 < *nv; k++)
+        points += ceil(hypot((*X)[k + 1] - (*X)[k], (*Y)[k + 1] - (*Y)[k]) / *step) + 1;
+    if (st == RF_OK && !(points <= DEM_MAX_POINTS))
+        st = yr_fail(&c->sp, step_node ? step_node : n, "profile.dem.step", "the line would be sampled at %.3g "
+                     "points, more than %d; choose a larger step [m]", points, DEM_MAX_POINTS);
     return st;
 }
 
@@ -159,7 +255,7 @@ rf_status ty_dem_profile(ty_ctx *c, struct fy_node *n)
             snprintf(full, sizeof full, "%s", file);
         else
             snprintf(full, sizeof full, "%s/%s", c->sp.dir, file);
-        if ((st = read_grid(full, (int)band, &g, c->sp.err)) != RF_OK)
+        if ((st = read_grid(full, (int)band, X, Y, nv, &g, c->sp.err)) != RF_OK)
             st = yr_prefix(&c->sp, n, "profile.dem.file");
     }
     if (st == RF_OK)

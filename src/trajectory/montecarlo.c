@@ -146,9 +146,30 @@ static size_t *lhs_permutations(const rf_traj_spec *s)
     return p;
 }
 
+/* The run's memory is estimated before anything is allocated: per sample its state, runout,
+ * rebound height and a crossing per collector; per recorded trajectory its crossings and
+ * first buffers.  Beyond the machine's physical memory the run is refused with the figure. */
+static rf_status check_memory(const rf_traj_spec *s, rf_error *err)
+{
+    double N = (double)s->samples, nc = (double)s->n_collectors, rec = (double)(s->record < s->samples ? s->record
+                                                                                                      : s->samples);
+    double bytes = N * (1 + 2 * sizeof(double) + nc * sizeof(rf_traj_crossing)) +
+                   rec * (sizeof(rf_traj_result) + nc * sizeof(rf_traj_crossing) + 16 * (sizeof(rf_traj_impact) +
+                                                                                      sizeof(rf_traj_event)));
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    double phys = pages > 0 && page > 0 ? (double)pages * (double)page : INFINITY;
+    if (bytes > phys)
+        return rf_fail(err, RF_ENOMEM, "samples = %zu with %zu collectors need %.3g GB for the per-sample results, "
+                       "more than this machine's %.3g GB of memory; use fewer samples", s->samples, s->n_collectors,
+                       bytes / 1e9, phys / 1e9);
+    return RF_OK;
+}
+
 static rf_status ensemble_alloc(const rf_traj_spec *s, rf_traj_ensemble *e, rf_error *err)
 {
     memset(e, 0, sizeof *e);
+    if (check_memory(s, err) != RF_OK)
+        return RF_ENOMEM;
     size_t N = s->samples, nc = s->n_collectors;
     e->samples = N;
     e->n_collectors = nc;

@@ -33,6 +33,40 @@ static int segments_meet(const double *x, const double *y, size_t i, size_t j)
            (d4 == 0 && on_box(x[i], y[i], x[i + 1], y[i + 1], x[j + 1], y[j + 1]));
 }
 
+/* No two non-adjacent segments meet.  Sorted by x, segment i can only meet the
+ * segments starting at or before its right end.  A run of vertical segments on
+ * one x is monotone (no fold-back, checked before), so its non-adjacent members
+ * are disjoint and are skipped as a block: vertices sharing one x cost O(n),
+ * not O(n^2). */
+static rf_status check_crossings(const rf_traj_spec *s, rf_error *err)
+{
+    const double *x = s->px, *y = s->py;
+    size_t nseg = s->n_points - 1;
+    size_t *run_end = malloc(nseg * sizeof *run_end); /* first segment after i's vertical run */
+    if (!run_end)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    for (size_t i = nseg; i-- > 0;)
+        run_end[i] = x[i + 1] != x[i] ? i + 1 : i + 1 < nseg && x[i + 2] == x[i] ? run_end[i + 1] : i + 1;
+    rf_status st = RF_OK;
+    for (size_t i = 0; i < nseg && st == RF_OK; i++)
+        for (size_t j = i + 2; j < nseg; j++) {
+            if (x[j] > fmax(x[i], x[i + 1]))
+                break; /* sorted by x: later segments lie further right */
+            if (x[i + 1] == x[i] && j < run_end[i]) {
+                j = run_end[i] - 1; /* the rest of i's own vertical run */
+                continue;
+            }
+            if (segments_meet(x, y, i, j)) {
+                st = rf_fail(err, RF_EINVAL, "profile.points: segment %zu ([%g, %g] to [%g, %g]) meets segment %zu "
+                             "([%g, %g] to [%g, %g]): the profile intersects itself", i, x[i], y[i], x[i + 1],
+                             y[i + 1], j, x[j], y[j], x[j + 1], y[j + 1]);
+                break;
+            }
+        }
+    free(run_end);
+    return st;
+}
+
 rf_status traj_profile_check(const rf_traj_spec *s, rf_error *err)
 {
     const double *x = s->px, *y = s->py;
@@ -61,23 +95,32 @@ rf_status traj_profile_check(const rf_traj_spec *s, rf_error *err)
             return rf_fail(err, RF_EINVAL, "profile.points[%zu] = [%g, %g]: segments %zu and %zu fold back onto "
                            "each other (self-intersecting profile)", i + 2, x[i + 2], y[i + 2], i, i + 1);
     }
-    for (size_t i = 0; i < nseg; i++)
-        for (size_t j = i + 2; j < nseg; j++) {
-            if (x[j] > fmax(x[i], x[i + 1]))
-                break; /* sorted by x: later segments lie further right */
-            if (segments_meet(x, y, i, j))
-                return rf_fail(err, RF_EINVAL, "profile.points: segment %zu ([%g, %g] to [%g, %g]) meets segment %zu "
-                               "([%g, %g] to [%g, %g]): the profile intersects itself", i, x[i], y[i], x[i + 1],
-                               y[i + 1], j, x[j], y[j], x[j + 1], y[j + 1]);
-        }
-    return RF_OK;
+    return check_crossings(s, err);
 }
 
+/* The first segment whose end (0: its start ax, 1: its end bx) is >= x
+ * (past: > x), nseg if none: both ends are non-decreasing along the profile. */
+static size_t first_end(const rf_traj_world *w, int end, int past, double x)
+{
+    size_t lo = 0, hi = w->nseg;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        double e = end ? w->seg[mid].bx : w->seg[mid].ax;
+        if (past ? e > x : e >= x)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* The segments covering x are the contiguous range [first with bx >= x, last with ax <= x]:
+ * found by bisection, O(log n) per lookup. */
 double traj_ground_y(const rf_traj_world *w, double x, size_t *segment)
 {
     double best = NAN;
-    size_t k = TRAJ_NONE;
-    for (size_t i = 0; i < w->nseg; i++) {
+    size_t k = TRAJ_NONE, end = isnan(x) ? 0 : first_end(w, 0, 1, x);
+    for (size_t i = isnan(x) ? 0 : first_end(w, 1, 0, x); i < end; i++) {
         const traj_segment *g = &w->seg[i];
         if (g->tx <= 0 || x < g->xmin || x > g->xmax)
             continue;

@@ -90,10 +90,43 @@ static void release(traj_run *r)
     traj_event(r, RF_EV_RELEASE, 1, 0, -r->g);
 }
 
+/* The first non-finite result of the trajectory (its name and unit in *what), or 0 if all are finite. */
+static int nonfinite_result(const rf_traj_result *res, size_t ncol, const char **what, double *v)
+{
+    const double q[4] = {res->x_end, res->y_end, res->runout_x, res->rebound_height};
+    static const char *const qn[4] = {"x_end [m]", "y_end [m]", "runout_x [m]", "rebound_height [m]"};
+    for (int k = 0; k < 4; k++)
+        if (!isfinite(q[k]))
+            return *what = qn[k], *v = q[k], 1;
+    for (size_t c = 0; c < ncol; c++) {
+        const rf_traj_crossing *x = &res->crossings[c];
+        const double cq[3] = {x->speed, x->total_energy, x->height_lowest};
+        static const char *const cn[3] = {"collector speed [m/s]", "collector total_energy [J]",
+                                          "collector height_lowest [m]"};
+        for (int k = 0; x->reached && k < 3; k++)
+            if (!isfinite(cq[k]))
+                return *what = cn[k], *v = cq[k], 1;
+    }
+    return 0;
+}
+
+/* A non-finite result is an error naming the inputs that produced it. */
+static rf_status check_finite(const traj_run *r, rf_error *err)
+{
+    const char *what;
+    double v;
+    if (!nonfinite_result(r->res, r->w->ncol, &what, &v))
+        return RF_OK;
+    const rf_traj_spec *s = r->s;
+    return rf_fail(err, RF_EINVAL, "sample %llu: the result %s = %g is not finite: the inputs exceed what the "
+                   "arithmetic holds (gravity = %g m/s^2, block mass = %g kg, release (x, y) = (%g, %g) m, "
+                   "(vx, vy) = (%g, %g) m/s, omega = %g rad/s)", (unsigned long long)r->sample, what, v, s->gravity,
+                   r->mass, s->x0, s->y0, s->vx0, s->vy0, s->omega0);
+}
+
 rf_status rf_traj_simulate(const rf_traj_world *w, const rf_traj_spec *s, uint64_t seed, uint64_t sample,
                            rf_traj_result *res, rf_error *err)
 {
-    (void)err;
     traj_run r;
     memset(&r, 0, sizeof r);
     r.w = w, r.s = s, r.res = res, r.seed = seed, r.sample = sample;
@@ -117,5 +150,8 @@ rf_status rf_traj_simulate(const rf_traj_world *w, const rf_traj_spec *s, uint64
         else
             traj_contact_step(&r);
     }
-    return RF_OK;
+    if (r.nomem)
+        return rf_fail(err, RF_ENOMEM, "out of memory recording trajectory %llu (%zu events, %zu impacts)",
+                       (unsigned long long)sample, res->n_events, res->n_impacts);
+    return check_finite(&r, err);
 }

@@ -51,6 +51,11 @@ rf_traj_percentiles rf_traj_percentiles_at(const double *v, size_t n, const doub
             r.value[k] = quantile_sorted(s, m, r.level[k] / 100);
         r.max = s[m - 1];
         r.mean = sum / (double)m;
+        if (!isfinite(r.mean)) { /* the sum overflowed: sum the values scaled by 1/m */
+            r.mean = 0;
+            for (size_t i = 0; i < m; i++)
+                r.mean += s[i] / (double)m;
+        }
     }
     free(s);
     return r;

@@ -9,6 +9,7 @@
  * interrupted build keeps what it computed. */
 #include "trajectory/traj_internal.h"
 #include "trajectory/traj_impact.h"
+#include "core/textfile.h"
 
 #include <fcntl.h>
 #include <math.h>
@@ -110,9 +111,12 @@ static rf_status add_row(cache_reader *c, size_t line, const double r[5])
 rf_status traj_impact_cache_load(const char *path, const traj_impact_setup *s, double **memo, size_t *n,
                                  size_t *cap, rf_error *err)
 {
-    FILE *f = path ? fopen(path, "r") : NULL;
-    if (!f)
+    if (!path || access(path, F_OK) != 0)
         return RF_OK; /* no cache yet */
+    rf_status fst = rf_require_regular_file(path, "impact cache", err); /* not a FIFO or /dev/zero */
+    FILE *f = fst == RF_OK ? fopen(path, "r") : NULL;
+    if (!f)
+        return fst != RF_OK ? fst : rf_fail(err, RF_EIO, "%s: cannot read the impact cache", path);
     char key[256], line[512], k[256];
     cache_key(s, key, sizeof key);
     cache_reader c = {path, memo, n, cap, NULL, 0, err};

@@ -99,6 +99,7 @@ typedef struct {
     size_t k, on[2];
     double u;
     int from_impact;                  /* the current flight starts at an impact (rebound height) */
+    int nomem;                        /* recording an event or impact ran out of memory */
 } traj_run;
 
 /* flight.c: first impact of the parabola from (x, y) with velocity (vx, vy).
@@ -174,8 +175,13 @@ void traj_impact(traj_run *r, size_t k);
  * the message names the event. */
 rf_status traj_check_invariants(const rf_traj_spec *spec, const rf_traj_result *res, rf_error *err);
 
-/* traj_csv.c: read "x,y[,material]" lines; *named = 1 if the third column was given. */
+/* profile_csv.c: read the profile CSV file (the input-file guard of core/textfile.h, then
+ * traj_csv_parse); *named = 1 if a line named a material. */
 rf_status traj_csv_read(const char *path, rf_traj_spec *spec, int *named, rf_error *err);
+/* profile_csv.c: the profile CSV text buf[0..len) (messages name `name`) into the spec's
+ * vertices and segment materials; *named: a line named a material. */
+rf_status traj_csv_parse(const char *name, const char *buf, size_t len, rf_traj_spec *spec, int *named,
+                         rf_error *err);
 
 /* impact adapter (traj_impact_adapter.c + traj_impact_table.c) */
 typedef struct traj_impact_table traj_impact_table;

@@ -7,7 +7,8 @@
  * uses the spec's seed, so the TM's points see the same random numbers
  * (common random numbers): differences between points are the fuzzy inputs'
  * effect, not sampling noise.  A collector that no block reaches gets 0 for
- * its energy, height and speed percentiles (nothing passes), so outputs stay finite.
+ * its energy, height and speed percentiles (nothing passes), so outputs stay finite;
+ * any other non-finite output is an error naming the output.
  * With the impact_model law the impact table is built once for the model and
  * shared by every evaluation (each impact of the impact model is computed
  * once per study process), unless a parameter changes it. */
@@ -35,6 +36,7 @@ typedef struct {
     double *y;               /* filling pass, else NULL */
     size_t n, cap;           /* outputs seen; room in names/units/y */
     int nomem;
+    char bad[400];           /* filling pass: the first output whose value is not finite */
 } out_sink;
 
 static void emit(out_sink *o, const char *name, const char *unit, double v)
@@ -48,7 +50,9 @@ static void emit(out_sink *o, const char *name, const char *unit, double v)
     if (o->units)
         o->units[o->n] = unit;
     if (o->y)
-        o->y[o->n] = isfinite(v) ? v : 0;
+        o->y[o->n] = v;
+    if (o->y && !isfinite(v) && !o->bad[0])
+        snprintf(o->bad, sizeof o->bad, "%.300s = %g", name, v);
     o->n++;
 }
 
@@ -99,8 +103,11 @@ static void emit_collector(out_sink *o, const rf_traj_spec *s, size_t c, const r
     const char *nm = s->collectors[c].name;
     char prefix[300];
     const char *q[4] = {"total_energy", "height_lowest", "height_centre", "speed"}, *u[4] = {"J", "m", "m", "m/s"};
+    static const rf_traj_percentiles none = {0, 0, 0, 0, 0, RF_TRAJ_MAX_PERCENTILES, {0}, {0}};
     const rf_traj_percentiles *p[4] = {cs ? &cs->total_energy : NULL, cs ? &cs->height_lowest : NULL,
                                        cs ? &cs->height_centre : NULL, cs ? &cs->speed : NULL};
+    for (int k = 0; cs && !(cs->reach_probability > 0) && k < 4; k++)
+        p[k] = &none; /* nothing passes */
     for (int k = 0; k < 4; k++) {
         snprintf(prefix, sizeof prefix, "%s_%s", nm, q[k]);
         emit_pct(o, lv, prefix, u[k], p[k]);
@@ -140,13 +147,16 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     rf_traj_stats t;
     if ((st = traj_run_with(&s, 1, c->table, 0, &e, err)) == RF_OK) { /* no envelopes: not outputs */
         if ((st = rf_traj_stats_compute_spec(&s, &e, &t, err)) == RF_OK) {
-            out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0};
+            out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0, ""};
             walk_outputs(&o, &s, &t);
             rf_traj_stats_free(&t);
             /* a bound capacity or barrier height that reaches 0 drops its exceedance output */
             if (o.n != c->n_outputs)
                 st = rf_fail(err, RF_EINVAL, "a bound collector capacity or height reaches 0 at this point: the "
                                              "outputs P(E > capacity), P(h > height) no longer exist; keep it > 0");
+            else if (o.bad[0])
+                st = rf_fail(err, RF_EINVAL, "output %s: not finite at this point (inputs beyond what the "
+                                             "arithmetic holds)", o.bad);
         }
         rf_traj_ensemble_free(&e);
     }
@@ -182,7 +192,7 @@ static rf_status share_table(traj_model_ctx *c, rf_error *err)
 
 static rf_status init_outputs(rf_model *m, const rf_traj_spec *s, rf_error *err)
 {
-    out_sink o = {NULL, NULL, NULL, 0, 0, 0};
+    out_sink o = {NULL, NULL, NULL, 0, 0, 0, ""};
     walk_outputs(&o, s, NULL); /* count */
     size_t n = o.n;
     o.names = calloc(n ? n : 1, sizeof *o.names);

@@ -26,8 +26,12 @@ static int grow(void **p, size_t n, size_t *cap, size_t elem)
 void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay)
 {
     rf_traj_result *res = r->res;
-    if (!res->events || !grow((void **)&res->events, res->n_events, &res->events_cap, sizeof *res->events))
+    if (!res->events)
         return;
+    if (!grow((void **)&res->events, res->n_events, &res->events_cap, sizeof *res->events)) {
+        r->nomem = 1, r->phase = TRAJ_DONE; /* rf_traj_simulate reports it */
+        return;
+    }
     res->events[res->n_events++] = (rf_traj_event){kind, flying, r->t, r->x, r->y, r->vx, r->vy, r->omega, ax, ay};
 }
 
@@ -80,7 +84,9 @@ void traj_launch(traj_run *r, size_t a, size_t b, rf_traj_event_kind kind)
 static void record_impact(traj_run *r, size_t k, double vx_in, double vy_in)
 {
     rf_traj_result *res = r->res;
-    if (res->impacts && grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts))
+    if (res->impacts && !grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts))
+        r->nomem = 1, r->phase = TRAJ_DONE; /* rf_traj_simulate reports it */
+    else if (res->impacts)
         res->impacts[res->n_impacts] = (rf_traj_impact){r->t, r->x, r->y, k, vx_in, vy_in, r->vx, r->vy, r->omega};
     res->n_impacts++;
 }

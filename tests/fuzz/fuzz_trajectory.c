@@ -10,8 +10,10 @@
  * energy never gained: traj_invariants.c).  The same bytes also drive the
  * profile generator of tests/traj_gen.h (slopes, vertical steps, pits,
  * V-notches), whose trajectory must keep the invariants too; a broken
- * invariant aborts with the file.  Build and run: docs/user-guide.md,
+ * invariant aborts with the file.  The same bytes are also read as a profile
+ * CSV (the strict reader: vertices finite, or a located message).  Build and run: docs/user-guide.md,
  * section "Fuzzing". */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -55,8 +57,33 @@ static void crisp(const rf_traj_spec *s)
     rf_traj_world_free(w);
 }
 
+/* The bytes as a profile CSV (profile_csv.c): read, every vertex finite, or refused with a
+ * message naming the file and, for a bad line, its number. */
+static void profile_csv(const uint8_t *data, size_t size)
+{
+    rf_traj_material mats[2] = {{"rock", 0.4, 0.7, 30, 0, 0}, {"soil", 0.3, 0.6, 35, 0, 0}};
+    rf_traj_spec s;
+    memset(&s, 0, sizeof s);
+    s.materials = mats, s.n_materials = 2;
+    rf_error err;
+    memset(&err, 0, sizeof err);
+    int named;
+    rf_status st = traj_csv_parse("fuzz.csv", (const char *)data, size, &s, &named, &err);
+    if (st != RF_OK && st != RF_ENOMEM && strncmp(err.msg, "fuzz.csv:", 9) != 0) {
+        fprintf(stderr, "unlocated CSV error message: %s\n", err.msg);
+        abort();
+    }
+    for (size_t i = 0; st == RF_OK && i < s.n_points; i++)
+        if (!isfinite(s.px[i]) || !isfinite(s.py[i]) || (i + 1 < s.n_points && s.seg_material[i] >= 2)) {
+            fprintf(stderr, "CSV vertex %zu read as (%g, %g), material %zu\n", i, s.px[i], s.py[i], s.seg_material[i]);
+            abort();
+        }
+    free(s.px), free(s.py), free(s.seg_material);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    profile_csv(data, size);
     generated(data, size);
     rf_traj_spec s;
     rf_error err;
