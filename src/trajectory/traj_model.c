@@ -290,6 +290,6 @@ rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *s
 void traj_model_outputs(const rf_model *m, const rf_traj_spec *s, const rf_traj_stats *t, double *y)
 {
     const traj_model_ctx *c = m->ctx;
-    out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0};
+    out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0, ""};
     walk_outputs(&o, s, t);
 }
