@@ -133,7 +133,7 @@ for r in range(200): print(' '.join(str(200 - c) for c in range(200)))" > "$tmp/
     fi
 fi
 sed 's/collectors: \[{name: barrier, x: 6}\]/collectors:\n  - {name: barrier, x: 6, capacity: -1}/' "$tmp/t.yaml" > "$tmp/cap.yaml"
-expect 1 "cap.yaml:11: collectors.barrier.capacity = -1: must be >= 0 \[J\]" "$bin" trajectory "$tmp/cap.yaml"
+expect 1 "cap.yaml:11: collectors.barrier.capacity = -1: must be >= 0" "$bin" trajectory "$tmp/cap.yaml"
 
 # ---- 14: memory estimated and refused with the figure before allocating ----
 { grep -v '^collectors' "$tmp/t.yaml" | sed 's/vx: 5,/vx: {uniform: [4, 6]},/'; echo "samples: 100000000"

@@ -1,6 +1,7 @@
 /* figure.c - one PLplot figure to PNG and SVG (see figure.h). */
 #include "plot/figure.h"
 
+#include <math.h>
 #include <plplot.h>
 #include <stdio.h>
 #include <sys/stat.h>
@@ -33,4 +34,19 @@ rf_status rf_plot_figure(const char *dir, const char *stem, int width, int heigh
             return rf_fail(err, RF_EIO, "%s: the plot was not written (PLplot device %s)", path, devices[d][0]);
     }
     return RF_OK;
+}
+
+void rf_plot_axis_range(double *lo, double *hi)
+{
+    if (!isfinite(*lo) || !isfinite(*hi) || *hi < *lo) {
+        *lo = 0;
+        *hi = 1;
+        return;
+    }
+    const double mag = fmax(fabs(*lo), fabs(*hi)), width = mag > 0 ? 1e-3 * mag : 1;
+    if (*hi - *lo < width) {
+        const double c = 0.5 * *lo + 0.5 * *hi;
+        *lo = c - 0.5 * width;
+        *hi = c + 0.5 * width;
+    }
 }

@@ -14,4 +14,11 @@ typedef void (*rf_plot_draw_fn)(const void *data);
 rf_status rf_plot_figure(const char *dir, const char *stem, int width, int height, rf_plot_draw_fn draw,
                          const void *data, rf_error *err);
 
+/* Make [*lo, *hi] an axis PLplot can draw: a non-finite end gives [0, 1], and
+ * a range narrower than 1e-3 of its magnitude (a crisp result, or values
+ * that differ in the last bits) is widened about its centre to that width
+ * (to 1 about 0).  PLplot's tick search does not end on a range of a few
+ * units in the last place (40 to 40 + 7e-15 hung a report for ever). */
+void rf_plot_axis_range(double *lo, double *hi);
+
 #endif

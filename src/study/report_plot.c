@@ -41,13 +41,8 @@ static void draw_membership(const void *p)
         y[np - 1 - j] = (double)j / (double)m;
     }
     double xmin = mp->lo[0], xmax = mp->hi[0];
-    if (!isfinite(xmin) || !isfinite(xmax)) {
-        xmin = 0;
-        xmax = 1;
-    }
+    rf_plot_axis_range(&xmin, &xmax);
     double pad = (xmax - xmin) * 0.08;
-    if (!(pad > 0))
-        pad = fabs(xmin) > 0 ? fabs(xmin) * 0.1 : 1;
     plcol0(1);
     plenv(xmin - pad, xmax + pad, 0, 1.05, 0, 0);
     pllab(mp->xlabel, "membership #gm", mp->title);

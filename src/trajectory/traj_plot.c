@@ -289,8 +289,9 @@ static void histogram(const double *v, size_t n, double lo, double hi, const cha
         for (size_t i = 0; i < n; i++)
             lo = fmin(lo, v[i]), hi = fmax(hi, v[i]);
     }
-    if (!n || !(hi > lo))
-        lo = n ? lo - 0.5 : 0, hi = n ? hi + 0.5 : 1;
+    if (!n)
+        lo = 0, hi = 1;
+    rf_plot_axis_range(&lo, &hi);
     PLFLT *data = malloc((n ? n : 1) * sizeof *data);
     if (!data)
         return;
