@@ -7,13 +7,8 @@
 # (exit 1, file:line, nothing written).
 # Usage: bash cli_bind.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 body='levels: 2
 parameters:

@@ -9,13 +9,9 @@
 #      error lines, a negative capacity: located messages naming the value.
 # Usage: bash cli_traj_rel.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
+bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
 # expect STATUS PATTERN CMD...: exit status STATUS and stderr matching PATTERN (grep -E)
 expect() {
     local want=$1 pat=$2

@@ -10,13 +10,8 @@
 # no "nan" and renders in headless Chromium with no broken image.
 # Usage: bash cli_trajectory_bounds.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 
 study() { # study NAME EXTRA-TOP-LEVEL-LINE
   cat > "$tmp/$1.yaml" <<YAML

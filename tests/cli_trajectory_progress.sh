@@ -6,13 +6,8 @@
 # ROCKFUZZ_PROGRESS_DELAY=0 draws from the first trajectory on.
 # Usage: bash cli_trajectory_progress.sh ROCKFUZZ_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-export LSAN_OPTIONS="${LSAN_OPTIONS:+$LSAN_OPTIONS:}suppressions=$src/tests/cli_run.lsan.supp"
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
 file=$src/examples/trajectory/slope.yaml
 
 ROCKFUZZ_PROGRESS_DELAY=0 "$bin" trajectory "$file" --samples 3000 --threads 2 --progress \

@@ -495,32 +495,13 @@ static rf_status parse_impact_input(yr_ctx *c, const rf_study *s, const sb_bindi
     return st;
 }
 
-/* Levenshtein distance of two short names (capped at 64 characters). */
-static size_t name_distance(const char *a, const char *b)
-{
-    size_t la = strlen(a) < 64 ? strlen(a) : 64, lb = strlen(b) < 64 ? strlen(b) : 64, row[65];
-    for (size_t j = 0; j <= lb; j++)
-        row[j] = j;
-    for (size_t i = 1; i <= la; i++) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= lb; j++) {
-            size_t up = row[j], best = diag + (a[i - 1] != b[j - 1]);
-            best = up + 1 < best ? up + 1 : best;
-            best = row[j - 1] + 1 < best ? row[j - 1] + 1 : best;
-            diag = up, row[j] = best;
-        }
-    }
-    return row[lb];
-}
-
 /* An unknown key: the nearest input name when it is close (a typo), and where the list is. */
 static rf_status unknown_impact_key(yr_ctx *c, struct fy_node *k, const char *p, const char *key)
 {
     const char *near = NULL;
     size_t best = 3; /* at most two edits */
     for (size_t q = 0; q < rf_impact_n_fields; q++) {
-        size_t d = name_distance(key, rf_impact_fields[q].name);
+        size_t d = rf_name_distance(key, rf_impact_fields[q].name);
         if (d < best)
             best = d, near = rf_impact_fields[q].name;
     }
