@@ -20,3 +20,34 @@ cli_tmpdir() {
     tmp=$(mktemp -d)
     trap 'rm -rf "$tmp"' EXIT
 }
+
+# cli_render_check NAME HTML MIN_IMAGES [SHOT]: HTML rendered by headless
+# Chromium has at least MIN_IMAGES images, none broken, and a screenshot
+# (1200x900, kept in SHOT if given) that is not blank (> 30 kB); a skip is
+# said when chromium is absent.
+cli_render_check() {
+    local name=$1 html=$2 min=$3 shot=${4:-} chrome prof got n
+    chrome=$(command -v chromium || command -v chromium-browser || true)
+    if [ -z "$chrome" ]; then
+        echo "$name: browser check SKIPPED: chromium not found"
+        return 0
+    fi
+    prof=$(mktemp -d)
+    local flags=(--headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking
+                 --disable-component-update --disable-sync --user-data-dir="$prof")
+    sed 's|</body>|<script>addEventListener("load",function(){var b=0,n=0;for(const i of document.images)'\
+'{n++;if(!i.complete\|\|i.naturalWidth==0)b++;}var p=document.createElement("p");p.id="imgcheck";'\
+'p.textContent="images "+n+" broken "+b;document.body.appendChild(p);});</script></body>|' \
+        "$html" > "${html%.html}.check.html"
+    got=$(timeout 120 "$chrome" "${flags[@]}" --virtual-time-budget=8000 --dump-dom "file://${html%.html}.check.html" \
+          2> /dev/null | grep -o 'images [0-9]* broken [0-9]*')
+    echo "$name: rendered page: $got"
+    n=$(echo "$got" | awk '{print $2}')
+    [ -n "$n" ] && [ "$n" -ge "$min" ] && [ "$(echo "$got" | awk '{print $4}')" = 0 ] \
+        || fail "images in the rendered page: '$got' (expected $min or more, none broken)"
+    shot=${shot:-$prof/shot.png}
+    timeout 120 "$chrome" "${flags[@]}" --virtual-time-budget=8000 --screenshot="$shot" --window-size=1200,900 \
+        "file://$html" > /dev/null 2>&1
+    [ "$(stat -c %s "$shot" 2> /dev/null || echo 0)" -gt 30000 ] || fail "the screenshot of $html is missing or blank"
+    rm -rf "$prof" "${html%.html}.check.html"
+}

@@ -5,7 +5,8 @@
 # again from DIR/invocation.json, with the command line's --samples and
 # --seed); a result its trajectory file no longer reproduces is refused with
 # the report left as it was; a study result still works; anything else is
-# refused by name.
+# refused by name. The report renders in headless Chromium (figures decode,
+# no "nan" in its text); SHOT_TRAJECTORY_RUN=FILE keeps the screenshot.
 # Usage: bash cli_report_trajectory.sh ROCKFUZZ SOURCE_DIR
 set -u
 . "${BASH_SOURCE[0]%/*}/cli_lib.sh"
@@ -38,6 +39,13 @@ msg=$("$bin" report "$out" 2> "$tmp/e") || fail "report of a trajectory result: 
 cmp -s "$tmp/report.html" "$out/report.html" || fail "the regenerated report.html differs from the run's"
 cmp -s "$tmp/hist.png" "$out/trajectory_hist_barrier.png" || fail "the regenerated histogram differs"
 [ -s "$out/trajectory_profile.svg" ] || fail "no profile SVG regenerated"
+# the page a person reads: rendered, every figure decodes, no "nan" in its text
+cli_render_check cli_report_trajectory "$out/report.html" 2 "${SHOT_TRAJECTORY_RUN:-}"
+python3 - "$out/report.html" <<'EOF3' || fail "report text shows nan"
+import re, sys
+text = re.sub(r"<[^>]*>", " ", re.sub(r"(?s)<(script|style)[^>]*>.*?</\1>", " ", open(sys.argv[1]).read()))
+sys.exit(1 if re.search(r"\bnan\b", text, re.I) else 0)
+EOF3
 
 # --no-plots: report writes the report the run did not
 "$bin" trajectory "$t" --samples 150 --seed 7 --out "$tmp/np" --quiet --no-plots 2> "$tmp/e" || fail "--no-plots: $(cat "$tmp/e")"

@@ -89,29 +89,7 @@ t = re.sub(r"<[^>]*>", " ", h)
 m = re.search(r".{0,60}\bnan\b.{0,60}", t, re.I | re.S)
 assert not m, m.group(0)
 EOF
-chrome=$(command -v chromium || command -v chromium-browser || true)
-if [ -z "$chrome" ]; then
-  echo "cli_trajectory_bounds: browser check SKIPPED: chromium not found"
-else
-  prof=$(mktemp -d)
-  flags=(--headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking
-         --disable-component-update --disable-sync --user-data-dir="$prof")
-  sed 's|</body>|<script>addEventListener("load",function(){var b=0,n=0;for(const i of document.images)'\
-'{n++;if(!i.complete\|\|i.naturalWidth==0)b++;}var p=document.createElement("p");p.id="imgcheck";'\
-'p.textContent="images "+n+" broken "+b;document.body.appendChild(p);});</script></body>|' \
-    "$tmp/run/report.html" > "$tmp/run/check.html"
-  got=$(timeout 120 "$chrome" "${flags[@]}" --virtual-time-budget=8000 --dump-dom "file://$tmp/run/check.html" \
-        2> /dev/null | grep -o 'images [0-9]* broken [0-9]*')
-  echo "cli_trajectory_bounds: rendered page: $got"
-  n=$(echo "$got" | awk '{print $2}')
-  [ -n "$n" ] && [ "$n" -ge 7 ] && [ "$(echo "$got" | awk '{print $4}')" = 0 ] \
-    || fail "images in the rendered page: '$got' (expected 7 or more: 2 inputs, 3 profiles, histograms; none broken)"
-  timeout 120 "$chrome" "${flags[@]}" --virtual-time-budget=8000 --screenshot="$tmp/shot.png" --window-size=1200,900 \
-    "file://$tmp/run/report.html" > /dev/null 2>&1
-  [ "$(stat -c %s "$tmp/shot.png" 2> /dev/null || echo 0)" -gt 30000 ] || fail "the screenshot is missing or blank"
-  rm -rf "$prof"
-  rm -f "$tmp/run/check.html"
-fi
+cli_render_check cli_trajectory_bounds "$tmp/run/report.html" 7 # 2 inputs, 3 profiles, histograms
 
 # the lower bound's run is `rockfuzz trajectory` on the file with the bound's inputs written in
 read -r rn rt < <(python3 -c "import json,sys; p=json.load(open(sys.argv[1]))['outputs']['barrier_total_energy_p95']['x_lower'][0]; print('%.17g %.17g' % (p['rock_Rn'], p['talus_Rt']))" "$tmp/run/result.json")
