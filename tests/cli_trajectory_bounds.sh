@@ -109,6 +109,12 @@ sleep 1
 newer=$(find "$tmp/run/nominal" "$tmp/run/bound_lower" "$tmp/run/bound_upper" -newer "$tmp/mark" | wc -l)
 [ "$newer" = 0 ] || fail "a complete rerun was run again ($newer files rewritten)"
 grep -q 'id=reruns' "$tmp/run/report.html" || fail "second run: the report lost the reruns"
+# `rockfuzz report` on a rerun folder names the study's folder; on the study it keeps the reruns
+"$bin" report "$tmp/run/nominal" > /dev/null 2> "$tmp/rep.txt" && fail "report of a rerun folder: exit 0"
+grep -q "is a trajectory study's rerun" "$tmp/rep.txt" || fail "report of a rerun folder: $(cat "$tmp/rep.txt")"
+cp "$tmp/run/report.html" "$tmp/report_before.html"
+"$bin" report "$tmp/run" > /dev/null 2>&1 || fail "report of the study folder"
+cmp -s "$tmp/run/report.html" "$tmp/report_before.html" || fail "rockfuzz report changed the study's report"
 
 # main_output: the bound reruns follow it (no plots: no figures, the section is left out)
 study chosen "main_output: runout_x_p95"

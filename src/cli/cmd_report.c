@@ -8,8 +8,26 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "rockfuzz/report.h"
+
+/* A trajectory study's rerun folder (OUT/nominal, OUT/bound_lower,
+ * OUT/bound_upper: src/study/study_traj.c, marked by rerun.txt) is part of the
+ * study's result: its figures and report.html are written by the study, and
+ * `rockfuzz report OUT` rewrites the study's report with them.  1 (and the
+ * message) if dir is one. */
+static int study_rerun(const char *dir)
+{
+    char mark[4200];
+    snprintf(mark, sizeof mark, "%s/rerun.txt", dir);
+    if (access(mark, F_OK) != 0)
+        return 0;
+    fprintf(stderr, "rockfuzz report: %s is a trajectory study's rerun (its rerun.txt), part of the study's result "
+            "in the folder above it: `rockfuzz report %s/..` rewrites the study's report.html, which shows this "
+            "run; `rockfuzz run` of the study writes this folder again\n", dir, dir);
+    return 1;
+}
 
 int rf_cli_report(int argc, char **argv)
 {
@@ -36,6 +54,8 @@ int rf_cli_report(int argc, char **argv)
                 printf("%s/report.html\n", dir);
             return rc;
         }
+        if (study_rerun(dir))
+            return 1;
     }
     if (st != RF_OK) {
         fprintf(stderr, "rockfuzz report: %s\n", err.msg);
