@@ -213,6 +213,16 @@ static void usage(FILE *f)
         "Exit status: 0 success, 1 the model failed, 2 invalid command line or input.\n");
 }
 
+/* The value of option --NAME (len characters of name): after '=' (eq) or the
+ * next argument (then *i points at it); NULL with the message when it has none. */
+static const char *option_value(const char *name, size_t len, const char *eq, int argc, char **argv, int *i)
+{
+    const char *val = eq ? eq + 1 : *i + 1 < argc ? argv[++*i] : NULL;
+    if (!val)
+        fprintf(stderr, "rockfuzz impact: option '--%.*s' needs a value\n", (int)len, name);
+    return val;
+}
+
 static void json_number(const char *key, double x, int last)
 {
     printf("\"%s\": ", key);
@@ -539,11 +549,9 @@ int rf_cli_impact(int argc, char **argv)
         size_t len = eq ? (size_t)(eq - name) : strlen(name);
         const rf_impact_field *field = input_option(name, len);
         if (field) {
-            const char *val = eq ? eq + 1 : i + 1 < argc ? argv[++i] : NULL;
-            if (!val) {
-                fprintf(stderr, "rockfuzz impact: option '--%.*s' needs a value\n", (int)len, name);
+            const char *val = option_value(name, len, eq, argc, argv, &i);
+            if (!val)
                 return EXIT_USAGE;
-            }
             size_t f = (size_t)(field - rf_impact_fields);
             given_input[f] = val;
             snprintf(given_input_name[f], sizeof given_input_name[f], "%.*s", (int)len, name);
@@ -553,11 +561,9 @@ int rf_cli_impact(int argc, char **argv)
         }
         const rf_fem_option_field *fem_row = fem_option(name, len);
         if (fem_row) {
-            const char *val = eq ? eq + 1 : i + 1 < argc ? argv[++i] : NULL;
-            if (!val) {
-                fprintf(stderr, "rockfuzz impact: option '--%.*s' needs a value\n", (int)len, name);
+            const char *val = option_value(name, len, eq, argc, argv, &i);
+            if (!val)
                 return EXIT_USAGE;
-            }
             char oname[64];
             snprintf(oname, sizeof oname, "%.*s", (int)len, name);
             if (!read_fem_option(oname, fem_row, val, &spec.fem))
@@ -586,15 +592,8 @@ int rf_cli_impact(int argc, char **argv)
             *(id == O_JSON ? &json : &progress) = 1;
             continue;
         }
-        const char *val = eq ? eq + 1 : NULL;
-        if (!val) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "rockfuzz impact: option '--%s' needs a value\n", oname);
-                return EXIT_USAGE;
-            }
-            val = argv[++i];
-        }
-        if (set_option(id, oname, val, &spec) != 0)
+        const char *val = option_value(name, len, eq, argc, argv, &i);
+        if (!val || set_option(id, oname, val, &spec) != 0)
             return EXIT_USAGE;
     }
 
