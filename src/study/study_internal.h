@@ -14,9 +14,8 @@ rf_status sp_parse_model(yr_ctx *c, struct fy_node *n, rf_study *study);
 /* The trajectory model block (study_traj.c). */
 rf_status rf_traj_study_parse(yr_ctx *c, struct fy_node *n, rf_study *study);
 /* A trajectory study's Monte Carlo rerun at the nominal point, written to
- * DIR/nominal/ (study_traj.c); RF_OK and nothing for other models. */
-rf_status rf_traj_study_nominal(const char *dir, const rf_study *s, int threads, int plots, rf_error *err);
-/* The same and, with the TM's result res, the reruns at the points giving the
+ * DIR/nominal/ (study_traj.c; RF_OK and nothing for other models), and with
+ * the TM's result res (NULL: the nominal point only) the reruns at the points giving the
  * lower and upper bound of the main output (rp_main_output) at membership 0,
  * in DIR/bound_lower/ and DIR/bound_upper/, the figures of the three on
  * common axes; a folder complete for the same model and point is kept. */

@@ -421,8 +421,3 @@ rf_status rf_traj_study_reruns(const char *dir, const rf_study *s, const rf_tm_r
     free(nominal);
     return st;
 }
-
-rf_status rf_traj_study_nominal(const char *dir, const rf_study *s, int threads, int plots, rf_error *err)
-{
-    return rf_traj_study_reruns(dir, s, NULL, threads, plots, err);
-}
