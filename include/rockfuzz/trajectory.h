@@ -63,7 +63,9 @@ extern const char *const rf_traj_bounce_law_names[RF_BOUNCE_N_LAWS];
 /* Where a trajectory starts: the point (x0, y0); a point drawn uniformly (by
  * length) along a polyline; or one drawn uniformly along the ground inside a
  * zone (a polygon, or an x-range), on the ground. */
-typedef enum { RF_TRAJ_RELEASE_POINT = 0, RF_TRAJ_RELEASE_LINE, RF_TRAJ_RELEASE_ZONE } rf_traj_release_kind;
+typedef enum { RF_TRAJ_RELEASE_POINT = 0, RF_TRAJ_RELEASE_LINE, RF_TRAJ_RELEASE_ZONE,
+               RF_TRAJ_RELEASE_MAP   /* a terrain file: points, lines, polygons on the map (terrain.h) */
+} rf_traj_release_kind;
 
 typedef enum { RF_DIST_FIXED = 0, RF_DIST_UNIFORM, RF_DIST_NORMAL } rf_traj_dist;
 
@@ -84,7 +86,8 @@ typedef struct {
 
 typedef struct {
     char *name;
-    double x;                   /* [m] vertical line x = const */
+    double x;                   /* [m] vertical line x = const (a profile; on terrain the line is
+                                   spec->terrain->barrier_*) */
     double capacity;            /* [J] barrier energy capacity; 0 = a pure collector */
     double height;              /* [m] barrier height; 0 = unlimited (only with capacity) */
     /* User thresholds of P(total_energy > E) and P(height_lowest > h); the
@@ -121,6 +124,12 @@ typedef struct {
     double x0, y0, vx0, vy0, omega0;  /* release [m], [m/s], [rad/s] */
     int release_by_speed;       /* the release velocity is speed0 at angle0 (not vx0, vy0) */
     double speed0, angle0;      /* [m/s], [rad] from the horizontal (given in deg), up positive */
+    double vz0;                 /* terrain: release velocity up [m/s] (vx0 east, vy0 north) */
+    double height0;             /* terrain: release height of the lowest point above the ground [m] */
+    double azimuth0, dip0;      /* terrain: direction of speed0 [rad] (given in deg): azimuth clockwise
+                                   from north, dip below the horizontal (down positive) */
+    double omega0_xyz[3];       /* terrain: release spin vector [rad/s] (omega0 is the 2D spin) */
+    struct rf_terrain_def *terrain;  /* a terrain file (terrain.h), NULL for a profile */
     rf_traj_release_kind release_kind;
     size_t n_release;           /* LINE: polyline vertices; ZONE polygon: its vertices (0: an x-range) */
     double *release_px, *release_py;  /* [m] */
@@ -186,7 +195,13 @@ typedef enum {
 /* When a row is used (and checked): always, for a point block, a sphere, a
  * release given by vx/vy, by speed/angle, or at a point. */
 typedef enum { RF_TRAJ_WHEN_ALWAYS = 0, RF_TRAJ_WHEN_POINT, RF_TRAJ_WHEN_SPHERE, RF_TRAJ_WHEN_VXVY,
-               RF_TRAJ_WHEN_SPEED, RF_TRAJ_WHEN_AT_POINT } rf_traj_when;
+               RF_TRAJ_WHEN_SPEED, RF_TRAJ_WHEN_AT_POINT,
+               RF_TRAJ_WHEN_PROFILE,        /* a profile file (not terrain) */
+               RF_TRAJ_WHEN_PROFILE_SPEED,  /* a profile file, release by speed and angle */
+               RF_TRAJ_WHEN_TERRAIN,        /* a terrain file */
+               RF_TRAJ_WHEN_TERRAIN_VXVY,   /* a terrain file, release by vx, vy, vz */
+               RF_TRAJ_WHEN_TERRAIN_SPEED   /* a terrain file, release by speed, azimuth, dip */
+} rf_traj_when;
 typedef struct {
     const char *key;            /* path below its table's prefix: "mass", "R_n", "bounce.scale_speed" */
     size_t offset;              /* in rf_traj_spec, rf_traj_material or rf_traj_collector (owner) */
@@ -282,6 +297,10 @@ typedef struct {
     double speed;               /* [m/s] */
     double translational_energy, rotational_energy;  /* [J] m v^2 / 2, I omega^2 / 2 */
     double total_energy;        /* [J] translational_energy + rotational_energy */
+    double x, y;                /* [m] where it crossed: on terrain the map point (2D: x, and the block's y) */
+    double along;               /* [m] terrain: distance along the barrier line from its first vertex (2D: 0) */
+    double energy_after;        /* [J] terrain: a barrier passed, the energy left (total_energy - capacity when
+                                   it broke through; total_energy when it flew over; 2D: total_energy) */
 } rf_traj_crossing;
 
 typedef struct {
@@ -356,6 +375,7 @@ typedef struct {
     size_t impact_nodes_vn, impact_nodes_theta, impact_evaluations, impact_from_cache;
     double impact_error_estimate;   /* largest |table - model| of R_n, R_t at the cell centres [-] */
     rf_traj_envelope envelope;      /* from all samples */
+    struct rf_terrain_samples *terrain;  /* a terrain run (terrain.h), NULL for a profile */
 } rf_traj_ensemble;
 
 /* Run spec->samples trajectories on `threads` threads (0 = online cores).

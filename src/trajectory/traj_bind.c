@@ -67,6 +67,11 @@ const char *traj_field_unused_reason(const rf_traj_field *f)
     case RF_TRAJ_WHEN_VXVY: return "the release velocity is given by speed and angle";
     case RF_TRAJ_WHEN_SPEED: return "the release velocity is given by vx and vy";
     case RF_TRAJ_WHEN_AT_POINT: return "the release is drawn along a line or in a zone";
+    case RF_TRAJ_WHEN_PROFILE: return "only a profile file has it (on terrain: see docs/terrain.md)";
+    case RF_TRAJ_WHEN_PROFILE_SPEED: return "only a profile file released by speed has it (on terrain: azimuth, dip)";
+    case RF_TRAJ_WHEN_TERRAIN: return "only a terrain file has it";
+    case RF_TRAJ_WHEN_TERRAIN_VXVY: return "only a terrain file released by vx, vy, vz has it";
+    case RF_TRAJ_WHEN_TERRAIN_SPEED: return "only a terrain file released by speed, azimuth and dip has it";
     case RF_TRAJ_WHEN_ALWAYS: break;
     }
     return "";

@@ -41,8 +41,16 @@ static const rf_traj_field release_rows[] = {
         "release velocity, vertical (up)"),
     ROW("speed", speed0, 0, "m/s", NAN, 3.0, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_SPEED, 1, 1,
         "release speed, instead of vx and vy (with angle)"),
-    ROW("angle", angle0, 1, "deg", 0.0, 20.0, RF_TRAJ_CHECK_ANGLE_180, RF_TRAJ_WHEN_SPEED, 1, 1,
+    ROW("angle", angle0, 1, "deg", 0.0, 20.0, RF_TRAJ_CHECK_ANGLE_180, RF_TRAJ_WHEN_PROFILE_SPEED, 1, 1,
         "direction of the release speed from the horizontal, up positive: vx = speed cos, vy = speed sin"),
+    ROW("vz", vz0, 0, "m/s", 0.0, -0.5, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_TERRAIN_VXVY, 1, 1,
+        "terrain: release velocity, vertical (up); vx east, vy north"),
+    ROW("azimuth", azimuth0, 1, "deg", 0.0, 135.0, RF_TRAJ_CHECK_ANGLE_180, RF_TRAJ_WHEN_TERRAIN_SPEED, 1, 1,
+        "terrain: direction of the release speed on the map, clockwise from north"),
+    ROW("dip", dip0, 1, "deg", 0.0, 10.0, RF_TRAJ_CHECK_ANGLE_180, RF_TRAJ_WHEN_TERRAIN_SPEED, 1, 1,
+        "terrain: direction of the release speed below the horizontal (down positive)"),
+    ROW("height", height0, 0, "m", 0.0, 1.0, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_TERRAIN, 1, 1,
+        "terrain: height of the block's lowest point above the ground at release"),
     ROW("omega", omega0, 0, "rad/s", 0.0, 1.0, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_ALWAYS, 1, 1, "release spin"),
 };
 
@@ -67,7 +75,8 @@ static const rf_traj_field run_rows[] = {
 };
 
 static const rf_traj_field collector_rows[] = {
-    COL(x, "m", NAN, 50.0, RF_TRAJ_CHECK_FINITE, "the line x = const (required)"),
+    {"x", offsetof(rf_traj_collector, x), 0, "m", NAN, 50.0, RF_TRAJ_CHECK_FINITE, RF_TRAJ_WHEN_PROFILE, 0, 1,
+     "the line x = const (required on a profile; on terrain the barrier is a `line`)"},
     COL(capacity, "J", 0.0, 1e5, RF_TRAJ_CHECK_NONNEGATIVE, "barrier energy capacity; 0 = a pure collector"),
     COL(height, "m", 0.0, 2.0, RF_TRAJ_CHECK_NONNEGATIVE, "barrier height; 0 = unlimited"),
 };
@@ -229,6 +238,11 @@ int traj_field_used(const rf_traj_spec *s, const rf_traj_field *f)
     case RF_TRAJ_WHEN_VXVY: return !s->release_by_speed;
     case RF_TRAJ_WHEN_SPEED: return s->release_by_speed;
     case RF_TRAJ_WHEN_AT_POINT: return s->release_kind == RF_TRAJ_RELEASE_POINT;
+    case RF_TRAJ_WHEN_PROFILE: return !s->terrain;
+    case RF_TRAJ_WHEN_PROFILE_SPEED: return !s->terrain && s->release_by_speed;
+    case RF_TRAJ_WHEN_TERRAIN: return s->terrain != NULL;
+    case RF_TRAJ_WHEN_TERRAIN_VXVY: return s->terrain && !s->release_by_speed;
+    case RF_TRAJ_WHEN_TERRAIN_SPEED: return s->terrain && s->release_by_speed;
     }
     return 0;
 }

@@ -1,0 +1,204 @@
+/* terrain_internal.h - what the terrain files share (terrain.h): the
+ * surface's data and its cell evaluation, the prepared world, the state of
+ * one running 3D trajectory, the "piece" of path each phase emits (for the
+ * barriers, the hazard rasters and the records), and each file's functions:
+ *   terrain_grid.c      the surface from nodes, height and normal
+ *   terrain_grid_io.c   reading DEM, classes and roughness rasters with GDAL; GeoTIFF writing
+ *   terrain_flight.c    exact first impact of a parabola with the bilinear surface
+ *   terrain_bounce.c    the bounce laws in the local frame of the normal (3D)
+ *   terrain_contact.c   sliding and rolling on the surface
+ *   terrain_barrier.c   barrier crossings of a piece (first crossing, capacity rule)
+ *   terrain_simulate.c  one trajectory: the state machine over those
+ *   terrain_hazard.c    hazard raster accumulators (counts, log histograms), merge, percentiles
+ *   terrain_release.c   release features: the point at given uniforms
+ *   terrain_spec.c      rf_terrain_def free / copy / hash; the world
+ *   traj_yaml_terrain.c the `terrain:` part of a trajectory file (release, barriers, rasters)
+ *   terrain_montecarlo.c ensembles on terrain (threads; same bits at any thread count)
+ *   terrain_output.c    JSON, CSV, GeoPackage; terrain_report.c maps and report.html */
+#ifndef ROCKFUZZ_TERRAIN_INTERNAL_H
+#define ROCKFUZZ_TERRAIN_INTERNAL_H
+
+#include "rockfuzz/terrain.h"
+#include "trajectory/traj_internal.h"
+
+#include <math.h>
+#include <stdint.h>
+
+/* ---- the surface ---- */
+
+struct rf_terrain {
+    size_t nx, ny;              /* nodes; cells (nx - 1) x (ny - 1) */
+    double x0, y0, dx, dy;      /* node (i, j) at (x0 + i dx, y0 + j dy), j to the north */
+    double *z;                  /* ny * nx, z[j nx + i]; NaN: no data */
+    unsigned char *valid;       /* (nx - 1) * (ny - 1): the cell's four nodes hold data */
+    uint16_t *material;         /* per cell, index in spec->materials; NULL: material 0 */
+    float *roughness;           /* per cell roughness SD [rad]; NULL: the material's */
+    char *crs_wkt;              /* "" if none */
+};
+
+/* The cell (i, j) holding (x, y) and the local coordinates u, v in [0, 1];
+ * 0 if outside the surface.  On a shared edge the cell to the east / north
+ * is taken, except at the last row or column. */
+static inline int terrain_cell_of(const rf_terrain *t, double x, double y, size_t *i, size_t *j, double *u,
+                                  double *v)
+{
+    double fx = (x - t->x0) / t->dx, fy = (y - t->y0) / t->dy;
+    if (!(fx >= 0 && fy >= 0 && fx <= (double)(t->nx - 1) && fy <= (double)(t->ny - 1)))
+        return 0;
+    size_t ci = (size_t)fx, cj = (size_t)fy;
+    if (ci >= t->nx - 1)
+        ci = t->nx - 2;
+    if (cj >= t->ny - 1)
+        cj = t->ny - 2;
+    *i = ci, *j = cj, *u = fx - (double)ci, *v = fy - (double)cj;
+    return t->valid[cj * (t->nx - 1) + ci];
+}
+
+/* The bilinear patch of cell (i, j) as z = a + b X + c Y + d X Y in local
+ * metres X = x - x_i, Y = y - y_j (0 <= X <= dx, 0 <= Y <= dy). */
+typedef struct {
+    double a, b, c, d;
+    double xi, yj;              /* the cell's south-west node [m] */
+} terrain_patch;
+
+static inline terrain_patch terrain_patch_of(const rf_terrain *t, size_t i, size_t j)
+{
+    const double *z = t->z + j * t->nx + i;
+    double z00 = z[0], z10 = z[1], z01 = z[t->nx], z11 = z[t->nx + 1];
+    terrain_patch p;
+    p.a = z00;
+    p.b = (z10 - z00) / t->dx;
+    p.c = (z01 - z00) / t->dy;
+    p.d = (z11 - z10 - z01 + z00) / (t->dx * t->dy);
+    p.xi = t->x0 + (double)i * t->dx, p.yj = t->y0 + (double)j * t->dy;
+    return p;
+}
+
+/* terrain_grid.c: an empty surface of nx x ny nodes (z to fill, no CRS),
+ * and the valid-cell mask once z is filled (for the readers). */
+rf_status terrain_alloc(size_t nx, size_t ny, rf_terrain **t, rf_error *err);
+void terrain_finish(rf_terrain *t);
+
+/* Material index of cell (i, j). */
+static inline size_t terrain_material_of(const rf_terrain *t, size_t i, size_t j)
+{
+    return t->material ? t->material[j * (t->nx - 1) + i] : 0;
+}
+
+/* ---- the prepared world ---- */
+
+typedef struct terrain_release_set terrain_release_set;
+
+typedef struct {
+    size_t n;                   /* vertices */
+    const double *x, *y;        /* spec->terrain->barrier_* (the spec outlives the world's use) */
+    double *cum;                /* n: distance along the line to vertex k [m] */
+} terrain_barrier_geo;
+
+struct rf_terrain_world {
+    rf_terrain *dem;
+    size_t ncol;
+    terrain_barrier_geo *col;
+    terrain_release_set *release;
+    void *impact_table;         /* impact_model law: traj_impact_table (not yet on terrain) */
+};
+
+/* ---- one running trajectory ---- */
+
+/* A piece of path: uniformly accelerated motion p(tau) = p + v tau + a tau^2 / 2
+ * for tau in [0, T] from time t.  A flight has a = (0, 0, -g) (its map path a
+ * straight line); a contact stretch is one step of the surface motion, its
+ * map path taken as the chord from p(0) to p(T).  on_ground: the block's
+ * lowest point is on the ground (passing height 0). */
+typedef struct {
+    double t, T;
+    double p[3], v[3], a[3];
+    double e_rot;               /* rotational energy, constant over the piece [J] */
+    int on_ground;
+} terrain_piece;
+
+typedef enum { TERRAIN_FLY = 0, TERRAIN_CONTACT, TERRAIN_DONE } terrain_phase;
+
+struct rf_terrain_hazard;
+
+typedef struct {
+    const rf_terrain_world *w;
+    const rf_terrain *dem;
+    const rf_traj_spec *s;
+    rf_terrain_result *res;
+    struct rf_terrain_hazard *hazard;   /* NULL: no rasters */
+    uint64_t seed, sample, n_rough;     /* roughness draws: stream 2 sample + 1, index n_rough (as 2D) */
+    double g, mass, inertia, radius;
+    double t, p[3], v[3], omega[3];
+    terrain_phase phase;
+    int from_impact;                    /* the current flight starts at an impact (rebound height) */
+    int nomem;
+} terrain_run;
+
+/* Barrier outcome of a piece (terrain_barrier.c). */
+typedef enum { TERRAIN_PIECE_FREE = 0,  /* nothing stops or slows the block over the piece */
+               TERRAIN_PIECE_STOPPED,   /* a barrier holds the block at tau_cut */
+               TERRAIN_PIECE_SLOWED     /* it broke through a barrier at tau_cut, losing the capacity */
+} terrain_piece_outcome;
+
+/* terrain_barrier.c: record the first crossing of each barrier by the piece
+ * (in res->crossings); the first barrier (in time) that holds or is broken
+ * through cuts the piece at *tau_cut, and for SLOWED *scale is the factor
+ * of the velocity and spin after it (energy minus capacity).  Flights over
+ * the barrier's height pass untouched. */
+terrain_piece_outcome terrain_barrier_piece(terrain_run *r, const terrain_piece *pc, double *tau_cut,
+                                            double *scale);
+
+/* terrain_simulate.c: emit a piece: barriers (above), the hazard rasters
+ * (terrain_hazard_piece), the rebound height.  Returns the barrier outcome;
+ * the caller moves the state to the cut and continues. */
+terrain_piece_outcome terrain_emit(terrain_run *r, const terrain_piece *pc, double *tau_cut, double *scale);
+void terrain_event(terrain_run *r, rf_traj_event_kind kind, int flying);
+
+/* terrain_flight.c: the first time tau in (0, tmax] at which the parabola
+ * p + v tau + (0, 0, -g) tau^2 / 2 meets the surface from above, found cell
+ * by cell along its straight map path (exact root of a quadratic per cell:
+ * no time step, no missed ridge).  The start may lie on the surface (eps:
+ * its roots at tau <= 0 and the touching start are not taken unless the path
+ * enters the ground).  Returns 1 with *tau, the point and the cell; 0 if the
+ * path leaves the surface (the DEM's border or a no-data cell) first, with
+ * *tau the time it leaves (INFINITY if it never does within tmax). */
+int terrain_first_impact(const rf_terrain *t, const double p[3], const double v[3], double g, double tmax,
+                         double *tau, size_t *ci, size_t *cj);
+
+/* terrain_bounce.c: velocity and spin after an impact at the current state on
+ * cell (ci, cj) with the spec's law in the frame of the surface normal,
+ * tilted by the roughness (never injecting energy, never into the ground);
+ * returns 1 for a soft landing (normal rebound speed below contact_speed:
+ * the velocity along the surface is kept, the block continues in contact). */
+int terrain_bounce(terrain_run *r, size_t ci, size_t cj, double v[3], double omega[3]);
+
+/* terrain_contact.c: move the block in contact with the surface (sliding or
+ * rolling under gravity, friction and rolling resistance, the normal force
+ * including the surface's curvature) until it stops, leaves the surface
+ * (launch), exits the DEM, a barrier holds it, or max_steps; emits its
+ * pieces with terrain_emit.  Sets r->phase (TERRAIN_FLY after a launch,
+ * TERRAIN_DONE with res->state otherwise). */
+void terrain_contact_run(terrain_run *r);
+
+/* terrain_hazard.c: the rasters (see terrain.h RF_TERRAIN_*): per cell of the
+ * output grid, passages, deposits, and per-trajectory maxima of energy and
+ * passing height in log-spaced histograms (TERRAIN_HAZARD_BINS_PER_DECADE;
+ * relative error of a percentile at most TERRAIN_HAZARD_REL_ERROR).  A
+ * trajectory's pieces count a cell once; accumulators of threads merge by
+ * adding counts: the same bits in any order. */
+typedef struct rf_terrain_hazard rf_terrain_hazard;
+rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain *dem);
+void terrain_hazard_begin(rf_terrain_hazard *h);
+void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc);
+void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3]);
+void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from);
+void terrain_hazard_free(rf_terrain_hazard *h);
+
+/* terrain_release.c: the release set of spec->terrain->release; the map point
+ * at uniforms u1 (feature, by weight), u2, u3 (position in it). */
+rf_status terrain_release_prepare(const rf_traj_spec *s, terrain_release_set **set, rf_error *err);
+void terrain_release_free(terrain_release_set *set);
+void terrain_release_point(const terrain_release_set *set, double u1, double u2, double u3, double *x, double *y);
+
+#endif
