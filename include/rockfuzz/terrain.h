@@ -18,6 +18,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "rockfuzz/status.h"
 #include "rockfuzz/trajectory.h"
@@ -168,6 +169,30 @@ typedef struct rf_terrain_samples {
     rf_terrain_result *recorded;
     struct rf_terrain_hazard *hazard;   /* the rasters (terrain_hazard.c) */
 } rf_terrain_samples;
+
+/* Run spec->samples trajectories of a terrain spec on `threads` threads (0 =
+ * online cores), the same bits at any thread count (sample i draws from its
+ * own counter-based streams, as in 2D; the release point takes three more
+ * uniforms).  ens gets, per sample, state, runout_x = the runout [m],
+ * rebound height and the barrier crossings, and ens->terrain the 3D part
+ * and the merged hazard rasters.  progress may be NULL. */
+rf_status rf_terrain_run(const rf_traj_spec *spec, int threads, rf_traj_progress_fn progress, void *ctx,
+                         rf_traj_ensemble *ens, rf_error *err);
+
+/* ---- outputs (terrain_output.c, terrain_report.c) ---- */
+
+/* The JSON document of `rockfuzz trajectory --json` for a terrain file
+ * (docs/terrain.md): per recorded trajectory (at most max_trajectories)
+ * state, impacts, rest, crossings; statistics (runout, reach angle, per
+ * barrier as in 2D). */
+void rf_terrain_write_json(FILE *f, const rf_traj_spec *spec, const rf_traj_ensemble *ens, const rf_traj_stats *st,
+                           size_t max_trajectories);
+void rf_terrain_write_summary(FILE *f, const rf_traj_spec *spec, const rf_traj_ensemble *ens, const rf_traj_stats *st);
+/* DIR/hazard.tif (one band per statistic), DIR/paths.gpkg (end points,
+ * trajectories), samples.csv, crossings.csv, statistics.csv; with plots the
+ * maps and report.html. */
+rf_status rf_terrain_write_outputs(const char *dir, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
+                                   const rf_traj_stats *st, int plots, rf_error *err);
 
 #ifdef __cplusplus
 }

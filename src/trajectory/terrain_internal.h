@@ -195,6 +195,55 @@ void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3]);
 void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from);
 void terrain_hazard_free(rf_terrain_hazard *h);
 
+/* The bands of the rasters (terrain_hazard.c) for GeoTIFF and maps: per
+ * statistic a name ("passages", "reach_probability", "deposits",
+ * "energy_max", "energy_p95", "height_max", "height_p95", ...) with its unit
+ * and ny * nx values (row j = south to north, NaN where no block passed for
+ * the per-cell energy and height statistics), on the grid of the hazard. */
+typedef struct {
+    char name[48];
+    const char *unit;
+    float *data;
+} terrain_band;
+void terrain_hazard_grid(const rf_terrain_hazard *h, size_t *nx, size_t *ny, double *x0, double *y0, double *cell);
+/* The bands the spec's `rasters.statistics` ask for, the percentiles at the
+ * spec's outputs.percentiles (default 50, 95, 99) (free with terrain_bands_free). */
+rf_status terrain_hazard_bands(const rf_terrain_hazard *h, const rf_traj_spec *s, size_t samples, terrain_band **bands,
+                               size_t *n, rf_error *err);
+void terrain_bands_free(terrain_band *b, size_t n);
+
+/* terrain_io.c (GDAL): a GeoTIFF of n float32 bands on the grid nx x ny with
+ * south-west corner (x0, y0) and square cells `cell` (rows written north
+ * first), CRS crs_wkt ("" none), no-data value NaN, each band's description
+ * its name and unit; PNG-independent, opened by QGIS as it is. */
+rf_status terrain_geotiff_write(const char *path, const char *crs_wkt, size_t nx, size_t ny, double x0, double y0,
+                                double cell, const terrain_band *bands, size_t n, rf_error *err);
+/* terrain_io.c (OGR): release features from a vector file (GeoPackage,
+ * shapefile, GeoJSON; layer NULL = the first): points, lines or polygons
+ * (one kind per file; multi-geometries split into parts), each feature's
+ * weight its field `count_field` (NULL: 1 per feature; per_area: the field's
+ * value times the polygon's area in m^2 / 1e4, i.e. a count per hectare is
+ * not assumed: the field is blocks per m^2 when per_area).  A geographic
+ * CRS is refused. */
+rf_status terrain_read_release_vector(const char *path, const char *layer, const char *count_field, int per_area,
+                                      rf_terrain_release *out, rf_error *err);
+/* terrain_io.c (GDAL): release cells of a raster: every cell holding a
+ * positive count becomes a square polygon feature of that weight. */
+rf_status terrain_read_release_raster(const char *path, int band, rf_terrain_release *out, rf_error *err);
+/* terrain_io.c (OGR): a GeoPackage with layer "end_points" (3D points:
+ * sample, state, runout [m], reach_angle [deg]) and layer "trajectories"
+ * (3D line strings of the recorded trajectories' events, attribute sample),
+ * CRS crs_wkt. */
+rf_status terrain_gpkg_write(const char *path, const char *crs_wkt, const rf_traj_ensemble *ens, rf_error *err);
+
+/* terrain_report.c: the maps of a terrain run into dir (PNG, drawn to
+ * scale over a hillshade of the DEM: each band, the end points, the
+ * recorded trajectories and the barriers) and report.html showing them with
+ * the statistics, the answer first. */
+rf_status terrain_write_maps(const char *dir, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
+                             const rf_traj_stats *st, const rf_terrain *dem, const terrain_band *bands, size_t n,
+                             rf_error *err);
+
 /* terrain_release.c: the release set of spec->terrain->release; the map point
  * at uniforms u1 (feature, by weight), u2, u3 (position in it). */
 rf_status terrain_release_prepare(const rf_traj_spec *s, terrain_release_set **set, rf_error *err);
