@@ -9,6 +9,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "rockfuzz/impact_model.h"
@@ -127,6 +128,33 @@ static void test_eval_matches_direct(void **state)
         assert_same(y, want, RF_IMPACT_N_OUTPUTS);
         assert_non_null(strstr(model.identity, rf_impact_solver_name(solvers[s])));
         rf_model_free(&model);
+    }
+}
+
+/* Each solver's own settings reach the identity through its registry entry
+ * (rf_impact_law.identity): Hunter's A changes the identity exactly of the
+ * solvers whose results depend on it (hunter; rigid and mdr when e_n comes
+ * from Hunter's loss), and a fixed e_n that of rigid and mdr. */
+static void test_identity_from_registry(void **state)
+{
+    (void)state;
+    const char *names[] = {"friction"};
+    for (size_t k = 0; k < rf_impact_n_solvers(); k++) {
+        rf_impact_solver sv = (rf_impact_solver)k;
+        int uses_en = sv == RF_IMPACT_RIGID || sv == RF_IMPACT_MDR, uses_A = uses_en || sv == RF_IMPACT_HUNTER;
+        char id[3][8192];
+        for (int v = 0; v < 3; v++) {
+            rf_impact_model_spec spec = spec_for(sv);
+            spec.hunter_coefficient = v == 1 ? 2.0 : 1.04;
+            spec.e_n = v == 2 ? 0.5 : NAN;
+            rf_model m;
+            rf_error err = {0};
+            assert_int_equal(rf_impact_model_create(&spec, names, 1, &m, &err), RF_OK);
+            snprintf(id[v], sizeof id[v], "%s", m.identity);
+            rf_model_free(&m);
+        }
+        assert_int_equal(strcmp(id[0], id[1]) != 0, uses_A);
+        assert_int_equal(strcmp(id[0], id[2]) != 0, uses_en);
     }
 }
 
@@ -606,6 +634,7 @@ int main(void)
         cmocka_unit_test(test_spec_default),
         cmocka_unit_test(test_eval_matches_direct),
         cmocka_unit_test(test_rigid_fixed_en_and_identity),
+        cmocka_unit_test(test_identity_from_registry),
         cmocka_unit_test(test_angle_in_degrees_and_spheroid),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_concurrent),

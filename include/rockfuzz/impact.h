@@ -256,9 +256,18 @@ struct rf_impact_law {
                           rf_error *err);
     rf_status (*solve)(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
                        rf_error *err);
+    /* The settings of s its results depend on, as " key=value" words written
+     * to buf (snprintf's contract: returns the length it needed); the impact
+     * model's identity appends them after the solver's name, so a store never
+     * serves a result of other settings.  NULL: none. */
+    int (*identity)(const rf_impact_law_settings *s, char *buf, size_t size);
 };
 
 extern const rf_impact_law rf_impact_law_hertz, rf_impact_law_hunter, rf_impact_law_rigid, rf_impact_law_mdr;
+
+/* The identity of a solver that takes e_n (rigid, mdr): Hunter's A when e_n
+ * comes from Hunter's loss, then e_n ("hunter" or its value). */
+int rf_impact_en_identity(const rf_impact_law_settings *s, char *buf, size_t size);
 
 /* The validate of the analytic solvers: a layer, a plastic body and gravity
  * refused (the message names the field, its value and law's name). */

@@ -6,6 +6,7 @@
 #include "impact/impact_internal.h"
 
 #include <math.h>
+#include <stdio.h>
 
 /* Integral_0^1 dx / sqrt(1 - x^(5/2)) = (2/5) B(2/5, 1/2), so that
  * t_c = 2 (2/5) B(2/5, 1/2) delta_max / v_n. */
@@ -117,7 +118,7 @@ static rf_status hertz_solve(const rf_impact_input *in, const rf_impact_law_sett
 }
 
 const rf_impact_law rf_impact_law_hertz = {"hertz", "elastic Hertz, R_n = 1", rf_impact_analytic_validate,
-                                           hertz_solve};
+                                           hertz_solve, NULL};
 
 static rf_status hunter_solve(const rf_impact_input *in, const rf_impact_law_settings *s, rf_impact_output *out,
                               rf_error *err)
@@ -125,6 +126,10 @@ static rf_status hunter_solve(const rf_impact_input *in, const rf_impact_law_set
     return rf_impact_hunter_A(in, s->hunter_coefficient, out, err);
 }
 
+static int hunter_identity(const rf_impact_law_settings *s, char *buf, size_t size)
+{
+    return snprintf(buf, size, " hunter_A=%.17g", s->hunter_coefficient);
+}
+
 const rf_impact_law rf_impact_law_hunter = {"hunter", "Hertz + Hunter (1957) wave loss",
-                                            rf_impact_analytic_validate,
-                                            hunter_solve};
+                                            rf_impact_analytic_validate, hunter_solve, hunter_identity};

@@ -298,6 +298,13 @@ void rf_impact_output_clear(rf_impact_output *out)
     out->equivalent_plastic_strain_max = NAN;
 }
 
+int rf_impact_en_identity(const rf_impact_law_settings *s, char *buf, size_t size)
+{
+    if (isnan(s->e_n))
+        return snprintf(buf, size, " hunter_A=%.17g e_n=hunter", s->hunter_coefficient);
+    return snprintf(buf, size, " e_n=%.17g", s->e_n);
+}
+
 /* The analytic models are elastic and homogeneous: a plastic body or a layer
  * needs the FE solver (a rigid boulder is E* = E_s/(1 - nu_s^2) for Hertz,
  * Hunter and rigid; MDR takes the boulder's own elastic constants). */

@@ -25,6 +25,7 @@
 #include "impact/impact_internal.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 rf_status rf_mdr_contact_init(rf_mdr_contact *c, size_t n, double a_max, double R, double E_star,
@@ -336,6 +337,17 @@ static rf_status mdr_solve(const rf_impact_input *in, const rf_impact_law_settin
     return rf_impact_mdr_hunter(in, s->e_n, s->hunter_coefficient, out, err);
 }
 
+/* e_n (rigid's words), then the discretisation of the partial-slip solution. */
+static int mdr_identity(const rf_impact_law_settings *s, char *buf, size_t size)
+{
+    int n = rf_impact_en_identity(s, buf, size);
+    rf_mdr_options mo;
+    rf_mdr_options_default(&mo);
+    size_t used = n > 0 && (size_t)n < size ? (size_t)n : size;
+    int m = snprintf(buf + used, size - used, " mdr_springs=%zu mdr_steps=%zu", mo.springs, mo.steps);
+    return n < 0 || m < 0 ? -1 : n + m;
+}
+
 const rf_impact_law rf_impact_law_mdr = {
     "mdr", "Hertz + exact Mindlin-Deresiewicz partial slip\n(elastic tangential compliance, micro-slip)",
-    mdr_validate, mdr_solve};
+    mdr_validate, mdr_solve, mdr_identity};

@@ -24,5 +24,5 @@ static rf_status rigid_solve(const rf_impact_input *in, const rf_impact_law_sett
 }
 
 const rf_impact_law rf_impact_law_rigid = {"rigid", "rigid-body impact with Coulomb friction",
-                                           rf_impact_analytic_validate,
-                                           rigid_solve};
+                                           rf_impact_analytic_validate, rigid_solve,
+                                           rf_impact_en_identity};

@@ -126,11 +126,12 @@ static rf_status fem_law_solve(const rf_impact_input *in, const rf_impact_law_se
     return solve_fem(c->spec, c->ws, in, out, c->warning, err);
 }
 
+static int fem_law_identity(const rf_impact_law_settings *s, char *buf, size_t size);
 static const rf_impact_law fem_law = {
     "fem",
     "explicit FE; axisymmetric for a normal impact\n(Coulomb friction on a plastic body), 3D half\n"
     "model for a slope or friction between elastic\ndissimilar bodies (docs/impact.md)",
-    fem_validate, fem_law_solve};
+    fem_validate, fem_law_solve, fem_law_identity};
 
 /* A result every solver defines (the COR, the rebound velocities; R_t only with a tangential
  * velocity; the Hertz quantities for hertz, hunter and mdr) that is not finite is an error
@@ -397,74 +398,81 @@ static void fem_identity(const impact_ctx *c, char *buf, size_t cap, size_t *len
         append(buf, cap, len, " domain_margin=%.17g domain_min=%.17g", RF_FEM_DOMAIN_MARGIN, RF_FEM_DOMAIN_MIN);
 }
 
+/* The FE solver's identity (its rf_impact_law.identity; at identity time
+ * its context is the impact model, whose bound inputs say which kinematics,
+ * boundaries and contacts an evaluation may run): the options and every
+ * change of the code's results, named where an evaluation may meet it. */
+static void fem_model_identity(const impact_ctx *c, char *buf, size_t cap, size_t *len)
+{
+    const rf_impact_input *b = &c->spec.base;
+    fem_identity(c, buf, cap, len);
+    const rf_fem_options *o = &c->spec.fem;
+    /* 3D results changed with the exact boulder I_yy, again with its exact centre of mass and
+       with the C1 master face of the contact (issue 9, docs/fem-speed.md section 5): a store
+       never mixes them */
+    append(buf, cap, len, " fem3d_boulder_mass=mass_cm_Iyy_exact fem3d_master_face=catmull_rom");
+    /* updated Lagrangian (on, or auto with a plastic body) is named: a store never mixes it with the
+       small-strain results, whose identity stays as it was */
+    if (large_possible(c))
+        append(buf, cap, len, " kinematics=updated_lagrangian");
+    /* the 3D model takes plastic bodies and measures penetration_max and indentation_depth (NaN
+       before, issue 10): a store never mixes results from before and after */
+    if (may_run_3d(c))
+        append(buf, cap, len, " fem3d_materials=plastic_b_bar");
+    /* the axisymmetric contact has Coulomb friction since issue 10 (it was frictionless): named
+       where an evaluation may run it with friction, so a store never mixes the two */
+    if ((b->slope_angle == 0 || param_bound(c, "slope_angle")) && (b->friction > 0 || param_bound(c, "friction")))
+        append(buf, cap, len, " axi_contact=coulomb_friction");
+    /* 3D results changed with the contact face's current slope (Newton-located master point)
+       and the mass redistribution at the contact face (docs/validation-plastic.md 9e): granite
+       by ~1e-5, soil by a few per cent */
+    if (may_run_3d(c))
+        append(buf, cap, len, " fem3d_face=current_slope");
+    /* 3D friction acts along the deformed face's tangents, capped on the forces (it was along x
+       and y, capped on the multipliers; docs/validation-plastic.md 9f) */
+    if (may_run_3d(c))
+        append(buf, cap, len, " fem3d_friction=face_tangent");
+    /* the mass redistribution at the contact face of a soil (a layer or a plastic slope; elastic
+       slopes are untouched, their identity stays); soil in 3D also changed with the master
+       point's location (backtracking Newton from the previous point, where plain Newton had
+       failed on unevenly stretched faces) */
+    if (layer_possible(c) || plastic_possible(c)) {
+        append(buf, cap, len, " surface_mass_kappa=0.1");
+        if (may_run_3d(c))
+            append(buf, cap, len, " fem3d_locate=warm_backtracking fem3d_surface_mass=on");
+    }
+    /* a rigid sphere's 3D contact against its exact surface (docs/validation-plastic.md 9g) */
+    if (may_run_3d(c) && b->boulder_material == RF_MATERIAL_RIGID_BODY)
+        append(buf, cap, len, " fem3d_contact=exact_sphere");
+    /* the 3D model runs in large deformation too (on, or auto with a plastic body; it was small
+       strain in every case before): a store never mixes 3D results of the two kinematics */
+    if (may_run_3d(c) && large_possible(c))
+        append(buf, cap, len, " fem3d_kinematics=updated_lagrangian");
+    /* results that changed with the solver robustness for soils (docs/validation-plastic.md
+       section 10) are named, the others keep their identity: the automatic end waits for the
+       impact to end (plastic runs), the dashpots take each face's impedance, semi-implicitly */
+    if (o->end_time == 0 && plastic_possible(c))
+        append(buf, cap, len, " end=impact_ended");
+    if (strcmp(boundary_identity(c), "fixed") != 0) /* some evaluation may have dashpots */
+        append(buf, cap, len, " dashpots=face_impedance_semi_implicit");
+}
+
+static int fem_law_identity(const rf_impact_law_settings *s, char *buf, size_t size)
+{
+    size_t len = 0;
+    fem_model_identity(s->context, buf, size, &len);
+    return (int)len;
+}
+
 static void make_identity(const impact_ctx *c, char *buf, size_t cap)
 {
     const rf_impact_model_spec *s = &c->spec;
-    const rf_impact_input *b = &s->base;
     size_t len = 0;
     append(buf, cap, &len, "impact v3 solver=%s", rf_impact_solver_name(s->solver));
-    int en_solver = s->solver == RF_IMPACT_RIGID || s->solver == RF_IMPACT_MDR;
-    if (s->solver == RF_IMPACT_HUNTER || (en_solver && isnan(s->e_n)))
-        append(buf, cap, &len, " hunter_A=%.17g", s->hunter_coefficient);
-    if (en_solver)
-        append(buf, cap, &len, isnan(s->e_n) ? " e_n=hunter" : " e_n=%.17g", s->e_n);
-    if (s->solver == RF_IMPACT_MDR) {
-        rf_mdr_options mo;
-        rf_mdr_options_default(&mo);
-        append(buf, cap, &len, " mdr_springs=%zu mdr_steps=%zu", mo.springs, mo.steps);
-    }
-    if (s->solver == RF_IMPACT_FEM) {
-        fem_identity(c, buf, cap, &len);
-        const rf_fem_options *o = &s->fem;
-        /* 3D results changed with the exact boulder I_yy, again with its exact centre of mass and
-           with the C1 master face of the contact (issue 9, docs/fem-speed.md section 5): a store
-           never mixes them */
-        append(buf, cap, &len, " fem3d_boulder_mass=mass_cm_Iyy_exact fem3d_master_face=catmull_rom");
-        /* updated Lagrangian (on, or auto with a plastic body) is named: a store never mixes it with the
-           small-strain results, whose identity stays as it was */
-        if (large_possible(c))
-            append(buf, cap, &len, " kinematics=updated_lagrangian");
-        /* the 3D model takes plastic bodies and measures penetration_max and indentation_depth (NaN
-           before, issue 10): a store never mixes results from before and after */
-        if (may_run_3d(c))
-            append(buf, cap, &len, " fem3d_materials=plastic_b_bar");
-        /* the axisymmetric contact has Coulomb friction since issue 10 (it was frictionless): named
-           where an evaluation may run it with friction, so a store never mixes the two */
-        if ((b->slope_angle == 0 || param_bound(c, "slope_angle")) && (b->friction > 0 || param_bound(c, "friction")))
-            append(buf, cap, &len, " axi_contact=coulomb_friction");
-        /* 3D results changed with the contact face's current slope (Newton-located master point)
-           and the mass redistribution at the contact face (docs/validation-plastic.md 9e): granite
-           by ~1e-5, soil by a few per cent */
-        if (may_run_3d(c))
-            append(buf, cap, &len, " fem3d_face=current_slope");
-        /* 3D friction acts along the deformed face's tangents, capped on the forces (it was along x
-           and y, capped on the multipliers; docs/validation-plastic.md 9f) */
-        if (may_run_3d(c))
-            append(buf, cap, &len, " fem3d_friction=face_tangent");
-        /* the mass redistribution at the contact face of a soil (a layer or a plastic slope; elastic
-           slopes are untouched, their identity stays); soil in 3D also changed with the master
-           point's location (backtracking Newton from the previous point, where plain Newton had
-           failed on unevenly stretched faces) */
-        if (layer_possible(c) || plastic_possible(c)) {
-            append(buf, cap, &len, " surface_mass_kappa=0.1");
-            if (may_run_3d(c))
-                append(buf, cap, &len, " fem3d_locate=warm_backtracking fem3d_surface_mass=on");
-        }
-        /* a rigid sphere's 3D contact against its exact surface (docs/validation-plastic.md 9g) */
-        if (may_run_3d(c) && b->boulder_material == RF_MATERIAL_RIGID_BODY)
-            append(buf, cap, &len, " fem3d_contact=exact_sphere");
-        /* the 3D model runs in large deformation too (on, or auto with a plastic body; it was small
-           strain in every case before): a store never mixes 3D results of the two kinematics */
-        if (may_run_3d(c) && large_possible(c))
-            append(buf, cap, &len, " fem3d_kinematics=updated_lagrangian");
-        /* results that changed with the solver robustness for soils (docs/validation-plastic.md
-           section 10) are named, the others keep their identity: the automatic end waits for the
-           impact to end (plastic runs), the dashpots take each face's impedance, semi-implicitly */
-        if (o->end_time == 0 && plastic_possible(c))
-            append(buf, cap, &len, " end=impact_ended");
-        if (strcmp(boundary_identity(c), "fixed") != 0) /* some evaluation may have dashpots */
-            append(buf, cap, &len, " dashpots=face_impedance_semi_implicit");
-    }
+    const rf_impact_law *law = solvers[s->solver];
+    const rf_impact_law_settings settings = {s->e_n, s->hunter_coefficient, (void *)c};
+    int n = law->identity && len < cap ? law->identity(&settings, buf + len, cap - len) : 0;
+    len = n > 0 && (size_t)n < cap - len ? len + (size_t)n : (n > 0 ? cap : len);
     base_identity(c, buf, cap, &len);
     append(buf, cap, &len, " params:");
     for (size_t i = 0; i < c->n_params; i++)
