@@ -54,7 +54,7 @@ rf_status traj_gdal_check_metres(OGRSpatialReferenceH srs, const char *what, con
     char *unit = NULL;
     double m = OSRGetLinearUnits(srs, &unit);
     if (fabs(m - 1) > 1e-9)
-        return rf_fail(err, RF_EINVAL, "the %s '%s' has map units of %g m (%s), CRS \"%s\", not metres; reproject "
+        return rf_fail(err, RF_EINVAL, "the %s '%s' has map units of %.10g m (%s), CRS \"%s\", not metres; reproject "
                        "it to a CRS in metres", what, path, m, unit ? unit : "unnamed", name);
     return RF_OK;
 }
