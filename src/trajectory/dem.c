@@ -22,10 +22,9 @@
 #include <string.h>
 
 #ifdef ROCKFUZZ_HAVE_GDAL
-#include <gdal.h>
+#include "trajectory/traj_gdal.h"
 
-#include <cpl_error.h>
-#include <ogr_srs_api.h>
+#include <gdal.h>
 
 #define DEM_MAX_POINTS 1000000     /* profile vertices, as an inline profile */
 #define DEM_MAX_WINDOW_BYTES (1024.0 * 1024 * 1024)
@@ -38,15 +37,6 @@ typedef struct {
     int has_nodata;
     double nodata;
 } dem_grid;
-
-/* GDAL's messages go here, not to the console: the first failure is kept for ours. */
-static void CPL_STDCALL keep_error(CPLErr cls, CPLErrorNum no, const char *msg)
-{
-    (void)no;
-    char *buf = CPLGetErrorHandlerUserData();
-    if (cls >= CE_Failure && buf && !buf[0] && msg)
-        snprintf(buf, 256, " (GDAL: %s)", msg);
-}
 
 /* Fractional pixel (column, row) of map point (X, Y), relative to cell centres. */
 static void to_pixel(const double inv[6], double X, double Y, double *c, double *r)
@@ -72,22 +62,6 @@ static void line_window(dem_grid *g, const double *X, const double *Y, size_t nv
     g->c0 = w0[0], g->r0 = w0[1], g->wx = w1[0] - w0[0] + 1, g->wy = w1[1] - w0[1] + 1;
 }
 
-/* Map units must be metres: a geographic (degrees) or foot-based raster is refused. */
-static rf_status check_units(GDALDatasetH ds, const char *path, rf_error *err)
-{
-    OGRSpatialReferenceH srs = GDALGetSpatialRef(ds);
-    if (!srs)
-        return RF_OK; /* no CRS given (e.g. an ASCII grid): taken as metres, as documented */
-    if (OSRIsGeographic(srs))
-        return rf_fail(err, RF_EINVAL, "the DEM '%s' is in geographic coordinates (degrees), not metres; "
-                       "reproject it to a projected CRS in metres (e.g. gdalwarp -t_srs EPSG:32632)", path);
-    double m = OSRGetLinearUnits(srs, NULL);
-    if (fabs(m - 1) > 1e-9)
-        return rf_fail(err, RF_EINVAL, "the DEM '%s' has map units of %g m, not metres; reproject it to a CRS "
-                       "in metres", path, m);
-    return RF_OK;
-}
-
 /* The window of band band_no the line (X, Y) needs, as Float64. */
 static rf_status read_window(GDALDatasetH ds, const char *path, int band_no, const double *X, const double *Y,
                              size_t nv, dem_grid *g, rf_error *err)
@@ -98,7 +72,7 @@ static rf_status read_window(GDALDatasetH ds, const char *path, int band_no, con
         return rf_fail(err, RF_EINVAL, "the DEM '%s' has no band %d", path, band_no);
     if (GDALGetGeoTransform(ds, gt) != CE_None || !GDALInvGeoTransform(gt, g->inv))
         return rf_fail(err, RF_EINVAL, "the DEM '%s' has no usable georeferencing", path);
-    rf_status st = check_units(ds, path, err);
+    rf_status st = traj_gdal_check_metres(GDALGetSpatialRef(ds), "DEM", path, err);
     if (st != RF_OK)
         return st;
     g->nx = GDALGetRasterXSize(ds), g->ny = GDALGetRasterYSize(ds);
@@ -122,19 +96,18 @@ static rf_status read_grid(const char *path, int band_no, const double *X, const
     rf_status st = rf_require_regular_file(path, "DEM", err);
     if (st != RF_OK)
         return st;
-    char gdal_msg[256] = "";
-    GDALAllRegister();
-    CPLPushErrorHandlerEx(keep_error, gdal_msg);
+    traj_gdal_capture cap;
+    traj_gdal_begin(&cap);
     GDALDatasetH ds = GDALOpen(path, GA_ReadOnly);
     if (!ds)
-        st = rf_fail(err, RF_EIO, "cannot read the DEM '%s' with GDAL%s", path, gdal_msg);
+        st = rf_fail(err, RF_EIO, "cannot read the DEM '%s' with GDAL", path);
     else
         st = read_window(ds, path, band_no, X, Y, nv, g, err);
-    if (st != RF_OK && gdal_msg[0] && ds && strlen(err->msg) + strlen(gdal_msg) < sizeof err->msg)
-        strcat(err->msg, gdal_msg);
+    if (st != RF_OK)
+        traj_gdal_explain(err, &cap);
     if (ds)
         GDALClose(ds);
-    CPLPopErrorHandler();
+    traj_gdal_end(&cap);
     return st;
 }
 

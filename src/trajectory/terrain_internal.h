@@ -3,7 +3,8 @@
  * one running 3D trajectory, the "piece" of path each phase emits (for the
  * barriers, the hazard rasters and the records), and each file's functions:
  *   terrain_grid.c      the surface from nodes, height and normal
- *   terrain_grid_io.c   reading DEM, classes and roughness rasters with GDAL; GeoTIFF writing
+ *   terrain_io*.c       GDAL/OGR: DEM, classes, roughness (terrain_io.c), release vectors and
+ *                       rasters (terrain_io_release.c), GeoTIFF and GeoPackage (terrain_io_write.c)
  *   terrain_flight.c    exact first impact of a parabola with the bilinear surface
  *   terrain_bounce.c    the bounce laws in the local frame of the normal (3D)
  *   terrain_contact.c   sliding and rolling on the surface
@@ -221,10 +222,12 @@ rf_status terrain_geotiff_write(const char *path, const char *crs_wkt, size_t nx
 /* terrain_io.c (OGR): release features from a vector file (GeoPackage,
  * shapefile, GeoJSON; layer NULL = the first): points, lines or polygons
  * (one kind per file; multi-geometries split into parts), each feature's
- * weight its field `count_field` (NULL: 1 per feature; per_area: the field's
- * value times the polygon's area in m^2 / 1e4, i.e. a count per hectare is
- * not assumed: the field is blocks per m^2 when per_area).  A geographic
- * CRS is refused. */
+ * weight its field `count_field` (NULL: 1 per feature; per_area: the field
+ * is blocks per m^2, the weight that times the polygon's area in m^2; only
+ * for polygons); a multi-geometry's parts share their feature's weight in
+ * proportion to length / area (points: equally).  A polygon with holes, an
+ * empty layer, no positive weight and a geographic or non-metre CRS are
+ * refused.  out->file = path. */
 rf_status terrain_read_release_vector(const char *path, const char *layer, const char *count_field, int per_area,
                                       rf_terrain_release *out, rf_error *err);
 /* terrain_io.c (GDAL): release cells of a raster: every cell holding a
@@ -232,8 +235,8 @@ rf_status terrain_read_release_vector(const char *path, const char *layer, const
 rf_status terrain_read_release_raster(const char *path, int band, rf_terrain_release *out, rf_error *err);
 /* terrain_io.c (OGR): a GeoPackage with layer "end_points" (3D points:
  * sample, state, runout [m], reach_angle [deg]) and layer "trajectories"
- * (3D line strings of the recorded trajectories' events, attribute sample),
- * CRS crs_wkt. */
+ * (3D line strings of the recorded trajectories' events, attributes sample,
+ * state), CRS crs_wkt; written to a temporary name and renamed. */
 rf_status terrain_gpkg_write(const char *path, const char *crs_wkt, const rf_traj_ensemble *ens, rf_error *err);
 
 /* terrain_report.c: the maps of a terrain run into dir (PNG, drawn to
