@@ -278,7 +278,9 @@ typedef struct {
 /* Event kinds along a recorded trajectory (the motion between two events is
  * a parabola (flight) or uniformly accelerated along a segment (contact)). */
 typedef enum { RF_EV_RELEASE = 0, RF_EV_IMPACT, RF_EV_LAUNCH, RF_EV_CONTACT, RF_EV_VERTEX, RF_EV_REST,
-               RF_EV_EXIT, RF_EV_STEP_LIMIT } rf_traj_event_kind;
+               RF_EV_EXIT, RF_EV_STEP_LIMIT,
+               RF_EV_BARRIER    /* terrain: a barrier broken through slowed the block here */
+} rf_traj_event_kind;
 
 typedef struct {
     rf_traj_event_kind kind;

@@ -155,6 +155,19 @@ terrain_piece_outcome terrain_barrier_piece(terrain_run *r, const terrain_piece 
  * the caller moves the state to the cut and continues. */
 terrain_piece_outcome terrain_emit(terrain_run *r, const terrain_piece *pc, double *tau_cut, double *scale);
 void terrain_event(terrain_run *r, rf_traj_event_kind kind, int flying);
+/* terrain_simulate.c: rf_terrain_simulate adding the trajectory to the
+ * hazard rasters `hazard` (NULL: none): terrain_hazard_begin, its pieces,
+ * terrain_hazard_end (stopped, end point) are called here. */
+rf_status terrain_simulate_hazard(const rf_terrain_world *w, const rf_traj_spec *values, uint64_t seed,
+                                  uint64_t sample, const double start[3], struct rf_terrain_hazard *hazard,
+                                  rf_terrain_result *res, rf_error *err);
+/* terrain_invariants.c: a recorded trajectory (res->events) run with the
+ * spec's values on the surface t never lies below the ground (beyond a local
+ * round-off tolerance) and never gains mechanical energy (kinetic +
+ * rotational + potential) from one event to the next; the message names the
+ * event.  For the tests. */
+rf_status terrain_check_invariants(const rf_traj_spec *spec, const rf_terrain *t, const rf_terrain_result *res,
+                                   rf_error *err);
 
 /* terrain_flight.c: the first time tau in (0, tmax] at which the parabola
  * p + v tau + (0, 0, -g) tau^2 / 2 meets the surface from above, found cell
@@ -173,6 +186,9 @@ int terrain_first_impact(const rf_terrain *t, const double p[3], const double v[
  * returns 1 for a soft landing (normal rebound speed below contact_speed:
  * the velocity along the surface is kept, the block continues in contact). */
 int terrain_bounce(terrain_run *r, size_t ci, size_t cj, double v[3], double omega[3]);
+/* terrain_bounce.c: the exact unit upward normal of cell (ci, cj)'s patch at
+ * (x, y) (clamped to the cell). */
+void terrain_surface_normal(const rf_terrain *t, size_t ci, size_t cj, double x, double y, double n[3]);
 
 /* terrain_contact.c: move the block in contact with the surface (sliding or
  * rolling under gravity, friction and rolling resistance, the normal force

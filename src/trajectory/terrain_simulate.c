@@ -1,22 +1,325 @@
-/* terrain_simulate.c - one 3D trajectory: flights, impacts, contact.
- * (Stub: to be written.) */
+/* terrain_simulate.c - one 3D trajectory on the terrain: the state machine
+ * of simulate.c and transitions.c in 3D.
+ *   release: in flight, or in contact when the start lies on the ground and
+ *            the velocity does not throw it off (normal speed <= contact_speed);
+ *   fly:     exact first impact (terrain_flight.c), the flight emitted as a
+ *            piece (barriers, hazard rasters, rebound height); leaving the DEM
+ *            or entering a no-data cell ends it (exited);
+ *   impact:  the law (terrain_bounce.c): a soft landing continues in contact;
+ *            a rebound slower than v_stop stops; one with normal speed below
+ *            contact_speed (or none at all) continues in contact; else a flight;
+ *   contact: terrain_contact.c, until it launches, stops or exits;
+ * and max_steps events end it (step_limit).  A barrier that holds the block
+ * stops it at the crossing; one it breaks through scales its velocity and
+ * spin there (an RF_EV_BARRIER event) and the motion goes on.  At the end:
+ * runout = horizontal distance from the start, reach angle = atan(drop /
+ * runout).  terrain_check_invariants checks what any recorded trajectory
+ * must satisfy. */
 #include "trajectory/terrain_internal.h"
 
-terrain_piece_outcome terrain_emit(terrain_run *r, const terrain_piece *pc, double *tau_cut, double *scale)
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Grow *p (n used, *cap allocated) to hold one more element; 0 if out of memory. */
+static int grow(void **p, size_t n, size_t *cap, size_t elem)
 {
-    if (r->hazard)
-        terrain_hazard_piece(r->hazard, r->dem, r->mass, pc);
-    return terrain_barrier_piece(r, pc, tau_cut, scale);
+    if (n < *cap)
+        return 1;
+    size_t c = *cap ? 2 * *cap : 16;
+    void *q = realloc(*p, c * elem);
+    if (!q)
+        return 0;
+    *p = q;
+    *cap = c;
+    return 1;
 }
 
 void terrain_event(terrain_run *r, rf_traj_event_kind kind, int flying)
 {
-    (void)r, (void)kind, (void)flying;
+    rf_terrain_result *res = r->res;
+    if (!res->events)
+        return;
+    if (!grow((void **)&res->events, res->n_events, &res->events_cap, sizeof *res->events)) {
+        r->nomem = 1, r->phase = TERRAIN_DONE; /* rf_terrain_simulate reports it */
+        return;
+    }
+    rf_terrain_event *e = &res->events[res->n_events++];
+    e->kind = kind, e->flying = flying, e->t = r->t;
+    memcpy(e->p, r->p, sizeof e->p), memcpy(e->v, r->v, sizeof e->v), memcpy(e->omega, r->omega, sizeof e->omega);
+}
+
+static void finish(terrain_run *r, rf_traj_state state, rf_traj_event_kind kind)
+{
+    r->phase = TERRAIN_DONE;
+    r->res->state = state;
+    terrain_event(r, kind, 0);
+}
+
+static double rot_energy(const terrain_run *r)
+{
+    return 0.5 * r->inertia * (r->omega[0] * r->omega[0] + r->omega[1] * r->omega[1] + r->omega[2] * r->omega[2]);
+}
+
+/* Largest rise of a flight with initial upward speed vz over [0, T]. */
+static double flight_rise(double vz, double g, double T)
+{
+    if (vz <= 0)
+        return 0;
+    double ta = vz / g;
+    return ta <= T ? vz * vz / (2 * g) : vz * T - 0.5 * g * T * T;
+}
+
+terrain_piece_outcome terrain_emit(terrain_run *r, const terrain_piece *pc, double *tau_cut, double *scale)
+{
+    terrain_piece_outcome o = terrain_barrier_piece(r, pc, tau_cut, scale);
+    terrain_piece cut = *pc;
+    if (o != TERRAIN_PIECE_FREE && *tau_cut < cut.T)
+        cut.T = *tau_cut;
+    if (r->hazard)
+        terrain_hazard_piece(r->hazard, r->dem, r->mass, &cut);
+    int flight = !pc->on_ground && pc->a[0] == 0 && pc->a[1] == 0 && pc->a[2] == -r->g;
+    if (flight && r->from_impact) {
+        double rise = flight_rise(pc->v[2], r->g, cut.T);
+        if (rise > r->res->rebound_height)
+            r->res->rebound_height = rise;
+    }
+    return o;
+}
+
+static void advance(terrain_run *r, double tau)
+{
+    r->t += tau;
+    r->p[0] += r->v[0] * tau;
+    r->p[1] += r->v[1] * tau;
+    r->p[2] += r->v[2] * tau - 0.5 * r->g * tau * tau;
+    r->v[2] -= r->g * tau;
+}
+
+/* Height of cell (ci, cj)'s patch at (x, y), clamped to the cell. */
+static double patch_height(const rf_terrain *t, size_t ci, size_t cj, double x, double y)
+{
+    terrain_patch p = terrain_patch_of(t, ci, cj);
+    double X = fmin(fmax(x - p.xi, 0), t->dx), Y = fmin(fmax(y - p.yj, 0), t->dy);
+    return p.a + p.b * X + p.c * Y + p.d * X * Y;
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Continue in contact: the velocity along the surface of normal n. */
+static void to_contact(terrain_run *r, const double n[3])
+{
+    double vn = dot3(r->v, n);
+    for (int q = 0; q < 3; q++)
+        r->v[q] -= vn * n[q];
+    r->phase = TERRAIN_CONTACT;
+    r->from_impact = 0;
+}
+
+static void record_impact(terrain_run *r, size_t ci, size_t cj, const double v_in[3])
+{
+    rf_terrain_result *res = r->res;
+    if (res->impacts && !grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts)) {
+        r->nomem = 1, r->phase = TERRAIN_DONE;
+        return;
+    }
+    if (res->impacts) {
+        rf_terrain_impact *m = &res->impacts[res->n_impacts];
+        m->t = r->t, m->x = r->p[0], m->y = r->p[1], m->z = r->p[2];
+        memcpy(m->v_in, v_in, sizeof m->v_in), memcpy(m->v_out, r->v, sizeof m->v_out);
+        memcpy(m->omega_out, r->omega, sizeof m->omega_out);
+        m->material = terrain_material_of(r->dem, ci, cj);
+    }
+    res->n_impacts++;
+}
+
+/* The block at the current point (on cell (ci, cj)'s patch) hits the surface. */
+static void impact(terrain_run *r, size_t ci, size_t cj)
+{
+    double v_in[3] = {r->v[0], r->v[1], r->v[2]}, n[3];
+    terrain_surface_normal(r->dem, ci, cj, r->p[0], r->p[1], n);
+    if (terrain_bounce(r, ci, cj, r->v, r->omega)) { /* soft landing */
+        to_contact(r, n);
+        terrain_event(r, RF_EV_CONTACT, 0);
+        return;
+    }
+    record_impact(r, ci, cj, v_in);
+    double speed = sqrt(dot3(r->v, r->v));
+    if (speed < r->s->v_stop || speed == 0) {
+        memset(r->v, 0, sizeof r->v), memset(r->omega, 0, sizeof r->omega);
+        terrain_event(r, RF_EV_IMPACT, 0);
+        finish(r, RF_TRAJ_STOPPED, RF_EV_REST);
+        return;
+    }
+    double vn = dot3(r->v, n);
+    if (vn < r->s->contact_speed || vn <= 1e-9 * speed) { /* (no normal speed at all: a flight would graze) */
+        to_contact(r, n);
+        terrain_event(r, RF_EV_IMPACT, 0);
+        return;
+    }
+    r->phase = TERRAIN_FLY;
+    r->from_impact = 1;
+    terrain_event(r, RF_EV_IMPACT, 1);
+}
+
+/* The flight is cut at a barrier: held (rest there) or slowed (on it goes). */
+static void barrier_cut(terrain_run *r, terrain_piece_outcome o, double tau, double scale)
+{
+    advance(r, tau);
+    if (o == TERRAIN_PIECE_STOPPED) {
+        memset(r->v, 0, sizeof r->v), memset(r->omega, 0, sizeof r->omega);
+        finish(r, RF_TRAJ_STOPPED, RF_EV_REST);
+        return;
+    }
+    for (int q = 0; q < 3; q++)
+        r->v[q] *= scale, r->omega[q] *= scale;
+    r->from_impact = 0;
+    terrain_event(r, RF_EV_BARRIER, 1);
+}
+
+static void fly_step(terrain_run *r)
+{
+    double tau;
+    size_t ci = 0, cj = 0;
+    int hit = terrain_first_impact(r->dem, r->p, r->v, r->g, INFINITY, &tau, &ci, &cj);
+    double T = isfinite(tau) ? tau : 0;
+    terrain_piece pc = {r->t, T, {r->p[0], r->p[1], r->p[2]}, {r->v[0], r->v[1], r->v[2]}, {0, 0, -r->g},
+                        rot_energy(r), 0};
+    double cut, scale;
+    terrain_piece_outcome o = terrain_emit(r, &pc, &cut, &scale);
+    if (o != TERRAIN_PIECE_FREE) {
+        barrier_cut(r, o, cut, scale);
+        return;
+    }
+    advance(r, T);
+    if (!hit) {
+        finish(r, RF_TRAJ_EXITED, RF_EV_EXIT);
+        return;
+    }
+    r->p[2] = patch_height(r->dem, ci, cj, r->p[0], r->p[1]); /* exactly on the surface */
+    impact(r, ci, cj);
+}
+
+/* The release velocity: (vx, vy, vz), or speed at azimuth (clockwise from
+ * north) and dip (below the horizontal). */
+static void release_velocity(const rf_traj_spec *s, double v[3])
+{
+    if (!s->release_by_speed) {
+        v[0] = s->vx0, v[1] = s->vy0, v[2] = s->vz0;
+        return;
+    }
+    double h = s->speed0 * cos(s->dip0);
+    v[0] = h * sin(s->azimuth0), v[1] = h * cos(s->azimuth0), v[2] = -s->speed0 * sin(s->dip0);
+}
+
+static rf_status release(terrain_run *r, const double start[3], rf_error *err)
+{
+    const rf_traj_spec *s = r->s;
+    double zg, n[3];
+    if (!rf_terrain_height(r->dem, start[0], start[1], &zg, n))
+        return rf_fail(err, RF_EINVAL, "sample %llu: the release point (%g, %g) m lies outside the DEM or on a "
+                       "no-data cell", (unsigned long long)r->sample, start[0], start[1]);
+    double z = isnan(start[2]) ? zg + s->height0 : start[2], tol = 1e-10 * (1 + fabs(zg));
+    if (!(z >= zg - tol))
+        return rf_fail(err, RF_EINVAL, "sample %llu: the release point (%g, %g, %g) m lies %g m below the ground",
+                       (unsigned long long)r->sample, start[0], start[1], z, zg - z);
+    r->t = 0, r->p[0] = start[0], r->p[1] = start[1], r->p[2] = z;
+    release_velocity(s, r->v);
+    memcpy(r->omega, s->omega0_xyz, sizeof r->omega);
+    memcpy(r->res->start, r->p, sizeof r->p);
+    r->from_impact = 0;
+    if (z - zg <= tol && dot3(r->v, n) <= s->contact_speed) { /* on the ground, not thrown off */
+        r->p[2] = zg;
+        to_contact(r, n);
+        terrain_event(r, RF_EV_RELEASE, 0);
+        return RF_OK;
+    }
+    if (z - zg <= tol)
+        r->p[2] = zg;
+    r->phase = TERRAIN_FLY;
+    terrain_event(r, RF_EV_RELEASE, 1);
+    return RF_OK;
+}
+
+/* The law's needs that the world or the block must meet. */
+static rf_status check_law(const rf_terrain_world *w, const rf_traj_spec *s, rf_error *err)
+{
+    if ((unsigned)s->law >= RF_BOUNCE_N_LAWS)
+        return rf_fail(err, RF_EINVAL, "bounce.law: unknown law %d", (int)s->law);
+    if ((s->law == RF_BOUNCE_RIGID_SPHERE || s->law == RF_BOUNCE_IMPACT_MODEL) && !(s->sphere && s->radius > 0))
+        return rf_fail(err, RF_EINVAL, "bounce.law = %s: needs block.shape: sphere", rf_traj_bounce_law_names[s->law]);
+    if (s->law == RF_BOUNCE_IMPACT_MODEL && !w->impact_table)
+        return rf_fail(err, RF_EINVAL, "bounce.law = impact_model: the terrain world has no impact table");
+    if (s->n_collectors != w->ncol)
+        return rf_fail(err, RF_EINVAL, "terrain: %zu collectors in the spec but %zu barrier lines", s->n_collectors,
+                       w->ncol);
+    return RF_OK;
+}
+
+static void run_init(terrain_run *r, const rf_terrain_world *w, const rf_traj_spec *s, uint64_t seed,
+                     uint64_t sample, rf_terrain_hazard *hazard, rf_terrain_result *res)
+{
+    memset(r, 0, sizeof *r);
+    r->w = w, r->dem = w->dem, r->s = s, r->res = res, r->hazard = hazard;
+    r->seed = seed, r->sample = sample;
+    r->g = s->gravity;
+    r->mass = s->sphere ? 4.0 / 3.0 * RF_PI * s->radius * s->radius * s->radius * s->density : s->mass;
+    r->radius = s->sphere ? s->radius : 0;
+    r->inertia = s->sphere ? 0.4 * r->mass * s->radius * s->radius : 0;
+    res->state = RF_TRAJ_STOPPED;
+    res->n_impacts = res->n_steps = res->n_events = 0;
+    res->rebound_height = 0;
+    if (w->ncol)
+        memset(res->crossings, 0, w->ncol * sizeof *res->crossings);
+}
+
+/* End point, runout and reach angle. */
+static void conclude(terrain_run *r)
+{
+    rf_terrain_result *res = r->res;
+    memcpy(res->end, r->p, sizeof res->end);
+    res->t_end = r->t;
+    res->runout = hypot(res->end[0] - res->start[0], res->end[1] - res->start[1]);
+    res->reach_angle = res->runout > 0 ? atan((res->start[2] - res->end[2]) / res->runout) : NAN;
+}
+
+rf_status terrain_simulate_hazard(const rf_terrain_world *w, const rf_traj_spec *s, uint64_t seed, uint64_t sample,
+                                  const double start[3], rf_terrain_hazard *hazard, rf_terrain_result *res,
+                                  rf_error *err)
+{
+    terrain_run r;
+    run_init(&r, w, s, seed, sample, hazard, res);
+    rf_status st = check_law(w, s, err);
+    if (st == RF_OK)
+        st = release(&r, start, err);
+    if (st != RF_OK)
+        return st;
+    if (hazard)
+        terrain_hazard_begin(hazard);
+    while (r.phase != TERRAIN_DONE) {
+        if (res->n_steps++ >= s->max_steps) {
+            finish(&r, RF_TRAJ_STEP_LIMIT, RF_EV_STEP_LIMIT);
+            break;
+        }
+        if (r.phase == TERRAIN_FLY)
+            fly_step(&r);
+        else
+            terrain_contact_run(&r);
+    }
+    conclude(&r);
+    if (hazard)
+        terrain_hazard_end(hazard, res->state == RF_TRAJ_STOPPED, res->end);
+    if (r.nomem)
+        return rf_fail(err, RF_ENOMEM, "out of memory recording trajectory %llu (%zu events, %zu impacts)",
+                       (unsigned long long)sample, res->n_events, res->n_impacts);
+    if (!isfinite(res->end[0]) || !isfinite(res->end[1]) || !isfinite(res->end[2]))
+        return rf_fail(err, RF_EINVAL, "sample %llu: the end point (%g, %g, %g) m is not finite: the inputs exceed "
+                       "what the arithmetic holds", (unsigned long long)sample, res->end[0], res->end[1], res->end[2]);
+    return RF_OK;
 }
 
 rf_status rf_terrain_simulate(const rf_terrain_world *w, const rf_traj_spec *values, uint64_t seed, uint64_t sample,
                               const double start[3], rf_terrain_result *res, rf_error *err)
 {
-    (void)w, (void)values, (void)seed, (void)sample, (void)start, (void)res;
-    return rf_fail(err, RF_EINVAL, "terrain trajectories are not written yet");
+    return terrain_simulate_hazard(w, values, seed, sample, start, NULL, res, err);
 }
