@@ -353,54 +353,91 @@ static void test_valley_oblique(void **state)
     rf_traj_spec_free(&s);
 }
 
-/* A sliding block thrown across the fall line of a 30 deg plane curves
- * towards the fall line: against a fine fixed-step RK4 integration of the
- * same law in the plane's coordinates (u across, w down the slope:
- * dV/dt = g sin b e_w - mu g cos b V/|V|), where it leaves the DEM. */
+/* The law on a plane of normal n (a second, brute-force method): the
+ * derivative of the state (p, v, omega) for a point or sliding sphere
+ * (friction against the slip v + r n x omega, spin rate mu N m r (n x s^)/I)
+ * or a rolling sphere ((g_t - mu_r N v^) / (1 + k)). */
+static void plane_law(const double n[3], double mu, double mur, int sphere, int rolling, double r, const double y[9],
+                      double dy[9])
+{
+    double N = G * n[2], gt[3] = {G * n[2] * n[0], G * n[2] * n[1], -G + G * n[2] * n[2]}, e[3];
+    const double *v = y + 3, *w = y + 6;
+    double sp = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    memcpy(dy, v, 3 * sizeof *dy);
+    memset(dy + 6, 0, 3 * sizeof *dy);
+    if (rolling) {
+        for (int q = 0; q < 3; q++)
+            dy[3 + q] = (gt[q] - mur * N * v[q] / sp) / 1.4;
+        return;
+    }
+    double s[3] = {v[0], v[1], v[2]};
+    if (sphere) {
+        s[0] += r * (n[1] * w[2] - n[2] * w[1]);
+        s[1] += r * (n[2] * w[0] - n[0] * w[2]);
+        s[2] += r * (n[0] * w[1] - n[1] * w[0]);
+    }
+    double ss = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    for (int q = 0; q < 3; q++)
+        e[q] = s[q] / ss, dy[3 + q] = gt[q] - mu * N * e[q];
+    if (sphere) { /* m r / I = 1 / (0.4 r) */
+        double f = mu * N / (0.4 * r);
+        dy[6] = f * (n[1] * e[2] - n[2] * e[1]);
+        dy[7] = f * (n[2] * e[0] - n[0] * e[2]);
+        dy[8] = f * (n[0] * e[1] - n[1] * e[0]);
+    }
+}
+
+/* Thrown across the fall line of a plane falling to the south, the block
+ * curves towards the fall line: against a fine fixed-step RK4 integration of
+ * the same law (plane_law), where it leaves the DEM (y = 0). */
+static void check_across(double bdeg, double phi, double mur, int sphere, int rolling)
+{
+    double b = bdeg * DEG, mu = tan(phi * DEG), U0 = 8;
+    rf_traj_spec s;
+    simple_spec(&s, phi, mur, sphere);
+    rf_terrain *dem = plane_dem(b, -PI / 2, 100, 5); /* z = 200 + tan b y */
+    double p[3] = {20, 90, 200 + 90 * tan(b)}, v[3] = {U0, 0, 0}, w0[3] = {0, 0, 0};
+    tc_run c;
+    run_contact(&c, &s, dem, p, v, rolling ? NULL : w0, 100000);
+    assert_int_equal(c.res.state, RF_TRAJ_EXITED);
+    double n[3] = {0, -sin(b), cos(b)}, y[9] = {20, 90, 0, U0, 0, 0, 0, 0, 0}, t = 0, dt = 1e-5;
+    if (rolling)
+        y[6] = 0, y[7] = n[2] * U0 / s.radius, y[8] = -n[1] * U0 / s.radius;
+    for (;;) {
+        double k[4][9], z[9];
+        plane_law(n, mu, mur, sphere, rolling, s.radius, y, k[0]);
+        for (int m = 1; m < 4; m++) {
+            for (int q = 0; q < 9; q++)
+                z[q] = y[q] + (m == 3 ? 1 : 0.5) * dt * k[m - 1][q];
+            plane_law(n, mu, mur, sphere, rolling, s.radius, z, k[m]);
+        }
+        double yn[9];
+        for (int q = 0; q < 9; q++)
+            yn[q] = y[q] + dt / 6 * (k[0][q] + 2 * k[1][q] + 2 * k[2][q] + k[3][q]);
+        if (yn[1] <= 0) { /* linear to the border */
+            double f = y[1] / (y[1] - yn[1]);
+            y[0] += f * (yn[0] - y[0]), t += f * dt;
+            break;
+        }
+        memcpy(y, yn, sizeof y);
+        t += dt;
+    }
+    /* the steps' error control targets CC_TOL = 1e-3 of the velocity per step */
+    assert_close(c.res.t_end, t, 2e-3);
+    assert_close(c.res.end[0], y[0], 2e-3);
+    assert_true(fabs(c.res.end[0] - y[0]) < 0.01 * (y[0] - 20));
+    /* curving towards the fall line: at the end within 45 deg of it */
+    assert_true(atan2(fabs(c.r.v[0]), -c.r.v[1]) < 45 * DEG);
+    rf_terrain_free(dem);
+    rf_traj_spec_free(&s);
+}
+
 static void test_across_fall_line(void **state)
 {
     (void)state;
-    double b = 30 * DEG, phi = 15, mu = tan(phi * DEG), U0 = 8;
-    rf_traj_spec s;
-    simple_spec(&s, phi, 0, 0);
-    rf_terrain *dem = plane_dem(b, -PI / 2, 100, 5); /* falls to the south */
-    double p[3] = {20, 90, 0}, v[3] = {U0, 0, 0};
-    assert_true(rf_terrain_height(dem, p[0], p[1], &p[2], NULL));
-    tc_run c;
-    run_contact(&c, &s, dem, p, v, NULL, 100000);
-    assert_int_equal(c.res.state, RF_TRAJ_EXITED);
-    /* reference: RK4 with dt = 1e-5 s until y reaches 0 (w = (90 - y) / cos b) */
-    double u = 0, w = 0, vu = U0, vw = 0, t = 0, dt = 1e-5, wend = 90 / cos(b);
-    while (w < wend) {
-        double k[4][4], st[4] = {u, w, vu, vw};
-        for (int m = 0; m < 4; m++) {
-            double f = m == 0 ? 0 : m == 3 ? 1 : 0.5, y[4];
-            for (int q = 0; q < 4; q++)
-                y[q] = st[q] + (m ? f * dt * k[m - 1][q] : 0);
-            double sp = hypot(y[2], y[3]);
-            k[m][0] = y[2], k[m][1] = y[3];
-            k[m][2] = -mu * G * cos(b) * y[2] / sp;
-            k[m][3] = G * sin(b) - mu * G * cos(b) * y[3] / sp;
-        }
-        double wn = w + dt / 6 * (k[0][1] + 2 * k[1][1] + 2 * k[2][1] + k[3][1]);
-        if (wn >= wend) { /* linear to the border */
-            double f = (wend - w) / (wn - w);
-            u += f * dt / 6 * (k[0][0] + 2 * k[1][0] + 2 * k[2][0] + k[3][0]);
-            t += f * dt;
-            break;
-        }
-        for (int q = 0; q < 4; q++)
-            st[q] += dt / 6 * (k[0][q] + 2 * k[1][q] + 2 * k[2][q] + k[3][q]);
-        u = st[0], w = st[1], vu = st[2], vw = st[3], t += dt;
-    }
-    /* the step's error control targets 1e-3 of the velocity per step */
-    assert_close(c.res.t_end, t, 2e-3);
-    assert_close(c.res.end[0], 20 + u, 2e-3);
-    /* curving towards the fall line: the velocity's angle from it shrinks */
-    double ang_end = atan2(fabs(c.r.v[0]), -c.r.v[1]);
-    assert_true(ang_end < 45 * DEG);
-    rf_terrain_free(dem);
-    rf_traj_spec_free(&s);
+    check_across(30, 15, 0, 0, 0);   /* a sliding point */
+    check_across(20, 30, 0.1, 1, 1); /* a rolling sphere */
+    check_across(50, 15, 0, 1, 0);   /* a sliding sphere spun up by friction (tan b > 3.5 mu) */
 }
 
 /* Mechanical energy after k steps never exceeds that after k - 1 (the run is

@@ -50,8 +50,8 @@
 #include <string.h>
 
 #define CC_TOL 1e-3      /* relative error allowed per numerical step (velocity) */
-#define CC_CELL_FRAC 0.25 /* a numerical step covers at most this share of a cell */
-#define CC_DV_FRAC 0.25  /* and changes the velocity by at most this share of the speed */
+#define CC_CELL_FRAC 1.0 /* a numerical step covers at most this share of a cell */
+#define CC_DV_FRAC 0.25 /* and changes the velocity by at most this share of the speed */
 
 typedef struct {
     long i, j;
@@ -350,6 +350,15 @@ static void numeric_step(const terrain_run *r, const cc_cell *c, int rolling, cc
         h = fmin(h, CC_CELL_FRAC * cell / sp);
     if (am > 0)
         h = fmin(h, CC_DV_FRAC * fmax(sp, 0.05 * sqrt(r->g * cell)) / am);
+    double va0 = dot3(r->v, a0);
+    if (va0 < 0 && sp * sp / -va0 <= h) { /* it comes to rest within the step: one Euler step there */
+        memset(st, 0, sizeof *st);
+        st->tau = sp * sp / -va0, st->rest = 1;
+        memcpy(st->a, a0, sizeof st->a);
+        memcpy(st->dw, dw0, sizeof st->dw);
+        cut_at_edge(r, c, st->a, st);
+        return;
+    }
     for (int tries = 0;; tries++) {
         for (int k = 0; k < 3; k++) {
             ps[k] = r->p[k] + r->v[k] * h + 0.5 * a0[k] * h * h;
@@ -703,7 +712,7 @@ static int step_once(terrain_run *r, cc_cell *c)
     int exact = exact_step(r, c, &G, rolling, &st);
     if (!exact) {
         double resist = (rolling ? c->mur : c->mu) * G.N;
-        if (sp > 0 && sp < r->s->v_stop && dot3(r->v, G.gt) <= 0 && norm3(G.gt) <= resist) {
+        if (sp > 0 && sp < r->s->v_stop && norm3(G.gt) <= resist) {
             stop_here(r); /* creeping on ground where it cannot start again */
             return 0;
         }
