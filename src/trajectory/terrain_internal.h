@@ -186,14 +186,22 @@ void terrain_contact_run(terrain_run *r);
  * passing height in log-spaced histograms (TERRAIN_HAZARD_BINS_PER_DECADE;
  * relative error of a percentile at most TERRAIN_HAZARD_REL_ERROR).  A
  * trajectory's pieces count a cell once; accumulators of threads merge by
- * adding counts: the same bits in any order. */
+ * adding counts: the same bits in any order.  create returns NULL when out
+ * of memory or the grid would have 2^32 cells or more. */
 typedef struct rf_terrain_hazard rf_terrain_hazard;
+#define TERRAIN_HAZARD_BINS_PER_DECADE 128  /* log-spaced bins; bin edges FLOOR 10^(k / 128) */
+#define TERRAIN_HAZARD_FLOOR 1e-6           /* [J] or [m]: smaller values count in a zero bin (estimated 0) */
+#define TERRAIN_HAZARD_REL_ERROR 0.02       /* bound of a percentile's relative error (10^(1/128) - 1 = 0.0182;
+                                               plus at most FLOOR absolute; proof in terrain_hazard.c) */
 rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain *dem);
 void terrain_hazard_begin(rf_terrain_hazard *h);
 void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc);
 void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3]);
 void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from);
 void terrain_hazard_free(rf_terrain_hazard *h);
+/* The bytes an accumulator holds (capacities included): it grows with the
+ * cells touched and the histogram bins hit, not with the trajectories. */
+size_t terrain_hazard_bytes(const rf_terrain_hazard *h);
 
 /* The bands of the rasters (terrain_hazard.c) for GeoTIFF and maps: per
  * statistic a name ("passages", "reach_probability", "deposits",
