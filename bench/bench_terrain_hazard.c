@@ -6,7 +6,8 @@
  * 0.2-1 m long, on the ground; each trajectory ends with
  * terrain_hazard_end.  Prints CPU time per piece, per cell visit (a cell
  * crossed by a piece) and per trajectory; the accumulator's bytes.
- * Usage: bench_terrain_hazard [trajectories] */
+ * Usage: bench_terrain_hazard [trajectories] [counts]   (counts: passages and
+ * deposits only, no energy and height histograms) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -134,8 +135,9 @@ int main(int argc, char **argv)
     rf_traj_spec s;
     memset(&d, 0, sizeof d), memset(&s, 0, sizeof s);
     d.raster_cell = CELL;
-    d.statistics = RF_TERRAIN_PASSAGES | RF_TERRAIN_REACH_PROBABILITY | RF_TERRAIN_DEPOSITS | RF_TERRAIN_ENERGY |
-                   RF_TERRAIN_HEIGHT;
+    d.statistics = RF_TERRAIN_PASSAGES | RF_TERRAIN_REACH_PROBABILITY | RF_TERRAIN_DEPOSITS;
+    if (!(argc > 2 && !strcmp(argv[2], "counts")))
+        d.statistics |= RF_TERRAIN_ENERGY | RF_TERRAIN_HEIGHT;
     s.terrain = &d;
     int rc = run(dem, &s, n_traj, 1) | run(dem, &s, n_traj, 0);
     rf_terrain_free(dem);

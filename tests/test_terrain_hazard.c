@@ -593,10 +593,12 @@ static void test_throw_closed_form(void **state)
     rf_terrain_free(dem);
 }
 
-/* 1000 equal values just above a bin's lower edge and one just below its
- * upper edge (the max, so the estimates are not clamped to it): the worst
- * case of the within-bin interpolation; the p99 error is close to (not
- * above) the bound, the max exact. */
+/* 1000 equal values just above the lower edge of the bin [1024, 1040) that
+ * starts an octave (the widest bin relative to its values) and one just
+ * below its upper edge (the max, so the estimates are not clamped to it):
+ * the worst case of the within-bin interpolation; estimates at
+ * 1024 + 16 (k + 1/2) / 1001; the p99 error is close to (not above) the
+ * bound, the max exact. */
 static void test_bin_error_near_bound(void **state)
 {
     (void)state;
@@ -610,8 +612,7 @@ static void test_bin_error_near_bound(void **state)
     s.outputs.n_percentiles = 2, s.outputs.percentiles[0] = 50, s.outputs.percentiles[1] = 99;
     rf_terrain_hazard *h = terrain_hazard_create(&s, dem);
     /* a bin edge: FLOOR 10^(k / 128) with k = 128 * 9 + 5 (1e3 J and a bit) */
-    double rho = pow(10, 1.0 / TERRAIN_HAZARD_BINS_PER_DECADE);
-    double v = TERRAIN_HAZARD_FLOOR * pow(10, (128.0 * 9 + 5) / 128) * (1 + 1e-9), top = v * rho * (1 - 1e-8);
+    double v = 1024 * (1 + 1e-9), top = 1040 * (1 - 1e-9);
     terrain_piece still = {0, 0, {0.5, 0.5, 0}, {0, 0, 0}, {0, 0, 0}, v, 1};
     for (int k = 0; k < 1000; k++)
         feed(h, dem, &(traj){1, {still}, 1, 0, {0}});
@@ -622,8 +623,9 @@ static void test_bin_error_near_bound(void **state)
     assert_int_equal(terrain_hazard_bands(h, &s, 1001, &b, &nb, &err), RF_OK);
     double e50 = band_named(b, nb, "energy_p50")->data[0], e99 = band_named(b, nb, "energy_p99")->data[0];
     assert_true(band_named(b, nb, "energy_max")->data[0] == (float)top);
-    assert_true(fabs(e50 / v - pow(rho, 500.5 / 1001)) < 1e-6);
-    assert_true(e99 / v - 1 > 0.017 && e99 / v - 1 <= TERRAIN_HAZARD_REL_ERROR);
+    assert_true(fabs(e50 - (1024 + 16 * 500.5 / 1001)) < 1e-4);
+    assert_true(fabs(e99 - (1024 + 16 * 990.5 / 1001)) < 1e-4);
+    assert_true(e99 / v - 1 > 0.015 && e99 / v - 1 <= TERRAIN_HAZARD_REL_ERROR);
     terrain_bands_free(b, nb);
     terrain_hazard_free(h);
     rf_terrain_free(dem);

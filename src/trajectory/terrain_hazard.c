@@ -16,29 +16,33 @@
  * records of the touched cells only (sizeof(hz_rec) = 72 bytes each) holding
  * passages, deposits, the exact maxima and two sparse histograms; a
  * histogram stores only the bins that were hit, one 64-bit word per bin
- * (bin number << 48 | count), sorted by bin.  The bins are fixed
- * (TERRAIN_HAZARD_BINS_PER_DECADE log-spaced bins per decade from
- * TERRAIN_HAZARD_FLOOR up, a zero bin below it; every finite double has a
- * bin number below 2^16), so a touched cell costs 72 + 8 (bins hit by the
- * energy + bins hit by the height) bytes, at most 72 + 8 * 2 * 40 226: the
- * memory does not grow with the number of trajectories.  Merging adds
- * counts and takes maxima of maxima: integers and fmax, so the same bits in
- * any order.
+ * (bin number << 47 | count), sorted by bin.  The bins are fixed: each
+ * octave [2^e, 2^(e+1)) is cut into TERRAIN_HAZARD_BINS_PER_OCTAVE = 64 equal
+ * bins [2^e (1 + k/64), 2^e (1 + (k+1)/64)) (log-spaced octaves, as
+ * HdrHistogram), from TERRAIN_HAZARD_FLOOR = 2^-20 up, and a zero bin below
+ * it.  A value's bin number is the top 17 bits of its IEEE-754 double after
+ * the sign (exponent and 6 mantissa bits): no logarithm, and bin edges that
+ * are exact doubles.  Every finite double >= the floor has one of
+ * (1024 + 20) * 64 = 66 816 bins, so a touched cell costs 72 + 8 (bins hit by
+ * the energy + bins hit by the height) bytes (in practice a few hundred
+ * bins: the values a cell sees span a few octaves): the memory does not
+ * grow with the number of trajectories.  Merging adds counts and takes
+ * maxima of maxima: integers and fmax, so the same bits in any order.
  *
  * Percentiles: Hyndman-Fan type 7 as rf_traj_percentiles_at (stats.c),
  * q = v[lo] + f (v[lo+1] - v[lo]) with h = (n - 1) p, lo = floor(h),
  * f = h - lo, v[n - 1] (the exact max) when lo + 1 >= n, where the order
- * statistic v[k] is estimated inside its bin [L, rho L) by log-linear
- * interpolation of its rank among the c values of the bin:
- * est = L rho^((k - C + 1/2) / c) (C: the values in lower bins), at most the
- * exact max; the zero bin estimates 0.
- * Error bound: v[k] and est both lie in [L, rho L] (est <= max, v[k] <= max),
- * so |est - v[k]| <= (rho - 1) L <= (rho - 1) v[k].  q is a convex
+ * statistic v[k] is estimated inside its bin [L, U) by linear interpolation
+ * of its rank among the c values of the bin:
+ * est = L + (U - L) (k - C + 1/2) / c (C: the values in lower bins), at most
+ * the exact max; the zero bin estimates 0.
+ * Error bound: v[k] and est both lie in [L, U] (est <= max, v[k] <= max),
+ * so |est - v[k]| <= U - L = 2^e / 64 <= L / 64 <= v[k] / 64.  q is a convex
  * combination of two order statistics with v >= 0, so
- * |q_est - q| <= (1 - f) (rho - 1) v[lo] + f (rho - 1) v[lo + 1] = (rho - 1) q.
- * With 128 bins per decade rho - 1 = 10^(1/128) - 1 = 0.01815 <
- * TERRAIN_HAZARD_REL_ERROR = 0.02 (the margin covers the rounding of log10 at
- * a bin edge).  Values below the floor (1e-6 J or m) are estimated as 0: an
+ * |q_est - q| <= (1 - f) v[lo] / 64 + f v[lo + 1] / 64 = q / 64:
+ * TERRAIN_HAZARD_REL_ERROR = 1/64 = 0.0156 (the bound is attained within a
+ * bin that starts an octave, see the tests; the float32 bands add 2^-24).
+ * Values below the floor (2^-20 = 9.5e-7 J or m) are estimated as 0: an
  * absolute error below the floor on top (exact zeros, such as the height of
  * a block on the ground, are exact). */
 #include "trajectory/terrain_internal.h"
@@ -46,7 +50,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define BIN_SHIFT 48
+#define BIN_SHIFT 47
 #define COUNT_MASK ((UINT64_C(1) << BIN_SHIFT) - 1)
 #define NO_POS UINT32_MAX
 /* Two crossings of cell lines closer than this (in the segment's parameter,
@@ -83,18 +87,30 @@ struct rf_terrain_hazard {
     int nomem;
 };
 
+/* The larger of a and b, NaN only if both are (fmax, inlined: the library
+ * call was a tenth of the time of a piece). */
+static inline double max_of(double a, double b) { return b > a || a != a ? b : a; }
+
 /* ---- bins ---- */
 
-static uint32_t bin_of(double v)
+#define BIN_BITS_DROPPED 46 /* 52 mantissa bits - 6 (64 = 2^6 bins per octave) */
+
+static uint64_t bin_of(double v)
 {
-    if (!(v >= TERRAIN_HAZARD_FLOOR))
+    if (!(v >= TERRAIN_HAZARD_FLOOR)) /* and NaN (not stored) */
         return 0;
-    return 1 + (uint32_t)floor(TERRAIN_HAZARD_BINS_PER_DECADE * log10(v / TERRAIN_HAZARD_FLOOR));
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    return bits >> BIN_BITS_DROPPED;
 }
 
-static double bin_low(uint32_t b)
+/* The lower edge of bin b (b > 0); that of b + 1 is its upper edge. */
+static double bin_edge(uint64_t b)
 {
-    return TERRAIN_HAZARD_FLOOR * pow(10, (double)(b - 1) / TERRAIN_HAZARD_BINS_PER_DECADE);
+    uint64_t bits = b << BIN_BITS_DROPPED;
+    double v;
+    memcpy(&v, &bits, sizeof v);
+    return v;
 }
 
 static int hist_reserve(hz_hist *hh, uint32_t n)
@@ -176,11 +192,12 @@ static double hist_order(const hz_hist *hh, uint64_t n, double vmax, uint64_t k)
     for (uint32_t e = 0; e < hh->n; e++) {
         uint64_t c = hh->v[e] & COUNT_MASK;
         if (k < below + c) {
-            uint32_t b = (uint32_t)(hh->v[e] >> BIN_SHIFT);
+            uint64_t b = hh->v[e] >> BIN_SHIFT;
             if (b == 0)
                 return 0;
-            double rank = ((double)(k - below) + 0.5) / (double)c;
-            return fmin(vmax, bin_low(b) * pow(10, rank / TERRAIN_HAZARD_BINS_PER_DECADE));
+            double rank = ((double)(k - below) + 0.5) / (double)c, lo = bin_edge(b);
+            double est = lo + (bin_edge(b + 1) - lo) * rank;
+            return est < vmax ? est : vmax;
         }
         below += c;
     }
@@ -239,7 +256,7 @@ static void touch(rf_terrain_hazard *h, size_t cell, double e, double ht)
     uint32_t pos = h->rec[k].pos;
     if (pos < h->n_touch && h->touch[pos].rec == k) {
         hz_touch *t = &h->touch[pos];
-        t->e = fmax(t->e, e), t->h = fmax(t->h, ht);
+        t->e = max_of(t->e, e), t->h = max_of(t->h, ht);
         return;
     }
     if (h->n_touch == h->cap_touch) {
@@ -263,6 +280,7 @@ typedef struct {
     const terrain_piece *pc;
     double mass, T;
     double mx0, my0, mdx, mdy;  /* map path: (mx0, my0) + s (mdx, mdy), s in [0, 1], tau = s T */
+    double s_last, e_last, h_last;  /* energy and height at s_last, the last cell's exit (its next entry) */
 } hz_piece;
 
 static double piece_energy(const hz_piece *q, double tau)
@@ -289,23 +307,29 @@ static double piece_height(const hz_piece *q, double s)
 /* The part s in [sa, sb] of the piece lies in cell (i, j): energy at its
  * ends (convex in tau: exact); height at its ends, its middle and the apex
  * of the path if inside (0 on the ground). */
-static void piece_cell(const hz_piece *q, size_t i, size_t j, double sa, double sb)
+static void piece_cell(hz_piece *q, size_t i, size_t j, double sa, double sb)
 {
     rf_terrain_hazard *h = q->h;
-    double e = NAN, ht = NAN;
-    if (h->stats & RF_TERRAIN_ENERGY)
-        e = fmax(piece_energy(q, sa * q->T), piece_energy(q, sb * q->T));
-    if ((h->stats & RF_TERRAIN_HEIGHT) && q->pc->on_ground)
-        ht = 0;
-    else if (h->stats & RF_TERRAIN_HEIGHT) {
-        ht = fmax(fmax(piece_height(q, sa), piece_height(q, sb)), piece_height(q, 0.5 * (sa + sb)));
+    int energy = h->stats & RF_TERRAIN_ENERGY, height = (h->stats & RF_TERRAIN_HEIGHT) && !q->pc->on_ground;
+    int again = sa == q->s_last;
+    double e_in = NAN, e_out = NAN, h_in = NAN, h_out = NAN, ht = NAN;
+    if (energy) {
+        e_in = again ? q->e_last : piece_energy(q, sa * q->T);
+        e_out = piece_energy(q, sb * q->T);
+    }
+    if (height) {
+        h_in = again ? q->h_last : piece_height(q, sa);
+        h_out = piece_height(q, sb);
+        ht = max_of(max_of(h_in, h_out), piece_height(q, 0.5 * (sa + sb)));
         double az = q->pc->a[2], s_apex = az < 0 && q->T > 0 ? -q->pc->v[2] / az / q->T : -1;
         if (s_apex > sa && s_apex < sb)
-            ht = fmax(ht, piece_height(q, s_apex));
+            ht = max_of(ht, piece_height(q, s_apex));
         if (ht < 0)
             ht = 0;
-    }
-    touch(h, j * h->nx + i, e, ht);
+    } else if (h->stats & RF_TERRAIN_HEIGHT)
+        ht = 0; /* on the ground */
+    q->s_last = sb, q->e_last = e_out, q->h_last = h_out;
+    touch(h, j * h->nx + i, max_of(e_in, e_out), ht);
 }
 
 /* The parameters [*sa, *sb] of f0 + s d inside [0, hi]; 0 if none. */
@@ -318,7 +342,7 @@ static int clip_axis(double f0, double d, double hi, double *sa, double *sb)
         double t = s0;
         s0 = s1, s1 = t;
     }
-    *sa = fmax(*sa, s0), *sb = fmin(*sb, s1);
+    *sa = s0 > *sa ? s0 : *sa, *sb = s1 < *sb ? s1 : *sb;
     return *sa <= *sb;
 }
 
@@ -344,7 +368,7 @@ static double next_crossing(long long c, double f0, double d)
  * s in [0, 1], in order, each with its parameter interval; two crossings at
  * a corner (to CORNER_TIE) step diagonally; a segment along a cell line
  * lies in the cells to its north / east (half-open cells). */
-static void walk(const hz_piece *q, double fx0, double fy0, double gdx, double gdy)
+static void walk(hz_piece *q, double fx0, double fy0, double gdx, double gdy)
 {
     const rf_terrain_hazard *h = q->h;
     double sa = 0, sb = 1;
@@ -356,7 +380,7 @@ static void walk(const hz_piece *q, double fx0, double fy0, double gdx, double g
     double s = sa;
     for (size_t k = 0; k < steps; k++) {
         double sx = next_crossing(i, fx0, gdx), sy = next_crossing(j, fy0, gdy);
-        double sn = fmin(sx, sy);
+        double sn = sx < sy ? sx : sy;
         int last = !(sn < sb);
         if (i >= 0 && j >= 0 && i < (long long)h->nx && j < (long long)h->ny)
             piece_cell(q, (size_t)i, (size_t)j, s, last ? sb : sn);
@@ -415,7 +439,7 @@ void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double ma
 {
     if (!h)
         return;
-    hz_piece q = {h, dem, pc, mass, pc->T > 0 ? pc->T : 0, pc->p[0], pc->p[1], 0, 0};
+    hz_piece q = {h, dem, pc, mass, pc->T > 0 ? pc->T : 0, pc->p[0], pc->p[1], 0, 0, -1, NAN, NAN};
     for (int k = 0; k < 2; k++) {
         double end = pc->p[k] + pc->v[k] * q.T + 0.5 * pc->a[k] * q.T * q.T;
         *(k ? &q.mdy : &q.mdx) = end - pc->p[k];
@@ -435,11 +459,11 @@ void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3])
         hz_rec *r = &h->rec[t->rec];
         r->passages++;
         if ((h->stats & RF_TERRAIN_ENERGY) && isfinite(t->e)) {
-            r->e_max = fmax(r->e_max, t->e);
+            r->e_max = max_of(r->e_max, t->e);
             h->nomem |= !hist_add(&r->e, t->e);
         }
         if ((h->stats & RF_TERRAIN_HEIGHT) && isfinite(t->h)) {
-            r->h_max = fmax(r->h_max, t->h);
+            r->h_max = max_of(r->h_max, t->h);
             h->nomem |= !hist_add(&r->h, t->h);
         }
     }
@@ -471,7 +495,7 @@ void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from
             return;
         hz_rec *r = &into->rec[m];
         r->passages += f->passages, r->deposits += f->deposits;
-        r->e_max = fmax(r->e_max, f->e_max), r->h_max = fmax(r->h_max, f->h_max);
+        r->e_max = max_of(r->e_max, f->e_max), r->h_max = max_of(r->h_max, f->h_max);
         into->nomem |= !hist_merge(&r->e, &f->e) || !hist_merge(&r->h, &f->h);
     }
 }
