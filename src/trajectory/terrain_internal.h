@@ -200,17 +200,25 @@ void terrain_contact_run(terrain_run *r);
 
 /* terrain_hazard.c: the rasters (see terrain.h RF_TERRAIN_*): per cell of the
  * output grid, passages, deposits, and per-trajectory maxima of energy and
- * passing height in log-spaced histograms (TERRAIN_HAZARD_BINS_PER_DECADE;
+ * passing height in log-spaced histograms (TERRAIN_HAZARD_BINS_PER_OCTAVE;
  * relative error of a percentile at most TERRAIN_HAZARD_REL_ERROR).  A
  * trajectory's pieces count a cell once; accumulators of threads merge by
- * adding counts: the same bits in any order. */
+ * adding counts: the same bits in any order.  create returns NULL when out
+ * of memory or the grid would have 2^32 cells or more. */
 typedef struct rf_terrain_hazard rf_terrain_hazard;
+#define TERRAIN_HAZARD_BINS_PER_OCTAVE 64   /* octave [2^e, 2^(e+1)) cut in 64 equal bins */
+#define TERRAIN_HAZARD_FLOOR 0x1.0p-20      /* [J] or [m]: smaller values count in a zero bin (estimated 0) */
+#define TERRAIN_HAZARD_REL_ERROR (1.0 / 64) /* bound of a percentile's relative error (plus at most FLOOR
+                                               absolute; proof in terrain_hazard.c) */
 rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain *dem);
 void terrain_hazard_begin(rf_terrain_hazard *h);
 void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc);
 void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3]);
 void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from);
 void terrain_hazard_free(rf_terrain_hazard *h);
+/* The bytes an accumulator holds (capacities included): it grows with the
+ * cells touched and the histogram bins hit, not with the trajectories. */
+size_t terrain_hazard_bytes(const rf_terrain_hazard *h);
 
 /* The bands of the rasters (terrain_hazard.c) for GeoTIFF and maps: per
  * statistic a name ("passages", "reach_probability", "deposits",
