@@ -410,6 +410,74 @@ static void test_hash_covers_file_bytes(void **state)
     free(y);
 }
 
+/* The release of the minimal file with the rows of a terrain file's velocity
+ * form (speed: speed, azimuth, dip; else vx, vy, vz) and height; `key` set to
+ * `value` (as given), or left out when omit. */
+static char *release_with(int by_speed, const char *key, double value, int omit)
+{
+    const char *keys[2][4] = {{"vx", "vy", "vz", "height"}, {"speed", "azimuth", "dip", "height"}};
+    const double base[2][4] = {{0.5, 0, -1, 1}, {2, 30, 5, 1}};
+    char rel[400] = "release: {points: [[20, 80], [30, 85]]";
+    for (int k = 0; k < 4; k++) {
+        size_t n = strlen(rel);
+        if (!strcmp(keys[by_speed][k], key) && omit)
+            continue;
+        snprintf(rel + n, sizeof rel - n, ", %s: %.17g", keys[by_speed][k],
+                 !strcmp(keys[by_speed][k], key) ? value : base[by_speed][k]);
+    }
+    strcat(rel, "}");
+    return edit(minimal, "release: {points: [[20, 80], [30, 85]], height: 1.0, velocity: [0, 0, 0]}", rel);
+}
+
+/* The rows only a terrain file uses (the 2D file's rows: test_trajectory_fields.c):
+ * read as given (angles stored in radians), defaults, checks located at their
+ * line, bindable as marked, the identity changes with them. */
+static void test_terrain_rows(void **state)
+{
+    (void)state;
+    size_t rows = 0;
+    for (size_t t = 0; t < rf_traj_n_field_tables; t++) {
+        const rf_traj_field_table *tb = &rf_traj_field_tables[t];
+        for (const rf_traj_field *f = tb->rows; f < tb->rows + tb->n_rows; f++) {
+            if (f->when != RF_TRAJ_WHEN_TERRAIN && f->when != RF_TRAJ_WHEN_TERRAIN_VXVY &&
+                f->when != RF_TRAJ_WHEN_TERRAIN_SPEED)
+                continue;
+            int by_speed = f->when == RF_TRAJ_WHEN_TERRAIN_SPEED;
+            char path[200], why[2400], want[300];
+            snprintf(path, sizeof path, "%s%s", tb->prefix, f->key);
+            double scale = f->degrees ? RF_PI / 180 : 1, given;
+            rf_traj_spec s;
+            rf_error err;
+            char *y = release_with(by_speed, f->key, f->probe, 0);
+            load_ok(y, &s);
+            assert_true(*rf_traj_spec_field(&s, path) == f->probe * scale);
+            assert_true(rf_traj_spec_get(&s, path, &given) && fabs(given - f->probe) <= 1e-13 * fabs(f->probe));
+            assert_int_equal(rf_traj_path_bindable(&s, path, why, sizeof why), f->bindable);
+            uint64_t h = rf_traj_spec_values_hash(&s);
+            assert_true(rf_traj_spec_set(&s, path, f->def));
+            assert_true(rf_traj_spec_values_hash(&s) != h);
+            rf_traj_spec_free(&s);
+            free(y);
+            y = release_with(by_speed, f->key, 0, 1);
+            load_ok(y, &s);
+            assert_true(*rf_traj_spec_field(&s, path) == f->def * scale);
+            rf_traj_spec_free(&s);
+            free(y);
+            double bad = f->check == RF_TRAJ_CHECK_NONNEGATIVE ? -0.5 : f->check == RF_TRAJ_CHECK_ANGLE_180 ? 181 : NAN;
+            if (!isnan(bad)) {
+                y = release_with(by_speed, f->key, bad, 0);
+                assert_int_not_equal(load_text("site/t.yaml", y, &s, &err), RF_OK);
+                snprintf(want, sizeof want, "site/t.yaml:8: %s = %g: %s", path, bad, rf_traj_field_rule(f, bad));
+                if (strcmp(err.msg, want))
+                    fail_msg("'%s', want '%s'", err.msg, want);
+                free(y);
+            }
+            rows++;
+        }
+    }
+    assert_int_equal(rows, 4); /* vz, azimuth, dip, height */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -422,6 +490,7 @@ int main(void)
         cmocka_unit_test(test_copy_and_free),
         cmocka_unit_test(test_hash_covers_every_setting),
         cmocka_unit_test(test_hash_covers_file_bytes),
+        cmocka_unit_test(test_terrain_rows),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
