@@ -170,7 +170,15 @@ static void test_world_constant_material(void **state)
     rf_error err;
     assert_int_equal(terrain_world_from_surface(&s, plane(), &w, &err), RF_OK);
     assert_int_equal(terrain_material_of(rf_terrain_world_surface(w), 3, 4), 0);
+    assert_null(rf_terrain_world_surface(w)->material); /* material 0: no per-cell array */
     rf_terrain_world_free(w);
+    s.terrain->material = 3; /* in memory (the validation would refuse it): every cell gets it */
+    assert_int_equal(terrain_world_from_surface(&s, plane(), &w, &err), RF_OK);
+    for (size_t j = 0; j < 10; j++)
+        for (size_t i = 0; i < 10; i++)
+            assert_int_equal(terrain_material_of(rf_terrain_world_surface(w), i, j), 3);
+    rf_terrain_world_free(w);
+    s.terrain->material = 0;
     assert_int_not_equal(rf_terrain_world_create(&s, &w, &err), RF_OK); /* site/dem.tif does not exist */
     assert_null(w);
     assert_non_null(strstr(err.msg, "site/dem.tif"));

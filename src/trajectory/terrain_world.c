@@ -47,6 +47,8 @@ static rf_status barrier_geometry(rf_terrain_world *w, const rf_traj_spec *s, rf
     w->ncol = s->n_collectors;
     if (!w->ncol)
         return RF_OK;
+    if (!d->barrier_start || d->n_barriers != w->ncol)
+        return rf_fail(err, RF_EINVAL, "barriers: %zu barriers but %zu lines", w->ncol, d->n_barriers);
     if (!(w->col = calloc(w->ncol, sizeof *w->col)))
         return rf_fail(err, RF_ENOMEM, "out of memory");
     for (size_t c = 0; c < w->ncol; c++) {
