@@ -114,8 +114,17 @@ static void row_path(const rf_traj_field_table *t, const rf_traj_field *f, char 
 
 static build build_for(const rf_traj_field *f)
 {
-    build b = {f->when == RF_TRAJ_WHEN_SPHERE, f->when == RF_TRAJ_WHEN_SPEED, NULL, 0, NULL};
+    build b = {f->when == RF_TRAJ_WHEN_SPHERE,
+               f->when == RF_TRAJ_WHEN_SPEED || f->when == RF_TRAJ_WHEN_PROFILE_SPEED, NULL, 0, NULL};
     return b;
+}
+
+/* A row only a terrain file uses: its checks are in tests/test_terrain_file.c
+ * (the base file here is a profile). */
+static int terrain_row(const rf_traj_field *f)
+{
+    return f->when == RF_TRAJ_WHEN_TERRAIN || f->when == RF_TRAJ_WHEN_TERRAIN_VXVY ||
+           f->when == RF_TRAJ_WHEN_TERRAIN_SPEED;
 }
 
 static rf_status load(const build *b, rf_traj_spec *s, rf_error *err)
@@ -130,7 +139,8 @@ static double stored(const rf_traj_field *f, double given) { return f->degrees ?
 #define EACH_ROW(t, f)                                                  \
     for (size_t t##i = 0; t##i < rf_traj_n_field_tables; t##i++)       \
         for (const rf_traj_field_table *t = &rf_traj_field_tables[t##i]; t; t = NULL) \
-            for (const rf_traj_field *f = t->rows; f < t->rows + t->n_rows; f++)
+            for (const rf_traj_field *f = t->rows; f < t->rows + t->n_rows; f++) \
+                if (!terrain_row(f))
 
 static void test_every_row_parsed_with_default(void **state)
 {

@@ -101,8 +101,10 @@ typedef struct rf_terrain_def {
     size_t *class_material;     /* index in spec->materials */
     size_t material;            /* without a class raster: the one material */
     char *roughness;            /* raster of roughness SD [deg] per cell, or NULL */
+    int roughness_band;         /* its band, default 1 */
     rf_terrain_release release;
     /* per collector (spec->collectors[c]): its line on the map */
+    size_t n_barriers;          /* = spec->n_collectors (barrier_start holds n_barriers + 1) */
     size_t *barrier_start;      /* n_collectors + 1 offsets into barrier_x, barrier_y */
     double *barrier_x, *barrier_y;  /* [m] */
     /* rasters */

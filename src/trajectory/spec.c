@@ -2,7 +2,7 @@
  * the values (each row of the input tables against its check, traj_fields.c;
  * the release above the ground, a release line above it; the profile's
  * geometry is checked in profile.c). */
-#include "trajectory/traj_internal.h"
+#include "trajectory/terrain_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -30,6 +30,9 @@ void rf_traj_spec_free(rf_traj_spec *s)
     for (size_t i = 0; i < s->n_random; i++)
         free(s->random[i].path);
     free(s->random);
+    if (s->terrain)
+        rf_terrain_def_free(s->terrain);
+    free(s->terrain);
     memset(s, 0, sizeof *s);
 }
 
@@ -66,6 +69,13 @@ rf_status rf_traj_spec_copy(const rf_traj_spec *src, rf_traj_spec *d, rf_error *
     for (size_t i = 0; i < src->n_random; i++)
         if (d->random)
             ok &= (d->random[i].path = rf_strdup(src->random[i].path)) != NULL;
+    d->terrain = NULL;
+    if (ok && src->terrain) {
+        rf_error e;
+        ok = (d->terrain = malloc(sizeof *d->terrain)) != NULL;
+        if (ok && rf_terrain_def_copy(src->terrain, d->terrain, &e) != RF_OK)
+            free(d->terrain), d->terrain = NULL, ok = 0;
+    }
     if (!ok) {
         /* Null what failed so that free is safe. */
         if (!d->materials) d->n_materials = 0;
@@ -197,12 +207,27 @@ static rf_status check_outputs(const rf_traj_spec *s, rf_error *err)
     return st;
 }
 
+/* A terrain file's law, outputs and terrain part (terrain_spec.c). */
+static rf_status validate_terrain(const rf_traj_spec *s, rf_error *err)
+{
+    rf_status st;
+    if ((unsigned)s->law >= RF_BOUNCE_N_LAWS)
+        return rf_fail(err, RF_EINVAL, "bounce.law = %d: not a bounce law", (int)s->law);
+    if ((st = traj_bounce_law_validate(s, err)) != RF_OK || (st = check_outputs(s, err)) != RF_OK)
+        return st;
+    if (s->release_kind != RF_TRAJ_RELEASE_MAP)
+        return rf_fail(err, RF_EINVAL, "release: a terrain file releases on the map (points, lines, polygons)");
+    return terrain_spec_check(s, err);
+}
+
 /* Everything but the ranges of the random inputs. */
 static rf_status validate_values(const rf_traj_spec *s, rf_error *err)
 {
     rf_status st;
     if ((st = check_all_rows(s, err)) != RF_OK)
         return st;
+    if (s->terrain) /* a terrain file: no profile, no release above it */
+        return validate_terrain(s, err);
     for (size_t i = 0; s->seg_material && i + 1 < s->n_points; i++)
         if (s->seg_material[i] >= s->n_materials)
             return rf_fail(err, RF_EINVAL, "profile.materials[%zu]: no such material", i);

@@ -12,7 +12,8 @@
  *   terrain_simulate.c  one trajectory: the state machine over those
  *   terrain_hazard.c    hazard raster accumulators (counts, log histograms), merge, percentiles
  *   terrain_release.c   release features: the point at given uniforms
- *   terrain_spec.c      rf_terrain_def free / copy / hash; the world
+ *   terrain_spec.c      rf_terrain_def free / copy / hash / checks
+ *   terrain_world.c     the world: DEM, classes, barrier lines, release set, impact table
  *   traj_yaml_terrain.c the `terrain:` part of a trajectory file (release, barriers, rasters)
  *   terrain_montecarlo.c ensembles on terrain (threads; same bits at any thread count)
  *   terrain_output.c    JSON, CSV, GeoPackage; terrain_report.c maps and report.html */
@@ -276,5 +277,20 @@ rf_status terrain_write_maps(const char *dir, const rf_traj_spec *spec, const rf
 rf_status terrain_release_prepare(const rf_traj_spec *s, terrain_release_set **set, rf_error *err);
 void terrain_release_free(terrain_release_set *set);
 void terrain_release_point(const terrain_release_set *set, double u1, double u2, double u3, double *x, double *y);
+/* The pieces of feature f (segments A, B of a line; triangles A, B, C of a
+ * polygon's triangulation; a point's A) as v[k][0..5] = Ax, Ay, Bx, By, Cx,
+ * Cy; returns their count (for tests). */
+size_t terrain_release_pieces(const terrain_release_set *set, size_t f, const double (**v)[6]);
+
+/* terrain_spec.c: the terrain checks of the validation (spec.c): materials
+ * (classes name existing ones, every one used), barrier lines (>= 2 finite
+ * vertices), rasters, release features (finite, weights, simple polygons). */
+rf_status terrain_spec_check(const rf_traj_spec *s, rf_error *err);
+
+/* terrain_world.c: rf_terrain_world_create without the reading: the world on
+ * the surface dem (made in memory, e.g. by rf_terrain_from_nodes, its
+ * material per cell set or NULL), which it takes over (freed on failure too);
+ * without a class raster every cell gets spec->terrain->material. */
+rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_terrain_world **w, rf_error *err);
 
 #endif

@@ -4,6 +4,7 @@
  * path (a typo), the key table of the docs and the hash of every value a run
  * reads (the model identity). */
 #include "trajectory/traj_internal.h"
+#include "rockfuzz/terrain.h"
 #include "core/hash.h"
 
 #include <math.h>
@@ -172,5 +173,6 @@ uint64_t rf_traj_spec_values_hash(const rf_traj_spec *s)
         double v[5] = {(double)q->dist, q->a, q->b, q->lo, q->hi};
         h = rf_fnv1a(hash_str(h, q->path), v, sizeof v);
     }
-    return hash_release_and_law(h, s);
+    h = hash_release_and_law(h, s);
+    return s->terrain ? rf_terrain_def_hash(s->terrain, h) : h; /* a profile's hash as before */
 }

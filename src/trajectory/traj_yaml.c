@@ -5,6 +5,7 @@
  * traj_yaml_profile.c.  After parsing, the spec is validated and a failing
  * field is located through the lines recorded while reading. */
 #include "trajectory/traj_yaml_internal.h"
+#include "rockfuzz/terrain.h"
 #include "core/textfile.h"
 #include "core/hash.h"
 
@@ -36,6 +37,9 @@ static rf_status parse_materials(ty_ctx *c, struct fy_node *n)
         if (!rf_traj_name_valid(key))
             return yr_fail(&c->sp, k, "materials", "%s is not a name: %s", key, RF_TRAJ_NAME_RULE);
         rf_traj_material *m = &c->spec->materials[c->spec->n_materials++];
+        char mp[300];
+        yr_pathf(mp, sizeof mp, "materials.%s", key);
+        ty_remember(c, mp, k); /* locates a message about the material as a whole */
         if (!(m->name = rf_strdup(key)))
             return rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
         ty_row_defaults(RF_TRAJ_OWNER_MATERIAL, m);
@@ -151,19 +155,40 @@ static rf_status parse_outputs(ty_ctx *c, struct fy_node *n)
         } else if (!strcmp(key, "runout_bins")) {
             if ((st = yr_integer(&c->sp, v, "outputs.runout_bins", 1, RF_TRAJ_MAX_BINS, &bins)) == RF_OK)
                 o->runout_bins = (size_t)bins;
+        } else if (!strcmp(key, "max_paths") && c->spec->terrain) {
+            if ((st = yr_integer(&c->sp, v, "outputs.max_paths", 0, 1000000, &bins)) == RF_OK)
+                c->spec->terrain->max_paths = (size_t)bins;
         } else {
             char p[300];
             yr_pathf(p, sizeof p, "outputs.%s", key);
-            st = yr_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins");
+            st = yr_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins%s",
+                         c->spec->terrain ? ", max_paths" : "");
         }
     }
     return st;
 }
 
-static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
+/* On terrain a barrier's line (barriers[i].line); on a profile its x. */
+static rf_status collector_place(ty_ctx *c, struct fy_node *e, const char *what, const rf_traj_collector *col)
+{
+    struct fy_node *line = fy_node_mapping_lookup_by_string(e, "line", FY_NT);
+    char lp[400];
+    yr_pathf(lp, sizeof lp, "%s.%s", what, col->name);
+    if (!c->spec->terrain)
+        return isnan(col->x) ? yr_fail(&c->sp, e, lp, "a collector needs x [m]") : RF_OK;
+    if (!line)
+        return yr_fail(&c->sp, e, lp, "a barrier needs line: [[x, y], ...] (its trace on the map [m])");
+    yr_pathf(lp, sizeof lp, "barriers.%s.line", col->name);
+    return ty_barrier_line(c, line, lp);
+}
+
+/* collectors: (or barriers: on terrain) [{name, x | line, capacity, height, thresholds}] */
+static rf_status parse_collectors(ty_ctx *c, const char *what, struct fy_node *n)
 {
     size_t cnt;
-    rf_status st = yr_sequence(&c->sp, n, "collectors", 0, 1000, &cnt);
+    if (c->spec->collectors)
+        return yr_fail(&c->sp, n, what, "barriers and collectors are the same list: give one of them");
+    rf_status st = yr_sequence(&c->sp, n, what, 0, 1000, &cnt);
     if (st != RF_OK)
         return st;
     c->spec->collectors = calloc(cnt ? cnt : 1, sizeof *c->spec->collectors);
@@ -172,7 +197,7 @@ static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
     for (size_t i = 0; i < cnt; i++) {
         struct fy_node *e = fy_node_sequence_get_by_index(n, (int)i);
         char p[300];
-        yr_pathf(p, sizeof p, "collectors[%zu]", i);
+        yr_pathf(p, sizeof p, "%s[%zu]", what, i);
         if ((st = yr_mapping(&c->sp, e, p)) != RF_OK)
             return st;
         struct fy_node *nm = fy_node_mapping_lookup_by_string(e, "name", FY_NT);
@@ -182,7 +207,7 @@ static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
         if ((st = yr_string_dup(&c->sp, nm, p, &col->name)) != RF_OK)
             return st;
         if (!rf_traj_name_valid(col->name)) {
-            yr_pathf(p, sizeof p, "collectors[%zu].name", i);
+            yr_pathf(p, sizeof p, "%s[%zu].name", what, i);
             return yr_fail(&c->sp, nm, p, "%s", RF_TRAJ_NAME_RULE);
         }
         for (size_t j = 0; j < i; j++)
@@ -190,11 +215,11 @@ static rf_status parse_collectors(ty_ctx *c, struct fy_node *n)
                 return yr_fail(&c->sp, nm, p, "a second collector with this name");
         ty_row_defaults(RF_TRAJ_OWNER_COLLECTOR, col);
         yr_pathf(p, sizeof p, "collectors.%s", col->name);
-        if ((st = ty_fields(c, e, p, "name energy_thresholds height_thresholds")) != RF_OK ||
-            (st = parse_thresholds(c, e, p, col)) != RF_OK)
+        const char *extra = c->spec->terrain ? "name line energy_thresholds height_thresholds"
+                                             : "name energy_thresholds height_thresholds";
+        if ((st = ty_fields(c, e, p, extra)) != RF_OK || (st = parse_thresholds(c, e, p, col)) != RF_OK ||
+            (st = collector_place(c, e, what, col)) != RF_OK)
             return st;
-        if (isnan(col->x))
-            return yr_fail(&c->sp, e, p, "a collector needs x [m]");
     }
     return RF_OK;
 }
@@ -239,9 +264,13 @@ static rf_status parse_top_scalar(ty_ctx *c, const char *key, struct fy_node *k,
             return yr_fail(&c->sp, v, "sampling", "expected random or lhs (Latin hypercube)");
         return RF_OK;
     }
+    if (c->spec->terrain)
+        return yr_fail(&c->sp, k, key, "unknown key; a terrain file takes name, description, gravity, terrain, "
+                                       "materials, block, release, bounce, stop, barriers (or collectors), rasters, "
+                                       "outputs, samples, seed, sampling, record");
     return yr_fail(&c->sp, k, key, "unknown key; a trajectory file takes name, description, gravity, profile, "
                                    "materials, block, release, bounce, stop, collectors, outputs, samples, seed, "
-                                   "sampling, record");
+                                   "sampling, record (or terrain: a terrain file)");
 }
 
 static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct fy_node *v)
@@ -252,11 +281,17 @@ static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct
     if (!strcmp(key, "block"))
         return parse_block(c, v);
     if (!strcmp(key, "release"))
-        return ty_parse_release(c, v);
+        return c->spec->terrain ? ty_parse_terrain_release(c, v) : ty_parse_release(c, v);
     if (!strcmp(key, "stop"))
         return ty_fields(c, v, "stop", "max_steps");
-    if (!strcmp(key, "collectors"))
-        return parse_collectors(c, v);
+    if (!strcmp(key, "collectors") || (c->spec->terrain && !strcmp(key, "barriers")))
+        return parse_collectors(c, key, v);
+    if (c->spec->terrain && !strcmp(key, "rasters"))
+        return ty_parse_rasters(c, v);
+    if (!strcmp(key, "terrain")) {
+        c->terrain = v;
+        return RF_OK; /* after the materials: it names them */
+    }
     if (!strcmp(key, "outputs"))
         return parse_outputs(c, v);
     if (!strcmp(key, "bounce")) {
@@ -292,6 +327,19 @@ static void spec_defaults(rf_traj_spec *s)
     s->outputs.runout_bins = 20;
 }
 
+/* A profile file or a terrain file: exactly one of profile: and terrain:. */
+static rf_status file_kind(ty_ctx *c, struct fy_node *root)
+{
+    struct fy_node *profile = fy_node_mapping_lookup_by_string(root, "profile", FY_NT);
+    struct fy_node *terrain = fy_node_mapping_lookup_by_string(root, "terrain", FY_NT);
+    if (profile && terrain)
+        return yr_fail(&c->sp, terrain, "terrain", "a file has a profile (2D) or a terrain (3D on a DEM): not both");
+    if (!profile && !terrain)
+        return rf_fail(c->sp.err, RF_EINVAL, "%s:1: profile: missing (a 2D profile; or terrain: a DEM)",
+                       c->sp.file);
+    return terrain ? ty_terrain_begin(c) : RF_OK;
+}
+
 static rf_status parse_document(ty_ctx *c, struct fy_node *root)
 {
     rf_status st = yr_mapping(&c->sp, root, "");
@@ -302,6 +350,8 @@ static rf_status parse_document(ty_ctx *c, struct fy_node *root)
     struct fy_node *k, *v, *materials = fy_node_mapping_lookup_by_string(root, "materials", FY_NT);
     if (!materials)
         return rf_fail(c->sp.err, RF_EINVAL, "%s:1: materials: missing (name: {R_n, R_t, ...})", c->sp.file);
+    if ((st = file_kind(c, root)) != RF_OK)
+        return st;
     for (;;) {
         if ((st = yr_next(&c->sp, &it, "", &key, &k, &v)) != RF_OK)
             return st;
@@ -310,10 +360,15 @@ static rf_status parse_document(ty_ctx *c, struct fy_node *root)
         if ((st = parse_top(c, key, k, v)) != RF_OK)
             return st;
     }
-    const char *need[] = {"profile", "block", "release"};
+    const char *need[] = {c->spec->terrain ? "terrain" : "profile", "block", "release"};
     for (int i = 0; i < 3; i++)
         if (!fy_node_mapping_lookup_by_string(root, need[i], FY_NT))
             return rf_fail(c->sp.err, RF_EINVAL, "%s:1: %s: missing", c->sp.file, need[i]);
+    if (c->spec->terrain) {
+        if ((st = ty_parse_terrain(c, c->terrain)) != RF_OK)
+            return st;
+        return ty_terrain_end(c, root);
+    }
     if (c->spec->release_kind == RF_TRAJ_RELEASE_POINT && (isnan(c->spec->x0) || isnan(c->spec->y0)))
         return yr_fail(&c->sp, fy_node_mapping_lookup_by_string(root, "release", FY_NT), "release",
                        "x and y are required (or a line or zone)");

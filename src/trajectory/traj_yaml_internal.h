@@ -1,5 +1,6 @@
 /* traj_yaml_internal.h - shared by the trajectory-file reader's files
- * (traj_yaml.c, traj_yaml_value.c, traj_yaml_profile.c): the parse context,
+ * (traj_yaml.c, traj_yaml_value.c, traj_yaml_profile.c, traj_yaml_release.c,
+ * traj_yaml_terrain.c): the parse context,
  * with the line of every value read so that a validation failure found
  * after parsing can still be located. */
 #ifndef ROCKFUZZ_TRAJ_YAML_INTERNAL_H
@@ -20,6 +21,8 @@ typedef struct {
     int record_given;
     struct fy_node *release;     /* the release: mapping (its line/zone are read after the profile) */
     int csv_named;               /* the CSV profile named the segment materials */
+    struct fy_node *terrain;     /* terrain: (read after the materials: it names them) */
+    int terrain_p95;             /* rasters.statistics asked for energy_p95 / height_p95 */
     ty_line *lines;
     size_t n_lines, cap_lines;
 } ty_ctx;
@@ -58,6 +61,20 @@ rf_status ty_parse_profile(ty_ctx *c, struct fy_node *n);
 
 /* dem.c: profile: {dem: {file: F, line: [[x, y], ...], step: h, origin: [x, y]}} */
 rf_status ty_dem_profile(ty_ctx *c, struct fy_node *n);
+
+/* traj_yaml_terrain.c: a terrain file (docs/terrain-file.md).  begin: the
+ * terrain part's defaults (before any key is read); terrain: {dem, band,
+ * materials: {raster, band, classes} | material, roughness: {raster, band}};
+ * release: {points | lines | polygons | file | raster, blocks, height,
+ * velocity | vx, vy, vz | speed, azimuth, dip, spin}; a barrier's line
+ * [[x, y], ...] under `path` appended to spec->terrain's lines; rasters:
+ * {cell, statistics}; end: p95 among the percentiles when asked for. */
+rf_status ty_terrain_begin(ty_ctx *c);
+rf_status ty_parse_terrain(ty_ctx *c, struct fy_node *n);
+rf_status ty_parse_terrain_release(ty_ctx *c, struct fy_node *n);
+rf_status ty_barrier_line(ty_ctx *c, struct fy_node *n, const char *path);
+rf_status ty_parse_rasters(ty_ctx *c, struct fy_node *n);
+rf_status ty_terrain_end(ty_ctx *c, struct fy_node *root);
 
 /* Validate the finished spec (and the ranges of the random inputs); the
  * message gets the file and line of the field it names. */

@@ -1,0 +1,155 @@
+/* terrain_world.c - the prepared world of a terrain spec: the DEM read with
+ * its material classes (or the one material) and roughness, each barrier's
+ * line with the distance along it, the release set (every release feature on
+ * valid cells of the DEM) and, for the impact_model law, the impact table.
+ * terrain_world_from_surface does all but the reading, for a surface made in
+ * memory (rf_terrain_from_nodes). */
+#include "trajectory/terrain_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void rf_terrain_world_free(rf_terrain_world *w)
+{
+    if (!w)
+        return;
+    rf_terrain_free(w->dem);
+    for (size_t c = 0; w->col && c < w->ncol; c++)
+        free(w->col[c].cum);
+    free(w->col);
+    terrain_release_free(w->release);
+    traj_impact_table_free(w->impact_table);
+    free(w);
+}
+
+const rf_terrain *rf_terrain_world_surface(const rf_terrain_world *w) { return w ? w->dem : NULL; }
+
+/* Without a class raster every cell is the one material (index d->material). */
+static rf_status constant_material(rf_terrain *t, const rf_traj_spec *s, rf_error *err)
+{
+    const rf_terrain_def *d = s->terrain;
+    if (d->classes || t->material || d->material == 0)
+        return RF_OK; /* classes read, set by the caller, or material 0 (t->material NULL) */
+    if (d->material > UINT16_MAX)
+        return rf_fail(err, RF_EINVAL, "terrain.material: index %zu beyond %d materials", d->material, UINT16_MAX);
+    size_t n = (t->nx - 1) * (t->ny - 1);
+    if (!(t->material = malloc(n * sizeof *t->material)))
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    for (size_t k = 0; k < n; k++)
+        t->material[k] = (uint16_t)d->material;
+    return RF_OK;
+}
+
+static rf_status barrier_geometry(rf_terrain_world *w, const rf_traj_spec *s, rf_error *err)
+{
+    const rf_terrain_def *d = s->terrain;
+    w->ncol = s->n_collectors;
+    if (!w->ncol)
+        return RF_OK;
+    if (!d->barrier_start || d->n_barriers != w->ncol)
+        return rf_fail(err, RF_EINVAL, "barriers: %zu barriers but %zu lines", w->ncol, d->n_barriers);
+    if (!(w->col = calloc(w->ncol, sizeof *w->col)))
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    for (size_t c = 0; c < w->ncol; c++) {
+        terrain_barrier_geo *g = &w->col[c];
+        size_t a = d->barrier_start[c];
+        g->n = d->barrier_start[c + 1] - a;
+        g->x = d->barrier_x + a, g->y = d->barrier_y + a;
+        if (!(g->cum = malloc(g->n * sizeof *g->cum)))
+            return rf_fail(err, RF_ENOMEM, "out of memory");
+        g->cum[0] = 0;
+        for (size_t k = 1; k < g->n; k++)
+            g->cum[k] = g->cum[k - 1] + hypot(g->x[k] - g->x[k - 1], g->y[k] - g->y[k - 1]);
+    }
+    return RF_OK;
+}
+
+/* (x, y) on a valid cell, else a message naming feature f, its vertex and point. */
+static rf_status on_valid(const rf_terrain *t, const rf_terrain_def *d, size_t f, size_t k, double x, double y,
+                          rf_error *err)
+{
+    static const char *const kind[] = {"points", "lines", "polygons"};
+    double z;
+    if (rf_terrain_height(t, x, y, &z, NULL))
+        return RF_OK;
+    const char *src = d->release.file ? d->release.file : "";
+    return rf_fail(err, RF_EINVAL, "release.%s[%zu]%s%s%s: the point [%g, %g] (by vertex %zu) lies outside the DEM "
+                   "or on a no-data cell", kind[d->release.kind], f, src[0] ? " (from " : "", src,
+                   src[0] ? ")" : "", x, y, k);
+}
+
+/* Every vertex of every release feature, and points along every edge at a
+ * quarter of a cell, on valid cells (a polygon's interior is not searched
+ * for no-data holes: a block drawn there starts outside and is reported). */
+static rf_status release_on_dem(const rf_terrain *t, const rf_terrain_def *d, rf_error *err)
+{
+    const rf_terrain_release *r = &d->release;
+    double step = 0.25 * fmin(t->dx, t->dy);
+    for (size_t f = 0; f < r->n_features; f++) {
+        size_t a = r->start[f], n = r->start[f + 1] - a;
+        size_t edges = r->kind == RF_TERRAIN_POINTS ? 0 : r->kind == RF_TERRAIN_LINES ? n - 1 : n;
+        rf_status st = on_valid(t, d, f, 0, r->x[a], r->y[a], err);
+        for (size_t e = 0; e < edges && st == RF_OK; e++) {
+            size_t i = a + e, j = a + (e + 1) % n;
+            double len = hypot(r->x[j] - r->x[i], r->y[j] - r->y[i]);
+            size_t m = (size_t)ceil(fmin(len / step, 1e6));
+            for (size_t q = 1; q <= m && st == RF_OK; q++) {
+                double u = (double)q / (double)m;
+                st = on_valid(t, d, f, (e + (q == m)) % n, r->x[i] + u * (r->x[j] - r->x[i]),
+                              r->y[i] + u * (r->y[j] - r->y[i]), err);
+            }
+        }
+        if (st != RF_OK)
+            return st;
+    }
+    return RF_OK;
+}
+
+rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_terrain_world **out, rf_error *err)
+{
+    *out = NULL;
+    rf_terrain_world *w = calloc(1, sizeof *w);
+    if (!w) {
+        rf_terrain_free(dem);
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    }
+    w->dem = dem;
+    rf_status st = s->terrain ? RF_OK : rf_fail(err, RF_EINVAL, "not a terrain spec (no terrain:)");
+    if (st == RF_OK)
+        st = constant_material(dem, s, err);
+    if (st == RF_OK)
+        st = barrier_geometry(w, s, err);
+    if (st == RF_OK)
+        st = terrain_release_prepare(s, &w->release, err);
+    if (st == RF_OK)
+        st = release_on_dem(dem, s->terrain, err);
+    if (st == RF_OK && s->law == RF_BOUNCE_IMPACT_MODEL)
+        st = traj_impact_table_build(s, (traj_impact_table **)&w->impact_table, err);
+    if (st != RF_OK) {
+        rf_terrain_world_free(w);
+        return st;
+    }
+    *out = w;
+    return RF_OK;
+}
+
+rf_status rf_terrain_world_create(const rf_traj_spec *s, rf_terrain_world **w, rf_error *err)
+{
+    *w = NULL;
+    const rf_terrain_def *d = s->terrain;
+    if (!d)
+        return rf_fail(err, RF_EINVAL, "not a terrain spec (no terrain:)");
+    rf_terrain *t = NULL;
+    rf_status st = rf_terrain_read(d->dem, d->band ? d->band : 1, &t, err);
+    if (st == RF_OK && d->classes)
+        st = rf_terrain_read_classes(t, d->classes, d->classes_band ? d->classes_band : 1, d->n_classes,
+                                     d->class_value, d->class_material, err);
+    if (st == RF_OK && d->roughness)
+        st = rf_terrain_read_roughness(t, d->roughness, d->roughness_band ? d->roughness_band : 1, err);
+    if (st != RF_OK) {
+        rf_terrain_free(t);
+        return st;
+    }
+    return terrain_world_from_surface(s, t, w, err);
+}
