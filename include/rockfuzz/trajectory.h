@@ -430,6 +430,8 @@ typedef struct {
 typedef struct {
     size_t samples, stopped, exited, step_limit;
     rf_traj_percentiles runout_x, rebound_height;       /* [m], over all samples */
+    rf_traj_percentiles reach_angle;                    /* [rad] a terrain run: the reach angle over the samples
+                                                           with a runout (terrain.h); a profile: NaN */
     double p_runout_above[RF_TRAJ_MAX_THRESHOLDS];      /* P(runout_x > outputs.runout_thresholds[k]) */
     rf_traj_histogram runout_histogram;
     size_t n_collectors;
