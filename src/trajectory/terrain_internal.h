@@ -253,10 +253,12 @@ void terrain_release_free(terrain_release_set *set);
 void terrain_release_point(const terrain_release_set *set, double u1, double u2, double u3, double *x, double *y);
 
 /* terrain_montecarlo.c: rf_terrain_run on a prepared world (the caller's:
- * tests and the benchmark build one from a surface in memory); the bytes a
- * run keeps per sample (its per-sample arrays: state, runout, rebound
- * height, start, end, reach angle, a crossing per barrier). */
-rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads,
+ * tests and the benchmark build one from a surface in memory; the study
+ * model shares one over its evaluations), with the rasters only if
+ * `rasters` (and the spec asks for some); the bytes a run keeps per sample
+ * (its per-sample arrays: state, runout, rebound height, start, end, reach
+ * angle, a crossing per barrier). */
+rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads, int rasters,
                             rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err);
 double terrain_bytes_per_sample(size_t n_collectors);
 /* terrain_files.c: the CSV files of rf_terrain_write_outputs alone

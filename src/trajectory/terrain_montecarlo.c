@@ -214,12 +214,11 @@ static rf_status collect(tmc_job *jobs, int threads, rf_traj_ensemble *ens, rf_e
 }
 
 static rf_status run_jobs(const rf_traj_spec *spec, const rf_terrain_world *w, const size_t *perm, int threads,
-                          tmc_progress *progress, rf_traj_ensemble *ens, rf_error *err)
+                          int rasters, tmc_progress *progress, rf_traj_ensemble *ens, rf_error *err)
 {
     size_t N = spec->samples;
     if ((size_t)threads > N)
         threads = N ? (int)N : 1;
-    int rasters = spec->terrain->statistics != 0;
     tmc_job *jobs = calloc((size_t)threads, sizeof *jobs);
     rf_status st = jobs ? RF_OK : RF_ENOMEM;
     for (int t = 0; t < threads && st == RF_OK; t++) {
@@ -241,12 +240,13 @@ static rf_status run_jobs(const rf_traj_spec *spec, const rf_terrain_world *w, c
     return st;
 }
 
-rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads,
+rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads, int rasters,
                             rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err)
 {
     double t0 = rf_monotonic_seconds();
     if (!spec->terrain)
-        return rf_fail(err, RF_EINVAL, "%s: not a terrain file (it has no `terrain:`)", spec->file ? spec->file : "spec");
+        return rf_fail(err, RF_EINVAL, "%s: not a terrain file (it has no `terrain:`)",
+                       spec->file ? spec->file : "spec");
     rf_status st = ensemble_alloc(spec, ens, err);
     size_t *perm = NULL;
     if (st == RF_OK && spec->lhs && !(perm = traj_lhs_permutations(spec, spec->n_random + 3)))
@@ -257,7 +257,7 @@ rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w,
     }
     tmc_progress p = {progress, ctx, 0};
     if (st == RF_OK)
-        st = run_jobs(spec, w, perm, threads, progress ? &p : NULL, ens, err);
+        st = run_jobs(spec, w, perm, threads, rasters && spec->terrain->statistics, progress ? &p : NULL, ens, err);
     if (st == RF_OK)
         ens->terrain->dem = w->dem;
     free(perm);
@@ -277,7 +277,7 @@ rf_status rf_terrain_run(const rf_traj_spec *spec, int threads, rf_traj_progress
     rf_terrain_world *w = NULL;
     if ((st = rf_terrain_world_create(spec, &w, err)) != RF_OK)
         return st;
-    st = terrain_run_world(spec, w, threads, progress, ctx, ens, err);
+    st = terrain_run_world(spec, w, threads, 1, progress, ctx, ens, err);
     if (st == RF_OK)
         ens->terrain->world = w; /* the outputs draw on its surface */
     else
