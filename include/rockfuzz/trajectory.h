@@ -432,6 +432,8 @@ typedef struct {
 typedef struct {
     size_t samples, stopped, exited, step_limit;
     rf_traj_percentiles runout_x, rebound_height;       /* [m], over all samples */
+    rf_traj_percentiles reach_angle;                    /* [rad] a terrain run: the reach angle over the samples
+                                                           with a runout (terrain.h); a profile: NaN */
     double p_runout_above[RF_TRAJ_MAX_THRESHOLDS];      /* P(runout_x > outputs.runout_thresholds[k]) */
     rf_traj_histogram runout_histogram;
     size_t n_collectors;
@@ -487,7 +489,11 @@ int rf_traj_state_at(const rf_traj_result *res, double t, double *x, double *y, 
  * C_reach_probability, C_p_total_energy_above_capacity (barrier) and
  * C_p_total_energy_above_<E>J, C_p_height_lowest_above_barrier and
  * C_p_height_lowest_above_<h>m [-]; then runout_x_pXX, rebound_height_pXX [m],
- * p_runout_x_above_<x>m [-] ('.' in a number becomes '_').  param_names[i] is
+ * p_runout_x_above_<x>m [-] ('.' in a number becomes '_').  A terrain file
+ * (spec->terrain): the collector outputs per barrier, then runout_pXX [m],
+ * reach_angle_pXX [deg], rebound_height_pXX [m], p_runout_above_<x>m [-]
+ * (the terrain Monte Carlo, no rasters: fuzzy hazard rasters are not model
+ * outputs).  param_names[i] is
  * bound to the spec path bind_paths[i].  Every evaluation uses the same seed:
  * common random numbers across the TM's points. */
 rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const char *const *param_names,

@@ -1,13 +1,16 @@
 /* cmd_trajectory.c - `rockfuzz trajectory FILE.yaml`: one trajectory file
  * run (a single deterministic trajectory when nothing is random, else the
  * Monte Carlo ensemble), a readable summary or the JSON document, and with
- * --out the CSV files, plots and report.html.  Usage errors exit 2, invalid
- * files or failed runs 1. */
+ * --out the CSV files, plots and report.html.  A terrain file (`terrain:`
+ * instead of `profile:`) runs on its DEM (rf_terrain_run) and writes the
+ * terrain outputs (hazard.tif, paths.gpkg, maps).  Usage errors exit 2,
+ * invalid files or failed runs 1. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "cli/cli.h"
 #include "core/json.h"
 #include "core/outdir.h"
 #include "rockfuzz/report.h"
+#include "rockfuzz/terrain.h"
 #include "rockfuzz/trajectory.h"
 
 #include <errno.h>
@@ -26,10 +29,11 @@ static void usage(FILE *f)
         "Usage: rockfuzz trajectory FILE.yaml [--json] [--out DIR] [--threads N] [--samples N] [--seed S]\n"
         "                           [--max-trajectories N] [--no-plots] [--progress] [--quiet]\n"
         "\n"
-        "Runs the rockfall trajectories of a trajectory file on its 2D slope profile: one\n"
+        "Runs the rockfall trajectories of a trajectory file on its 2D slope profile, or in\n"
+        "3D on a DEM for a terrain file (`terrain:` instead of `profile:`): one\n"
         "deterministic trajectory when nothing is random, else `samples` Monte Carlo\n"
         "trajectories (random inputs written {uniform: [lo, hi]} or {normal: [mean, sd]}).\n"
-        "File format and conventions: docs/trajectories.md.\n"
+        "File format and conventions: docs/trajectories.md; terrain files: docs/terrain.md.\n"
         "\n"
         "  --json                 print the JSON document (samples, trajectories with their\n"
         "                         impacts, rest point and collector crossings, statistics)\n"
@@ -37,7 +41,11 @@ static void usage(FILE *f)
         "                         sample's runout), crossings.csv, statistics.csv, exceedance.csv,\n"
         "                         runout_histogram.csv, envelopes.csv (along x, all trajectories),\n"
         "                         plots (PNG, SVG), report.html and\n"
-        "                         invocation.json (the file and options, for `rockfuzz report DIR`)\n"
+        "                         invocation.json (the file and options, for `rockfuzz report DIR`);\n"
+        "                         a terrain file: result.json, samples.csv (start, end, runout,\n"
+        "                         reach angle), crossings.csv, statistics.csv, hazard.tif (the\n"
+        "                         rasters, one band per statistic), paths.gpkg (end points and\n"
+        "                         trajectories), maps (PNG) and report.html\n"
         "  --threads N            worker threads, 0..1024 (default or 0: all cores; results do\n"
         "                         not depend on it)\n"
         "  --samples N, --seed S  override the file's samples (1..10^8) and seed (0..2^53)\n"
@@ -51,7 +59,7 @@ static void usage(FILE *f)
         "  --quiet                no summary, no progress line\n"
         "\n"
         "Units: m, s, m/s, rad/s, kg, J (the summary shows energies in kJ); angles in the file\n"
-        "in degrees.\n");
+        "and the terrain outputs (reach angle) in degrees.\n");
 }
 
 typedef struct {
@@ -116,12 +124,26 @@ static int write_invocation(const traj_args *a)
     return 0;
 }
 
+/* The JSON document of a profile or a terrain run. */
+static void write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_traj_stats *st,
+                       size_t max_traj)
+{
+    if (s->terrain)
+        rf_terrain_write_json(f, s, e, st, max_traj);
+    else
+        rf_traj_write_json(f, s, e, st, max_traj);
+}
+
 static int write_outputs(const traj_args *a, const rf_traj_spec *s, const rf_traj_ensemble *e,
                          const rf_traj_stats *st)
 {
     rf_error err;
     char path[4096];
-    if (rf_report_make_dir(a->out, &err) != RF_OK || rf_traj_write_csv(a->out, s, e, st, &err) != RF_OK) {
+    rf_status rs = rf_report_make_dir(a->out, &err);
+    if (rs == RF_OK)
+        rs = s->terrain ? rf_terrain_write_outputs(a->out, s, e, st, a->plots, &err)
+                        : rf_traj_write_csv(a->out, s, e, st, &err);
+    if (rs != RF_OK) {
         fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
         return 1;
     }
@@ -131,14 +153,14 @@ static int write_outputs(const traj_args *a, const rf_traj_spec *s, const rf_tra
         fprintf(stderr, "rockfuzz trajectory: cannot write %s\n", path);
         return 1;
     }
-    rf_traj_write_json(f, s, e, st, a->max_traj);
+    write_json(f, s, e, st, a->max_traj);
     if (fclose(f) != 0) {
         fprintf(stderr, "rockfuzz trajectory: cannot write %s\n", path);
         return 1;
     }
     if (write_invocation(a) != 0)
         return 1;
-    if (a->plots && rf_traj_write_plots(a->out, s, e, st, &err) != RF_OK) {
+    if (a->plots && !s->terrain && rf_traj_write_plots(a->out, s, e, st, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
         return 1;
     }
@@ -160,7 +182,8 @@ static int run_file(const traj_args *a, rf_traj_spec *spec, rf_traj_ensemble *en
         spec->seed = (uint64_t)a->seed;
     rf_cli_progress line;
     rf_cli_progress_begin(&line, a->progress || (!a->json && !a->quiet && isatty(STDERR_FILENO)), "trajectories");
-    rf_status rs = rf_traj_run_progress(spec, a->threads, rf_cli_progress_count, &line, ens, &err);
+    rf_status rs = spec->terrain ? rf_terrain_run(spec, a->threads, rf_cli_progress_count, &line, ens, &err)
+                                 : rf_traj_run_progress(spec, a->threads, rf_cli_progress_count, &line, ens, &err);
     rf_cli_progress_end(&line);
     if (rs != RF_OK || rf_traj_stats_compute_spec(spec, ens, st, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
@@ -195,7 +218,9 @@ int rf_cli_trajectory(int argc, char **argv)
     if (run_file(&a, &spec, &ens, &st) != 0)
         return 1;
     if (a.json)
-        rf_traj_write_json(stdout, &spec, &ens, &st, a.max_traj);
+        write_json(stdout, &spec, &ens, &st, a.max_traj);
+    else if (!a.quiet && spec.terrain)
+        rf_terrain_write_summary(stdout, &spec, &ens, &st);
     else if (!a.quiet)
         rf_traj_write_summary(stdout, &spec, &ens, &st);
     if (a.out)
@@ -274,7 +299,7 @@ static int rerun_report(const char *dir, const traj_args *a, const char *stored)
     size_t len = 0;
     FILE *mem = open_memstream(&doc, &len);
     if (mem) {
-        rf_traj_write_json(mem, &spec, &ens, &st, a->max_traj);
+        write_json(mem, &spec, &ens, &st, a->max_traj);
         fclose(mem);
     }
     const size_t n = doc ? comparable_length(doc) : 0;
@@ -289,7 +314,10 @@ static int rerun_report(const char *dir, const traj_args *a, const char *stored)
         if (w)
             ens.wall_seconds = strtod(w + 18, NULL);
         rf_error err;
-        if (rf_traj_write_plots(dir, &spec, &ens, &st, &err) != RF_OK) {
+        /* a terrain run's maps are drawn with its rasters: the run folder is written again */
+        rf_status rs = spec.terrain ? rf_terrain_write_outputs(dir, &spec, &ens, &st, 1, &err)
+                                    : rf_traj_write_plots(dir, &spec, &ens, &st, &err);
+        if (rs != RF_OK) {
             fprintf(stderr, "rockfuzz report: %s\n", err.msg);
             rc = 1;
         }

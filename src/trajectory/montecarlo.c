@@ -2,14 +2,15 @@
  * Sample i draws input j from the counter-based uniform
  * U(seed, stream 2i, index j) (roughness: stream 2i + 1), optionally
  * stratified by a Latin hypercube (u = (perm_j[i] + U) / N, the permutations
- * also drawn from the seed), and writes its results at index i.  So the
+ * also drawn from the seed; traj_draw.c, shared with terrain_montecarlo.c),
+ * and writes its results at index i.  So the
  * ensemble is the same bits whatever the thread count or the split over MPI
  * ranks.  Threads take contiguous blocks of samples; each keeps its own deep
  * copy of the spec into which the draws are written, one events buffer
  * reused by the trajectories it does not record, and its envelope
  * accumulator (envelope.c), merged at the end (counts and maxima: the same
  * bits in any order). */
-#include "trajectory/traj_internal.h"
+#include "trajectory/terrain_internal.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -17,8 +18,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-#define LHS_STREAM 0x4000000000000000ULL
 
 /* Samples done by all threads; the first job reports them. */
 typedef struct {
@@ -49,31 +48,10 @@ static void count_sample(const mc_job *job)
         job->progress->fn(job->progress->ctx, done, job->spec->samples);
 }
 
-static double normal_cdf(double z) { return 0.5 * erfc(-z / sqrt(2.0)); }
-
-/* Value of random input r for the uniform u in (0, 1). */
-static double draw(const rf_traj_random *r, double u)
-{
-    if (r->dist == RF_DIST_UNIFORM)
-        return r->a + u * (r->b - r->a);
-    if (r->dist == RF_DIST_NORMAL) {
-        if (!(r->b > 0))
-            return r->a;
-        double plo = isfinite(r->lo) ? normal_cdf((r->lo - r->a) / r->b) : 0;
-        double phi = isfinite(r->hi) ? normal_cdf((r->hi - r->a) / r->b) : 1;
-        double x = r->a + r->b * rf_traj_normal_quantile(plo + u * (phi - plo));
-        return fmin(fmax(x, r->lo), r->hi);
-    }
-    return r->a;
-}
-
-/* The uniform of input dimension j of sample i (the release point of a line
- * or zone is dimension n_random), stratified by the Latin hypercube. */
+/* The uniform of input dimension j of sample i (traj_draw.c). */
 static double sample_u(const mc_job *job, size_t i, size_t j)
 {
-    double u = rf_traj_uniform(job->spec->seed, 2 * (uint64_t)i, j);
-    size_t N = job->spec->samples;
-    return job->perm ? ((double)job->perm[j * N + i] + u) / (double)N : u;
+    return traj_sample_u(job->spec, job->perm, i, j);
 }
 
 static void *mc_worker(void *arg)
@@ -98,12 +76,9 @@ static void *mc_worker(void *arg)
         job->status = rf_fail(&job->err, RF_ENOMEM, "out of memory");
         return NULL;
     }
-    for (size_t j = 0; j < spec->n_random; j++)
-        row[j] = rf_traj_field_at(&local, spec->random[j].path, &field[j]);
+    traj_draw_bind(&local, spec, row, field);
     for (size_t i = job->begin; i < job->end && job->status == RF_OK; i++) {
-        for (size_t j = 0; j < spec->n_random; j++)
-            if (row[j]) /* in the row's units: an angle drawn in degrees, stored in radians */
-                *field[j] = traj_field_store(row[j], draw(&spec->random[j], sample_u(job, i, j)));
+        traj_draw_inputs(spec, job->perm, i, row, field);
         if (job->world->release)
             traj_release_point(job->world, sample_u(job, i, spec->n_random), &local.x0, &local.y0);
         rf_traj_result *res = i < ens->n_recorded ? &ens->recorded[i] : &tmp; /* tmp.events grows, reused */
@@ -123,27 +98,6 @@ static void *mc_worker(void *arg)
     free(cross);
     free(tmp.events);
     return NULL;
-}
-
-/* Latin hypercube: for each input an independent random permutation of 0..N-1. */
-static size_t *lhs_permutations(const rf_traj_spec *s)
-{
-    size_t N = s->samples, n = s->n_random + (s->release_kind != RF_TRAJ_RELEASE_POINT);
-    size_t *p = malloc((n * N > 0 ? n * N : 1) * sizeof *p);
-    if (!p)
-        return NULL;
-    for (size_t j = 0; j < n; j++) {
-        size_t *q = p + j * N;
-        for (size_t i = 0; i < N; i++)
-            q[i] = i;
-        for (size_t i = N; i > 1; i--) { /* Fisher-Yates */
-            size_t k = (size_t)(rf_traj_uniform(s->seed, LHS_STREAM + j, i) * (double)i);
-            size_t t = q[i - 1];
-            q[i - 1] = q[k < i ? k : i - 1];
-            q[k < i ? k : i - 1] = t;
-        }
-    }
-    return p;
 }
 
 /* The run's memory is estimated before anything is allocated: per sample its state, runout,
@@ -208,6 +162,7 @@ void rf_traj_ensemble_free(rf_traj_ensemble *e)
     free(e->rebound_height);
     free(e->crossings);
     traj_envelope_free(&e->envelope);
+    terrain_samples_free(e->terrain);
     memset(e, 0, sizeof *e);
 }
 
@@ -315,8 +270,8 @@ static rf_status traj_run_full(const rf_traj_spec *spec, int threads, void *tabl
         return st;
     }
     size_t *perm = NULL;
-    int dims = spec->n_random || spec->release_kind != RF_TRAJ_RELEASE_POINT;
-    if (spec->lhs && dims && !(perm = lhs_permutations(spec))) {
+    size_t dims = spec->n_random + (spec->release_kind != RF_TRAJ_RELEASE_POINT);
+    if (spec->lhs && dims && !(perm = traj_lhs_permutations(spec, dims))) {
         rf_traj_world_free(w);
         rf_traj_ensemble_free(ens);
         return rf_fail(err, RF_ENOMEM, "out of memory");

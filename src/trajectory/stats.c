@@ -1,11 +1,13 @@
 /* stats.c - statistics of an ensemble: percentiles (Hyndman & Fan type 7:
  * linear between order statistics, the default of R and NumPy) at the fixed
  * levels 50/95/99 and at the spec's `outputs.percentiles`, of the runout and
- * rebound height over all samples; the runout histogram and P(runout > x);
+ * rebound height over all samples (on terrain also of the reach angle); the
+ * runout histogram and P(runout > x);
  * and per collector the reach probability, the percentiles of the energies,
  * passing heights and speed over the samples that reached it, and the
  * exceedance probabilities of its thresholds over all samples. */
 #include "trajectory/traj_internal.h"
+#include "rockfuzz/terrain.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -201,6 +203,8 @@ rf_status rf_traj_stats_compute_spec(const rf_traj_spec *s, const rf_traj_ensemb
     for (size_t k = 0; k < o.n_runout_thresholds; k++)
         st->p_runout_above[k] = fraction_above(e->runout_x, N, o.runout_thresholds[k]);
     rf_traj_runout_histogram(e, o.runout_bins, &st->runout_histogram);
+    st->reach_angle = rf_traj_percentiles_at(e->terrain ? e->terrain->reach_angle : NULL, e->terrain ? N : 0,
+                                             o.percentiles, o.n_percentiles);
     st->collectors = calloc(nc ? nc : 1, sizeof *st->collectors);
     double *q[NQ], *buf = malloc((N ? N : 1) * NQ * sizeof *buf);
     if (!st->collectors || !buf) {

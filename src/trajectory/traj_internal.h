@@ -46,6 +46,34 @@ void traj_release_free(traj_release_set *r);
 void traj_release_point(const rf_traj_world *w, double u, double *x, double *y);
 
 
+/* traj_output.c: pieces of the JSON document and the summary that the
+ * terrain outputs (terrain_output.c) share: {"pXX": .., "max": .., "mean": ..};
+ * [{"threshold", "barrier", "probability"}]; {"edges", "counts"}; a
+ * collector's "NAME": {statistics}; a summary line of percentiles (values
+ * times scale) and of exceedance probabilities. */
+void traj_json_percentiles(FILE *f, const rf_traj_percentiles *p);
+void traj_json_exceed(FILE *f, const double *t, const double *p, size_t n, int own);
+void traj_json_histogram(FILE *f, const rf_traj_histogram *h);
+void traj_json_collector_stats(FILE *f, const rf_traj_collector *col, const rf_traj_collector_stats *cs);
+void traj_summary_row(FILE *f, int indent, const char *what, const rf_traj_percentiles *p, double scale);
+void traj_summary_exceed(FILE *f, const char *what, const char *unit, const double *t, const double *p, size_t n,
+                         int own, const char *own_name, double scale);
+
+/* traj_draw.c: the random inputs of sample i (montecarlo.c, terrain_montecarlo.c).
+ * traj_draw_value: the value of random input r at the uniform u in (0, 1);
+ * traj_sample_u: the uniform of input dimension j of sample i (dimensions
+ * 0..n_random-1 the random inputs, then the release point's), from
+ * U(seed, stream 2i, index j), stratified when perm (dims * samples, from
+ * traj_lhs_permutations) is set; traj_draw_bind: where each random input of
+ * the copy `local` lives (row NULL: not a row, never drawn);
+ * traj_draw_inputs: write sample i's draws there. */
+double traj_draw_value(const rf_traj_random *r, double u);
+double traj_sample_u(const rf_traj_spec *s, const size_t *perm, size_t i, size_t j);
+size_t *traj_lhs_permutations(const rf_traj_spec *s, size_t dims);
+void traj_draw_bind(rf_traj_spec *local, const rf_traj_spec *spec, const rf_traj_field **row, double **field);
+void traj_draw_inputs(const rf_traj_spec *spec, const size_t *perm, size_t i, const rf_traj_field *const *row,
+                      double *const *field);
+
 /* A world that uses the given impact table (not owned; NULL: built if the law needs it). */
 rf_status traj_world_create_shared(const rf_traj_spec *spec, void *table, rf_traj_world **world, rf_error *err);
 /* montecarlo.c: rf_traj_run with a shared impact table (NULL: the run builds its own). */

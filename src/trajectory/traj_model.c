@@ -11,8 +11,12 @@
  * any other non-finite output is an error naming the output.
  * With the impact_model law the impact table is built once for the model and
  * shared by every evaluation (each impact of the impact model is computed
- * once per study process), unless a parameter changes it. */
-#include "trajectory/traj_internal.h"
+ * once per study process), unless a parameter changes it.
+ * A terrain file (spec->terrain) evaluates by the terrain Monte Carlo
+ * (terrain_run_world on a world prepared once: the DEM is read once per
+ * model; no rasters) and gives runout_pXX and reach_angle_pXX [deg] where a
+ * profile gives runout_x_pXX; fuzzy hazard rasters are not outputs. */
+#include "trajectory/terrain_internal.h"
 #include "core/hash.h"
 
 #include <math.h>
@@ -25,6 +29,7 @@ typedef struct {
     size_t n_params;
     char **paths;
     void *table;             /* impact_model: built once when no parameter changes it, else NULL */
+    rf_terrain_world *world; /* a terrain file: its world, prepared once */
     size_t n_outputs;
 } traj_model_ctx;
 
@@ -122,15 +127,33 @@ static void emit_collector(out_sink *o, const rf_traj_spec *s, size_t c, const r
     emit_exceed(o, nm, "height_lowest", "m", t, cs ? cs->p_height_above : NULL, n, own, "barrier");
 }
 
-/* Every output: per collector, then runout_x, rebound_height and P(runout_x > x). */
+/* A terrain run's reach angle percentiles in degrees. */
+static rf_traj_percentiles reach_degrees(const rf_traj_stats *t)
+{
+    rf_traj_percentiles p = t->reach_angle;
+    const double k = 180 / 3.14159265358979323846;
+    p.p50 *= k, p.p95 *= k, p.p99 *= k, p.max *= k, p.mean *= k;
+    for (size_t i = 0; i < p.n; i++)
+        p.value[i] *= k;
+    return p;
+}
+
+/* Every output: per collector, then runout_x (terrain: runout, reach_angle [deg]), rebound_height and
+ * P(runout_x > x). */
 static void walk_outputs(out_sink *o, const rf_traj_spec *s, const rf_traj_stats *t)
 {
     for (size_t c = 0; c < s->n_collectors; c++)
         emit_collector(o, s, c, t ? &t->collectors[c] : NULL);
-    emit_pct(o, &s->outputs, "runout_x", "m", t ? &t->runout_x : NULL);
+    if (s->terrain) {
+        rf_traj_percentiles ra = t ? reach_degrees(t) : (rf_traj_percentiles){0};
+        emit_pct(o, &s->outputs, "runout", "m", t ? &t->runout_x : NULL);
+        emit_pct(o, &s->outputs, "reach_angle", "deg", t ? &ra : NULL);
+    } else {
+        emit_pct(o, &s->outputs, "runout_x", "m", t ? &t->runout_x : NULL);
+    }
     emit_pct(o, &s->outputs, "rebound_height", "m", t ? &t->rebound_height : NULL);
-    emit_exceed(o, "", "runout_x", "m", s->outputs.runout_thresholds, t ? t->p_runout_above : NULL,
-                s->outputs.n_runout_thresholds, 0, "");
+    emit_exceed(o, "", s->terrain ? "runout" : "runout_x", "m", s->outputs.runout_thresholds,
+                t ? t->p_runout_above : NULL, s->outputs.n_runout_thresholds, 0, "");
 }
 
 static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_error *err)
@@ -145,7 +168,9 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     s.record = 0;
     rf_traj_ensemble e;
     rf_traj_stats t;
-    if ((st = traj_run_with(&s, 1, c->table, 0, &e, err)) == RF_OK) { /* no envelopes: not outputs */
+    st = c->world ? terrain_run_world(&s, c->world, 1, 0, NULL, NULL, &e, err) /* no rasters: not outputs */
+                  : traj_run_with(&s, 1, c->table, 0, &e, err);             /* no envelopes: not outputs */
+    if (st == RF_OK) {
         if ((st = rf_traj_stats_compute_spec(&s, &e, &t, err)) == RF_OK) {
             out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0, ""};
             walk_outputs(&o, &s, &t);
@@ -173,6 +198,7 @@ static void traj_model_destroy(void *vctx)
         free(c->paths[i]);
     free(c->paths);
     traj_impact_table_free(c->table);
+    rf_terrain_world_free(c->world);
     rf_traj_spec_free(&c->spec);
     free(c);
 }
@@ -263,6 +289,9 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
     model->destroy = traj_model_destroy;
     model->eval = traj_model_eval;
     model->threads_per_eval = 1;
+    if (st == RF_OK && c->spec.terrain) /* checked as a run checks it, the DEM read once */
+        if ((st = rf_traj_spec_validate(&c->spec, err)) == RF_OK)
+            st = rf_terrain_world_create(&c->spec, &c->world, err);
     if (st == RF_OK)
         st = share_table(c, err);
     if (st == RF_OK)

@@ -12,7 +12,7 @@
 #include <string.h>
 
 /* {"p50": .., <the chosen levels>, "max": .., "mean": ..} */
-static void jpct(FILE *f, const rf_traj_percentiles *p)
+void traj_json_percentiles(FILE *f, const rf_traj_percentiles *p)
 {
     char name[32];
     fputc('{', f);
@@ -84,7 +84,7 @@ static void json_trajectory(FILE *f, const rf_traj_spec *s, const rf_traj_result
 }
 
 /* [{"threshold": v, "barrier": true|false, "probability": p}, ...] */
-static void json_exceed(FILE *f, const double *t, const double *p, size_t n, int own)
+void traj_json_exceed(FILE *f, const double *t, const double *p, size_t n, int own)
 {
     fputc('[', f);
     for (size_t k = 0; k < n; k++) {
@@ -95,7 +95,7 @@ static void json_exceed(FILE *f, const double *t, const double *p, size_t n, int
     fputc(']', f);
 }
 
-static void json_histogram(FILE *f, const rf_traj_histogram *h)
+void traj_json_histogram(FILE *f, const rf_traj_histogram *h)
 {
     fputs("{\"edges\": [", f);
     for (size_t k = 0; h->bins && k <= h->bins; k++)
@@ -106,7 +106,7 @@ static void json_histogram(FILE *f, const rf_traj_histogram *h)
     fputs("]}", f);
 }
 
-static void json_collector_stats(FILE *f, const rf_traj_collector *col, const rf_traj_collector_stats *cs)
+void traj_json_collector_stats(FILE *f, const rf_traj_collector *col, const rf_traj_collector_stats *cs)
 {
     const rf_traj_percentiles *q[6] = {&cs->total_energy, &cs->translational_energy, &cs->rotational_energy,
                                        &cs->height_lowest, &cs->height_centre, &cs->speed};
@@ -115,27 +115,27 @@ static void json_collector_stats(FILE *f, const rf_traj_collector *col, const rf
     rf_json_string(f, col->name);
     fputs(": {\"reach_probability\": ", f), rf_json_number(f, cs->reach_probability);
     for (int k = 0; k < 6; k++)
-        fprintf(f, ", \"%s\": ", names[k]), jpct(f, q[k]);
+        fprintf(f, ", \"%s\": ", names[k]), traj_json_percentiles(f, q[k]);
     double t[RF_TRAJ_MAX_THRESHOLDS];
     int own;
     size_t n = rf_traj_thresholds(col, 0, t, &own);
-    fputs(", \"p_total_energy_above\": ", f), json_exceed(f, t, cs->p_energy_above, n, own);
+    fputs(", \"p_total_energy_above\": ", f), traj_json_exceed(f, t, cs->p_energy_above, n, own);
     n = rf_traj_thresholds(col, 1, t, &own);
-    fputs(", \"p_height_lowest_above\": ", f), json_exceed(f, t, cs->p_height_above, n, own);
+    fputs(", \"p_height_lowest_above\": ", f), traj_json_exceed(f, t, cs->p_height_above, n, own);
     fputc('}', f);
 }
 
 static void json_statistics(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
 {
-    fputs("{\"runout_x\": ", f), jpct(f, &st->runout_x);
-    fputs(", \"rebound_height\": ", f), jpct(f, &st->rebound_height);
+    fputs("{\"runout_x\": ", f), traj_json_percentiles(f, &st->runout_x);
+    fputs(", \"rebound_height\": ", f), traj_json_percentiles(f, &st->rebound_height);
     fputs(", \"p_runout_x_above\": ", f);
-    json_exceed(f, s->outputs.runout_thresholds, st->p_runout_above, s->outputs.n_runout_thresholds, 0);
-    fputs(",\n  \"runout_histogram\": ", f), json_histogram(f, &st->runout_histogram);
+    traj_json_exceed(f, s->outputs.runout_thresholds, st->p_runout_above, s->outputs.n_runout_thresholds, 0);
+    fputs(",\n  \"runout_histogram\": ", f), traj_json_histogram(f, &st->runout_histogram);
     fputs(",\n  \"collectors\": {", f);
     for (size_t c = 0; c < s->n_collectors; c++) {
         fputs(c ? ",\n   " : "", f);
-        json_collector_stats(f, &s->collectors[c], &st->collectors[c]);
+        traj_json_collector_stats(f, &s->collectors[c], &st->collectors[c]);
     }
     fputs("}}", f);
 }
@@ -169,7 +169,7 @@ void rf_traj_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *
 }
 
 /* "  what:  p50 1.2  p95 3.4  max 5.6" in the chosen levels, values times scale. */
-static void summary_row(FILE *f, int indent, const char *what, const rf_traj_percentiles *p, double scale)
+void traj_summary_row(FILE *f, int indent, const char *what, const rf_traj_percentiles *p, double scale)
 {
     char name[32];
     fprintf(f, "%*s%-*s", indent, "", 26 - indent, what);
@@ -180,7 +180,7 @@ static void summary_row(FILE *f, int indent, const char *what, const rf_traj_per
     fprintf(f, "max %.4g\n", p->max * scale);
 }
 
-static void summary_exceed(FILE *f, const char *what, const char *unit, const double *t, const double *p, size_t n,
+void traj_summary_exceed(FILE *f, const char *what, const char *unit, const double *t, const double *p, size_t n,
                            int own, const char *own_name, double scale)
 {
     for (size_t k = 0; k < n; k++)
@@ -192,19 +192,19 @@ static void summary_collector(FILE *f, const rf_traj_collector *col, const rf_tr
 {
     fprintf(f, "  collector %s (x = %g m): reach probability %.4g\n", col->name, col->x, cs->reach_probability);
     if (cs->reach_probability > 0) {
-        summary_row(f, 4, "total energy", &cs->total_energy, 1e-3);
-        summary_row(f, 4, "translational energy", &cs->translational_energy, 1e-3);
-        summary_row(f, 4, "rotational energy", &cs->rotational_energy, 1e-3);
-        summary_row(f, 4, "height lowest point", &cs->height_lowest, 1);
-        summary_row(f, 4, "height centre", &cs->height_centre, 1);
-        summary_row(f, 4, "speed", &cs->speed, 1);
+        traj_summary_row(f, 4, "total energy", &cs->total_energy, 1e-3);
+        traj_summary_row(f, 4, "translational energy", &cs->translational_energy, 1e-3);
+        traj_summary_row(f, 4, "rotational energy", &cs->rotational_energy, 1e-3);
+        traj_summary_row(f, 4, "height lowest point", &cs->height_lowest, 1);
+        traj_summary_row(f, 4, "height centre", &cs->height_centre, 1);
+        traj_summary_row(f, 4, "speed", &cs->speed, 1);
     }
     double t[RF_TRAJ_MAX_THRESHOLDS];
     int own;
     size_t n = rf_traj_thresholds(col, 0, t, &own);
-    summary_exceed(f, "total energy", "kJ", t, cs->p_energy_above, n, own, ", the capacity", 1e-3);
+    traj_summary_exceed(f, "total energy", "kJ", t, cs->p_energy_above, n, own, ", the capacity", 1e-3);
     n = rf_traj_thresholds(col, 1, t, &own);
-    summary_exceed(f, "height lowest point", "m", t, cs->p_height_above, n, own, ", the barrier height", 1);
+    traj_summary_exceed(f, "height lowest point", "m", t, cs->p_height_above, n, own, ", the barrier height", 1);
 }
 
 void rf_traj_write_summary(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_traj_stats *st)
@@ -225,8 +225,8 @@ void rf_traj_write_summary(FILE *f, const rf_traj_spec *s, const rf_traj_ensembl
         fprintf(f, "  %s at t = %.6g s, x = %.6g m, y = %.6g m after %zu impact%s\n", rf_traj_state_name(r->state),
                 r->t_end, r->x_end, r->y_end, r->n_impacts, r->n_impacts == 1 ? "" : "s");
     } else {
-        summary_row(f, 2, "runout x [m]", &st->runout_x, 1);
-        summary_exceed(f, "runout x", "m", s->outputs.runout_thresholds, st->p_runout_above,
+        traj_summary_row(f, 2, "runout x [m]", &st->runout_x, 1);
+        traj_summary_exceed(f, "runout x", "m", s->outputs.runout_thresholds, st->p_runout_above,
                        s->outputs.n_runout_thresholds, 0, NULL, 1);
     }
     for (size_t c = 0; c < s->n_collectors; c++)

@@ -3,8 +3,10 @@
  * trajectory --out` writes a run (result.json, CSV files, figures,
  * report.html): the trajectories behind a fuzzy trajectory study
  * (src/study/study_traj.c reruns its nominal point and the points giving the
- * bounds of its main output, and draws their figures on common axes). */
-#include "trajectory/traj_internal.h"
+ * bounds of its main output, and draws their figures on common axes).  A
+ * terrain model's point runs rf_terrain_run and is written as `rockfuzz
+ * trajectory --out` writes a terrain run (its maps on their own scales). */
+#include "trajectory/terrain_internal.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -41,7 +43,9 @@ rf_status rf_traj_model_run_at(const rf_model *m, const double *x, int threads, 
         return st;
     }
     r->spec.record = r->spec.samples < 100 ? r->spec.samples : 100;
-    if ((st = traj_run_shared(&r->spec, threads, table, &r->ens, err)) == RF_OK &&
+    st = r->spec.terrain ? rf_terrain_run(&r->spec, threads, NULL, NULL, &r->ens, err)
+                         : traj_run_shared(&r->spec, threads, table, &r->ens, err);
+    if (st == RF_OK &&
         (st = rf_traj_stats_compute_spec(&r->spec, &r->ens, &r->stats, err)) == RF_OK) {
         if (y)
             traj_model_outputs(m, &r->spec, &r->stats, y);
@@ -56,7 +60,8 @@ rf_status rf_traj_model_run_at(const rf_model *m, const double *x, int threads, 
 
 void rf_traj_plot_scales_add(rf_traj_plot_scales *sc, const rf_traj_point_run *r)
 {
-    traj_plot_extent(&r->spec, &r->ens, sc);
+    if (!r->spec.terrain) /* the profile figures' axes; terrain maps keep their own */
+        traj_plot_extent(&r->spec, &r->ens, sc);
 }
 
 rf_status rf_traj_point_run_write(const rf_traj_point_run *r, const char *dir, int plots,
@@ -67,10 +72,15 @@ rf_status rf_traj_point_run_write(const rf_traj_point_run *r, const char *dir, i
     FILE *f = fopen(path, "w");
     rf_status st = f ? RF_OK : rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
     if (f) {
-        rf_traj_write_json(f, &r->spec, &r->ens, &r->stats, 100);
+        if (r->spec.terrain)
+            rf_terrain_write_json(f, &r->spec, &r->ens, &r->stats, 100);
+        else
+            rf_traj_write_json(f, &r->spec, &r->ens, &r->stats, 100);
         if (fclose(f) != 0)
             st = rf_fail(err, RF_EIO, "cannot write %s", path);
     }
+    if (st == RF_OK && r->spec.terrain)
+        return rf_terrain_write_outputs(dir, &r->spec, &r->ens, &r->stats, plots, err);
     if (st == RF_OK)
         st = rf_traj_write_csv(dir, &r->spec, &r->ens, &r->stats, err);
     if (st == RF_OK && plots)
