@@ -11,7 +11,7 @@ A slope 500 m long (west to east, x) and 300 m wide (y), in Swiss LV95
   s = 235 - 315 m  the lower talus slope, 28 deg                  talus
   s > 315 m        the runout zone, 10 deg easing to 4 deg,       soil (forest floor)
                    with a gully that starts on the bench and
-                   deepens to 6 m, and a broad trough that
+                   deepens to 8 m, and a broad trough that
                    gathers blocks toward it
 
 (s is the distance east of the cliff's top edge, at x = 60 to 75 m: it
@@ -90,11 +90,12 @@ def height(table, x, y):
     """Ground height at (x, y) [m from the south-west node]."""
     s = x - cliff_line(y)
     z = TOP - drop(table, s)
-    # the gully: from the bench (s 185 m) deepening to 6 m by s 325 m, 22 m wide
-    depth = 6.0 * min(max((s - 185.0) / 140.0, 0.0), 1.0) ** 1.5
-    z -= depth * math.exp(-((y - gully_axis(s)) / 22.0) ** 2)
-    # the broad trough of the runout zone: its sides rise 4 % of the distance to the axis
-    z += 0.04 * min(max((s - 275.0) / 60.0, 0.0), 1.0) * abs(y - 150.0)
+    # the gully: from the bench (s 185 m) deepening to 8 m by s 325 m, 18 m wide
+    axis = gully_axis(s)
+    depth = 8.0 * min(max((s - 185.0) / 140.0, 0.0), 1.0) ** 1.5
+    z -= depth * math.exp(-((y - axis) / 18.0) ** 2)
+    # the broad trough of the runout zone about the gully: its sides rise 4 % of the distance to the axis
+    z += 0.04 * min(max((s - 275.0) / 60.0, 0.0), 1.0) * (math.hypot(y - axis, 20.0) - 20.0)
     # undulation of the talus and the runout (none on the cliff face, whose edge stays sharp)
     if s > 60:
         z += 0.6 * math.sin(x / 23.0 + 0.7) * math.sin(y / 17.0) + 0.3 * math.sin((x + 2 * y) / 9.0)

@@ -366,9 +366,10 @@ static void maps_section(FILE *f, const char *dir, const rf_traj_ensemble *e, co
     for (size_t k = 0; k < n; k++) {
         char stem[120];
         terrain_map_stem(bands[k].name, stem, sizeof stem);
+        const char *unit = bands[k].unit && *bands[k].unit ? bands[k].unit : "-";
         fputs("<h3>", f);
         html_text(f, bands[k].name);
-        fprintf(f, " [%s]</h3>\n", bands[k].unit && *bands[k].unit ? bands[k].unit : "-");
+        fprintf(f, " [%s]</h3>\n", strcmp(unit, "J") ? unit : "kJ"); /* as on the map */
         image(f, dir, stem);
     }
 #ifdef TERRAIN_HAZARD_REL_ERROR
