@@ -354,7 +354,8 @@ static void test_report(void **state)
     assert_int_equal(system(path), 0);
 }
 
-/* A band with no value anywhere still gets its map (said in its title), and a run without barriers its report. */
+/* A band with no value anywhere still gets its map (said in its title), a run without barriers its report, and
+ * a terrain of one material (no class raster) names it. */
 static void test_report_empty_band(void **state)
 {
     (void)state;
@@ -381,6 +382,14 @@ static void test_report_empty_band(void **state)
     contains(html, "Of 1&#8201;000 blocks released, 60.0&nbsp;% stop on talus, 30.0&nbsp;% stop on soil, "
                    "10.0&nbsp;% leave the DEM.");
     assert_null(strstr(html, "<h2>Barriers</h2>"));
+    free(html);
+    /* without a class raster every block stops on the spec's one material */
+    free(r->dem->material);
+    r->dem->material = NULL, r->td.material = 1;
+    if (terrain_write_maps(dir, &r->s, &r->e, &st, r->dem, &b, 1, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    html = slurp(path);
+    contains(html, "Of 1&#8201;000 blocks released, 90.0&nbsp;% stop on talus, 10.0&nbsp;% leave the DEM.");
     free(html);
     free(b.data);
     rf_traj_stats_free(&st);

@@ -91,10 +91,13 @@ typedef struct {
     size_t *broke, *flew;           /* per barrier: broke through it, flew over it */
 } fates;
 
-static size_t end_material(const rf_terrain *dem, const double *end)
+/* The material of the cell holding the end point (without a class raster the spec's one material). */
+static size_t end_material(const rf_traj_spec *s, const rf_terrain *dem, const double *end)
 {
     size_t i, j;
     double u, v;
+    if (!dem->material)
+        return s->terrain ? s->terrain->material : 0;
     if (!terrain_cell_of(dem, end[0], end[1], &i, &j, &u, &v))
         return SIZE_MAX;
     return terrain_material_of(dem, i, j);
@@ -124,7 +127,7 @@ static int fates_count(const rf_traj_spec *s, const rf_traj_ensemble *e, const r
         if (held != SIZE_MAX && e->state[i] == RF_TRAJ_STOPPED)
             F->count[held]++;
         else if (e->state[i] == RF_TRAJ_STOPPED) {
-            size_t m = e->terrain ? end_material(dem, e->terrain->end + 3 * i) : SIZE_MAX;
+            size_t m = e->terrain ? end_material(s, dem, e->terrain->end + 3 * i) : SIZE_MAX;
             F->count[nc + (m < nm ? m : 0)]++;
         } else
             F->count[nc + nm + (e->state[i] == RF_TRAJ_EXITED ? 0 : 1)]++;
