@@ -25,7 +25,7 @@
 #define MAP_PAD_B 62
 #define MAP_W 780                   /* [px] the map's width, unless it would be taller than MAP_MAX_H */
 #define MAP_MAX_H 1000
-#define SHADE_MAX 1200              /* hillshade cells drawn per side at most (coarser on a larger DEM) */
+#define SHADE_PX 2                  /* [px] the hillshade is drawn in blocks of cells at least this wide */
 #define PATHS_SHOWN 200
 #define PI 3.14159265358979323846
 
@@ -119,8 +119,11 @@ static void map_viewport(const terrain_map_layout *L)
 /* The hillshade: grey cmap1 from 0.15 (facing away) to 1 (facing the light). */
 static void draw_hillshade(const rf_terrain *t, const terrain_map_layout *L)
 {
-    size_t cx = t->nx - 1, cy = t->ny - 1, big = cx > cy ? cx : cy;
-    size_t step = (big + SHADE_MAX - 1) / SHADE_MAX, mx = (cx + step - 1) / step, my = (cy + step - 1) / step;
+    /* a block of step x step cells per shade value: at least SHADE_PX pixels on the map (a background) */
+    size_t cx = t->nx - 1, cy = t->ny - 1, wx = (size_t)L->map_w / SHADE_PX + 1, wy = (size_t)L->map_h / SHADE_PX + 1;
+    size_t sx = (cx + wx - 1) / wx, sy = (cy + wy - 1) / wy, step = sx > sy ? sx : sy;
+    step += !step;
+    size_t mx = (cx + step - 1) / step, my = (cy + step - 1) / step;
     matrix m;
     if (!matrix_alloc(&m, mx, my))
         return;
@@ -136,7 +139,6 @@ static void draw_hillshade(const rf_terrain *t, const terrain_map_layout *L)
     double x1 = t->x0 + (double)(mx * step) * t->dx, y1 = t->y0 + (double)(my * step) * t->dy;
     plimagefr((PLFLT_MATRIX)m.col, (PLINT)mx, (PLINT)my, t->x0, x1, t->y0, y1, 0, 1, 0, 1, NULL, NULL);
     matrix_free(&m);
-    (void)L;
 }
 
 /* A band is a count (0 where no block passed) or a per-cell statistic (NaN there). */
