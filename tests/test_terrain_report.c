@@ -182,7 +182,7 @@ static void fill(run *r)
         r->rebound[i] = 0.5 + 0.001 * (double)i;
         rf_traj_crossing *c = &r->cross[i];
         if (k >= 6) {
-            c->reached = 1, c->stopped_by_barrier = k < 8, c->x = X0 + 220, c->y = Y0 + ye;
+            c->reached = 1, c->stopped_by_barrier = k < 8, c->x = X0 + 220, c->y = Y0 + ye, c->along = ye - 40;
             c->total_energy = c->translational_energy = (k < 8 ? 1e6 : 3e6) + 100.0 * (double)i;
             c->energy_after = k == 8 ? c->total_energy - 2e6 : c->total_energy;
             c->height_lowest = k == 9 ? 5 : 1, c->height_centre = c->height_lowest + 0.5, c->speed = 20;
@@ -312,6 +312,9 @@ static void test_report(void **state)
     terrain_map_layout L = terrain_map_layout_of(2600000, 2600300, 1100000, 1100200);
     static const char *stems[4] = {"terrain_endpoints", "terrain_map_passages", "terrain_map_reach_probability",
                                    "terrain_map_energy_p95"};
+    struct stat sb;
+    snprintf(path, sizeof path, "%s/terrain_barrier_fence.png", dir);
+    assert_int_equal(stat(path, &sb), 0);
     for (int k = 0; k < 4; k++) {
         int w, h;
         snprintf(path, sizeof path, "%s/%s.png", dir, stems[k]);
@@ -341,7 +344,7 @@ static void test_report(void **state)
     contains(html, "30 x 20 cells of 10 m");
     assert_int_equal(strstr(html, "missing") == NULL, 1);
     free(html);
-    render_check(path, 4);
+    render_check(path, 5);
     terrain_bands_free(b, nb);
     rf_traj_stats_free(&st);
     rf_terrain_free(r->dem);

@@ -269,6 +269,11 @@ double terrain_hillshade_cell(const rf_terrain *t, size_t i, size_t j);
 void terrain_map_stem(const char *band, char *buf, size_t size);
 rf_status terrain_draw_maps(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_terrain *dem,
                             const terrain_map_grid *g, const terrain_band *bands, size_t n, rf_error *err);
+/* terrain_report_barrier.c: per barrier, DIR/terrain_barrier_NAME.png: energy
+ * and passing height of each crossing against the distance along the line. */
+void terrain_barrier_stem(const char *name, char *buf, size_t size);
+rf_status terrain_draw_barrier_figures(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                                       rf_error *err);
 
 /* terrain_release.c: the release set of spec->terrain->release; the map point
  * at uniforms u1 (feature, by weight), u2, u3 (position in it). */

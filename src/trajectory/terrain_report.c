@@ -232,7 +232,8 @@ static double line_length(const rf_traj_spec *s, size_t c)
     return L;
 }
 
-static void barrier_table(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st, const fates *F, size_t N)
+static void barrier_table(FILE *f, const char *dir, const rf_traj_spec *s, const rf_traj_stats *st, const fates *F,
+                          size_t N)
 {
     if (!s->n_collectors)
         return;
@@ -249,13 +250,25 @@ static void barrier_table(FILE *f, const rf_traj_spec *s, const rf_traj_stats *s
         snprintf(h, sizeof h, k->height > 0 ? "%g" : "unlimited", k->height);
         snprintf(cap, sizeof cap, k->capacity > 0 ? "%g" : "collector", k->capacity * 1e-3);
         fprintf(f, "</td><td>%.1f</td><td>%s</td><td>%s</td><td>%.2f</td><td>%.2f</td><td>%.2f</td><td>%.2f</td>",
-                line_length(s, c), h, cap, 100 * cs->reach_probability, pct(F->count[c], N), pct(F->broke[c], N), pct(F->flew[c], N));
+                line_length(s, c), h, cap, 100 * cs->reach_probability, pct(F->count[c], N), pct(F->broke[c], N),
+                pct(F->flew[c], N));
         fprintf(f, "<td>%.4g / %.4g / %.4g</td><td>%.3g / %.3g / %.3g</td><td>%.3g</td><td>%.3g</td></tr>\n",
                 cs->total_energy.p50 * 1e-3, cs->total_energy.p95 * 1e-3, cs->total_energy.max * 1e-3,
                 cs->height_lowest.p50, cs->height_lowest.p95, cs->height_lowest.max, cs->height_centre.p95,
                 cs->speed.p95);
     }
     fputs("</table>\n", f);
+    fputs("<p class=note>Over all blocks: reached, held (stopped by the barrier: energy within its capacity and "
+          "passing below its top), broke through (passed on with its energy less the capacity), flew over (passed "
+          "above its top). Energies, heights and speeds over the blocks that reach the line; energies include "
+          "rotation; the passing height is the block's lowest point above the ground.</p>\n", f);
+    for (size_t c = 0; c < s->n_collectors; c++) {
+        char stem[120];
+        if (st->collectors[c].reach_probability <= 0)
+            continue;
+        terrain_barrier_stem(s->collectors[c].name, stem, sizeof stem);
+        image(f, dir, stem);
+    }
 }
 
 /* Runout and reach angle at the spec's percentiles (default 50, 95, 99), the 5th, max and mean. */
@@ -276,11 +289,11 @@ static void runout_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
         fprintf(f, "<th>%s</th>", name);
     }
     fputs("<th>max</th><th>mean</th></tr>\n", f);
-    static const char *const what[3] = {"runout (horizontal distance release to end)", "reach angle (Fahrb&ouml;schung)",
-                                        "rebound height"};
+    static const char *const what[3] = {"runout (horizontal distance release to end)",
+                                        "reach angle (Fahrb&ouml;schung)", "rebound height"};
     static const char *const unit[3] = {"m", "deg", "m"};
     for (int q = 0; q < 3; q++) {
-        const double *v = q == 0 ? (ts ? ts->runout : NULL) : q == 1 ? (ts ? ts->reach_angle : NULL) : e->rebound_height;
+        const double *v = q == 2 ? e->rebound_height : !ts ? NULL : q == 0 ? ts->runout : ts->reach_angle;
         if (!v)
             continue;
         rf_traj_percentiles p = scaled_percentiles(v, e->samples, q == 1 ? 180 / PI : 1, lv, nl);
@@ -410,11 +423,7 @@ static rf_status write_html(const char *dir, const rf_traj_spec *s, const rf_tra
         answer_barrier(f, s, st, &F, c, e->samples);
     fputs("</div>\n", f);
     maps_section(f, dir, e, bands, n);
-    barrier_table(f, s, st, &F, e->samples);
-    fputs("<p class=note>Over all blocks: reached, held (stopped by the barrier: energy within its capacity and "
-          "passing below its top), broke through (passed on with its energy less the capacity), flew over (passed "
-          "above its top). Energies, heights and speeds over the blocks that reach the line; energies include "
-          "rotation; the passing height is the block's lowest point above the ground.</p>\n", f);
+    barrier_table(f, dir, s, st, &F, e->samples);
     runout_table(f, s, e, st);
     inputs_table(f, s, e, dem, g);
     fputs("</body></html>\n", f);
@@ -431,5 +440,7 @@ rf_status terrain_write_maps(const char *dir, const rf_traj_spec *spec, const rf
     terrain_map_grid g;
     terrain_report_grid(spec, ens, dem, &g);
     rf_status rc = terrain_draw_maps(dir, spec, ens, dem, &g, bands, n, err);
+    if (rc == RF_OK)
+        rc = terrain_draw_barrier_figures(dir, spec, ens, err);
     return rc == RF_OK ? write_html(dir, spec, ens, st, dem, &g, bands, n, err) : rc;
 }
