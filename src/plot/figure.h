@@ -13,6 +13,9 @@ typedef void (*rf_plot_draw_fn)(const void *data);
 /* Render draw(data) into dir/stem.png and dir/stem.svg, width x height pixels. */
 rf_status rf_plot_figure(const char *dir, const char *stem, int width, int height, rf_plot_draw_fn draw,
                          const void *data, rf_error *err);
+/* Only dir/stem.png: for rasters (a map of 10^5 cells is no vector figure). */
+rf_status rf_plot_figure_png(const char *dir, const char *stem, int width, int height, rf_plot_draw_fn draw,
+                             const void *data, rf_error *err);
 
 /* Make [*lo, *hi] an axis PLplot can draw: a non-finite end gives [0, 1], and
  * a range narrower than 1e-3 of its magnitude (a crisp result, or values

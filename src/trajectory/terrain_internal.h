@@ -273,6 +273,37 @@ rf_status terrain_gpkg_write(const char *path, const char *crs_wkt, const rf_tra
 rf_status terrain_write_maps(const char *dir, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
                              const rf_traj_stats *st, const rf_terrain *dem, const terrain_band *bands, size_t n,
                              rf_error *err);
+/* The bands' grid: nx x ny square cells `cell` [m] from the south-west
+ * corner (x0, y0), row j to the north (terrain_hazard_grid's). */
+typedef struct {
+    size_t nx, ny;
+    double x0, y0, cell;
+} terrain_map_grid;
+/* terrain_report.c: the grid of the hazard of ens->terrain; without one,
+ * the grid the spec asks for: cells of rasters.cell (0: the DEM's dx) from
+ * the DEM's south-west node, covering its extent. */
+void terrain_report_grid(const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_terrain *dem,
+                         terrain_map_grid *g);
+/* terrain_maps.c: a map's page (same metres per pixel both ways), the
+ * hillshade of a cell (max(0, n . l) at its centre, light from azimuth 315
+ * deg, altitude 45 deg; NaN on no data), the PNG stem of a band's map, and
+ * the maps: DIR/terrain_endpoints.png and DIR/terrain_map_NAME.png per band. */
+typedef struct {
+    int width, height;          /* the page [px] */
+    int map_w, map_h;           /* the map inside it [px] */
+    double xmin, xmax, ymin, ymax;  /* [m] */
+    double m_per_px;            /* [m] per pixel on both axes */
+} terrain_map_layout;
+terrain_map_layout terrain_map_layout_of(double xmin, double xmax, double ymin, double ymax);
+double terrain_hillshade_cell(const rf_terrain *t, size_t i, size_t j);
+void terrain_map_stem(const char *band, char *buf, size_t size);
+rf_status terrain_draw_maps(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_terrain *dem,
+                            const terrain_map_grid *g, const terrain_band *bands, size_t n, rf_error *err);
+/* terrain_report_barrier.c: per barrier, DIR/terrain_barrier_NAME.png: energy
+ * and passing height of each crossing against the distance along the line. */
+void terrain_barrier_stem(const char *name, char *buf, size_t size);
+rf_status terrain_draw_barrier_figures(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                                       rf_error *err);
 
 /* terrain_release.c: the release set of spec->terrain->release; the map point
  * at uniforms u1 (feature, by weight), u2, u3 (position in it). */
