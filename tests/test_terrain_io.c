@@ -512,6 +512,18 @@ static void test_release_points_lines(void **state)
     assert_true(r.weight[0] == 2 && r.weight[1] == 2 && r.weight[2] == 6); /* lengths 5, 5 and 15 */
     assert_true(r.x[5] == 29 && r.y[5] == 12);
     release_free(&r);
+    /* the same lines as a shapefile */
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "ogr2ogr -f 'ESRI Shapefile' %s %s > /dev/null 2>&1", at("lines.shp"), at("lines.geojson"));
+    if (system(cmd) != 0) {
+        print_message("ogr2ogr not available: shapefile not checked\n");
+        return;
+    }
+    r = release_ok("lines.shp", "n", 0);
+    assert_int_equal(r.n_features, 3);
+    assert_true(r.start[3] == 7 && r.weight[0] == 2 && r.weight[1] == 2 && r.weight[2] == 6);
+    assert_true(r.x[5] == 29 && r.y[5] == 12);
+    release_free(&r);
 }
 
 static void test_release_polygons(void **state)
@@ -675,6 +687,17 @@ static void test_gpkg(void **state)
     }
     assert_int_equal(k, 2);
     GDALClose(ds);
+    /* read back as release points from its layer end_points */
+    rf_terrain_release r;
+    if (terrain_read_release_vector(path, "end_points", NULL, 0, &r, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    assert_int_equal(r.kind, RF_TERRAIN_POINTS);
+    assert_int_equal(r.n_features, 3);
+    for (k = 0; k < 3; k++)
+        assert_true(r.x[k] == end[3 * k] && r.y[k] == end[3 * k + 1] && r.weight[k] == 1);
+    release_free(&r);
+    assert_int_equal(terrain_read_release_vector(path, "nope", NULL, 0, &r, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "has no layer named nope"));
     CPLFree(wkt);
     OSRDestroySpatialReference(srs);
     ens.terrain = NULL;
