@@ -702,6 +702,7 @@ static void test_gpkg(void **state)
     OSRDestroySpatialReference(srs);
     ens.terrain = NULL;
     assert_int_equal(terrain_gpkg_write(path, "", &ens, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "not a complete terrain run"));
 }
 
 static int setup(void **state)
