@@ -8,7 +8,8 @@
  * - no-data cells (declared, and NaN) make the cells around them outside;
  *   a Float32 3.4e38 is refused unless it is the declared no-data;
  * - EPSG:4326, a US-foot CRS, a rotated geotransform and an absurd size are
- *   refused with messages naming the file and the cause;
+ *   refused with messages naming the file and the cause; a broken file's
+ *   GDAL message is in ours and nothing reaches stderr;
  * - classes on a 2x coarser, shifted grid give each cell the class of the
  *   pixel holding its centre (computed here by floor), no-data pixels make
  *   cells outside; on the DEM's own grid the centre (a pixel corner) takes the
@@ -17,9 +18,10 @@
  * - a GeoTIFF written and read back: values, NaN no-data on every band,
  *   geotransform, CRS, descriptions, DEFLATE and tiles; no temporary file left;
  * - release features from GeoJSON (points, lines, polygons, multi-parts with
- *   a count field, per area), refusals (hole, mixed kinds, WGS 84, empty
- *   layer, missing field), and from a release raster;
- * - a GeoPackage of a hand-made ensemble read back with OGR. */
+ *   a count field, per area) and a shapefile, refusals (hole, mixed kinds,
+ *   WGS 84, empty layer, missing field), and from a release raster;
+ * - a GeoPackage of a hand-made ensemble read back with OGR, and as release
+ *   points from its layer end_points. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -247,6 +249,36 @@ static void test_dem_refused(void **state)
     rf_error err;
     assert_int_equal(rf_terrain_read(at("huge_nd.tif"), 2, &t, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "no band 2 (it has 1)"));
+}
+
+/* A broken GeoTIFF: GDAL's message is in ours, and nothing reaches stderr. */
+static void test_gdal_message_kept(void **state)
+{
+    (void)state;
+    FILE *f = fopen(at("broken.tif"), "wb");
+    assert_non_null(f);
+    fwrite("II*\0\xff\xff\xff\x7f garbage", 1, 20, f);
+    fclose(f);
+    fflush(stderr);
+    int saved = dup(2);
+    FILE *cap = fopen(at("stderr.txt"), "w");
+    assert_non_null(cap);
+    dup2(fileno(cap), 2);
+    CPLSetErrorHandler(CPLDefaultErrorHandler); /* GDAL's own: prints to stderr */
+    rf_terrain *t;
+    rf_error err;
+    rf_status st = rf_terrain_read(at("broken.tif"), 1, &t, &err);
+    CPLSetErrorHandler(CPLQuietErrorHandler);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    fseek(cap, 0, SEEK_END);
+    long printed = ftell(cap);
+    fclose(cap);
+    assert_int_equal(st, RF_EIO);
+    if (!strstr(err.msg, "cannot read the DEM") || !strstr(err.msg, "(GDAL: "))
+        fail_msg("%s", err.msg);
+    assert_int_equal(printed, 0);
 }
 
 /* ---- classes and roughness ---- */
@@ -729,6 +761,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dem_plane),          cmocka_unit_test(test_dem_row_order),
         cmocka_unit_test(test_dem_nodata),         cmocka_unit_test(test_dem_refused),
+        cmocka_unit_test(test_gdal_message_kept),
         cmocka_unit_test(test_classes_coarse),     cmocka_unit_test(test_classes_same_grid),
         cmocka_unit_test(test_classes_refused),    cmocka_unit_test(test_roughness),
         cmocka_unit_test(test_geotiff_round_trip), cmocka_unit_test(test_release_points_lines),
