@@ -257,7 +257,8 @@ static void test_gdal_message_kept(void **state)
     (void)state;
     FILE *f = fopen(at("broken.tif"), "wb");
     assert_non_null(f);
-    fwrite("II*\0\xff\xff\xff\x7f garbage", 1, 20, f);
+    static const char bytes[] = "II*\0\xff\xff\xff\x7f garbage"; /* a TIFF header pointing nowhere */
+    fwrite(bytes, 1, sizeof bytes - 1, f);
     fclose(f);
     fflush(stderr);
     int saved = dup(2);
