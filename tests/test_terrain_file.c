@@ -153,6 +153,32 @@ static void test_world_on_a_surface(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* The impact_model law: the world builds its impact table (none for the other laws). */
+static void test_world_impact_table(void **state)
+{
+    (void)state;
+    char *y = edit(minimal, "bounce: {law: constant}", "bounce: {law: impact_model, impact: {solver: rigid, "
+                                                        "tolerance: 0.05}}");
+    rf_traj_spec s;
+    rf_terrain_world *w;
+    rf_error err;
+    load_ok(minimal, &s);
+    assert_int_equal(terrain_world_from_surface(&s, plane(), &w, &err), RF_OK);
+    assert_null(w->impact_table);
+    rf_terrain_world_free(w);
+    rf_traj_spec_free(&s);
+    load_ok(y, &s);
+    if (terrain_world_from_surface(&s, plane(), &w, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    assert_non_null(w->impact_table);
+    double rn, rt, spin;
+    traj_impact_table_eval(w->impact_table, 5, 0.3, &rn, &rt, &spin);
+    assert_true(rn >= 0 && rn <= 1 && rt >= 0 && rt <= 1);
+    rf_terrain_world_free(w);
+    rf_traj_spec_free(&s);
+    free(y);
+}
+
 /* The constant material fills every cell; the reading world fails on the (stub or missing) DEM. */
 static void test_world_constant_material(void **state)
 {
@@ -492,6 +518,7 @@ int main(void)
         cmocka_unit_test(test_minimal_file_loads),
         cmocka_unit_test(test_world_on_a_surface),
         cmocka_unit_test(test_world_constant_material),
+        cmocka_unit_test(test_world_impact_table),
         cmocka_unit_test(test_release_forms),
         cmocka_unit_test(test_bad_inputs_located),
         cmocka_unit_test(test_profile_or_terrain),
