@@ -150,6 +150,23 @@ static void test_world_on_a_surface(void **state)
         fail_msg("message: %s", err.msg);
     rf_traj_spec_free(&c);
     free(y3);
+    /* a polygon around a no-data hole its edges do not touch */
+    double z[11 * 11];
+    for (size_t k = 0; k < 121; k++)
+        z[k] = 100 - 5.0 * (double)(k / 11);
+    z[5 * 11 + 5] = NAN; /* the four cells around (50, 50) */
+    rf_terrain *hole;
+    assert_int_equal(rf_terrain_from_nodes(11, 11, 0, 0, 10, 10, z, &hole, &err), RF_OK);
+    y3 = edit(minimal, "points: [[20, 80], [30, 85]]", "polygons: [[[20, 20], [80, 20], [80, 80], [20, 80]], "
+                                                       "[[1, 1], [9, 1], [9, 9]]]");
+    load_ok(y3, &c);
+    assert_int_equal(terrain_world_from_surface(&c, hole, &w, &err), RF_EINVAL);
+    if (!strstr(err.msg, "release.polygons[0]: the no-data cell centred at [45, 45]"))
+        fail_msg("message: %s", err.msg);
+    assert_int_equal(terrain_world_from_surface(&c, plane(), &w, &err), RF_OK); /* no hole: accepted */
+    rf_terrain_world_free(w);
+    rf_traj_spec_free(&c);
+    free(y3);
     rf_traj_spec_free(&s);
 }
 
