@@ -202,7 +202,8 @@ static void test_world_constant_material(void **state)
     (void)state;
     char *y = edit(minimal, "materials: {raster: classes.tif, classes: {1: rock, 2: talus, 3: soil}}",
                    "material: talus");
-    char *y2 = edit(y, "  rock:  {R_n: 0.5, R_t: 0.8, friction_angle: 30, rolling_resistance: 0.1, roughness: 5}\n", "");
+    char *y2 = edit(y, "  rock:  {R_n: 0.5, R_t: 0.8, friction_angle: 30, rolling_resistance: 0.1, roughness: 5}\n",
+                    "");
     char *y3 = edit(y2, "  soil:  {R_n: 0.25, R_t: 0.6, friction_angle: 38, rolling_resistance: 0.4, roughness: 5}\n",
                     "");
     rf_traj_spec s;
@@ -288,7 +289,8 @@ static const bad_case bad_cases[] = {
     {"velocity: [0, 0, 0]", "speed: 1, angle: 10", {"t.yaml:8:", "release.angle", "not used here"}},
     {"velocity: [0, 0, 0]", "azimuth: 10", {"t.yaml:8:", "release", "speed [m/s] is required"}},
     {"velocity: [0, 0, 0]", "x: 3", {"t.yaml:8:", "release.x", "not used here"}},
-    {"line: [[10, 40], [40, 80]]", "line: [[10, 40]]", {"t.yaml:10:", "barriers.fence.line", "expected a list of 2 to"}},
+    {"line: [[10, 40], [40, 80]]", "line: [[10, 40]]",
+     {"t.yaml:10:", "barriers.fence.line", "expected a list of 2 to"}},
     {"line: [[10, 40], [40, 80]], ", "", {"t.yaml:10:", "barriers.fence", "a barrier needs line"}},
     {"line: [[10, 40], [40, 80]]", "line: [[10, 40], [40, 80]], x: 5", {"t.yaml:10:", "collectors.fence.x",
                                                                         "not used here"}},
@@ -324,7 +326,8 @@ static void test_bad_inputs_located(void **state)
     }
     /* a self-intersecting polygon, found by the validation, at its line */
     char *y = edit(minimal, "release: {points: [[20, 80], [30, 85]],",
-                   "release: {\n  polygons: [[[0, 0], [1, 0], [1, 1], [0, 1]],\n    [[0, 0], [2, 2], [2, 0], [0, 2]]],");
+                   "release: {\n  polygons: [[[0, 0], [1, 0], [1, 1], [0, 1]],\n"
+                   "    [[0, 0], [2, 2], [2, 0], [0, 2]]],");
     const char *want[3] = {"t.yaml:10:", "release.polygons[1]", "intersects itself"};
     check_bad(y, want);
     free(y);

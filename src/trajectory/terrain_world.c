@@ -1,7 +1,8 @@
 /* terrain_world.c - the prepared world of a terrain spec: the DEM read with
  * its material classes (or the one material) and roughness, each barrier's
  * line with the distance along it, the release set (every release feature on
- * valid cells of the DEM, no no-data cell inside a polygon) and, for the impact_model law, the impact table.
+ * valid cells of the DEM, no no-data cell inside a polygon) and, for the
+ * impact_model law, the impact table.
  * terrain_world_from_surface does all but the reading, for a surface made in
  * memory (rf_terrain_from_nodes). */
 #include "trajectory/terrain_internal.h"
