@@ -150,7 +150,50 @@ static void test_world_on_a_surface(void **state)
         fail_msg("message: %s", err.msg);
     rf_traj_spec_free(&c);
     free(y3);
+    /* a polygon around a no-data hole its edges do not touch */
+    double z[11 * 11];
+    for (size_t k = 0; k < 121; k++)
+        z[k] = 100 - 5.0 * (double)(k / 11);
+    z[5 * 11 + 5] = NAN; /* the four cells around (50, 50) */
+    rf_terrain *hole;
+    assert_int_equal(rf_terrain_from_nodes(11, 11, 0, 0, 10, 10, z, &hole, &err), RF_OK);
+    y3 = edit(minimal, "points: [[20, 80], [30, 85]]", "polygons: [[[20, 20], [80, 20], [80, 80], [20, 80]], "
+                                                       "[[1, 1], [9, 1], [9, 9]]]");
+    load_ok(y3, &c);
+    assert_int_equal(terrain_world_from_surface(&c, hole, &w, &err), RF_EINVAL);
+    if (!strstr(err.msg, "release.polygons[0]: the no-data cell centred at [45, 45]"))
+        fail_msg("message: %s", err.msg);
+    assert_int_equal(terrain_world_from_surface(&c, plane(), &w, &err), RF_OK); /* no hole: accepted */
+    rf_terrain_world_free(w);
+    rf_traj_spec_free(&c);
+    free(y3);
     rf_traj_spec_free(&s);
+}
+
+/* The impact_model law: the world builds its impact table (none for the other laws). */
+static void test_world_impact_table(void **state)
+{
+    (void)state;
+    char *y = edit(minimal, "bounce: {law: constant}", "bounce: {law: impact_model, impact: {solver: rigid, "
+                                                        "tolerance: 0.05}}");
+    rf_traj_spec s;
+    rf_terrain_world *w;
+    rf_error err;
+    load_ok(minimal, &s);
+    assert_int_equal(terrain_world_from_surface(&s, plane(), &w, &err), RF_OK);
+    assert_null(w->impact_table);
+    rf_terrain_world_free(w);
+    rf_traj_spec_free(&s);
+    load_ok(y, &s);
+    if (terrain_world_from_surface(&s, plane(), &w, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    assert_non_null(w->impact_table);
+    double rn, rt, spin;
+    traj_impact_table_eval(w->impact_table, 5, 0.3, &rn, &rt, &spin);
+    assert_true(rn >= 0 && rn <= 1 && rt >= 0 && rt <= 1);
+    rf_terrain_world_free(w);
+    rf_traj_spec_free(&s);
+    free(y);
 }
 
 /* The constant material fills every cell; the reading world fails on the (stub or missing) DEM. */
@@ -159,7 +202,8 @@ static void test_world_constant_material(void **state)
     (void)state;
     char *y = edit(minimal, "materials: {raster: classes.tif, classes: {1: rock, 2: talus, 3: soil}}",
                    "material: talus");
-    char *y2 = edit(y, "  rock:  {R_n: 0.5, R_t: 0.8, friction_angle: 30, rolling_resistance: 0.1, roughness: 5}\n", "");
+    char *y2 = edit(y, "  rock:  {R_n: 0.5, R_t: 0.8, friction_angle: 30, rolling_resistance: 0.1, roughness: 5}\n",
+                    "");
     char *y3 = edit(y2, "  soil:  {R_n: 0.25, R_t: 0.6, friction_angle: 38, rolling_resistance: 0.4, roughness: 5}\n",
                     "");
     rf_traj_spec s;
@@ -245,12 +289,21 @@ static const bad_case bad_cases[] = {
     {"velocity: [0, 0, 0]", "speed: 1, angle: 10", {"t.yaml:8:", "release.angle", "not used here"}},
     {"velocity: [0, 0, 0]", "azimuth: 10", {"t.yaml:8:", "release", "speed [m/s] is required"}},
     {"velocity: [0, 0, 0]", "x: 3", {"t.yaml:8:", "release.x", "not used here"}},
-    {"line: [[10, 40], [40, 80]]", "line: [[10, 40]]", {"t.yaml:10:", "barriers.fence.line", "expected a list of 2 to"}},
+    {"line: [[10, 40], [40, 80]]", "line: [[10, 40]]",
+     {"t.yaml:10:", "barriers.fence.line", "expected a list of 2 to"}},
     {"line: [[10, 40], [40, 80]], ", "", {"t.yaml:10:", "barriers.fence", "a barrier needs line"}},
     {"line: [[10, 40], [40, 80]]", "line: [[10, 40], [40, 80]], x: 5", {"t.yaml:10:", "collectors.fence.x",
                                                                         "not used here"}},
     {"capacity: 2.0e6", "capacity: -3", {"t.yaml:10:", "collectors.fence.capacity = -3", ">= 0"}},
     {"cell: 2", "cell: 0", {"t.yaml:11:", "rasters.cell = 0", "> 0"}},
+    {"points: [[20, 80], [30, 85]]", "file: {path: r.gpkg, per_area: true}",
+     {"t.yaml:8:", "release.file.per_area = true", "needs count"}},
+    {"points: [[20, 80], [30, 85]]", "raster: r.tif, blocks: [1]", {"t.yaml:8:", "release.blocks", "come from it"}},
+    {"points: [[20, 80], [30, 85]]", "file: {path: r.gpkg, colour: red}", {"t.yaml:8:", "release.file", "layer"}},
+    {"seed: 1", "seed: 1\ncollectors: []", {"t.yaml:14:", "collectors", "give one of them"}},
+    {"dem: dem.tif", "dem: dem.tif, roughness: r.tif",
+     {"t.yaml:2:", "terrain.roughness = r.tif", "expected a mapping"}},
+    {"dem: dem.tif", "dem: dem.tif, slope: 3", {"t.yaml:2:", "terrain.slope", "terrain takes dem"}},
     {"deposits, energy_p95", "deposits, energy_p96", {"t.yaml:11:", "rasters.statistics[3] = energy_p96",
                                                       "expected passages"}},
     {"rasters: {cell: 2,", "rasters: {size: 2,", {"t.yaml:11:", "rasters", "rasters takes cell, statistics"}},
@@ -281,7 +334,8 @@ static void test_bad_inputs_located(void **state)
     }
     /* a self-intersecting polygon, found by the validation, at its line */
     char *y = edit(minimal, "release: {points: [[20, 80], [30, 85]],",
-                   "release: {\n  polygons: [[[0, 0], [1, 0], [1, 1], [0, 1]],\n    [[0, 0], [2, 2], [2, 0], [0, 2]]],");
+                   "release: {\n  polygons: [[[0, 0], [1, 0], [1, 1], [0, 1]],\n"
+                   "    [[0, 0], [2, 2], [2, 0], [0, 2]]],");
     const char *want[3] = {"t.yaml:10:", "release.polygons[1]", "intersects itself"};
     check_bad(y, want);
     free(y);
@@ -492,6 +546,7 @@ int main(void)
         cmocka_unit_test(test_minimal_file_loads),
         cmocka_unit_test(test_world_on_a_surface),
         cmocka_unit_test(test_world_constant_material),
+        cmocka_unit_test(test_world_impact_table),
         cmocka_unit_test(test_release_forms),
         cmocka_unit_test(test_bad_inputs_located),
         cmocka_unit_test(test_profile_or_terrain),

@@ -8,7 +8,8 @@
  * - no-data cells (declared, and NaN) make the cells around them outside;
  *   a Float32 3.4e38 is refused unless it is the declared no-data;
  * - EPSG:4326, a US-foot CRS, a rotated geotransform and an absurd size are
- *   refused with messages naming the file and the cause;
+ *   refused with messages naming the file and the cause; a broken file's
+ *   GDAL message is in ours and nothing reaches stderr;
  * - classes on a 2x coarser, shifted grid give each cell the class of the
  *   pixel holding its centre (computed here by floor), no-data pixels make
  *   cells outside; on the DEM's own grid the centre (a pixel corner) takes the
@@ -17,9 +18,10 @@
  * - a GeoTIFF written and read back: values, NaN no-data on every band,
  *   geotransform, CRS, descriptions, DEFLATE and tiles; no temporary file left;
  * - release features from GeoJSON (points, lines, polygons, multi-parts with
- *   a count field, per area), refusals (hole, mixed kinds, WGS 84, empty
- *   layer, missing field), and from a release raster;
- * - a GeoPackage of a hand-made ensemble read back with OGR. */
+ *   a count field, per area) and a shapefile, refusals (hole, mixed kinds,
+ *   WGS 84, empty layer, missing field), and from a release raster;
+ * - a GeoPackage of a hand-made ensemble read back with OGR, and as release
+ *   points from its layer end_points. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -247,6 +249,37 @@ static void test_dem_refused(void **state)
     rf_error err;
     assert_int_equal(rf_terrain_read(at("huge_nd.tif"), 2, &t, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "no band 2 (it has 1)"));
+}
+
+/* A broken GeoTIFF: GDAL's message is in ours, and nothing reaches stderr. */
+static void test_gdal_message_kept(void **state)
+{
+    (void)state;
+    FILE *f = fopen(at("broken.tif"), "wb");
+    assert_non_null(f);
+    static const char bytes[] = "II*\0\xff\xff\xff\x7f garbage"; /* a TIFF header pointing nowhere */
+    fwrite(bytes, 1, sizeof bytes - 1, f);
+    fclose(f);
+    fflush(stderr);
+    int saved = dup(2);
+    FILE *cap = fopen(at("stderr.txt"), "w");
+    assert_non_null(cap);
+    dup2(fileno(cap), 2);
+    CPLSetErrorHandler(CPLDefaultErrorHandler); /* GDAL's own: prints to stderr */
+    rf_terrain *t;
+    rf_error err;
+    rf_status st = rf_terrain_read(at("broken.tif"), 1, &t, &err);
+    CPLSetErrorHandler(CPLQuietErrorHandler);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    fseek(cap, 0, SEEK_END);
+    long printed = ftell(cap);
+    fclose(cap);
+    assert_int_equal(st, RF_EIO);
+    if (!strstr(err.msg, "cannot read the DEM") || !strstr(err.msg, "(GDAL: "))
+        fail_msg("%s", err.msg);
+    assert_int_equal(printed, 0);
 }
 
 /* ---- classes and roughness ---- */
@@ -512,6 +545,18 @@ static void test_release_points_lines(void **state)
     assert_true(r.weight[0] == 2 && r.weight[1] == 2 && r.weight[2] == 6); /* lengths 5, 5 and 15 */
     assert_true(r.x[5] == 29 && r.y[5] == 12);
     release_free(&r);
+    /* the same lines as a shapefile */
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "ogr2ogr -f 'ESRI Shapefile' %s %s > /dev/null 2>&1", at("lines.shp"), at("lines.geojson"));
+    if (system(cmd) != 0) {
+        print_message("ogr2ogr not available: shapefile not checked\n");
+        return;
+    }
+    r = release_ok("lines.shp", "n", 0);
+    assert_int_equal(r.n_features, 3);
+    assert_true(r.start[3] == 7 && r.weight[0] == 2 && r.weight[1] == 2 && r.weight[2] == 6);
+    assert_true(r.x[5] == 29 && r.y[5] == 12);
+    release_free(&r);
 }
 
 static void test_release_polygons(void **state)
@@ -675,10 +720,22 @@ static void test_gpkg(void **state)
     }
     assert_int_equal(k, 2);
     GDALClose(ds);
+    /* read back as release points from its layer end_points */
+    rf_terrain_release r;
+    if (terrain_read_release_vector(path, "end_points", NULL, 0, &r, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    assert_int_equal(r.kind, RF_TERRAIN_POINTS);
+    assert_int_equal(r.n_features, 3);
+    for (k = 0; k < 3; k++)
+        assert_true(r.x[k] == end[3 * k] && r.y[k] == end[3 * k + 1] && r.weight[k] == 1);
+    release_free(&r);
+    assert_int_equal(terrain_read_release_vector(path, "nope", NULL, 0, &r, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "has no layer named nope"));
     CPLFree(wkt);
     OSRDestroySpatialReference(srs);
     ens.terrain = NULL;
     assert_int_equal(terrain_gpkg_write(path, "", &ens, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "not a complete terrain run"));
 }
 
 static int setup(void **state)
@@ -705,6 +762,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_dem_plane),          cmocka_unit_test(test_dem_row_order),
         cmocka_unit_test(test_dem_nodata),         cmocka_unit_test(test_dem_refused),
+        cmocka_unit_test(test_gdal_message_kept),
         cmocka_unit_test(test_classes_coarse),     cmocka_unit_test(test_classes_same_grid),
         cmocka_unit_test(test_classes_refused),    cmocka_unit_test(test_roughness),
         cmocka_unit_test(test_geotiff_round_trip), cmocka_unit_test(test_release_points_lines),

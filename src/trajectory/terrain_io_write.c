@@ -233,8 +233,10 @@ static rf_status gpkg_create(const char *tmp, const char *path, const char *crs_
 
 rf_status terrain_gpkg_write(const char *path, const char *crs_wkt, const rf_traj_ensemble *ens, rf_error *err)
 {
-    if (!ens->terrain)
-        return rf_fail(err, RF_EINVAL, "%s: the ensemble is not a terrain run", path);
+    const rf_terrain_samples *ts = ens->terrain;
+    if (!ts || (ens->samples && (!ts->end || !ts->runout || !ts->reach_angle || !ens->state)) ||
+        (ts->n_recorded && !ts->recorded))
+        return rf_fail(err, RF_EINVAL, "%s: the ensemble is not a complete terrain run", path);
     char tmp[4200];
     temp_name(path, ".gpkg", tmp, sizeof tmp);
     traj_gdal_capture cap;

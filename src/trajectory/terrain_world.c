@@ -1,7 +1,8 @@
 /* terrain_world.c - the prepared world of a terrain spec: the DEM read with
  * its material classes (or the one material) and roughness, each barrier's
  * line with the distance along it, the release set (every release feature on
- * valid cells of the DEM) and, for the impact_model law, the impact table.
+ * valid cells of the DEM, no no-data cell inside a polygon) and, for the
+ * impact_model law, the impact table.
  * terrain_world_from_surface does all but the reading, for a surface made in
  * memory (rf_terrain_from_nodes). */
 #include "trajectory/terrain_internal.h"
@@ -79,10 +80,46 @@ static rf_status on_valid(const rf_terrain *t, const rf_terrain_def *d, size_t f
                    src[0] ? ")" : "", x, y, k);
 }
 
+static int in_triangle(const double *v, double x, double y)
+{
+    double a = (v[2] - v[0]) * (y - v[1]) - (v[3] - v[1]) * (x - v[0]);
+    double b = (v[4] - v[2]) * (y - v[3]) - (v[5] - v[3]) * (x - v[2]);
+    double c = (v[0] - v[4]) * (y - v[5]) - (v[1] - v[5]) * (x - v[4]);
+    return a >= 0 && b >= 0 && c >= 0;
+}
+
+/* No no-data cell whose centre lies inside polygon f (its triangles): a
+ * hole inside the polygon that its edges do not touch. */
+static rf_status polygon_holes(const rf_terrain *t, const rf_terrain_world *w, const rf_terrain_def *d, size_t f,
+                               rf_error *err)
+{
+    const double(*v)[6];
+    size_t nt = terrain_release_pieces(w->release, f, &v), a = d->release.start[f], n = d->release.start[f + 1] - a;
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (size_t k = a; k < a + n; k++)
+        x0 = fmin(x0, d->release.x[k]), x1 = fmax(x1, d->release.x[k]), y0 = fmin(y0, d->release.y[k]),
+        y1 = fmax(y1, d->release.y[k]);
+    size_t i0 = (size_t)fmax(0, floor((x0 - t->x0) / t->dx)), j0 = (size_t)fmax(0, floor((y0 - t->y0) / t->dy));
+    size_t i1 = (size_t)fmin((double)t->nx - 2, (x1 - t->x0) / t->dx);
+    size_t j1 = (size_t)fmin((double)t->ny - 2, (y1 - t->y0) / t->dy);
+    for (size_t j = j0; j <= j1; j++)
+        for (size_t i = i0; i <= i1; i++) {
+            if (t->valid[j * (t->nx - 1) + i])
+                continue;
+            double cx = t->x0 + ((double)i + 0.5) * t->dx, cy = t->y0 + ((double)j + 0.5) * t->dy;
+            for (size_t k = 0; k < nt; k++)
+                if (in_triangle(v[k], cx, cy))
+                    return rf_fail(err, RF_EINVAL, "release.polygons[%zu]: the no-data cell centred at [%g, %g] "
+                                   "lies inside the polygon", f, cx, cy);
+        }
+    return RF_OK;
+}
+
 /* Every vertex of every release feature, and points along every edge at a
- * quarter of a cell, on valid cells (a polygon's interior is not searched
- * for no-data holes: a block drawn there starts outside and is reported). */
-static rf_status release_on_dem(const rf_terrain *t, const rf_terrain_def *d, rf_error *err)
+ * quarter of a cell, on valid cells; no no-data cell centred inside a
+ * polygon. */
+static rf_status release_on_dem(const rf_terrain *t, const rf_terrain_world *w, const rf_terrain_def *d,
+                                rf_error *err)
 {
     const rf_terrain_release *r = &d->release;
     double step = 0.25 * fmin(t->dx, t->dy);
@@ -100,6 +137,8 @@ static rf_status release_on_dem(const rf_terrain *t, const rf_terrain_def *d, rf
                               r->y[i] + u * (r->y[j] - r->y[i]), err);
             }
         }
+        if (st == RF_OK && r->kind == RF_TERRAIN_POLYGONS)
+            st = polygon_holes(t, w, d, f, err);
         if (st != RF_OK)
             return st;
     }
@@ -123,7 +162,7 @@ rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_
     if (st == RF_OK)
         st = terrain_release_prepare(s, &w->release, err);
     if (st == RF_OK)
-        st = release_on_dem(dem, s->terrain, err);
+        st = release_on_dem(dem, w, s->terrain, err);
     if (st == RF_OK && s->law == RF_BOUNCE_IMPACT_MODEL)
         st = traj_impact_table_build(s, (traj_impact_table **)&w->impact_table, err);
     if (st != RF_OK) {
