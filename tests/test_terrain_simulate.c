@@ -5,8 +5,8 @@
  *   in the plane's frame;
  *   extruded-profile equivalence: 2D profiles of tests/test_trajectory.c
  *   extruded along y, released in the x-z plane, give the 2D engine's impacts
- *   (time, point, velocities, spin) to 1e-9 for constant, velocity_scaled
- *   and rigid_sphere;
+ *   (time, point, velocities, spin) to 1e-9 for constant, velocity_scaled,
+ *   rigid_sphere and impact_model (the same table);
  *   a barrier crossed in flight: time, map point, distance along the line,
  *   heights and energy exact, and the capacity rule's cases (collector, held,
  *   broken through with E - C left, over the top);
@@ -107,6 +107,11 @@ static void extruded_case(const char *yaml, double dx, size_t min_impacts)
     rf_terrain *t = tt_dem(nx, 3, x0, -4, dx, 4, profile_z, s);
     tt_world tw;
     tt_world_init(&tw, t);
+    traj_impact_table *table = NULL; /* impact_model: the same table as the 2D world's (same inputs) */
+    rf_error err;
+    if (s->law == RF_BOUNCE_IMPACT_MODEL && traj_impact_table_build(s, &table, &err) != RF_OK)
+        fail_msg("impact table: %s", err.msg);
+    tw.w.impact_table = table;
     tt_spec ts; /* the 2D spec, its release in the x-z plane */
     ts.spec = *s;
     ts.spec.vy0 = 0, ts.spec.vz0 = s->vy0;
@@ -135,6 +140,8 @@ static void extruded_case(const char *yaml, double dx, size_t min_impacts)
         assert_true(a->omega_out[0] == 0 && a->omega_out[2] == 0);
     }
     tt_result_free(&r);
+    if (table)
+        traj_impact_table_free(table);
     rf_terrain_free(t);
     traj_case_free(&c);
 }
@@ -155,9 +162,10 @@ static void test_extruded_profiles(void **state)
                   "block: {shape: point, mass: 1}\n"
                   "release: {x: 5, y: 10.5, vx: 10, vy: 0}\n"
                   "bounce: {law: velocity_scaled, contact_speed: 0.01}\n", 2, 4);
-    /* its energy profile with a spinning sphere (rigid_sphere), no roughness */
-    const char *laws[3] = {"constant", "velocity_scaled", "rigid_sphere"};
-    for (int l = 0; l < 3; l++) {
+    /* its energy profile with a spinning sphere, every law, no roughness */
+    const char *laws[4] = {"constant", "velocity_scaled", "rigid_sphere",
+                           "impact_model, impact: {solver: rigid, tolerance: 0.01}"};
+    for (int l = 0; l < 4; l++) {
         char yaml[1024];
         snprintf(yaml, sizeof yaml,
                  "profile: {points: [[0, 60], [20, 45], [30, 44], [45, 20], [50, 19], [70, 5], [80, 6], [120, 0]],\n"
@@ -278,6 +286,80 @@ static void test_barrier_flight_and_capacity(void **state)
     assert_close(r.cross[0].energy_after, f.E, 1e-12);
     assert_close(r.res.impacts[0].t, T1, 1e-12);
     tt_result_free(&r);
+}
+
+/* A contact piece (on the ground, accelerating along its straight path):
+ * the crossing of the line x = 5 from the distance along the chord,
+ * 2 tau + tau^2 / 2 = 5, speed |v + a tau|, heights 0; a piece ending
+ * before the line records nothing. */
+static void test_barrier_contact_piece(void **state)
+{
+    (void)state;
+    double zero[4] = {0, 0, 0, 0};
+    rf_terrain *t;
+    rf_error err;
+    assert_int_equal(rf_terrain_from_nodes(2, 2, -20, -20, 40, 40, zero, &t, &err), RF_OK);
+    tt_world tw;
+    tt_world_init(&tw, t);
+    tt_spec ts;
+    tt_spec_init(&ts, 0.5, 0.8);
+    tt_sphere(&ts, 0.5, 2600);
+    double bx[2] = {5, 5}, by[2] = {-10, 10};
+    tt_world_barrier(&tw, &ts, 2, bx, by, 0, 0);
+    tt_result r;
+    tt_result_init(&r);
+    terrain_run run;
+    memset(&run, 0, sizeof run);
+    run.w = &tw.w, run.dem = t, run.s = &ts.spec, run.res = &r.res, run.g = TT_G;
+    run.mass = ts.spec.mass, run.radius = 0.5;
+    terrain_piece pc = {3, 5, {0, 0, 0}, {2, 1, 0}, {1, 0.5, 0}, 123, 1};
+    double cut, scale;
+    assert_int_equal(terrain_barrier_piece(&run, &pc, &cut, &scale), TERRAIN_PIECE_FREE);
+    double tau = -2 + sqrt(4 + 10), v[3] = {2 + tau, 1 + 0.5 * tau, 0};
+    const rf_traj_crossing *cr = &r.cross[0];
+    assert_true(cr->reached);
+    assert_close(cr->t, 3 + tau, 1e-12);
+    assert_close(cr->x, 5, 1e-12);
+    assert_close(cr->y, 2.5, 1e-12);
+    assert_close(cr->along, 12.5, 1e-12);
+    assert_true(cr->height_lowest == 0 && cr->normal_height == 0);
+    assert_close(cr->height_centre, 0.5, 1e-15);
+    assert_close(cr->speed, sqrt(dot(v, v)), 1e-12);
+    assert_close(cr->total_energy, 0.5 * ts.spec.mass * dot(v, v) + 123, 1e-12);
+    memset(r.cross, 0, sizeof r.cross);
+    pc.T = 1.5; /* ends at x = 4.125 */
+    assert_int_equal(terrain_barrier_piece(&run, &pc, &cut, &scale), TERRAIN_PIECE_FREE);
+    assert_false(r.cross[0].reached);
+    tt_result_free(&r);
+    rf_terrain_free(t);
+}
+
+/* The same sample gives the same bits; roughness draws differ by sample. */
+static void test_same_sample_same_bits(void **state)
+{
+    (void)state;
+    tt_plane pl = {0, -0.5, 0.1, 0, 0};
+    rf_terrain *t = tt_dem(101, 41, 0, 0, 2, 2, tt_plane_z, &pl);
+    tt_world tw;
+    tt_world_init(&tw, t);
+    tt_spec ts;
+    tt_spec_init(&ts, 0.7, 0.9);
+    ts.mat[0].roughness = 10 * TT_DEG;
+    ts.spec.vx0 = 3;
+    double start[3] = {4, 40, NAN};
+    ts.spec.height0 = 2;
+    tt_result a, b;
+    tt_result_init(&a);
+    tt_result_init(&b);
+    tt_simulate(&tw, &ts, 5, start, &a);
+    tt_simulate(&tw, &ts, 5, start, &b);
+    assert_true(a.res.n_events == b.res.n_events && a.res.n_events > 3);
+    assert_memory_equal(a.res.events, b.res.events, a.res.n_events * sizeof *a.res.events);
+    tt_simulate(&tw, &ts, 6, start, &b);
+    assert_true(b.res.end[0] != a.res.end[0] || b.res.end[1] != a.res.end[1]);
+    tt_result_free(&a);
+    tt_result_free(&b);
+    rf_terrain_free(t);
 }
 
 /* Flat ground tilted down to the east (z = -0.1 x): thrown east fast from
@@ -441,6 +523,8 @@ int main(void)
         cmocka_unit_test(test_bounce_series_inclined_plane),
         cmocka_unit_test(test_extruded_profiles),
         cmocka_unit_test(test_barrier_flight_and_capacity),
+        cmocka_unit_test(test_barrier_contact_piece),
+        cmocka_unit_test(test_same_sample_same_bits),
         cmocka_unit_test(test_exit_runout_reach),
         cmocka_unit_test(test_states_and_release),
         cmocka_unit_test(test_roughness_never_gains_energy),
