@@ -92,6 +92,24 @@ static double profile_z(void *ctx, double x, double y)
     return NAN;
 }
 
+/* The collectors the 3D block reached were reached by the 2D block with the
+ * same numbers (x = X is the barrier line; 2D has no break-through). */
+static void compare_crossings(const traj_case *c, const tt_result *r)
+{
+    for (size_t k = 0; k < c->spec.n_collectors; k++) {
+        const rf_traj_crossing *a = &r->cross[k], *b = &c->cross[k];
+        if (!a->reached)
+            continue;
+        assert_true(b->reached);
+        assert_close(a->t, b->t, 1e-9);
+        assert_near(a->height_lowest, b->height_lowest, 1e-9 * (1 + fabs(b->height_lowest)));
+        assert_near(a->normal_height, b->normal_height, 1e-9 * (1 + fabs(b->height_lowest)));
+        assert_close(a->speed, b->speed, 1e-9);
+        assert_close(a->total_energy, b->total_energy, 1e-9);
+        assert_int_equal(a->stopped_by_barrier, b->stopped_by_barrier);
+    }
+}
+
 /* The 2D case `yaml` and the same profile extruded along y (node spacing dx,
  * nodes on the vertices), released at y = 0 (a cell line): the 3D impacts
  * equal the 2D ones until the 3D block goes into contact. */
@@ -116,10 +134,16 @@ static void extruded_case(const char *yaml, double dx, size_t min_impacts)
     ts.spec = *s;
     ts.spec.vy0 = 0, ts.spec.vz0 = s->vy0;
     ts.spec.omega0_xyz[0] = 0, ts.spec.omega0_xyz[1] = s->omega0, ts.spec.omega0_xyz[2] = 0;
+    for (size_t k = 0; k < s->n_collectors; k++) { /* a collector x = X: the barrier line across the DEM */
+        double bx[2] = {s->collectors[k].x, s->collectors[k].x}, by[2] = {-4, 4};
+        tt_world_barrier(&tw, &ts, 2, bx, by, s->collectors[k].capacity, s->collectors[k].height);
+    }
+    ts.spec.collectors = s->collectors;
     double start[3] = {s->x0, 0, s->y0};
     tt_result r;
     tt_result_init(&r);
     tt_simulate(&tw, &ts, 0, start, &r);
+    compare_crossings(&c, &r);
     size_t n = r.res.n_impacts;
     if (n < min_impacts || c.res.n_impacts < n)
         fail_msg("3D %zu impacts, 2D %zu, expected at least %zu", n, c.res.n_impacts, min_impacts);
@@ -161,7 +185,15 @@ static void test_extruded_profiles(void **state)
                   "materials: {m: {R_n: 0.5, R_t: 0.8, friction_angle: 30}}\n"
                   "block: {shape: point, mass: 1}\n"
                   "release: {x: 5, y: 10.5, vx: 10, vy: 0}\n"
-                  "bounce: {law: velocity_scaled, contact_speed: 0.01}\n", 2, 4);
+                  "bounce: {law: velocity_scaled, contact_speed: 0.01}\n"
+                  "collectors: [{name: c, x: 15}, {name: d, x: 25}]\n", 2, 4);
+    /* the same with a barrier at x = 25 that holds the block */
+    extruded_case("profile: {points: [[0, 10], [10, 10], [20, 0], [100, 0]], material: m}\n"
+                  "materials: {m: {R_n: 0.5, R_t: 0.8, friction_angle: 30}}\n"
+                  "block: {shape: point, mass: 1}\n"
+                  "release: {x: 5, y: 10.5, vx: 10, vy: 0}\n"
+                  "bounce: {law: velocity_scaled, contact_speed: 0.01}\n"
+                  "collectors: [{name: c, x: 15}, {name: d, x: 25, capacity: 1.0e4}]\n", 2, 2);
     /* its energy profile with a spinning sphere, every law, no roughness */
     const char *laws[4] = {"constant", "velocity_scaled", "rigid_sphere",
                            "impact_model, impact: {solver: rigid, tolerance: 0.01}"};
