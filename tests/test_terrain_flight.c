@@ -267,9 +267,11 @@ static void test_border_and_nodata(void **state)
     double low[3] = {1.5, 2.5, 0.5}, slow[3] = {2, 0, 5}; /* lands before the hole: an impact */
     assert_int_equal(terrain_first_impact(t, low, slow, TT_G, INFINITY, &tau, &ci, &cj), 1);
     assert_close(tau, plane_time(&(tt_plane){0, 0, 0, 0, 0}, low, slow), 1e-12);
-    double out[3] = {-1, 2, 3}; /* starting off the DEM: leaves at once */
-    assert_int_equal(terrain_first_impact(t, out, v, TT_G, INFINITY, &tau, &ci, &cj), 0);
-    assert_true(tau == 0);
+    double out[4][3] = {{-1, 2, 3}, {1e300, 2, 3}, {2, -1e300, 3}, {NAN, 2, 3}}; /* off the DEM: leaves at once */
+    for (int k = 0; k < 4; k++) {
+        assert_int_equal(terrain_first_impact(t, out[k], v, TT_G, INFINITY, &tau, &ci, &cj), 0);
+        assert_true(tau == 0);
+    }
     /* tmax: no impact and no exit within it */
     assert_int_equal(terrain_first_impact(t, p, v, TT_G, 0.1, &tau, &ci, &cj), 0);
     assert_true(isinf(tau));

@@ -2,7 +2,8 @@
  * (terrain_report.c, terrain_maps.c) on hand-made data: the hillshade
  * against its closed form on planes of any aspect (and against the normal
  * of rf_terrain_height on a curved cell), the maps' pages to scale (the
- * same metres per pixel on both axes, the PNG that size), and the report's
+ * same metres per pixel on both axes, the PNG that size; hillshade, colour
+ * scale and no-data white where they belong), and the report's
  * answer against counts and percentiles known from the construction; the
  * page rendered by headless Chromium has every image and none broken. */
 #include <setjmp.h>
@@ -18,6 +19,11 @@
 #include <unistd.h>
 
 #define PI 3.14159265358979323846
+
+/* Under -DROCKFUZZ_SANITIZE=ON: fontconfig (loaded by cairo for the plots)
+ * keeps process-lifetime caches; they are not leaks of ours. */
+const char *__lsan_default_suppressions(void);
+const char *__lsan_default_suppressions(void) { return "leak:libfontconfig.so\n"; }
 
 /* max(0, n . l), n the upward normal of z = a x + b y, l from azimuth 315, altitude 45 deg. */
 static double shade_plane(double a, double b)
@@ -222,6 +228,35 @@ static terrain_band *bands_of(const terrain_map_grid *g, size_t *n)
     return b;
 }
 
+/* The colour of the map point (x, y) [m] of a map PNG (tests/png_pixels.py decodes it). */
+static void map_colour(const char *png, const terrain_map_layout *L, double x, double y, int rgb[3])
+{
+    char cmd[1024];
+    int px = L->map_left + (int)((x - L->xmin) / L->m_per_px), py = L->map_top + (int)((L->ymax - y) / L->m_per_px);
+    snprintf(cmd, sizeof cmd, "python3 %s/tests/png_pixels.py %s %d %d", ROCKFUZZ_SOURCE_DIR, png, px, py);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    assert_int_equal(fscanf(p, "%d %d %d", &rgb[0], &rgb[1], &rgb[2]), 3);
+    assert_int_equal(pclose(p), 0);
+}
+
+/* On the passages map: the hillshade (grey) where no block passed, the colour scale where blocks did, white on
+ * the no-data cells (a node of the DEM at (280, 12) m is NaN). */
+static void check_map_colours(const char *dir, const terrain_map_layout *L)
+{
+    char png[256];
+    int c[3];
+    snprintf(png, sizeof png, "%s/terrain_map_passages.png", dir);
+    map_colour(png, L, 2600000 + 50, 1100000 + 150, c);
+    assert_true(c[0] == c[1] && c[1] == c[2] && c[0] > 20 && c[0] < 250); /* grey: the hillshade */
+    map_colour(png, L, 2600000 + 150, 1100000 + 100, c);
+    assert_true(c[0] - c[2] > 60);                                           /* yellow to red */
+    map_colour(png, L, 2600000 + 280, 1100000 + 12, c);
+    assert_true(c[0] == 255 && c[1] == 255 && c[2] == 255);                  /* no data */
+    map_colour(png, L, 2600000 + 250, 1100000 + 12, c);
+    assert_true(c[0] == c[1] && c[1] == c[2] && c[0] < 250);                 /* 0 passages: hillshade */
+}
+
 static char *slurp(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -321,6 +356,7 @@ static void test_report(void **state)
         png_size(path, &w, &h);
         assert_int_equal(w, L.width), assert_int_equal(h, L.height);
     }
+    check_map_colours(dir, &L);
     snprintf(path, sizeof path, "%s/report.html", dir);
     char *html = slurp(path);
     /* the answer, from the construction: 60 % on talus, 20 % held, 10 % on soil, 10 % exit */

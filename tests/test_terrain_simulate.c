@@ -5,8 +5,8 @@
  *   in the plane's frame;
  *   extruded-profile equivalence: 2D profiles of tests/test_trajectory.c
  *   extruded along y, released in the x-z plane, give the 2D engine's impacts
- *   (time, point, velocities, spin) to 1e-9 for constant, velocity_scaled
- *   and rigid_sphere;
+ *   (time, point, velocities, spin) to 1e-9 for constant, velocity_scaled,
+ *   rigid_sphere and impact_model (the same table);
  *   a barrier crossed in flight: time, map point, distance along the line,
  *   heights and energy exact, and the capacity rule's cases (collector, held,
  *   broken through with E - C left, over the top);
@@ -92,6 +92,24 @@ static double profile_z(void *ctx, double x, double y)
     return NAN;
 }
 
+/* The collectors the 3D block reached were reached by the 2D block with the
+ * same numbers (x = X is the barrier line; 2D has no break-through). */
+static void compare_crossings(const traj_case *c, const tt_result *r)
+{
+    for (size_t k = 0; k < c->spec.n_collectors; k++) {
+        const rf_traj_crossing *a = &r->cross[k], *b = &c->cross[k];
+        if (!a->reached)
+            continue;
+        assert_true(b->reached);
+        assert_close(a->t, b->t, 1e-9);
+        assert_near(a->height_lowest, b->height_lowest, 1e-9 * (1 + fabs(b->height_lowest)));
+        assert_near(a->normal_height, b->normal_height, 1e-9 * (1 + fabs(b->height_lowest)));
+        assert_close(a->speed, b->speed, 1e-9);
+        assert_close(a->total_energy, b->total_energy, 1e-9);
+        assert_int_equal(a->stopped_by_barrier, b->stopped_by_barrier);
+    }
+}
+
 /* The 2D case `yaml` and the same profile extruded along y (node spacing dx,
  * nodes on the vertices), released at y = 0 (a cell line): the 3D impacts
  * equal the 2D ones until the 3D block goes into contact. */
@@ -107,14 +125,25 @@ static void extruded_case(const char *yaml, double dx, size_t min_impacts)
     rf_terrain *t = tt_dem(nx, 3, x0, -4, dx, 4, profile_z, s);
     tt_world tw;
     tt_world_init(&tw, t);
+    traj_impact_table *table = NULL; /* impact_model: the same table as the 2D world's (same inputs) */
+    rf_error err;
+    if (s->law == RF_BOUNCE_IMPACT_MODEL && traj_impact_table_build(s, &table, &err) != RF_OK)
+        fail_msg("impact table: %s", err.msg);
+    tw.w.impact_table = table;
     tt_spec ts; /* the 2D spec, its release in the x-z plane */
     ts.spec = *s;
     ts.spec.vy0 = 0, ts.spec.vz0 = s->vy0;
     ts.spec.omega0_xyz[0] = 0, ts.spec.omega0_xyz[1] = s->omega0, ts.spec.omega0_xyz[2] = 0;
+    for (size_t k = 0; k < s->n_collectors; k++) { /* a collector x = X: the barrier line across the DEM */
+        double bx[2] = {s->collectors[k].x, s->collectors[k].x}, by[2] = {-4, 4};
+        tt_world_barrier(&tw, &ts, 2, bx, by, s->collectors[k].capacity, s->collectors[k].height);
+    }
+    ts.spec.collectors = s->collectors;
     double start[3] = {s->x0, 0, s->y0};
     tt_result r;
     tt_result_init(&r);
     tt_simulate(&tw, &ts, 0, start, &r);
+    compare_crossings(&c, &r);
     size_t n = r.res.n_impacts;
     if (n < min_impacts || c.res.n_impacts < n)
         fail_msg("3D %zu impacts, 2D %zu, expected at least %zu", n, c.res.n_impacts, min_impacts);
@@ -135,6 +164,8 @@ static void extruded_case(const char *yaml, double dx, size_t min_impacts)
         assert_true(a->omega_out[0] == 0 && a->omega_out[2] == 0);
     }
     tt_result_free(&r);
+    if (table)
+        traj_impact_table_free(table);
     rf_terrain_free(t);
     traj_case_free(&c);
 }
@@ -154,10 +185,19 @@ static void test_extruded_profiles(void **state)
                   "materials: {m: {R_n: 0.5, R_t: 0.8, friction_angle: 30}}\n"
                   "block: {shape: point, mass: 1}\n"
                   "release: {x: 5, y: 10.5, vx: 10, vy: 0}\n"
-                  "bounce: {law: velocity_scaled, contact_speed: 0.01}\n", 2, 4);
-    /* its energy profile with a spinning sphere (rigid_sphere), no roughness */
-    const char *laws[3] = {"constant", "velocity_scaled", "rigid_sphere"};
-    for (int l = 0; l < 3; l++) {
+                  "bounce: {law: velocity_scaled, contact_speed: 0.01}\n"
+                  "collectors: [{name: c, x: 15}, {name: d, x: 25}]\n", 2, 4);
+    /* the same with a barrier at x = 25 that holds the block */
+    extruded_case("profile: {points: [[0, 10], [10, 10], [20, 0], [100, 0]], material: m}\n"
+                  "materials: {m: {R_n: 0.5, R_t: 0.8, friction_angle: 30}}\n"
+                  "block: {shape: point, mass: 1}\n"
+                  "release: {x: 5, y: 10.5, vx: 10, vy: 0}\n"
+                  "bounce: {law: velocity_scaled, contact_speed: 0.01}\n"
+                  "collectors: [{name: c, x: 15}, {name: d, x: 25, capacity: 1.0e4}]\n", 2, 2);
+    /* its energy profile with a spinning sphere, every law, no roughness */
+    const char *laws[4] = {"constant", "velocity_scaled", "rigid_sphere",
+                           "impact_model, impact: {solver: rigid, tolerance: 0.01}"};
+    for (int l = 0; l < 4; l++) {
         char yaml[1024];
         snprintf(yaml, sizeof yaml,
                  "profile: {points: [[0, 60], [20, 45], [30, 44], [45, 20], [50, 19], [70, 5], [80, 6], [120, 0]],\n"
@@ -280,6 +320,80 @@ static void test_barrier_flight_and_capacity(void **state)
     tt_result_free(&r);
 }
 
+/* A contact piece (on the ground, accelerating along its straight path):
+ * the crossing of the line x = 5 from the distance along the chord,
+ * 2 tau + tau^2 / 2 = 5, speed |v + a tau|, heights 0; a piece ending
+ * before the line records nothing. */
+static void test_barrier_contact_piece(void **state)
+{
+    (void)state;
+    double zero[4] = {0, 0, 0, 0};
+    rf_terrain *t;
+    rf_error err;
+    assert_int_equal(rf_terrain_from_nodes(2, 2, -20, -20, 40, 40, zero, &t, &err), RF_OK);
+    tt_world tw;
+    tt_world_init(&tw, t);
+    tt_spec ts;
+    tt_spec_init(&ts, 0.5, 0.8);
+    tt_sphere(&ts, 0.5, 2600);
+    double bx[2] = {5, 5}, by[2] = {-10, 10};
+    tt_world_barrier(&tw, &ts, 2, bx, by, 0, 0);
+    tt_result r;
+    tt_result_init(&r);
+    terrain_run run;
+    memset(&run, 0, sizeof run);
+    run.w = &tw.w, run.dem = t, run.s = &ts.spec, run.res = &r.res, run.g = TT_G;
+    run.mass = ts.spec.mass, run.radius = 0.5;
+    terrain_piece pc = {3, 5, {0, 0, 0}, {2, 1, 0}, {1, 0.5, 0}, 123, 1};
+    double cut, scale;
+    assert_int_equal(terrain_barrier_piece(&run, &pc, &cut, &scale), TERRAIN_PIECE_FREE);
+    double tau = -2 + sqrt(4 + 10), v[3] = {2 + tau, 1 + 0.5 * tau, 0};
+    const rf_traj_crossing *cr = &r.cross[0];
+    assert_true(cr->reached);
+    assert_close(cr->t, 3 + tau, 1e-12);
+    assert_close(cr->x, 5, 1e-12);
+    assert_close(cr->y, 2.5, 1e-12);
+    assert_close(cr->along, 12.5, 1e-12);
+    assert_true(cr->height_lowest == 0 && cr->normal_height == 0);
+    assert_close(cr->height_centre, 0.5, 1e-15);
+    assert_close(cr->speed, sqrt(dot(v, v)), 1e-12);
+    assert_close(cr->total_energy, 0.5 * ts.spec.mass * dot(v, v) + 123, 1e-12);
+    memset(r.cross, 0, sizeof r.cross);
+    pc.T = 1.5; /* ends at x = 4.125 */
+    assert_int_equal(terrain_barrier_piece(&run, &pc, &cut, &scale), TERRAIN_PIECE_FREE);
+    assert_false(r.cross[0].reached);
+    tt_result_free(&r);
+    rf_terrain_free(t);
+}
+
+/* The same sample gives the same bits; roughness draws differ by sample. */
+static void test_same_sample_same_bits(void **state)
+{
+    (void)state;
+    tt_plane pl = {0, -0.5, 0.1, 0, 0};
+    rf_terrain *t = tt_dem(101, 41, 0, 0, 2, 2, tt_plane_z, &pl);
+    tt_world tw;
+    tt_world_init(&tw, t);
+    tt_spec ts;
+    tt_spec_init(&ts, 0.7, 0.9);
+    ts.mat[0].roughness = 10 * TT_DEG;
+    ts.spec.vx0 = 3;
+    double start[3] = {4, 40, NAN};
+    ts.spec.height0 = 2;
+    tt_result a, b;
+    tt_result_init(&a);
+    tt_result_init(&b);
+    tt_simulate(&tw, &ts, 5, start, &a);
+    tt_simulate(&tw, &ts, 5, start, &b);
+    assert_true(a.res.n_events == b.res.n_events && a.res.n_events > 3);
+    assert_memory_equal(a.res.events, b.res.events, a.res.n_events * sizeof *a.res.events);
+    tt_simulate(&tw, &ts, 6, start, &b);
+    assert_true(b.res.end[0] != a.res.end[0] || b.res.end[1] != a.res.end[1]);
+    tt_result_free(&a);
+    tt_result_free(&b);
+    rf_terrain_free(t);
+}
+
 /* Flat ground tilted down to the east (z = -0.1 x): thrown east fast from
  * (5, 5, 1) it leaves through x = 100 at t = 95 / 60; runout and reach angle
  * from the exit point. */
@@ -377,10 +491,28 @@ static double rough_slope(void *ctx, double x, double y)
     return -0.6 * x - 0.1 * y + tt_uniform(s, 0, 1.5);
 }
 
+/* Every flight between two recorded events stays above the ground at 400
+ * samples (a second method beside the cell walk). */
+static void check_flights_above(const rf_terrain *t, const rf_terrain_result *res)
+{
+    for (size_t k = 0; k + 1 < res->n_events; k++) {
+        const rf_terrain_event *a = &res->events[k], *b = &res->events[k + 1];
+        if (!a->flying)
+            continue;
+        double T = b->t - a->t;
+        for (int i = 1; i < 400; i++) {
+            double s = T * i / 400, x = a->p[0] + a->v[0] * s, y = a->p[1] + a->v[1] * s, zg;
+            double z = a->p[2] + a->v[2] * s - 0.5 * TT_G * s * s;
+            if (rf_terrain_height(t, x, y, &zg, NULL) && z < zg - 1e-9 * (1 + fabs(z)))
+                fail_msg("events %zu-%zu: the flight is %g m below the ground at s = %g", k, k + 1, zg - z, s);
+        }
+    }
+}
+
 /* Whole trajectories down a rough 31 deg slope with roughness 20 deg: the
- * invariants (never below the ground, never more mechanical energy) hold at
- * every event (spin included), and no impact of a lumped-mass law returns
- * more speed than it received. */
+ * invariants (never below the ground, never more mechanical energy, spin
+ * included) hold at every event, every flight stays above the ground, and
+ * no impact of a lumped-mass law returns more speed than it received. */
 static void test_roughness_never_gains_energy(void **state)
 {
     (void)state;
@@ -404,6 +536,7 @@ static void test_roughness_never_gains_energy(void **state)
             tt_result r;
             tt_result_init(&r);
             tt_simulate(&tw, &ts, k, start, &r);
+            check_flights_above(t, &r.res);
             for (size_t m = 0; m < r.res.n_impacts && law != RF_BOUNCE_RIGID_SPHERE; m++) {
                 const rf_terrain_impact *im = &r.res.impacts[m]; /* lumped mass: translation only */
                 assert_true(dot(im->v_out, im->v_out) <= dot(im->v_in, im->v_in) * (1 + 1e-12));
@@ -422,6 +555,8 @@ int main(void)
         cmocka_unit_test(test_bounce_series_inclined_plane),
         cmocka_unit_test(test_extruded_profiles),
         cmocka_unit_test(test_barrier_flight_and_capacity),
+        cmocka_unit_test(test_barrier_contact_piece),
+        cmocka_unit_test(test_same_sample_same_bits),
         cmocka_unit_test(test_exit_runout_reach),
         cmocka_unit_test(test_states_and_release),
         cmocka_unit_test(test_roughness_never_gains_energy),

@@ -68,11 +68,15 @@ static double start_root(double A, double B, double L, double speed)
     return s <= L ? s : INFINITY;
 }
 
-/* First index of the cell along one axis: the one holding f = (x - x0) / dx,
- * on a cell line the one the motion enters (direction of v), -1 / n - 1 if
- * the motion leaves the grid of n nodes there. */
+/* First cell index along one axis of n nodes: the cell holding
+ * f = (x - x0) / dx; on a cell line the one the motion enters (the sign of
+ * v), so -1 or n - 1 (outside) when it leaves the grid there. */
 static long first_index(double f, double v, size_t n)
 {
+    if (!(f >= 0))
+        return -1; /* (also NaN) */
+    if (f > (double)(n - 1))
+        return (long)n - 1;
     double fl = floor(f);
     long i = (long)fl;
     if (f == fl && v < 0)
@@ -82,15 +86,16 @@ static long first_index(double f, double v, size_t n)
     return i;
 }
 
-/* A node line of one axis: the first index on a line with zero velocity may
- * take the neighbouring cell if the preferred one has no data (a path along
- * a cell line next to a no-data cell). */
+/* Cell (i, j) exists and holds data. */
 static int cell_ok(const rf_terrain *t, long i, long j)
 {
     return i >= 0 && j >= 0 && i < (long)t->nx - 1 && j < (long)t->ny - 1 &&
            t->valid[(size_t)j * (t->nx - 1) + (size_t)i];
 }
 
+/* The cell the path starts in; on a cell line it does not move across
+ * (zero velocity along that axis) the neighbour is taken when the preferred
+ * cell has no data (a path along the edge of a no-data area). */
 static void first_cell(const rf_terrain *t, const double p[3], const double v[3], long *i, long *j)
 {
     double fx = (p[0] - t->x0) / t->dx, fy = (p[1] - t->y0) / t->dy;

@@ -291,6 +291,7 @@ void terrain_report_grid(const rf_traj_spec *s, const rf_traj_ensemble *e, const
 typedef struct {
     int width, height;          /* the page [px] */
     int map_w, map_h;           /* the map inside it [px] */
+    int map_left, map_top;      /* the map's top-left corner on the page [px] */
     double xmin, xmax, ymin, ymax;  /* [m] */
     double m_per_px;            /* [m] per pixel on both axes */
 } terrain_map_layout;

@@ -44,6 +44,7 @@ terrain_map_layout terrain_map_layout_of(double xmin, double xmax, double ymin, 
     }
     if (L.map_h < 1)
         L.map_h = 1;
+    L.map_left = MAP_PAD_L, L.map_top = MAP_PAD_T;
     L.width = MAP_PAD_L + L.map_w + MAP_PAD_R;
     L.height = MAP_PAD_T + L.map_h + MAP_PAD_B;
     L.xmin = xmin, L.xmax = xmax, L.ymin = ymin, L.ymax = ymax;

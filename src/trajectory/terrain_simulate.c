@@ -144,6 +144,8 @@ static void impact(terrain_run *r, size_t ci, size_t cj)
         return;
     }
     record_impact(r, ci, cj, v_in);
+    if (r->nomem)
+        return;
     double speed = sqrt(dot3(r->v, r->v));
     if (speed < r->s->v_stop || speed == 0) {
         memset(r->v, 0, sizeof r->v), memset(r->omega, 0, sizeof r->omega);
