@@ -314,10 +314,11 @@ static int exact_step(terrain_run *r, const cc_cell *c, const cc_geom *G, int ro
             s[q] -= sigma * e[q];
         if (norm3(s) > 1e-9 * (U + r->radius * norm3(r->omega)))
             return 0;
-        f = fabs(sigma) > 1e-12 * (U + r->radius * norm3(r->omega)) ? (sigma > 0 ? 1 : -1) : (ge > 0 ? 1 : -1);
+        int slips = fabs(sigma) > 1e-12 * (U + r->radius * norm3(r->omega));
+        f = slips ? (sigma > 0 ? 1 : -1) : (ge > 0 ? 1 : -1);
         A = ge - f * c->mu * G->N;
         double rate = ge - f * c->mu * G->N * (1 + 1 / k);
-        if (sigma * rate < 0)
+        if (slips && sigma * rate < 0)
             tau_slip = -sigma / rate;
     }
     double tau_stop = A < 0 && U > 0 ? U / -A : INFINITY;
@@ -339,6 +340,26 @@ static int exact_step(terrain_run *r, const cc_cell *c, const cc_geom *G, int ro
     return 1;
 }
 
+/* A sliding sphere: the time at which its slip s = v + r n x omega, changing
+ * at ds/dt = a + r n x d omega/dt, vanishes (INFINITY if it does not shrink). */
+static double slip_end_time(const terrain_run *r, const cc_cell *c, int rolling, const double a[3],
+                            const double dw[3])
+{
+    if (rolling || !is_sphere(r))
+        return INFINITY;
+    cc_geom G;
+    geom(r, c, r->p, r->v, &G);
+    double nw[3], ndw[3], s[3], ds[3];
+    cross3(G.n, r->omega, nw);
+    cross3(G.n, dw, ndw);
+    for (int k = 0; k < 3; k++)
+        s[k] = r->v[k] + r->radius * nw[k], ds[k] = a[k] + r->radius * ndw[k];
+    double sd = dot3(s, ds);
+    if (norm3(s) <= 1e-12 * (norm3(r->v) + r->radius * norm3(r->omega)))
+        return INFINITY; /* no slip (round-off): it grows the way gravity pulls */
+    return sd < 0 ? dot3(s, s) / -sd : INFINITY;
+}
+
 /* One Heun step with error control from the current state. */
 static void numeric_step(const terrain_run *r, const cc_cell *c, int rolling, cc_step *st)
 {
@@ -354,6 +375,15 @@ static void numeric_step(const terrain_run *r, const cc_cell *c, int rolling, cc
     if (va0 < 0 && sp * sp / -va0 <= h) { /* it comes to rest within the step: one Euler step there */
         memset(st, 0, sizeof *st);
         st->tau = sp * sp / -va0, st->rest = 1;
+        memcpy(st->a, a0, sizeof st->a);
+        memcpy(st->dw, dw0, sizeof st->dw);
+        cut_at_edge(r, c, st->a, st);
+        return;
+    }
+    double tslip = slip_end_time(r, c, rolling, a0, dw0);
+    if (tslip <= h) { /* a sliding sphere's slip ends within the step: one Euler step there */
+        memset(st, 0, sizeof *st);
+        st->tau = tslip, st->slip_end = 1;
         memcpy(st->a, a0, sizeof st->a);
         memcpy(st->dw, dw0, sizeof st->dw);
         cut_at_edge(r, c, st->a, st);
