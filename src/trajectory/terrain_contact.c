@@ -27,10 +27,15 @@
  * acceleration is constant: the step is exact and ends at the cell's edge,
  * at rest or at the end of the slip (closed-form roots, as in 2D).
  * Elsewhere a second-order step (Heun, with the Euler difference as its
- * error estimate) of at most a quarter cell and a quarter of the speed, cut
- * where its path leaves the cell; the point is put back on the surface and
- * the velocity into its tangent plane, and the kinetic energy is capped by
- * the start's minus gravity's work minus (a lower bound of) the friction's.
+ * error estimate, CC_TOL of the speed per step) of at most one cell length
+ * and a quarter of the speed, cut where its path leaves the cell (the patch
+ * is smooth inside: its edges are the only kinks); a step in which the
+ * speed (or a sliding sphere's slip) would vanish is one Euler step to that
+ * instant.  The point is put back on the surface and the velocity into its
+ * tangent plane, and the kinetic energy is capped by the start's plus
+ * gravity's work minus (a lower bound of) the friction's.  Below v_stop, on
+ * ground where it cannot start again, the block stops (no creeping to rest
+ * in ever shorter steps).
  *
  * Edges.  Crossing a cell edge changes the normal: the velocity pointing
  * above the next patch's tangent plane (convex) launches the block; else
@@ -40,17 +45,23 @@
  * deg or less), the block is in the valley line: it moves along the edge
  * (straight, so at constant acceleration: gravity along it minus the
  * friction of both faces, whose normal forces balance the rest of gravity),
- * node to node, until it stops there or the valley opens.  A block at rest
+ * node to node, until it stops there or the valley opens (a sphere rolls
+ * along it: mu_r instead of mu, and 1 / (1 + k)).  A block at rest
  * on an edge or a node starts into the cell its fall line points into, or
  * along a sloping valley line, or stays (stopped).  The material is the
- * current cell's; leaving the DEM or entering a no-data cell: exited. */
+ * current cell's; leaving the DEM or entering a no-data cell: exited.
+ *
+ * Every step is a piece (uniform acceleration over the step) emitted with
+ * terrain_emit: a barrier that holds the block stops it at the cut; one it
+ * breaks through scales its velocity and spin there, and the motion goes on
+ * from the cut. */
 #include "trajectory/terrain_internal.h"
 
 #include <math.h>
 #include <string.h>
 
 #define CC_TOL 1e-3      /* relative error allowed per numerical step (velocity) */
-#define CC_CELL_FRAC 1.0 /* a numerical step covers at most this share of a cell */
+#define CC_CELL_FRAC 1.0 /* a numerical step covers at most this share of a cell (and is cut at its edge) */
 #define CC_DV_FRAC 0.25 /* and changes the velocity by at most this share of the speed */
 
 typedef struct {
@@ -713,6 +724,50 @@ static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey)
 
 /* ---- the contact phase ---- */
 
+/* Emit the step's piece, move along it (to a barrier's cut), put the state
+ * on the surface, cap its energy; then the edge it reached.  1 to go on. */
+static int take_step(terrain_run *r, cc_cell *c, const cc_step *s, const cc_geom *G, int exact, int rolling,
+                     double e0)
+{
+    cc_step st = *s;
+    double tau = st.tau, scale;
+    terrain_piece_outcome o = emit(r, &tau, st.a, &scale);
+    int cut = tau < st.tau;
+    double p0[3];
+    memcpy(p0, r->p, sizeof p0);
+    advance(r, tau, st.a, st.dw);
+    if (!cut && st.ex)
+        r->p[0] = st.ex > 0 ? c->x1 : c->P.xi;
+    if (!cut && st.ey)
+        r->p[1] = st.ey > 0 ? c->y1 : c->P.yj;
+    r->p[0] = fmin(fmax(r->p[0], c->P.xi), c->x1), r->p[1] = fmin(fmax(r->p[1], c->P.yj), c->y1);
+    onto_surface(r, c);
+    if (o == TERRAIN_PIECE_STOPPED) {
+        stop_here(r);
+        return 0;
+    }
+    if (!cut && st.rest)
+        memset(r->v, 0, sizeof r->v);
+    cc_geom G1;
+    geom(r, c, r->p, r->v, &G1);
+    if (rolling || (!cut && st.slip_end))
+        set_rolling(r, &G1, 0);
+    if (!exact) {
+        double d[3] = {r->p[0] - p0[0], r->p[1] - p0[1], r->p[2] - p0[2]};
+        double N = fmax(0, fmin(G->N, G1.N));
+        double work = is_sphere(r) && !rolling ? 0 : (rolling ? c->mur : c->mu) * N * norm3(d);
+        cap_energy(r, e0, work);
+    }
+    if (o == TERRAIN_PIECE_SLOWED) {
+        for (int k = 0; k < 3; k++)
+            r->v[k] *= scale, r->omega[k] *= scale;
+        return 1;
+    }
+    if (!cut && (st.ex || st.ey))
+        return cross_edge(r, c, st.ex, st.ey);
+    return 1;
+}
+
 /* One step; 1 to go on. */
 static int step_once(terrain_run *r, cc_cell *c)
 {
@@ -748,46 +803,11 @@ static int step_once(terrain_run *r, cc_cell *c)
         }
         numeric_step(r, c, rolling, &st);
     }
-    double tau = st.tau, scale;
-    if (!isfinite(tau)) {
+    if (!isfinite(st.tau)) {
         stop_here(r);
         return 0;
     }
-    terrain_piece_outcome o = emit(r, &tau, st.a, &scale);
-    int cut = tau < st.tau;
-    double p0[3];
-    memcpy(p0, r->p, sizeof p0);
-    advance(r, tau, st.a, st.dw);
-    if (!cut && st.ex)
-        r->p[0] = st.ex > 0 ? c->x1 : c->P.xi;
-    if (!cut && st.ey)
-        r->p[1] = st.ey > 0 ? c->y1 : c->P.yj;
-    r->p[0] = fmin(fmax(r->p[0], c->P.xi), c->x1), r->p[1] = fmin(fmax(r->p[1], c->P.yj), c->y1);
-    onto_surface(r, c);
-    if (o == TERRAIN_PIECE_STOPPED) {
-        stop_here(r);
-        return 0;
-    }
-    if (!cut && st.rest)
-        memset(r->v, 0, sizeof r->v);
-    cc_geom G1;
-    geom(r, c, r->p, r->v, &G1);
-    if (rolling || (!cut && st.slip_end))
-        set_rolling(r, &G1, 0);
-    if (!exact) {
-        double d[3] = {r->p[0] - p0[0], r->p[1] - p0[1], r->p[2] - p0[2]};
-        double N = fmax(0, fmin(G.N, G1.N));
-        double work = is_sphere(r) && !rolling ? 0 : (rolling ? c->mur : c->mu) * N * norm3(d);
-        cap_energy(r, e0, work);
-    }
-    if (o == TERRAIN_PIECE_SLOWED) {
-        for (int k = 0; k < 3; k++)
-            r->v[k] *= scale, r->omega[k] *= scale;
-        return 1;
-    }
-    if (!cut && (st.ex || st.ey))
-        return cross_edge(r, c, st.ex, st.ey);
-    return 1;
+    return take_step(r, c, &st, &G, exact, rolling, e0);
 }
 
 void terrain_contact_run(terrain_run *r)
