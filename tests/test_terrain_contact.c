@@ -385,6 +385,53 @@ static void test_valley_oblique(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* A V valley (sides of slope 1.2, valley line level or falling at 0.3)
+ * turned 30 and 45 deg to the grid: its bottom runs through curved cells and
+ * across nodes where the cells' fall lines meet.  From 60 starts on its
+ * sides, points and spheres never end in the step limit (issue 31 item 2 in
+ * 2D): each stops, leaves the DEM or is launched, and no energy is gained. */
+static void test_rotated_valley(void **state)
+{
+    (void)state;
+    const double rots[2] = {30, 45}, slopes[2] = {0, 0.3};
+    size_t n = 101;
+    double h = 2, *z = malloc(n * n * sizeof *z);
+    uint64_t seed = 7;
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) {
+            double rot = rots[a] * DEG;
+            for (size_t j = 0; j < n; j++)
+                for (size_t i = 0; i < n; i++) {
+                    double x = (double)i * h - 100, y = (double)j * h - 100;
+                    z[j * n + i] = 300 + 1.2 * fabs(x * cos(rot) + y * sin(rot)) + slopes[b] * (y * cos(rot) - x * sin(rot));
+                }
+            rf_terrain *dem;
+            rf_error err;
+            assert_int_equal(rf_terrain_from_nodes(n, n, 0, 0, h, h, z, &dem, &err), RF_OK);
+            for (int sphere = 0; sphere < 2; sphere++) {
+                rf_traj_spec s;
+                simple_spec(&s, 25, 0.1, sphere);
+                for (int k = 0; k < 15; k++) {
+                    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+                    double u1 = (double)(seed >> 11) / 9007199254740992.0;
+                    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+                    double u2 = (double)(seed >> 11) / 9007199254740992.0;
+                    double p[3] = {30 + 140 * u1, 30 + 140 * u2, 0}, v[3] = {0, 0, 0};
+                    assert_true(rf_terrain_height(dem, p[0], p[1], &p[2], NULL));
+                    tc_run c;
+                    run_contact(&c, &s, dem, p, v, NULL, 20000);
+                    if (c.r.phase != TERRAIN_FLY && c.res.state == RF_TRAJ_STEP_LIMIT)
+                        fail_msg("rot %g slope %g sphere %d: from (%g, %g) the step limit", rots[a], slopes[b], sphere,
+                                 p[0], p[1]);
+                    assert_true(energy_of(&c.r) <= G * p[2] * (1 + 1e-12));
+                }
+                rf_traj_spec_free(&s);
+            }
+            rf_terrain_free(dem);
+        }
+    free(z);
+}
+
 /* The law on a plane of normal n (a second, brute-force method): the
  * derivative of the state (p, v, omega) for a point or sliding sphere
  * (friction against the slip v + r n x omega, spin rate mu N m r (n x s^)/I)
@@ -679,6 +726,7 @@ int main(void)
         cmocka_unit_test(test_valley_stops),
         cmocka_unit_test(test_sloping_valley),
         cmocka_unit_test(test_valley_oblique),
+        cmocka_unit_test(test_rotated_valley),
         cmocka_unit_test(test_across_fall_line),
         cmocka_unit_test(test_energy_random_terrain),
         cmocka_unit_test(test_convex_edge_launch),

@@ -534,7 +534,7 @@ static int crease_shift(const terrain_run *r, cc_crease *k, int dir)
 static int crease_run(terrain_run *r, cc_crease k, cc_cell *c)
 {
     double inv = is_sphere(r) ? 1 / (1 + kratio(r)) : 1;
-    for (;;) {
+    for (int idle = 0;; idle++) {
         double resist, ge, e[3];
         if (!crease_loads(r, &k, &resist, &ge, e)) { /* the valley opens: on the face it leans on */
             cc_geom G;
@@ -566,6 +566,12 @@ static int crease_run(terrain_run *r, cc_crease k, cc_cell *c)
         else if (U * U + 2 * A * d >= 0)
             tau_end = 2 * d / (U + sqrt(U * U + 2 * A * d));
         double tau = fmin(tau_stop, tau_end), a[3], zero[3] = {0, 0, 0}, scale;
+        if (tau > 0 || U > 0)
+            idle = 0;
+        else if (idle >= 4) { /* at rest at a node that every segment pulls it back to: a pit */
+            stop_here(r);
+            return 0;
+        }
         for (int q = 0; q < 3; q++)
             r->v[q] = U * dir * e[q], a[q] = A * dir * e[q];
         terrain_piece_outcome o = emit(r, &tau, a, &scale);
@@ -821,7 +827,18 @@ void terrain_contact_run(terrain_run *r)
     }
     onto_surface(r, &c);
     terrain_event(r, RF_EV_CONTACT, 0);
-    while (r->phase == TERRAIN_CONTACT && !r->nomem)
+    double last[3] = {NAN, NAN, NAN};
+    for (int idle = 0; r->phase == TERRAIN_CONTACT && !r->nomem;) {
         if (!step_once(r, &c))
             break;
+        /* at rest on the same point step after step: every way out leads
+         * back (a node or edge where the cells' fall lines meet) */
+        int still = r->v[0] == 0 && r->v[1] == 0 && r->v[2] == 0 && !memcmp(last, r->p, sizeof last);
+        idle = still ? idle + 1 : 0;
+        if (idle >= 8) {
+            stop_here(r);
+            break;
+        }
+        memcpy(last, r->p, sizeof last);
+    }
 }
