@@ -58,7 +58,7 @@
 #define CORNER_TIE 1e-12
 
 typedef struct {
-    uint64_t *v;                /* bin << 48 | count, sorted by bin */
+    uint64_t *v;                /* bin << 47 | count, sorted by bin */
     uint32_t n, cap;
 } hz_hist;
 
