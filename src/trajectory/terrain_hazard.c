@@ -530,8 +530,10 @@ rf_status terrain_hazard_pack(const rf_terrain_hazard *h, uint64_t **buf, size_t
         b[w++] = r->cell | (uint64_t)r->e.n << 32, b[w++] = r->h.n;
         b[w++] = r->passages, b[w++] = r->deposits;
         memcpy(&b[w++], &r->e_max, sizeof r->e_max), memcpy(&b[w++], &r->h_max, sizeof r->h_max);
-        memcpy(b + w, r->e.v, r->e.n * sizeof *b), w += r->e.n;
-        memcpy(b + w, r->h.v, r->h.n * sizeof *b), w += r->h.n;
+        for (uint32_t e = 0; e < r->e.n; e++)
+            b[w++] = r->e.v[e];
+        for (uint32_t e = 0; e < r->h.n; e++)
+            b[w++] = r->h.v[e];
     }
     *buf = b, *words = n;
     return RF_OK;
