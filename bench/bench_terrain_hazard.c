@@ -6,8 +6,10 @@
  * 0.2-1 m long, on the ground; each trajectory ends with
  * terrain_hazard_end.  Prints CPU time per piece, per cell visit (a cell
  * crossed by a piece) and per trajectory; the accumulator's bytes.
- * Usage: bench_terrain_hazard [trajectories] [counts]   (counts: passages and
- * deposits only, no energy and height histograms) */
+ * Release along a line 800 m wide (wide) or within 10 m of one point
+ * (point: the trajectories share cells, whose histograms stay in the cache).
+ * Usage: bench_terrain_hazard [trajectories] [wide|point] [counts]   (counts:
+ * passages and deposits only, no energy and height histograms) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,6 +25,7 @@ static double cpu_seconds(void)
 }
 
 static uint64_t rng = 12345;
+static double release_width = 800; /* [m] */
 static double urand(void)
 {
     uint64_t z = (rng += 0x9e3779b97f4a7c15u);
@@ -39,7 +42,7 @@ static double ground(double x, double y) { return 0.7 * (1000 - y) + 3 * sin(x /
 /* The pieces of one trajectory from (x, 950) down to y = 650. */
 static size_t make_trajectory(terrain_piece *pc, size_t cap, int flights)
 {
-    double x = 100 + 800 * urand(), y = 950;
+    double x = 500 + release_width * (urand() - 0.5), y = 950;
     size_t n = 0;
     while (y > 650 && n < cap) {
         double len = flights ? 2 + 18 * urand() : 0.2 + 0.8 * urand(), az = -0.3 + 0.6 * urand();
@@ -136,7 +139,11 @@ int main(int argc, char **argv)
     memset(&d, 0, sizeof d), memset(&s, 0, sizeof s);
     d.raster_cell = CELL;
     d.statistics = RF_TERRAIN_PASSAGES | RF_TERRAIN_REACH_PROBABILITY | RF_TERRAIN_DEPOSITS;
-    if (!(argc > 2 && !strcmp(argv[2], "counts")))
+    if (argc > 2 && !strcmp(argv[2], "point"))
+        release_width = 10;
+    printf("release %s (%.0f m wide)%s\n", release_width < 100 ? "point" : "wide", release_width,
+           argc > 3 && !strcmp(argv[3], "counts") ? ", counts only" : "");
+    if (!(argc > 3 && !strcmp(argv[3], "counts")))
         d.statistics |= RF_TERRAIN_ENERGY | RF_TERRAIN_HEIGHT;
     s.terrain = &d;
     int rc = run(dem, &s, n_traj, 1) | run(dem, &s, n_traj, 0);

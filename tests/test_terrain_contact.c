@@ -199,6 +199,38 @@ static void test_to_rest_on_plane(void **state)
     }
 }
 
+/* A sphere spinning forward at twice the rolling rate, thrown down a 50 deg
+ * plane (tan b > 3.5 mu: it cannot roll): its slip -U0 is first driven to 0
+ * by friction pushing it forward, a1 = g (sin b + mu cos b), in
+ * tau1 = U0 / (g sin b + mu g cos b (1 + 1/k)), k = 2/5; then it slides
+ * with a2 = g (sin b - mu cos b) and leaves the DEM 30 m down the slope
+ * (horizontally) at the time the two stretches give. */
+static void test_sliding_sphere_topspin(void **state)
+{
+    (void)state;
+    double b = 50 * DEG, az = 120 * DEG, mu = tan(15 * DEG), U0 = 3;
+    rf_traj_spec s;
+    simple_spec(&s, 15, 0, 1);
+    rf_terrain *dem = plane_dem(b, az, 100, 5);
+    double x0 = 50 - 30 * cos(az), y0 = 50 - 30 * sin(az), p[3] = {x0, y0, 0};
+    double v[3] = {U0 * cos(b) * cos(az), U0 * cos(b) * sin(az), -U0 * sin(b)}, n[3], w[3];
+    assert_true(rf_terrain_height(dem, x0, y0, &p[2], n));
+    w[0] = 2 * (n[1] * v[2] - n[2] * v[1]) / s.radius; /* 2 n x v / r */
+    w[1] = 2 * (n[2] * v[0] - n[0] * v[2]) / s.radius;
+    w[2] = 2 * (n[0] * v[1] - n[1] * v[0]) / s.radius;
+    tc_run c;
+    run_contact(&c, &s, dem, p, v, w, 1000);
+    double a1 = G * (sin(b) + mu * cos(b)), tau1 = U0 / (G * sin(b) + mu * G * cos(b) * 3.5);
+    double d1 = U0 * tau1 + 0.5 * a1 * tau1 * tau1, v1 = U0 + a1 * tau1, a2 = G * (sin(b) - mu * cos(b));
+    double D = to_border(x0, y0, cos(az), sin(az), 100) / cos(b) - d1;
+    double t2 = 2 * D / (v1 + sqrt(v1 * v1 + 2 * a2 * D));
+    assert_int_equal(c.res.state, RF_TRAJ_EXITED);
+    assert_close(c.res.t_end, tau1 + t2, 1e-9);
+    assert_close(speed_of(&c.r), v1 + a2 * t2, 1e-9);
+    rf_terrain_free(dem);
+    rf_traj_spec_free(&s);
+}
+
 /* Extruded profile: z(x) at nodes every h in x, any y; ny nodes 0..(ny-1) h. */
 static rf_terrain *profile_dem(const double *px, const double *pz, size_t np, double h, size_t nx, size_t ny, int along_y)
 {
@@ -353,6 +385,53 @@ static void test_valley_oblique(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* A V valley (sides of slope 1.2, valley line level or falling at 0.3)
+ * turned 30 and 45 deg to the grid: its bottom runs through curved cells and
+ * across nodes where the cells' fall lines meet.  From 60 starts on its
+ * sides, points and spheres never end in the step limit (issue 31 item 2 in
+ * 2D): each stops, leaves the DEM or is launched, and no energy is gained. */
+static void test_rotated_valley(void **state)
+{
+    (void)state;
+    const double rots[2] = {30, 45}, slopes[2] = {0, 0.3};
+    size_t n = 101;
+    double h = 2, *z = malloc(n * n * sizeof *z);
+    uint64_t seed = 7;
+    for (int a = 0; a < 2; a++)
+        for (int b = 0; b < 2; b++) {
+            double rot = rots[a] * DEG;
+            for (size_t j = 0; j < n; j++)
+                for (size_t i = 0; i < n; i++) {
+                    double x = (double)i * h - 100, y = (double)j * h - 100;
+                    z[j * n + i] = 300 + 1.2 * fabs(x * cos(rot) + y * sin(rot)) + slopes[b] * (y * cos(rot) - x * sin(rot));
+                }
+            rf_terrain *dem;
+            rf_error err;
+            assert_int_equal(rf_terrain_from_nodes(n, n, 0, 0, h, h, z, &dem, &err), RF_OK);
+            for (int sphere = 0; sphere < 2; sphere++) {
+                rf_traj_spec s;
+                simple_spec(&s, 25, 0.1, sphere);
+                for (int k = 0; k < 15; k++) {
+                    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+                    double u1 = (double)(seed >> 11) / 9007199254740992.0;
+                    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+                    double u2 = (double)(seed >> 11) / 9007199254740992.0;
+                    double p[3] = {30 + 140 * u1, 30 + 140 * u2, 0}, v[3] = {0, 0, 0};
+                    assert_true(rf_terrain_height(dem, p[0], p[1], &p[2], NULL));
+                    tc_run c;
+                    run_contact(&c, &s, dem, p, v, NULL, 20000);
+                    if (c.r.phase != TERRAIN_FLY && c.res.state == RF_TRAJ_STEP_LIMIT)
+                        fail_msg("rot %g slope %g sphere %d: from (%g, %g) the step limit", rots[a], slopes[b], sphere,
+                                 p[0], p[1]);
+                    assert_true(energy_of(&c.r) <= G * p[2] * (1 + 1e-12));
+                }
+                rf_traj_spec_free(&s);
+            }
+            rf_terrain_free(dem);
+        }
+    free(z);
+}
+
 /* The law on a plane of normal n (a second, brute-force method): the
  * derivative of the state (p, v, omega) for a point or sliding sphere
  * (friction against the slip v + r n x omega, spin rate mu N m r (n x s^)/I)
@@ -443,14 +522,15 @@ static void test_across_fall_line(void **state)
 /* Mechanical energy after k steps never exceeds that after k - 1 (the run is
  * deterministic, so max_steps = k gives the state after k steps). */
 static void check_energy_steps(const rf_traj_spec *s, const rf_terrain *dem, const double p[3], const double v[3],
-                               size_t kmax)
+                               const double *w, size_t kmax)
 {
     tc_run c;
-    double prev = NAN;
+    run_contact(&c, s, dem, p, v, w, 0); /* the state put on the surface, before any step */
+    double prev = energy_of(&c.r);
     for (size_t k = 1; k <= kmax; k++) {
-        run_contact(&c, s, dem, p, v, NULL, k);
+        run_contact(&c, s, dem, p, v, w, k);
         double e = energy_of(&c.r);
-        if (k > 1 && !(e <= prev + 1e-9 * (fabs(prev) + 1)))
+        if (!(e <= prev + 1e-9 * (fabs(prev) + 1)))
             fail_msg("step %zu: energy rises from %.17g to %.17g J/kg", k, prev, e);
         prev = e;
         if (c.res.state != RF_TRAJ_STEP_LIMIT)
@@ -478,7 +558,8 @@ static void test_energy_random_terrain(void **state)
         for (int k = 0; k < 12; k++) {
             double p[3] = {2 + 20 * RND(), 2 + 40 * RND(), 0}, v[3] = {8 * RND() - 2, 8 * RND() - 4, 0};
             assert_true(rf_terrain_height(dem, p[0], p[1], &p[2], NULL));
-            check_energy_steps(&s, dem, p, v, 300);
+            double w[3] = {20 * RND() - 10, 20 * RND() - 10, 20 * RND() - 10};
+            check_energy_steps(&s, dem, p, v, sphere ? w : NULL, 300);
         }
         rf_traj_spec_free(&s);
     }
@@ -640,10 +721,12 @@ int main(void)
         cmocka_unit_test(test_slide_plane_any_aspect),
         cmocka_unit_test(test_roll_plane),
         cmocka_unit_test(test_to_rest_on_plane),
+        cmocka_unit_test(test_sliding_sphere_topspin),
         cmocka_unit_test(test_plane_to_flat),
         cmocka_unit_test(test_valley_stops),
         cmocka_unit_test(test_sloping_valley),
         cmocka_unit_test(test_valley_oblique),
+        cmocka_unit_test(test_rotated_valley),
         cmocka_unit_test(test_across_fall_line),
         cmocka_unit_test(test_energy_random_terrain),
         cmocka_unit_test(test_convex_edge_launch),

@@ -7,7 +7,8 @@
  * exact; per-cell maxima of energy and height recomputed from the clipped
  * intervals; percentiles within TERRAIN_HAZARD_REL_ERROR of the sorted
  * brute force of the same values (rf_traj_percentiles_at); merges over 1, 2
- * and 3 accumulators in several orders give the same bytes; the memory does
+ * and 3 accumulators in several orders, and packed as MPI ranks would send
+ * them, give the same bytes; the memory does
  * not grow with the trajectories.  Plus the walk at corners and along cell
  * lines, the grid, the band names, the apex height of a throw, and the
  * within-bin error near its bound. */
@@ -458,6 +459,58 @@ static void test_merge_deterministic(void **state)
     run_case_free(&rc);
 }
 
+/* Ranks: three accumulators packed to words and merged (as MPI would carry
+ * them) into an empty one, in two orders, against one accumulator of all;
+ * a packed accumulator of another grid is refused. */
+static void test_packed_merge(void **state)
+{
+    (void)state;
+    run_case rc;
+    run_case_make(&rc, 2.5, 5);
+    rf_terrain_hazard *one = terrain_hazard_create(&rc.s, rc.dem), *part[3];
+    for (size_t p = 0; p < 3; p++)
+        part[p] = terrain_hazard_create(&rc.s, rc.dem);
+    for (size_t k = 0; k < NTRAJ; k++) {
+        feed(one, rc.dem, &rc.t[k]);
+        feed(part[part_block(k, 3)], rc.dem, &rc.t[k]);
+    }
+    uint64_t *buf[3];
+    size_t words[3];
+    rf_error err;
+    for (size_t p = 0; p < 3; p++)
+        assert_int_equal(terrain_hazard_pack(part[p], &buf[p], &words[p], &err), RF_OK);
+    terrain_band *ref, *b;
+    size_t nb, n;
+    bands_of(one, &rc.s, &ref, &nb);
+    terrain_hazard_grid(one, &rc.g.nx, &rc.g.ny, &rc.g.x0, &rc.g.y0, &rc.g.c);
+    static const size_t order[2][3] = {{0, 1, 2}, {2, 0, 1}};
+    for (int o = 0; o < 2; o++) {
+        rf_terrain_hazard *root = terrain_hazard_create(&rc.s, rc.dem);
+        for (size_t p = 0; p < 3; p++)
+            assert_int_equal(terrain_hazard_merge_packed(root, buf[order[o][p]], words[order[o][p]], &err), RF_OK);
+        bands_of(root, &rc.s, &b, &n);
+        assert_int_equal(n, nb);
+        assert_same_bands(ref, b, n, rc.g.nx * rc.g.ny);
+        terrain_bands_free(b, n);
+        terrain_hazard_free(root);
+    }
+    rf_terrain_def d2 = rc.d;
+    rf_traj_spec s2 = rc.s;
+    d2.raster_cell = 2.0, s2.terrain = &d2;
+    rf_terrain_hazard *other = terrain_hazard_create(&s2, rc.dem);
+    assert_int_equal(terrain_hazard_merge_packed(other, buf[0], words[0], &err), RF_EINVAL);
+    assert_int_equal(terrain_hazard_merge_packed(other, buf[0], 3, &err), RF_EINVAL);
+    terrain_hazard_free(other);
+    other = terrain_hazard_create(&rc.s, rc.dem);
+    assert_int_equal(terrain_hazard_merge_packed(other, buf[0], words[0] - 1, &err), RF_EINVAL); /* cut */
+    terrain_hazard_free(other);
+    terrain_bands_free(ref, nb);
+    for (size_t p = 0; p < 3; p++)
+        free(buf[p]), terrain_hazard_free(part[p]);
+    terrain_hazard_free(one);
+    run_case_free(&rc);
+}
+
 /* ---- memory ---- */
 
 static void test_memory_bounded(void **state)
@@ -685,7 +738,7 @@ int main(void)
         cmocka_unit_test(test_throw_closed_form),      cmocka_unit_test(test_bin_error_near_bound),
         cmocka_unit_test(test_random_dem_cells),       cmocka_unit_test(test_random_coarse_cells),
         cmocka_unit_test(test_random_fine_cells),      cmocka_unit_test(test_merge_deterministic),
-        cmocka_unit_test(test_memory_bounded),
+        cmocka_unit_test(test_packed_merge),           cmocka_unit_test(test_memory_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

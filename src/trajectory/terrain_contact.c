@@ -27,10 +27,15 @@
  * acceleration is constant: the step is exact and ends at the cell's edge,
  * at rest or at the end of the slip (closed-form roots, as in 2D).
  * Elsewhere a second-order step (Heun, with the Euler difference as its
- * error estimate) of at most a quarter cell and a quarter of the speed, cut
- * where its path leaves the cell; the point is put back on the surface and
- * the velocity into its tangent plane, and the kinetic energy is capped by
- * the start's minus gravity's work minus (a lower bound of) the friction's.
+ * error estimate, CC_TOL of the speed per step) of at most one cell length
+ * and a quarter of the speed, cut where its path leaves the cell (the patch
+ * is smooth inside: its edges are the only kinks); a step in which the
+ * speed (or a sliding sphere's slip) would vanish is one Euler step to that
+ * instant.  The point is put back on the surface and the velocity into its
+ * tangent plane, and the kinetic energy is capped by the start's plus
+ * gravity's work minus (a lower bound of) the friction's.  Below v_stop, on
+ * ground where it cannot start again, the block stops (no creeping to rest
+ * in ever shorter steps).
  *
  * Edges.  Crossing a cell edge changes the normal: the velocity pointing
  * above the next patch's tangent plane (convex) launches the block; else
@@ -40,17 +45,23 @@
  * deg or less), the block is in the valley line: it moves along the edge
  * (straight, so at constant acceleration: gravity along it minus the
  * friction of both faces, whose normal forces balance the rest of gravity),
- * node to node, until it stops there or the valley opens.  A block at rest
+ * node to node, until it stops there or the valley opens (a sphere rolls
+ * along it: mu_r instead of mu, and 1 / (1 + k)).  A block at rest
  * on an edge or a node starts into the cell its fall line points into, or
  * along a sloping valley line, or stays (stopped).  The material is the
- * current cell's; leaving the DEM or entering a no-data cell: exited. */
+ * current cell's; leaving the DEM or entering a no-data cell: exited.
+ *
+ * Every step is a piece (uniform acceleration over the step) emitted with
+ * terrain_emit: a barrier that holds the block stops it at the cut; one it
+ * breaks through scales its velocity and spin there, and the motion goes on
+ * from the cut. */
 #include "trajectory/terrain_internal.h"
 
 #include <math.h>
 #include <string.h>
 
 #define CC_TOL 1e-3      /* relative error allowed per numerical step (velocity) */
-#define CC_CELL_FRAC 1.0 /* a numerical step covers at most this share of a cell */
+#define CC_CELL_FRAC 1.0 /* a numerical step covers at most this share of a cell (and is cut at its edge) */
 #define CC_DV_FRAC 0.25 /* and changes the velocity by at most this share of the speed */
 
 typedef struct {
@@ -314,10 +325,11 @@ static int exact_step(terrain_run *r, const cc_cell *c, const cc_geom *G, int ro
             s[q] -= sigma * e[q];
         if (norm3(s) > 1e-9 * (U + r->radius * norm3(r->omega)))
             return 0;
-        f = fabs(sigma) > 1e-12 * (U + r->radius * norm3(r->omega)) ? (sigma > 0 ? 1 : -1) : (ge > 0 ? 1 : -1);
+        int slips = fabs(sigma) > 1e-12 * (U + r->radius * norm3(r->omega));
+        f = slips ? (sigma > 0 ? 1 : -1) : (ge > 0 ? 1 : -1);
         A = ge - f * c->mu * G->N;
         double rate = ge - f * c->mu * G->N * (1 + 1 / k);
-        if (sigma * rate < 0)
+        if (slips && sigma * rate < 0)
             tau_slip = -sigma / rate;
     }
     double tau_stop = A < 0 && U > 0 ? U / -A : INFINITY;
@@ -339,6 +351,26 @@ static int exact_step(terrain_run *r, const cc_cell *c, const cc_geom *G, int ro
     return 1;
 }
 
+/* A sliding sphere: the time at which its slip s = v + r n x omega, changing
+ * at ds/dt = a + r n x d omega/dt, vanishes (INFINITY if it does not shrink). */
+static double slip_end_time(const terrain_run *r, const cc_cell *c, int rolling, const double a[3],
+                            const double dw[3])
+{
+    if (rolling || !is_sphere(r))
+        return INFINITY;
+    cc_geom G;
+    geom(r, c, r->p, r->v, &G);
+    double nw[3], ndw[3], s[3], ds[3];
+    cross3(G.n, r->omega, nw);
+    cross3(G.n, dw, ndw);
+    for (int k = 0; k < 3; k++)
+        s[k] = r->v[k] + r->radius * nw[k], ds[k] = a[k] + r->radius * ndw[k];
+    double sd = dot3(s, ds);
+    if (norm3(s) <= 1e-12 * (norm3(r->v) + r->radius * norm3(r->omega)))
+        return INFINITY; /* no slip (round-off): it grows the way gravity pulls */
+    return sd < 0 ? dot3(s, s) / -sd : INFINITY;
+}
+
 /* One Heun step with error control from the current state. */
 static void numeric_step(const terrain_run *r, const cc_cell *c, int rolling, cc_step *st)
 {
@@ -354,6 +386,15 @@ static void numeric_step(const terrain_run *r, const cc_cell *c, int rolling, cc
     if (va0 < 0 && sp * sp / -va0 <= h) { /* it comes to rest within the step: one Euler step there */
         memset(st, 0, sizeof *st);
         st->tau = sp * sp / -va0, st->rest = 1;
+        memcpy(st->a, a0, sizeof st->a);
+        memcpy(st->dw, dw0, sizeof st->dw);
+        cut_at_edge(r, c, st->a, st);
+        return;
+    }
+    double tslip = slip_end_time(r, c, rolling, a0, dw0);
+    if (tslip <= h) { /* a sliding sphere's slip ends within the step: one Euler step there */
+        memset(st, 0, sizeof *st);
+        st->tau = tslip, st->slip_end = 1;
         memcpy(st->a, a0, sizeof st->a);
         memcpy(st->dw, dw0, sizeof st->dw);
         cut_at_edge(r, c, st->a, st);
@@ -493,7 +534,7 @@ static int crease_shift(const terrain_run *r, cc_crease *k, int dir)
 static int crease_run(terrain_run *r, cc_crease k, cc_cell *c)
 {
     double inv = is_sphere(r) ? 1 / (1 + kratio(r)) : 1;
-    for (;;) {
+    for (int idle = 0;; idle++) {
         double resist, ge, e[3];
         if (!crease_loads(r, &k, &resist, &ge, e)) { /* the valley opens: on the face it leans on */
             cc_geom G;
@@ -525,6 +566,12 @@ static int crease_run(terrain_run *r, cc_crease k, cc_cell *c)
         else if (U * U + 2 * A * d >= 0)
             tau_end = 2 * d / (U + sqrt(U * U + 2 * A * d));
         double tau = fmin(tau_stop, tau_end), a[3], zero[3] = {0, 0, 0}, scale;
+        if (tau > 0 || U > 0)
+            idle = 0;
+        else if (idle >= 4) { /* at rest at a node that every segment pulls it back to: a pit */
+            stop_here(r);
+            return 0;
+        }
         for (int q = 0; q < 3; q++)
             r->v[q] = U * dir * e[q], a[q] = A * dir * e[q];
         terrain_piece_outcome o = emit(r, &tau, a, &scale);
@@ -683,6 +730,50 @@ static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey)
 
 /* ---- the contact phase ---- */
 
+/* Emit the step's piece, move along it (to a barrier's cut), put the state
+ * on the surface, cap its energy; then the edge it reached.  1 to go on. */
+static int take_step(terrain_run *r, cc_cell *c, const cc_step *s, const cc_geom *G, int exact, int rolling,
+                     double e0)
+{
+    cc_step st = *s;
+    double tau = st.tau, scale;
+    terrain_piece_outcome o = emit(r, &tau, st.a, &scale);
+    int cut = tau < st.tau;
+    double p0[3];
+    memcpy(p0, r->p, sizeof p0);
+    advance(r, tau, st.a, st.dw);
+    if (!cut && st.ex)
+        r->p[0] = st.ex > 0 ? c->x1 : c->P.xi;
+    if (!cut && st.ey)
+        r->p[1] = st.ey > 0 ? c->y1 : c->P.yj;
+    r->p[0] = fmin(fmax(r->p[0], c->P.xi), c->x1), r->p[1] = fmin(fmax(r->p[1], c->P.yj), c->y1);
+    onto_surface(r, c);
+    if (o == TERRAIN_PIECE_STOPPED) {
+        stop_here(r);
+        return 0;
+    }
+    if (!cut && st.rest)
+        memset(r->v, 0, sizeof r->v);
+    cc_geom G1;
+    geom(r, c, r->p, r->v, &G1);
+    if (rolling || (!cut && st.slip_end))
+        set_rolling(r, &G1, 0);
+    if (!exact) {
+        double d[3] = {r->p[0] - p0[0], r->p[1] - p0[1], r->p[2] - p0[2]};
+        double N = fmax(0, fmin(G->N, G1.N));
+        double work = is_sphere(r) && !rolling ? 0 : (rolling ? c->mur : c->mu) * N * norm3(d);
+        cap_energy(r, e0, work);
+    }
+    if (o == TERRAIN_PIECE_SLOWED) {
+        for (int k = 0; k < 3; k++)
+            r->v[k] *= scale, r->omega[k] *= scale;
+        return 1;
+    }
+    if (!cut && (st.ex || st.ey))
+        return cross_edge(r, c, st.ex, st.ey);
+    return 1;
+}
+
 /* One step; 1 to go on. */
 static int step_once(terrain_run *r, cc_cell *c)
 {
@@ -718,46 +809,11 @@ static int step_once(terrain_run *r, cc_cell *c)
         }
         numeric_step(r, c, rolling, &st);
     }
-    double tau = st.tau, scale;
-    if (!isfinite(tau)) {
+    if (!isfinite(st.tau)) {
         stop_here(r);
         return 0;
     }
-    terrain_piece_outcome o = emit(r, &tau, st.a, &scale);
-    int cut = tau < st.tau;
-    double p0[3];
-    memcpy(p0, r->p, sizeof p0);
-    advance(r, tau, st.a, st.dw);
-    if (!cut && st.ex)
-        r->p[0] = st.ex > 0 ? c->x1 : c->P.xi;
-    if (!cut && st.ey)
-        r->p[1] = st.ey > 0 ? c->y1 : c->P.yj;
-    r->p[0] = fmin(fmax(r->p[0], c->P.xi), c->x1), r->p[1] = fmin(fmax(r->p[1], c->P.yj), c->y1);
-    onto_surface(r, c);
-    if (o == TERRAIN_PIECE_STOPPED) {
-        stop_here(r);
-        return 0;
-    }
-    if (!cut && st.rest)
-        memset(r->v, 0, sizeof r->v);
-    cc_geom G1;
-    geom(r, c, r->p, r->v, &G1);
-    if (rolling || (!cut && st.slip_end))
-        set_rolling(r, &G1, 0);
-    if (!exact) {
-        double d[3] = {r->p[0] - p0[0], r->p[1] - p0[1], r->p[2] - p0[2]};
-        double N = fmax(0, fmin(G.N, G1.N));
-        double work = is_sphere(r) && !rolling ? 0 : (rolling ? c->mur : c->mu) * N * norm3(d);
-        cap_energy(r, e0, work);
-    }
-    if (o == TERRAIN_PIECE_SLOWED) {
-        for (int k = 0; k < 3; k++)
-            r->v[k] *= scale, r->omega[k] *= scale;
-        return 1;
-    }
-    if (!cut && (st.ex || st.ey))
-        return cross_edge(r, c, st.ex, st.ey);
-    return 1;
+    return take_step(r, c, &st, &G, exact, rolling, e0);
 }
 
 void terrain_contact_run(terrain_run *r)
@@ -771,7 +827,18 @@ void terrain_contact_run(terrain_run *r)
     }
     onto_surface(r, &c);
     terrain_event(r, RF_EV_CONTACT, 0);
-    while (r->phase == TERRAIN_CONTACT && !r->nomem)
+    double last[3] = {NAN, NAN, NAN};
+    for (int idle = 0; r->phase == TERRAIN_CONTACT && !r->nomem;) {
         if (!step_once(r, &c))
             break;
+        /* at rest on the same point step after step: every way out leads
+         * back (a node or edge where the cells' fall lines meet) */
+        int still = r->v[0] == 0 && r->v[1] == 0 && r->v[2] == 0 && !memcmp(last, r->p, sizeof last);
+        idle = still ? idle + 1 : 0;
+        if (idle >= 8) {
+            stop_here(r);
+            break;
+        }
+        memcpy(last, r->p, sizeof last);
+    }
 }

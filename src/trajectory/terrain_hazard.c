@@ -58,7 +58,7 @@
 #define CORNER_TIE 1e-12
 
 typedef struct {
-    uint64_t *v;                /* bin << 48 | count, sorted by bin */
+    uint64_t *v;                /* bin << 47 | count, sorted by bin */
     uint32_t n, cap;
 } hz_hist;
 
@@ -498,6 +498,70 @@ void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from
         r->e_max = max_of(r->e_max, f->e_max), r->h_max = max_of(r->h_max, f->h_max);
         into->nomem |= !hist_merge(&r->e, &f->e) || !hist_merge(&r->h, &f->h);
     }
+}
+
+/* ---- packed accumulators (MPI) ---- */
+
+/* Layout, 64-bit words in the machine's byte order: magic, nx, ny, n_rec;
+ * per record: cell | n_e << 32, n_h, passages, deposits, e_max, h_max (the
+ * doubles' bits), then the n_e + n_h histogram words. */
+#define PACK_MAGIC UINT64_C(0x31465a4852525446) /* "FTRRHZF1" */
+
+static size_t pack_words(const rf_terrain_hazard *h)
+{
+    size_t n = 4;
+    for (size_t k = 0; k < h->n_rec; k++)
+        n += 6 + (size_t)h->rec[k].e.n + h->rec[k].h.n;
+    return n;
+}
+
+rf_status terrain_hazard_pack(const rf_terrain_hazard *h, uint64_t **buf, size_t *words, rf_error *err)
+{
+    *buf = NULL, *words = 0;
+    if (h->nomem)
+        return rf_fail(err, RF_ENOMEM, "out of memory while accumulating the hazard rasters");
+    size_t n = pack_words(h), w = 0;
+    uint64_t *b = malloc(n * sizeof *b);
+    if (!b)
+        return rf_fail(err, RF_ENOMEM, "out of memory packing the hazard rasters (%zu bytes)", n * sizeof *b);
+    b[w++] = PACK_MAGIC, b[w++] = h->nx, b[w++] = h->ny, b[w++] = h->n_rec;
+    for (size_t k = 0; k < h->n_rec; k++) {
+        const hz_rec *r = &h->rec[k];
+        b[w++] = r->cell | (uint64_t)r->e.n << 32, b[w++] = r->h.n;
+        b[w++] = r->passages, b[w++] = r->deposits;
+        memcpy(&b[w++], &r->e_max, sizeof r->e_max), memcpy(&b[w++], &r->h_max, sizeof r->h_max);
+        for (uint32_t e = 0; e < r->e.n; e++)
+            b[w++] = r->e.v[e];
+        for (uint32_t e = 0; e < r->h.n; e++)
+            b[w++] = r->h.v[e];
+    }
+    *buf = b, *words = n;
+    return RF_OK;
+}
+
+rf_status terrain_hazard_merge_packed(rf_terrain_hazard *into, const uint64_t *b, size_t words, rf_error *err)
+{
+    if (words < 4 || b[0] != PACK_MAGIC || b[1] != into->nx || b[2] != into->ny)
+        return rf_fail(err, RF_EINVAL, "packed hazard rasters: not a %zu x %zu grid's accumulator", into->nx,
+                       into->ny);
+    size_t w = 4;
+    rf_terrain_hazard one = *into; /* a one-record accumulator over the packed words */
+    for (uint64_t k = 0; k < b[3]; k++) {
+        if (words - w < 6 || (b[w] & 0xffffffffu) >= into->nx * into->ny ||
+            (b[w] >> 32) + b[w + 1] > words - w - 6)
+            return rf_fail(err, RF_EINVAL, "packed hazard rasters: record %llu is cut or out of the grid",
+                           (unsigned long long)k);
+        hz_rec r = {b[w + 2], b[w + 3], 0, 0, {NULL, 0, 0}, {NULL, 0, 0}, (uint32_t)(b[w] & 0xffffffffu), NO_POS};
+        memcpy(&r.e_max, &b[w + 4], sizeof r.e_max), memcpy(&r.h_max, &b[w + 5], sizeof r.h_max);
+        r.e.n = (uint32_t)(b[w] >> 32), r.h.n = (uint32_t)b[w + 1];
+        r.e.v = (uint64_t *)(b + w + 6), r.h.v = (uint64_t *)(b + w + 6 + r.e.n);
+        w += 6 + (size_t)r.e.n + r.h.n;
+        one.rec = &r, one.n_rec = 1, one.nomem = 0;
+        terrain_hazard_merge(into, &one);
+    }
+    if (into->nomem)
+        return rf_fail(err, RF_ENOMEM, "out of memory merging packed hazard rasters");
+    return RF_OK;
 }
 
 void terrain_hazard_free(rf_terrain_hazard *h)

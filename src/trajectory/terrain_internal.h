@@ -224,6 +224,12 @@ void terrain_hazard_free(rf_terrain_hazard *h);
 /* The bytes an accumulator holds (capacities included): it grows with the
  * cells touched and the histogram bins hit, not with the trajectories. */
 size_t terrain_hazard_bytes(const rf_terrain_hazard *h);
+/* For MPI: an accumulator as words (malloc'd; same byte order on every
+ * rank), and such words added into an accumulator of the same grid exactly
+ * as terrain_hazard_merge would (the same bits in any order); words that
+ * are cut or of another grid are refused (into may then hold a part). */
+rf_status terrain_hazard_pack(const rf_terrain_hazard *h, uint64_t **buf, size_t *words, rf_error *err);
+rf_status terrain_hazard_merge_packed(rf_terrain_hazard *into, const uint64_t *buf, size_t words, rf_error *err);
 
 /* The bands of the rasters (terrain_hazard.c) for GeoTIFF and maps: per
  * statistic a name ("passages", "reach_probability", "deposits",
