@@ -49,6 +49,7 @@ static void simple_spec(rf_traj_spec *s, double phi_deg, double mur, int sphere)
 
 typedef struct {
     rf_terrain_result res;
+    struct rf_terrain_world world;  /* no barriers */
     terrain_run r;
 } tc_run;
 
@@ -60,7 +61,8 @@ static void run_contact(tc_run *c, const rf_traj_spec *s, const rf_terrain *dem,
     terrain_run *r = &c->r;
     rf_traj_spec *sp = (rf_traj_spec *)s;
     sp->max_steps = max_steps;
-    r->dem = dem, r->s = s, r->res = &c->res, r->g = s->gravity;
+    c->world.dem = (rf_terrain *)dem;
+    r->w = &c->world, r->dem = dem, r->s = s, r->res = &c->res, r->g = s->gravity;
     r->mass = s->sphere ? 4.0 / 3.0 * PI * pow(s->radius, 3) * s->density : s->mass;
     r->radius = s->sphere ? s->radius : 0;
     r->inertia = s->sphere ? 0.4 * r->mass * s->radius * s->radius : 0;

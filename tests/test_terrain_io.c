@@ -663,7 +663,7 @@ static void test_gpkg(void **state)
     memset(rec, 0, sizeof rec);
     rec[0].state = RF_TRAJ_STOPPED, rec[0].events = ev, rec[0].n_events = 3;
     rec[1].state = RF_TRAJ_EXITED, rec[1].events = ev + 1, rec[1].n_events = 2;
-    rf_terrain_samples ts = {start, end, runout, reach, 2, rec, NULL};
+    rf_terrain_samples ts = {.start = start, .end = end, .runout = runout, .reach_angle = reach, .n_recorded = 2, .recorded = rec};
     rf_traj_ensemble ens;
     memset(&ens, 0, sizeof ens);
     ens.samples = 3, ens.state = st, ens.terrain = &ts;

@@ -202,7 +202,7 @@ static void fill(run *r)
             r->ev[q][k].kind = k ? RF_EV_IMPACT : RF_EV_RELEASE;
         }
     }
-    r->ts = (rf_terrain_samples){r->start, r->end, r->runout, r->reach, 3, r->rec, NULL};
+    r->ts = (rf_terrain_samples){.start = r->start, .end = r->end, .runout = r->runout, .reach_angle = r->reach, .n_recorded = 3, .recorded = r->rec};
     rf_traj_ensemble *e = &r->e;
     e->samples = N, e->n_collectors = 1, e->state = r->state, e->runout_x = r->runout_x;
     e->rebound_height = r->rebound, e->crossings = r->cross, e->terrain = &r->ts, e->wall_seconds = 0.5;
