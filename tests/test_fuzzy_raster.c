@@ -77,7 +77,8 @@ static rf_status valley_eval(void *vctx, const double *x, double *y, rf_error *e
             b[1].data[r * v->nx + col] = (float)(1000 * f);
             sum += f;
         }
-    rf_status st = traj_model_raster_emit(vctx, x, 3, b, 2, v->nx, v->ny, err);
+    traj_raster_grid g = {v->nx, v->ny, 600000.0, 5100000.0, CELL, "LOCAL_CS[\"valley\"]"};
+    rf_status st = traj_model_raster_emit(vctx, x, 3, b, 2, &g, err);
     free(b[0].data);
     free(b[1].data);
     y[0] = sum / (double)cells;
@@ -151,8 +152,12 @@ static study_out run_study(const char *dir, valley_ctx *v, int jobs)
     o.evaluated = r.evaluated;
     if (o.st == RF_OK) {
         fr_store_reader rd;
-        size_t nx = 0, ny = 0;
-        assert_int_equal(fr_store_reader_init(&rd, rs, &o.res, 3, NULL, NULL, chosen, 2, &nx, &ny, &err), RF_OK);
+        assert_int_equal(fr_store_reader_init(&rd, rs, &o.res, 3, NULL, NULL, chosen, 2, &err), RF_OK);
+        size_t nx = rd.grid.nx, ny = rd.grid.ny;
+        assert_int_equal(nx, v->nx);
+        assert_int_equal(ny, v->ny);
+        assert_true(rd.grid.x0 == 600000.0 && rd.grid.y0 == 5100000.0 && rd.grid.cell == CELL);
+        assert_string_equal(rd.grid.crs_wkt, "LOCAL_CS[\"valley\"]");
         size_t rebuilt = 9;
         assert_int_equal(fr_store_rebuild(&rd, &m, &rebuilt, &err), RF_OK);
         assert_int_equal(rebuilt, 0);
@@ -365,17 +370,17 @@ static void test_resume(void **state)
     rf_model m = valley_model(&v3);
     fr_store *rs;
     fr_store_reader rd;
-    size_t nx = 0, ny = 0, rebuilt = 0;
+    size_t rebuilt = 0;
     assert_int_equal(fr_store_open(rdir, &rs, NULL), RF_OK);
     assert_int_equal(traj_model_raster_sink_set(&m, fr_store_put, rs, NULL), RF_OK);
     rf_error err = {0};
-    assert_int_not_equal(fr_store_reader_init(&rd, rs, &second.res, 3, NULL, NULL, chosen, 2, &nx, &ny, &err) ||
+    assert_int_not_equal(fr_store_reader_init(&rd, rs, &second.res, 3, NULL, NULL, chosen, 2, &err) ||
                              fr_retransform(&second.res,
-                                            &(fr_source){nx, ny, 2, chosen, NULL, fr_store_read_point, &rd, 0},
+                                            &(fr_source){NX, NY, 2, chosen, NULL, fr_store_read_point, &rd, 0},
                                             &first.bands, &first.n_bands, &err),
                          RF_OK); /* missing: refused, named */
     assert_non_null(strstr(err.msg, "missing"));
-    fr_store_reader_init(&rd, rs, &second.res, 3, NULL, NULL, chosen, 2, &nx, &ny, &err);
+    fr_store_reader_init(&rd, rs, &second.res, 3, NULL, NULL, chosen, 2, &err); /* point 0 may be the missing one */
     rd.nx = NX;
     assert_int_equal(fr_store_rebuild(&rd, &m, &rebuilt, &err), RF_OK);
     assert_int_equal(rebuilt, 1);
@@ -383,7 +388,7 @@ static void test_resume(void **state)
     terrain_band *again = NULL;
     size_t n_again = 0;
     fr_source src = {NX, NY, 2, chosen, units, fr_store_read_point, &rd, 0};
-    assert_int_equal(fr_store_reader_init(&rd, rs, &second.res, 3, NULL, NULL, chosen, 2, &nx, &ny, &err), RF_OK);
+    assert_int_equal(fr_store_reader_init(&rd, rs, &second.res, 3, NULL, NULL, chosen, 2, &err), RF_OK);
     assert_int_equal(fr_retransform(&second.res, &src, &again, &n_again, &err), RF_OK);
     study_out o3 = {RF_OK, {0}, again, n_again, 0, 0};
     same_bands(&ref, &o3);

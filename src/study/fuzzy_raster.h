@@ -34,14 +34,20 @@ void fr_store_close(fr_store *s);
 void fr_store_key(const double *x, size_t n, char key[17]);
 /* The raster sink: write the bands of the evaluation at x (atomically:
  * temporary file, then rename over DIR/<key>.f32).  Thread-safe. */
-rf_status fr_store_put(void *store, const double *x, size_t n, const terrain_band *bands, size_t n_bands, size_t nx,
-                       size_t ny, rf_error *err);
+rf_status fr_store_put(void *store, const double *x, size_t n, const terrain_band *bands, size_t n_bands,
+                       const traj_raster_grid *grid, rf_error *err);
 /* 1 if the raster of x is there and whole (header matches x, size right). */
 int fr_store_has(fr_store *s, const double *x, size_t n);
-/* The shape of the raster of x, and band `name`'s index in it (
- * RF_EINVAL if it has no such band: the message names the bands it has). */
-rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name, size_t *band, size_t *nx,
-                        size_t *ny, rf_error *err);
+/* The grid of a stored raster (the CRS copied). */
+typedef struct {
+    size_t nx, ny;
+    double x0, y0, cell;
+    char crs_wkt[4096];
+} fr_grid;
+/* The grid of the raster of x, and band `name`'s index in it (RF_EINVAL if
+ * it has no such band: the message names the bands it has). */
+rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name, size_t *band, fr_grid *g,
+                        rf_error *err);
 /* Rows row0 .. row0+nrows-1 of band `band` of the raster of x (which must
  * have nx columns) into out[nrows * nx]. */
 rf_status fr_store_read(fr_store *s, const double *x, size_t n, size_t band, size_t nx, size_t row0, size_t nrows,
@@ -60,11 +66,11 @@ typedef struct {
     void *map_ctx;
     size_t band[FR_MAX_BANDS]; /* store band of each chosen band */
     size_t nx;
+    fr_grid grid;              /* of point 0's raster (every read checks nx) */
 } fr_store_reader;
-/* Find the chosen bands (names) in the raster of point 0: its shape. */
+/* Find the chosen bands (names) in the raster of point 0, and its grid. */
 rf_status fr_store_reader_init(fr_store_reader *r, fr_store *s, const rf_tm_result *res, size_t n_key, fr_map_fn map,
-                               void *map_ctx, const char *const *names, size_t n_names, size_t *nx, size_t *ny,
-                               rf_error *err);
+                               void *map_ctx, const char *const *names, size_t n_names, rf_error *err);
 void fr_point_key(const fr_store_reader *r, const double *x, double *xi);
 /* An fr_read_fn over an fr_store_reader. */
 rf_status fr_store_read_point(void *reader, size_t id, size_t b, size_t row0, size_t nrows, float *out, rf_error *err);

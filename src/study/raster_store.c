@@ -4,6 +4,8 @@
  * File layout (native byte order, the machine that wrote it reads it):
  *   "RFRAST01"                          8 bytes
  *   n_params, n_bands, nx, ny           4 x uint64
+ *   x0, y0, cell                        3 x double (south-west corner, cell [m])
+ *   crs_len                             uint64, then crs_len bytes of CRS WKT
  *   x[n_params]                         double (the point, checked on read)
  *   per band: name[48], unit[16]        NUL-padded
  *   data[n_bands][ny][nx]               float32, row 0 first
@@ -72,13 +74,22 @@ static void raster_path(const fr_store *s, const double *x, size_t n, char *path
     snprintf(path, size, "%s/%s.f32", s->dir, key);
 }
 
-static size_t header_bytes(size_t n, size_t nb) { return 8 + 4 * 8 + n * sizeof(double) + nb * (NAME_BYTES + UNIT_BYTES); }
+#define MAX_CRS 65536
 
-static int write_header(FILE *f, const double *x, size_t n, const terrain_band *bands, size_t nb, size_t nx, size_t ny)
+static size_t header_bytes(size_t n, size_t nb, size_t crs_len)
 {
-    uint64_t dims[4] = {n, nb, nx, ny};
-    int bad = fwrite(MAGIC, 1, 8, f) != 8 || fwrite(dims, sizeof dims, 1, f) != 1 ||
-              (n && fwrite(x, sizeof(double), n, f) != n);
+    return 8 + 4 * 8 + 3 * 8 + 8 + crs_len + n * sizeof(double) + nb * (NAME_BYTES + UNIT_BYTES);
+}
+
+static int write_header(FILE *f, const double *x, size_t n, const terrain_band *bands, size_t nb,
+                        const traj_raster_grid *g)
+{
+    const char *crs = g->crs_wkt ? g->crs_wkt : "";
+    uint64_t dims[4] = {n, nb, g->nx, g->ny}, crs_len = strlen(crs);
+    double geo[3] = {g->x0, g->y0, g->cell};
+    int bad = crs_len > MAX_CRS || fwrite(MAGIC, 1, 8, f) != 8 || fwrite(dims, sizeof dims, 1, f) != 1 ||
+              fwrite(geo, sizeof geo, 1, f) != 1 || fwrite(&crs_len, sizeof crs_len, 1, f) != 1 ||
+              (crs_len && fwrite(crs, 1, crs_len, f) != crs_len) || (n && fwrite(x, sizeof(double), n, f) != n);
     for (size_t b = 0; !bad && b < nb; b++) {
         char name[NAME_BYTES] = {0}, unit[UNIT_BYTES] = {0};
         snprintf(name, sizeof name, "%s", bands[b].name);
@@ -88,9 +99,10 @@ static int write_header(FILE *f, const double *x, size_t n, const terrain_band *
     return bad;
 }
 
-rf_status fr_store_put(void *store, const double *x, size_t n, const terrain_band *bands, size_t n_bands, size_t nx,
-                       size_t ny, rf_error *err)
+rf_status fr_store_put(void *store, const double *x, size_t n, const terrain_band *bands, size_t n_bands,
+                       const traj_raster_grid *grid, rf_error *err)
 {
+    size_t nx = grid->nx, ny = grid->ny;
     fr_store *s = store;
     char path[PATH_MAX], tmp[PATH_MAX + 64];
     raster_path(s, x, n, path, sizeof path);
@@ -98,7 +110,7 @@ rf_status fr_store_put(void *store, const double *x, size_t n, const terrain_ban
     FILE *f = fopen(tmp, "wb");
     if (!f)
         return rf_fail(err, RF_EIO, "cannot write the raster %s: %s", tmp, strerror(errno));
-    int bad = write_header(f, x, n, bands, n_bands, nx, ny);
+    int bad = write_header(f, x, n, bands, n_bands, grid);
     for (size_t b = 0; !bad && b < n_bands; b++)
         bad = nx * ny > 0 && fwrite(bands[b].data, sizeof(float), nx * ny, f) != nx * ny;
     bad |= fflush(f) != 0 || fsync(fileno(f)) != 0;
@@ -115,6 +127,8 @@ rf_status fr_store_put(void *store, const double *x, size_t n, const terrain_ban
 typedef struct {
     FILE *f;
     size_t nb, nx, ny, header;
+    double geo[3];
+    char *crs;
     char (*names)[NAME_BYTES];
 } raster_file;
 
@@ -123,6 +137,7 @@ static void raster_close(raster_file *r)
     if (r->f)
         fclose(r->f);
     free(r->names);
+    free(r->crs);
     memset(r, 0, sizeof *r);
 }
 
@@ -131,15 +146,18 @@ static int raster_open(const fr_store *s, const double *x, size_t n, raster_file
     memset(r, 0, sizeof *r);
     char path[PATH_MAX], magic[8];
     raster_path(s, x, n, path, sizeof path);
-    uint64_t dims[4];
+    uint64_t dims[4], crs_len = 0;
     double xs[64];
     struct stat sb;
     if (n > 64 || !(r->f = fopen(path, "rb")) || fstat(fileno(r->f), &sb) != 0 || fread(magic, 1, 8, r->f) != 8 ||
         memcmp(magic, MAGIC, 8) || fread(dims, sizeof dims, 1, r->f) != 1 || dims[0] != n || dims[1] > 4096 ||
-        (n && fread(xs, sizeof(double), n, r->f) != n) || memcmp(xs, x, n * sizeof(double)))
+        fread(r->geo, sizeof r->geo, 1, r->f) != 1 || fread(&crs_len, sizeof crs_len, 1, r->f) != 1 ||
+        crs_len > MAX_CRS || !(r->crs = calloc(crs_len + 1, 1)) ||
+        (crs_len && fread(r->crs, 1, crs_len, r->f) != crs_len) || (n && fread(xs, sizeof(double), n, r->f) != n) ||
+        memcmp(xs, x, n * sizeof(double)))
         goto bad;
     r->nb = dims[1], r->nx = dims[2], r->ny = dims[3];
-    r->header = header_bytes(n, r->nb);
+    r->header = header_bytes(n, r->nb, crs_len);
     if ((r->nx && r->ny > SIZE_MAX / r->nx / 4 / (r->nb ? r->nb : 1)) ||
         (uint64_t)sb.st_size != r->header + (uint64_t)r->nb * r->nx * r->ny * sizeof(float))
         goto bad;
@@ -172,13 +190,14 @@ static rf_status missing(const fr_store *s, const double *x, size_t n, rf_error 
     return rf_fail(err, RF_EIO, "the raster %s of a TM point is missing or damaged", path);
 }
 
-rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name, size_t *band, size_t *nx,
-                        size_t *ny, rf_error *err)
+rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name, size_t *band, fr_grid *g,
+                        rf_error *err)
 {
     raster_file r;
     if (!raster_open(s, x, n, &r))
         return missing(s, x, n, err);
-    *nx = r.nx, *ny = r.ny;
+    g->nx = r.nx, g->ny = r.ny, g->x0 = r.geo[0], g->y0 = r.geo[1], g->cell = r.geo[2];
+    snprintf(g->crs_wkt, sizeof g->crs_wkt, "%s", r.crs);
     size_t b = 0;
     while (b < r.nb && strcmp(r.names[b], name))
         b++;
@@ -217,25 +236,19 @@ rf_status fr_store_read(fr_store *s, const double *x, size_t n, size_t band, siz
 /* ---- reading the store for the retransformation */
 
 rf_status fr_store_reader_init(fr_store_reader *r, fr_store *s, const rf_tm_result *res, size_t n_key, fr_map_fn map,
-                               void *map_ctx, const char *const *names, size_t n_names, size_t *nx, size_t *ny,
-                               rf_error *err)
+                               void *map_ctx, const char *const *names, size_t n_names, rf_error *err)
 {
     memset(r, 0, sizeof *r);
-    *r = (fr_store_reader){s, res, n_key, map, map_ctx, {0}, 0};
+    r->store = s, r->res = res, r->n_key = n_key, r->map = map, r->map_ctx = map_ctx;
     if (n_names > FR_MAX_BANDS || n_key > 64)
         return rf_fail(err, RF_EINVAL, "fuzzy rasters: at most %d bands and 64 inputs", FR_MAX_BANDS);
     double x[64], xi[64];
     rf_status st = rf_tm_point_inputs(res, 0, x, err);
     if (!st)
         fr_point_key(r, x, xi);
-    for (size_t b = 0; !st && b < n_names; b++) {
-        size_t bx = 0, by = 0;
-        st = fr_store_band(s, xi, n_key, names[b], &r->band[b], &bx, &by, err);
-        if (!st && b > 0 && (bx != *nx || by != *ny))
-            st = rf_fail(err, RF_EINVAL, "fuzzy rasters: bands of different shapes");
-        *nx = bx, *ny = by;
-    }
-    r->nx = *nx;
+    for (size_t b = 0; !st && b < n_names; b++)
+        st = fr_store_band(s, xi, n_key, names[b], &r->band[b], &r->grid, err);
+    r->nx = r->grid.nx;
     return st;
 }
 

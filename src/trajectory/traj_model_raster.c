@@ -37,7 +37,7 @@ rf_status traj_model_raster_sink_set(const rf_model *m, traj_raster_sink sink, v
 }
 
 rf_status traj_model_raster_emit(const void *model_ctx, const double *x, size_t n_params, const terrain_band *bands,
-                                 size_t n_bands, size_t nx, size_t ny, rf_error *err)
+                                 size_t n_bands, const traj_raster_grid *grid, rf_error *err)
 {
     traj_raster_sink sink = NULL;
     void *ctx = NULL;
@@ -48,5 +48,5 @@ rf_status traj_model_raster_emit(const void *model_ctx, const double *x, size_t 
             ctx = table[k].ctx;
         }
     pthread_mutex_unlock(&lock);
-    return sink ? sink(ctx, x, n_params, bands, n_bands, nx, ny, err) : RF_OK;
+    return sink ? sink(ctx, x, n_params, bands, n_bands, grid, err) : RF_OK;
 }
