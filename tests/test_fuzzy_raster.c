@@ -33,6 +33,7 @@
 #include "rockfuzz/fuzzy.h"
 #include "rockfuzz/runner.h"
 #include "rockfuzz/store.h"
+#include "rockfuzz/study.h"
 #include "rockfuzz/tm.h"
 #include "study/fuzzy_raster.h"
 #include "test_util.h"
@@ -497,12 +498,59 @@ static void test_memory_500(void **state)
         rf_fuzzy_free(&in[i]);
 }
 
+
+/* ---- the study key: model.trajectory.rasters.fuzzy */
+
+static const char *drop_yaml =
+    "name: drop\n"
+    "profile: {points: [[-1, 0], [1, 0]], material: ground}\n"
+    "materials: {ground: {R_n: 0.5, R_t: 0.8, friction_angle: 30}}\n"
+    "block: {shape: point, mass: 100}\n"
+    "release: {x: 0, y: {uniform: [2, 12]}}\n"
+    "bounce: {contact_speed: 1}\n"
+    "samples: 100\nseed: 11\n";
+
+static rf_status load_study(const char *dir, const char *rasters, rf_study *s, rf_error *err)
+{
+    char path[600], text[600];
+    snprintf(path, sizeof path, "%s/drop.yaml", dir);
+    FILE *f = fopen(path, "w");
+    fputs(drop_yaml, f);
+    fclose(f);
+    snprintf(text, sizeof text,
+             "parameters: {Rn: {tfn: [0.5, 0.2, 0.2]}}\n"
+             "model: {trajectory: {file: drop.yaml, bind: {Rn: materials.ground.R_n}%s}}\n", rasters);
+    snprintf(path, sizeof path, "%s/study.yaml", dir);
+    f = fopen(path, "w");
+    fputs(text, f);
+    fclose(f);
+    return rf_study_load(path, s, err);
+}
+
+static void test_study_key(void **state)
+{
+    (void)state;
+    char *dir = temp_dir();
+    rf_study s;
+    rf_error err = {0};
+    if (load_study(dir, "", &s, &err))
+        fail_msg("%s", err.msg);
+    assert_int_equal(s.n_fuzzy_rasters, 0); /* a profile: no rasters, none by default */
+    rf_study_free(&s);
+    assert_int_equal(load_study(dir, ", rasters: {fuzzy: [reach_probability]}", &s, &err), RF_EINVAL);
+    assert_non_null(strstr(err.msg, "model.trajectory.rasters"));
+    assert_non_null(strstr(err.msg, "terrain file"));
+    remove_tree(dir);
+    free(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_valley_closed_form),
         cmocka_unit_test(test_resume),
         cmocka_unit_test(test_memory_500),
+        cmocka_unit_test(test_study_key),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
