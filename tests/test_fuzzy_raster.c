@@ -410,6 +410,8 @@ static void test_resume(void **state)
 
 /* ---- (d) memory */
 
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_UNDEFINED__)
+#define LIMIT_DATA 1
 static size_t vm_data_bytes(void)
 {
     FILE *f = fopen("/proc/self/status", "r");
@@ -422,6 +424,7 @@ static size_t vm_data_bytes(void)
         fclose(f);
     return kb * 1024;
 }
+#endif
 
 /* A reader that makes the valley's values at each point on the fly. */
 typedef struct {
@@ -465,7 +468,7 @@ static void test_memory_500(void **state)
     /* a budget of 4 MiB: the retransformation must live in it (plus the
      * output bands and 1 MiB of allocator slack), under an address-space
      * limit on the process's data (not with a sanitizer, which maps its own) */
-    size_t budget = (size_t)4 << 20, work = 0, out_bytes = 8 * 500 * 500 * sizeof(float);
+    size_t budget = (size_t)4 << 20, work = 0;
     fr_block_rows(&res, 500, 500, budget, &work);
     assert_true(work <= budget);
     gen_reader g = {&res, 500};
@@ -476,7 +479,8 @@ static void test_memory_500(void **state)
     struct rlimit old;
     getrlimit(RLIMIT_DATA, &old);
     int limited = 0;
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_UNDEFINED__)
+#ifdef LIMIT_DATA
+    size_t out_bytes = 8 * 500 * 500 * sizeof(float);
     struct rlimit lim = {vm_data_bytes() + out_bytes + work + ((size_t)1 << 20), old.rlim_max};
     limited = setrlimit(RLIMIT_DATA, &lim) == 0;
 #endif
