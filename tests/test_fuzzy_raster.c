@@ -162,7 +162,8 @@ static study_out run_study(const char *dir, valley_ctx *v, int jobs)
         size_t rebuilt = 9;
         assert_int_equal(fr_store_rebuild(&rd, &m, &rebuilt, &err), RF_OK);
         assert_int_equal(rebuilt, 0);
-        fr_source src = {nx, ny, 2, chosen, units, fr_store_read_point, &rd, 4000 * 8}; /* blocks of a few rows */
+        assert_string_equal(rd.units[1], "kJ"); /* the units the rasters were written with */
+        fr_source src = {nx, ny, 2, chosen, rd.units, fr_store_read_point, &rd, 4000 * 8}; /* blocks of a few rows */
         if (fr_retransform(&o.res, &src, &o.bands, &o.n_bands, &err))
             fail_msg("fr_retransform: %s", err.msg);
     }

@@ -44,10 +44,10 @@ typedef struct {
     double x0, y0, cell;
     char crs_wkt[4096];
 } fr_grid;
-/* The grid of the raster of x, and band `name`'s index in it (RF_EINVAL if
+/* The grid of the raster of x, and band `name`'s index and unit in it (RF_EINVAL if
  * it has no such band: the message names the bands it has). */
-rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name, size_t *band, fr_grid *g,
-                        rf_error *err);
+rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name, size_t *band, char unit[16],
+                        fr_grid *g, rf_error *err);
 /* Rows row0 .. row0+nrows-1 of band `band` of the raster of x (which must
  * have nx columns) into out[nrows * nx]. */
 rf_status fr_store_read(fr_store *s, const double *x, size_t n, size_t band, size_t nx, size_t row0, size_t nrows,
@@ -67,6 +67,8 @@ typedef struct {
     size_t band[FR_MAX_BANDS]; /* store band of each chosen band */
     size_t nx;
     fr_grid grid;              /* of point 0's raster (every read checks nx) */
+    char unit_text[FR_MAX_BANDS][16];
+    const char *units[FR_MAX_BANDS]; /* of each chosen band, for fr_source.units */
 } fr_store_reader;
 /* Find the chosen bands (names) in the raster of point 0, and its grid. */
 rf_status fr_store_reader_init(fr_store_reader *r, fr_store *s, const rf_tm_result *res, size_t n_key, fr_map_fn map,

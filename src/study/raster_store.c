@@ -130,6 +130,7 @@ typedef struct {
     double geo[3];
     char *crs;
     char (*names)[NAME_BYTES];
+    char (*units)[UNIT_BYTES];
 } raster_file;
 
 static void raster_close(raster_file *r)
@@ -137,6 +138,7 @@ static void raster_close(raster_file *r)
     if (r->f)
         fclose(r->f);
     free(r->names);
+    free(r->units);
     free(r->crs);
     memset(r, 0, sizeof *r);
 }
@@ -161,13 +163,15 @@ static int raster_open(const fr_store *s, const double *x, size_t n, raster_file
     if ((r->nx && r->ny > SIZE_MAX / r->nx / 4 / (r->nb ? r->nb : 1)) ||
         (uint64_t)sb.st_size != r->header + (uint64_t)r->nb * r->nx * r->ny * sizeof(float))
         goto bad;
-    if (!(r->names = malloc((r->nb ? r->nb : 1) * sizeof *r->names)))
+    if (!(r->names = malloc((r->nb ? r->nb : 1) * sizeof *r->names)) ||
+        !(r->units = malloc((r->nb ? r->nb : 1) * sizeof *r->units)))
         goto bad;
     for (size_t b = 0; b < r->nb; b++) {
-        char unit[UNIT_BYTES];
-        if (fread(r->names[b], 1, NAME_BYTES, r->f) != NAME_BYTES || fread(unit, 1, UNIT_BYTES, r->f) != UNIT_BYTES)
+        if (fread(r->names[b], 1, NAME_BYTES, r->f) != NAME_BYTES ||
+            fread(r->units[b], 1, UNIT_BYTES, r->f) != UNIT_BYTES)
             goto bad;
         r->names[b][NAME_BYTES - 1] = '\0';
+        r->units[b][UNIT_BYTES - 1] = '\0';
     }
     return 1;
 bad:
@@ -190,8 +194,8 @@ static rf_status missing(const fr_store *s, const double *x, size_t n, rf_error 
     return rf_fail(err, RF_EIO, "the raster %s of a TM point is missing or damaged", path);
 }
 
-rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name, size_t *band, fr_grid *g,
-                        rf_error *err)
+rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name, size_t *band, char unit[16],
+                        fr_grid *g, rf_error *err)
 {
     raster_file r;
     if (!raster_open(s, x, n, &r))
@@ -208,6 +212,8 @@ rf_status fr_store_band(fr_store *s, const double *x, size_t n, const char *name
             used += (size_t)snprintf(have + used, sizeof have - used, "%s%s", k ? ", " : "", r.names[k]);
         st = rf_fail(err, RF_EINVAL, "the per-point rasters have no band '%s' (they have: %s)", name, have);
     }
+    else
+        memcpy(unit, r.units[b], UNIT_BYTES);
     *band = b;
     raster_close(&r);
     return st;
@@ -247,7 +253,9 @@ rf_status fr_store_reader_init(fr_store_reader *r, fr_store *s, const rf_tm_resu
     if (!st)
         fr_point_key(r, x, xi);
     for (size_t b = 0; !st && b < n_names; b++)
-        st = fr_store_band(s, xi, n_key, names[b], &r->band[b], &r->grid, err);
+        st = fr_store_band(s, xi, n_key, names[b], &r->band[b], r->unit_text[b], &r->grid, err);
+    for (size_t b = 0; b < n_names; b++)
+        r->units[b] = r->unit_text[b];
     r->nx = r->grid.nx;
     return st;
 }

@@ -75,7 +75,7 @@ rf_status rf_study_fuzzy_rasters_write(const char *out_dir, const rf_study *s, r
                                   s->n_fuzzy_rasters, err);
     terrain_band *bands = NULL;
     if (!st) {
-        fr_source src = {rd.grid.nx, rd.grid.ny, s->n_fuzzy_rasters, names, NULL, fr_store_read_point, &rd, 0};
+        fr_source src = {rd.grid.nx, rd.grid.ny, s->n_fuzzy_rasters, names, rd.units, fr_store_read_point, &rd, 0};
         st = fr_retransform(res, &src, &bands, &n_out, err);
     }
     char path[PATH_MAX];
