@@ -40,7 +40,9 @@ rf_status fr_store_open(const char *dir, fr_store **out, rf_error *err)
     *out = NULL;
     if (strlen(dir) >= PATH_MAX - 64)
         return rf_fail(err, RF_EINVAL, "raster store folder name too long: %s", dir);
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST)
+    /* a missing parent is not an error yet: an MPI worker rank may open the
+     * store before rank 0 made the output folder; put creates DIR then */
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST && errno != ENOENT)
         return rf_fail(err, RF_EIO, "cannot create the raster store folder %s: %s", dir, strerror(errno));
     fr_store *s = calloc(1, sizeof *s);
     if (!s)
@@ -108,6 +110,8 @@ rf_status fr_store_put(void *store, const double *x, size_t n, const terrain_ban
     raster_path(s, x, n, path, sizeof path);
     snprintf(tmp, sizeof tmp, "%s.tmp.%ld.%lu", path, (long)getpid(), atomic_fetch_add(&s->serial, 1));
     FILE *f = fopen(tmp, "wb");
+    if (!f && errno == ENOENT && (mkdir(s->dir, 0777) == 0 || errno == EEXIST))
+        f = fopen(tmp, "wb");
     if (!f)
         return rf_fail(err, RF_EIO, "cannot write the raster %s: %s", tmp, strerror(errno));
     int bad = write_header(f, x, n, bands, n_bands, grid);

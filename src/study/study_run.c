@@ -386,9 +386,15 @@ rf_status rf_study_run(const char *study_path, const rf_study_run_options *opt, 
     if (opt->mpi_rank > 0) {
         /* A worker rank: evaluate what rank 0 sends; rank 0 reports every message.  With
          * the flag a stopped program comes back as RF_EINTERRUPTED, which rank 0 does not store. */
-        if (st == RF_OK)
+        rf_fuzzy_rasters *fuzzy = NULL; /* its points' rasters into OUT/rasters too (else rank 0 rebuilds them) */
+        rf_error ferr;
+        if (st == RF_OK) {
             rf_model_set_interrupt(&r->study.model, opt->interrupt);
+            if (rf_study_fuzzy_rasters_begin(opt->out_dir, &r->study, &fuzzy, &ferr) != RF_OK)
+                fuzzy = NULL;
+        }
         int wrc = rf_mpi_worker(st == RF_OK ? &r->study.model : NULL, err->msg);
+        rf_study_fuzzy_rasters_end(fuzzy);
         st = wrc == 0 ? RF_OK : rf_fail(err, RF_EIO, "MPI worker rank %d stopped with status %d", opt->mpi_rank, wrc);
     } else {
         if (opt->mpi_ranks > 1) {
