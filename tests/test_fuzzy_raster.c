@@ -120,6 +120,8 @@ typedef struct {
 
 static const char *const chosen[2] = {"reach_probability", "energy_p95"}, *const units[2] = {"", "kJ"};
 
+static int tolerate_mode; /* run_study with tolerate_failures */
+
 static study_out run_study(const char *dir, valley_ctx *v, int jobs)
 {
     study_out o = {0};
@@ -141,6 +143,7 @@ static study_out run_study(const char *dir, valley_ctx *v, int jobs)
     rf_runner_init(&r);
     r.jobs = jobs;
     r.store = store;
+    r.tolerate_failures = tolerate_mode;
     rf_evaluator ev = rf_runner_evaluator(&r);
     rf_tm_options opt;
     rf_tm_options_default(&opt);
@@ -148,6 +151,7 @@ static study_out run_study(const char *dir, valley_ctx *v, int jobs)
     opt.levels = M;
     opt.left_right = 0;
     opt.evaluator = &ev;
+    opt.tolerate_failures = tolerate_mode;
     o.st = rf_tm_run(in, 3, &m, &opt, &o.res, &err);
     o.resumed = r.resumed;
     o.evaluated = r.evaluated;
@@ -409,6 +413,41 @@ static void test_resume(void **state)
     free(cut_dir);
 }
 
+
+/* tolerate_failures: a failed point has no raster; it is not rebuilt and
+ * is left out of every cell's bounds (level 0 = min/max over the others). */
+static void test_failed_point(void **state)
+{
+    (void)state;
+    char *dir = temp_dir();
+    valley_ctx v = {0, 5, NX, NY};
+    tolerate_mode = 1;
+    study_out o = run_study(dir, &v, 1);
+    tolerate_mode = 0;
+    assert_int_equal(o.st, RF_OK);
+    assert_int_equal(o.res.failed_points, 1);
+    size_t np = rf_tm_point_count(&o.res), failed = 0;
+    assert_int_equal(count_rasters(dir), np - 1);
+    for (size_t cell = 0; cell < NX * NY; cell++) {
+        double lo = INFINITY, hi = -INFINITY, x[3];
+        for (size_t id = 0; id < np; id++) {
+            if (rf_tm_point_failed(&o.res, id)) {
+                failed += cell == 0;
+                continue;
+            }
+            rf_tm_point_inputs(&o.res, id, x, NULL);
+            double f = (float)valley_cell(x, cell % NX, cell / NX);
+            lo = fmin(lo, f);
+            hi = fmax(hi, f);
+        }
+        assert_true(o.bands[0].data[cell] == (float)lo && o.bands[1].data[cell] == (float)hi);
+    }
+    assert_int_equal(failed, 1);
+    study_free(&o);
+    remove_tree(dir);
+    free(dir);
+}
+
 /* ---- (d) memory */
 
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_UNDEFINED__)
@@ -554,6 +593,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_valley_closed_form),
         cmocka_unit_test(test_resume),
+        cmocka_unit_test(test_failed_point),
         cmocka_unit_test(test_memory_500),
         cmocka_unit_test(test_study_key),
     };

@@ -116,6 +116,8 @@ void rf_tm_result_free(rf_tm_result *res);
  * needs anyway (the grids and every point's value indices). */
 size_t rf_tm_point_count(const rf_tm_result *res);
 rf_status rf_tm_point_inputs(const rf_tm_result *res, size_t id, double *x, rf_error *err);
+/* 1 if point id failed (tolerate_failures: every output NaN), else 0. */
+int rf_tm_point_failed(const rf_tm_result *res, size_t id);
 
 /* n_cols extra outputs, y[c * rf_tm_point_count(res) + id] (column c, point
  * id), into lo[c*(m+1) + j], hi[c*(m+1) + j] (level j = 0..m, nested).  For

@@ -74,9 +74,10 @@ typedef struct {
 rf_status fr_store_reader_init(fr_store_reader *r, fr_store *s, const rf_tm_result *res, size_t n_key, fr_map_fn map,
                                void *map_ctx, const char *const *names, size_t n_names, rf_error *err);
 void fr_point_key(const fr_store_reader *r, const double *x, double *xi);
-/* An fr_read_fn over an fr_store_reader. */
+/* An fr_read_fn over an fr_store_reader; a point that failed (the run's
+ * tolerate_failures) and has no raster reads as NaN, left out of the bounds. */
 rf_status fr_store_read_point(void *reader, size_t id, size_t b, size_t row0, size_t nrows, float *out, rf_error *err);
-/* Every TM point whose raster is missing or damaged (e.g. the result store
+/* Every TM point (but a failed one) whose raster is missing or damaged (e.g. the result store
  * kept the point but its raster was deleted) is evaluated again by model,
  * which must have the store as its sink (the same x, the same raster:
  * common random numbers); *rebuilt counts them. */

@@ -19,6 +19,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -280,6 +281,11 @@ rf_status fr_store_read_point(void *reader, size_t id, size_t b, size_t row0, si
     if (st)
         return st;
     fr_point_key(r, x, xi);
+    if (rf_tm_point_failed(r->res, id) && !fr_store_has(r->store, xi, r->n_key)) {
+        for (size_t c = 0; c < nrows * r->nx; c++) /* a failed point (tolerate_failures) has no raster */
+            out[c] = NAN;
+        return RF_OK;
+    }
     return fr_store_read(r->store, xi, r->n_key, r->band[b], r->nx, row0, nrows, out, err);
 }
 
@@ -294,8 +300,8 @@ rf_status fr_store_rebuild(const fr_store_reader *r, const rf_model *model, size
         if (st)
             break;
         fr_point_key(r, x, xi);
-        if (fr_store_has(r->store, xi, r->n_key))
-            continue;
+        if (rf_tm_point_failed(r->res, id) || fr_store_has(r->store, xi, r->n_key))
+            continue; /* a failed point is left out of the bounds, its raster too */
         st = rf_model_eval(model, x, y, err); /* the model's sink writes the raster */
         if (!st && !fr_store_has(r->store, xi, r->n_key))
             st = missing(r->store, xi, r->n_key, err);

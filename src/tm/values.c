@@ -30,6 +30,17 @@ rf_status rf_tm_point_inputs(const rf_tm_result *res, size_t id, double *x, rf_e
     return RF_OK;
 }
 
+int rf_tm_point_failed(const rf_tm_result *res, size_t id)
+{
+    const struct rf_tm_data *d = res ? res->data : NULL;
+    if (!d || id >= d->npoints)
+        return 0;
+    for (size_t k = 0; k < d->n_out; k++)
+        if (!isnan(rf_tm_y(d, id, k)))
+            return 0;
+    return 1;
+}
+
 void tm_values_result_free(rf_tm_result *out)
 {
     if (!out)
