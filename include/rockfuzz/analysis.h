@@ -46,6 +46,14 @@ typedef struct {
 rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error *err);
 void rf_analysis_free(rf_analysis *an);
 
+/* The analysis of n_cols extra outputs of a finished run (see
+ * rf_tm_retransform_values for y): an has n_outputs = n_cols, each column's
+ * numbers the same to the bit as rf_analysis_compute gives for an output of
+ * the run with those values.  lo, hi (NULL or (m+1) per column) receive the
+ * cuts as rf_tm_retransform_values does (one retransformation for both). */
+rf_status rf_analysis_compute_values(const rf_tm_result *res, size_t n_cols, const double *y, double *lo, double *hi,
+                                     rf_analysis *an, rf_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -50,6 +50,11 @@ typedef struct {
     char *model_description;     /* one line, e.g. "formula: y = x1*x2" */
     long main_output;            /* `main_output:` as an output index, -1 when not given: the report's
                                   * headline and a trajectory study's bound reruns (rp_main_output) */
+    /* A trajectory study of a terrain file: the hazard bands made fuzzy per
+     * cell (model.trajectory.rasters.fuzzy; default reach_probability and
+     * energy_p95), none for a profile (docs/fuzzy-hazard.md). */
+    char **fuzzy_rasters;
+    size_t n_fuzzy_rasters;
 
     /* options: */
     size_t max_evaluations;      /* cap on distinct evaluations, 0 = none (default 100000) */

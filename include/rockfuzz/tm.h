@@ -107,6 +107,26 @@ rf_status rf_tm_run(const rf_fuzzy *inputs, size_t n_inputs, const rf_model *mod
 
 void rf_tm_result_free(rf_tm_result *res);
 
+/* ---- Extra outputs of a finished run (tm_spec s.3-4; docs/fuzzy-hazard.md):
+ * values a caller derives at every distinct point, e.g. every cell of a
+ * hazard raster, retransformed exactly as rf_tm_run retransforms the model's
+ * outputs.  The distinct points have ids 0 .. rf_tm_point_count - 1 (id 0 is
+ * the nominal point); rf_tm_point_inputs writes point id's n_inputs values
+ * (the very doubles the model was evaluated at).  The TM keeps what this
+ * needs anyway (the grids and every point's value indices). */
+size_t rf_tm_point_count(const rf_tm_result *res);
+rf_status rf_tm_point_inputs(const rf_tm_result *res, size_t id, double *x, rf_error *err);
+/* 1 if point id failed (tolerate_failures: every output NaN), else 0. */
+int rf_tm_point_failed(const rf_tm_result *res, size_t id);
+
+/* n_cols extra outputs, y[c * rf_tm_point_count(res) + id] (column c, point
+ * id), into lo[c*(m+1) + j], hi[c*(m+1) + j] (level j = 0..m, nested).  For
+ * a scalar output of the run the cuts are bit-identical to res->lo/hi.  NaN
+ * values are left out of the bounds (a raster cell no block reached at some
+ * points); a column NaN at every point gets NaN cuts. */
+rf_status rf_tm_retransform_values(const rf_tm_result *res, size_t n_cols, const double *y, double *lo, double *hi,
+                                   rf_error *err);
+
 /* Closed-form evaluation counts without a cache (tm_spec s.2.3, 3.2). */
 size_t rf_tm_count_general(size_t n, size_t m);
 size_t rf_tm_count_reduced(size_t n, size_t m);

@@ -52,6 +52,9 @@ void rf_study_free(rf_study *s)
     free(s->param_line);
     rf_model_free(&s->model);
     free(s->model_description);
+    for (size_t k = 0; k < s->n_fuzzy_rasters; k++)
+        free(s->fuzzy_rasters[k]);
+    free(s->fuzzy_rasters);
     free(s->path);
     free(s->dir);
     free(s->name);

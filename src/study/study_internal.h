@@ -22,4 +22,17 @@ rf_status rf_traj_study_parse(yr_ctx *c, struct fy_node *n, rf_study *study);
 rf_status rf_traj_study_reruns(const char *dir, const rf_study *s, const rf_tm_result *res, int threads, int plots,
                                rf_error *err);
 
+/* The fuzzy hazard rasters of a trajectory study on a terrain file
+ * (study_fuzzy_raster.c, docs/fuzzy-hazard.md).  begin (before the TM):
+ * OUT/rasters becomes the trajectory model's raster sink (*f NULL and RF_OK
+ * when the study has no fuzzy rasters); write (after it): every point's
+ * raster present (missing ones rebuilt by evaluating the point again), the
+ * bands of s->fuzzy_rasters retransformed per cell, OUT/fuzzy_rasters.tif;
+ * end: the sink cleared. */
+typedef struct rf_fuzzy_rasters rf_fuzzy_rasters;
+rf_status rf_study_fuzzy_rasters_begin(const char *out_dir, rf_study *s, rf_fuzzy_rasters **f, rf_error *err);
+rf_status rf_study_fuzzy_rasters_write(const char *out_dir, const rf_study *s, rf_fuzzy_rasters *f,
+                                       const rf_tm_result *res, rf_error *err);
+void rf_study_fuzzy_rasters_end(rf_fuzzy_rasters *f);
+
 #endif

@@ -120,6 +120,7 @@ typedef struct {
     char store_path[PATH_MAX];
     double t0;
     int lock_fd;
+    rf_fuzzy_rasters *fuzzy; /* a terrain study's per-point raster store as the model's sink, or NULL */
 } run_state;
 
 static int on_plan(void *user, size_t requested, size_t distinct)
@@ -268,7 +269,9 @@ static rf_status write_outputs(run_state *r, rf_error *err)
     snprintf(old, sizeof old, "%s/result.json", o->out_dir);
     if (unlink(old) != 0 && errno != ENOENT)
         return rf_fail(err, RF_EIO, "%s: cannot replace the old result: %s", old, strerror(errno));
-    rf_status st = rf_report_write(o->out_dir, &r->study, &r->res, &r->an, &ropt, err);
+    rf_status st = rf_study_fuzzy_rasters_write(o->out_dir, &r->study, r->fuzzy, &r->res, err);
+    if (st == RF_OK)
+        st = rf_report_write(o->out_dir, &r->study, &r->res, &r->an, &ropt, err);
     if (st == RF_OK) /* a trajectory study: its trajectories at the nominal point and the bounds, for the report */
         st = rf_traj_study_reruns(o->out_dir, &r->study, &r->res, r->runner.jobs, o->plots, err);
     if (st == RF_OK)
@@ -302,6 +305,8 @@ static rf_status run_steps(run_state *r, rf_error *err)
     setup_runner(r);
     if ((st = plan(r, err)) != RF_OK)
         return st;
+    if ((st = rf_study_fuzzy_rasters_begin(r->opt->out_dir, &r->study, &r->fuzzy, err)) != RF_OK)
+        return rf_error_prefix(err, "%s", r->study_path);
     if (r->opt->interrupt && atomic_load(r->opt->interrupt))
         return rf_fail(err, RF_EINTERRUPTED, "interrupted before the first evaluation; nothing was evaluated");
     r->t0 = rf_monotonic_seconds();
@@ -335,6 +340,8 @@ static rf_status run_rank0(run_state *r, rf_error *err)
     if (st == RF_OK)
         st = run_steps(r, err);
     int opened = r->store != NULL;
+    rf_study_fuzzy_rasters_end(r->fuzzy);
+    r->fuzzy = NULL;
     rf_store_close(r->store);
     r->store = NULL;
     if (r->lock_fd >= 0) {
@@ -379,9 +386,15 @@ rf_status rf_study_run(const char *study_path, const rf_study_run_options *opt, 
     if (opt->mpi_rank > 0) {
         /* A worker rank: evaluate what rank 0 sends; rank 0 reports every message.  With
          * the flag a stopped program comes back as RF_EINTERRUPTED, which rank 0 does not store. */
-        if (st == RF_OK)
+        rf_fuzzy_rasters *fuzzy = NULL; /* its points' rasters into OUT/rasters too (else rank 0 rebuilds them) */
+        rf_error ferr;
+        if (st == RF_OK) {
             rf_model_set_interrupt(&r->study.model, opt->interrupt);
+            if (rf_study_fuzzy_rasters_begin(opt->out_dir, &r->study, &fuzzy, &ferr) != RF_OK)
+                fuzzy = NULL;
+        }
         int wrc = rf_mpi_worker(st == RF_OK ? &r->study.model : NULL, err->msg);
+        rf_study_fuzzy_rasters_end(fuzzy);
         st = wrc == 0 ? RF_OK : rf_fail(err, RF_EIO, "MPI worker rank %d stopped with status %d", opt->mpi_rank, wrc);
     } else {
         if (opt->mpi_ranks > 1) {

@@ -25,7 +25,7 @@ typedef struct {
     char *file;
     long long samples, seed;
     int lhs;                 /* -1: as in the file */
-    struct fy_node *bind, *file_node;
+    struct fy_node *bind, *file_node, *rasters;
 } traj_block;
 
 static rf_status read_block(yr_ctx *c, struct fy_node *n, traj_block *b)
@@ -57,8 +57,11 @@ static rf_status read_block(yr_ctx *c, struct fy_node *n, traj_block *b)
         } else if (!strcmp(key, "bind")) {
             b->bind = v;
             st = yr_mapping(c, v, p);
+        } else if (!strcmp(key, "rasters")) {
+            b->rasters = v;
+            st = yr_mapping(c, v, p);
         } else {
-            st = yr_fail(c, k, p, "unknown key; a trajectory model takes file, samples, seed, sampling, bind");
+            st = yr_fail(c, k, p, "unknown key; a trajectory model takes file, samples, seed, sampling, bind, rasters");
         }
     }
     if (st == RF_OK && !b->file)
@@ -157,9 +160,80 @@ static rf_status make_model(yr_ctx *c, struct fy_node *n, rf_traj_spec *spec, rf
     return sb_wrap(bind, s->n_params, &s->model, c->err);
 }
 
+/* A hazard band a terrain run makes: passages, reach_probability, deposits,
+ * energy_max, height_max, energy_pNN, height_pNN (terrain_hazard_bands). */
+static int is_band_name(const char *w)
+{
+    const char *fixed[] = {"passages", "reach_probability", "deposits", "energy_max", "height_max"};
+    for (size_t k = 0; k < sizeof fixed / sizeof *fixed; k++)
+        if (!strcmp(w, fixed[k]))
+            return 1;
+    const char *num = !strncmp(w, "energy_p", 8) ? w + 8 : !strncmp(w, "height_p", 8) ? w + 8 : NULL;
+    if (!num || !*num)
+        return 0;
+    for (; *num; num++)
+        if ((*num < '0' || *num > '9') && *num != '.')
+            return 0;
+    return 1;
+}
+
+static rf_status add_raster(rf_study *s, const char *name, rf_error *err)
+{
+    char **grown = realloc(s->fuzzy_rasters, (s->n_fuzzy_rasters + 1) * sizeof *grown);
+    if (!grown)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    s->fuzzy_rasters = grown;
+    if (!(grown[s->n_fuzzy_rasters] = rf_strdup(name)))
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    s->n_fuzzy_rasters++;
+    return RF_OK;
+}
+
+/* model.trajectory.rasters: {fuzzy: [band, ...]}, a terrain file only; the
+ * default for a terrain file: reach_probability and energy_p95. */
+static rf_status parse_rasters(yr_ctx *c, struct fy_node *n, const rf_traj_spec *spec, rf_study *s)
+{
+    const char *path = "model.trajectory.rasters", *key;
+    if (n && !spec->terrain)
+        return yr_fail(c, n, path, "fuzzy hazard rasters need a terrain file (this one is a profile)");
+    if (!n && !spec->terrain)
+        return RF_OK;
+    if (!n) {
+        rf_status st = add_raster(s, "reach_probability", c->err);
+        return st ? st : add_raster(s, "energy_p95", c->err);
+    }
+    yr_iter it = {n, NULL, 0, {0}};
+    struct fy_node *k, *v;
+    char p[300];
+    rf_status st = RF_OK;
+    while (st == RF_OK) {
+        if ((st = yr_next(c, &it, path, &key, &k, &v)) != RF_OK || !key)
+            break;
+        yr_pathf(p, sizeof p, "%s.%s", path, key);
+        if (strcmp(key, "fuzzy")) {
+            st = yr_fail(c, k, p, "unknown key; rasters takes fuzzy (a list of hazard bands)");
+            break;
+        }
+        size_t count = 0;
+        st = yr_sequence(c, v, p, 0, 16, &count);
+        for (size_t q = 0; st == RF_OK && q < count; q++) {
+            char w[40], pq[320];
+            struct fy_node *item = fy_node_sequence_get_by_index(v, (int)q);
+            yr_pathf(pq, sizeof pq, "%s.%zu", p, q);
+            st = yr_word(c, item, pq, w, sizeof w);
+            if (st == RF_OK && !is_band_name(w))
+                st = yr_fail(c, item, pq, "not a hazard band; expected passages, reach_probability, deposits, "
+                                          "energy_max, height_max, energy_pNN or height_pNN");
+            if (st == RF_OK)
+                st = add_raster(s, w, c->err);
+        }
+    }
+    return st;
+}
+
 rf_status rf_traj_study_parse(yr_ctx *c, struct fy_node *n, rf_study *s)
 {
-    traj_block b = {NULL, -1, -1, -1, NULL, NULL};
+    traj_block b = {NULL, -1, -1, -1, NULL, NULL, NULL};
     rf_traj_spec spec;
     sb_binding bind = {0, NULL};
     memset(&spec, 0, sizeof spec);
@@ -170,6 +244,8 @@ rf_status rf_traj_study_parse(yr_ctx *c, struct fy_node *n, rf_study *s)
         st = sb_parse(c, b.bind, "model.trajectory.bind", s, 0, check_path, &spec, &bind);
     if (st == RF_OK)
         st = check_support(c, &b, &spec, s, &bind);
+    if (st == RF_OK)
+        st = parse_rasters(c, b.rasters, &spec, s);
     if (st == RF_OK)
         st = make_model(c, n, &spec, s, &bind);
     if (st == RF_OK) {

@@ -407,3 +407,17 @@ rf_status rf_analysis_compute(const rf_tm_result *res, rf_analysis *an, rf_error
     }
     return RF_OK;
 }
+
+rf_status rf_analysis_compute_values(const rf_tm_result *res, size_t n_cols, const double *y, double *lo, double *hi,
+                                     rf_analysis *an, rf_error *err)
+{
+    memset(an, 0, sizeof *an);
+    rf_tm_result v;
+    rf_status st = tm_values_result(res, n_cols, y, lo, hi, &v, err);
+    if (!st)
+        st = rf_analysis_compute(&v, an, err);
+    if (!st && (lo == NULL) != (hi == NULL)) /* one of them asked for: copy it out of the view */
+        memcpy(lo ? lo : hi, lo ? v.lo : v.hi, n_cols * (res->levels + 1) * sizeof(double));
+    tm_values_result_free(&v);
+    return st;
+}

@@ -414,10 +414,11 @@ static size_t first_equal(const double *z, double v)
 
 /* Recursive retransformation (s.2.4), output by output: each level starts
  * from the bounds of level j+1 and moves only to a strictly smaller
- * (larger) value, the first point holding it.  A NaN never becomes a bound. */
-static int retransform(const tm_ctx *c, rf_tm_result *res)
+ * (larger) value, the first point holding it.  A NaN never becomes a bound.
+ * Outputs 0..d->n_out-1 of the columns d->y into res->lo/hi/x_lo/x_hi; reads
+ * res->output_undefined.  Also the retransformation of extra outputs (values.c). */
+int tm_retransform(const struct rf_tm_data *d, rf_tm_result *res)
 {
-    const struct rf_tm_data *d = c->d;
     size_t m = d->m, no = d->n_out, maxc = 1;
     for (size_t j = 0; j <= m; j++)
         maxc = d->main[j].count > maxc ? d->main[j].count : maxc;
@@ -662,7 +663,7 @@ static rf_status finish(tm_ctx *c, const output_scan *s, rf_tm_result *res, rf_e
         diagnose_grid(d, &d->lr[j], s->range, opt->probe_rtol, res->monotonicity);
     for (size_t j = 0; opt->scheme != RF_TM_REDUCED && j <= m; j++)
         diagnose_grid(d, &d->main[j], s->range, opt->probe_rtol, res->monotonicity);
-    if (retransform(c, res))
+    if (tm_retransform(d, res))
         return rf_fail(err, RF_ENOMEM, "out of memory for the retransformation");
     res->requested = c->requested;
     res->distinct = d->npoints;

@@ -114,6 +114,21 @@ rf_status tm_build_probe(tm_ctx *c, probe_set *ps, size_t *nps, int with_ids, rf
 void tm_sizes(const tm_ctx *c, tm_grid_sizes *s);
 rf_status tm_check_sizes(const tm_ctx *c, const tm_grid_sizes *s, rf_error *err);
 
+/* tm.c: the recursive retransformation of the outputs held in d->y (d->n_out
+ * columns) into res (lo, hi, x_lo, x_hi; reads res->output_undefined);
+ * -1 without memory. */
+int tm_retransform(const struct rf_tm_data *d, rf_tm_result *res);
+
+/* values.c: a result for extra outputs y[c * npoints + id] (n_cols columns, in
+ * the point order of res) as rf_tm_run would have made it for them: its data
+ * a view of res->data (grids shared, y the caller's columns: keep them alive),
+ * cuts retransformed, NaN values left out of the bounds (an all-NaN column is
+ * output_undefined, its cuts NaN).  lo, hi: the caller's arrays for the
+ * cuts ((m+1) per column) or NULL (owned).  Free with tm_values_result_free. */
+rf_status tm_values_result(const rf_tm_result *res, size_t n_cols, const double *y, double *lo, double *hi,
+                           rf_tm_result *out, rf_error *err);
+void tm_values_result_free(rf_tm_result *out);
+
 /* grid.c */
 /* Value index of input i of point id. */
 static inline uint32_t rf_tm_tuple(const struct rf_tm_data *d, size_t id, size_t i)

@@ -248,6 +248,27 @@ rf_status terrain_hazard_bands(const rf_terrain_hazard *h, const rf_traj_spec *s
                                size_t *n, rf_error *err);
 void terrain_bands_free(terrain_band *b, size_t n);
 
+/* traj_model_raster.c: the raster sink of a trajectory model (fuzzy hazard
+ * rasters, docs/fuzzy-hazard.md).  A study sets it on the trajectory model
+ * (the model behind any binding wrapper: its ctx is the key); the model's
+ * evaluation of a terrain file, once its hazard bands are made, calls
+ * traj_model_raster_emit(its ctx, x, ...) with its own inputs x, which hands
+ * them to the sink (RF_OK and nothing when no sink is set).  The sink must be
+ * thread-safe (evaluations run in parallel) and must have stored the bands
+ * when it returns: the result store commits the point after the evaluation. */
+typedef struct {
+    size_t nx, ny;           /* columns, rows (row 0 south, as terrain_band) */
+    double x0, y0, cell;     /* south-west corner and cell size [m] */
+    const char *crs_wkt;     /* "" or NULL: none */
+} traj_raster_grid;
+typedef rf_status (*traj_raster_sink)(void *ctx, const double *x, size_t n_params, const terrain_band *bands,
+                                      size_t n_bands, const traj_raster_grid *grid, rf_error *err);
+/* Set (sink != NULL) or clear (NULL) the sink of trajectory model m; RF_ECAP
+ * if 16 models have sinks already. */
+rf_status traj_model_raster_sink_set(const rf_model *m, traj_raster_sink sink, void *ctx, rf_error *err);
+rf_status traj_model_raster_emit(const void *model_ctx, const double *x, size_t n_params, const terrain_band *bands,
+                                 size_t n_bands, const traj_raster_grid *grid, rf_error *err);
+
 /* terrain_io.c (GDAL): a GeoTIFF of n float32 bands on the grid nx x ny with
  * south-west corner (x0, y0) and square cells `cell` (rows written north
  * first), CRS crs_wkt ("" none), no-data value NaN, each band's description
