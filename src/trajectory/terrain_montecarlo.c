@@ -87,7 +87,8 @@ static void run_sample(tmc_job *job, rf_traj_spec *local, const rf_traj_field **
     traj_draw_inputs(job->spec, job->perm, i, row, field);
     release_start(job, i, start);
     rf_terrain_result *res = i < ens->terrain->n_recorded ? &ens->terrain->recorded[i] : tmp;
-    res->n_events = 0; /* the simulator fills from zero; the buffers are kept */
+    res->n_impacts = res->n_steps = res->n_events = 0; /* as 2D's simulator does; the buffers are kept */
+    memset(res->crossings, 0, ens->n_collectors * sizeof *res->crossings);
     job->status = terrain_simulate_hazard(job->w, local, job->spec->seed, i, start, job->hazard, res, &job->err);
     if (job->status == RF_OK)
         store_sample(ens, i, res);
