@@ -203,7 +203,7 @@ static void test_draws_as_2d(void **state)
     for (size_t i = 0; i < s.samples; i++) {
         const double *p = &e.terrain->start[3 * i];
         double z;
-        assert_true(rf_terrain_height(e.terrain->dem, p[0], p[1], &z, NULL));
+        assert_true(rf_terrain_height(e.terrain_dem, p[0], p[1], &z, NULL));
         double want = 1 + 2 * rf_traj_uniform(s.seed, 2 * (uint64_t)i, 1);
         assert_near(p[2] - z, want, 1e-9);
         assert_near(p[1], 390, 1e-9);

@@ -260,7 +260,7 @@ rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w,
     if (st == RF_OK)
         st = run_jobs(spec, w, perm, threads, rasters && spec->terrain->statistics, progress ? &p : NULL, ens, err);
     if (st == RF_OK)
-        ens->terrain->dem = w->dem;
+        ens->terrain_dem = w->dem;
     free(perm);
     ens->wall_seconds = rf_monotonic_seconds() - t0;
     if (st != RF_OK)
@@ -280,7 +280,7 @@ rf_status rf_terrain_run(const rf_traj_spec *spec, int threads, rf_traj_progress
         return st;
     st = terrain_run_world(spec, w, threads, 1, progress, ctx, ens, err);
     if (st == RF_OK)
-        ens->terrain->world = w; /* the outputs draw on its surface */
+        ens->terrain_world = w; /* the outputs draw on its surface */
     else
         rf_terrain_world_free(w);
     return st;
