@@ -23,6 +23,14 @@
 
 #include "trajectory/terrain_internal.h"
 
+/* |a - b| <= tol in double (cmocka's assert_float_equal compares floats). */
+#define assert_near(a, b, tol)                                                                              \
+    do {                                                                                                    \
+        double a_ = (a), b_ = (b);                                                                          \
+        if (!(fabs(a_ - b_) <= (tol)))                                                                      \
+            fail_msg("%s = %.17g, expected %.17g (tol %g)", #a, a_, b_, (double)(tol));                     \
+    } while (0)
+
 #define NX 151
 #define NY 201
 #define CELL 2.0
@@ -65,7 +73,7 @@ static void load(rf_traj_spec *s, int lhs, size_t samples)
              "roughness: 5}\n"
              "  talus: {R_n: 0.35, R_t: 0.75, friction_angle: 35, rolling_resistance: 0.3, roughness: 10}\n"
              "block: {shape: sphere, radius: 0.5, density: 2600}\n"
-             "release: {line: [[100, 390], [200, 390]], height: {uniform: [1, 3]}, velocity: [0, 0, 0]}\n"
+             "release: {lines: [[[100, 390], [200, 390]]], height: {uniform: [1, 3]}, velocity: [0, 0, 0]}\n"
              "bounce: {law: constant}\n"
              "barriers: [{name: fence, line: [[20, 150], [280, 150]], height: 4, capacity: 2.0e6}]\n"
              "rasters: {cell: 4, statistics: [passages, reach_probability, deposits, energy_p95, height_p95]}\n"
@@ -195,10 +203,10 @@ static void test_draws_as_2d(void **state)
     for (size_t i = 0; i < s.samples; i++) {
         const double *p = &e.terrain->start[3 * i];
         double z;
-        assert_true(rf_terrain_height(e.terrain->dem, p[0], p[1], &z, NULL));
+        assert_true(rf_terrain_height(e.terrain_dem, p[0], p[1], &z, NULL));
         double want = 1 + 2 * rf_traj_uniform(s.seed, 2 * (uint64_t)i, 1);
-        assert_float_equal(p[2] - z, want, 1e-9);
-        assert_float_equal(p[1], 390, 1e-9);
+        assert_near(p[2] - z, want, 1e-9);
+        assert_near(p[1], 390, 1e-9);
     }
     rf_traj_ensemble_free(&e);
     rf_traj_spec_free(&s);

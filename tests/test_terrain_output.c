@@ -23,6 +23,14 @@
 
 #include "trajectory/terrain_internal.h"
 
+/* |a - b| <= tol in double (cmocka's assert_float_equal compares floats). */
+#define assert_near(a, b, tol)                                                                              \
+    do {                                                                                                    \
+        double a_ = (a), b_ = (b);                                                                          \
+        if (!(fabs(a_ - b_) <= (tol)))                                                                      \
+            fail_msg("%s = %.17g, expected %.17g (tol %g)", #a, a_, b_, (double)(tol));                     \
+    } while (0)
+
 #define N 5
 #define DEGREES (180 / 3.14159265358979323846)
 
@@ -140,11 +148,11 @@ static void test_stats(void **state)
     assert_int_equal(f->st.exited, 1);
     assert_int_equal(f->st.step_limit, 1);
     /* runouts sorted 0 5 10 50 100: p50 = 10, p95 at h = 3.8: 50 + 0.8 * 50 */
-    assert_float_equal(f->st.runout_x.p50, 10, 1e-12);
-    assert_float_equal(f->st.runout_x.p95, 90, 1e-12);
-    assert_float_equal(f->st.reach_angle.p50 * DEGREES, reach_p50_deg(), 1e-12);
-    assert_float_equal(f->st.reach_angle.max * DEGREES, 45, 1e-12);
-    assert_float_equal(f->st.collectors[0].reach_probability, 0.6, 1e-15);
+    assert_near(f->st.runout_x.p50, 10, 1e-12);
+    assert_near(f->st.runout_x.p95, 90, 1e-12);
+    assert_near(f->st.reach_angle.p50 * DEGREES, reach_p50_deg(), 1e-12);
+    assert_near(f->st.reach_angle.max * DEGREES, 45, 1e-12);
+    assert_near(f->st.collectors[0].reach_probability, 0.6, 1e-15);
 }
 
 static char *json_of(const fixture *f, size_t max_traj)
@@ -201,15 +209,15 @@ static void test_json_trajectories(void **state)
     assert_string_equal(at(d, "/trajectories/0/state"), "stopped");
     assert_int_equal(seq_len(d, "/trajectories/0/impacts"), 2);
     assert_int_equal(seq_len(d, "/trajectories/0/impacts/0/v_in"), 3);
-    assert_float_equal(num(d, "/trajectories/0/impacts/0/v_in/2"), -9, 0);
-    assert_float_equal(num(d, "/trajectories/0/impacts/1/v_out/1"), 1.5, 0);
-    assert_float_equal(num(d, "/trajectories/0/impacts/0/omega_out/2"), 0.3, 0);
-    assert_float_equal(num(d, "/trajectories/0/impacts/1/z"), 80, 0);
+    assert_near(num(d, "/trajectories/0/impacts/0/v_in/2"), -9, 0);
+    assert_near(num(d, "/trajectories/0/impacts/1/v_out/1"), 1.5, 0);
+    assert_near(num(d, "/trajectories/0/impacts/0/omega_out/2"), 0.3, 0);
+    assert_near(num(d, "/trajectories/0/impacts/1/z"), 80, 0);
     assert_string_equal(at(d, "/trajectories/0/impacts/1/class"), "soil");
-    assert_float_equal(num(d, "/trajectories/0/rest/z"), 70, 0);
-    assert_float_equal(num(d, "/trajectories/0/reach_angle"), atan(0.6) * DEGREES, 1e-12);
-    assert_float_equal(num(d, "/trajectories/0/barriers/fence/along"), 12.5, 0);
-    assert_float_equal(num(d, "/trajectories/0/barriers/fence/total_energy"), 1e6, 0);
+    assert_near(num(d, "/trajectories/0/rest/z"), 70, 0);
+    assert_near(num(d, "/trajectories/0/reach_angle"), atan(0.6) * DEGREES, 1e-12);
+    assert_near(num(d, "/trajectories/0/barriers/fence/along"), 12.5, 0);
+    assert_near(num(d, "/trajectories/0/barriers/fence/total_energy"), 1e6, 0);
     assert_string_equal(at(d, "/trajectories/1/state"), "exited");
     assert_string_equal(at(d, "/trajectories/1/rest"), "null");
     assert_string_equal(at(d, "/trajectories/1/barriers/fence"), "null");
@@ -217,7 +225,7 @@ static void test_json_trajectories(void **state)
     free(doc);
     d = parse(doc = json_of(f, 1)); /* --max-trajectories 1 */
     assert_int_equal(seq_len(d, "/trajectories"), 1);
-    assert_float_equal(num(d, "/trajectories_shown"), 1, 0);
+    assert_near(num(d, "/trajectories_shown"), 1, 0);
     fy_document_destroy(d);
     free(doc);
 }
@@ -227,16 +235,16 @@ static void test_json_statistics(void **state)
     fixture *f = *state;
     char *doc = json_of(f, 100);
     struct fy_document *d = parse(doc);
-    assert_float_equal(num(d, "/statistics/runout/p50"), 10, 1e-12);
-    assert_float_equal(num(d, "/statistics/runout/p95"), 90, 1e-12);
-    assert_float_equal(num(d, "/statistics/reach_angle/p50"), reach_p50_deg(), 1e-12);
-    assert_float_equal(num(d, "/statistics/reach_angle/max"), 45, 1e-12);
-    assert_float_equal(num(d, "/statistics/barriers/fence/reach_probability"), 0.6, 1e-15);
+    assert_near(num(d, "/statistics/runout/p50"), 10, 1e-12);
+    assert_near(num(d, "/statistics/runout/p95"), 90, 1e-12);
+    assert_near(num(d, "/statistics/reach_angle/p50"), reach_p50_deg(), 1e-12);
+    assert_near(num(d, "/statistics/reach_angle/max"), 45, 1e-12);
+    assert_near(num(d, "/statistics/barriers/fence/reach_probability"), 0.6, 1e-15);
     /* the energies of the three that reach it: 1, 1.5, 3 MJ; P(E > capacity 2 MJ) = 1 / 5 */
-    assert_float_equal(num(d, "/statistics/barriers/fence/total_energy/p50"), 1.5e6, 1e-6);
-    assert_float_equal(num(d, "/statistics/barriers/fence/p_total_energy_above/0/probability"), 0.2, 1e-15);
-    assert_float_equal(num(d, "/statistics/held_by_barrier/fence"), 1, 0);
-    assert_float_equal(num(d, "/states/step_limit"), 1, 0);
+    assert_near(num(d, "/statistics/barriers/fence/total_energy/p50"), 1.5e6, 1e-6);
+    assert_near(num(d, "/statistics/barriers/fence/p_total_energy_above/0/probability"), 0.2, 1e-15);
+    assert_near(num(d, "/statistics/held_by_barrier/fence"), 1, 0);
+    assert_near(num(d, "/states/step_limit"), 1, 0);
     fy_document_destroy(d);
     free(doc);
 }
@@ -291,9 +299,9 @@ static void test_csv(void **state)
     double v[9];
     assert_int_equal(sscanf(row, "0,stopped,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4],
                             &v[5], &v[6], &v[7], &v[8]), 9);
-    assert_float_equal(v[5], 70, 0);
-    assert_float_equal(v[6], 50, 0);
-    assert_float_equal(v[7], atan(0.6) * DEGREES, 1e-12);
+    assert_near(v[5], 70, 0);
+    assert_near(v[6], 50, 0);
+    assert_near(v[7], atan(0.6) * DEGREES, 1e-12);
     assert_int_equal(read_lines(dir, "crossings.csv", header, sizeof header, row, sizeof row), N + 1);
     assert_non_null(strstr(header, ",x_m,y_m,along_m,"));
     assert_non_null(strstr(header, ",total_energy_J,energy_after_J,stopped_by_barrier\n"));
@@ -316,7 +324,7 @@ static void test_refuses_profile(void **state)
     assert_int_equal(terrain_run_world(&s, NULL, 1, 1, NULL, NULL, &e, &err), RF_EINVAL);
     assert_non_null(strstr(err.msg, "slope.yaml: not a terrain file"));
     /* the per-sample arrays of a run: 8 doubles and a state, and a crossing per barrier */
-    assert_float_equal(terrain_bytes_per_sample(2), 65 + 2.0 * sizeof(rf_traj_crossing), 0);
+    assert_near(terrain_bytes_per_sample(2), 65 + 2.0 * sizeof(rf_traj_crossing), 0);
 }
 
 int main(void)

@@ -170,9 +170,6 @@ typedef struct rf_terrain_samples {
     size_t n_recorded;
     rf_terrain_result *recorded;
     struct rf_terrain_hazard *hazard;   /* the rasters (terrain_hazard.c) */
-    const rf_terrain *dem;      /* the run's surface, for the outputs (CRS, grid, hillshade) */
-    rf_terrain_world *world;    /* rf_terrain_run: its world, owned here (freed with the ensemble); NULL when
-                                   the caller's world ran (terrain_run_world) */
 } rf_terrain_samples;
 
 /* Run spec->samples trajectories of a terrain spec on `threads` threads (0 =

@@ -378,6 +378,9 @@ typedef struct {
     double impact_error_estimate;   /* largest |table - model| of R_n, R_t at the cell centres [-] */
     rf_traj_envelope envelope;      /* from all samples */
     struct rf_terrain_samples *terrain;  /* a terrain run (terrain.h), NULL for a profile */
+    const struct rf_terrain *terrain_dem;       /* a terrain run: its surface, for the outputs (CRS, grid, maps) */
+    struct rf_terrain_world *terrain_world;     /* rf_terrain_run: its world, owned (freed with the ensemble);
+                                                   NULL when a caller's world ran (terrain_run_world) */
 } rf_traj_ensemble;
 
 /* Run spec->samples trajectories on `threads` threads (0 = online cores).

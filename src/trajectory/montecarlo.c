@@ -163,6 +163,7 @@ void rf_traj_ensemble_free(rf_traj_ensemble *e)
     free(e->crossings);
     traj_envelope_free(&e->envelope);
     terrain_samples_free(e->terrain);
+    rf_terrain_world_free(e->terrain_world);
     memset(e, 0, sizeof *e);
 }
 

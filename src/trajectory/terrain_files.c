@@ -107,7 +107,7 @@ static rf_status write_geo(const char *dir, const rf_traj_spec *s, const rf_traj
                            int plots, rf_error *err)
 {
     const rf_terrain_samples *t = e->terrain;
-    const char *crs = t->dem ? rf_terrain_crs_wkt(t->dem) : "";
+    const char *crs = e->terrain_dem ? rf_terrain_crs_wkt(e->terrain_dem) : "";
     char path[4096];
     terrain_band *bands = NULL;
     size_t n = 0;
@@ -123,8 +123,8 @@ static rf_status write_geo(const char *dir, const rf_traj_spec *s, const rf_traj
         snprintf(path, sizeof path, "%s/paths.gpkg", dir);
         rc = terrain_gpkg_write(path, crs, e, err);
     }
-    if (rc == RF_OK && plots && t->dem)
-        rc = terrain_write_maps(dir, s, e, st, t->dem, bands, n, err);
+    if (rc == RF_OK && plots && e->terrain_dem)
+        rc = terrain_write_maps(dir, s, e, st, e->terrain_dem, bands, n, err);
     terrain_bands_free(bands, n);
     return rc;
 }

@@ -16,9 +16,7 @@
  *   terrain_world.c     the world: DEM, classes, barrier lines, release set, impact table
  *   traj_yaml_terrain.c the `terrain:` part of a trajectory file (release, barriers, rasters)
  *   terrain_montecarlo.c ensembles on terrain (threads; same bits at any thread count)
- *   terrain_output.c    JSON and summary; terrain_files.c the run folder (CSV, GeoTIFF,
- *                       GeoPackage); terrain_samples.c freeing the per-sample part;
- *                       terrain_report.c maps and report.html */
+ *   terrain_output.c    JSON, CSV, GeoPackage; terrain_report.c maps and report.html */
 #ifndef ROCKFUZZ_TERRAIN_INTERNAL_H
 #define ROCKFUZZ_TERRAIN_INTERNAL_H
 
@@ -106,6 +104,37 @@ struct rf_terrain_world {
     terrain_release_set *release;
     void *impact_table;         /* impact_model law: traj_impact_table (not yet on terrain) */
 };
+
+/* ---- the Monte Carlo and its outputs: terrain_montecarlo.c, terrain_samples.c
+ * (freeing the per-sample part), terrain_output.c (JSON, summary),
+ * terrain_files.c (the run folder) ---- */
+
+/* terrain_montecarlo.c: rf_terrain_run on a prepared world (the caller's:
+ * tests and the benchmark build one from a surface in memory; the study
+ * model shares one over its evaluations), with the rasters only if
+ * `rasters` (and the spec asks for some); the bytes a run keeps per sample
+ * (its per-sample arrays: state, runout, rebound height, start, end, reach
+ * angle, a crossing per barrier). */
+rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads, int rasters,
+                            rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err);
+double terrain_bytes_per_sample(size_t n_collectors);
+/* terrain_files.c: the CSV files of rf_terrain_write_outputs alone
+ * (samples.csv, crossings.csv, statistics.csv). */
+rf_status terrain_write_tables(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                               const rf_traj_stats *st, rf_error *err);
+/* terrain_samples.c: free ens->terrain (per-sample arrays, recorded
+ * trajectories, rasters) and the struct itself; NULL is a no-op
+ * (rf_traj_ensemble_free calls it). */
+void terrain_samples_free(struct rf_terrain_samples *t);
+/* The simulator's entry for a Monte Carlo: rf_terrain_simulate with r->hazard
+ * = hazard (NULL: no rasters), i.e. terrain_hazard_begin, every piece
+ * (terrain_emit), terrain_hazard_end(hazard, stopped, end).  DEFINED BY
+ * terrain_simulate.c (motion's branch declares it with this signature);
+ * until that merges, terrain_mc_glue.c stands in (begin, rf_terrain_simulate,
+ * end: deposits only, no pieces): delete it then, and keep one declaration. */
+rf_status terrain_simulate_hazard(const rf_terrain_world *w, const rf_traj_spec *values, uint64_t seed,
+                                  uint64_t sample, const double start[3], struct rf_terrain_hazard *hazard,
+                                  rf_terrain_result *res, rf_error *err);
 
 /* ---- one running trajectory ---- */
 
@@ -355,32 +384,5 @@ rf_status terrain_spec_check(const rf_traj_spec *s, rf_error *err);
  * material per cell set or NULL), which it takes over (freed on failure too);
  * without a class raster every cell gets spec->terrain->material. */
 rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_terrain_world **w, rf_error *err);
-
-/* terrain_montecarlo.c: rf_terrain_run on a prepared world (the caller's:
- * tests and the benchmark build one from a surface in memory; the study
- * model shares one over its evaluations), with the rasters only if
- * `rasters` (and the spec asks for some); the bytes a run keeps per sample
- * (its per-sample arrays: state, runout, rebound height, start, end, reach
- * angle, a crossing per barrier). */
-rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads, int rasters,
-                            rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err);
-double terrain_bytes_per_sample(size_t n_collectors);
-/* terrain_files.c: the CSV files of rf_terrain_write_outputs alone
- * (samples.csv, crossings.csv, statistics.csv). */
-rf_status terrain_write_tables(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
-                               const rf_traj_stats *st, rf_error *err);
-/* terrain_samples.c: free ens->terrain (per-sample arrays, recorded
- * trajectories, rasters) and the struct itself; NULL is a no-op
- * (rf_traj_ensemble_free calls it). */
-void terrain_samples_free(struct rf_terrain_samples *t);
-/* The simulator's entry for a Monte Carlo: rf_terrain_simulate with r->hazard
- * = hazard (NULL: no rasters), i.e. terrain_hazard_begin, every piece
- * (terrain_emit), terrain_hazard_end(hazard, stopped, end).  TO COME FROM
- * terrain_simulate.c (motion); until it does, terrain_mc_glue.c stands in
- * (begin, rf_terrain_simulate, end: deposits only, no pieces) and must then
- * be deleted. */
-rf_status terrain_simulate_hazard(const rf_terrain_world *w, const rf_traj_spec *values, uint64_t seed,
-                                  uint64_t sample, const double start[3], struct rf_terrain_hazard *hazard,
-                                  rf_terrain_result *res, rf_error *err);
 
 #endif

@@ -87,7 +87,8 @@ static void run_sample(tmc_job *job, rf_traj_spec *local, const rf_traj_field **
     traj_draw_inputs(job->spec, job->perm, i, row, field);
     release_start(job, i, start);
     rf_terrain_result *res = i < ens->terrain->n_recorded ? &ens->terrain->recorded[i] : tmp;
-    res->n_events = 0; /* the simulator fills from zero; the buffers are kept */
+    res->n_impacts = res->n_steps = res->n_events = 0; /* as 2D's simulator does; the buffers are kept */
+    memset(res->crossings, 0, ens->n_collectors * sizeof *res->crossings);
     job->status = terrain_simulate_hazard(job->w, local, job->spec->seed, i, start, job->hazard, res, &job->err);
     if (job->status == RF_OK)
         store_sample(ens, i, res);
@@ -259,7 +260,7 @@ rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w,
     if (st == RF_OK)
         st = run_jobs(spec, w, perm, threads, rasters && spec->terrain->statistics, progress ? &p : NULL, ens, err);
     if (st == RF_OK)
-        ens->terrain->dem = w->dem;
+        ens->terrain_dem = w->dem;
     free(perm);
     ens->wall_seconds = rf_monotonic_seconds() - t0;
     if (st != RF_OK)
@@ -279,7 +280,7 @@ rf_status rf_terrain_run(const rf_traj_spec *spec, int threads, rf_traj_progress
         return st;
     st = terrain_run_world(spec, w, threads, 1, progress, ctx, ens, err);
     if (st == RF_OK)
-        ens->terrain->world = w; /* the outputs draw on its surface */
+        ens->terrain_world = w; /* the outputs draw on its surface */
     else
         rf_terrain_world_free(w);
     return st;

@@ -21,6 +21,5 @@ void terrain_samples_free(rf_terrain_samples *t)
     free(t->runout);
     free(t->reach_angle);
     terrain_hazard_free(t->hazard);
-    rf_terrain_world_free(t->world);
     free(t);
 }
