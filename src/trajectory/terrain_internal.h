@@ -126,15 +126,6 @@ rf_status terrain_write_tables(const char *dir, const rf_traj_spec *s, const rf_
  * trajectories, rasters) and the struct itself; NULL is a no-op
  * (rf_traj_ensemble_free calls it). */
 void terrain_samples_free(struct rf_terrain_samples *t);
-/* The simulator's entry for a Monte Carlo: rf_terrain_simulate with r->hazard
- * = hazard (NULL: no rasters), i.e. terrain_hazard_begin, every piece
- * (terrain_emit), terrain_hazard_end(hazard, stopped, end).  DEFINED BY
- * terrain_simulate.c (motion's branch declares it with this signature);
- * until that merges, terrain_mc_glue.c stands in (begin, rf_terrain_simulate,
- * end: deposits only, no pieces): delete it then, and keep one declaration. */
-rf_status terrain_simulate_hazard(const rf_terrain_world *w, const rf_traj_spec *values, uint64_t seed,
-                                  uint64_t sample, const double start[3], struct rf_terrain_hazard *hazard,
-                                  rf_terrain_result *res, rf_error *err);
 
 /* ---- one running trajectory ---- */
 
