@@ -1,5 +1,5 @@
 #!/bin/bash
-# pending_cli_terrain.sh - `rockfuzz trajectory` on a terrain file (issue 28
+# cli_terrain.sh - `rockfuzz trajectory` on a terrain file (issue 28
 # item 8's minimal shape, DEM and class raster as ESRI ASCII grids made
 # here): the summary gives the answer first; --json has the documented shape
 # (per trajectory state, impacts with v_in/v_out/omega_out of 3 and class,
@@ -7,9 +7,12 @@
 # percentiles and the barrier); --out writes the CSV files with units in
 # their headers, hazard.tif, paths.gpkg and report.html; the JSON is the
 # same at 1 and 2 threads; `rockfuzz report DIR` redraws the run.
-# PENDING: needs every terrain part; the integrator renames it
-# tests/cli_terrain.sh after the merge.
-# Usage: bash pending_cli_terrain.sh ROCKFUZZ SOURCE_DIR
+# A fuzzy study on the same terrain (docs/fuzzy-hazard.md) writes
+# fuzzy_rasters.tif whose alpha = 1 cut of the reach probability is, cell by
+# cell and bit for bit, the reach probability raster of a direct run at the
+# nominal values (the same seed and samples: common random numbers), and
+# whose cuts nest (alpha 0 contains alpha 0.5 contains alpha 1).
+# Usage: bash cli_terrain.sh ROCKFUZZ SOURCE_DIR
 set -u
 . "${BASH_SOURCE[0]%/*}/cli_lib.sh"
 cli_tmpdir
@@ -84,4 +87,43 @@ fi
 rm "$tmp/out/report.html"
 "$bin" report "$tmp/out" || fail "rockfuzz report on a terrain run"
 [ -s "$tmp/out/report.html" ] || fail "rockfuzz report did not redraw report.html"
+# ---- a fuzzy hazard map: its alpha = 1 cut is the nominal run's raster, its cuts nest ----
+if command -v gdal_translate > /dev/null; then
+  cat > "$tmp/study.yaml" <<EOF
+name: valley-fuzzy
+scheme: general
+levels: 2
+parameters:
+  rock_Rn: {tfn: [0.5, 0.1, 0.1]}
+  talus_rolling: {tfn: [0.2, 0.1, 0.1]}
+model:
+  trajectory:
+    file: $tmp/valley.yaml
+    samples: 60
+    bind: {rock_Rn: materials.rock.R_n, talus_rolling: materials.talus.rolling_resistance}
+    rasters: {fuzzy: [reach_probability]}
+EOF
+  "$bin" run "$tmp/study.yaml" --out "$tmp/fz" --quiet || fail "fuzzy terrain study"
+  "$bin" trajectory "$tmp/valley.yaml" --samples 60 --out "$tmp/nom" --no-plots --quiet || fail "nominal run"
+  for b in 1 2 3 4 5 6; do gdal_translate -q -b $b -of AAIGrid "$tmp/fz/fuzzy_rasters.tif" "$tmp/fz_$b.asc"; done
+  gdal_translate -q -b 2 -of AAIGrid "$tmp/nom/hazard.tif" "$tmp/nom_p.asc"
+  cmp -s "$tmp/fz_5.asc" "$tmp/nom_p.asc" || fail "alpha 1 lower bound differs from the nominal run's reach probability"
+  cmp -s "$tmp/fz_6.asc" "$tmp/nom_p.asc" || fail "alpha 1 upper bound differs from the nominal run's reach probability"
+  python3 - "$tmp" <<'PY' || fail "the fuzzy cuts do not nest, or nothing is uncertain"
+import sys
+t = sys.argv[1]
+def grid(b):
+    vals = []
+    for line in open(f"{t}/fz_{b}.asc"):
+        w = line.split()
+        if w and w[0].lower() not in ("ncols", "nrows", "xllcorner", "yllcorner", "cellsize", "nodata_value", "dx", "dy"):
+            vals += [float(v) for v in w]
+    return vals
+lo0, hi0, lo5, hi5, lo1, hi1 = (grid(b) for b in range(1, 7))
+bad = sum(1 for k in range(len(lo0)) if not (lo0[k] <= lo5[k] <= lo1[k] <= hi1[k] <= hi5[k] <= hi0[k]))
+wide = sum(1 for k in range(len(lo0)) if hi0[k] > lo0[k])
+print(f"cells {len(lo0)}, not nested {bad}, uncertain at alpha 0: {wide}")
+sys.exit(bad > 0 or wide == 0)
+PY
+fi
 exit $((fails > 0))

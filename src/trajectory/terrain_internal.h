@@ -286,6 +286,8 @@ typedef rf_status (*traj_raster_sink)(void *ctx, const double *x, size_t n_param
 /* Set (sink != NULL) or clear (NULL) the sink of trajectory model m; RF_ECAP
  * if 16 models have sinks already. */
 rf_status traj_model_raster_sink_set(const rf_model *m, traj_raster_sink sink, void *ctx, rf_error *err);
+/* Whether a sink is set on the model of ctx model_ctx (its evaluations then make the rasters). */
+int traj_model_raster_wanted(const void *model_ctx);
 rf_status traj_model_raster_emit(const void *model_ctx, const double *x, size_t n_params, const terrain_band *bands,
                                  size_t n_bands, const traj_raster_grid *grid, rf_error *err);
 

@@ -156,6 +156,26 @@ static void walk_outputs(out_sink *o, const rf_traj_spec *s, const rf_traj_stats
                 t ? t->p_runout_above : NULL, s->outputs.n_runout_thresholds, 0, "");
 }
 
+/* The hazard bands of a terrain evaluation at x, handed to the model's raster sink. */
+static rf_status emit_rasters(const traj_model_ctx *c, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                              const double *x, rf_error *err)
+{
+    const rf_terrain_hazard *h = e->terrain ? e->terrain->hazard : NULL;
+    if (!h)
+        return rf_fail(err, RF_EINVAL, "fuzzy hazard rasters: the terrain file asks for no raster statistics "
+                                       "(rasters.statistics)");
+    terrain_band *bands;
+    size_t n;
+    rf_status st = terrain_hazard_bands(h, s, s->samples, &bands, &n, err);
+    if (st != RF_OK)
+        return st;
+    traj_raster_grid g = {0, 0, 0, 0, 0, rf_terrain_crs_wkt(c->world->dem)};
+    terrain_hazard_grid(h, &g.nx, &g.ny, &g.x0, &g.y0, &g.cell);
+    st = traj_model_raster_emit(c, x, c->n_params, bands, n, &g, err);
+    terrain_bands_free(bands, n);
+    return st;
+}
+
 static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_error *err)
 {
     traj_model_ctx *c = vctx;
@@ -168,8 +188,11 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     s.record = 0;
     rf_traj_ensemble e;
     rf_traj_stats t;
-    st = c->world ? terrain_run_world(&s, c->world, 1, 0, NULL, NULL, &e, err) /* no rasters: not outputs */
-                  : traj_run_with(&s, 1, c->table, 0, &e, err);             /* no envelopes: not outputs */
+    int rasters = c->world && traj_model_raster_wanted(c); /* a study's fuzzy hazard rasters */
+    st = c->world ? terrain_run_world(&s, c->world, 1, rasters, NULL, NULL, &e, err)
+                  : traj_run_with(&s, 1, c->table, 0, &e, err); /* no envelopes: not outputs */
+    if (st == RF_OK && rasters)
+        st = emit_rasters(c, &s, &e, x, err);
     if (st == RF_OK) {
         if ((st = rf_traj_stats_compute_spec(&s, &e, &t, err)) == RF_OK) {
             out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0, ""};

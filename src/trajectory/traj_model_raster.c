@@ -36,6 +36,16 @@ rf_status traj_model_raster_sink_set(const rf_model *m, traj_raster_sink sink, v
     return st;
 }
 
+int traj_model_raster_wanted(const void *model_ctx)
+{
+    int found = 0;
+    pthread_mutex_lock(&lock);
+    for (size_t k = 0; k < MAX_SINKS && !found; k++)
+        found = model_ctx && table[k].model_ctx == model_ctx;
+    pthread_mutex_unlock(&lock);
+    return found;
+}
+
 rf_status traj_model_raster_emit(const void *model_ctx, const double *x, size_t n_params, const terrain_band *bands,
                                  size_t n_bands, const traj_raster_grid *grid, rf_error *err)
 {
