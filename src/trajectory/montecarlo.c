@@ -167,24 +167,6 @@ void rf_traj_ensemble_free(rf_traj_ensemble *e)
     memset(e, 0, sizeof *e);
 }
 
-/* Start the jobs (job 0 on this thread) and wait for them. */
-static void start_and_join(mc_job *jobs, int threads)
-{
-    pthread_t *tid = calloc((size_t)threads, sizeof *tid);
-    char *started = calloc((size_t)threads, 1);
-    for (int t = 1; tid && started && t < threads; t++)
-        started[t] = pthread_create(&tid[t], NULL, mc_worker, &jobs[t]) == 0;
-    mc_worker(&jobs[0]);
-    for (int t = 1; t < threads; t++) {
-        if (started && started[t])
-            pthread_join(tid[t], NULL);
-        else
-            mc_worker(&jobs[t]); /* could not start a thread: do its share here */
-    }
-    free(tid);
-    free(started);
-}
-
 /* The first failed job's status, else the merged envelopes into ens. */
 static rf_status collect(mc_job *jobs, int threads, rf_traj_ensemble *ens, rf_error *err)
 {
@@ -217,7 +199,7 @@ static rf_status run_jobs(const rf_traj_spec *spec, const rf_traj_world *w, cons
             st = RF_ENOMEM;
     }
     if (st == RF_OK) {
-        start_and_join(jobs, threads);
+        traj_start_and_join(jobs, sizeof *jobs, threads, mc_worker);
         st = collect(jobs, threads, ens, err);
     } else {
         st = rf_fail(err, RF_ENOMEM, "out of memory for %d threads", threads);

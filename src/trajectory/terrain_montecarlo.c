@@ -119,24 +119,6 @@ static void *tmc_worker(void *arg)
     return NULL;
 }
 
-/* Start the jobs (job 0 on this thread) and wait for them. */
-static void start_and_join(tmc_job *jobs, int threads)
-{
-    pthread_t *tid = calloc((size_t)threads, sizeof *tid);
-    char *started = calloc((size_t)threads, 1);
-    for (int t = 1; tid && started && t < threads; t++)
-        started[t] = pthread_create(&tid[t], NULL, tmc_worker, &jobs[t]) == 0;
-    tmc_worker(&jobs[0]);
-    for (int t = 1; t < threads; t++) {
-        if (started && started[t])
-            pthread_join(tid[t], NULL);
-        else
-            tmc_worker(&jobs[t]); /* could not start a thread: do its share here */
-    }
-    free(tid);
-    free(started);
-}
-
 /* The per-sample arrays are estimated before anything is allocated; beyond
  * the machine's physical memory the run is refused with the figure. */
 static rf_status check_memory(const rf_traj_spec *s, rf_error *err)
@@ -230,7 +212,7 @@ static rf_status run_jobs(const rf_traj_spec *spec, const rf_terrain_world *w, c
             st = RF_ENOMEM;
     }
     if (st == RF_OK) {
-        start_and_join(jobs, threads);
+        traj_start_and_join(jobs, sizeof *jobs, threads, tmc_worker);
         st = collect(jobs, threads, ens, err);
     } else {
         st = rf_fail(err, RF_ENOMEM, "out of memory for the rasters of %d threads", threads);

@@ -11,6 +11,7 @@
 #include "trajectory/traj_internal.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 
 #define LHS_STREAM 0x4000000000000000ULL
@@ -71,4 +72,22 @@ void traj_draw_inputs(const rf_traj_spec *spec, const size_t *perm, size_t i, co
     for (size_t j = 0; j < spec->n_random; j++)
         if (row[j]) /* in the row's units: an angle drawn in degrees, stored in radians */
             *field[j] = traj_field_store(row[j], traj_draw_value(&spec->random[j], traj_sample_u(spec, perm, i, j)));
+}
+
+void traj_start_and_join(void *jobs, size_t job_size, int threads, void *(*worker)(void *))
+{
+    char *job = jobs;
+    pthread_t *tid = calloc((size_t)threads, sizeof *tid);
+    char *started = calloc((size_t)threads, 1);
+    for (int t = 1; tid && started && t < threads; t++)
+        started[t] = pthread_create(&tid[t], NULL, worker, job + (size_t)t * job_size) == 0;
+    worker(job);
+    for (int t = 1; t < threads; t++) {
+        if (started && started[t])
+            pthread_join(tid[t], NULL);
+        else
+            worker(job + (size_t)t * job_size); /* could not start a thread: do its share here */
+    }
+    free(tid);
+    free(started);
 }

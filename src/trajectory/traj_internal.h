@@ -68,6 +68,10 @@ void traj_summary_exceed(FILE *f, const char *what, const char *unit, const doub
  * the copy `local` lives (row NULL: not a row, never drawn);
  * traj_draw_inputs: write sample i's draws there. */
 double traj_draw_value(const rf_traj_random *r, double u);
+/* traj_draw.c: run worker on jobs[0..threads-1] (each job_size bytes), job 0
+ * on this thread, the others on their own threads (a thread that cannot
+ * start has its share done here), and wait for all. */
+void traj_start_and_join(void *jobs, size_t job_size, int threads, void *(*worker)(void *));
 double traj_sample_u(const rf_traj_spec *s, const size_t *perm, size_t i, size_t j);
 size_t *traj_lhs_permutations(const rf_traj_spec *s, size_t dims);
 void traj_draw_bind(rf_traj_spec *local, const rf_traj_spec *spec, const rf_traj_field **row, double **field);
