@@ -37,37 +37,12 @@ void terrain_report_grid(const rf_traj_spec *s, const rf_traj_ensemble *e, const
     g->nx += !g->nx, g->ny += !g->ny;
 }
 
-static void html_text(FILE *f, const char *s)
-{
-    for (; s && *s; s++)
-        if (*s == '<') fputs("&lt;", f);
-        else if (*s == '>') fputs("&gt;", f);
-        else if (*s == '&') fputs("&amp;", f);
-        else if (*s == '"') fputs("&quot;", f);
-        else fputc(*s, f);
-}
-
-/* <img> of dir/stem.png inlined as base64. */
+/* <img> of dir/stem.png inlined as base64, in its paragraph. */
 static void image(FILE *f, const char *dir, const char *stem)
 {
-    static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s.png", dir, stem);
-    FILE *in = fopen(path, "rb");
-    if (!in) {
-        fprintf(f, "<p class=note>(%s.png missing)</p>\n", stem);
-        return;
-    }
-    fprintf(f, "<p><img alt=\"%s\" src=\"data:image/png;base64,", stem);
-    unsigned char b[3];
-    size_t n;
-    while ((n = fread(b, 1, 3, in)) > 0) {
-        unsigned v = (unsigned)b[0] << 16 | (n > 1 ? (unsigned)b[1] << 8 : 0) | (n > 2 ? b[2] : 0);
-        fputc(b64[v >> 18 & 63], f), fputc(b64[v >> 12 & 63], f);
-        fputc(n > 1 ? b64[v >> 6 & 63] : '=', f), fputc(n > 2 ? b64[v & 63] : '=', f);
-    }
-    fclose(in);
-    fputs("\"></p>\n", f);
+    fputs("<p>", f);
+    traj_html_image(f, dir, stem);
+    fputs("</p>\n", f);
 }
 
 /* A count with thin-space thousands: 10 000. */
@@ -245,7 +220,7 @@ static void barrier_table(FILE *f, const char *dir, const rf_traj_spec *s, const
         const rf_traj_collector *k = &s->collectors[c];
         const rf_traj_collector_stats *cs = &st->collectors[c];
         fputs("<tr><td class=l>", f);
-        html_text(f, k->name);
+        traj_html_text(f, k->name);
         char h[32], cap[32];
         snprintf(h, sizeof h, k->height > 0 ? "%g" : "unlimited", k->height);
         snprintf(cap, sizeof cap, k->capacity > 0 ? "%g" : "collector", k->capacity * 1e-3);
@@ -317,12 +292,12 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
     double xmin, xmax, ymin, ymax, dx, dy;
     rf_terrain_extent(dem, &xmin, &xmax, &ymin, &ymax, &dx, &dy);
     fputs("<h2>Inputs</h2>\n<table>\n<tr><th>DEM</th><td class=l>", f);
-    html_text(f, td && td->dem ? td->dem : "(in memory)");
+    traj_html_text(f, td && td->dem ? td->dem : "(in memory)");
     fprintf(f, ": %zu x %zu nodes, %g x %g m cells, x %.1f to %.1f m, y %.1f to %.1f m; CRS: %s</td></tr>\n",
             dem->nx, dem->ny, dx, dy, xmin, xmax, ymin, ymax, *rf_terrain_crs_wkt(dem) ? "" : "none (local metres)");
     if (*rf_terrain_crs_wkt(dem)) {
         fputs("<tr><th>CRS (WKT)</th><td class=l><small>", f);
-        html_text(f, rf_terrain_crs_wkt(dem));
+        traj_html_text(f, rf_terrain_crs_wkt(dem));
         fputs("</small></td></tr>\n", f);
     }
     fputs("<tr><th>materials</th><td class=l>", f);
@@ -334,7 +309,7 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
     }
     if (td && td->classes) {
         fputs("<br>classes from ", f);
-        html_text(f, td->classes);
+        traj_html_text(f, td->classes);
     }
     fputs("</td></tr>\n", f);
     if (s->sphere)
@@ -347,7 +322,7 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
         const rf_terrain_release *r = &td->release;
         fprintf(f, "<tr><th>release</th><td class=l>%zu %s feature%s%s", r->n_features, kinds[r->kind % 3],
                 r->n_features == 1 ? "" : "s", r->file ? " from " : "");
-        html_text(f, r->file);
+        traj_html_text(f, r->file);
         fprintf(f, "; %g m above the ground</td></tr>\n", s->height0);
     }
     fprintf(f, "<tr><th>bounce law</th><td class=l>%s</td></tr>\n", rf_traj_bounce_law_names[s->law]);
@@ -356,7 +331,7 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
     for (size_t k = 0; k < s->n_random; k++) {
         const rf_traj_random *r = &s->random[k];
         fputs("<tr><th>random input</th><td class=l>", f);
-        html_text(f, r->path);
+        traj_html_text(f, r->path);
         if (r->dist == RF_DIST_UNIFORM)
             fprintf(f, ": uniform [%g, %g] (as stored)", r->a, r->b);
         else if (r->dist == RF_DIST_NORMAL)
@@ -384,7 +359,7 @@ static void maps_section(FILE *f, const char *dir, const rf_traj_ensemble *e, co
         terrain_map_stem(bands[k].name, stem, sizeof stem);
         const char *unit = bands[k].unit && *bands[k].unit ? bands[k].unit : "-";
         fputs("<h3>", f);
-        html_text(f, bands[k].name);
+        traj_html_text(f, bands[k].name);
         fprintf(f, " [%s]</h3>\n", strcmp(unit, "J") ? unit : "kJ"); /* as on the map */
         image(f, dir, stem);
     }
@@ -413,9 +388,9 @@ static rf_status write_html(const char *dir, const rf_traj_spec *s, const rf_tra
         return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
     }
     fprintf(f, "<!DOCTYPE html><html><head><meta charset=utf-8><title>");
-    html_text(f, s->name);
+    traj_html_text(f, s->name);
     fprintf(f, "</title><style>%s</style></head><body>\n<h1>Rockfall on terrain: ", CSS);
-    html_text(f, s->name);
+    traj_html_text(f, s->name);
     fputs("</h1>\n<div class=summary id=summary><b>The answer.</b> ", f);
     answer_fates(f, s, e, &F);
     answer_runout(f, e);

@@ -190,6 +190,11 @@ rf_status traj_write_plots_scaled(const char *dir, const rf_traj_spec *s, const 
                                   const rf_traj_stats *st, const rf_traj_plot_scales *sc, rf_error *err);
 void traj_plot_extent(const rf_traj_spec *s, const rf_traj_ensemble *e, rf_traj_plot_scales *sc);
 
+/* traj_report.c: text escaped for HTML (< > & "), and an <img> of the PNG
+ * dir/stem.png inlined as base64 (a note when it is missing): both reports'. */
+void traj_html_text(FILE *f, const char *s);
+void traj_html_image(FILE *f, const char *dir, const char *stem);
+
 /* roots.c: the smallest tau in [0, tmax] with c2 tau^2 + c1 tau + c0 = 0; INFINITY if none. */
 double traj_first_root(double c2, double c1, double c0, double tmax);
 

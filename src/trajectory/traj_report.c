@@ -8,17 +8,17 @@
 #include <stdio.h>
 #include <string.h>
 
-static void html_text(FILE *f, const char *s)
+void traj_html_text(FILE *f, const char *s)
 {
     for (; s && *s; s++)
         if (*s == '<') fputs("&lt;", f);
         else if (*s == '>') fputs("&gt;", f);
         else if (*s == '&') fputs("&amp;", f);
+        else if (*s == '"') fputs("&quot;", f);
         else fputc(*s, f);
 }
 
-/* <img> with the PNG dir/stem.png inlined as base64. */
-static void image(FILE *f, const char *dir, const char *stem)
+void traj_html_image(FILE *f, const char *dir, const char *stem)
 {
     static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     char path[4096];
@@ -29,7 +29,7 @@ static void image(FILE *f, const char *dir, const char *stem)
         return;
     }
     fputs("<img alt=\"", f);
-    html_text(f, stem);
+    traj_html_text(f, stem);
     fputs("\" src=\"data:image/png;base64,", f);
     unsigned char b[3];
     size_t n;
@@ -57,10 +57,10 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
     if (!f)
         return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
     fputs("<!DOCTYPE html><html><head><meta charset=utf-8><title>", f);
-    html_text(f, s->name);
+    traj_html_text(f, s->name);
     fputs("</title><style>body{font-family:sans-serif;max-width:960px;margin:auto}td,th{padding:2px 8px;"
           "text-align:right}img{max-width:100%}</style></head><body><h1>Trajectories: ", f);
-    html_text(f, s->name);
+    traj_html_text(f, s->name);
     fprintf(f, "</h1><p>%zu trajector%s, %s sampling, seed %llu, bounce law %s, %s block; stopped %zu, exited "
                "%zu, step_limit %zu; %.3g s.</p>\n", e->samples, e->samples == 1 ? "y" : "ies",
             s->lhs ? "Latin hypercube" : "random", (unsigned long long)s->seed, rf_traj_bounce_law_names[s->law],
@@ -87,15 +87,15 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
                "percentiles (streaming histogram), the max is exact; numbers in envelopes.csv. The profile shows "
                "%zu recorded trajectories.</p>\n", e->samples, e->envelope.n_edges, 100 * RF_TRAJ_ENVELOPE_ACCURACY,
             e->n_recorded < 100 ? e->n_recorded : 100);
-    image(f, dir, "trajectory_profile");
+    traj_html_image(f, dir, "trajectory_profile");
     for (size_t c = 0; c < s->n_collectors; c++) {
         char stem[300];
         fputs("<h2>Collector ", f);
-        html_text(f, s->collectors[c].name);
+        traj_html_text(f, s->collectors[c].name);
         fputs("</h2>", f);
         snprintf(stem, sizeof stem, "trajectory_hist_%s", s->collectors[c].name);
         if (st->collectors[c].reach_probability > 0)
-            image(f, dir, stem);
+            traj_html_image(f, dir, stem);
         else
             fprintf(f, "<p>No trajectory of the %zu reached this line: no energy or height to show.</p>", e->samples);
     }
