@@ -46,40 +46,14 @@ static rf_status write_crossings(FILE *f, const rf_traj_spec *s, const rf_traj_e
     return ferror(f) ? RF_EIO : RF_OK;
 }
 
-static void stats_row(FILE *f, const char *c, const char *what, const char *unit, const rf_traj_percentiles *p,
-                      double scale)
-{
-    fprintf(f, "%s%s%s,%s", c ? c : "", c ? "." : "", what, unit);
-    for (size_t k = 0; k < p->n; k++)
-        fprintf(f, ",%.9g", p->value[k] * scale);
-    fprintf(f, ",%.9g,%.9g\n", p->max * scale, p->mean * scale);
-}
-
-/* One row per quantity: its percentiles at the chosen levels, max, mean. */
+/* One row per quantity (the profile's statistics.csv, with the runout and the reach angle). */
 static rf_status write_stats(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
 {
-    char name[32];
-    fputs("quantity,unit", f);
-    for (size_t k = 0; k < st->runout_x.n; k++)
-        rf_traj_percentile_name(st->runout_x.level[k], name, sizeof name), fprintf(f, ",%s", name);
-    fputs(",max,mean\n", f);
-    stats_row(f, NULL, "runout", "m", &st->runout_x, 1);
-    stats_row(f, NULL, "reach_angle", "deg", &st->reach_angle, DEG);
-    stats_row(f, NULL, "rebound_height", "m", &st->rebound_height, 1);
-    for (size_t c = 0; c < s->n_collectors; c++) {
-        const rf_traj_collector_stats *cs = &st->collectors[c];
-        const char *n = s->collectors[c].name;
-        fprintf(f, "%s.reach_probability,-,%.9g", n, cs->reach_probability);
-        for (size_t k = 0; k <= st->runout_x.n; k++)
-            fputc(',', f);
-        fputc('\n', f);
-        stats_row(f, n, "total_energy", "J", &cs->total_energy, 1);
-        stats_row(f, n, "translational_energy", "J", &cs->translational_energy, 1);
-        stats_row(f, n, "rotational_energy", "J", &cs->rotational_energy, 1);
-        stats_row(f, n, "height_lowest", "m", &cs->height_lowest, 1);
-        stats_row(f, n, "height_centre", "m", &cs->height_centre, 1);
-        stats_row(f, n, "speed", "m/s", &cs->speed, 1);
-    }
+    traj_stats_header(f, st);
+    traj_stats_row(f, NULL, "runout", "m", &st->runout_x, 1);
+    traj_stats_row(f, NULL, "reach_angle", "deg", &st->reach_angle, DEG);
+    traj_stats_row(f, NULL, "rebound_height", "m", &st->rebound_height, 1);
+    traj_stats_collectors(f, s, st);
     return ferror(f) ? RF_EIO : RF_OK;
 }
 

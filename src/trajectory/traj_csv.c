@@ -62,24 +62,26 @@ static rf_status write_crossings(FILE *f, const rf_traj_spec *s, const rf_traj_e
     return ferror(f) ? RF_EIO : RF_OK;
 }
 
-static void stats_row(FILE *f, const char *c, const char *what, const char *unit, const rf_traj_percentiles *p)
+void traj_stats_row(FILE *f, const char *c, const char *what, const char *unit, const rf_traj_percentiles *p,
+                    double scale)
 {
     fprintf(f, "%s%s%s,%s", c ? c : "", c ? "." : "", what, unit);
     for (size_t k = 0; k < p->n; k++)
-        fprintf(f, ",%.9g", p->value[k]);
-    fprintf(f, ",%.9g,%.9g\n", p->max, p->mean);
+        fprintf(f, ",%.9g", p->value[k] * scale);
+    fprintf(f, ",%.9g,%.9g\n", p->max * scale, p->mean * scale);
 }
 
-/* One row per quantity: its percentiles at the chosen levels, max, mean. */
-static rf_status write_stats(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
+void traj_stats_header(FILE *f, const rf_traj_stats *st)
 {
     char name[32];
     fputs("quantity,unit", f);
     for (size_t k = 0; k < st->runout_x.n; k++)
         rf_traj_percentile_name(st->runout_x.level[k], name, sizeof name), fprintf(f, ",%s", name);
     fputs(",max,mean\n", f);
-    stats_row(f, NULL, "runout_x", "m", &st->runout_x);
-    stats_row(f, NULL, "rebound_height", "m", &st->rebound_height);
+}
+
+void traj_stats_collectors(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
+{
     for (size_t c = 0; c < s->n_collectors; c++) {
         const rf_traj_collector_stats *cs = &st->collectors[c];
         const char *n = s->collectors[c].name;
@@ -87,13 +89,22 @@ static rf_status write_stats(FILE *f, const rf_traj_spec *s, const rf_traj_stats
         for (size_t k = 0; k <= st->runout_x.n; k++)
             fputc(',', f);
         fputc('\n', f);
-        stats_row(f, n, "total_energy", "J", &cs->total_energy);
-        stats_row(f, n, "translational_energy", "J", &cs->translational_energy);
-        stats_row(f, n, "rotational_energy", "J", &cs->rotational_energy);
-        stats_row(f, n, "height_lowest", "m", &cs->height_lowest);
-        stats_row(f, n, "height_centre", "m", &cs->height_centre);
-        stats_row(f, n, "speed", "m/s", &cs->speed);
+        traj_stats_row(f, n, "total_energy", "J", &cs->total_energy, 1);
+        traj_stats_row(f, n, "translational_energy", "J", &cs->translational_energy, 1);
+        traj_stats_row(f, n, "rotational_energy", "J", &cs->rotational_energy, 1);
+        traj_stats_row(f, n, "height_lowest", "m", &cs->height_lowest, 1);
+        traj_stats_row(f, n, "height_centre", "m", &cs->height_centre, 1);
+        traj_stats_row(f, n, "speed", "m/s", &cs->speed, 1);
     }
+}
+
+/* One row per quantity: its percentiles at the chosen levels, max, mean. */
+static rf_status write_stats(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st)
+{
+    traj_stats_header(f, st);
+    traj_stats_row(f, NULL, "runout_x", "m", &st->runout_x, 1);
+    traj_stats_row(f, NULL, "rebound_height", "m", &st->rebound_height, 1);
+    traj_stats_collectors(f, s, st);
     return ferror(f) ? RF_EIO : RF_OK;
 }
 

@@ -190,6 +190,14 @@ rf_status traj_write_plots_scaled(const char *dir, const rf_traj_spec *s, const 
                                   const rf_traj_stats *st, const rf_traj_plot_scales *sc, rf_error *err);
 void traj_plot_extent(const rf_traj_spec *s, const rf_traj_ensemble *e, rf_traj_plot_scales *sc);
 
+/* traj_csv.c: statistics.csv, shared by profile and terrain runs: the header
+ * (quantity, unit, the percentile levels, max, mean), one row of percentiles
+ * (times scale, e.g. radians to degrees), and the rows of every collector. */
+void traj_stats_header(FILE *f, const rf_traj_stats *st);
+void traj_stats_row(FILE *f, const char *c, const char *what, const char *unit, const rf_traj_percentiles *p,
+                    double scale);
+void traj_stats_collectors(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st);
+
 /* traj_report.c: text escaped for HTML (< > & "), and an <img> of the PNG
  * dir/stem.png inlined as base64 (a note when it is missing): both reports'. */
 void traj_html_text(FILE *f, const char *s);
