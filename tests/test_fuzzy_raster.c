@@ -49,6 +49,8 @@
 typedef struct {
     int calls, fail_at; /* fail the evaluation numbered fail_at (1-based), 0 = never */
     size_t nx, ny;      /* raster size (the memory test uses a large one) */
+    traj_raster_sink sink; /* where an evaluation hands its rasters, as a terrain trajectory model does */
+    void *sink_ctx;
 } valley_ctx;
 
 static double valley_cell(const double *x, size_t col, size_t row)
@@ -79,7 +81,7 @@ static rf_status valley_eval(void *vctx, const double *x, double *y, rf_error *e
             sum += f;
         }
     traj_raster_grid g = {v->nx, v->ny, 600000.0, 5100000.0, CELL, "LOCAL_CS[\"valley\"]"};
-    rf_status st = traj_model_raster_emit(vctx, x, 3, b, 2, &g, err);
+    rf_status st = v->sink ? v->sink(v->sink_ctx, x, 3, b, 2, &g, err) : RF_OK;
     free(b[0].data);
     free(b[1].data);
     y[0] = sum / (double)cells;
@@ -138,7 +140,7 @@ static study_out run_study(const char *dir, valley_ctx *v, int jobs)
     rf_error err = {0};
     assert_int_equal(rf_store_open(path, &key, 0, &store, &err), RF_OK);
     assert_int_equal(fr_store_open(rdir, &rs, &err), RF_OK);
-    assert_int_equal(traj_model_raster_sink_set(&m, fr_store_put, rs, &err), RF_OK);
+    v->sink = fr_store_put, v->sink_ctx = rs;
     rf_runner r;
     rf_runner_init(&r);
     r.jobs = jobs;
@@ -171,7 +173,6 @@ static study_out run_study(const char *dir, valley_ctx *v, int jobs)
         if (fr_retransform(&o.res, &src, &o.bands, &o.n_bands, &err))
             fail_msg("fr_retransform: %s", err.msg);
     }
-    traj_model_raster_sink_set(&m, NULL, NULL, NULL);
     fr_store_close(rs);
     rf_store_close(store);
     m.ctx = NULL;
@@ -273,7 +274,7 @@ static void test_valley_closed_form(void **state)
 {
     (void)state;
     char *dir = temp_dir();
-    valley_ctx v = {0, 0, NX, NY};
+    valley_ctx v = {0, 0, NX, NY, NULL, NULL};
     study_out o = run_study(dir, &v, 2);
     assert_int_equal(o.st, RF_OK);
     assert_int_equal(o.n_bands, 2 * (2 * (M + 1) + 2));
@@ -334,13 +335,13 @@ static void test_resume(void **state)
 {
     (void)state;
     char *whole = temp_dir(), *cut_dir = temp_dir();
-    valley_ctx v0 = {0, 0, NX, NY};
+    valley_ctx v0 = {0, 0, NX, NY, NULL, NULL};
     study_out ref = run_study(whole, &v0, 1);
     assert_int_equal(ref.st, RF_OK);
     size_t np = rf_tm_point_count(&ref.res);
     assert_int_equal(count_rasters(whole), np);
 
-    valley_ctx v1 = {0, 10, NX, NY}; /* one thread: the 9 points before the 10th are stored */
+    valley_ctx v1 = {0, 10, NX, NY, NULL, NULL}; /* one thread: the 9 points before the 10th are stored */
     study_out first = run_study(cut_dir, &v1, 1);
     assert_int_not_equal(first.st, RF_OK);
     assert_int_equal(count_rasters(cut_dir), 9);
@@ -357,7 +358,7 @@ static void test_resume(void **state)
             nb++;
         }
     closedir(d);
-    valley_ctx v2 = {0, 0, NX, NY};
+    valley_ctx v2 = {0, 0, NX, NY, NULL, NULL};
     study_out second = run_study(cut_dir, &v2, 2);
     assert_int_equal(second.st, RF_OK);
     assert_int_equal(second.resumed, 9);
@@ -372,13 +373,13 @@ static void test_resume(void **state)
 
     /* a stored point whose raster is gone: rebuilt by evaluating it again */
     assert_int_equal(remove(names[0]), 0);
-    valley_ctx v3 = {0, 0, NX, NY};
+    valley_ctx v3 = {0, 0, NX, NY, NULL, NULL};
     rf_model m = valley_model(&v3);
     fr_store *rs;
     fr_store_reader rd;
     size_t rebuilt = 0;
     assert_int_equal(fr_store_open(rdir, &rs, NULL), RF_OK);
-    assert_int_equal(traj_model_raster_sink_set(&m, fr_store_put, rs, NULL), RF_OK);
+    v3.sink = fr_store_put, v3.sink_ctx = rs;
     rf_error err = {0};
     assert_int_not_equal(fr_store_reader_init(&rd, rs, &second.res, 3, NULL, NULL, chosen, 2, &err) ||
                              fr_retransform(&second.res,
@@ -399,7 +400,6 @@ static void test_resume(void **state)
     study_out o3 = {RF_OK, {0}, again, n_again, 0, 0};
     same_bands(&ref, &o3);
     terrain_bands_free(again, n_again);
-    traj_model_raster_sink_set(&m, NULL, NULL, NULL);
     m.ctx = NULL;
     rf_model_free(&m);
     fr_store_close(rs);
@@ -420,7 +420,7 @@ static void test_failed_point(void **state)
 {
     (void)state;
     char *dir = temp_dir();
-    valley_ctx v = {0, 5, NX, NY};
+    valley_ctx v = {0, 5, NX, NY, NULL, NULL};
     tolerate_mode = 1;
     study_out o = run_study(dir, &v, 1);
     tolerate_mode = 0;
@@ -489,7 +489,7 @@ static void test_memory_500(void **state)
     (void)state;
     rf_fuzzy in[3];
     inputs(in);
-    valley_ctx v = {0, 0, 1, 1};
+    valley_ctx v = {0, 0, 1, 1, NULL, NULL};
     rf_model m = valley_model(&v);
     rf_tm_options opt;
     rf_tm_options_default(&opt);

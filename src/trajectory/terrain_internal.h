@@ -268,14 +268,13 @@ rf_status terrain_hazard_bands(const rf_terrain_hazard *h, const rf_traj_spec *s
                                size_t *n, rf_error *err);
 void terrain_bands_free(terrain_band *b, size_t n);
 
-/* traj_model_raster.c: the raster sink of a trajectory model (fuzzy hazard
- * rasters, docs/fuzzy-hazard.md).  A study sets it on the trajectory model
- * (the model behind any binding wrapper: its ctx is the key); the model's
- * evaluation of a terrain file, once its hazard bands are made, calls
- * traj_model_raster_emit(its ctx, x, ...) with its own inputs x, which hands
- * them to the sink (RF_OK and nothing when no sink is set).  The sink must be
- * thread-safe (evaluations run in parallel) and must have stored the bands
- * when it returns: the result store commits the point after the evaluation. */
+/* traj_model.c: the raster sink of a trajectory model (fuzzy hazard rasters,
+ * docs/fuzzy-hazard.md).  A study sets it on the trajectory model (the model
+ * behind any binding wrapper); the model's evaluation of a terrain file then
+ * makes its hazard bands and hands them, with its own inputs x, to the sink.
+ * The sink must be thread-safe (evaluations run in parallel) and must have
+ * stored the bands when it returns: the result store commits the point after
+ * the evaluation. */
 typedef struct {
     size_t nx, ny;           /* columns, rows (row 0 south, as terrain_band) */
     double x0, y0, cell;     /* south-west corner and cell size [m] */
@@ -283,13 +282,9 @@ typedef struct {
 } traj_raster_grid;
 typedef rf_status (*traj_raster_sink)(void *ctx, const double *x, size_t n_params, const terrain_band *bands,
                                       size_t n_bands, const traj_raster_grid *grid, rf_error *err);
-/* Set (sink != NULL) or clear (NULL) the sink of trajectory model m; RF_ECAP
- * if 16 models have sinks already. */
+/* Set (sink != NULL) or clear (NULL) the sink of trajectory model m (set or
+ * cleared while no evaluation runs); RF_EINVAL if m is no trajectory model. */
 rf_status traj_model_raster_sink_set(const rf_model *m, traj_raster_sink sink, void *ctx, rf_error *err);
-/* Whether a sink is set on the model of ctx model_ctx (its evaluations then make the rasters). */
-int traj_model_raster_wanted(const void *model_ctx);
-rf_status traj_model_raster_emit(const void *model_ctx, const double *x, size_t n_params, const terrain_band *bands,
-                                 size_t n_bands, const traj_raster_grid *grid, rf_error *err);
 
 /* terrain_io.c (GDAL): a GeoTIFF of n float32 bands on the grid nx x ny with
  * south-west corner (x0, y0) and square cells `cell` (rows written north

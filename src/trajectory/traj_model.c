@@ -31,6 +31,8 @@ typedef struct {
     void *table;             /* impact_model: built once when no parameter changes it, else NULL */
     rf_terrain_world *world; /* a terrain file: its world, prepared once */
     size_t n_outputs;
+    traj_raster_sink sink;   /* a study's fuzzy hazard rasters (traj_model_raster_sink_set), or NULL */
+    void *sink_ctx;
 } traj_model_ctx;
 
 /* The outputs, in order, as one walk over the spec (names) and the
@@ -171,7 +173,7 @@ static rf_status emit_rasters(const traj_model_ctx *c, const rf_traj_spec *s, co
         return st;
     traj_raster_grid g = {0, 0, 0, 0, 0, rf_terrain_crs_wkt(c->world->dem)};
     terrain_hazard_grid(h, &g.nx, &g.ny, &g.x0, &g.y0, &g.cell);
-    st = traj_model_raster_emit(c, x, c->n_params, bands, n, &g, err);
+    st = c->sink(c->sink_ctx, x, c->n_params, bands, n, &g, err);
     terrain_bands_free(bands, n);
     return st;
 }
@@ -188,7 +190,7 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     s.record = 0;
     rf_traj_ensemble e;
     rf_traj_stats t;
-    int rasters = c->world && traj_model_raster_wanted(c); /* a study's fuzzy hazard rasters */
+    int rasters = c->world && c->sink; /* a study's fuzzy hazard rasters */
     st = c->world ? terrain_run_world(&s, c->world, 1, rasters, NULL, NULL, &e, err)
                   : traj_run_with(&s, 1, c->table, 0, &e, err); /* no envelopes: not outputs */
     if (st == RF_OK && rasters)
@@ -344,4 +346,14 @@ void traj_model_outputs(const rf_model *m, const rf_traj_spec *s, const rf_traj_
     const traj_model_ctx *c = m->ctx;
     out_sink o = {NULL, NULL, y, 0, c->n_outputs, 0, ""};
     walk_outputs(&o, s, t);
+}
+
+rf_status traj_model_raster_sink_set(const rf_model *m, traj_raster_sink sink, void *ctx, rf_error *err)
+{
+    if (m->eval != traj_model_eval)
+        return rf_fail(err, RF_EINVAL, "raster sink: not a trajectory model");
+    traj_model_ctx *c = m->ctx;
+    c->sink = sink;
+    c->sink_ctx = sink ? ctx : NULL;
+    return RF_OK;
 }
