@@ -198,143 +198,171 @@ void f3_mesh_free(f3_mesh *m)
     memset(m, 0, sizeof *m);
 }
 
-rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, rf_error *err)
+/* The three O-grids of a mesh: the boulder's part 1, its cap copy g2 (same box
+ * counts, the box's farthest corner at 0.6 of its hemisphere's radius 1) and
+ * the slope's. */
+static rf_status mesh_grids(const f3_mesh_spec *sp, ogrid *g1, ogrid *g2, ogrid *gs, rf_error *err)
 {
-    memset(m, 0, sizeof *m);
-    const double r = sp->radius, Rb = sp->boulder_inner * r;
-    ogrid g1, g2, gs;
-    memset(&g1, 0, sizeof g1), memset(&g2, 0, sizeof g2), memset(&gs, 0, sizeof gs);
-    rf_status st;
+    const double Rb = sp->boulder_inner * sp->radius, rho_h = 1.0;
     int K1 = ogrid_layers(&sp->boulder, Rb, sp->layer_aspect);
-    /* the cap copy: same box counts, the box's farthest corner at 0.6 of its hemisphere's radius */
     f3_box b2 = sp->boulder;
     int nxx = b2.nxm > b2.nxp ? b2.nxm : b2.nxp;
-    const double rho_h = 1.0;
     b2.h = 0.6 * rho_h / sqrt((double)nxx * nxx + (double)b2.ny * b2.ny + (double)b2.nz * b2.nz);
     int K2 = ogrid_layers(&b2, rho_h, sp->layer_aspect);
     int Ks = ogrid_layers(&sp->slope, sp->domain, sp->layer_aspect);
-    if ((st = ogrid_init(&g1, &sp->boulder, sp->full, Rb, K1, err)) != RF_OK ||
-        (st = ogrid_init(&g2, &b2, sp->full, rho_h, K2, err)) != RF_OK ||
-        (st = ogrid_init(&gs, &sp->slope, sp->full, sp->domain, Ks, err)) != RF_OK)
-        goto fail;
-    long nb = g1.n + g2.n - g2.nsurf, ns = gs.n;
-    long neb = g1.ne + g2.ne, nes = gs.ne, noq = gs.nquad;
+    rf_status st;
+    if ((st = ogrid_init(g1, &sp->boulder, sp->full, Rb, K1, err)) != RF_OK ||
+        (st = ogrid_init(g2, &b2, sp->full, rho_h, K2, err)) != RF_OK ||
+        (st = ogrid_init(gs, &sp->slope, sp->full, sp->domain, Ks, err)) != RF_OK)
+        return st;
+    return RF_OK;
+}
+
+/* The mesh's counts and arrays (nb: the boulder's node count). */
+static rf_status mesh_alloc(const f3_mesh_spec *sp, const ogrid *g1, const ogrid *g2, const ogrid *gs,
+                            long max_elements, f3_mesh *m, rf_error *err)
+{
+    long nb = g1->n + g2->n - g2->nsurf, ns = gs->n;
+    long neb = g1->ne + g2->ne, nes = gs->ne, noq = gs->nquad;
     if (sp->extruded) /* a layered slope: horizontal node planes (fem3d_layer.c) */
         f3_slab_counts(sp, &ns, &nes, &noq);
-    if (neb + nes > max_elements) {
-        st = rf_fail(err, RF_ECAP, "fem3d mesh: %ld elements exceed max_elements = %ld; lower the refinement",
-                     neb + nes, max_elements);
-        goto fail;
-    }
+    if (neb + nes > max_elements)
+        return rf_fail(err, RF_ECAP, "fem3d mesh: %ld elements exceed max_elements = %ld; lower the refinement",
+                       neb + nes, max_elements);
     m->n_nodes = nb + ns, m->n_elems = neb + nes;
     m->boulder_nodes = nb, m->boulder_elems = neb;
     m->x = malloc((size_t)m->n_nodes * 3 * sizeof *m->x);
     m->flags = calloc((size_t)m->n_nodes, 1);
     m->conn = malloc((size_t)m->n_elems * 8 * sizeof *m->conn);
-    m->nxt_b = g1.NX + 1, m->nyt_b = g1.NY + 1, m->nxt_s = gs.NX + 1, m->nyt_s = gs.NY + 1;
+    m->nxt_b = g1->NX + 1, m->nyt_b = g1->NY + 1, m->nxt_s = gs->NX + 1, m->nyt_s = gs->NY + 1;
     m->top_b = malloc((size_t)m->nxt_b * m->nyt_b * sizeof *m->top_b);
     if (sp->extruded)
         m->nxt_s = sp->slope.nxm + sp->slope.nxp + 1, m->nyt_s = (sp->full ? 2 : 1) * sp->slope.ny + 1;
     m->top_s = malloc((size_t)m->nxt_s * m->nyt_s * sizeof *m->top_s);
     m->n_outer_quads = noq;
     m->outer_quads = malloc((size_t)noq * 4 * sizeof *m->outer_quads);
-    if (!m->x || !m->flags || !m->conn || !m->top_b || !m->top_s || !m->outer_quads) {
-        st = rf_fail(err, RF_ENOMEM, "fem3d mesh: out of memory for %ld elements", m->n_elems);
-        goto fail;
-    }
-    /* boulder, part 1: x -> P + k^2 (x - P)/|x - P|^2 */
-    const double P[3] = {0, 0, 2 * r}, k2 = 4 * r * r;
-    for (long id = 0; id < g1.n; id++) {
+    if (!m->x || !m->flags || !m->conn || !m->top_b || !m->top_s || !m->outer_quads)
+        return rf_fail(err, RF_ENOMEM, "fem3d mesh: out of memory for %ld elements", m->n_elems);
+    return RF_OK;
+}
+
+/* Boulder, part 1: x -> P + k^2 (x - P)/|x - P|^2. */
+static void boulder_part1(const f3_mesh_spec *sp, const ogrid *g1, f3_mesh *m)
+{
+    const double r = sp->radius, P[3] = {0, 0, 2 * r}, k2 = 4 * r * r;
+    for (long id = 0; id < g1->n; id++) {
         double p[3];
-        ogrid_point(&g1, id, p);
+        ogrid_point(g1, id, p);
         double d[3] = {p[0] - P[0], p[1] - P[1], p[2] - P[2]};
         double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         for (int a = 0; a < 3; a++)
             m->x[3 * id + a] = P[a] + k2 * d[a] / dd;
-        m->flags[id] = ogrid_flags(&g1, id) & (F3_SURFACE | F3_SYM);
+        m->flags[id] = ogrid_flags(g1, id) & (F3_SURFACE | F3_SYM);
     }
-    /* boulder, part 2: inversion about the contact point (kappa^2 = Rb rho_h), then the same map,
-       in one closed form that is smooth at the copy's centre (which lands on the top pole) */
-    const double kap2 = Rb * rho_h;
-    long *map2 = malloc((size_t)g2.n * sizeof *map2);
-    if (!map2) {
-        st = rf_fail(err, RF_ENOMEM, "fem3d mesh: out of memory");
-        goto fail;
-    }
-    long next = g1.n;
-    for (long id = 0; id < g2.n; id++) {
-        int outer = id >= g2.ncore && (id - g2.ncore) / g2.nsurf == g2.K - 1;
+}
+
+/* Boulder, part 2: inversion about the contact point (kappa^2 = Rb rho_h), then
+ * the same map, in one closed form that is smooth at the copy's centre (which
+ * lands on the top pole); map2: g2's node ids in the mesh. */
+static void boulder_part2(const f3_mesh_spec *sp, const ogrid *g1, const ogrid *g2, long *map2, f3_mesh *m)
+{
+    const double r = sp->radius, P[3] = {0, 0, 2 * r}, k2 = 4 * r * r;
+    const double Rb = sp->boulder_inner * r, rho_h = 1.0, kap2 = Rb * rho_h;
+    long next = g1->n;
+    for (long id = 0; id < g2->n; id++) {
+        int outer = id >= g2->ncore && (id - g2->ncore) / g2->nsurf == g2->K - 1;
         if (outer) { /* shared with the last layer of part 1 */
-            long s = (id - g2.ncore) % g2.nsurf;
-            map2[id] = layer_id(&g1, s, g1.K);
+            long s = (id - g2->ncore) % g2->nsurf;
+            map2[id] = layer_id(g1, s, g1->K);
             continue;
         }
         map2[id] = next++;
         double y[3];
-        ogrid_point(&g2, id, y);
+        ogrid_point(g2, id, y);
         double yy = y[0] * y[0] + y[1] * y[1] + y[2] * y[2], Py = P[2] * y[2];
         double den = kap2 * kap2 - 2 * kap2 * Py + P[2] * P[2] * yy;
         double *xo = m->x + 3 * map2[id];
         for (int a = 0; a < 3; a++)
             xo[a] = P[a] + k2 * (kap2 * y[a] - P[a] * yy) / den;
-        m->flags[map2[id]] = ogrid_flags(&g2, id) & (F3_SURFACE | F3_SYM);
+        m->flags[map2[id]] = ogrid_flags(g2, id) & (F3_SURFACE | F3_SYM);
     }
-    /* spheroid: affine map about the contact point */
-    for (long i = 0; i < nb; i++) {
+}
+
+/* Grid g's elements from mesh element e on, its local node c mapped to
+ * map[c] (map NULL: offset + c); returns the next element. */
+static long grid_elements(const ogrid *g, const long *map, long offset, f3_mesh *m, long e)
+{
+    for (long q = 0; q < g->ne; q++, e++) {
+        long c[8];
+        ogrid_elem(g, q, c);
+        for (int a = 0; a < 8; a++)
+            m->conn[8 * e + a] = (int)(map ? map[c[a]] : offset + c[a]);
+        f3_hex_orient(m->x, m->conn + 8 * e);
+    }
+    return e;
+}
+
+/* The boulder's nodes, elements and top grid; returns the next element. */
+static rf_status mesh_boulder(const f3_mesh_spec *sp, const ogrid *g1, const ogrid *g2, f3_mesh *m, long *e,
+                              rf_error *err)
+{
+    boulder_part1(sp, g1, m);
+    long *map2 = malloc((size_t)g2->n * sizeof *map2);
+    if (!map2)
+        return rf_fail(err, RF_ENOMEM, "fem3d mesh: out of memory");
+    boulder_part2(sp, g1, g2, map2, m);
+    for (long i = 0; i < m->boulder_nodes; i++) { /* spheroid: affine map about the contact point */
         m->x[3 * i] *= sp->scale_xy;
         m->x[3 * i + 1] *= sp->scale_xy;
         m->x[3 * i + 2] *= sp->scale_z;
     }
-    long e = 0;
-    for (long q = 0; q < g1.ne; q++, e++) {
-        long c[8];
-        ogrid_elem(&g1, q, c);
-        for (int a = 0; a < 8; a++)
-            m->conn[8 * e + a] = (int)c[a];
-        f3_hex_orient(m->x, m->conn + 8 * e);
-    }
-    for (long q = 0; q < g2.ne; q++, e++) {
-        long c[8];
-        ogrid_elem(&g2, q, c);
-        for (int a = 0; a < 8; a++)
-            m->conn[8 * e + a] = (int)map2[c[a]];
-        f3_hex_orient(m->x, m->conn + 8 * e);
-    }
+    *e = grid_elements(g1, NULL, 0, m, 0);
+    *e = grid_elements(g2, map2, 0, m, *e);
     free(map2);
-    for (int i = 0; i <= g1.NX; i++)
-        for (int j = 0; j <= g1.NY; j++)
-            m->top_b[i * m->nyt_b + j] = (int)core_id(&g1, i, j, g1.NZ);
-    if (sp->extruded) {
-        if ((st = f3_slab_fill(sp, m, nb, e, err)) != RF_OK)
-            goto fail;
-        goto done;
+    for (int i = 0; i <= g1->NX; i++)
+        for (int j = 0; j <= g1->NY; j++)
+            m->top_b[i * m->nyt_b + j] = (int)core_id(g1, i, j, g1->NZ);
+    return RF_OK;
+}
+
+/* The slope as the O-grid itself, from node nb and element e on. */
+static void mesh_slope(const ogrid *gs, long nb, long e, f3_mesh *m)
+{
+    for (long id = 0; id < gs->n; id++) {
+        ogrid_point(gs, id, m->x + 3 * (nb + id));
+        m->flags[nb + id] = ogrid_flags(gs, id);
     }
-    /* slope: the O-grid itself */
-    for (long id = 0; id < gs.n; id++) {
-        ogrid_point(&gs, id, m->x + 3 * (nb + id));
-        m->flags[nb + id] = ogrid_flags(&gs, id);
-    }
-    for (long q = 0; q < gs.ne; q++, e++) {
-        long c[8];
-        ogrid_elem(&gs, q, c);
-        for (int a = 0; a < 8; a++)
-            m->conn[8 * e + a] = (int)(nb + c[a]);
-        f3_hex_orient(m->x, m->conn + 8 * e);
-    }
-    for (int i = 0; i <= gs.NX; i++)
-        for (int j = 0; j <= gs.NY; j++)
-            m->top_s[i * m->nyt_s + j] = (int)(nb + core_id(&gs, i, j, gs.NZ));
-    for (long q = 0; q < gs.nquad; q++)
+    grid_elements(gs, NULL, nb, m, e);
+    for (int i = 0; i <= gs->NX; i++)
+        for (int j = 0; j <= gs->NY; j++)
+            m->top_s[i * m->nyt_s + j] = (int)(nb + core_id(gs, i, j, gs->NZ));
+    for (long q = 0; q < gs->nquad; q++)
         for (int a = 0; a < 4; a++)
-            m->outer_quads[4 * q + a] = (int)(nb + layer_id(&gs, gs.quad[4 * q + a], gs.K));
-done:
+            m->outer_quads[4 * q + a] = (int)(nb + layer_id(gs, gs->quad[4 * q + a], gs->K));
+}
+
+rf_status f3_mesh_build(const f3_mesh_spec *sp, f3_mesh *m, long max_elements, rf_error *err)
+{
+    memset(m, 0, sizeof *m);
+    ogrid g1, g2, gs;
+    memset(&g1, 0, sizeof g1), memset(&g2, 0, sizeof g2), memset(&gs, 0, sizeof gs);
+    long e = 0;
+    rf_status st = mesh_grids(sp, &g1, &g2, &gs, err);
+    if (st == RF_OK)
+        st = mesh_alloc(sp, &g1, &g2, &gs, max_elements, m, err);
+    if (st == RF_OK)
+        st = mesh_boulder(sp, &g1, &g2, m, &e, err);
+    if (st == RF_OK && sp->extruded)
+        st = f3_slab_fill(sp, m, m->boulder_nodes, e, err);
+    else if (st == RF_OK)
+        mesh_slope(&gs, m->boulder_nodes, e, m);
+    ogrid_free(&g1), ogrid_free(&g2), ogrid_free(&gs);
+    if (st != RF_OK) {
+        f3_mesh_free(m);
+        return st;
+    }
     m->h_s = sp->slope.h;
     m->x0_s = -sp->slope.nxm * sp->slope.h;
     m->y0_s = sp->full ? -sp->slope.ny * sp->slope.h : 0;
-    ogrid_free(&g1), ogrid_free(&g2), ogrid_free(&gs);
     return RF_OK;
-fail:
-    ogrid_free(&g1), ogrid_free(&g2), ogrid_free(&gs);
-    f3_mesh_free(m);
-    return st;
 }
