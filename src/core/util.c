@@ -24,6 +24,19 @@ char *rf_strdup(const char *s)
     return d;
 }
 
+int rf_grow(void **p, size_t n, size_t *cap, size_t elem)
+{
+    if (n < *cap)
+        return 1;
+    size_t c = *cap ? 2 * *cap : 16;
+    void *q = realloc(*p, c * elem);
+    if (!q)
+        return 0;
+    *p = q;
+    *cap = c;
+    return 1;
+}
+
 int rf_name_index(const char *name, const char *const *names, int n)
 {
     for (int k = 0; name && k < n; k++)

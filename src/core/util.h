@@ -18,6 +18,10 @@ double rf_monotonic_seconds(void);
 /* A malloc'ed copy of s, or NULL when s is NULL or memory runs out. */
 char *rf_strdup(const char *s);
 
+/* Grow *p (n elements used, *cap allocated, elem bytes each) to hold one more,
+   doubling from 16; 0 if out of memory (*p and *cap then unchanged). */
+int rf_grow(void **p, size_t n, size_t *cap, size_t elem);
+
 /* The index of name in names[0..n), or -1 (also for a NULL name): the parse side of every
    enum <-> name table. */
 int rf_name_index(const char *name, const char *const *names, int n);

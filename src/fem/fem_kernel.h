@@ -164,6 +164,16 @@ typedef struct {
     double lam, mu;
 } fem_lame;
 fem_point_law fem_point_law_linear(const fem_lame *lame);
+/* The linear elastic stress update of both point kernels: normal components
+   0..2, shear components 3..nc-1 (engineering shear strains). */
+static inline void fem_lame_update(const fem_lame *p, const double *deps, const double *sig_n, double *sig, int nc)
+{
+    const double tr = deps[0] + deps[1] + deps[2];
+    for (int i = 0; i < 3; i++)
+        sig[i] = sig_n[i] + p->lam * tr + 2 * p->mu * deps[i];
+    for (int i = 3; i < nc; i++)
+        sig[i] = sig_n[i] + p->mu * deps[i];
+}
 /* The material library's return maps (rockfuzz/material.h) as a point law of
  * the axisymmetric quad: rr, zz, tt, rz (engineering shear) map onto xx, yy,
  * zz, xy with zero yz, zx; state = {eps_p_eq, eps_p_vol, compaction,

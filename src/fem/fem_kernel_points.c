@@ -345,11 +345,7 @@ static void linear_update(const void *params, const double *deps, const double *
                           double *sig, double *state)
 {
     (void)state_n, (void)state;
-    const fem_lame *p = params;
-    const double tr = deps[0] + deps[1] + deps[2];
-    for (int i = 0; i < 3; i++)
-        sig[i] = sig_n[i] + p->lam * tr + 2 * p->mu * deps[i];
-    sig[3] = sig_n[3] + p->mu * deps[3];
+    fem_lame_update(params, deps, sig_n, sig, 4);
 }
 
 fem_point_law fem_point_law_linear(const fem_lame *lame)

@@ -343,12 +343,7 @@ static void linear3d_update(const void *params, const double *deps, const double
                             double *sig, double *state)
 {
     (void)state_n, (void)state;
-    const fem_lame *p = params;
-    const double tr = deps[0] + deps[1] + deps[2];
-    for (int i = 0; i < 3; i++)
-        sig[i] = sig_n[i] + p->lam * tr + 2 * p->mu * deps[i];
-    for (int i = 3; i < 6; i++)
-        sig[i] = sig_n[i] + p->mu * deps[i];
+    fem_lame_update(params, deps, sig_n, sig, 6);
 }
 
 static double linear3d_energy(const void *params, const double *sig)

@@ -10,26 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Grow *p (n used, *cap allocated) to hold one more element; 0 if out of memory. */
-int terrain_grow(void **p, size_t n, size_t *cap, size_t elem)
-{
-    if (n < *cap)
-        return 1;
-    size_t c = *cap ? 2 * *cap : 16;
-    void *q = realloc(*p, c * elem);
-    if (!q)
-        return 0;
-    *p = q;
-    *cap = c;
-    return 1;
-}
-
 void terrain_event(terrain_run *r, rf_traj_event_kind kind, int flying)
 {
     rf_terrain_result *res = r->res;
     if (!res->events)
         return;
-    if (!terrain_grow((void **)&res->events, res->n_events, &res->events_cap, sizeof *res->events)) {
+    if (!rf_grow((void **)&res->events, res->n_events, &res->events_cap, sizeof *res->events)) {
         r->nomem = 1, r->phase = TERRAIN_DONE; /* rf_terrain_simulate reports it */
         return;
     }

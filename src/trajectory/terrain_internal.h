@@ -178,8 +178,6 @@ terrain_piece_outcome terrain_barrier_piece(terrain_run *r, const terrain_piece 
  * the caller moves the state to the cut and continues. */
 terrain_piece_outcome terrain_emit(terrain_run *r, const terrain_piece *pc, double *tau_cut, double *scale);
 void terrain_event(terrain_run *r, rf_traj_event_kind kind, int flying);
-/* terrain_emit.c: grow *p (n used, *cap allocated) to hold one more element; 0 if out of memory. */
-int terrain_grow(void **p, size_t n, size_t *cap, size_t elem);
 /* terrain_simulate.c: rf_terrain_simulate adding the trajectory to the
  * hazard rasters `hazard` (NULL: none): terrain_hazard_begin, its pieces,
  * terrain_hazard_end (stopped, end point) are called here. */

@@ -65,7 +65,7 @@ static void to_contact(terrain_run *r, const double n[3])
 static void record_impact(terrain_run *r, size_t ci, size_t cj, const double v_in[3])
 {
     rf_terrain_result *res = r->res;
-    if (res->impacts && !terrain_grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts)) {
+    if (res->impacts && !rf_grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts)) {
         r->nomem = 1, r->phase = TERRAIN_DONE;
         return;
     }

@@ -9,26 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Grow *p (n used, *cap allocated) to hold one more element; 0 if out of memory. */
-static int grow(void **p, size_t n, size_t *cap, size_t elem)
-{
-    if (n < *cap)
-        return 1;
-    size_t c = *cap ? 2 * *cap : 16;
-    void *q = realloc(*p, c * elem);
-    if (!q)
-        return 0;
-    *p = q;
-    *cap = c;
-    return 1;
-}
-
 void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, double ay)
 {
     rf_traj_result *res = r->res;
     if (!res->events)
         return;
-    if (!grow((void **)&res->events, res->n_events, &res->events_cap, sizeof *res->events)) {
+    if (!rf_grow((void **)&res->events, res->n_events, &res->events_cap, sizeof *res->events)) {
         r->nomem = 1, r->phase = TRAJ_DONE; /* rf_traj_simulate reports it */
         return;
     }
@@ -84,7 +70,7 @@ void traj_launch(traj_run *r, size_t a, size_t b, rf_traj_event_kind kind)
 static void record_impact(traj_run *r, size_t k, double vx_in, double vy_in)
 {
     rf_traj_result *res = r->res;
-    if (res->impacts && !grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts))
+    if (res->impacts && !rf_grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts))
         r->nomem = 1, r->phase = TRAJ_DONE; /* rf_traj_simulate reports it */
     else if (res->impacts)
         res->impacts[res->n_impacts] = (rf_traj_impact){r->t, r->x, r->y, k, vx_in, vy_in, r->vx, r->vy, r->omega};
