@@ -48,19 +48,25 @@ int traj_contact_rolls(const traj_run *r, size_t k, double *resist)
     return L.rolling;
 }
 
+/* The motion along g over [0, tau] with acceleration a, for traj_next_crossing. */
+typedef struct {
+    const traj_segment *g;
+    double a, tau;
+} contact_path;
+
+static double contact_crossing(const traj_run *r, size_t c, const void *ctx)
+{
+    const contact_path *p = ctx;
+    return traj_first_root(0.5 * p->a * p->g->tx, r->u * p->g->tx, r->x - r->w->col[c].x, p->tau);
+}
+
 /* Collectors crossed while moving along g over [0, tau]; 1 if a barrier stopped the block. */
 static int contact_collectors(traj_run *r, const traj_segment *g, double a, double tau)
 {
+    const contact_path path = {g, a, tau};
     for (;;) {
-        size_t first = TRAJ_NONE;
-        double tf = INFINITY;
-        for (size_t c = 0; c < r->w->ncol; c++) {
-            if (r->res->crossings[c].reached)
-                continue;
-            double tc = traj_first_root(0.5 * a * g->tx, r->u * g->tx, r->x - r->w->col[c].x, tau);
-            if (tc < tf)
-                tf = tc, first = c;
-        }
+        double tf;
+        size_t first = traj_next_crossing(r, contact_crossing, &path, &tf);
         if (first == TRAJ_NONE)
             return 0;
         double ds = r->u * tf + 0.5 * a * tf * tf, v = r->u + a * tf;

@@ -102,6 +102,28 @@ size_t traj_first_impact(const rf_traj_world *w, double x, double y, double vx, 
     return hit;
 }
 
+size_t traj_next_crossing(const traj_run *r, double (*when)(const traj_run *r, size_t c, const void *ctx),
+                          const void *ctx, double *tf)
+{
+    size_t first = TRAJ_NONE;
+    *tf = INFINITY;
+    for (size_t c = 0; c < r->w->ncol; c++) {
+        if (r->res->crossings[c].reached)
+            continue;
+        double tc = when(r, c, ctx);
+        if (tc < *tf)
+            *tf = tc, first = c;
+    }
+    return first;
+}
+
+/* When the flight (straight in x) crosses collector c within [0, *tau_end]; INFINITY if not. */
+static double flight_crossing(const traj_run *r, size_t c, const void *tau_end)
+{
+    double tc = (r->w->col[c].x - r->x) / r->vx;
+    return tc >= 0 && tc <= *(const double *)tau_end ? tc : INFINITY;
+}
+
 int traj_flight_collectors(traj_run *r, double tau_end)
 {
     if (r->vx == 0)
@@ -109,15 +131,8 @@ int traj_flight_collectors(traj_run *r, double tau_end)
     int stopped = 0;
     /* Crossings in time order, so that a barrier stops the block at the first one. */
     for (;;) {
-        size_t first = TRAJ_NONE;
-        double tf = INFINITY;
-        for (size_t c = 0; c < r->w->ncol; c++) {
-            if (r->res->crossings[c].reached)
-                continue;
-            double tc = (r->w->col[c].x - r->x) / r->vx;
-            if (tc >= 0 && tc <= tau_end && tc < tf)
-                tf = tc, first = c;
-        }
+        double tf;
+        size_t first = traj_next_crossing(r, flight_crossing, &tau_end, &tf);
         if (first == TRAJ_NONE)
             return 0;
         double y = r->y + r->vy * tf - 0.5 * r->g * tf * tf;

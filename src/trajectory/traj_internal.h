@@ -145,6 +145,10 @@ size_t traj_first_impact(const rf_traj_world *w, double x, double y, double vx, 
  * (tau_end may be INFINITY); returns 1 if a barrier stopped the block. */
 int traj_flight_collectors(traj_run *r, double tau_end);
 /* Record the first crossing of collector c; *stopped = 1 if its barrier holds the block. */
+/* The collector not yet reached that the block crosses first, at *tf = when(r, c, ctx) (INFINITY: never);
+   TRAJ_NONE if none: the one search of the flight and the contact phase. */
+size_t traj_next_crossing(const traj_run *r, double (*when)(const traj_run *r, size_t c, const void *ctx),
+                          const void *ctx, double *tf);
 void traj_record_crossing(traj_run *r, size_t c, double t, double x, double y, double vx, double vy,
                           double omega, int *stopped);
 
