@@ -80,8 +80,12 @@ void axi_energy(const axi_run *S, double t, double Fc, double rad, double row[13
     memcpy(row, r, sizeof r);
 }
 
-/* Outputs and diagnostics of the final state. */
-void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_output *out, rf_fem_history *hist)
+/* The final state's boulder z momentum, and each body's kinetic and stored elastic energies [J]. */
+typedef struct {
+    double pz, ekb, seb, eks, ses;
+} axi_final;
+
+static void axi_final_energies(axi_run *S, axi_final *e)
 {
     const double *u = S->sys.u, *v = S->sys.v, *m = S->sys.mass;
     double pz = 0, ekb = 0, seb = 0, eks = 0, ses = 0;
@@ -100,35 +104,13 @@ void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_output *ou
         for (long d = S->sys.nbd; d < S->sys.ndof; d++)
             ses += 0.5 * S->sys.f[d] * u[d];
     }
-    const double V = S->set.V;
-    double v_after = pz / S->sys.Mb;
-    if (S->grav.g > 0) /* with gravity: the velocity at separation (0 at rest) */
-        v_after = R->at_rest ? 0 : !R->in_contact && R->episodes > 0 ? R->v_sep : v_after;
-    fem_run_outputs(R, nsteps, S->set.t.duration_threshold, S->acc.ke0, 1.0, S->sys.nn, S->sys.ne, out);
-    out->v_n_before = -V;
-    out->v_n_after = v_after;
-    out->R_n = -v_after / -V;
-    out->R_t = NAN;
-    out->R_ke = (v_after * v_after) / (V * V);
-    fem_kernel_report rep[2];
-    for (int b = 0; b < 2; b++)
-        fem_kernel_report_get(&S->body.kernel[b], &rep[b]);
-    out->plastic_work = (rep[0].plastic_work + rep[1].plastic_work) / S->acc.ke0;
-    out->equivalent_plastic_strain_max = fmax(rep[0].plastic_strain_max, rep[1].plastic_strain_max);
-    out->penetration_max = S->acc.pen_max;
-    const long ns0 = S->mesh.ssurf[0]; /* the slope's first-contact point */
-    out->indentation_depth = -u[2 * ns0 + 1];
-    if (!hist)
-        return;
-    hist->dt = S->ts.dt, hist->dt_bound = S->ts.dt_bound, hist->dt_edge = S->ts.dt_edge;
-    hist->h_contact = S->sys.h;
-    hist->hertz_radius = S->set.H.contact_radius, hist->hertz_duration = S->set.H.duration;
-    hist->boulder_mass = S->set.H.mass, hist->boulder_mesh_mass = S->sys.mesh_mass_b;
-    hist->penetration_max = S->C.pen_max, hist->slip_max = S->C.slip_max;
-    hist->reflection_time = 2 * S->set.L / S->body.w[1].p;
-    hist->vibration_energy = ekb + seb - 0.5 * pz * pz / S->sys.Mb; /* about the final rigid motion */
-    hist->slope_energy = eks + ses;
-    hist->ke0 = S->acc.ke0;
+    *e = (axi_final){pz, ekb, seb, eks, ses};
+}
+
+/* The plastic bodies' elastic energies, from the stresses and from the work, and where the
+ * largest plastic strain is. */
+static void axi_plastic_diagnostics(const axi_run *S, const fem_kernel_report rep[2], rf_fem_history *hist)
+{
     hist->plastic_work_boulder = rep[0].plastic_work, hist->plastic_work_slope = rep[1].plastic_work;
     for (int b = 0; b < 2; b++) {
         const int pl = S->body.plastic[b] || (b == FEM_SLOPE && S->body.plastic[2]);
@@ -147,6 +129,22 @@ void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_output *ou
             hist->plastic_strain_max_z += 0.25 * S->mesh.z[c[a]];
         }
     }
+}
+
+/* The history's diagnostics of the final state (hist's series are the driver's). */
+static void axi_diagnostics(const axi_run *S, const fem_run *R, const fem_kernel_report rep[2], const axi_final *e,
+                            rf_fem_history *hist)
+{
+    hist->dt = S->ts.dt, hist->dt_bound = S->ts.dt_bound, hist->dt_edge = S->ts.dt_edge;
+    hist->h_contact = S->sys.h;
+    hist->hertz_radius = S->set.H.contact_radius, hist->hertz_duration = S->set.H.duration;
+    hist->boulder_mass = S->set.H.mass, hist->boulder_mesh_mass = S->sys.mesh_mass_b;
+    hist->penetration_max = S->C.pen_max, hist->slip_max = S->C.slip_max;
+    hist->reflection_time = 2 * S->set.L / S->body.w[1].p;
+    hist->vibration_energy = e->ekb + e->seb - 0.5 * e->pz * e->pz / S->sys.Mb; /* about the final rigid motion */
+    hist->slope_energy = e->eks + e->ses;
+    hist->ke0 = S->acc.ke0;
+    axi_plastic_diagnostics(S, rep, hist);
     hist->gravity = S->grav.g, hist->gravity_work = S->grav.W_grav, hist->geostatic_outside = S->grav.geo_outside;
     hist->at_rest = R->at_rest;
     const fem_ale_account *a = &S->ale.acc;
@@ -158,6 +156,7 @@ void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_output *ou
     hist->stick_fraction = S->C.pair_steps > 0 ? (double)S->C.stick_steps / (double)S->C.pair_steps : 0;
     hist->boulder_nodes = S->mesh.boulder_nodes, hist->boulder_elements = S->mesh.boulder_elems;
     hist->slope_nodes = S->sys.nn - S->mesh.boulder_nodes, hist->slope_elements = S->sys.ne - S->mesh.boulder_elems;
+    const double *u = S->sys.u, *v = S->sys.v;
     hist->state_hash = fem_hash(fem_hash(FEM_HASH_SEED, u, (size_t)S->sys.ndof * sizeof *u), v,
                                 (size_t)S->sys.ndof * sizeof *v);
     char extra[160] = "";
@@ -166,4 +165,31 @@ void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_output *ou
                  "(returned to it at the first step). ", S->grav.geo_outside);
     fem_run_warnings(R, S->set.fixed_outer, S->set.L, S->body.w[1].p, S->set.in->radius, hist->warning,
                      sizeof hist->warning, extra);
+}
+
+/* Outputs and diagnostics of the final state. */
+void axi_extract(axi_run *S, const fem_run *R, long nsteps, rf_impact_output *out, rf_fem_history *hist)
+{
+    axi_final e;
+    axi_final_energies(S, &e);
+    const double V = S->set.V;
+    double v_after = e.pz / S->sys.Mb;
+    if (S->grav.g > 0) /* with gravity: the velocity at separation (0 at rest) */
+        v_after = R->at_rest ? 0 : !R->in_contact && R->episodes > 0 ? R->v_sep : v_after;
+    fem_run_outputs(R, nsteps, S->set.t.duration_threshold, S->acc.ke0, 1.0, S->sys.nn, S->sys.ne, out);
+    out->v_n_before = -V;
+    out->v_n_after = v_after;
+    out->R_n = -v_after / -V;
+    out->R_t = NAN;
+    out->R_ke = (v_after * v_after) / (V * V);
+    fem_kernel_report rep[2];
+    for (int b = 0; b < 2; b++)
+        fem_kernel_report_get(&S->body.kernel[b], &rep[b]);
+    out->plastic_work = (rep[0].plastic_work + rep[1].plastic_work) / S->acc.ke0;
+    out->equivalent_plastic_strain_max = fmax(rep[0].plastic_strain_max, rep[1].plastic_strain_max);
+    out->penetration_max = S->acc.pen_max;
+    const long ns0 = S->mesh.ssurf[0]; /* the slope's first-contact point */
+    out->indentation_depth = -S->sys.u[2 * ns0 + 1];
+    if (hist)
+        axi_diagnostics(S, R, rep, &e, hist);
 }

@@ -1,14 +1,14 @@
 /* fem_axi_run.h - the state of one axisymmetric impact run and the stages
  * its files share (docs/fem-internals.md).  The run is split by idea:
  *   fem_axi_setup.c     check, automatic settings, Hertz reference, sizing and meshing, release
+ *   fem_axi_force.c     the internal force (element kernels, node-ordered gather) and the commit
  *   fem_axi_assemble.c  arrays, element matrices, masses and time step, kernels, dashpots,
  *                       contact pairs, gravity's geostatic state and body load
- *   fem_axi_force.c     the internal force (element kernels, node-ordered gather) and the commit
  *   fem_axi_step.c      one time step (dashpots, predictor, contact, ALE rezone), its stability
  *   fem_axi_account.c   the energy account of a step and the outputs of the final state
  *   fem_solver.c        the driver's table of stages (fem_driver.h) and the public entries
- * Each file calls only files below it in that order of dependence (setup and
- * force at the bottom; tools/check_layers.py: no call circles). */
+ * A file calls only the files above it in this list (tools/check_layers.py:
+ * no call circles between object files). */
 #ifndef ROCKFUZZ_FEM_AXI_RUN_H
 #define ROCKFUZZ_FEM_AXI_RUN_H
 
@@ -120,12 +120,12 @@ rf_status axi_prepare(axi_run *S, const rf_impact_input *in, const rf_fem_option
 rf_status axi_mesh(axi_run *S, rf_error *err);
 void axi_free(axi_run *S);
 
-/* fem_axi_assemble.c: the system, its time step and the initial state. */
-rf_status axi_assemble(axi_run *S, rf_error *err);
-
 /* fem_axi_force.c: f = f_int(u); the kernels' acceptance of the state they last saw. */
 void axi_internal_force(const axi_run *S, const double *u, double *f);
 void axi_commit(axi_run *S);
+
+/* fem_axi_assemble.c: the system, its time step and the initial state. */
+rf_status axi_assemble(axi_run *S, rf_error *err);
 
 /* fem_axi_step.c: one step (total contact force *Fc, contact radius *rad); the first
  * element whose step bound fell below dt in large deformation (-1: none). */

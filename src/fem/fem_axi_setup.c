@@ -14,7 +14,8 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
         return rf_fail(err, RF_EINVAL, "fem: NULL input or options");
     if (!(in->slope_angle == 0))
         return rf_fail(err, RF_EINVAL,
-                       "fem: the axisymmetric FE model handles only normal impact (slope_angle = 0); got slope_angle = %g rad",
+                       "fem: the axisymmetric FE model handles only normal impact (slope_angle = 0); "
+                       "got slope_angle = %g rad",
                        in->slope_angle);
     if (rf_impact_input_validate(in, err) != RF_OK)
         return rf_error_prefix(err, "fem");
