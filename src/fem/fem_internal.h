@@ -1,7 +1,7 @@
 /* fem_internal.h - data shared by the parts of the axisymmetric impact solver:
  * the mesh (fem_mesh.c), the element routines (fem_element.c), the contact
  * (fem_contact.c), VTK output (fem_vtk.c) and the stages of the run
- * (fem_solver.c). */
+ * (fem_solver.c and the fem_axi_*.c files, over the run state of fem_axi_run.h). */
 #ifndef ROCKFUZZ_FEM_INTERNAL_H
 #define ROCKFUZZ_FEM_INTERNAL_H
 
@@ -98,7 +98,7 @@ rf_status fem_vtk_write(const char *path, double t, const fem_vtk_grid *g, rf_er
 rf_status fem_vtk_cells(fem_vtk_grid *g, const int *conn, long n, int k, unsigned char vtk_type, rf_error *err);
 void fem_vtk_grid_free(fem_vtk_grid *g);
 
-/* Semi-implicit dashpot (fem_solver.c): the velocity v_{n+1/2} of a node
+/* Semi-implicit dashpot (fem_axi_step.c): the velocity v_{n+1/2} of a node
  * of lumped mass m and velocity v = v_{n-1/2} along one direction, under
  * the other forces g and a dashpot -C v_{n+1/2}:
  * (m + dt C) v_{n+1/2} = m v + dt g.  Stable for any dt C / m. */

@@ -205,18 +205,15 @@ static int add_node(refmesh *m, const pattern *p, double x, double y, unsigned c
     return ref_node(m, r, z, fl);
 }
 
-/* Build one graded quarter-disc pattern into m (physical coordinates). */
-static rf_status build_pattern(const pattern *pp, refmesh *m, long max_elements, int **outer, int *nouter,
-                               rf_error *err)
+/* The core of a pattern: n x n squares of size s / n; its outer boundary
+ * (2n + 1 nodes, from the surface to the axis) into ring.  -1: out of memory. */
+static int pattern_core(const pattern *p, refmesh *m, int *ring)
 {
-    const pattern *p = pp;
     const int n = p->n;
-    if (n < 1 || n > 100000)
-        return rf_fail(err, RF_EINVAL, "fem mesh: core divisions %d out of range", n);
-    const double hr = p->s / n, P = p->P;
+    const double hr = p->s / n;
     int *grid = malloc((size_t)(n + 1) * (n + 1) * sizeof *grid);
     if (!grid)
-        return rf_fail(err, RF_ENOMEM, "fem mesh: out of memory");
+        return -1;
     for (int j = 0; j <= n; j++)
         for (int i = 0; i <= n; i++) {
             unsigned char fl = (i == 0 ? FEM_AXIS : 0) | (j == 0 ? FEM_SURFACE : 0);
@@ -226,83 +223,111 @@ static rf_status build_pattern(const pattern *pp, refmesh *m, long max_elements,
         for (int i = 0; i < n; i++) {
             int a = grid[j * (n + 1) + i];
             if (ref_elem(m, a, grid[j * (n + 1) + i + 1], grid[(j + 1) * (n + 1) + i + 1],
-                         grid[(j + 1) * (n + 1) + i]) < 0)
-                goto nomem;
+                         grid[(j + 1) * (n + 1) + i]) < 0) {
+                free(grid);
+                return -1;
+            }
         }
+    for (int j = 0; j <= 2 * n; j++)
+        ring[j] = j <= n ? grid[j * (n + 1) + n] : grid[n * (n + 1) + (2 * n - j)];
+    free(grid);
+    return 0;
+}
+
+/* A 3:1 transition layer: from ring *rho of N divisions (prev) out by two
+ * angular spacings as (physical; sc the radial scale) to a ring of N / 3
+ * (next), four quads per three.  -1: out of memory. */
+static int pattern_transition(const pattern *p, refmesh *m, const int *prev, int *next, int N, double as, double sc,
+                              double *rho)
+{
+    int Nc = N / 3;
+    double dr = 2 * as / sc, rm = *rho + 0.5 * dr, ro = *rho + dr;
+    for (int g = 0; g <= Nc; g++) {
+        double x, y;
+        ring_pos(p, ro, (double)g / Nc, &x, &y);
+        next[g] = add_node(m, p, x, y, (g == 0 ? FEM_SURFACE : 0) | (g == Nc ? FEM_AXIS : 0));
+    }
+    for (int g = 0; g < Nc; g++) {
+        double x, y;
+        ring_pos(p, rm, (3.0 * g + 1) / N, &x, &y);
+        int pn = add_node(m, p, x, y, 0);
+        ring_pos(p, rm, (3.0 * g + 2) / N, &x, &y);
+        int qn = add_node(m, p, x, y, 0);
+        const int *f = prev + 3 * g;
+        if (ref_elem(m, f[0], f[1], pn, next[g]) < 0 || ref_elem(m, f[1], f[2], qn, pn) < 0 ||
+            ref_elem(m, f[2], f[3], next[g + 1], qn) < 0 || ref_elem(m, pn, qn, next[g + 1], next[g]) < 0)
+            return -1;
+    }
+    *rho = ro;
+    return 0;
+}
+
+/* A plain ring of N quads from ring *rho (prev) out by the desired size
+ * *hdes (at most 3 as), which then grows by the grading; the last ring
+ * (*last = 1) reaches P, onto the given outer nodes if any.  -1: out of memory. */
+static int pattern_ring(const pattern *p, refmesh *m, const int *prev, int *next, int N, double as, double sc,
+                        double *rho, double *hdes, int *last)
+{
+    double dphys = fmin(*hdes, 3 * as);
+    double dr = dphys / sc;
+    if (*rho + 1.5 * dr >= p->P)
+        dr = p->P - *rho, *last = 1;
+    double ro = *rho + dr;
+    for (int j = 0; j <= N; j++) {
+        if (*last && p->outer_ids) {
+            next[j] = p->outer_ids[j];
+            continue;
+        }
+        double x, y;
+        ring_pos(p, ro, (double)j / N, &x, &y);
+        unsigned char fl = (j == 0 ? FEM_SURFACE : 0) | (j == N ? FEM_AXIS : 0);
+        next[j] = add_node(m, p, x, y, fl);
+    }
+    for (int j = 0; j < N; j++)
+        if (ref_elem(m, prev[j], prev[j + 1], next[j + 1], next[j]) < 0)
+            return -1;
+    *rho = ro;
+    *hdes = fmin(p->h_far, *hdes * p->grading);
+    return 0;
+}
+
+/* Build one graded quarter-disc pattern into m (physical coordinates): the
+ * core, then rings out to P, a 3:1 transition wherever the coarser divisions
+ * still fit the desired size; the outer ring's N + 1 node ids into *outer. */
+static rf_status build_pattern(const pattern *p, refmesh *m, long max_elements, int **outer, int *nouter,
+                               rf_error *err)
+{
+    const int n = p->n;
+    if (n < 1 || n > 100000)
+        return rf_fail(err, RF_EINVAL, "fem mesh: core divisions %d out of range", n);
     int N = 2 * n;
     size_t nring = (size_t)(unsigned)N + 1;
     int *prev = malloc(nring * sizeof *prev), *next = malloc(nring * sizeof *next);
-    if (!prev || !next) {
+    if (!prev || !next || pattern_core(p, m, prev) < 0) {
         free(prev), free(next);
-        goto nomem;
+        return rf_fail(err, RF_ENOMEM, "fem mesh: out of memory");
     }
-    for (int j = 0; j <= N; j++)
-        prev[j] = j <= n ? grid[j * (n + 1) + n] : grid[n * (n + 1) + (2 * n - j)];
-    free(grid);
-    grid = NULL;
-
     double rho = p->s, hdes = p->h;
     int last = 0;
     while (!last) {
         if (m->ne > max_elements) {
             free(prev), free(next);
-            return rf_fail(err, RF_ECAP,
-                           "fem mesh: more than %ld elements; lower the refinement", max_elements);
+            return rf_fail(err, RF_ECAP, "fem mesh: more than %ld elements; lower the refinement", max_elements);
         }
         double sc = radial_scale(p, rho);
         double as = ring_length(p, rho) / N; /* physical angular spacing */
         int can3 = p->transitions && N % 3 == 0 && N / 3 >= 2 && blend_weight(p, rho) >= 1 &&
-                   3 * as <= 1.25 * hdes && rho + (4 * as + 2 * hdes) / sc < P;
+                   3 * as <= 1.25 * hdes && rho + (4 * as + 2 * hdes) / sc < p->P;
         if (can3 && !p->boulder)
-            can3 = ring_length(p, P) / (N / 3) <= 1.3 * p->h_far;
-        if (can3) {
-            int Nc = N / 3;
-            double dr = 2 * as / sc, rm = rho + 0.5 * dr, ro = rho + dr;
-            for (int g = 0; g <= Nc; g++) {
-                double x, y;
-                ring_pos(p, ro, (double)g / Nc, &x, &y);
-                next[g] = add_node(m, p, x, y, (g == 0 ? FEM_SURFACE : 0) | (g == Nc ? FEM_AXIS : 0));
-            }
-            for (int g = 0; g < Nc; g++) {
-                double x, y;
-                ring_pos(p, rm, (3.0 * g + 1) / N, &x, &y);
-                int pn = add_node(m, p, x, y, 0);
-                ring_pos(p, rm, (3.0 * g + 2) / N, &x, &y);
-                int qn = add_node(m, p, x, y, 0);
-                const int *f = prev + 3 * g;
-                if (ref_elem(m, f[0], f[1], pn, next[g]) < 0 || ref_elem(m, f[1], f[2], qn, pn) < 0 ||
-                    ref_elem(m, f[2], f[3], next[g + 1], qn) < 0 ||
-                    ref_elem(m, pn, qn, next[g + 1], next[g]) < 0) {
-                    free(prev), free(next);
-                    goto nomem;
-                }
-            }
-            N = Nc;
-            rho = ro;
-        } else {
-            double dphys = fmin(hdes, 3 * as);
-            double dr = dphys / sc;
-            if (rho + 1.5 * dr >= P)
-                dr = P - rho, last = 1;
-            double ro = rho + dr;
-            for (int j = 0; j <= N; j++) {
-                if (last && p->outer_ids) {
-                    next[j] = p->outer_ids[j];
-                    continue;
-                }
-                double x, y;
-                ring_pos(p, ro, (double)j / N, &x, &y);
-                unsigned char fl = (j == 0 ? FEM_SURFACE : 0) | (j == N ? FEM_AXIS : 0);
-                next[j] = add_node(m, p, x, y, fl);
-            }
-            for (int j = 0; j < N; j++)
-                if (ref_elem(m, prev[j], prev[j + 1], next[j + 1], next[j]) < 0) {
-                    free(prev), free(next);
-                    goto nomem;
-                }
-            rho = ro;
-            hdes = fmin(p->h_far, hdes * p->grading);
+            can3 = ring_length(p, p->P) / (N / 3) <= 1.3 * p->h_far;
+        int rc = can3 ? pattern_transition(p, m, prev, next, N, as, sc, &rho)
+                      : pattern_ring(p, m, prev, next, N, as, sc, &rho, &hdes, &last);
+        if (rc < 0) {
+            free(prev), free(next);
+            return rf_fail(err, RF_ENOMEM, "fem mesh: out of memory");
         }
+        if (can3)
+            N /= 3;
         int *tmp = prev;
         prev = next, next = tmp;
     }
@@ -310,9 +335,6 @@ static rf_status build_pattern(const pattern *pp, refmesh *m, long max_elements,
     *outer = prev;
     *nouter = N;
     return RF_OK;
-nomem:
-    free(grid);
-    return rf_fail(err, RF_ENOMEM, "fem mesh: out of memory");
 }
 
 /* --- maps --- */
@@ -379,27 +401,27 @@ static int cmp_surf(const void *a, const void *b)
     return ra < rb ? -1 : ra > rb ? 1 : x->id - y->id;
 }
 
-rf_status fem_mesh_build(const fem_body_spec *boulder, const fem_body_spec *slope, fem_mesh *mesh,
-                         long max_elements, rf_error *err)
+/* The reference patterns: the boulder's main block and its cap into rb, the
+ * slope into rs (its outer ring flagged FEM_OUTER). */
+static rf_status mesh_patterns(const fem_body_spec *boulder, const fem_body_spec *slope, long max_elements,
+                               refmesh *rb, refmesh *rs, rf_error *err)
 {
-    memset(mesh, 0, sizeof *mesh);
-    refmesh rb = {0}, rs = {0};
     int *outer = NULL, nouter = 0, *capouter = NULL, ncap = 0;
     boulder_ctx bc = {boulder->extent, boulder->height, 8 * boulder->extent};
     pattern pb = {.s = boulder->n * boulder->h, .n = boulder->n, .h = boulder->h, .grading = boulder->grading,
                   .h_far = boulder->h_far, .transitions = 1, .boulder = 1, .map = boulder_map, .mctx = &bc};
     pb.P = bc.P;
     pb.blend_end = 3 * pb.s;
-    rf_status st = build_pattern(&pb, &rb, max_elements, &outer, &nouter, err);
+    rf_status st = build_pattern(&pb, rb, max_elements, &outer, &nouter, err);
     if (st == RF_OK) {
         /* cap: an O-grid whose outer ring is the main block's outer ring */
         int nc = nouter / 2;
-        pattern pc = {.s = 0.45 * bc.P, .n = nc, .grading = 1, .transitions = 0, .boulder = 1, .corner_linear = 1, .map = cap_map,
-                      .mctx = &bc, .outer_ids = outer, .P = bc.P};
+        pattern pc = {.s = 0.45 * bc.P, .n = nc, .grading = 1, .transitions = 0, .boulder = 1, .corner_linear = 1,
+                      .map = cap_map, .mctx = &bc, .outer_ids = outer, .P = bc.P};
         pc.blend_end = bc.P;
         pc.h = ring_length(&pc, bc.P) / nouter;
         pc.h_far = pc.h;
-        st = build_pattern(&pc, &rb, max_elements, &capouter, &ncap, err);
+        st = build_pattern(&pc, rb, max_elements, &capouter, &ncap, err);
         if (st == RF_OK && ncap != nouter)
             st = rf_fail(err, RF_EINTERNAL, "fem mesh: cap ring mismatch (%d vs %d)", ncap, nouter);
     }
@@ -409,19 +431,19 @@ rf_status fem_mesh_build(const fem_body_spec *boulder, const fem_body_spec *slop
         pattern ps = {.s = slope->n * slope->h, .n = slope->n, .h = slope->h, .grading = slope->grading,
                       .h_far = slope->h_far, .transitions = 1, .boulder = 0, .map = slope_map, .P = slope->extent};
         ps.blend_end = 3 * ps.s;
-        st = build_pattern(&ps, &rs, max_elements - rb.ne, &outer, &nouter, err);
+        st = build_pattern(&ps, rs, max_elements - rb->ne, &outer, &nouter, err);
         if (st == RF_OK)
             for (int j = 0; j <= nouter; j++)
-                rs.fl[outer[j]] |= FEM_OUTER;
+                rs->fl[outer[j]] |= FEM_OUTER;
         free(outer);
     }
-    if (st != RF_OK) {
-        ref_free(&rb), ref_free(&rs);
-        return st;
-    }
-    long nn = rb.n + rs.n, ne = rb.ne + rs.ne;
+    return st;
+}
+
+/* The mesh's arrays for nn nodes and ne elements (nonzero: out of memory). */
+static int mesh_alloc(fem_mesh *mesh, long nn, long ne)
+{
     mesh->n_nodes = nn, mesh->n_elems = ne;
-    mesh->boulder_nodes = rb.n, mesh->boulder_elems = rb.ne;
     mesh->r = malloc((size_t)nn * sizeof *mesh->r);
     mesh->z = malloc((size_t)nn * sizeof *mesh->z);
     mesh->flags = malloc((size_t)nn);
@@ -429,31 +451,31 @@ rf_status fem_mesh_build(const fem_body_spec *boulder, const fem_body_spec *slop
     mesh->ebody = malloc((size_t)ne);
     mesh->bsurf = malloc((size_t)nn * sizeof *mesh->bsurf);
     mesh->ssurf = malloc((size_t)nn * sizeof *mesh->ssurf);
-    surf_item *items = malloc((size_t)nn * sizeof *items);
-    if (!mesh->r || !mesh->z || !mesh->flags || !mesh->conn || !mesh->ebody || !mesh->bsurf ||
-        !mesh->ssurf || !items) {
-        free(items);
-        ref_free(&rb), ref_free(&rs);
-        fem_mesh_free(mesh);
-        return rf_fail(err, RF_ENOMEM, "fem mesh: out of memory");
+    return !mesh->r || !mesh->z || !mesh->flags || !mesh->conn || !mesh->ebody || !mesh->bsurf || !mesh->ssurf;
+}
+
+/* The boulder's nodes and elements, then the slope's, each element
+ * counter-clockwise in (r, z). */
+static void mesh_fill(fem_mesh *mesh, const refmesh *rb, const refmesh *rs)
+{
+    mesh->boulder_nodes = rb->n, mesh->boulder_elems = rb->ne;
+    for (long i = 0; i < rb->n; i++) {
+        mesh->r[i] = rb->x[i];
+        mesh->z[i] = rb->y[i];
+        mesh->flags[i] = rb->fl[i];
     }
-    for (long i = 0; i < rb.n; i++) {
-        mesh->r[i] = rb.x[i];
-        mesh->z[i] = rb.y[i];
-        mesh->flags[i] = rb.fl[i];
+    for (long i = 0; i < rs->n; i++) {
+        mesh->r[rb->n + i] = rs->x[i];
+        mesh->z[rb->n + i] = rs->y[i];
+        mesh->flags[rb->n + i] = rs->fl[i];
     }
-    for (long i = 0; i < rs.n; i++) {
-        mesh->r[rb.n + i] = rs.x[i];
-        mesh->z[rb.n + i] = rs.y[i];
-        mesh->flags[rb.n + i] = rs.fl[i];
-    }
-    for (long e = 0; e < ne; e++) {
-        int off = e < rb.ne ? 0 : (int)rb.n;
-        const int *src = e < rb.ne ? rb.conn + 4 * e : rs.conn + 4 * (e - rb.ne);
+    for (long e = 0; e < mesh->n_elems; e++) {
+        int off = e < rb->ne ? 0 : (int)rb->n;
+        const int *src = e < rb->ne ? rb->conn + 4 * e : rs->conn + 4 * (e - rb->ne);
         int *dst = mesh->conn + 4 * e;
         for (int k = 0; k < 4; k++)
             dst[k] = src[k] + off;
-        mesh->ebody[e] = e < rb.ne ? FEM_BOULDER : FEM_SLOPE;
+        mesh->ebody[e] = e < rb->ne ? FEM_BOULDER : FEM_SLOPE;
         /* orient counter-clockwise in (r, z) (mirror and reflection flip it) */
         double a2 = 0;
         for (int k = 0; k < 4; k++) {
@@ -465,23 +487,44 @@ rf_status fem_mesh_build(const fem_body_spec *boulder, const fem_body_spec *slop
             dst[1] = dst[3], dst[3] = t;
         }
     }
-    /* surface lists sorted by r (boulder: lower half only, z < d) */
+}
+
+/* The surface nodes of nodes [i0, i1) below height zmax, sorted by r, into
+ * list (items: scratch of i1 - i0); returns their number. */
+static long mesh_surface(const fem_mesh *mesh, long i0, long i1, double zmax, surf_item *items, int *list)
+{
     long k = 0;
-    for (long i = 0; i < rb.n; i++)
-        if ((mesh->flags[i] & FEM_SURFACE) && mesh->z[i] < boulder->height)
+    for (long i = i0; i < i1; i++)
+        if ((mesh->flags[i] & FEM_SURFACE) && mesh->z[i] < zmax)
             items[k++] = (surf_item){mesh->r, (int)i};
     qsort(items, (size_t)k, sizeof *items, cmp_surf);
     for (long i = 0; i < k; i++)
-        mesh->bsurf[i] = items[i].id;
-    mesh->n_bsurf = k;
-    k = 0;
-    for (long i = rb.n; i < nn; i++)
-        if (mesh->flags[i] & FEM_SURFACE)
-            items[k++] = (surf_item){mesh->r, (int)i};
-    qsort(items, (size_t)k, sizeof *items, cmp_surf);
-    for (long i = 0; i < k; i++)
-        mesh->ssurf[i] = items[i].id;
-    mesh->n_ssurf = k;
+        list[i] = items[i].id;
+    return k;
+}
+
+rf_status fem_mesh_build(const fem_body_spec *boulder, const fem_body_spec *slope, fem_mesh *mesh,
+                         long max_elements, rf_error *err)
+{
+    memset(mesh, 0, sizeof *mesh);
+    refmesh rb = {0}, rs = {0};
+    rf_status st = mesh_patterns(boulder, slope, max_elements, &rb, &rs, err);
+    if (st != RF_OK) {
+        ref_free(&rb), ref_free(&rs);
+        return st;
+    }
+    const long nn = rb.n + rs.n;
+    surf_item *items = malloc((size_t)nn * sizeof *items);
+    if (mesh_alloc(mesh, nn, rb.ne + rs.ne) || !items) {
+        free(items);
+        ref_free(&rb), ref_free(&rs);
+        fem_mesh_free(mesh);
+        return rf_fail(err, RF_ENOMEM, "fem mesh: out of memory");
+    }
+    mesh_fill(mesh, &rb, &rs);
+    /* surface lists sorted by r (boulder: lower half only, z < d) */
+    mesh->n_bsurf = mesh_surface(mesh, 0, rb.n, boulder->height, items, mesh->bsurf);
+    mesh->n_ssurf = mesh_surface(mesh, rb.n, nn, INFINITY, items, mesh->ssurf);
     free(items);
     ref_free(&rb), ref_free(&rs);
     return RF_OK;
