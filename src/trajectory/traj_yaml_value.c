@@ -248,6 +248,16 @@ rf_status ty_setting(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g)
     return yr_fail(&c->sp, v, g->key, "unknown setting");
 }
 
+/* Whether some setting's path continues `path` ("bounce.impact" for bounce.impact.solver). */
+static int settings_under(const char *path)
+{
+    size_t len = strlen(path);
+    for (size_t k = 0; k < rf_traj_n_settings; k++)
+        if (!strncmp(rf_traj_settings[k].key, path, len) && rf_traj_settings[k].key[len] == '.')
+            return 1;
+    return 0;
+}
+
 rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *extra)
 {
     rf_status st = yr_mapping(&c->sp, n, prefix);
@@ -269,8 +279,8 @@ rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char
             st = ty_row_value(c, v, p);
         else if (g)
             st = ty_setting(c, v, g);
-        else if (!strcmp(p, "bounce.impact"))
-            st = ty_fields(c, v, p, ""); /* its keys are settings: bounce.impact.solver, ... */
+        else if (settings_under(p))
+            st = ty_fields(c, v, p, ""); /* a mapping of settings: bounce.impact */
         else if (in_list(key, extra))
             st = RF_OK; /* read by the caller */
         else {
