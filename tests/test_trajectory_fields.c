@@ -6,6 +6,9 @@
  * value outside the row's check with file:line, path and value; a study may
  * bind it exactly when the row says so; the model identity changes with it;
  * the key table in docs/trajectories.md is the one generated from the rows.
+ * The settings that are no such numbers (rf_traj_settings) are checked the
+ * same way in tests/test_trajectory_settings.c; their rows are in the key
+ * table checked here.
  * And a fuzzy parameter bound to an angle (given in degrees) gives the same
  * bits as the file with that value. */
 #include <setjmp.h>

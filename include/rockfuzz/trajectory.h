@@ -225,6 +225,47 @@ typedef struct {
 extern const rf_traj_field_table rf_traj_field_tables[];
 extern const size_t rf_traj_n_field_tables;
 
+/* The run settings that are not numbers a study binds or draws (traj_fields.c,
+ * rf_traj_settings): counts with their exact range, names from a list, a
+ * pair, a path, and the few numbers of the impact table.  One row each: its
+ * full path, its member of rf_traj_spec, its kind, range or names, default, a
+ * probe value as written in a file (the tests) and a help line.  The reader
+ * checks each value at load (file:line: path = value: reason), and the
+ * defaults, the model identity and the key table of docs/trajectories.md loop
+ * over the rows. */
+typedef enum {
+    RF_TRAJ_SETTING_COUNT = 0,  /* an integer in [count_min, count_max]: a size_t or uint64_t (size) */
+    RF_TRAJ_SETTING_NAME,       /* one of names(k), stored as its index k in an int (an enum) */
+    RF_TRAJ_SETTING_WORD,       /* one of names(k), stored as the name in a char[size] */
+    RF_TRAJ_SETTING_NUMBER,     /* a double in [lo, hi] (ends excluded: lo_open, hi_open; hi inf: finite) */
+    RF_TRAJ_SETTING_PAIR,       /* [a, b] with lo < a < b: two doubles, at offset and offset + sizeof(double) */
+    RF_TRAJ_SETTING_PATH        /* a file, relative to the trajectory file's folder: a char * (NULL: none) */
+} rf_traj_setting_kind;
+typedef struct {
+    const char *key;            /* full path: "samples", "stop.max_steps", "bounce.impact.speeds" */
+    rf_traj_setting_kind kind;
+    size_t offset, size;        /* the member of rf_traj_spec and its size */
+    const char *unit;           /* as given ("deg" for an angle; "" dimensionless) */
+    long long count_min, count_max, count_def;  /* COUNT */
+    const char *(*names)(size_t k);  /* NAME, WORD: the k-th allowed name, NULL past the last */
+    const char *def_name;       /* NAME, WORD: the default */
+    int degrees;                /* NUMBER: given in degrees, stored in radians */
+    double lo, hi;              /* NUMBER: the range as given; PAIR: lo bounds a from below */
+    int lo_open, hi_open;       /* NUMBER: an end excluded */
+    double def, def2;           /* NUMBER (NaN: unset, see help), PAIR: the defaults as given */
+    const char *note;           /* the rule's remark (NUMBER, NAME: "(note)"; PAIR: what the pair is) */
+    const char *def_text;       /* the docs' default when it is no value ("min(samples, 200)") */
+    const char *probe;          /* an admissible value other than the default, as written in a file */
+    const char *help;
+} rf_traj_setting;
+extern const rf_traj_setting rf_traj_settings[];
+extern const size_t rf_traj_n_settings;
+/* The setting at a full path, or NULL. */
+const rf_traj_setting *rf_traj_setting_named(const char *path);
+/* The rule of a setting as text ("must lie in (0, 1)", "expected random or
+ * lhs (Latin hypercube)", "an integer in [1, 100000000]") into buf. */
+void rf_traj_setting_rule(const rf_traj_setting *g, char *buf, size_t size);
+
 /* The row of a path and where it is stored (NULL if the path is no row, e.g.
  * a random input's lo/hi or a profile point). */
 const rf_traj_field *rf_traj_field_at(rf_traj_spec *spec, const char *path, double **place);
@@ -244,7 +285,9 @@ void rf_traj_bindable_list(const rf_traj_spec *spec, char *buf, size_t size);
 /* The key table of docs/trajectories.md (markdown rows), from the tables. */
 void rf_traj_fields_markdown(FILE *f);
 /* FNV-1a over every row of every table (each material and collector), the
- * random inputs, the release geometry and the law: the values a run reads. */
+ * random inputs, the release geometry, the outputs asked for and every
+ * setting (rf_traj_settings: counts, law, sampling, bounce.impact): the
+ * values a run reads. */
 uint64_t rf_traj_spec_values_hash(const rf_traj_spec *spec);
 
 /* The bounce laws: a registry of {name, parameters, validate, apply}

@@ -107,6 +107,50 @@ static const char *check_text(rf_traj_check c)
     return (unsigned)c < sizeof text / sizeof text[0] ? text[c] : "";
 }
 
+/* A setting's default and range as the key table writes them. */
+static void setting_texts(const rf_traj_setting *g, char *def, size_t dsize, char *range, size_t rsize)
+{
+    size_t n = 0;
+    const char *name;
+    switch (g->kind) {
+    case RF_TRAJ_SETTING_COUNT:
+        snprintf(def, dsize, "%lld", g->count_def);
+        snprintf(range, rsize, "integer in [%lld, %lld]", g->count_min, g->count_max);
+        break;
+    case RF_TRAJ_SETTING_NAME:
+    case RF_TRAJ_SETTING_WORD:
+        snprintf(def, dsize, "%s", g->def_name);
+        range[0] = '\0';
+        for (size_t i = 0; (name = g->names(i)) && n < rsize; i++)
+            n += (size_t)snprintf(range + n, rsize - n, "%s%s", i ? ", " : "", name);
+        break;
+    case RF_TRAJ_SETTING_NUMBER:
+        snprintf(def, dsize, "%g", g->def);
+        if (isinf(g->hi))
+            snprintf(range, rsize, "%s %g", g->lo_open ? ">" : ">=", g->lo);
+        else
+            snprintf(range, rsize, "%c%g, %g%c", g->lo_open ? '(' : '[', g->lo, g->hi, g->hi_open ? ')' : ']');
+        break;
+    case RF_TRAJ_SETTING_PAIR:
+        snprintf(def, dsize, "[%g, %g]", g->def, g->def2);
+        snprintf(range, rsize, "[lo, hi], %g < lo < hi", g->lo);
+        break;
+    case RF_TRAJ_SETTING_PATH:
+        snprintf(def, dsize, "none");
+        snprintf(range, rsize, "a file");
+        break;
+    }
+    if (g->def_text)
+        snprintf(def, dsize, "%s", g->def_text);
+}
+
+static void setting_markdown(FILE *f, const rf_traj_setting *g)
+{
+    char def[64], range[200];
+    setting_texts(g, def, sizeof def, range, sizeof range);
+    fprintf(f, "| `%s` | %s | %s | %s | no | no | %s |\n", g->key, g->unit[0] ? g->unit : "-", def, range, g->help);
+}
+
 void rf_traj_fields_markdown(FILE *f)
 {
     fprintf(f, "| key | unit | default | range | random | bindable | meaning |\n|---|---|---|---|---|---|---|\n");
@@ -122,6 +166,8 @@ void rf_traj_fields_markdown(FILE *f)
                     r->bindable ? "yes" : "no", r->help);
         }
     }
+    for (size_t k = 0; k < rf_traj_n_settings; k++)
+        setting_markdown(f, &rf_traj_settings[k]);
 }
 
 static uint64_t hash_rows(uint64_t h, const rf_traj_field_table *tb, const void *base)
@@ -133,19 +179,31 @@ static uint64_t hash_rows(uint64_t h, const rf_traj_field_table *tb, const void 
 
 static uint64_t hash_str(uint64_t h, const char *s) { return rf_fnv1a(h, s ? s : "", s ? strlen(s) + 1 : 1); }
 
-static uint64_t hash_release_and_law(uint64_t h, const rf_traj_spec *s)
+/* The bytes of every setting's value (a name as its index or text, a path as given). */
+uint64_t traj_settings_hash(uint64_t h, const rf_traj_spec *s)
 {
-    int ints[5] = {s->sphere, (int)s->law, s->release_by_speed, (int)s->release_kind, s->lhs};
+    for (size_t k = 0; k < rf_traj_n_settings; k++) {
+        const rf_traj_setting *g = &rf_traj_settings[k];
+        const char *at = (const char *)s + g->offset;
+        h = rf_fnv1a(h, g->key, strlen(g->key) + 1);
+        if (g->kind == RF_TRAJ_SETTING_PATH)
+            h = hash_str(h, *(char *const *)at);
+        else if (g->kind == RF_TRAJ_SETTING_WORD)
+            h = rf_fnv1a(h, at, strnlen(at, g->size));
+        else
+            h = rf_fnv1a(h, at, g->size);
+    }
+    return h;
+}
+
+static uint64_t hash_release_and_outputs(uint64_t h, const rf_traj_spec *s)
+{
+    int ints[3] = {s->sphere, s->release_by_speed, (int)s->release_kind};
     h = rf_fnv1a(h, ints, sizeof ints);
     h = rf_fnv1a(h, s->release_px, s->n_release * sizeof *s->release_px);
     h = rf_fnv1a(h, s->release_py, s->n_release * sizeof *s->release_py);
-    double z[7] = {s->zone_x0, s->zone_x1, s->impact_tolerance, s->impact_friction, s->impact_refinement,
-                   s->impact_speed_min, s->impact_speed_max};
+    double z[2] = {s->zone_x0, s->zone_x1};
     h = rf_fnv1a(h, z, sizeof z);
-    h = rf_fnv1a(h, &s->impact_max_incidence, sizeof s->impact_max_incidence);
-    h = hash_str(h, s->impact_solver);
-    size_t counts[3] = {s->max_steps, s->samples, s->record};
-    h = rf_fnv1a(h, counts, sizeof counts);
     const rf_traj_outputs *o = &s->outputs;
     h = rf_fnv1a(h, o->percentiles, o->n_percentiles * sizeof(double));
     h = rf_fnv1a(h, o->runout_thresholds, o->n_runout_thresholds * sizeof(double));
@@ -173,6 +231,6 @@ uint64_t rf_traj_spec_values_hash(const rf_traj_spec *s)
         double v[5] = {(double)q->dist, q->a, q->b, q->lo, q->hi};
         h = rf_fnv1a(hash_str(h, q->path), v, sizeof v);
     }
-    h = hash_release_and_law(h, s);
+    h = traj_settings_hash(hash_release_and_outputs(h, s), s);
     return s->terrain ? rf_terrain_def_hash(s->terrain, h) : h; /* a profile's hash as before */
 }

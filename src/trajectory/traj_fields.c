@@ -9,6 +9,7 @@
  * degrees and stored in radians: converted here, once. */
 #include "trajectory/traj_internal.h"
 #include "core/hash.h"
+#include "trajectory/traj_impact.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -90,6 +91,154 @@ const rf_traj_field_table rf_traj_field_tables[] = {
     TABLE("collector", "collectors.NAME.", RF_TRAJ_OWNER_COLLECTOR, collector_rows),
 };
 const size_t rf_traj_n_field_tables = sizeof rf_traj_field_tables / sizeof rf_traj_field_tables[0];
+
+/* ---- the run settings that are not bindable numbers (rf_traj_setting) ---- */
+
+_Static_assert(sizeof(rf_bounce_law) == sizeof(int), "a NAME setting is stored as an int");
+
+static const char *sampling_name(size_t k)
+{
+    static const char *const names[] = {"random", "lhs"}; /* the value of spec->lhs */
+    return k < 2 ? names[k] : NULL;
+}
+
+static const char *law_name(size_t k) { return k < RF_BOUNCE_N_LAWS ? rf_traj_bounce_law_names[k] : NULL; }
+
+#define MEMBER(field) .offset = offsetof(rf_traj_spec, field), .size = sizeof(((rf_traj_spec *)0)->field)
+#define COUNT(k, field, lo, hi, d, probe_, help_)                                                              \
+    {.key = k, .kind = RF_TRAJ_SETTING_COUNT, MEMBER(field), .unit = "", .count_min = lo, .count_max = hi,        \
+     .count_def = d, .probe = probe_, .help = help_}
+
+const rf_traj_setting rf_traj_settings[] = {
+    COUNT("samples", samples, 1, 100000000, 1, "7", "Monte Carlo samples (trajectories)"),
+    COUNT("seed", seed, 0, 9007199254740992LL, 1, "9007199254740992",
+          "seed of the counter-based random streams (integers up to 2^53, written in plain digits)"),
+    {.key = "sampling", .kind = RF_TRAJ_SETTING_NAME, MEMBER(lhs), .unit = "", .names = sampling_name,
+     .def_name = "random", .note = "Latin hypercube", .probe = "lhs",
+     .help = "how the random inputs are drawn: independently, or a Latin hypercube over the samples"},
+    {.key = "record", .kind = RF_TRAJ_SETTING_COUNT, MEMBER(record), .unit = "", .count_min = 0, .count_max = 100000,
+     .count_def = 200, .def_text = "min(samples, 200)", .probe = "3",
+     .help = "trajectories kept with their events (the paths of the outputs)"},
+    COUNT("stop.max_steps", max_steps, 1, 100000000, 10000, "50",
+          "events per trajectory before it ends as step_limit"),
+    {.key = "bounce.law", .kind = RF_TRAJ_SETTING_NAME, MEMBER(law), .unit = "", .names = law_name,
+     .def_name = "constant", .probe = "velocity_scaled", .help = "the bounce law (docs/trajectories.md sec. 3)"},
+    {.key = "bounce.impact.solver", .kind = RF_TRAJ_SETTING_WORD, MEMBER(impact_solver), .unit = "",
+     .names = traj_impact_solver_name, .def_name = "rigid", .probe = "hunter",
+     .help = "impact_model: the impact model tabulated (`rockfuzz impact --solver`)"},
+    {.key = "bounce.impact.tolerance", .kind = RF_TRAJ_SETTING_NUMBER, MEMBER(impact_tolerance), .unit = "",
+     .lo = 0, .hi = 1, .lo_open = 1, .hi_open = 1, .def = 0.01, .probe = "0.05",
+     .help = "impact_model: target interpolation error of R_n and R_t"},
+    {.key = "bounce.impact.friction", .kind = RF_TRAJ_SETTING_NUMBER, MEMBER(impact_friction), .unit = "",
+     .lo = 0, .hi = INFINITY, .def = NAN, .def_text = "tan(friction_angle)", .probe = "0.6",
+     .help = "impact_model: Coulomb coefficient inside the impact model (default: of the first material)"},
+    {.key = "bounce.impact.refinement", .kind = RF_TRAJ_SETTING_NUMBER, MEMBER(impact_refinement), .unit = "",
+     .lo = 0, .hi = INFINITY, .def = 0, .note = "0: the FE solver's default", .probe = "3",
+     .help = "impact_model, solver fem: elements across the contact radius a/h (0: the FE solver's default)"},
+    {.key = "bounce.impact.speeds", .kind = RF_TRAJ_SETTING_PAIR, .offset = offsetof(rf_traj_spec, impact_speed_min),
+     .size = 2 * sizeof(double), .unit = "m/s", .lo = 0, .def = 0.25, .def2 = 40, .note = "normal speeds",
+     .probe = "[1, 15]", .help = "impact_model: the range of normal speeds tabulated [lo, hi]"},
+    {.key = "bounce.impact.max_incidence", .kind = RF_TRAJ_SETTING_NUMBER, MEMBER(impact_max_incidence),
+     .unit = "deg", .degrees = 1, .lo = 0, .hi = 80, .lo_open = 1, .def = 80, .probe = "60",
+     .help = "impact_model: the largest incidence tabulated, from the normal"},
+    {.key = "bounce.impact.cache", .kind = RF_TRAJ_SETTING_PATH, MEMBER(impact_cache), .unit = "",
+     .def_text = "none", .probe = "impacts.txt",
+     .help = "impact_model: file of impacts already computed (read, then appended), relative to the trajectory file"},
+};
+const size_t rf_traj_n_settings = sizeof rf_traj_settings / sizeof rf_traj_settings[0];
+_Static_assert(offsetof(rf_traj_spec, impact_speed_max) == offsetof(rf_traj_spec, impact_speed_min) + sizeof(double),
+               "bounce.impact.speeds: the pair is stored in two adjacent doubles");
+
+const rf_traj_setting *rf_traj_setting_named(const char *path)
+{
+    for (size_t k = 0; path && k < rf_traj_n_settings; k++)
+        if (!strcmp(path, rf_traj_settings[k].key))
+            return &rf_traj_settings[k];
+    return NULL;
+}
+
+/* "a, b or c" */
+static void name_list(const rf_traj_setting *g, char *buf, size_t size)
+{
+    size_t n = 0, count = 0;
+    while (g->names(count))
+        count++;
+    buf[0] = '\0';
+    for (size_t k = 0; k < count && n < size; k++)
+        n += (size_t)snprintf(buf + n, size - n, "%s%s", k ? (k + 1 < count ? ", " : " or ") : "", g->names(k));
+}
+
+void rf_traj_setting_rule(const rf_traj_setting *g, char *buf, size_t size)
+{
+    char list[200], note[120] = "";
+    if (g->note && g->kind != RF_TRAJ_SETTING_PAIR)
+        snprintf(note, sizeof note, " (%s)", g->note);
+    switch (g->kind) {
+    case RF_TRAJ_SETTING_COUNT:
+        snprintf(buf, size, "must lie in [%lld, %lld]", g->count_min, g->count_max);
+        return;
+    case RF_TRAJ_SETTING_NAME:
+    case RF_TRAJ_SETTING_WORD:
+        name_list(g, list, sizeof list);
+        snprintf(buf, size, "expected %s%s", list, note);
+        return;
+    case RF_TRAJ_SETTING_NUMBER:
+        if (isinf(g->hi))
+            snprintf(buf, size, "must be %s %g%s", g->lo_open ? ">" : ">=", g->lo, note);
+        else
+            snprintf(buf, size, "must lie in %c%g, %g%c%s%s", g->lo_open ? '(' : '[', g->lo, g->hi,
+                     g->hi_open ? ')' : ']', g->degrees ? " degrees" : "", note);
+        return;
+    case RF_TRAJ_SETTING_PAIR:
+        snprintf(buf, size, "expected [lo, hi] %s [%s] with %g < lo < hi", g->note, g->unit, g->lo);
+        return;
+    case RF_TRAJ_SETTING_PATH:
+        snprintf(buf, size, "expected a file name");
+        return;
+    }
+    snprintf(buf, size, "unknown setting");
+}
+
+static void setting_default(const rf_traj_setting *g, char *dst)
+{
+    const char *name;
+    switch (g->kind) {
+    case RF_TRAJ_SETTING_COUNT:
+        if (g->size == sizeof(uint64_t)) {
+            uint64_t u = (uint64_t)g->count_def;
+            memcpy(dst, &u, sizeof u);
+        } else {
+            size_t z = (size_t)g->count_def;
+            memcpy(dst, &z, sizeof z);
+        }
+        return;
+    case RF_TRAJ_SETTING_NAME:
+    case RF_TRAJ_SETTING_WORD:
+        for (size_t k = 0; (name = g->names(k)); k++)
+            if (!strcmp(name, g->def_name)) {
+                int i = (int)k;
+                if (g->kind == RF_TRAJ_SETTING_NAME)
+                    memcpy(dst, &i, sizeof i);
+                else
+                    snprintf(dst, g->size, "%s", name);
+            }
+        return;
+    case RF_TRAJ_SETTING_NUMBER:
+    case RF_TRAJ_SETTING_PAIR: {
+        double x[2] = {g->degrees ? g->def * (RF_PI / 180) : g->def, g->def2}; /* an angle: radians */
+        memcpy(dst, x, g->kind == RF_TRAJ_SETTING_PAIR ? 2 * sizeof(double) : sizeof(double));
+        return;
+    }
+    case RF_TRAJ_SETTING_PATH:
+        return; /* none: NULL (the spec was zeroed; never freed here) */
+    }
+}
+
+void traj_settings_default(rf_traj_spec *s)
+{
+    for (size_t k = 0; k < rf_traj_n_settings; k++)
+        setting_default(&rf_traj_settings[k], (char *)s + rf_traj_settings[k].offset);
+}
 
 double traj_field_store(const rf_traj_field *f, double given) { return f->degrees ? given * (RF_PI / 180) : given; }
 double traj_field_given(const rf_traj_field *f, double stored) { return f->degrees ? stored * (180 / RF_PI) : stored; }

@@ -12,6 +12,9 @@ typedef struct {
     double refinement;    /* FE a/h, 0 = default */
 } traj_impact_setup;
 
+/* The k-th impact solver's name (rockfuzz impact --solver), NULL past the last:
+ * the names bounce.impact.solver takes. */
+const char *traj_impact_solver_name(size_t k);
 rf_status traj_impact_setup_init(traj_impact_setup *s, const rf_traj_spec *spec, rf_error *err);
 /* One impact: normal speed vn [m/s] > 0, incidence theta [rad] from the normal. */
 rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double theta, double *R_n, double *R_t,

@@ -1,7 +1,9 @@
 /* traj_impact_adapter.c - the ONE place where the trajectory code calls
  * rockfuzz's impact models (rockfuzz/impact.h), so that a change of that API
  * is absorbed here.  It calls: rf_impact_model_spec_default,
- * rf_impact_solver_parse, rf_impact_input_default and rf_impact_solve.
+ * rf_impact_solver_parse, rf_impact_input_default, rf_impact_solve and, for
+ * the names a trajectory file takes, rf_impact_n_solvers and
+ * rf_impact_solver_name.
  *
  * The impact API describes an impact as a vertical velocity V onto a slope
  * inclined at alpha (v_n = V cos alpha, v_t = V sin alpha).  An impact of
@@ -20,6 +22,11 @@
 
 #include <math.h>
 #include <string.h>
+
+const char *traj_impact_solver_name(size_t k)
+{
+    return k < rf_impact_n_solvers() ? rf_impact_solver_name((rf_impact_solver)k) : NULL;
+}
 
 rf_status traj_impact_setup_init(traj_impact_setup *s, const rf_traj_spec *spec, rf_error *err)
 {

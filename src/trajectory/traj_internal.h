@@ -103,6 +103,12 @@ const char *traj_field_unused_reason(const rf_traj_field *f);
 void traj_each_path(const rf_traj_spec *s, void (*fn)(void *ctx, const char *path, const rf_traj_field *f),
                     void *ctx);
 
+/* traj_fields.c: every setting of rf_traj_settings at its default (record:
+ * its cap; the reader makes it min(samples, cap) when left out); the cache
+ * none.  traj_bind.c: the hash of every setting's value (the identity). */
+void traj_settings_default(rf_traj_spec *s);
+uint64_t traj_settings_hash(uint64_t h, const rf_traj_spec *s);
+
 /* Round-off allowance [m] of a geometric test near (x, y): relative to the
  * local coordinates, never to the profile's extent (a far vertex must not
  * change the motion here). */

@@ -78,27 +78,6 @@ static rf_status parse_block(ty_ctx *c, struct fy_node *n)
     return RF_OK;
 }
 
-static rf_status parse_law(ty_ctx *c, struct fy_node *v)
-{
-    const char *const *names = rf_traj_bounce_law_names;
-    const char *str;
-    size_t len;
-    rf_status st = yr_string(&c->sp, v, "bounce.law", &str, &len);
-    if (st != RF_OK)
-        return st;
-    for (int i = 0; i < RF_BOUNCE_N_LAWS; i++)
-        if (len == strlen(names[i]) && !strncmp(str, names[i], len)) {
-            c->spec->law = (rf_bounce_law)i;
-            return RF_OK;
-        }
-    char list[200];
-    size_t n = 0;
-    for (int i = 0; i < RF_BOUNCE_N_LAWS && n < sizeof list; i++)
-        n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? (i + 1 < RF_BOUNCE_N_LAWS ? ", " : " or ") : "",
-                              names[i]);
-    return yr_fail(&c->sp, v, "bounce.law", "expected %s", list);
-}
-
 /* A list of numbers under `path`: at most `max`, finite, and increasing if `increasing`. */
 static rf_status number_list(ty_ctx *c, struct fy_node *v, const char *path, size_t max, int increasing,
                              double *out, size_t *count)
@@ -227,8 +206,6 @@ static rf_status parse_collectors(ty_ctx *c, const char *what, struct fy_node *n
 static rf_status parse_top_scalar(ty_ctx *c, const char *key, struct fy_node *k, struct fy_node *v)
 {
     rf_traj_spec *s = c->spec;
-    long long n;
-    rf_status st;
     if (!strcmp(key, "name")) {
         free(s->name);
         s->name = NULL;
@@ -238,32 +215,9 @@ static rf_status parse_top_scalar(ty_ctx *c, const char *key, struct fy_node *k,
         return RF_OK;
     if (!strcmp(key, "gravity"))
         return ty_row_value(c, v, "gravity");
-    if (!strcmp(key, "samples")) {
-        if ((st = yr_integer(&c->sp, v, "samples", 1, 100000000, &n)) == RF_OK)
-            s->samples = (size_t)n;
-        return st;
-    }
-    if (!strcmp(key, "seed")) {
-        if ((st = yr_integer(&c->sp, v, "seed", 0, 9007199254740992LL, &n)) == RF_OK)
-            s->seed = (uint64_t)n;
-        return st;
-    }
-    if (!strcmp(key, "record")) {
-        if ((st = yr_integer(&c->sp, v, "record", 0, 100000, &n)) == RF_OK)
-            s->record = (size_t)n, c->record_given = 1;
-        return st;
-    }
-    if (!strcmp(key, "sampling")) {
-        const char *str;
-        size_t len;
-        if ((st = yr_string(&c->sp, v, "sampling", &str, &len)) != RF_OK)
-            return st;
-        if (len == 3 && !strncmp(str, "lhs", 3))
-            s->lhs = 1;
-        else if (!(len == 6 && !strncmp(str, "random", 6)))
-            return yr_fail(&c->sp, v, "sampling", "expected random or lhs (Latin hypercube)");
-        return RF_OK;
-    }
+    const rf_traj_setting *g = strchr(key, '.') ? NULL : rf_traj_setting_named(key); /* samples, seed, ... */
+    if (g)
+        return ty_setting(c, v, g);
     if (c->spec->terrain)
         return yr_fail(&c->sp, k, key, "unknown key; a terrain file takes name, description, gravity, terrain, "
                                        "materials, block, release, bounce, stop, barriers (or collectors), rasters, "
@@ -275,7 +229,6 @@ static rf_status parse_top_scalar(ty_ctx *c, const char *key, struct fy_node *k,
 
 static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct fy_node *v)
 {
-    rf_status st;
     if (!strcmp(key, "materials"))
         return parse_materials(c, v);
     if (!strcmp(key, "block"))
@@ -283,7 +236,7 @@ static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct
     if (!strcmp(key, "release"))
         return c->spec->terrain ? ty_parse_terrain_release(c, v) : ty_parse_release(c, v);
     if (!strcmp(key, "stop"))
-        return ty_fields(c, v, "stop", "max_steps");
+        return ty_fields(c, v, "stop", "");
     if (!strcmp(key, "collectors") || (c->spec->terrain && !strcmp(key, "barriers")))
         return parse_collectors(c, key, v);
     if (c->spec->terrain && !strcmp(key, "rasters"))
@@ -294,14 +247,8 @@ static rf_status parse_top(ty_ctx *c, const char *key, struct fy_node *k, struct
     }
     if (!strcmp(key, "outputs"))
         return parse_outputs(c, v);
-    if (!strcmp(key, "bounce")) {
-        if ((st = yr_mapping(&c->sp, v, "bounce")) != RF_OK)
-            return st;
-        struct fy_node *law = fy_node_mapping_lookup_by_string(v, "law", FY_NT);
-        if (law && (st = parse_law(c, law)) != RF_OK)
-            return st;
-        return ty_fields(c, v, "bounce", "law impact");
-    }
+    if (!strcmp(key, "bounce"))
+        return ty_fields(c, v, "bounce", "impact"); /* law and impact.*: settings */
     if (!strcmp(key, "profile")) {
         c->profile = v;
         return RF_OK; /* after the materials: it names them */
@@ -313,15 +260,7 @@ static void spec_defaults(rf_traj_spec *s)
 {
     memset(s, 0, sizeof *s);
     ty_row_defaults(RF_TRAJ_OWNER_SPEC, s); /* gravity, block, release, bounce and stop numbers */
-    s->law = RF_BOUNCE_CONSTANT;
-    s->max_steps = 10000;
-    s->samples = 1;
-    s->seed = 1;
-    snprintf(s->impact_solver, sizeof s->impact_solver, "rigid");
-    s->impact_tolerance = 0.01;
-    s->impact_friction = NAN;
-    s->impact_speed_min = 0.25, s->impact_speed_max = 40;
-    s->impact_max_incidence = 80 * (RF_PI / 180); /* stored in radians */
+    traj_settings_default(s);               /* samples, seed, stop.max_steps, bounce.law, bounce.impact */
     s->outputs.n_percentiles = 3;
     s->outputs.percentiles[0] = 50, s->outputs.percentiles[1] = 95, s->outputs.percentiles[2] = 99;
     s->outputs.runout_bins = 20;
@@ -377,6 +316,15 @@ static rf_status parse_document(ty_ctx *c, struct fy_node *root)
     return st;
 }
 
+/* record left out: min(samples, the row's default). */
+static void record_default(ty_ctx *c)
+{
+    const rf_traj_setting *g = rf_traj_setting_named("record");
+    size_t k = (size_t)(g - rf_traj_settings), cap = (size_t)g->count_def;
+    if (!c->setting_given[k])
+        c->spec->record = c->spec->samples < cap ? c->spec->samples : cap;
+}
+
 static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spec *s, rf_error *err)
 {
     spec_defaults(s);
@@ -394,8 +342,8 @@ static rf_status load(const char *name, const char *buf, size_t len, rf_traj_spe
     rf_status st = yr_doc_load(&d, name, buf, len, "trajectory file", err);
     if (st == RF_OK)
         st = parse_document(&c, fy_document_root(d.doc));
-    if (st == RF_OK && !c.record_given)
-        s->record = s->samples < 200 ? s->samples : 200;
+    if (st == RF_OK)
+        record_default(&c);
     if (st == RF_OK)
         st = ty_validate(&c);
     yr_doc_free(&d);

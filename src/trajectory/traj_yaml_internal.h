@@ -18,7 +18,7 @@ typedef struct {
     yr_ctx sp;
     rf_traj_spec *spec;
     struct fy_node *profile;
-    int record_given;
+    unsigned char setting_given[32]; /* rf_traj_settings[k] was given in the file */
     struct fy_node *release;     /* the release: mapping (its line/zone are read after the profile) */
     int csv_named;               /* the CSV profile named the segment materials */
     struct fy_node *terrain;     /* terrain: (read after the materials: it names them) */
@@ -39,9 +39,14 @@ rf_status ty_value(ty_ctx *c, struct fy_node *n, const char *path, double *dst, 
  * if the row allows it; stored in the row's units (radians for an angle). */
 rf_status ty_row_value(ty_ctx *c, struct fy_node *n, const char *path);
 
+/* The setting g (traj_fields.c, rf_traj_settings) from node v, checked
+ * against its range or names here, at load, with file:line. */
+rf_status ty_setting(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g);
+
 /* The mapping n under `prefix`: every key is a row of the input tables
- * (prefix.key) or one of the space-separated `extra` keys (read by the
- * caller, or here: max_steps, impact). */
+ * (prefix.key), a setting (rf_traj_settings: stop.max_steps, bounce.law,
+ * the mapping bounce.impact of settings) or one of the space-separated
+ * `extra` keys (read by the caller). */
 rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *extra);
 
 /* The defaults of the rows of the tables owned by `owner` into obj (an

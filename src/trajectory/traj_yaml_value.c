@@ -139,80 +139,123 @@ static void keys_under(const char *prefix, const char *extra, char *buf, size_t 
                 len += (size_t)snprintf(buf + len, size - len, "%s%s", len ? " " : "", key);
         }
     }
+    for (size_t k = 0; owner == RF_TRAJ_OWNER_SPEC && k < rf_traj_n_settings && len < size; k++) {
+        const char *full = rf_traj_settings[k].key; /* the settings: "bounce.law" */
+        if (!strncmp(full, prefix, lp) && full[lp] == '.' && !strchr(full + lp + 1, '.'))
+            len += (size_t)snprintf(buf + len, size - len, "%s%s", len ? " " : "", full + lp + 1);
+    }
     if (len < size && extra[0])
         snprintf(buf + len, size - len, "%s%s", len ? " " : "", extra);
 }
 
-static rf_status impact_settings(ty_ctx *c, struct fy_node *n)
+/* The rule's message at node n ("file:line: path = value: rule"). */
+static rf_status setting_fail(ty_ctx *c, struct fy_node *n, const rf_traj_setting *g)
 {
-    const char *path = "bounce.impact";
-    rf_status st = yr_mapping(&c->sp, n, path);
-    yr_iter it = {n, NULL, 0, {0}};
-    const char *key, *str;
-    size_t len;
-    struct fy_node *k, *v;
-    char p[300];
-    while (st == RF_OK) {
-        if ((st = yr_next(&c->sp, &it, path, &key, &k, &v)) != RF_OK || !key)
-            return st;
-        yr_pathf(p, sizeof p, "%s.%s", path, key);
-        if (!strcmp(key, "solver")) {
-            if ((st = yr_string(&c->sp, v, p, &str, &len)) == RF_OK && len < sizeof c->spec->impact_solver)
-                snprintf(c->spec->impact_solver, sizeof c->spec->impact_solver, "%.*s", (int)len, str);
-        } else if (!strcmp(key, "tolerance")) {
-            st = yr_number(&c->sp, v, p, &c->spec->impact_tolerance);
-            if (st == RF_OK && !(c->spec->impact_tolerance > 0 && c->spec->impact_tolerance < 1))
-                st = yr_fail(&c->sp, v, p, "must lie in (0, 1)");
-        } else if (!strcmp(key, "friction")) {
-            st = yr_number(&c->sp, v, p, &c->spec->impact_friction);
-        } else if (!strcmp(key, "cache")) {
-            char *f = NULL;
-            if ((st = yr_string_dup(&c->sp, v, p, &f)) == RF_OK) {
-                size_t n = strlen(c->sp.dir) + strlen(f) + 2;
-                free(c->spec->impact_cache);
-                c->spec->impact_cache = malloc(n);
-                if (c->spec->impact_cache && (f[0] == '/' || !strcmp(c->sp.dir, ".")))
-                    snprintf(c->spec->impact_cache, n, "%s", f); /* absolute, or relative to the working directory */
-                else if (c->spec->impact_cache)
-                    snprintf(c->spec->impact_cache, n, "%s/%s", c->sp.dir, f); /* relative to the trajectory file */
-                st = c->spec->impact_cache ? RF_OK : rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
-            }
-            free(f);
-        } else if (!strcmp(key, "max_incidence")) {
-            double deg = 0;
-            st = yr_number(&c->sp, v, p, &deg);
-            if (st == RF_OK && !(deg > 0 && deg <= 80))
-                st = yr_fail(&c->sp, v, p, "must lie in (0, 80] degrees");
-            c->spec->impact_max_incidence = deg * (RF_PI / 180); /* stored in radians */
-        } else if (!strcmp(key, "speeds")) {
-            double range[2] = {0, 0};
-            st = yr_numbers(&c->sp, v, p, 2, 2, range, NULL);
-            if (st == RF_OK && !(range[0] > 0 && range[1] > range[0]))
-                st = yr_fail(&c->sp, v, p, "expected [lo, hi] normal speeds [m/s] with 0 < lo < hi");
-            c->spec->impact_speed_min = range[0], c->spec->impact_speed_max = range[1];
-        } else if (!strcmp(key, "refinement")) {
-            st = yr_number(&c->sp, v, p, &c->spec->impact_refinement);
-            if (st == RF_OK && !(c->spec->impact_refinement >= 0))
-                st = yr_fail(&c->sp, v, p, "must be >= 0 (0: the FE solver's default)");
-        } else {
-            st = yr_fail(&c->sp, k, p, "unknown key; bounce.impact takes solver, tolerance, friction, refinement, speeds, max_incidence, cache");
-        }
-    }
-    return st;
+    char rule[300];
+    rf_traj_setting_rule(g, rule, sizeof rule);
+    return yr_fail(&c->sp, n, g->key, "%s", rule);
 }
 
-static rf_status special_field(ty_ctx *c, const char *key, const char *path, struct fy_node *v)
+static rf_status read_count(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g, char *dst)
 {
     long long n;
-    rf_status st;
-    if (!strcmp(key, "max_steps")) {
-        if ((st = yr_integer(&c->sp, v, path, 1, 100000000, &n)) == RF_OK)
-            c->spec->max_steps = (size_t)n;
+    rf_status st = yr_integer(&c->sp, v, g->key, g->count_min, g->count_max, &n);
+    if (st != RF_OK)
         return st;
+    if (g->size == sizeof(uint64_t)) {
+        uint64_t u = (uint64_t)n;
+        memcpy(dst, &u, sizeof u);
+    } else {
+        size_t z = (size_t)n;
+        memcpy(dst, &z, sizeof z);
     }
-    if (!strcmp(key, "impact"))
-        return impact_settings(c, v);
-    return RF_OK; /* shape, name, law: read by the caller */
+    return RF_OK;
+}
+
+static rf_status read_name(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g, char *dst)
+{
+    const char *str, *name;
+    size_t len;
+    rf_status st = yr_string(&c->sp, v, g->key, &str, &len);
+    for (size_t k = 0; st == RF_OK && (name = g->names(k)); k++) {
+        if (len != strlen(name) || strncmp(str, name, len))
+            continue;
+        if (g->kind == RF_TRAJ_SETTING_NAME) {
+            int i = (int)k;
+            memcpy(dst, &i, sizeof i);
+        } else {
+            snprintf(dst, g->size, "%s", name);
+        }
+        return RF_OK;
+    }
+    return st != RF_OK ? st : setting_fail(c, v, g);
+}
+
+static int number_ok(const rf_traj_setting *g, double x)
+{
+    int above = g->lo_open ? x > g->lo : x >= g->lo;
+    int below = isinf(g->hi) ? isfinite(x) : g->hi_open ? x < g->hi : x <= g->hi;
+    return above && below;
+}
+
+static rf_status read_number(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g, char *dst)
+{
+    double x[2] = {0, 0};
+    int pair = g->kind == RF_TRAJ_SETTING_PAIR;
+    rf_status st = pair ? yr_numbers(&c->sp, v, g->key, 2, 2, x, NULL) : yr_number(&c->sp, v, g->key, x);
+    if (st != RF_OK)
+        return st;
+    if (pair ? !(x[0] > g->lo && x[1] > x[0] && isfinite(x[1])) : !number_ok(g, x[0]))
+        return setting_fail(c, v, g);
+    if (g->degrees)
+        x[0] = x[0] * (RF_PI / 180); /* stored in radians */
+    memcpy(dst, x, pair ? 2 * sizeof(double) : sizeof(double));
+    return RF_OK;
+}
+
+/* A file named relative to the trajectory file (absolute as it is). */
+static rf_status read_path(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g, char **dst)
+{
+    char *f = NULL;
+    rf_status st = yr_string_dup(&c->sp, v, g->key, &f);
+    if (st != RF_OK)
+        return st;
+    size_t n = strlen(c->sp.dir) + strlen(f) + 2;
+    free(*dst);
+    if ((*dst = malloc(n)) && (f[0] == '/' || !strcmp(c->sp.dir, ".")))
+        snprintf(*dst, n, "%s", f); /* absolute, or relative to the working directory */
+    else if (*dst)
+        snprintf(*dst, n, "%s/%s", c->sp.dir, f); /* relative to the trajectory file */
+    free(f);
+    return *dst ? RF_OK : rf_fail(c->sp.err, RF_ENOMEM, "out of memory");
+}
+
+rf_status ty_setting(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g)
+{
+    char *dst = (char *)c->spec + g->offset;
+    size_t k = (size_t)(g - rf_traj_settings);
+    if (k < sizeof c->setting_given)
+        c->setting_given[k] = 1;
+    ty_remember(c, g->key, v);
+    switch (g->kind) {
+    case RF_TRAJ_SETTING_COUNT: return read_count(c, v, g, dst);
+    case RF_TRAJ_SETTING_NAME:
+    case RF_TRAJ_SETTING_WORD: return read_name(c, v, g, dst);
+    case RF_TRAJ_SETTING_NUMBER:
+    case RF_TRAJ_SETTING_PAIR: return read_number(c, v, g, dst);
+    case RF_TRAJ_SETTING_PATH: return read_path(c, v, g, (char **)dst);
+    }
+    return yr_fail(&c->sp, v, g->key, "unknown setting");
+}
+
+/* Whether some setting's path continues `path` ("bounce.impact" for bounce.impact.solver). */
+static int settings_under(const char *path)
+{
+    size_t len = strlen(path);
+    for (size_t k = 0; k < rf_traj_n_settings; k++)
+        if (!strncmp(rf_traj_settings[k].key, path, len) && rf_traj_settings[k].key[len] == '.')
+            return 1;
+    return 0;
 }
 
 rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *extra)
@@ -231,10 +274,15 @@ rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char
         const rf_traj_field *f = rf_traj_field_at(c->spec, p, NULL);
         if (f && !traj_field_used(c->spec, f))
             return yr_fail(&c->sp, k, p, "not used here: %s", traj_field_unused_reason(f));
+        const rf_traj_setting *g = f || strchr(key, '.') ? NULL : rf_traj_setting_named(p);
         if (f)
             st = ty_row_value(c, v, p);
+        else if (g)
+            st = ty_setting(c, v, g);
+        else if (settings_under(p))
+            st = ty_fields(c, v, p, ""); /* a mapping of settings: bounce.impact */
         else if (in_list(key, extra))
-            st = special_field(c, key, p, v);
+            st = RF_OK; /* read by the caller */
         else {
             keys_under(prefix, extra, keys, sizeof keys);
             return yr_fail(&c->sp, k, p, "unknown key; %s takes: %s", prefix, keys);
