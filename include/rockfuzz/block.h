@@ -170,7 +170,7 @@ typedef struct {
 } rf_block_step_info;
 
 /* One Moreau midpoint step: half a free step, the contacts active at the
- * midpoint (gap <= 0), Newton's impact law and set-valued Coulomb friction
+ * midpoint (gap <= 1e-9 m), Newton's impact law and set-valued Coulomb friction
  * solved by a prox Gauss-Seidel over the contact points, half a free step
  * with the new velocity.  Contact points: a polyhedron's vertices; a
  * sphere's or ellipsoid's support point along the ground's -n. */

@@ -8,7 +8,7 @@
  *   1. midpoint M: x_M = x_A + h/2 v_A; the orientation and body angular
  *      velocity by the free rotor over h/2 (block_body.c: the gyroscopic
  *      term, exact in the space angular momentum);
- *   2. the contacts active at M: gap <= 0 (a polyhedron's vertices; a
+ *   2. the contacts active at M: gap <= 1e-9 m (a polyhedron's vertices; a
  *      smooth block's support point along the ground's -n), each with the
  *      frame (n, t1, t2) and W_c (3 x 6: the contact point's velocity along
  *      n, t1, t2 as a function of u = (v in space, w in the body): d . v +
@@ -32,6 +32,10 @@
 #include <string.h>
 
 #define MAX_CONTACTS 128
+/* A contact is active at gap <= GAP_ACTIVE [m]: above the round-off of map
+ * coordinates (1e5 m x 1e-16), so that a block set down exactly on the
+ * ground does not fall a step at the points whose gap rounds to +1e-17. */
+#define GAP_ACTIVE 1e-9
 
 typedef struct {
     double rb[3];      /* contact point - centre, body frame */
@@ -116,11 +120,11 @@ static void test_point(contact_set *cs, const rf_block_world *wd, const double r
     for (size_t k = 0; k < wd->n_planes; k++) {
         double d[3];
         bk_sub(p, wd->planes[k].point, d);
-        if (bk_dot(wd->planes[k].normal, d) <= 0)
+        if (bk_dot(wd->planes[k].normal, d) <= GAP_ACTIVE)
             add_contact(cs, rb, wd->planes[k].normal, v, w);
     }
     double z, n[3];
-    if (wd->ground && wd->ground(wd->ground_ctx, p[0], p[1], &z, n) && (p[2] - z) * n[2] <= 0)
+    if (wd->ground && wd->ground(wd->ground_ctx, p[0], p[1], &z, n) && (p[2] - z) * n[2] <= GAP_ACTIVE)
         add_contact(cs, rb, n, v, w);
 }
 
@@ -138,7 +142,7 @@ static void smooth_contacts(contact_set *cs, const rf_block_world *wd, const dou
         for (int i = 0; i < 3; i++)
             p[i] += cs->x[i];
         bk_sub(p, wd->planes[k].point, d);
-        if (bk_dot(n, d) <= 0)
+        if (bk_dot(n, d) <= GAP_ACTIVE)
             add_contact(cs, rb, n, v, w);
     }
     double z, n[3];
@@ -150,7 +154,7 @@ static void smooth_contacts(contact_set *cs, const rf_block_world *wd, const dou
     bk_mat_vec(cs->r, rb, p);
     for (int i = 0; i < 3; i++)
         p[i] += cs->x[i];
-    if (wd->ground(wd->ground_ctx, p[0], p[1], &z, n) && (p[2] - z) * n[2] <= 0)
+    if (wd->ground(wd->ground_ctx, p[0], p[1], &z, n) && (p[2] - z) * n[2] <= GAP_ACTIVE)
         add_contact(cs, rb, n, v, w);
 }
 
