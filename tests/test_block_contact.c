@@ -1,6 +1,7 @@
 /* test_block_contact.c - non-smooth contact of a rigid block
  * (block_contact.c) against closed forms: a box resting on an incline below
- * its friction angle and sliding above it at g (sin b - mu cos b); a sphere
+ * its friction angle and sliding above it at g (sin b - mu cos b); a
+ * slender box tipping over its edge just past the angle its geometry gives; a sphere
  * rolling at 5/7 g sin b, and sliding and spinning up when friction is too
  * small; a dropped sphere's rebound (Newton); an oblique sphere impact
  * against the 2D engine's rigid_sphere law (src/trajectory/bounce.c); a box
@@ -64,11 +65,11 @@ static double run(const rf_block_shape *s, const rf_block_world *w, rf_block_sta
     return worst;
 }
 
-/* A box of edges (1, 0.6, 0.4) lying on the incline, its 1 m edge downhill. */
-static void box_on_incline(double beta, rf_block_shape *s, rf_block_state *st)
+/* A box of edges lx (downhill), ly, lz (up) lying on the incline. */
+static void box_edges_on_incline(double beta, double lx, double ly, double lz, rf_block_shape *s, rf_block_state *st)
 {
     rf_error err;
-    if (rf_block_box(1.0, 0.6, 0.4, 2650, s, &err) != RF_OK)
+    if (rf_block_box(lx, ly, lz, 2650, s, &err) != RF_OK)
         fail_msg("%s", err.msg);
     double c = cos(beta), sn = sin(beta), ry[9] = {c, 0, sn, 0, 1, 0, -sn, 0, c}, m[9];
     for (int i = 0; i < 3; i++)
@@ -77,7 +78,56 @@ static void box_on_incline(double beta, rf_block_shape *s, rf_block_state *st)
     memset(st, 0, sizeof *st);
     rf_block_quat_from_matrix(m, st->q);
     for (int i = 0; i < 3; i++)
-        st->x[i] = 0.2 * (i == 0 ? sn : i == 2 ? c : 0);
+        st->x[i] = lz / 2 * (i == 0 ? sn : i == 2 ? c : 0);
+}
+
+static void box_on_incline(double beta, rf_block_shape *s, rf_block_state *st)
+{
+    box_edges_on_incline(beta, 1.0, 0.6, 0.4, s, st);
+}
+
+/* The angle [rad] between the box's up edge and the incline's normal. */
+static double tilt(const rf_block_shape *s, const rf_block_state *st, double beta)
+{
+    double up[3] = {0, 0, 0}, b[3];
+    for (int i = 0; i < 3; i++)
+        up[i] = s->axes[6 + i]; /* the given z axis in the body frame */
+    rf_block_to_space(st->q, up, b);
+    return acos(fmin(1, b[0] * sin(beta) + b[2] * cos(beta)));
+}
+
+/* A slender box (0.4 downhill, 1.0 high) with friction enough not to slide
+ * (mu = 1) tips over its lower edge when its centre passes over that edge:
+ * tan(beta) > 0.4 / 1.0, beta > 21.8 deg. */
+static void test_box_tips(void **state)
+{
+    (void)state;
+    double tip = atan(0.4 / 1.0);
+    for (int k = 0; k < 2; k++) {
+        double beta = tip + (k ? 1 : -1) * DEG;
+        rf_block_plane p = incline(beta);
+        rf_block_world w = world(&p, 1.0, 0, 1e-3);
+        rf_block_shape s;
+        rf_block_state st;
+        box_edges_on_incline(beta, 0.4, 0.6, 1.0, &s, &st);
+        double capped = 0, e0 = rf_block_energy(&s, &st, G);
+        for (int n = 0; n < 3000; n++) {
+            rf_block_step_info info;
+            double e = rf_block_energy(&s, &st, G);
+            rf_block_step(&s, &w, &st, &info);
+            assert_true(rf_block_energy(&s, &st, G) <= e + 1e-12 * s.mass * G);
+            capped += info.energy_cap;
+        }
+        double a = tilt(&s, &st, beta), lost = e0 - rf_block_energy(&s, &st, G);
+        print_message("slender box at %.2f deg (tipping angle %.2f): tilt after 3 s %.3e deg; energy lost %.1f J, "
+                      "of it capped %.3f J\n", beta / DEG, tip / DEG, a / DEG, lost, capped);
+        assert_true(capped <= 1e-3 * lost + 1e-9); /* the cap: a small part of the dissipation */
+        if (k)
+            assert_true(a > 30 * DEG);
+        else
+            assert_true(a < 1e-9);
+        rf_block_shape_free(&s);
+    }
 }
 
 static void test_box_sticks(void **state)
@@ -298,7 +348,7 @@ static void test_flat_drop_and_tumble(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_box_sticks),      cmocka_unit_test(test_box_slides),
+        cmocka_unit_test(test_box_sticks),      cmocka_unit_test(test_box_slides), cmocka_unit_test(test_box_tips),
         cmocka_unit_test(test_sphere_rolls),    cmocka_unit_test(test_sphere_rebound),
         cmocka_unit_test(test_oblique_impact),  cmocka_unit_test(test_flat_drop_and_tumble),
     };

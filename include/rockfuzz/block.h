@@ -167,13 +167,17 @@ typedef struct {
     int iterations;      /* prox Gauss-Seidel sweeps */
     int converged;       /* 1 if the sweeps met tol */
     double impulse_n;    /* sum of normal impulses [N s] */
+    double energy_cap;   /* kinetic energy removed so that a contact step gains none [J] (block_contact.c) */
 } rf_block_step_info;
 
 /* One Moreau midpoint step: half a free step, the contacts active at the
  * midpoint (gap <= 1e-9 m), Newton's impact law and set-valued Coulomb friction
  * solved by a prox Gauss-Seidel over the contact points, half a free step
  * with the new velocity.  Contact points: a polyhedron's vertices; a
- * sphere's or ellipsoid's support point along the ground's -n. */
+ * sphere's or ellipsoid's support point along the ground's -n.  A step
+ * with contacts never ends with more energy (kinetic + m g z) than it
+ * started with: the scheme's O(h) gain on a turning persistent contact is
+ * capped (block_contact.c). */
 void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, rf_block_step_info *info);
 
 #ifdef __cplusplus
