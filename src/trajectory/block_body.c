@@ -85,7 +85,7 @@ static void rotor_axis(const double inertia[3], double q[4], double L[3], int i,
     bk_quat_mul(q, r, out);
     memcpy(q, out, sizeof out);
     int j = (i + 1) % 3, k = (i + 2) % 3;
-    double ct = cos(theta), st = sin(theta);
+    double ct = 1 - 2 * s * s, st = 2 * s * c; /* cos, sin of theta from the half angle */
     double lj = L[j], lk = L[k];
     L[j] = ct * lj + st * lk; /* rot(e_i, -theta) */
     L[k] = -st * lj + ct * lk;

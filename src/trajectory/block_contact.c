@@ -65,6 +65,7 @@ typedef struct {
     double x[3];       /* x_M */
     contact c[MAX_CONTACTS];
     int n;
+    unsigned char far[64]; /* plane k farther than the bounding sphere (k < 64) */
 } contact_set;
 
 int rf_block_ground_profile(void *profile, double x, double y, double *z, double normal[3])
@@ -132,6 +133,8 @@ static void test_point(contact_set *cs, const rf_block_world *wd, const double r
         p[i] += cs->x[i];
     for (size_t k = 0; k < wd->n_planes; k++) {
         double d[3];
+        if (k < 64 && cs->far[k])
+            continue;
         bk_sub(p, wd->planes[k].point, d);
         if (bk_dot(wd->planes[k].normal, d) <= GAP_ACTIVE)
             add_contact(cs, rb, wd->planes[k].normal, v, w);
@@ -174,6 +177,15 @@ static void smooth_contacts(contact_set *cs, const rf_block_world *wd, const dou
 static void find_contacts(contact_set *cs, const rf_block_world *wd, const double v[3], const double w[3])
 {
     cs->n = 0;
+    int near = wd->ground != NULL || wd->n_planes > 64;
+    for (size_t k = 0; k < wd->n_planes && k < 64; k++) {
+        double d[3];
+        bk_sub(cs->x, wd->planes[k].point, d);
+        cs->far[k] = bk_dot(wd->planes[k].normal, d) > cs->s->bound_radius + GAP_ACTIVE;
+        near |= !cs->far[k];
+    }
+    if (!near)
+        return;
     if (cs->s->kind != RF_BLOCK_POLYHEDRON) {
         smooth_contacts(cs, wd, v, w);
         return;
