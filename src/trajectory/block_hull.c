@@ -126,13 +126,11 @@ static int start_tetrahedron(hull *h, const int t[4])
            add_face(h, t[2], t[0], t[3]);
 }
 
-/* Is the directed edge (a, b) in a seen face (of the first n_old)? */
-static int edge_seen(const hull *h, const char *seen, size_t n_old, int a, int b)
+/* Is the directed edge (a, b) in one of the seen faces list[0 .. n_list)? */
+static int edge_seen(const hull *h, const size_t *list, size_t n_list, int a, int b)
 {
-    for (size_t k = 0; k < n_old; k++) {
-        if (!seen[k])
-            continue;
-        const int *v = h->f[k].v;
+    for (size_t m = 0; m < n_list; m++) {
+        const int *v = h->f[list[m]].v;
         for (int e = 0; e < 3; e++)
             if (v[e] == a && v[(e + 1) % 3] == b)
                 return 1;
@@ -141,30 +139,23 @@ static int edge_seen(const hull *h, const char *seen, size_t n_old, int a, int b
 }
 
 /* Adds point i: the seen faces go, the horizon joins i.  seen has room for
- * h->n flags.  Returns -1 on allocation failure. */
-static int add_point(hull *h, int i, char *seen)
+ * h->n indices.  Returns -1 on allocation failure. */
+static int add_point(hull *h, int i, size_t *seen)
 {
     size_t n_seen = 0, n_old = h->n;
-    for (size_t k = 0; k < n_old; k++) {
-        seen[k] = bk_dot(h->f[k].n, pt(h, i)) - h->f[k].d > h->eps;
-        n_seen += (size_t)seen[k];
-    }
-    if (!n_seen)
-        return 0;
-    for (size_t k = 0; k < n_old; k++) {
-        if (!seen[k])
-            continue;
+    for (size_t k = 0; k < n_old; k++)
+        if (bk_dot(h->f[k].n, pt(h, i)) - h->f[k].d > h->eps)
+            seen[n_seen++] = k;
+    for (size_t m = 0; m < n_seen; m++)
         for (int e = 0; e < 3; e++) {
-            int a = h->f[k].v[e], b = h->f[k].v[(e + 1) % 3];
-            if (!edge_seen(h, seen, n_old, b, a) && add_face(h, a, b, i))
+            int a = h->f[seen[m]].v[e], b = h->f[seen[m]].v[(e + 1) % 3];
+            if (!edge_seen(h, seen, n_seen, b, a) && add_face(h, a, b, i))
                 return -1;
         }
-    }
-    size_t m = 0;
-    for (size_t k = 0; k < h->n; k++)
-        if (k >= n_old || !seen[k])
-            h->f[m++] = h->f[k];
-    h->n = m;
+    /* remove the seen faces, from the back (seen is ascending), each replaced
+     * by the last face (the faces after it are already free of seen ones) */
+    for (size_t m = n_seen; m-- > 0;)
+        h->f[seen[m]] = h->f[--h->n];
     return 0;
 }
 
@@ -190,7 +181,7 @@ static rf_status hull_points(hull *h, size_t n, rf_error *err)
     for (size_t i = 0; i < n; i++) {
         if ((int)i == t[0] || (int)i == t[1] || (int)i == t[2] || (int)i == t[3])
             continue;
-        char *seen = malloc(h->n + 1);
+        size_t *seen = malloc((h->n + 1) * sizeof *seen);
         int rc = seen ? add_point(h, (int)i, seen) : -1;
         free(seen);
         if (rc)
@@ -205,38 +196,46 @@ static rf_status hull_points(hull *h, size_t n, rf_error *err)
  * |det(n_i, n_j, n_k)| over its faces is below FLAT_DET. */
 #define FLAT_DET 1e-9
 
-static int extreme(const hull *h, int v)
+static int extreme(const hull *h, const size_t *fl, size_t m)
 {
-    const double *nv[64];
-    int m = 0;
-    for (size_t k = 0; k < h->n && m < 64; k++)
-        if (h->f[k].v[0] == v || h->f[k].v[1] == v || h->f[k].v[2] == v)
-            nv[m++] = h->f[k].n;
-    for (int i = 0; i < m; i++)
-        for (int j = i + 1; j < m; j++) {
+    if (m > 64)
+        m = 64;
+    for (size_t i = 0; i < m; i++)
+        for (size_t j = i + 1; j < m; j++) {
             double c[3];
-            bk_cross(nv[i], nv[j], c);
-            for (int k = j + 1; k < m; k++)
-                if (fabs(bk_dot(c, nv[k])) > FLAT_DET)
+            bk_cross(h->f[fl[i]].n, h->f[fl[j]].n, c);
+            for (size_t k = j + 1; k < m; k++)
+                if (fabs(bk_dot(c, h->f[fl[k]].n)) > FLAT_DET)
                     return 1;
         }
     return 0;
 }
 
-/* The indices of the extreme vertices of h (ids, *m of them). */
+/* The indices of the extreme vertices of h (ids, *m of them): the faces of
+ * each vertex listed once (counting sort), O(F). */
 static void extreme_vertices(const hull *h, size_t n, int *ids, size_t *m)
 {
-    char *used = calloc(n, 1);
+    size_t *start = calloc(n + 1, sizeof *start), *fl = malloc(3 * h->n * sizeof *fl);
     *m = 0;
-    if (!used)
+    if (!start || !fl) {
+        free(start), free(fl);
         return;
+    }
     for (size_t k = 0; k < h->n; k++)
         for (int e = 0; e < 3; e++)
-            used[h->f[k].v[e]] = 1;
+            start[h->f[k].v[e] + 1]++;
     for (size_t i = 0; i < n; i++)
-        if (used[i] && extreme(h, (int)i))
+        start[i + 1] += start[i];
+    for (size_t k = 0; k < h->n; k++)
+        for (int e = 0; e < 3; e++)
+            fl[start[h->f[k].v[e]]++] = k;
+    for (size_t i = n; i > 0; i--) /* start[i] is now the end of vertex i's list: shift back */
+        start[i] = start[i - 1];
+    start[0] = 0;
+    for (size_t i = 0; i < n; i++)
+        if (start[i + 1] > start[i] && extreme(h, fl + start[i], start[i + 1] - start[i]))
             ids[(*m)++] = (int)i;
-    free(used);
+    free(start), free(fl);
 }
 
 static rf_status copy_faces(const hull *h, const int *ids, int **faces, size_t *n_faces, rf_error *err)
