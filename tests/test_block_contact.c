@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "rockfuzz/block.h"
+#include "rockfuzz/terrain.h"
 
 #define G 9.81
 #define PI 3.14159265358979323846
@@ -414,6 +415,41 @@ static void test_ellipsoid_contact(void **state)
     assert_true(rf_block_lowest_point(&s, &t, up, low) > -0.01); /* never sank: at most a step's travel */
 }
 
+/* The terrain plugs in through the ground callback: a DEM of an inclined
+ * plane (rf_terrain_from_nodes, bilinear) gives a sphere the rolling
+ * acceleration of the plane, 5/7 g sin b, and a box the sliding one. */
+static int terrain_ground(void *t, double x, double y, double *z, double n[3])
+{
+    return rf_terrain_height(t, x, y, z, n);
+}
+
+static void test_terrain_ground(void **state)
+{
+    (void)state;
+    double beta = 25 * DEG, zs[40 * 8];
+    for (int j = 0; j < 8; j++)
+        for (int i = 0; i < 40; i++)
+            zs[j * 40 + i] = -tan(beta) * (-10 + 2.0 * i);
+    rf_terrain *t;
+    rf_error err;
+    assert_int_equal(rf_terrain_from_nodes(40, 8, -10, -7, 2, 2, zs, &t, &err), RF_OK);
+    rf_block_world w = world(NULL, 0.6, 0, 1e-3);
+    w.ground = terrain_ground, w.ground_ctx = t;
+    rf_block_shape s;
+    rf_block_state st;
+    sphere_on_incline(beta, 0.5, &s, &st);
+    run(&s, &w, &st, 2000, 1e-12 * s.mass * G);
+    double down[3] = {cos(beta), 0, -sin(beta)}, v = st.v[0] * down[0] + st.v[2] * down[2];
+    assert_rel(v / 2.0, 5.0 / 7.0 * G * sin(beta), 1e-6, "rolling on a terrain plane");
+    w.mu = 0.3;
+    box_on_incline(beta, &s, &st);
+    run(&s, &w, &st, 2000, 1e-12 * s.mass * G);
+    v = st.v[0] * down[0] + st.v[2] * down[2];
+    assert_rel(v / 2.0, G * (sin(beta) - 0.3 * cos(beta)), 1e-6, "sliding on a terrain plane");
+    rf_block_shape_free(&s);
+    rf_terrain_free(t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -421,6 +457,7 @@ int main(void)
         cmocka_unit_test(test_sphere_rolls),    cmocka_unit_test(test_sphere_rebound),
         cmocka_unit_test(test_oblique_impact),  cmocka_unit_test(test_flat_drop_and_tumble),
         cmocka_unit_test(test_sphere_in_groove), cmocka_unit_test(test_ellipsoid_contact),
+        cmocka_unit_test(test_terrain_ground),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -130,8 +130,8 @@ double rf_block_lowest_point(const rf_block_shape *s, const rf_block_state *st, 
 /* ---- contact (block_contact.c) ---- */
 
 /* The ground as a height field: z and the unit upward normal at (x, y);
- * returns 0 outside (no ground there).  rf_terrain_height fits it with the
- * terrain as ctx. */
+ * returns 0 outside (no ground there).  A one-line wrapper of
+ * rf_terrain_height (terrain.h) with the terrain as ctx is one. */
 typedef int (*rf_block_ground_fn)(void *ctx, double x, double y, double *z, double normal[3]);
 
 /* A contact plane: the points p with n . (p - point) >= 0 are free. */

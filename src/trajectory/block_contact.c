@@ -151,6 +151,8 @@ static void smooth_contacts(contact_set *cs, const rf_block_world *wd, const dou
     double rb[3], db[3], p[3], d[3];
     for (size_t k = 0; k < wd->n_planes; k++) {
         const double *n = wd->planes[k].normal;
+        if (k < 64 && cs->far[k])
+            continue;
         double m[3] = {-n[0], -n[1], -n[2]};
         bk_mat_tvec(cs->r, m, db);
         rf_block_support(cs->s, db, rb);
