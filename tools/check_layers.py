@@ -39,7 +39,7 @@ LAYERS = {
 # Public headers (include/rockfuzz/NAME.h) -> module.
 PUBLIC = {
     "status": "core", "fuzzy": "fuzzy", "material": "material", "impact": "impact", "mdr": "impact",
-    "fem": "fem", "fem3d": "fem", "model": "model", "impact_model": "model", "trajectory": "trajectory", "terrain": "trajectory",
+    "fem": "fem", "fem3d": "fem", "model": "model", "impact_model": "model", "trajectory": "trajectory", "terrain": "trajectory", "block": "trajectory",
     "tm": "tm", "analysis": "tm", "study": "study", "study_run": "study", "runner": "study",
     "store": "study", "mpi": "study", "report": "study",
 }
