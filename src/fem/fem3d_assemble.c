@@ -20,31 +20,33 @@ static rf_status solid_alloc(solid_run *R, rf_error *err)
 {
     fem_pool *P = R->pool;
     const size_t nn = (size_t)R->grid.nn, ne = (size_t)R->grid.ne, nd = (size_t)R->grid.ndof;
-    f3_system *S = &R->sys.S;
+    solid_system *Y = &R->sys;
+    solid_boundary *D = &R->bound;
+    f3_system *S = &Y->S;
     S->fel = fem_pool_get(P, Q_FEL, 3 * (size_t)R->grid.nbn * sizeof(double), 0);
     S->ub = fem_pool_get(P, Q_UB, 3 * (size_t)R->grid.nbn * sizeof(double), 0);
-    R->sys.K = fem_pool_get(P, Q_K, ne * 576 * sizeof(float), 0);
+    Y->K = fem_pool_get(P, Q_K, ne * 576 * sizeof(float), 0);
     S->fe = fem_pool_get(P, Q_FE, ne * 24 * sizeof(double), 0);
     S->inc_ptr = fem_pool_get(P, Q_INC_PTR, (nn + 1) * sizeof(long), 1);
     S->inc = fem_pool_get(P, Q_INC, ne * 8 * sizeof(long), 0);
-    R->sys.u = fem_pool_get(P, Q_U, nd * sizeof(double), 1);
-    R->sys.v = fem_pool_get(P, Q_V, nd * sizeof(double), 1);
-    R->sys.f = fem_pool_get(P, Q_F, nd * sizeof(double), 1);
-    R->sys.fext = fem_pool_get(P, Q_FEXT, nd * sizeof(double), 1);
-    R->sys.mass = fem_pool_get(P, Q_MASS, nd * sizeof(double), 1);
-    R->sys.invm = fem_pool_get(P, Q_INVM, nd * sizeof(double), 1);
-    R->bound.dash = fem_pool_get(P, Q_DASH, nn * sizeof(double), 1);
-    R->sys.elm = fem_pool_get(P, Q_ELM, ne * 8 * sizeof(double), 0);
-    R->sys.lamx = fem_pool_get(P, Q_LAMX, ne * sizeof(double), 0);
-    R->sys.fixed = fem_pool_get(P, Q_FIXED, nd, 1);
-    R->bound.outer = fem_pool_get(P, Q_OUTER, nn * sizeof(int), 0);
+    Y->u = fem_pool_get(P, Q_U, nd * sizeof(double), 1);
+    Y->v = fem_pool_get(P, Q_V, nd * sizeof(double), 1);
+    Y->f = fem_pool_get(P, Q_F, nd * sizeof(double), 1);
+    Y->fext = fem_pool_get(P, Q_FEXT, nd * sizeof(double), 1);
+    Y->mass = fem_pool_get(P, Q_MASS, nd * sizeof(double), 1);
+    Y->invm = fem_pool_get(P, Q_INVM, nd * sizeof(double), 1);
+    D->dash = fem_pool_get(P, Q_DASH, nn * sizeof(double), 1);
+    Y->elm = fem_pool_get(P, Q_ELM, ne * 8 * sizeof(double), 0);
+    Y->lamx = fem_pool_get(P, Q_LAMX, ne * sizeof(double), 0);
+    Y->fixed = fem_pool_get(P, Q_FIXED, nd, 1);
+    D->outer = fem_pool_get(P, Q_OUTER, nn * sizeof(int), 0);
     R->grid.emat = fem_pool_get(P, Q_EMAT, ne, 0);
-    R->bound.dashl = fem_pool_get(P, Q_DASHL, nn * sizeof(double), 1);
-    R->bound.dnrm = fem_pool_get(P, Q_DNRM, 3 * nn * sizeof(double), 1);
-    if (!R->grid.emat || !R->bound.dashl || !R->bound.dnrm)
+    D->dashl = fem_pool_get(P, Q_DASHL, nn * sizeof(double), 1);
+    D->dnrm = fem_pool_get(P, Q_DNRM, 3 * nn * sizeof(double), 1);
+    if (!R->grid.emat || !D->dashl || !D->dnrm)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->grid.ne);
-    if (!R->sys.K || !S->fe || !S->fel || !S->ub || !S->inc_ptr || !S->inc || !R->sys.u || !R->sys.v || !R->sys.f || !R->sys.fext || !R->sys.mass ||
-        !R->sys.invm || !R->bound.dash || !R->sys.elm || !R->sys.lamx || !R->sys.fixed || !R->bound.outer)
+    if (!Y->K || !S->fe || !S->fel || !S->ub || !S->inc_ptr || !S->inc || !Y->u || !Y->v || !Y->f || !Y->fext ||
+        !Y->mass || !Y->invm || !D->dash || !Y->elm || !Y->lamx || !Y->fixed || !D->outer)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->grid.ne);
     return RF_OK;
 }
@@ -103,7 +105,8 @@ static rf_status solid_elements(solid_run *R, rf_error *err)
                 bad_elem |= 1;
     }
     if (bad_elem)
-        return rf_fail(err, RF_EINTERNAL, "fem3d mesh: an element has a non-positive nodal mass (distorted hexahedron)");
+        return rf_fail(err, RF_EINTERNAL,
+                       "fem3d mesh: an element has a non-positive nodal mass (distorted hexahedron)");
     return RF_OK;
 }
 
@@ -111,8 +114,9 @@ static rf_status solid_elements(solid_run *R, rf_error *err)
  * (0, ., d) and I_yy (fem3d_mass.c, docs/fem-speed.md section 5). */
 static void boulder_inertia(solid_run *R)
 {
-    const double M = R->set.H.mass / R->grid.sym_factor, I = M * (R->set.H.c * R->set.H.c + R->set.H.d * R->set.H.d) / 5;
-    R->sys.mass_moments_ok = f3_boulder_mass_moments(&R->grid.mesh, R->sys.elm, M, 0, R->set.H.d, I);
+    const rf_hertz_reference *H = &R->set.H;
+    const double M = H->mass / R->grid.sym_factor, I = M * (H->c * H->c + H->d * H->d) / 5;
+    R->sys.mass_moments_ok = f3_boulder_mass_moments(&R->grid.mesh, R->sys.elm, M, 0, H->d, I);
 }
 
 /* Element e's free dofs and double stiffness (from the stored float K). */
@@ -157,25 +161,50 @@ static double node_mass(const solid_run *R, long n)
  * grid, the element-node masses and the nodal masses again; mshift = each node's change. */
 static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
 {
+    solid_system *Y = &R->sys;
+    const f3_mesh *mesh = &R->grid.mesh;
     unsigned char *face = calloc((size_t)R->grid.nn, 1);
-    R->sys.mshift = fem_pool_get(R->pool, Q_MSHIFT, (size_t)R->grid.nn * sizeof(double), 1);
-    if (!face || !R->sys.mshift) { /* without memory the masses stay lumped as they are */
+    Y->mshift = fem_pool_get(R->pool, Q_MSHIFT, (size_t)R->grid.nn * sizeof(double), 1);
+    if (!face || !Y->mshift) { /* without memory the masses stay lumped as they are */
         free(face);
-        R->sys.mshift = NULL;
+        Y->mshift = NULL;
         return;
     }
-    for (long k = 0; k < (long)R->grid.mesh.nxt_s * R->grid.mesh.nyt_s; k++)
-        face[R->grid.mesh.top_s[k]] = !(R->grid.mesh.flags[R->grid.mesh.top_s[k]] & F3_OUTER);
-    R->sys.shifted_elems = f3_surface_mass_shift(&R->grid.mesh, face, R->sys.elm, lam_upper, lam_max, R->set.t.surface_mass_kappa);
+    for (long k = 0; k < (long)mesh->nxt_s * mesh->nyt_s; k++)
+        face[mesh->top_s[k]] = !(mesh->flags[mesh->top_s[k]] & F3_OUTER);
+    Y->shifted_elems = f3_surface_mass_shift(mesh, face, Y->elm, lam_upper, lam_max, R->set.t.surface_mass_kappa);
     free(face);
-    for (long n = R->grid.nbn; n < R->grid.nn && R->sys.shifted_elems > 0; n++) {
+    for (long n = R->grid.nbn; n < R->grid.nn && Y->shifted_elems > 0; n++) {
         const double m = node_mass(R, n);
-        R->sys.mshift[n] = m - R->sys.mass[3 * n];
+        Y->mshift[n] = m - Y->mass[3 * n];
         for (int q = 0; q < 3; q++) {
-            R->sys.mass[3 * n + q] = m;
-            R->sys.invm[3 * n + q] = R->sys.fixed[3 * n + q] ? 0 : 1 / m;
+            Y->mass[3 * n + q] = m;
+            Y->invm[3 * n + q] = Y->fixed[3 * n + q] ? 0 : 1 / m;
         }
     }
+}
+
+/* The smallest edge / c_p of the deformable elements [s] (for comparison only). */
+static double solid_edge_time(const solid_run *R)
+{
+    static const int ed[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                  {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    const f3_mesh *mesh = &R->grid.mesh;
+    double dt_edge = DBL_MAX;
+    for (long e = 0; e < R->grid.ne; e++) {
+        const int *cn = mesh->conn + 8 * e;
+        const int b = R->grid.emat[e];
+        if (R->body.rigid && b == 0)
+            continue;
+        for (int k = 0; k < 12; k++) {
+            const double *p = mesh->x + 3 * cn[ed[k][0]], *q = mesh->x + 3 * cn[ed[k][1]];
+            double l = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                            (p[2] - q[2]) * (p[2] - q[2]));
+            if (l / R->body.w[b].p < dt_edge)
+                dt_edge = l / R->body.w[b].p;
+        }
+    }
+    return dt_edge;
 }
 
 /* Nodal masses (the boulder's density scaled so that the rigid-body mass is
@@ -184,52 +213,43 @@ static void surface_mass_shift(solid_run *R, double *lam_upper, double lam_max)
 static void solid_masses(solid_run *R)
 {
     const f3_mesh *mesh = &R->grid.mesh;
-    R->sys.mesh_mass_b = 0;
+    solid_system *Y = &R->sys;
+    Y->mesh_mass_b = 0;
     for (long e = 0; e < mesh->boulder_elems; e++)
         for (int a = 0; a < 8; a++)
-            R->sys.mesh_mass_b += R->sys.elm[8 * e + a];
+            Y->mesh_mass_b += Y->elm[8 * e + a];
     R->grid.sym_factor = R->grid.ms.full ? 1.0 : 2.0;
-    const double mscale = R->set.H.mass / R->grid.sym_factor / R->sys.mesh_mass_b;
+    const double mscale = R->set.H.mass / R->grid.sym_factor / Y->mesh_mass_b;
     for (long e = 0; e < mesh->boulder_elems * 8; e++)
-        R->sys.elm[e] *= mscale;
+        Y->elm[e] *= mscale;
     boulder_inertia(R);
     for (long n = 0; n < R->grid.nn; n++)
-        R->sys.mass[3 * n] = R->sys.mass[3 * n + 1] = R->sys.mass[3 * n + 2] = node_mass(R, n);
+        Y->mass[3 * n] = Y->mass[3 * n + 1] = Y->mass[3 * n + 2] = node_mass(R, n);
     for (long dd = 0; dd < R->grid.ndof; dd++)
-        R->sys.invm[dd] = R->sys.fixed[dd] ? 0 : 1 / R->sys.mass[dd];
+        Y->invm[dd] = Y->fixed[dd] ? 0 : 1 / Y->mass[dd];
     double *lam_upper = fem_pool_get(R->pool, Q_LAMU, (size_t)R->grid.ne * sizeof(double), 0);
     const double lam_max = solid_lambda_max(R, lam_upper);
-    if (lam_upper && R->set.t.surface_mass_kappa > 0 && R->set.t.surface_mass_3d && (R->body.layer || R->body.plastic[1])) /* 9e */
+    const rf_fem_tuning *t = &R->set.t;
+    if (lam_upper && t->surface_mass_kappa > 0 && t->surface_mass_3d && (R->body.layer || R->body.plastic[1])) /* 9e */
         surface_mass_shift(R, lam_upper, lam_max);
     R->step.lamu = R->body.large ? lam_upper : NULL;
-    R->step.dt_edge = DBL_MAX;
-    static const int ed[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
-                                  {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-    for (long e = 0; e < R->grid.ne; e++) {
-        const int *cn = mesh->conn + 8 * e;
-        const int b = R->grid.emat[e];
-        if (R->body.rigid && b == 0)
-            continue;
-        for (int k = 0; k < 12; k++) {
-            const double *p = mesh->x + 3 * cn[ed[k][0]], *q = mesh->x + 3 * cn[ed[k][1]];
-            double l = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
-            if (l / R->body.w[b].p < R->step.dt_edge)
-                R->step.dt_edge = l / R->body.w[b].p;
-        }
-    }
-    R->step.dt = fem_time_step(lam_max, R->set.t.dt_safety, &R->step.dt_bound);
+    R->step.dt_edge = solid_edge_time(R);
+    R->step.dt = fem_time_step(lam_max, t->dt_safety, &R->step.dt_bound);
 }
 
 /* The largest dt C / m of the explicit dashpots (stable below 2): C = the
  * node's tributary area times rho c_p of its faces' material. */
 static void solid_dashpot_check(solid_run *R)
 {
-    R->bound.dash_ratio = 0;
-    for (long k = 0; k < R->bound.nouter; k++) {
-        const int i = R->bound.outer[k];
-        const double C = R->bound.dash[i] * R->body.mat[1].rho * R->body.w[1].p + R->bound.dashl[i] * R->body.mat[2].rho * R->body.w[2].p;
-        if (R->step.dt * C / R->sys.mass[3 * i] > R->bound.dash_ratio)
-            R->bound.dash_ratio = R->step.dt * C / R->sys.mass[3 * i];
+    solid_boundary *D = &R->bound;
+    const solid_bodies *b = &R->body;
+    const double dt = R->step.dt;
+    D->dash_ratio = 0;
+    for (long k = 0; k < D->nouter; k++) {
+        const int i = D->outer[k];
+        const double C = D->dash[i] * b->mat[1].rho * b->w[1].p + D->dashl[i] * b->mat[2].rho * b->w[2].p;
+        if (dt * C / R->sys.mass[3 * i] > D->dash_ratio)
+            D->dash_ratio = dt * C / R->sys.mass[3 * i];
     }
 }
 
@@ -259,8 +279,9 @@ static void solid_dashpots(solid_run *R)
         double area = 0.5 * sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
         for (int a = 0; a < 4; a++) {
             area_to[qn[a]] += 0.25 * area;
+            const double side = cr[0] * p0[0] + cr[1] * p0[1] + cr[2] * p0[2] > 0 ? 0.5 : -0.5;
             for (int d = 0; d < 3; d++) /* outward: away from the contact point at the origin */
-                R->bound.dnrm[3 * qn[a] + d] += (cr[0] * p0[0] + cr[1] * p0[1] + cr[2] * p0[2] > 0 ? 0.5 : -0.5) * cr[d];
+                R->bound.dnrm[3 * qn[a] + d] += side * cr[d];
         }
     }
     solid_dashpot_check(R);
@@ -290,10 +311,10 @@ void f3_run_release(solid_run *R)
 static rf_status solid_contact_setup(solid_run *R, rf_error *err)
 {
     f3_contact *C = &R->C;
+    const f3_mesh *mesh = &R->grid.mesh;
     C->sphere = R->set.t.sphere_contact_3d && R->body.rigid && R->set.H.c == R->set.H.d;
     C->radius = R->set.H.d;
-    const size_t ns = C->sphere ? (size_t)R->grid.mesh.nxt_s * (size_t)R->grid.mesh.nyt_s
-                                : (size_t)R->grid.mesh.nxt_b * (size_t)R->grid.mesh.nyt_b;
+    const size_t ns = C->sphere ? (size_t)mesh->nxt_s * (size_t)mesh->nyt_s : (size_t)mesh->nxt_b * (size_t)mesh->nyt_b;
     C->nslave = (long)ns;
     C->slave = malloc(ns * sizeof *C->slave);
     C->lam = calloc(ns * 3, sizeof *C->lam);
@@ -314,19 +335,19 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
     if (C->sphere && !(C->wr = calloc(ns * 9, sizeof *C->wr)))
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
-    memcpy(C->slave, C->sphere ? R->grid.mesh.top_s : R->grid.mesh.top_b, ns * sizeof *C->slave);
+    memcpy(C->slave, C->sphere ? mesh->top_s : mesh->top_b, ns * sizeof *C->slave);
     for (size_t k = 0; k < ns; k++)
-        C->Xm[2 * k] = R->grid.mesh.x[3 * C->slave[k]], C->Xm[2 * k + 1] = R->grid.mesh.x[3 * C->slave[k] + 1];
+        C->Xm[2 * k] = mesh->x[3 * C->slave[k]], C->Xm[2 * k + 1] = mesh->x[3 * C->slave[k] + 1];
     C->friction = R->set.in->friction;
     C->tol = 1e-9 * R->grid.h;
     C->band = 0.5 * fmin(R->grid.h, R->grid.hb) + 2 * R->set.V * R->step.dt;
     C->max_sweeps = 2000;
     /* the first-contact point is the slope frame's origin: the nearest node of the slope's top grid */
-    const double hs = R->grid.mesh.h_s;
-    long i = lround(-R->grid.mesh.x0_s / hs), j = lround(-R->grid.mesh.y0_s / hs);
-    i = i < 0 ? 0 : i >= R->grid.mesh.nxt_s ? R->grid.mesh.nxt_s - 1 : i;
-    j = j < 0 ? 0 : j >= R->grid.mesh.nyt_s ? R->grid.mesh.nyt_s - 1 : j;
-    R->grid.crater_node = R->grid.mesh.top_s[i * R->grid.mesh.nyt_s + j];
+    const double hs = mesh->h_s;
+    long i = lround(-mesh->x0_s / hs), j = lround(-mesh->y0_s / hs);
+    i = i < 0 ? 0 : i >= mesh->nxt_s ? mesh->nxt_s - 1 : i;
+    j = j < 0 ? 0 : j >= mesh->nyt_s ? mesh->nyt_s - 1 : j;
+    R->grid.crater_node = mesh->top_s[i * mesh->nyt_s + j];
     return RF_OK;
 }
 
@@ -355,7 +376,8 @@ static rf_status solid_layer_kernel(solid_run *R, long first, long count, rf_err
        is plastic, else the linear law */
     const fem_point_law law = plastic ? fem_point_law_material3d(&R->body.matl[1]) : solid_point_law(R, 1);
     const fem_point_law law2 = plastic ? fem_point_law_material3d(&R->body.matl[2]) : solid_point_law(R, 2);
-    return fem_kernel_points_hex(&R->sys.S.kernel[F3_SLOPE], first, count, R->grid.mesh.x, R->grid.mesh.conn, &law, &law2, use2,
+    const f3_mesh *mesh = &R->grid.mesh;
+    return fem_kernel_points_hex(&R->sys.S.kernel[F3_SLOPE], first, count, mesh->x, mesh->conn, &law, &law2, use2,
                                  plastic, err);
 }
 
@@ -363,14 +385,16 @@ static rf_status solid_layer_kernel(solid_run *R, long first, long count, rf_err
  * element above the layer's node plane); fails if no element is in the layer. */
 static rf_status solid_materials(solid_run *R, rf_error *err)
 {
+    const f3_mesh *mesh = &R->grid.mesh;
+    unsigned char *emat = R->grid.emat;
     long nlayer = 0;
     for (long e = 0; e < R->grid.ne; e++) {
-        const int *c = R->grid.mesh.conn + 8 * e;
+        const int *c = mesh->conn + 8 * e;
         double zc = 0;
         for (int a = 0; a < 8; a++)
-            zc += R->grid.mesh.x[3 * c[a] + 2] / 8;
-        R->grid.emat[e] = e < R->grid.mesh.boulder_elems ? 0 : R->body.layer && zc > -R->set.in->layer_thickness ? 2 : 1;
-        nlayer += R->grid.emat[e] == 2;
+            zc += mesh->x[3 * c[a] + 2] / 8;
+        emat[e] = e < mesh->boulder_elems ? 0 : R->body.layer && zc > -R->set.in->layer_thickness ? 2 : 1;
+        nlayer += emat[e] == 2;
     }
     if (R->body.layer && nlayer == 0)
         return rf_fail(err, RF_EINVAL, "fem3d: layer_thickness = %g m has no element (h = %g m)",
@@ -386,9 +410,10 @@ static rf_status solid_rigid_setup(solid_run *R, rf_error *err)
     if (!R->body.rigid)
         return RF_OK;
     f3_rigid *B = &R->B;
+    const rf_hertz_reference *H = &R->set.H;
     B->on = 1;
-    B->M = R->set.H.mass / R->grid.sym_factor;
-    B->I = B->M * (R->set.H.c * R->set.H.c + R->set.H.d * R->set.H.d) / 5;
+    B->M = H->mass / R->grid.sym_factor;
+    B->I = B->M * (H->c * H->c + H->d * H->d) / 5;
     memcpy(B->c0, R->sys.S.c0, sizeof B->c0);
     B->V[0] = R->set.Vt, B->V[1] = -R->set.Vn;
     for (long dd = 0; dd < 3 * R->grid.nbn; dd++)
@@ -412,6 +437,8 @@ static rf_status solid_rigid_setup(solid_run *R, rf_error *err)
 static rf_status solid_kernels(solid_run *R, rf_error *err)
 {
     f3_system *S = &R->sys.S;
+    const double *x = R->grid.mesh.x;
+    const int *conn = R->grid.mesh.conn;
     const long nbe = R->grid.mesh.boulder_elems;
     const int store_j = R->grid.ne <= F3_STORE_J_MAX;
     for (int b = 0; b < 2; b++) {
@@ -427,18 +454,15 @@ static rf_status solid_kernels(solid_run *R, rf_error *err)
             st = solid_layer_kernel(R, first, count, err);
         else if (R->body.plastic[b]) {
             const fem_point_law law = fem_point_law_material3d(&R->body.matl[b]);
-            st = fem_kernel_points_hex(&S->kernel[b], first, count, R->grid.mesh.x, R->grid.mesh.conn, &law, NULL, NULL, 1,
-                                       err);
+            st = fem_kernel_points_hex(&S->kernel[b], first, count, x, conn, &law, NULL, NULL, 1, err);
         } else if (R->set.t.kernel[b] == RF_FEM_KERNEL_POINTS || R->body.ul[b]) {
             R->body.lame[b] = (fem_lame){lam, mu};
             const fem_point_law law = fem_point_law_linear3d(&R->body.lame[b]);
-            st = fem_kernel_points_hex(&S->kernel[b], first, count, R->grid.mesh.x, R->grid.mesh.conn, &law, NULL, NULL, 0,
-                                       err);
+            st = fem_kernel_points_hex(&S->kernel[b], first, count, x, conn, &law, NULL, NULL, 0, err);
         } else
-            st = fem_kernel_hex8_matfree(&S->kernel[b], first, count, R->grid.mesh.x, R->grid.mesh.conn, lam, mu, store_j,
-                                         err);
+            st = fem_kernel_hex8_matfree(&S->kernel[b], first, count, x, conn, lam, mu, store_j, err);
         if (st == RF_OK && R->body.ul[b]) /* (an elastic body: the linear, hypoelastic, law on the current geometry) */
-            st = fem_kernel_points_hex_large(&S->kernel[b], R->grid.mesh.x, err);
+            st = fem_kernel_points_hex_large(&S->kernel[b], x, err);
         if (st != RF_OK)
             return st;
     }
@@ -448,24 +472,48 @@ static rf_status solid_kernels(solid_run *R, rf_error *err)
 /* Large deformation: the step check watches the elements on the UL kernel. */
 static rf_status solid_step_check(solid_run *R, rf_error *err)
 {
-    R->step.ul_elem = fem_pool_get(R->pool, Q_ULE, (size_t)R->grid.ne + 1, 0);
-    if (!R->step.lamu || !R->step.ul_elem)
-        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", R->grid.ne);
-    for (long e = 0; e < R->grid.ne; e++)
-        R->step.ul_elem[e] = (unsigned char)R->body.ul[e < R->grid.mesh.boulder_elems ? F3_BOULDER : F3_SLOPE];
-    return f3_step_check_init(&R->step.check, &R->grid.mesh, R->grid.ne, R->step.ul_elem, R->step.lamu, solid_element, R, err);
+    solid_timestep *T = &R->step;
+    const long ne = R->grid.ne;
+    T->ul_elem = fem_pool_get(R->pool, Q_ULE, (size_t)ne + 1, 0);
+    if (!T->lamu || !T->ul_elem)
+        return rf_fail(err, RF_ENOMEM, "fem3d: out of memory for %ld elements", ne);
+    for (long e = 0; e < ne; e++)
+        T->ul_elem[e] = (unsigned char)R->body.ul[e < R->grid.mesh.boulder_elems ? F3_BOULDER : F3_SLOPE];
+    return f3_step_check_init(&T->check, &R->grid.mesh, ne, T->ul_elem, T->lamu, solid_element, R, err);
+}
+
+/* The initial state: the boulder translating at (V sin alpha, 0, -V cos
+ * alpha) in the slope frame, its mass, KE0 and reference CM. */
+static void solid_initial_state(solid_run *R)
+{
+    solid_system *Y = &R->sys;
+    f3_system *S = &Y->S;
+    const long nbn = R->grid.nbn;
+    for (long i = 0; i < nbn; i++)
+        Y->v[3 * i] = R->set.Vt, Y->v[3 * i + 2] = -R->set.Vn;
+    double Mb = 0;
+    for (long i = 0; i < nbn; i++)
+        Mb += Y->mass[3 * i];
+    Y->Mb = Mb;
+    Y->ke0 = 0.5 * Mb * R->set.V * R->set.V; /* of the model (half of the boulder in the half model) */
+    S->mass = Y->mass, S->Mb = Mb;
+    for (long i = 0; i < nbn; i++)
+        for (int q = 0; q < 3; q++)
+            S->c0[q] += Y->mass[3 * i] * R->grid.mesh.x[3 * i + q] / Mb;
+    if (!R->grid.ms.full)
+        S->c0[1] = 0;
 }
 
 /* Assembly: arrays, topology, elements, masses and time step, material
- * kernels (one block per body), dashpots, contact, and the
- * initial state (boulder translating at (V sin alpha, 0, -V cos alpha) in the
- * slope frame). */
+ * kernels (one block per body), dashpots, contact, the initial state, the
+ * rigid boulder and gravity's load. */
 rf_status f3_run_assemble(solid_run *R, rf_error *err)
 {
-    R->grid.nn = R->grid.mesh.n_nodes, R->grid.ne = R->grid.mesh.n_elems, R->grid.ndof = 3 * R->grid.nn, R->grid.nbn = R->grid.mesh.boulder_nodes;
+    solid_grid *G = &R->grid;
+    G->nn = G->mesh.n_nodes, G->ne = G->mesh.n_elems, G->ndof = 3 * G->nn, G->nbn = G->mesh.boulder_nodes;
     f3_system *S = &R->sys.S;
-    S->nn = R->grid.nn, S->ne = R->grid.ne, S->ndof = R->grid.ndof, S->nbn = R->grid.nbn, S->mesh = &R->grid.mesh;
-    S->threads = R->set.threads, S->full = R->grid.ms.full;
+    S->nn = G->nn, S->ne = G->ne, S->ndof = G->ndof, S->nbn = G->nbn, S->mesh = &G->mesh;
+    S->threads = R->set.threads, S->full = G->ms.full;
     rf_status st = solid_alloc(R, err);
     if (st != RF_OK)
         return st;
@@ -486,22 +534,10 @@ rf_status f3_run_assemble(solid_run *R, rf_error *err)
                        "light layer); use boundary: fixed", R->bound.dash_ratio);
     if ((st = solid_contact_setup(R, err)) != RF_OK)
         return st;
-    for (long i = 0; i < R->grid.nbn; i++)
-        R->sys.v[3 * i] = R->set.Vt, R->sys.v[3 * i + 2] = -R->set.Vn;
-    double Mb = 0;
-    for (long i = 0; i < R->grid.nbn; i++)
-        Mb += R->sys.mass[3 * i];
-    R->sys.Mb = Mb;
-    R->sys.ke0 = 0.5 * Mb * R->set.V * R->set.V; /* of the model (half of the boulder in the half model) */
-    S->mass = R->sys.mass, S->Mb = Mb;
-    for (long i = 0; i < R->grid.nbn; i++)
-        for (int q = 0; q < 3; q++)
-            S->c0[q] += R->sys.mass[3 * i] * R->grid.mesh.x[3 * i + q] / Mb;
-    if (!R->grid.ms.full)
-        S->c0[1] = 0;
+    solid_initial_state(R);
     if ((st = solid_rigid_setup(R, err)) != RF_OK || !(R->grav.g > 0))
         return st;
-    double *fgrav = fem_pool_get(R->pool, Q_FGRAV, (size_t)R->grid.ndof * sizeof(double), 1);
+    double *fgrav = fem_pool_get(R->pool, Q_FGRAV, (size_t)G->ndof * sizeof(double), 1);
     if (!fgrav)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
     return f3_gravity_setup(&R->grav, S, R->set.in, R->body.matl, R->body.plastic, R->sys.u, fgrav, err);

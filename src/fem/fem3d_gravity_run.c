@@ -40,7 +40,8 @@ static void gravity_load_check(const solid_run *R, f3_gravity_check *chk)
             continue;
         chk->box_nodes++;
         for (int q = 0; q < 3; q++) {
-            const double w = (R->sys.mass[3 * i] - (R->sys.mshift ? R->sys.mshift[i] : 0)) * R->grav.g; /* its own weight */
+            /* its own weight */
+            const double w = (R->sys.mass[3 * i] - (R->sys.mshift ? R->sys.mshift[i] : 0)) * R->grav.g;
             chk->load_err = fmax(chk->load_err, fabs(fg[3 * i + q] - w * R->grav.dir[q]) / w);
         }
     }
@@ -49,23 +50,25 @@ static void gravity_load_check(const solid_run *R, f3_gravity_check *chk)
 /* What fem3d_gravity_free_run reports of the state after its steps. */
 static void gravity_free_report(solid_run *R, f3_gravity_check *chk, double closure)
 {
-    for (long d = 3 * R->grid.nbn; d < R->grid.ndof; d++)
-        chk->slope_u_max = fmax(chk->slope_u_max, fabs(R->sys.u[d])), chk->slope_v_max = fmax(chk->slope_v_max, fabs(R->sys.v[d]));
-    for (long i = 0; i < R->grid.nbn; i++)
+    const double *u = R->sys.u, *v = R->sys.v, *m = R->sys.mass, Mb = R->sys.Mb;
+    const long nbn = R->grid.nbn;
+    for (long d = 3 * nbn; d < R->grid.ndof; d++)
+        chk->slope_u_max = fmax(chk->slope_u_max, fabs(u[d])), chk->slope_v_max = fmax(chk->slope_v_max, fabs(v[d]));
+    for (long i = 0; i < nbn; i++)
         for (int q = 0; q < 3; q++)
-            chk->cm_u[q] += R->sys.mass[3 * i] * R->sys.u[3 * i + q] / R->sys.Mb, chk->cm_v[q] += R->sys.mass[3 * i] * R->sys.v[3 * i + q] / R->sys.Mb;
-    for (long i = 0; i < R->grid.nbn; i++)
+            chk->cm_u[q] += m[3 * i] * u[3 * i + q] / Mb, chk->cm_v[q] += m[3 * i] * v[3 * i + q] / Mb;
+    for (long i = 0; i < nbn; i++)
         for (int q = 0; q < 3; q++)
-            chk->spread_u = fmax(chk->spread_u, fabs(R->sys.u[3 * i + q] - chk->cm_u[q]));
+            chk->spread_u = fmax(chk->spread_u, fabs(u[3 * i + q] - chk->cm_u[q]));
     chk->dt = R->step.dt, chk->closure = closure, chk->gravity_work = R->grav.W, chk->outside = R->grav.outside;
     gravity_load_check(R, chk);
-    const f3_mesh *m = &R->grid.mesh;
-    for (long e = m->boulder_elems; chk->cell && e < R->grid.ne; e++) {
+    const f3_mesh *mesh = &R->grid.mesh;
+    for (long e = mesh->boulder_elems; chk->cell && e < R->grid.ne; e++) {
         double sig[6], ep, zc = 0;
         if (!fem_kernel_points_hex_cell(&R->sys.S.kernel[F3_SLOPE], e, sig, &ep))
             return;
         for (int a = 0; a < 8; a++)
-            zc += m->x[3 * (long)m->conn[8 * e + a] + 2] / 8;
+            zc += mesh->x[3 * (long)mesh->conn[8 * e + a] + 2] / 8;
         chk->cell(chk->ctx, -zc, R->grid.emat[e] == 2, sig);
     }
 }

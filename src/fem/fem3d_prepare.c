@@ -56,92 +56,107 @@ static rf_status check_input(const rf_impact_input *in, const rf_fem_options *o,
  * layer's wave speeds. */
 static rf_status solid_prepare_layer(solid_run *R, rf_error *err)
 {
-    const rf_impact_input *in = R->set.in;
+    solid_settings *set = &R->set;
+    const rf_impact_input *in = set->in;
     R->body.layer = in->layer_thickness > 0;
     if (!R->body.layer)
         return RF_OK;
-    if (!(in->layer_thickness < 0.5 * R->set.L))
+    if (!(in->layer_thickness < 0.5 * set->L))
         return rf_fail(err, RF_EINVAL,
                        "fem3d: layer_thickness = %g m must be below half the domain radius (%g m): raise domain_factor",
-                       in->layer_thickness, R->set.L);
+                       in->layer_thickness, set->L);
     rf_impact_input lay = *in;
     lay.slope_density = in->layer_density, lay.slope_E = in->layer_E, lay.slope_poisson = in->layer_poisson;
     rf_hertz_reference HL;
     rf_impact_hertz_reference(&lay, &HL);
-    R->set.a_box = fmax(R->set.H.contact_radius, HL.contact_radius);
-    R->set.H.contact_radius = fmin(R->set.H.contact_radius, HL.contact_radius);
-    R->set.H.duration = fmax(R->set.H.duration, HL.duration);
+    set->a_box = fmax(set->H.contact_radius, HL.contact_radius);
+    set->H.contact_radius = fmin(set->H.contact_radius, HL.contact_radius);
+    set->H.duration = fmax(set->H.duration, HL.duration);
     rf_impact_wave_speeds(&lay, 1, &R->body.w[2]);
-    f3_layer_contact_estimate(in, &R->set.lc);
-    if (R->set.lc.thick) { /* the boulder stays in the layer: its contact alone sizes the mesh and the run */
-        R->set.H.contact_radius = R->set.lc.radius, R->set.H.duration = R->set.lc.duration;
-        R->set.a_box = fmax(R->set.lc.radius, R->set.lc.zone_radius / R->set.o3.fine_box_factor);
+    f3_layer_contact_estimate(in, &set->lc);
+    if (set->lc.thick) { /* the boulder stays in the layer: its contact alone sizes the mesh and the run */
+        set->H.contact_radius = set->lc.radius, set->H.duration = set->lc.duration;
+        set->a_box = fmax(set->lc.radius, set->lc.zone_radius / set->o3.fine_box_factor);
     }
     return RF_OK;
 }
 
-/* Check, resolve the automatic settings, Hertz reference with the normal
- * velocity component. */
-rf_status f3_run_prepare(solid_run *R, const rf_impact_input *in, const rf_fem_options *opt,
-                               const rf_fem3d_options *o3p, rf_error *err)
+/* Each body's law (plastic[b]: not elastic, a rigid boulder apart), large
+ * deformation and the bodies on the updated-Lagrangian kernel, and whether
+ * the energies come from the internal work. */
+static rf_status solid_prepare_laws(solid_run *R, rf_error *err)
 {
-    R->set.in = in;
-    if (opt)
-        R->set.o = *opt;
-    else
-        rf_fem_options_default(&R->set.o);
-    if (o3p)
-        R->set.o3 = *o3p;
-    else
-        rf_fem3d_options_default(&R->set.o3);
-    R->set.t = *fem_tuning_of(&R->set.o);
-    rf_status st = check_input(in, &R->set.o, &R->set.o3, err);
-    if (st != RF_OK)
-        return st;
-    R->set.o.refinement = rf_fem_refinement(&R->set.o, 1);
-    R->set.o.domain_factor = rf_fem_domain_factor(&R->set.o, in);
-    rf_impact_hertz_reference(in, &R->set.H);
-    R->set.V = in->velocity, R->set.Vn = R->set.H.normal_velocity, R->set.Vt = R->set.H.tangential_velocity;
-    R->set.L = R->set.o.domain_factor * in->radius;
-    R->body.mat[0] = (f3_material){in->boulder_density, in->boulder_E, in->boulder_poisson};
-    R->body.mat[1] = (f3_material){in->slope_density, in->slope_E, in->slope_poisson};
-    R->body.mat[2] = (f3_material){in->layer_density, in->layer_E, in->layer_poisson};
-    rf_impact_wave_speeds(in, 0, &R->body.w[0]);
-    rf_impact_wave_speeds(in, 1, &R->body.w[1]);
-    R->body.w[2] = R->body.w[1];
-    R->body.rigid = in->boulder_material == RF_MATERIAL_RIGID_BODY;
-    R->set.a_box = R->set.H.contact_radius;
-    if ((st = solid_prepare_layer(R, err)) != RF_OK)
-        return st;
-    R->set.threads = R->set.o.threads > 0 ? R->set.o.threads : 1;
-#ifndef _OPENMP
-    R->set.threads = 1;
-#endif
-    R->set.o.boundary = rf_fem_boundary_resolve(R->set.o.boundary, in); /* the axisymmetric model's rule */
-    R->set.fixed_outer = R->set.o.boundary == RF_FEM_BOUNDARY_FIXED;
+    const rf_impact_input *in = R->set.in;
+    solid_bodies *body = &R->body;
     for (int b = 0; b < 3; b++) {
         rf_material_params p;
-        if (b == 2 && !R->body.layer) { /* no layer: its (unchecked) inputs are not used */
-            R->body.matl[2] = R->body.matl[1], R->body.plastic[2] = 0;
+        if (b == 2 && !body->layer) { /* no layer: its (unchecked) inputs are not used */
+            body->matl[2] = body->matl[1], body->plastic[2] = 0;
             continue;
         }
         rf_impact_material_params(in, b, &p);
-        if ((st = rf_material_init(&R->body.matl[b], &p, err)) != RF_OK) /* validated above: cannot fail */
+        if (rf_material_init(&body->matl[b], &p, err) != RF_OK) /* validated above: cannot fail */
             return rf_error_prefix(err, "fem3d");
-        R->body.plastic[b] = p.model != RF_MATERIAL_ELASTIC && !(b == 0 && R->body.rigid);
+        body->plastic[b] = p.model != RF_MATERIAL_ELASTIC && !(b == 0 && body->rigid);
     }
-    R->body.work_account = R->body.plastic[0] || R->body.plastic[1] || R->body.plastic[2];
-    R->body.large = rf_fem_large_deformation(&R->set.o, in);
-    R->body.work_account |= R->body.large; /* the energy from the internal work: no K in updated Lagrangian */
+    body->work_account = body->plastic[0] || body->plastic[1] || body->plastic[2];
+    body->large = rf_fem_large_deformation(&R->set.o, in);
+    body->work_account |= body->large; /* the energy from the internal work: no K in updated Lagrangian */
     /* auto leaves an elastic body on its small-strain kernel: its strains stay ~a/r0 (section 9c) */
     const int all = R->set.o.large_deformation == RF_FEM_LARGE_DEFORMATION;
-    R->body.ul[0] = R->body.large && !R->body.rigid && (all || R->body.plastic[0]);
-    R->body.ul[1] = R->body.large && (all || R->body.plastic[1] || R->body.plastic[2]);
+    body->ul[0] = body->large && !body->rigid && (all || body->plastic[0]);
+    body->ul[1] = body->large && (all || body->plastic[1] || body->plastic[2]);
+    return RF_OK;
+}
+
+/* Check, resolve the automatic settings, Hertz reference with the normal
+ * velocity component, the bodies' laws, gravity. */
+rf_status f3_run_prepare(solid_run *R, const rf_impact_input *in, const rf_fem_options *opt,
+                         const rf_fem3d_options *o3p, rf_error *err)
+{
+    solid_settings *set = &R->set;
+    solid_bodies *body = &R->body;
+    set->in = in;
+    if (opt)
+        set->o = *opt;
+    else
+        rf_fem_options_default(&set->o);
+    if (o3p)
+        set->o3 = *o3p;
+    else
+        rf_fem3d_options_default(&set->o3);
+    set->t = *fem_tuning_of(&set->o);
+    rf_status st = check_input(in, &set->o, &set->o3, err);
+    if (st != RF_OK)
+        return st;
+    set->o.refinement = rf_fem_refinement(&set->o, 1);
+    set->o.domain_factor = rf_fem_domain_factor(&set->o, in);
+    rf_impact_hertz_reference(in, &set->H);
+    set->V = in->velocity, set->Vn = set->H.normal_velocity, set->Vt = set->H.tangential_velocity;
+    set->L = set->o.domain_factor * in->radius;
+    body->mat[0] = (f3_material){in->boulder_density, in->boulder_E, in->boulder_poisson};
+    body->mat[1] = (f3_material){in->slope_density, in->slope_E, in->slope_poisson};
+    body->mat[2] = (f3_material){in->layer_density, in->layer_E, in->layer_poisson};
+    rf_impact_wave_speeds(in, 0, &body->w[0]);
+    rf_impact_wave_speeds(in, 1, &body->w[1]);
+    body->w[2] = body->w[1];
+    body->rigid = in->boulder_material == RF_MATERIAL_RIGID_BODY;
+    set->a_box = set->H.contact_radius;
+    if ((st = solid_prepare_layer(R, err)) != RF_OK)
+        return st;
+    set->threads = set->o.threads > 0 ? set->o.threads : 1;
+#ifndef _OPENMP
+    set->threads = 1;
+#endif
+    set->o.boundary = rf_fem_boundary_resolve(set->o.boundary, in); /* the axisymmetric model's rule */
+    set->fixed_outer = set->o.boundary == RF_FEM_BOUNDARY_FIXED;
+    if ((st = solid_prepare_laws(R, err)) != RF_OK)
+        return st;
     /* gravity: the energy from the internal work (the slope's geostatic pre-stress is not in 1/2 u' K u) */
     R->grav.g = rf_impact_gravity(in, 1);
-    R->body.work_account |= R->grav.g > 0;
+    body->work_account |= R->grav.g > 0;
     double fs;
-    return R->grav.g > 0 ? f3_gravity_stability(in, R->grav.g, R->set.L, &fs, err) : RF_OK;
+    return R->grav.g > 0 ? f3_gravity_stability(in, R->grav.g, set->L, &fs, err) : RF_OK;
 }
 
 /* The boulder's fine box in its half-space image.  An elastic boulder: at most
@@ -177,39 +192,41 @@ static rf_status boulder_box_fits(const solid_run *R, rf_error *err)
  * elongated down-slope by the patch travel; graded layers out to L. */
 rf_status f3_run_mesh(solid_run *R, rf_error *err)
 {
-    const rf_fem_options *o = &R->set.o;
-    const rf_fem3d_options *o3 = &R->set.o3;
-    const double a_h = R->set.H.contact_radius, c = R->set.H.c, d = R->set.H.d, r0 = R->set.in->radius;
-    R->grid.h = a_h / o->refinement, R->grid.hb = R->grid.h * R->set.t.boulder_mesh_ratio;
-    const double h = R->grid.h, hb = R->grid.hb, travel = o3->elongation * R->set.Vt * R->set.H.duration;
+    const solid_settings *set = &R->set;
+    const rf_fem_options *o = &set->o;
+    const rf_fem3d_options *o3 = &set->o3;
+    const double a_h = set->H.contact_radius, c = set->H.c, d = set->H.d, r0 = set->in->radius;
+    const double thick = set->in->layer_thickness;
+    R->grid.h = a_h / o->refinement, R->grid.hb = R->grid.h * set->t.boulder_mesh_ratio;
+    const double h = R->grid.h, hb = R->grid.hb, travel = o3->elongation * set->Vt * set->H.duration;
     f3_mesh_spec *ms = &R->grid.ms;
     memset(ms, 0, sizeof *ms);
     ms->full = o3->full_model != 0;
-    const double a_x = R->set.a_box; /* = a_h without a layer */
+    const double a_x = set->a_box; /* = a_h without a layer */
     int n_s = (int)ceil(o3->fine_box_factor * a_x / h - 1e-9), n_b = (int)ceil(o3->fine_box_factor * a_x / hb - 1e-9);
     ms->slope = (f3_box){n_s, n_s + (int)ceil(travel / h - 1e-9), n_s, n_s, h};
     ms->extruded = R->body.layer || o3->layered_mesh;
-    ms->layer_depth = R->body.layer ? R->set.in->layer_thickness : 0;
-    if (R->body.layer && R->set.in->layer_thickness < h)
+    ms->layer_depth = R->body.layer ? thick : 0;
+    if (R->body.layer && thick < h)
         return rf_fail(err, RF_EINVAL,
                        "fem3d: layer_thickness = %g m is thinner than the element at the contact (h = %g m): raise "
-                       "refinement or the thickness", R->set.in->layer_thickness, h);
+                       "refinement or the thickness", thick, h);
     /* the boulder's half-space image is scaled by c (x, y) and d (z) afterwards */
     const double sxy = c / r0, sz = d / r0, hb0 = hb / sxy;
     ms->boulder = (f3_box){n_b, n_b + (int)ceil(travel / hb - 1e-9), n_b, n_b, hb0};
-    if (R->body.rigid && R->set.lc.thick)
+    if (R->body.rigid && set->lc.thick)
         f3_soft_boulder_box(&ms->boulder, o3->fine_box_factor * a_x, travel, r0, sxy);
     ms->radius = r0;
     ms->scale_xy = sxy, ms->scale_z = sz;
     ms->boulder_inner = o3->boulder_inner;
-    ms->domain = R->set.L;
+    ms->domain = set->L;
     ms->layer_aspect = o3->layer_aspect;
     rf_status st = boulder_box_fits(R, err);
     if (st != RF_OK)
         return st;
-    if ((ms->slope.nxm + ms->slope.nxp) * h * 4 > R->set.L)
-        return rf_fail(err, RF_EINVAL, "fem3d: domain radius %g m is too small for the fine zone", R->set.L);
-    st = f3_mesh_build(ms, &R->grid.mesh, R->set.t.max_elements, err);
+    if ((ms->slope.nxm + ms->slope.nxp) * h * 4 > set->L)
+        return rf_fail(err, RF_EINVAL, "fem3d: domain radius %g m is too small for the fine zone", set->L);
+    st = f3_mesh_build(ms, &R->grid.mesh, set->t.max_elements, err);
     R->grid.have_mesh = st == RF_OK;
     return st;
 }

@@ -1,26 +1,24 @@
 /* fem3d_solver.c - rf_fem3d_impact: the 3D impact run, as the stages of
- * fem_core.h applied to this geometry: check, sizing and meshing
- * (fem3d_mesh.c), assembly of masses, constraints, dashpots and the material
- * kernels (fem_kernel.h), the time step, the time loop (dashpots ->
- * internal force, pairing and predictor in one parallel region -> contact
- * with friction (fem3d_contact.c) -> energy account -> stop test), and the
- * rigid-body outputs of an oblique impact.
+ * the FE driver (fem_driver.h) applied to this geometry: the table of stage
+ * functions over a solid_run (fem3d_run.h) and the public entries.  The
+ * stages: check, automatic settings and meshing (fem3d_prepare.c,
+ * fem3d_mesh.c); assembly of masses, constraints, dashpots, the material
+ * kernels (fem_kernel.h), the contact and the time step
+ * (fem3d_assemble.c); the time loop (fem3d_step.c: dashpots -> internal
+ * force, pairing and predictor in one parallel region -> contact with
+ * friction (fem3d_contact.c) -> energy account; the driver's stop test);
+ * the rigid-body outputs of an oblique impact, history and report
+ * (fem3d_extract.c).
  *
  * Time integration (lumped mass M, internal force f_int, forces f):
  *   v_{n+1/2} = v_{n-1/2} + dt M^-1 (f_n - f_int(u_n) + G^T lambda_n),  u_{n+1} = u_n + dt v_{n+1/2}.
- * Energy: with K symmetric, E_n = 1/2 v_{n+1/2}' M v_{n+1/2} + 1/2 u_n' K u_{n+1}
- * changes only by the work f_n' (u_{n+1} - u_{n-1}) / 2 of the forces applied at
- * step n.  The tangential contact work is the frictional dissipation and
- * enters the closure; the normal contact work (ideally 0) and round-off are
- * the closure error.  With a plastic body (fem_kernel_points3d.c, committed
- * after each internal force) the strain energy is replaced by the internal
- * work dt/2 f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) summed over the steps, as in
- * the axisymmetric solver, and the kernels book the plastic dissipation.
- * In large deformation (rf_fem_large_deformation) the plastic bodies (every
- * deformable one with `on`) take the updated-Lagrangian kernel
- * (fem_kernel_points3d_large.c), the energy is always the internal work, and
- * a run whose compressed elements outgrow the step is made again with half
- * the step (fem3d_large.c, fem_run_halving).
+ * The energy account is described in fem3d_step.c.  With a plastic body
+ * (fem_kernel_points3d.c) the kernels' state is committed after each
+ * internal force.  In large deformation (rf_fem_large_deformation) the
+ * plastic bodies (every deformable one with `on`) take the
+ * updated-Lagrangian kernel (fem_kernel_points3d_large.c), the energy is
+ * always the internal work, and a run whose compressed elements outgrow the
+ * step is made again with half the step (fem3d_large.c, fem_run_halving).
  * A layer (fem3d_layer.c mesh) is a second law in the slope's point kernel,
  * its elements found by their centres above the node plane at its bottom; a
  * rigid boulder (fem3d_rigid.c) has no force, no part in the time step, and
@@ -65,9 +63,10 @@ static rf_status solid_stage_step(void *run, double t, fem_step_row *r, rf_error
     rf_status st = f3_run_step(R, &r->Fc, &r->rad, err);
     if (st != RF_OK)
         return st;
-    if (R->body.large && (R->step.unstable = f3_step_violation(&R->step.check, R->step.dt, R->sys.u)) >= 0)
+    solid_timestep *T = &R->step;
+    if (R->body.large && (T->unstable = f3_step_violation(&T->check, T->dt, R->sys.u)) >= 0)
         return rf_fail(err, RF_EMODEL, "fem3d: element %ld was compressed below the stability bound of the time "
-                       "step dt = %g s (dt_safety = %g) at t = %g s", R->step.unstable, R->step.dt, R->set.t.dt_safety, t);
+                       "step dt = %g s (dt_safety = %g) at t = %g s", T->unstable, T->dt, R->set.t.dt_safety, t);
     F3P_MARK(m);
     f3_run_energy(R, t, r->Fc, r->rad, r->row, &r->comp, &r->closure);
     F3P_LAP(F3P_ENERGY, m);

@@ -26,20 +26,22 @@ static double solid_dashpot_forces(solid_run *R)
     double W = 0;
     if (R->set.fixed_outer)
         return 0;
+    const solid_boundary *D = &R->bound;
+    const f3_mesh *mesh = &R->grid.mesh;
     const double rho = R->body.mat[1].rho, cp = R->body.w[1].p, cs = R->body.w[1].s;
     const double rl = R->body.mat[2].rho, cpl = R->body.w[2].p, csl = R->body.w[2].s;
-    for (long k = 0; k < R->bound.nouter; k++) {
-        int i = R->bound.outer[k];
-        const double *x = R->grid.mesh.extruded ? R->bound.dnrm + 3 * i : R->grid.mesh.x + 3 * i, *v = R->sys.v + 3 * i;
+    for (long k = 0; k < D->nouter; k++) {
+        int i = D->outer[k];
+        const double *x = mesh->extruded ? D->dnrm + 3 * i : mesh->x + 3 * i, *v = R->sys.v + 3 * i;
         double *fx = R->sys.fext + 3 * i;
         double rr = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
         double nv[3] = {x[0] / rr, x[1] / rr, x[2] / rr};
         double vn = v[0] * nv[0] + v[1] * nv[1] + v[2] * nv[2];
         for (int q = 0; q < 3; q++)
-            fx[q] = -R->bound.dash[i] * rho * (cp * vn * nv[q] + cs * (v[q] - vn * nv[q]));
+            fx[q] = -D->dash[i] * rho * (cp * vn * nv[q] + cs * (v[q] - vn * nv[q]));
         if (R->body.layer)
             for (int q = 0; q < 3; q++)
-                fx[q] -= R->bound.dashl[i] * rl * (cpl * vn * nv[q] + csl * (v[q] - vn * nv[q]));
+                fx[q] -= D->dashl[i] * rl * (cpl * vn * nv[q] + csl * (v[q] - vn * nv[q]));
         for (int q = 0; q < 3; q++)
             if (R->sys.fixed[3 * i + q])
                 fx[q] = 0;
@@ -63,6 +65,8 @@ static int slave_on_edge(const f3_mesh *mesh, int full, int sphere, long k)
 static double solid_contact_account(solid_run *R, double *rad)
 {
     const f3_contact *C = &R->C;
+    const f3_mesh *mesh = &R->grid.mesh;
+    solid_account *A = &R->acc;
     const double dt = R->step.dt, *u = R->sys.u;
     double Fc = 0, sx = 0, sy = 0, sxx = 0;
     for (long q = 0; q < C->ncand; q++) {
@@ -75,21 +79,21 @@ static double solid_contact_account(solid_run *R, double *rad)
         double gvo[3];
         f3_contact_gv(C, k, R->sys.v, gvn);
         f3_contact_gvo(C, k, gvo);
-        R->acc.W_n += lam[0] * dt * (gvn[0] + gvo[0]) / 2;
-        R->acc.W_fric -= (lam[1] * (gvn[1] + gvo[1]) + lam[2] * (gvn[2] + gvo[2])) * dt / 2;
+        A->W_n += lam[0] * dt * (gvn[0] + gvo[0]) / 2;
+        A->W_fric -= (lam[1] * (gvn[1] + gvo[1]) + lam[2] * (gvn[2] + gvo[2])) * dt / 2;
         double slip = hypot(gvn[1], gvn[2]) * dt;
-        if (slip > R->acc.slip_max)
-            R->acc.slip_max = slip;
-        R->acc.pair_steps++;
+        if (slip > A->slip_max)
+            A->slip_max = slip;
+        A->pair_steps++;
         double Fn, Ft;
         f3_contact_forces(C, k, &Fn, &Ft);
         if (Ft < (1 - 1e-9) * C->friction * Fn)
-            R->acc.stick_steps++;
-        if (C->outside[k] == 1 || slave_on_edge(&R->grid.mesh, R->grid.ms.full, C->sphere, k))
-            R->acc.outside_contact = 1;
+            A->stick_steps++;
+        if (C->outside[k] == 1 || slave_on_edge(mesh, R->grid.ms.full, C->sphere, k))
+            A->outside_contact = 1;
         if (C->outside[k] == 2)
-            R->acc.unlocated_steps++;
-        double X = R->grid.mesh.x[3 * s] + u[3 * s], Y = R->grid.mesh.x[3 * s + 1] + u[3 * s + 1];
+            A->unlocated_steps++;
+        double X = mesh->x[3 * s] + u[3 * s], Y = mesh->x[3 * s + 1] + u[3 * s + 1];
         Fc += lam[0];
         sx += lam[0] * X;
         sy += lam[0] * Y;
@@ -102,9 +106,9 @@ static double solid_contact_account(solid_run *R, double *rad)
         *rad = sqrt(fmax(0, 2.5 * var));
     }
     for (long q = 0; q < C->ncand; q++) { /* penetration after the correction */
-        const double g = f3_contact_gap_now(C, &R->grid.mesh, C->cand[q], u);
-        if (-g > R->acc.pen_max)
-            R->acc.pen_max = -g;
+        const double g = f3_contact_gap_now(C, mesh, C->cand[q], u);
+        if (-g > A->pen_max)
+            A->pen_max = -g;
     }
     return Fc;
 }
@@ -214,7 +218,75 @@ static void solid_rigid_centre(solid_run *R)
     R->C.rigid_c[0] = c[0] + R->B.X[0], R->C.rigid_c[1] = c[2] + R->B.X[1];
 }
 
-/* One step: dashpots (v_{n-1/2}) -> internal force, pairing, predictor -> contact. */
+/* The dashpots' work with v_{n+1/2} added to w, the half with v_{n-1/2}
+ * (solid_dashpot_forces), term by term. */
+static double solid_dashpot_work(const solid_run *R, double w)
+{
+    if (R->set.fixed_outer)
+        return w;
+    const double dt = R->step.dt, *fext = R->sys.fext, *v = R->sys.v;
+    for (long k = 0; k < R->bound.nouter; k++) {
+        int i = R->bound.outer[k];
+        for (int q = 0; q < 3; q++)
+            w -= 0.5 * dt * fext[3 * i + q] * v[3 * i + q];
+    }
+    return w;
+}
+
+/* The rigid boulder's predicted state (its nodes moved along straight lines by the predictor). */
+static void solid_rigid_predict(solid_run *R)
+{
+    f3_rigid *B = &R->B;
+    f3_contact *C = &R->C;
+    const double dt = R->step.dt;
+    const double Xn[3] = {B->X[0], B->X[1], B->th};
+    C->body_vo[0] = B->V[0], C->body_vo[1] = B->V[1], C->body_vo[2] = B->w;
+    if (R->grav.fgrav) /* its weight M g at the centre of mass */
+        B->V[0] += dt * R->grav.g * R->grav.dir[0], B->V[1] += dt * R->grav.g * R->grav.dir[2];
+    f3_rigid_predict(B, dt);
+    f3_rigid_place(B, &R->grid.mesh, R->grid.nbn, R->sys.u, R->sys.v);
+    C->body_d[0] = B->X[0] - Xn[0], C->body_d[1] = B->X[1] - Xn[1], C->body_d[2] = B->th - Xn[2];
+    solid_rigid_centre(R);
+}
+
+/* The contact's impulse on the rigid boulder's dofs. */
+static void solid_rigid_correct(solid_run *R)
+{
+    f3_rigid *B = &R->B;
+    f3_contact *C = &R->C;
+    f3_rigid_correct(B, C->rigid_du, R->step.dt);
+    f3_rigid_place(B, &R->grid.mesh, R->grid.nbn, R->sys.u, R->sys.v);
+    if (C->sphere) { /* the account's and the depth's body */
+        solid_rigid_centre(R);
+        C->body_v[0] = B->V[0], C->body_v[1] = B->V[1], C->body_v[2] = B->w;
+    }
+}
+
+/* The account of a step after the contact: the solver's statistics, the
+ * contact's force and radius, the dashpots' (W_abs_inc), gravity's (from
+ * its power gv0 at v_{n-1/2}) and the internal work (from the power fv). */
+static void solid_step_account(solid_run *R, double W_abs_inc, double gv0, const double fv[2], double *Fc,
+                               double *rad)
+{
+    solid_account *A = &R->acc;
+    const double dt = R->step.dt;
+    if (R->C.sweeps > A->pgs_sweeps_max)
+        A->pgs_sweeps_max = R->C.sweeps;
+    if (R->C.residual > A->pgs_res_max)
+        A->pgs_res_max = R->C.residual;
+    *Fc = solid_contact_account(R, rad);
+    A->W_abs += W_abs_inc;
+    if (R->grav.fgrav) /* fgrav' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
+        R->grav.W += 0.5 * dt * (gv0 + f3_gravity_power(&R->grav, &R->B, R->sys.v, R->grid.nbn, R->grid.ndof));
+    if (R->body.work_account) { /* f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
+        double fv1[2] = {0, 0};
+        solid_power(R, fv1);
+        A->W_int[0] += 0.5 * dt * (fv[0] + fv1[0]), A->W_int[1] += 0.5 * dt * (fv[1] + fv1[1]);
+    }
+    solid_depth(R);
+}
+
+/* One step: dashpots (v_{n-1/2}) -> internal force, pairing, predictor -> contact -> account. */
 rf_status f3_run_step(solid_run *R, double *Fc, double *rad, rf_error *err)
 {
     const double dt = R->step.dt;
@@ -230,23 +302,9 @@ rf_status f3_run_step(solid_run *R, double *Fc, double *rad, rf_error *err)
         if (R->sys.S.kernel[b].ops->commit)
             R->sys.S.kernel[b].ops->commit(&R->sys.S.kernel[b]);
     F3P_LAP(F3P_COMMIT, m);
-    if (!R->set.fixed_outer)
-        for (long k = 0; k < R->bound.nouter; k++) {
-            int i = R->bound.outer[k];
-            for (int q = 0; q < 3; q++)
-                W_abs_inc -= 0.5 * dt * R->sys.fext[3 * i + q] * v[3 * i + q];
-        }
-    if (R->body.rigid) { /* the boulder's predicted rigid state (its nodes moved along straight lines above) */
-        f3_rigid *B = &R->B;
-        const double Xn[3] = {B->X[0], B->X[1], B->th};
-        R->C.body_vo[0] = B->V[0], R->C.body_vo[1] = B->V[1], R->C.body_vo[2] = B->w;
-        if (R->grav.fgrav) /* its weight M g at the centre of mass */
-            B->V[0] += dt * R->grav.g * R->grav.dir[0], B->V[1] += dt * R->grav.g * R->grav.dir[2];
-        f3_rigid_predict(B, dt);
-        f3_rigid_place(B, &R->grid.mesh, R->grid.nbn, u, v);
-        R->C.body_d[0] = B->X[0] - Xn[0], R->C.body_d[1] = B->X[1] - Xn[1], R->C.body_d[2] = B->th - Xn[2];
-        solid_rigid_centre(R);
-    }
+    W_abs_inc = solid_dashpot_work(R, W_abs_inc);
+    if (R->body.rigid)
+        solid_rigid_predict(R);
     if (R->set.no_contact)
         R->C.ncand = 0;
     else
@@ -256,37 +314,18 @@ rf_status f3_run_step(solid_run *R, double *Fc, double *rad, rf_error *err)
     F3P_LAP(F3P_SOLVE, m);
     if (st != RF_OK)
         return st;
-    if (R->body.rigid) { /* the contact's impulse on the rigid dofs */
-        f3_rigid_correct(&R->B, R->C.rigid_du, dt);
-        f3_rigid_place(&R->B, &R->grid.mesh, R->grid.nbn, u, v);
-        if (R->C.sphere) { /* the account's and the depth's body */
-            solid_rigid_centre(R);
-            R->C.body_v[0] = R->B.V[0], R->C.body_v[1] = R->B.V[1], R->C.body_v[2] = R->B.w;
-        }
-    }
-    if (R->C.sweeps > R->acc.pgs_sweeps_max)
-        R->acc.pgs_sweeps_max = R->C.sweeps;
-    if (R->C.residual > R->acc.pgs_res_max)
-        R->acc.pgs_res_max = R->C.residual;
-    *Fc = solid_contact_account(R, rad);
-    R->acc.W_abs += W_abs_inc;
-    if (R->grav.fgrav) /* fgrav' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
-        R->grav.W += 0.5 * dt * (gv0 + f3_gravity_power(&R->grav, &R->B, v, R->grid.nbn, R->grid.ndof));
-    if (R->body.work_account) { /* f_int(u_n)' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
-        double fv1[2] = {0, 0};
-        solid_power(R, fv1);
-        R->acc.W_int[0] += 0.5 * dt * (fv[0] + fv1[0]), R->acc.W_int[1] += 0.5 * dt * (fv[1] + fv1[1]);
-    }
-    solid_depth(R);
+    if (R->body.rigid)
+        solid_rigid_correct(R);
+    solid_step_account(R, W_abs_inc, gv0, fv, Fc, rad);
     F3P_LAP(F3P_ACCOUNT, m);
     return RF_OK;
 }
 
 /* Energies at t_{n+1/2} (KE with v_{n+1/2}, strain 1/2 u_n' K u_{n+1}), the
  * history row (full-body energies), compression and closure error. */
-void f3_run_energy(solid_run *R, double t, double Fc, double rad, double row[13], double *comp,
-                         double *closure)
+void f3_run_energy(solid_run *R, double t, double Fc, double rad, double row[13], double *comp, double *closure)
 {
+    const solid_account *A = &R->acc;
     const double *u = R->sys.u, *v = R->sys.v, *f = R->sys.f;
     f3_state_sums sum; /* in parallel, fixed order */
     f3_state_sums_compute(&R->sys.S, u, v, f, &sum);
@@ -297,13 +336,15 @@ void f3_run_energy(solid_run *R, double t, double Fc, double rad, double row[13]
         ke[0] = f3_rigid_energy(&R->B);
     if (R->body.work_account) /* stored elastically: the internal work less the dissipation */
         for (int b = 0; b < 2; b++)
-            se[b] = R->acc.W_int[b] - f3_run_plastic_work(R, b);
-    *comp = -uz / R->sys.Mb;
-    *closure = ke[0] + ke[1] + se[0] + se[1] + R->acc.W_abs + R->acc.W_fric - R->sys.ke0;
+            se[b] = A->W_int[b] - f3_run_plastic_work(R, b);
+    const double ke0 = R->sys.ke0, Mb = R->sys.Mb;
+    *comp = -uz / Mb;
+    *closure = ke[0] + ke[1] + se[0] + se[1] + A->W_abs + A->W_fric - ke0;
     if (R->body.work_account)
-        *closure = ke[0] + ke[1] + R->acc.W_int[0] + R->acc.W_int[1] + R->acc.W_abs + R->acc.W_fric - R->sys.ke0 - R->grav.W;
+        *closure = ke[0] + ke[1] + A->W_int[0] + A->W_int[1] + A->W_abs + A->W_fric - ke0 - R->grav.W;
     const double sf = R->grid.sym_factor;
-    const double r[13] = {t,          Fc * sf,      *comp,        rad,        ke[0] * sf,   se[0] * sf, ke[1] * sf,
-                          se[1] * sf, R->acc.W_n * sf, R->acc.W_abs * sf, *closure * sf, pz / R->sys.Mb, R->acc.W_fric * sf};
+    const double r[13] = {t,          Fc * sf,         *comp,           rad,           ke[0] * sf,
+                          se[0] * sf, ke[1] * sf,      se[1] * sf,      A->W_n * sf,   A->W_abs * sf,
+                          *closure * sf, pz / Mb,      A->W_fric * sf};
     memcpy(row, r, sizeof r);
 }
