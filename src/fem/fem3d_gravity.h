@@ -43,7 +43,7 @@ rf_status f3_gravity_setup(f3_gravity *G, f3_system *S, const rf_impact_input *i
 /* fgrav' v, the boulder's part as M g . V of a rigid boulder (B on). */
 double f3_gravity_power(const f3_gravity *G, const f3_rigid *B, const double *v, long nbn, long ndof);
 
-/* Test hook (tests/test_fem3d_gravity.c, fem3d_solver.c): the run's own
+/* Test hook (tests/test_fem3d_gravity.c, fem3d_gravity_run.c): the run's own
  * assembly and `steps` steps without the contact: the slope alone under
  * gravity, the boulder in free flight through it.  chk zero-initialised
  * by the caller (ctx and cell set, or cell NULL). */

@@ -1,7 +1,8 @@
 /* fem3d_internal.h - data shared by the parts of the 3D impact solver: the
  * mesh (fem3d_mesh.c), the hexahedron routines (fem3d_element.c), the
  * contact with friction (fem3d_contact.c), the internal force
- * (fem3d_force.c) and the stages of the run (fem3d_solver.c). */
+ * (fem3d_force.c) and the stages of the run (fem3d_run.h: fem3d_prepare.c,
+ * fem3d_assemble.c, fem3d_step.c, fem3d_extract.c, fem3d_solver.c). */
 #ifndef ROCKFUZZ_FEM3D_INTERNAL_H
 #define ROCKFUZZ_FEM3D_INTERNAL_H
 
