@@ -272,7 +272,7 @@ static void test_friction_on_sloped_face(void **state)
     for (int d = 0; d < 3; d++)
         invm[3 * f.slave + d] = 1 / m;
     f.C.lam = lam, f.C.gap = gap, f.C.ds = ds, f.C.A = A, f.C.cand = cand, f.C.du = du, f.C.rr = rr;
-    f.C.friction = fr, f.C.tol = 1e-15, f.C.band = h, f.C.max_sweeps = 100;
+    f.C.solve.friction = fr, f.C.solve.tol = 1e-15, f.C.solve.band = h, f.C.solve.max_sweeps = 100;
     face_restart(&f);
     f3_contact_locate(&f.C, &f.mesh, u, v, 1, 1);
     /* the predictor: down the slope (-x along the face, a little across it) and 1 mm into it */

@@ -50,7 +50,7 @@ static void sphere_setup(sphere_case *s, double beta, double g0, double f)
     C->outside = &s->outside;
     C->sphere = 1, C->radius = R, C->rigid_invm = 1 / M, C->rigid_invi = 1 / I;
     C->rigid_c[0] = c[0], C->rigid_c[1] = c[1];
-    C->friction = f, C->tol = 1e-16, C->band = 0.01, C->max_sweeps = 200;
+    C->solve.friction = f, C->solve.tol = 1e-16, C->solve.band = 0.01, C->solve.max_sweeps = 200;
 }
 
 /* One contact step: the predictor moves the node by mv; returns the node's correction in dn and the

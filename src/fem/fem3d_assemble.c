@@ -338,10 +338,10 @@ static rf_status solid_contact_setup(solid_run *R, rf_error *err)
     memcpy(C->slave, C->sphere ? mesh->top_s : mesh->top_b, ns * sizeof *C->slave);
     for (size_t k = 0; k < ns; k++)
         C->Xm[2 * k] = mesh->x[3 * C->slave[k]], C->Xm[2 * k + 1] = mesh->x[3 * C->slave[k] + 1];
-    C->friction = R->set.in->friction;
-    C->tol = 1e-9 * R->grid.h;
-    C->band = 0.5 * fmin(R->grid.h, R->grid.hb) + 2 * R->set.V * R->step.dt;
-    C->max_sweeps = 2000;
+    C->solve.friction = R->set.in->friction;
+    C->solve.tol = 1e-9 * R->grid.h;
+    C->solve.band = 0.5 * fmin(R->grid.h, R->grid.hb) + 2 * R->set.V * R->step.dt;
+    C->solve.max_sweeps = 2000;
     /* the first-contact point is the slope frame's origin: the nearest node of the slope's top grid */
     const double hs = mesh->h_s;
     long i = lround(-mesh->x0_s / hs), j = lround(-mesh->y0_s / hs);

@@ -374,7 +374,7 @@ static void sphere_predict_pair(f3_contact *C, const f3_mesh *mesh, const double
     const int s = C->slave[k];
     double d[3];
     C->gap[k] = sphere_offset(C, mesh, u, s, d);
-    if (C->gap[k] >= C->band) /* not a candidate of this step's solve: nothing else is read */
+    if (C->gap[k] >= C->solve.band) /* not a candidate of this step's solve: nothing else is read */
         return;
     double *w = C->wr + 9 * k;
     sphere_basis(d, w);
@@ -497,17 +497,17 @@ static inline double gdu(const f3_contact *C, long k, int c)
 rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double *u, double *v, rf_error *err)
 {
     (void)err;
-    const double dt2 = dt * dt, f = C->friction;
+    const double dt2 = dt * dt, f = C->solve.friction;
     C->ncand = 0;
     for (long k = 0; k < C->nslave; k++) {
-        if (C->gap[k] < C->band) {
+        if (C->gap[k] < C->solve.band) {
             C->cand[C->ncand++] = (int)k;
         } else {
             C->lam[3 * k] = C->lam[3 * k + 1] = C->lam[3 * k + 2] = 0;
         }
     }
-    C->sweeps = 0;
-    C->residual = 0;
+    C->solve.sweeps = 0;
+    C->solve.residual = 0;
     if (C->ncand == 0)
         return RF_OK;
     /* warm start from the previous step's multipliers */
@@ -519,7 +519,7 @@ rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double 
     }
     double change = 0;
     int sweep;
-    for (sweep = 0; sweep < C->max_sweeps; sweep++) {
+    for (sweep = 0; sweep < C->solve.max_sweeps; sweep++) {
         change = 0;
         for (long q = 0; q < C->ncand; q++) {
             long k = C->cand[q];
@@ -562,11 +562,11 @@ rf_status f3_contact_solve(f3_contact *C, const double *invm, double dt, double 
                 }
             }
         }
-        if (change <= C->tol)
+        if (change <= C->solve.tol)
             break;
     }
-    C->sweeps = sweep + 1;
-    C->residual = change;
+    C->solve.sweeps = sweep + 1;
+    C->solve.residual = change;
     /* apply the corrections, clear the scratch */
     for (long q = 0; q < C->ncand; q++) {
         long k = C->cand[q];

@@ -98,6 +98,16 @@ void f3_hex_orient(const double *x, int *c); /* fem3d_element.c: positive Jacobi
  * bisection: exact for a 24 x 24 matrix up to round-off). */
 double f3_hex_lambda_max(const double K[576], const double m[8], const unsigned char free_dof[24]);
 
+/* The settings and statistics of a contact solve (projected Gauss-Seidel). */
+typedef struct {
+    double friction;     /* Coulomb coefficient */
+    double tol;          /* converged when no multiplier changes by more than tol [m, as increments] */
+    double band;         /* pairs with a predicted gap below band [m] are candidates of the solve */
+    int max_sweeps;
+    int sweeps;          /* statistics of the last solve */
+    double residual;
+} f3_contact_solver;
+
 /* Contact of the boulder's fine-box face nodes (slaves) on the slope's
  * fine-box face (a uniform grid of master quads in the plane z = 0): each
  * step, every slave is paired with the master point under its current
@@ -140,10 +150,7 @@ typedef struct {
     double body_vo[3];   /* the body's (V_x, V_z, omega) at n-1/2 */
     double body_v[3];    /* ... and at n+1/2 after the correction (set before the account) */
     double *wr;          /* 9 per slave: unit normal (out of the sphere) and tangents t1, t2 */
-    double friction, tol, band;
-    int max_sweeps;
-    int sweeps;          /* statistics of the last solve */
-    double residual;
+    f3_contact_solver solve;
 } f3_contact;
 
 /* Pair every slave with the master quad under its position x + u (u at step

@@ -87,7 +87,7 @@ static double solid_contact_account(solid_run *R, double *rad)
         A->pair_steps++;
         double Fn, Ft;
         f3_contact_forces(C, k, &Fn, &Ft);
-        if (Ft < (1 - 1e-9) * C->friction * Fn)
+        if (Ft < (1 - 1e-9) * C->solve.friction * Fn)
             A->stick_steps++;
         if (C->outside[k] == 1 || slave_on_edge(mesh, R->grid.ms.full, C->sphere, k))
             A->outside_contact = 1;
@@ -270,10 +270,10 @@ static void solid_step_account(solid_run *R, double W_abs_inc, double gv0, const
 {
     solid_account *A = &R->acc;
     const double dt = R->step.dt;
-    if (R->C.sweeps > A->pgs_sweeps_max)
-        A->pgs_sweeps_max = R->C.sweeps;
-    if (R->C.residual > A->pgs_res_max)
-        A->pgs_res_max = R->C.residual;
+    if (R->C.solve.sweeps > A->pgs_sweeps_max)
+        A->pgs_sweeps_max = R->C.solve.sweeps;
+    if (R->C.solve.residual > A->pgs_res_max)
+        A->pgs_res_max = R->C.solve.residual;
     *Fc = solid_contact_account(R, rad);
     A->W_abs += W_abs_inc;
     if (R->grav.fgrav) /* fgrav' (v_{n-1/2} + v_{n+1/2}) dt / 2 */
