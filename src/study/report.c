@@ -519,13 +519,6 @@ rf_status rf_report_make_dir(const char *dir, rf_error *err)
     return RF_OK;
 }
 
-rf_status rf_report_stopped(const atomic_int *interrupt, const char *writing, rf_error *err)
-{
-    if (!interrupt || !atomic_load(interrupt))
-        return RF_OK;
-    return rf_fail(err, RF_EINTERRUPTED, "interrupted while writing the report (%s)", writing);
-}
-
 rf_status rf_report_write(const char *dir, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
                           const rf_report_options *opt, rf_error *err)
 {
