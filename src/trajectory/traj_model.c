@@ -22,6 +22,7 @@
  * profile gives runout_x_pXX; fuzzy hazard rasters are not outputs. */
 #include "trajectory/terrain_internal.h"
 #include "core/hash.h"
+#include "trajectory/traj_impact.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -331,12 +332,14 @@ static void traj_model_destroy(void *vctx)
 /* The impact table depends on the block's radius and density, the impact
  * friction and the solver settings: shared by all evaluations unless a
  * parameter is bound to one of them (then built at every evaluation). */
-static void share_table(traj_model_ctx *c)
+static rf_status share_table(traj_model_ctx *c, rf_error *err)
 {
     c->shared_table = c->spec.law == RF_BOUNCE_IMPACT_MODEL && !c->spec.terrain;
     for (size_t i = 0; i < c->n_params && c->shared_table; i++)
         if (!strncmp(c->paths[i], "block.", 6) || strstr(c->paths[i], ".friction_angle"))
             c->shared_table = 0;
+    traj_impact_setup setup; /* its settings checked now, when the study is loaded; the FE impacts come later */
+    return c->spec.law == RF_BOUNCE_IMPACT_MODEL ? traj_impact_setup_init(&setup, &c->spec, err) : RF_OK;
 }
 
 static rf_status init_outputs(rf_model *m, const rf_traj_spec *s, rf_error *err)
@@ -418,7 +421,8 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
     if (st == RF_OK && c->spec.terrain) /* checked as a run checks it, the DEM read once */
         if ((st = rf_traj_spec_validate(&c->spec, err)) == RF_OK)
             st = rf_terrain_world_create(&c->spec, &c->world, err);
-    share_table(c);
+    if (st == RF_OK)
+        st = share_table(c, err);
     if (st == RF_OK)
         st = init_outputs(model, &c->spec, err);
     c->n_outputs = model->n_outputs;
