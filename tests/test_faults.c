@@ -17,7 +17,8 @@
  *   - stdio files (reports): fclose of the n-th file reports ENOSPC, as a
  *     full disk does when the buffer is flushed.
  * Operations: the TM (formula model), the result store, one FE impact (as a
- * study's model), and a whole study run (rf_study_run) into a folder. */
+ * study's model), a whole study run (rf_study_run) into a folder, and a
+ * trajectory run with its CSV writers (a failed close must fail the run). */
 #include <errno.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -38,6 +39,7 @@
 #include "rockfuzz/study.h"
 #include "rockfuzz/study_run.h"
 #include "rockfuzz/tm.h"
+#include "rockfuzz/trajectory.h"
 
 /* ---- the fault counters ---------------------------------------------------
  * Global mutable state, on purpose: the allocator and the VFS are process-wide
@@ -235,6 +237,9 @@ static const char *kind_name(fault_kind k)
 typedef rf_status (*op_fn)(void *user, rf_error *err);
 typedef void (*check_fn)(void *user, rf_status st);
 
+/* Set: a fault that hit must make the operation fail (no fallback exists, e.g. for a file write). */
+static int strict;
+
 /* Run op once without faults to count, then with the n-th fault for n = 1..count. */
 static void inject(const char *what, fault_kind kind, op_fn op, check_fn check, void *user)
 {
@@ -265,6 +270,9 @@ static void inject(const char *what, fault_kind kind, op_fn op, check_fn check, 
                          rf_status_name(st));
         } else {
             survived += hit; /* handled by a fallback (e.g. no thread: evaluate on the caller's) */
+            if (hit && strict)
+                fail_msg("%s: %s %ld of %ld failed, yet the operation reported success", what, kind_name(kind), n,
+                         total);
         }
         if (check)
             check(user, st);
@@ -412,6 +420,38 @@ static void check_run(void *user, rf_status st)
     assert_true(n > 2 && buf[0] == '{' && strstr(buf, "\"warnings\"") && strstr(buf + n - 3, "}"));
 }
 
+/* A trajectory run and its writers: Monte Carlo with recorded trajectories,
+ * statistics, every CSV file into a folder. */
+static const char *traj_file =
+    "name: f\nprofile:\n  points: [[0, 30], [20, 10], [60, 0], [100, 0]]\n  material: rock\n"
+    "materials:\n  rock: {R_n: {uniform: [0.3, 0.4]}, R_t: 0.8, friction_angle: 30, roughness: 2}\n"
+    "block: {shape: sphere, radius: 0.5, density: 2600}\nrelease: {x: 1, y: 31, vx: 1, vy: 0}\n"
+    "bounce: {law: constant}\ncollectors: [{name: fence, x: 50}]\nsamples: 20\nrecord: 5\nseed: 7\n";
+
+typedef struct {
+    char dir[64];
+} traj_case;
+
+static rf_status op_traj(void *user, rf_error *err)
+{
+    traj_case *c = user;
+    rf_traj_spec spec;
+    rf_traj_ensemble e;
+    rf_traj_stats t;
+    rf_status st = rf_traj_load_buffer("f.yaml", traj_file, strlen(traj_file), &spec, err);
+    if (st != RF_OK)
+        return st;
+    if ((st = rf_traj_run(&spec, 1, &e, err)) == RF_OK) {
+        if ((st = rf_traj_stats_compute_spec(&spec, &e, &t, err)) == RF_OK) {
+            st = rf_traj_write_csv(c->dir, &spec, &e, &t, err);
+            rf_traj_stats_free(&t);
+        }
+        rf_traj_ensemble_free(&e);
+    }
+    rf_traj_spec_free(&spec);
+    return st;
+}
+
 /* ---- the tests ---------------------------------------------------------- */
 
 /* A fresh folder, in memory (/dev/shm) when there is one: the loops fsync a lot. */
@@ -468,6 +508,21 @@ static void test_study_run(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+static void test_traj_run(void **state)
+{
+    (void)state;
+    traj_case c = {""};
+    temp_dir(c.dir, sizeof c.dir);
+    assert_non_null(mkdtemp(c.dir));
+    inject("trajectory run", FAULT_ALLOC, op_traj, NULL, &c);
+    strict = 1; /* a file whose close failed is a failed run, never a silent success */
+    inject("trajectory CSV files", FAULT_CLOSE, op_traj, NULL, &c);
+    strict = 0;
+    char cmd[160];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", c.dir);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     install_faults();
@@ -476,6 +531,7 @@ int main(void)
         cmocka_unit_test(test_store),
         cmocka_unit_test(test_fe_impact),
         cmocka_unit_test(test_study_run),
+        cmocka_unit_test(test_traj_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

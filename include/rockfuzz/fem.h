@@ -24,6 +24,7 @@
 #ifndef ROCKFUZZ_FEM_H
 #define ROCKFUZZ_FEM_H
 
+#include <stdatomic.h>
 #include <stdint.h>
 
 #include "rockfuzz/impact.h"
@@ -101,8 +102,15 @@ rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_err
  * for the tests and benchmarks only. */
 typedef struct rf_fem_tuning rf_fem_tuning;
 
-/* The options a user chooses.  Every member but the last four is a row of
+/* The default step budget of one FE run (rf_fem_options.max_steps): a run at
+ * the finest admissible refinement takes a few 10^5 steps. */
+#define RF_FEM_DEFAULT_MAX_STEPS 1e6
+/* A run estimated to take longer than this [s] says so (rf_fem_options.say). */
+#define RF_FEM_SAY_SECONDS 30.0
+
+/* The options a user chooses.  Every member up to threads is a row of
  * rf_fem_option_fields (name, unit, default, range, help); see there. */
+
 typedef struct {
     double refinement;                   /* elements across the Hertz contact radius a (a/h); 0 = automatic */
     double domain_factor;                /* hemisphere radius / r0; 0 = automatic (see above) */
@@ -126,6 +134,17 @@ typedef struct {
        line (rockfuzz impact).  No result depends on it. */
     void (*progress)(void *ctx, double t, double t_end);
     void *progress_ctx;
+    /* The step budget (fem_driver.c): a run whose estimated step count (its
+       least simulated time / the time step, known after assembly) exceeds it
+       is refused before it runs, naming the count and the time it would take,
+       and no run takes more steps; 0 = RF_FEM_DEFAULT_MAX_STEPS, < 0 = none. */
+    double max_steps;
+    /* NULL or called once when a run will take long (over RF_FEM_SAY_SECONDS by
+       the time its first steps took): one line saying the steps and the time. */
+    void (*say)(void *ctx, const char *text);
+    void *say_ctx;
+    /* NULL or a flag: non-zero stops the run between two steps (RF_EINTERRUPTED). */
+    const atomic_int *interrupt;
     const rf_fem_tuning *tuning; /* NULL (default): the validated numerics; tests and benchmarks only */
 } rf_fem_options;
 

@@ -16,6 +16,7 @@
 #define ROCKFUZZ_MODEL_H
 
 #include <stdatomic.h>
+#include <stdio.h>
 
 #include "rockfuzz/status.h"
 
@@ -43,6 +44,13 @@ typedef struct rf_model {
      * early when it becomes non-zero (an external program is killed); they
      * then return RF_EINTERRUPTED.  The flag must outlive the evaluations. */
     void (*set_interrupt)(void *ctx, const atomic_int *flag);
+    /* Optional (may be NULL): work deferred from the model's creation to the
+     * run (a trajectory model's impact table of FE impacts).  A study run calls
+     * it once, after the output folder is locked and the plan accepted, before
+     * the first evaluation; it answers the interrupt flag (RF_EINTERRUPTED) and
+     * says what it does on log (NULL: silent).  Without it the first
+     * evaluation that needs the work does it. */
+    rf_status (*prepare)(void *ctx, FILE *log, rf_error *err);
 } rf_model;
 
 /* Evaluate (convenience wrapper checking for NULL and non-finite outputs). */
@@ -56,6 +64,9 @@ rf_status rf_model_eval_many(const rf_model *model, size_t count, const double *
 
 /* Hand the model an interrupt flag (no-op when it has no set_interrupt). */
 void rf_model_set_interrupt(rf_model *model, const atomic_int *flag);
+
+/* Do the model's deferred work (see prepare; RF_OK when it has none). */
+rf_status rf_model_prepare(rf_model *model, FILE *log, rf_error *err);
 
 /* Free everything the model owns (calls destroy); safe on a zeroed struct. */
 void rf_model_free(rf_model *model);

@@ -33,6 +33,9 @@ typedef struct {
     size_t remote;         /* of the evaluated, how many ran on MPI worker ranks */
     double eval_seconds;   /* time spent in the model in this run [s] */
     const char *model_warnings; /* what the model reported while evaluating (rf_model.warnings), NULL = none */
+    /* Non-zero *interrupt stops the writing between two files (RF_EINTERRUPTED,
+     * no result.json: the folder is then an incomplete run); NULL = never. */
+    const atomic_int *interrupt;
 } rf_report_options;
 
 void rf_report_options_default(rf_report_options *opt);
@@ -62,6 +65,11 @@ rf_status rf_report_write_csv(const char *dir, const rf_study *study, const rf_t
                               const rf_analysis *an, rf_error *err);
 rf_status rf_report_write_plots(const char *dir, const rf_study *study, const rf_tm_result *res,
                                 const rf_analysis *an, rf_error *err);
+/* The same, stopping between two figures when *interrupt (may be NULL) is non-zero. */
+rf_status rf_report_write_plots_until(const char *dir, const rf_study *study, const rf_tm_result *res,
+                                      const rf_analysis *an, const atomic_int *interrupt, rf_error *err);
+/* RF_EINTERRUPTED naming what was being written when *interrupt (may be NULL) is non-zero, else RF_OK. */
+rf_status rf_report_stopped(const atomic_int *interrupt, const char *writing, rf_error *err);
 
 #ifdef __cplusplus
 }

@@ -60,6 +60,9 @@ typedef struct {
     /* Called once with the counts before any evaluation; return non-zero to abort. */
     int (*on_plan)(void *user, size_t requested, size_t distinct);
     void *on_plan_user;
+    /* Non-zero *interrupt stops counting and building the grids (a grid of
+     * millions of points with the cap off): RF_EINTERRUPTED.  NULL = never. */
+    const atomic_int *interrupt;
 } rf_tm_options;
 
 void rf_tm_options_default(rf_tm_options *opt);

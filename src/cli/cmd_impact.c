@@ -29,7 +29,7 @@
  * option after its row of rf_fem_option_fields (fem.h; --domain-factor), read
  * by read_fem_option. */
 typedef enum {
-    O_SOLVER, O_EN, O_HUNTER_A, O_VTK, O_JSON, O_PROGRESS, O_MAT_B, O_MAT_S, O_MAT_L, O_HELP, O_COUNT
+    O_SOLVER, O_EN, O_HUNTER_A, O_VTK, O_MAX_STEPS, O_JSON, O_PROGRESS, O_MAT_B, O_MAT_S, O_MAT_L, O_HELP, O_COUNT
 } opt_id;
 
 /* Short names of two inputs (the spheroid's semi-axes c and d). */
@@ -46,6 +46,7 @@ static const struct {
     {O_EN, "e-n"},
     {O_HUNTER_A, "hunter-A"},
     {O_VTK, "vtk"},
+    {O_MAX_STEPS, "max-steps"},
     {O_JSON, "json"},
     {O_PROGRESS, "progress"},
     {O_HELP, "help"},
@@ -188,7 +189,15 @@ static void usage(FILE *f)
     fprintf(f,
         "  --vtk DIR                fem: write VTK snapshots into DIR (fem.pvd + fem_NNNN.vtu;\n"
         "                           the 3D model writes its half model); DIR and its\n"
-        "                           parents are created if missing\n"
+        "                           parents are created if missing\n");
+    fprintf(f,
+        "  --max-steps N            fem: the step budget (default %.0f; 0 = no limit).  After\n"
+        "                           assembly the time step and the least simulated time give\n"
+        "                           the step count: a run needing more is refused before it\n"
+        "                           starts, naming the count; no run takes more steps.  A run\n"
+        "                           estimated (from its first steps) to take over 30 s says\n"
+        "                           its steps and time on stderr first\n", RF_FEM_DEFAULT_MAX_STEPS);
+    fprintf(f,
         "\n"
         "Output:\n"
         "  --json                   print one JSON object: contact_force_max [N],\n"
@@ -356,6 +365,14 @@ static void print_references(const rf_impact_model_spec *spec, const rf_impact_i
                sqrt(1 - lo), sqrt(1 - hi));
 }
 
+/* A long FE run says its steps and the time it will take (rf_fem_options.say). */
+static void say_long_run(void *ctx, const char *text)
+{
+    (void)ctx;
+    fprintf(stderr, "rockfuzz impact: %s\n", text);
+    fflush(stderr);
+}
+
 /* The FE run with its history, for the diagnostics the summary shows. */
 static int run_fem(const rf_impact_model_spec *spec_in, rf_impact_output *out, int json, int progress)
 {
@@ -364,6 +381,7 @@ static int run_fem(const rf_impact_model_spec *spec_in, rf_impact_output *out, i
     rf_cli_progress line;
     rf_cli_progress_begin(&line, progress || (!json && isatty(STDERR_FILENO)), "fem impact");
     sp.fem.progress = rf_cli_progress_fem, sp.fem.progress_ctx = &line;
+    sp.fem.say = say_long_run, sp.fem.say_ctx = NULL;
     rf_fem_history hist = {0};
     rf_error err = {0};
     double friction_work = 0.0;
@@ -431,6 +449,13 @@ static int set_option(opt_id id, const char *oname, const char *val, rf_impact_m
     case O_VTK:
         spec->fem.vtk_dir = val;
         break;
+    case O_MAX_STEPS: {
+        long long n = 0;
+        if (!rf_cli_count("impact", "--max-steps", val, 0, 1000000000000LL, &n))
+            return EXIT_USAGE;
+        spec->fem.max_steps = n ? (double)n : -1; /* 0: no limit */
+        break;
+    }
     case O_MAT_B:
     case O_MAT_S:
     case O_MAT_L: {

@@ -2,6 +2,9 @@
 #include "fem_driver.h"
 #include "fem_internal.h" /* fem_vtk_index */
 
+#include <math.h>
+#include <stdatomic.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,15 +65,100 @@ static rf_status frame(const fem_geometry *g, void *run, drive_frames *f, double
     return st;
 }
 
+/* ---- the step budget, the estimate and the stop flag ---------------------- */
+
+/* Steps measured before the time estimate (or the whole run when shorter). */
+#define PROBE_STEPS 16
+
+/* The run's budget in steps (max_steps: 0 the default, < 0 none: +inf). */
+static double step_budget(const rf_fem_options *o)
+{
+    return o->max_steps < 0 ? INFINITY : o->max_steps > 0 ? o->max_steps : RF_FEM_DEFAULT_MAX_STEPS;
+}
+
+/* The least simulated time [s] (fem_run_begin's t_min) and the steps it takes, as doubles (no overflow). */
+static double least_time(const fem_drive_params *p, const rf_fem_options *o)
+{
+    return o->end_time > 0 ? o->end_time : 1.3 * p->t_hertz;
+}
+
+/* "about 2.5e+06 time steps of 4e-09 s for 0.01 s simulated (...)" */
+static void steps_text(const fem_drive_params *p, const rf_fem_options *o, char *buf, size_t size)
+{
+    const double t = least_time(p, o);
+    snprintf(buf, size, "about %.3g time steps of %.3g s for %.3g s simulated (%s)", ceil(t / p->dt), p->dt, t,
+             o->end_time > 0 ? "the given end time" : "1.3 Hertz contact durations at least");
+}
+
+/* The inputs a time step depends on, for the messages. */
+static void step_inputs(const rf_impact_input *in, char *buf, size_t size)
+{
+    snprintf(buf, size, "boulder E = %g Pa, poisson = %g; slope E = %g Pa, poisson = %g; radius = %g m", in->boulder_E,
+             in->boulder_poisson, in->slope_E, in->slope_poisson, in->radius);
+}
+
+/* After assembly, before anything is allocated for the steps: the estimated step count within the budget. */
+static rf_status budget_check(const char *who, const fem_drive_params *p, const fem_attempt *a, rf_error *err)
+{
+    const rf_fem_options *o = a->opt;
+    const double budget = step_budget(o), steps = ceil(least_time(p, o) / p->dt);
+    char inputs[256], what[256];
+    step_inputs(a->in, inputs, sizeof inputs);
+    if (!(p->dt > 0) || !isfinite(steps))
+        return rf_fail(err, RF_EINVAL, "%s: the stable time step (%g s) or the contact duration (%g s) is not a "
+                       "positive finite number: the stiffness or the size of this input is beyond what the arithmetic "
+                       "holds (%s)", who, p->dt, p->t_hertz, inputs);
+    if (steps <= budget)
+        return RF_OK;
+    steps_text(p, o, what, sizeof what);
+    return rf_fail(err, RF_EINVAL, "%s: the run needs %s, more than the budget of %.3g steps (max_steps; "
+                   "`rockfuzz impact --max-steps N`, 0 = no limit): a time step this small comes from a stiff or "
+                   "nearly incompressible material or a fine mesh (%s); a long end time multiplies it", who, what,
+                   budget, inputs);
+}
+
+/* After PROBE_STEPS steps (wall0: when the first began): say the time a long run will take. */
+static void say_estimate(const fem_drive_params *p, const rf_fem_options *o, const fem_run *R, long done,
+                         double wall0)
+{
+    if (!o->say || done <= 0)
+        return;
+    const double per_step = (rf_monotonic_seconds() - wall0) / (double)done;
+    const double total = per_step * ceil(least_time(p, o) / p->dt);
+    if (total <= RF_FEM_SAY_SECONDS)
+        return;
+    char what[256], text[512];
+    steps_text(p, o, what, sizeof what);
+    snprintf(text, sizeof text, "%s: %s; about %.0f s at the %.3g ms per step of the first %ld steps", R->who, what,
+             total, 1e3 * per_step, done);
+    o->say(o->say_ctx, text);
+}
+
+/* Between two steps: the stop flag, and the budget (a run past its estimate). */
+static rf_status step_allowed(const fem_run *R, const rf_fem_options *o, long n, rf_error *err)
+{
+    if (o->interrupt && atomic_load_explicit(o->interrupt, memory_order_relaxed))
+        return rf_fail(err, RF_EINTERRUPTED, "%s: interrupted at step %ld (t = %.3g s)", R->who, n, (double)n * R->dt);
+    if ((double)n >= step_budget(o))
+        return rf_fail(err, RF_EMODEL, "%s: the impact has not ended after %ld time steps (t = %.3g s), the budget "
+                       "(max_steps; `rockfuzz impact --max-steps N`, 0 = no limit)", R->who, n, (double)n * R->dt);
+    return RF_OK;
+}
+
 /* The steps until the run's stop rule (fem_run_stop); *nsteps taken. */
 static rf_status drive_loop(const fem_geometry *g, void *run, fem_run *R, const fem_drive_params *p,
                             const rf_fem_options *o, long *nsteps, rf_error *err)
 {
     drive_frames f;
     rf_status st = frames_begin(&f, o, R, g->who, err);
+    const double wall0 = rf_monotonic_seconds();
     long n = 0;
     for (; st == RF_OK; n++) {
         const double t = (double)n * p->dt;
+        if (n == PROBE_STEPS)
+            say_estimate(p, o, R, n, wall0);
+        if ((st = step_allowed(R, o, n, err)) != RF_OK)
+            break;
         if (f.dir && n % f.every == 0 && f.n < f.cap - 1 && (st = frame(g, run, &f, t, err)) != RF_OK)
             break;
         fem_step_row r;
@@ -91,6 +179,21 @@ static rf_status drive_loop(const fem_geometry *g, void *run, fem_run *R, const 
     return st;
 }
 
+/* A mesh refused (too many elements, a zone that does not fit) for a contact
+ * far smaller or larger than the block: say which input makes it so. */
+static void mesh_hint(const rf_impact_input *in, rf_error *err)
+{
+    const double a = rf_hertz_contact_radius(in), ratio = a / in->radius;
+    if (ratio > 1e-3 && ratio < 0.5)
+        return;
+    const size_t len = strlen(err->msg);
+    snprintf(err->msg + len, sizeof err->msg - len, " (at this input the Hertz contact radius is a = %.3g m, %.3g "
+             "times the block's radius %g m, from velocity = %g m/s, boulder E = %g Pa, slope E = %g Pa; the FE mesh "
+             "is graded from a / refinement at the contact to the block's size, so such a ratio cannot be meshed; "
+             "the analytic solvers hertz and hunter take the impact)", a, ratio, in->radius, in->velocity,
+             in->boulder_E, in->slope_E);
+}
+
 rf_status fem_drive(const fem_geometry *g, void *run, const fem_attempt *a, long *unstable, rf_error *err)
 {
     const double wall0 = rf_monotonic_seconds();
@@ -104,12 +207,16 @@ rf_status fem_drive(const fem_geometry *g, void *run, const fem_attempt *a, long
     rf_status st = g->prepare(run, a, err);
     if (st == RF_OK)
         st = g->mesh(run, err);
+    if (st != RF_OK)
+        mesh_hint(a->in, err);
     if (st == RF_OK)
         st = g->assemble(run, err);
     if (st == RF_OK) {
         g->params(run, &p);
-        st = fem_run_begin(&R, g->who, a->opt, p.dt, p.t_hertz, a->hist || a->rep, p.columns, err);
+        st = budget_check(g->who, &p, a, err);
     }
+    if (st == RF_OK)
+        st = fem_run_begin(&R, g->who, a->opt, p.dt, p.t_hertz, a->hist || a->rep, p.columns, err);
     R.gravity = p.gravity;
     long nsteps = 0;
     if (st == RF_OK)

@@ -47,6 +47,11 @@ void rf_model_set_interrupt(rf_model *model, const atomic_int *flag)
         model->set_interrupt(model->ctx, flag);
 }
 
+rf_status rf_model_prepare(rf_model *model, FILE *log, rf_error *err)
+{
+    return model && model->prepare ? model->prepare(model->ctx, log, err) : RF_OK;
+}
+
 void rf_model_free(rf_model *model)
 {
     if (!model)

@@ -536,9 +536,13 @@ rf_status rf_report_write(const char *dir, const rf_study *s, const rf_tm_result
     /* A result.json from an earlier run must not survive a failed rerun. */
     if (unlink(final_path) != 0 && errno != ENOENT)
         return rf_fail(err, RF_EIO, "%s: cannot remove the old result: %s", final_path, strerror(errno));
-    rf_status st = rf_report_write_csv(dir, s, res, an, err);
+    rf_status st = rf_report_stopped(opt->interrupt, "the CSV files", err);
+    if (st == RF_OK)
+        st = rf_report_write_csv(dir, s, res, an, err);
     if (st == RF_OK && opt->plots)
-        st = rf_report_write_plots(dir, s, res, an, err);
+        st = rf_report_write_plots_until(dir, s, res, an, opt->interrupt, err);
+    if (st == RF_OK)
+        st = rf_report_stopped(opt->interrupt, "result.json", err);
     if (st == RF_OK)
         st = rf_report_write_json(tmp_path, s, res, an, opt, err);
     if (st == RF_OK && rename(tmp_path, final_path) != 0)

@@ -146,6 +146,12 @@ static int any_finite(const double *v, size_t n)
 rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
                                 rf_error *err)
 {
+    return rf_report_write_plots_until(dir, s, res, an, NULL, err);
+}
+
+rf_status rf_report_write_plots_until(const char *dir, const rf_study *s, const rf_tm_result *res,
+                                      const rf_analysis *an, const atomic_int *interrupt, rf_error *err)
+{
     size_t n = res->n_inputs, m = res->levels;
     char stem[256], safe[128], title[512], xlabel[256];
     rf_status st;
@@ -157,7 +163,8 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
                  s->param_units[i], s->param_units[i][0] ? "]" : "");
         membership_plot mp = {res->in_lo + i * (m + 1), res->in_hi + i * (m + 1), m, title, xlabel,
                               res->in_nominal[i], &s->inputs[i]};
-        if ((st = rf_plot_figure(dir, stem, 800, 560, draw_membership, &mp, err)) != RF_OK)
+        if ((st = rf_report_stopped(interrupt, "the plots", err)) != RF_OK ||
+            (st = rf_plot_figure(dir, stem, 800, 560, draw_membership, &mp, err)) != RF_OK)
             return st;
     }
     double *tmp = malloc(3 * (n ? n : 1) * sizeof *tmp);
@@ -176,7 +183,8 @@ rf_status rf_report_write_plots(const char *dir, const rf_study *s, const rf_tm_
         snprintf(xlabel, sizeof xlabel, "%.100s%s%.50s%s", name, unit[0] ? " [" : "", unit, unit[0] ? "]" : "");
         membership_plot mp = {res->lo + k * (m + 1), res->hi + k * (m + 1), m, title, xlabel, res->nominal[k],
                               NULL};
-        if ((st = rf_plot_figure(dir, stem, 800, 560, draw_membership, &mp, err)) != RF_OK)
+        if ((st = rf_report_stopped(interrupt, "the plots", err)) != RF_OK ||
+            (st = rf_plot_figure(dir, stem, 800, 560, draw_membership, &mp, err)) != RF_OK)
             break;
         for (size_t i = 0; i < n; i++) {
             tmp[i] = an->rho[k * n + i];

@@ -232,3 +232,11 @@ long rp_main_output(const rf_study *s, const rf_tm_result *res)
     }
     return first;
 }
+
+/* (report.h) Here, below every writer of the report, which all ask it. */
+rf_status rf_report_stopped(const atomic_int *interrupt, const char *writing, rf_error *err)
+{
+    if (!interrupt || !atomic_load(interrupt))
+        return RF_OK;
+    return rf_fail(err, RF_EINTERRUPTED, "interrupted while writing the report (%s)", writing);
+}

@@ -18,9 +18,11 @@ rf_status rf_traj_study_parse(yr_ctx *c, struct fy_node *n, rf_study *study);
  * the TM's result res (NULL: the nominal point only) the reruns at the points giving the
  * lower and upper bound of the main output (rp_main_output) at membership 0,
  * in DIR/bound_lower/ and DIR/bound_upper/, the figures of the three on
- * common axes; a folder complete for the same model and point is kept. */
+ * common axes; a folder complete for the same model and point is kept.
+ * A non-zero *interrupt (may be NULL) stops it before the next Monte Carlo
+ * or figure (RF_EINTERRUPTED; an unfinished folder has no mark). */
 rf_status rf_traj_study_reruns(const char *dir, const rf_study *s, const rf_tm_result *res, int threads, int plots,
-                               rf_error *err);
+                               const atomic_int *interrupt, rf_error *err);
 
 /* The fuzzy hazard rasters of a trajectory study on a terrain file
  * (study_fuzzy_raster.c, docs/fuzzy-hazard.md).  begin (before the TM):

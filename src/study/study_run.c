@@ -4,8 +4,9 @@
  * The steps, in this order, each refusing before the next one writes:
  *   load the study -> (MPI: every rank said hello) -> the folder is empty, or
  *   holds a rockfuzz run, or force -> lock it -> open the store (format,
- *   integrity, key) -> plan and cap -> TM -> analysis -> report, result.json
- *   last.  The lock is released only when everything is closed. */
+ *   integrity, key) -> plan and cap -> the model's deferred work (a trajectory
+ *   model's impact table: rf_model_prepare) -> TM -> analysis -> report,
+ *   result.json last.  The lock is released only when everything is closed. */
 #include "rockfuzz/study_run.h"
 #include "core/outdir.h"
 #include "study/study_internal.h"
@@ -162,9 +163,20 @@ static void setup_runner(run_state *r)
     r->runner.tolerate_failures = o->tolerate_failures;
     r->runner.mpi_workers = o->mpi_ranks > 1 ? o->mpi_ranks - 1 : 0;
     r->runner.interrupt = o->interrupt;
+    r->tm.interrupt = o->interrupt; /* counting a grid of millions of points (the cap off) answers it too */
     rf_model_set_interrupt(&r->study.model, o->interrupt);
     r->tm.on_plan = on_plan;
     r->tm.on_plan_user = r;
+}
+
+/* Append tail to the message, cutting the message (never the tail) to fit. */
+static void append_tail(rf_error *err, const char *tail)
+{
+    size_t len = strlen(err->msg), add = strlen(tail);
+    if (len + add >= sizeof err->msg)
+        len = sizeof err->msg > add + 1 ? sizeof err->msg - add - 1 : 0;
+    memcpy(err->msg + len, tail, add < sizeof err->msg ? add + 1 : 0);
+    err->msg[sizeof err->msg - 1] = '\0';
 }
 
 /* Count the plan, show it, and refuse it above the cap. */
@@ -173,7 +185,10 @@ static rf_status plan(run_state *r, rf_error *err)
     const rf_study *s = &r->study;
     FILE *out = r->opt->out;
     size_t requested = 0, distinct = 0;
-    if (rf_tm_count(s->inputs, s->n_params, &r->tm, &requested, &distinct, err) != RF_OK)
+    rf_status st = rf_tm_count(s->inputs, s->n_params, &r->tm, &requested, &distinct, err);
+    if (st == RF_EINTERRUPTED)
+        append_tail(err, "; nothing was evaluated");
+    if (st != RF_OK)
         return rf_error_prefix(err, "%s", r->study_path);
     if (out) {
         fprintf(out, "Study '%s': %s form, m = %zu, %zu parameter%s; model %s\n", s->name,
@@ -199,6 +214,23 @@ static rf_status plan(run_state *r, rf_error *err)
     return RF_OK;
 }
 
+/* The model's deferred work (a trajectory model's impact table), inside the
+ * run: after the lock and the plan, answering the stop flag, saying progress. */
+static rf_status prepare_model(run_state *r, rf_error *err)
+{
+    if (r->opt->interrupt && atomic_load(r->opt->interrupt))
+        return rf_fail(err, RF_EINTERRUPTED, "interrupted before the first evaluation; nothing was evaluated");
+    rf_status st = rf_model_prepare(&r->study.model, r->opt->out, err);
+    if (st == RF_EINTERRUPTED) {
+        rf_error_prefix(err, "%s", r->study_path);
+        append_tail(err, "; nothing was evaluated yet: rerun to resume");
+        return st;
+    }
+    if (st != RF_OK)
+        return rf_error_prefix(err, "%s: model", r->study_path);
+    return RF_OK;
+}
+
 /* The TM through the runner; on failure the message says what is kept. */
 static rf_status evaluate(run_state *r, rf_error *err)
 {
@@ -217,11 +249,7 @@ static rf_status evaluate(run_state *r, rf_error *err)
     char tail[PATH_MAX + 128];
     snprintf(tail, sizeof tail, ". %zu evaluation%s of this run committed to %s (%zu found there before); "
              "rerun to resume", n, n == 1 ? "" : "s", r->store_path, r->runner.resumed);
-    size_t len = strlen(err->msg), add = strlen(tail);
-    if (len + add >= sizeof err->msg)
-        len = sizeof err->msg > add + 1 ? sizeof err->msg - add - 1 : 0;
-    memcpy(err->msg + len, tail, add < sizeof err->msg ? add + 1 : 0);
-    err->msg[sizeof err->msg - 1] = '\0';
+    append_tail(err, tail);
     return st;
 }
 
@@ -263,19 +291,31 @@ static rf_status write_outputs(run_state *r, rf_error *err)
     ropt.remote = r->runner.remote;
     ropt.eval_seconds = r->runner.eval_seconds;
     ropt.model_warnings = warnings;
+    ropt.interrupt = o->interrupt;
     /* From here on the files are rewritten: the old result.json goes first, so
      * that its presence keeps meaning "every file belongs to one complete run". */
     char old[PATH_MAX];
     snprintf(old, sizeof old, "%s/result.json", o->out_dir);
     if (unlink(old) != 0 && errno != ENOENT)
         return rf_fail(err, RF_EIO, "%s: cannot replace the old result: %s", old, strerror(errno));
-    rf_status st = rf_study_fuzzy_rasters_write(o->out_dir, &r->study, r->fuzzy, &r->res, err);
+    rf_status st = rf_report_stopped(o->interrupt, "the fuzzy rasters", err);
+    if (st == RF_OK)
+        st = rf_study_fuzzy_rasters_write(o->out_dir, &r->study, r->fuzzy, &r->res, err);
     if (st == RF_OK)
         st = rf_report_write(o->out_dir, &r->study, &r->res, &r->an, &ropt, err);
     if (st == RF_OK) /* a trajectory study: its trajectories at the nominal point and the bounds, for the report */
-        st = rf_traj_study_reruns(o->out_dir, &r->study, &r->res, r->runner.jobs, o->plots, err);
+        st = rf_traj_study_reruns(o->out_dir, &r->study, &r->res, r->runner.jobs, o->plots, o->interrupt, err);
+    if (st == RF_OK)
+        st = rf_report_stopped(o->interrupt, "report.html", err);
     if (st == RF_OK)
         st = rf_report_write_html(o->out_dir, err);
+    if (st == RF_EINTERRUPTED) {
+        unlink(old); /* written before the stop: without report.html the run is not complete */
+        char tail[PATH_MAX + 128];
+        snprintf(tail, sizeof tail, "; every evaluation is in %s: rerun to write the report", r->store_path);
+        append_tail(err, tail);
+        rf_error_prefix(err, "%s", r->study_path);
+    }
     return st;
 }
 
@@ -307,6 +347,8 @@ static rf_status run_steps(run_state *r, rf_error *err)
         return st;
     if ((st = rf_study_fuzzy_rasters_begin(r->opt->out_dir, &r->study, &r->fuzzy, err)) != RF_OK)
         return rf_error_prefix(err, "%s", r->study_path);
+    if ((st = prepare_model(r, err)) != RF_OK)
+        return st;
     if (r->opt->interrupt && atomic_load(r->opt->interrupt))
         return rf_fail(err, RF_EINTERRUPTED, "interrupted before the first evaluation; nothing was evaluated");
     r->t0 = rf_monotonic_seconds();

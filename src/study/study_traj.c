@@ -11,6 +11,7 @@
 #include "study/report_internal.h"
 #include "core/util.h"
 #include "rockfuzz/fuzzy.h"
+#include "rockfuzz/report.h"
 #include "rockfuzz/trajectory.h"
 
 #include <errno.h>
@@ -434,13 +435,14 @@ static size_t rerun_points(const rf_study *s, const rf_tm_result *res, long main
 
 /* Run what is not valid, then write every folder whose figures are not on the common axes. */
 static rf_status rerun_all(const char *dir, const rf_study *s, rerun *r, size_t count, long main_k, int threads,
-                           int plots, rf_error *err)
+                           int plots, const atomic_int *interrupt, rf_error *err)
 {
     rf_status st = RF_OK;
     rf_traj_plot_scales common;
     memset(&common, 0, sizeof common);
     for (size_t p = 0; p < count && st == RF_OK; p++) {
-        if (!r[p].valid)
+        if (!r[p].valid && (st = rf_report_stopped(interrupt, "the trajectories at the nominal point and the "
+                                                             "bounds", err)) == RF_OK)
             st = run_point(dir, s, &r[p], main_k, threads, err);
         if (st == RF_OK)
             scales_merge(&common, &r[p].own);
@@ -448,6 +450,8 @@ static rf_status rerun_all(const char *dir, const rf_study *s, rerun *r, size_t 
     for (size_t p = 0; p < count && st == RF_OK; p++) {
         if (r[p].valid && scales_equal(&r[p].drawn, &common))
             continue;
+        if ((st = rf_report_stopped(interrupt, "the trajectory figures", err)) != RF_OK)
+            break;
         if (!r[p].run) /* complete, but drawn on other axes: the figures again */
             st = run_point(dir, s, &r[p], main_k, threads, err);
         char sub[4200];
@@ -462,7 +466,7 @@ static rf_status rerun_all(const char *dir, const rf_study *s, rerun *r, size_t 
 }
 
 rf_status rf_traj_study_reruns(const char *dir, const rf_study *s, const rf_tm_result *res, int threads, int plots,
-                               rf_error *err)
+                               const atomic_int *interrupt, rf_error *err)
 {
     if (s->model_kind != RF_STUDY_MODEL_TRAJECTORY)
         return RF_OK;
@@ -489,7 +493,7 @@ rf_status rf_traj_study_reruns(const char *dir, const rf_study *s, const rf_tm_r
         unlink(path);
     }
     if (st == RF_OK)
-        st = rerun_all(dir, s, r, count, main_k, threads, plots, err);
+        st = rerun_all(dir, s, r, count, main_k, threads, plots, interrupt, err);
     for (size_t p = 0; p < N_RERUNS; p++) {
         free(r[p].identity);
         rf_traj_point_run_free(r[p].run);

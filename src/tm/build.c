@@ -130,6 +130,7 @@ static rf_status ctx_alloc(tm_ctx *c, size_t n, size_t m, size_t n_out, const rf
     d->m = m;
     d->n_out = n_out;
     d->rtol = opt->cache_rtol > 0 ? opt->cache_rtol : 0;
+    d->stop = opt->interrupt;
     d->values = calloc(n, sizeof *d->values);
     d->nvalues = calloc(n, sizeof *d->nvalues);
     d->capvalues = calloc(n, sizeof *d->capvalues);

@@ -509,6 +509,11 @@ static rf_status grid_enumerate(struct rf_tm_data *d, rf_grid *g, int with_ids, 
         odometer_prefix(&o, 0, o.head);
         size_t p = 0, changed = 0;
         while (!st && changed != SIZE_MAX) {
+            if (d->stop && atomic_load_explicit(d->stop, memory_order_relaxed)) {
+                st = rf_fail(err, RF_EINTERRUPTED, "interrupted while enumerating the TM's grid points (%zu of "
+                             "the %zu of a grid)", p, g->count);
+                break;
+            }
             st = grid_row(d, g, &o, &p, with_ids, err);
             changed = odometer_next_row(&o, d, g);
             if (changed != SIZE_MAX)

@@ -47,6 +47,7 @@ struct rf_tm_data {
     size_t nreg, capreg;
     size_t npoints;      /* distinct points so far */
     size_t limit;        /* refuse a new point beyond this many (0 = none) */
+    const atomic_int *stop; /* rf_tm_options.interrupt: checked once per grid row, or NULL */
     void *tuples;        /* [npoints * n] value indices of every distinct point, tw bytes each */
     size_t tw;           /* 1, 2 or 4 bytes per index (from the largest nvalues) */
     size_t cap_points;   /* points tuples and y have room for */

@@ -6,10 +6,13 @@
 
 #include "rockfuzz/trajectory.h"
 
+#include <stdatomic.h>
+
 typedef struct {
     int solver;           /* rf_impact_solver */
     double radius, density, friction;
     double refinement;    /* FE a/h, 0 = default */
+    const atomic_int *stop; /* non-zero: an FE impact stops between two steps (RF_EINTERRUPTED); may be NULL */
 } traj_impact_setup;
 
 /* The k-th impact solver's name (rockfuzz impact --solver), NULL past the last:

@@ -50,6 +50,7 @@ rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double
     rf_impact_model_spec_default(&spec);
     spec.solver = (rf_impact_solver)s->solver;
     spec.fem.refinement = s->refinement;
+    spec.fem.interrupt = s->stop;
     rf_impact_input in;
     rf_impact_input_default(&in);
     in.radius = s->radius;

@@ -6,11 +6,15 @@
  * tolerance (absolute, on R_n and R_t) on any grid line.  After the last
  * refinement every cell centre is evaluated as an independent check: the
  * largest |interpolated - model| there is the reported error estimate.
- * Outside the box the table is clamped.  Built once per run (per world). */
+ * Outside the box the table is clamped.  Built once per run (per world).
+ * A watched build (traj_impact_table_build_watched) checks a stop flag before
+ * every impact it computes (RF_EINTERRUPTED; the impacts computed so far stay
+ * in the cache file) and reports each one to a progress callback. */
 #include "trajectory/traj_internal.h"
 #include "trajectory/traj_impact.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,6 +38,7 @@ typedef struct {
     size_t n_cached;          /* the first n_cached rows of memo came from the cache file */
     unsigned char *hit;       /* n_cached flags: the row was used by the table */
     const char *cache;        /* bounce.impact.cache or NULL */
+    const traj_table_watch *watch; /* stop flag and progress, or NULL */
 } builder;
 
 /* One impact of the model, computed once (the grid is refilled after each refinement). */
@@ -46,10 +51,19 @@ static rf_status eval(builder *b, double v, double th, double *c)
                 b->hit[k] = 1, b->t->from_cache++;
             return RF_OK;
         }
-    b->t->evaluations++;
-    rf_status st = traj_impact_coefficients(&b->setup, v, th, &c[0], &c[1], &c[2], b->err);
+    const traj_table_watch *w = b->watch;
+    rf_status st = w && w->stop && atomic_load(w->stop) ? RF_EINTERRUPTED : RF_OK;
+    if (st == RF_OK)
+        st = traj_impact_coefficients(&b->setup, v, th, &c[0], &c[1], &c[2], b->err);
+    if (st == RF_EINTERRUPTED) /* before this impact or inside it (an FE run stops between two steps) */
+        return rf_fail(b->err, RF_EINTERRUPTED, "interrupted while building the impact table after %zu impact%s of "
+                       "the impact model%s%s", b->t->evaluations, b->t->evaluations == 1 ? "" : "s",
+                       b->cache ? "; they are kept in " : "", b->cache ? b->cache : "");
     if (st != RF_OK)
         return st;
+    b->t->evaluations++;
+    if (w && w->progress)
+        w->progress(w->user, b->t->evaluations, b->t->from_cache, b->t->nv, b->t->nt);
     if (b->n_memo == b->cap_memo) {
         size_t cap = b->cap_memo ? 2 * b->cap_memo : 256;
         double *m = realloc(b->memo, cap * 5 * sizeof *m);
@@ -189,12 +203,19 @@ static rf_status estimate_error(builder *b)
 
 rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **out, rf_error *err)
 {
+    return traj_impact_table_build_watched(spec, NULL, out, err);
+}
+
+rf_status traj_impact_table_build_watched(const rf_traj_spec *spec, const traj_table_watch *watch,
+                                          traj_impact_table **out, rf_error *err)
+{
     *out = NULL;
     traj_impact_table *t = calloc(1, sizeof *t);
     if (!t)
         return rf_fail(err, RF_ENOMEM, "out of memory");
-    builder b = {{0}, t, err, NULL, 0, 0, 0, NULL, spec->impact_cache};
+    builder b = {{0}, t, err, NULL, 0, 0, 0, NULL, spec->impact_cache, watch};
     rf_status st = traj_impact_setup_init(&b.setup, spec, err);
+    b.setup.stop = watch ? watch->stop : NULL;
     t->nv = t->nt = 5;
     for (size_t i = 0; i < 5; i++) { /* v_n geometric, theta uniform */
         t->v[i] = spec->impact_speed_min * pow(spec->impact_speed_max / spec->impact_speed_min, (double)i / 4);

@@ -8,6 +8,7 @@
 #include "rockfuzz/trajectory.h"
 #include "core/util.h"
 
+#include <stdatomic.h>
 #include <math.h>
 #include <stdint.h>
 
@@ -241,6 +242,17 @@ rf_status traj_csv_parse(const char *name, const char *buf, size_t len, rf_traj_
 /* impact adapter (traj_impact_adapter.c + traj_impact_table.c) */
 typedef struct traj_impact_table traj_impact_table;
 rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **table, rf_error *err);
+/* The same, watched: before each impact it computes, a non-zero *stop ends the
+ * build with RF_EINTERRUPTED (the impacts computed so far stay in the cache
+ * file); after each, progress(user, impacts computed, taken from the cache,
+ * nodes in v_n, nodes in theta).  Every member may be NULL. */
+typedef struct {
+    const atomic_int *stop;
+    void (*progress)(void *user, size_t computed, size_t from_cache, size_t nv, size_t nt);
+    void *user;
+} traj_table_watch;
+rf_status traj_impact_table_build_watched(const rf_traj_spec *spec, const traj_table_watch *watch,
+                                          traj_impact_table **table, rf_error *err);
 void traj_impact_table_free(traj_impact_table *t);
 /* R_n, R_t and omega*r/v_t after an impact of normal speed vn (>0), incidence
  * angle theta [rad] from the normal. */

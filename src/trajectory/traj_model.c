@@ -11,15 +11,22 @@
  * any other non-finite output is an error naming the output.
  * With the impact_model law the impact table is built once for the model and
  * shared by every evaluation (each impact of the impact model is computed
- * once per study process), unless a parameter changes it.
+ * once per study process), unless a parameter changes it.  It is not built
+ * when the model is created (a study is loaded before its output folder is
+ * locked) but by the model's prepare (rf_model_prepare: the study run calls
+ * it after the lock, saying progress), else by the first evaluation; every
+ * build answers the interrupt flag (set_interrupt) between two impacts.
  * A terrain file (spec->terrain) evaluates by the terrain Monte Carlo
  * (terrain_run_world on a world prepared once: the DEM is read once per
  * model; no rasters) and gives runout_pXX and reach_angle_pXX [deg] where a
  * profile gives runout_x_pXX; fuzzy hazard rasters are not outputs. */
 #include "trajectory/terrain_internal.h"
 #include "core/hash.h"
+#include "trajectory/traj_impact.h"
 
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,6 +36,9 @@ typedef struct {
     size_t n_params;
     char **paths;
     void *table;             /* impact_model: built once when no parameter changes it, else NULL */
+    int shared_table;        /* the impact_model law and no parameter changes the table */
+    pthread_mutex_t table_lock; /* the shared table's build (prepare or the first evaluation) */
+    const atomic_int *stop;  /* the run's interrupt flag (set_interrupt), or NULL */
     rf_terrain_world *world; /* a terrain file: its world, prepared once */
     size_t n_outputs;
     traj_raster_sink sink;   /* a study's fuzzy hazard rasters (traj_model_raster_sink_set), or NULL */
@@ -178,6 +188,87 @@ static rf_status emit_rasters(const traj_model_ctx *c, const rf_traj_spec *s, co
     return st;
 }
 
+/* ---- the impact table: built after the model's creation, interruptible ---- */
+
+typedef struct {
+    FILE *log;
+    double t0, last; /* start and last line [s, monotonic] */
+} table_progress;
+
+static void table_say(void *user, size_t computed, size_t from_cache, size_t nv, size_t nt)
+{
+    table_progress *p = user;
+    double now = rf_monotonic_seconds();
+    if (!p->log || now - p->last < 5)
+        return;
+    p->last = now;
+    fprintf(p->log, "Impact table: %zu impact%s computed, %zu taken from the cache, grid %zu x %zu nodes so far, "
+                    "%.0f s\n", computed, computed == 1 ? "" : "s", from_cache, nv, nt, now - p->t0);
+    fflush(p->log);
+}
+
+/* Build the table of spec s watched by the stop flag, saying progress on log (may be NULL). */
+static rf_status table_build(const traj_model_ctx *c, const rf_traj_spec *s, FILE *log, traj_impact_table **t,
+                             rf_error *err)
+{
+    table_progress p = {log, rf_monotonic_seconds(), rf_monotonic_seconds()};
+    traj_table_watch w = {c->stop, table_say, &p};
+    if (log) {
+        fprintf(log, "Impact table (bounce law impact_model, solver %s): R_n, R_t and spin over normal speeds "
+                     "[%g, %g] m/s and incidences [0, %g] deg to %g, before the first evaluation%s%s\n",
+                s->impact_solver, s->impact_speed_min, s->impact_speed_max, s->impact_max_incidence * 180 / RF_PI,
+                s->impact_tolerance, s->impact_cache ? "; impacts kept in " : "",
+                s->impact_cache ? s->impact_cache : "");
+        fflush(log);
+    }
+    rf_status st = traj_impact_table_build_watched(s, &w, t, err);
+    if (st == RF_OK && log) {
+        size_t nv, nt, computed, cached;
+        double e;
+        traj_impact_table_info(*t, &nv, &nt, &computed, &cached, &e);
+        fprintf(log, "Impact table: %zu x %zu nodes, %zu impact%s computed, %zu taken from the cache, error "
+                     "estimate %.3g, %.1f s\n", nv, nt, computed, computed == 1 ? "" : "s", cached, e,
+                rf_monotonic_seconds() - p.t0);
+        fflush(log);
+    }
+    return st;
+}
+
+/* The shared table, built once (by prepare, else by the first evaluation). */
+static rf_status shared_table(traj_model_ctx *c, FILE *log, traj_impact_table **t, rf_error *err)
+{
+    pthread_mutex_lock(&c->table_lock);
+    rf_status st = RF_OK;
+    if (!c->table)
+        st = table_build(c, &c->spec, log, (traj_impact_table **)&c->table, err);
+    *t = c->table;
+    pthread_mutex_unlock(&c->table_lock);
+    return st;
+}
+
+/* The table an evaluation of spec s uses: the shared one, or its own (*own, freed by the caller). */
+static rf_status table_at(traj_model_ctx *c, const rf_traj_spec *s, traj_impact_table **t, traj_impact_table **own,
+                          rf_error *err)
+{
+    if (c->shared_table)
+        return shared_table(c, NULL, t, err);
+    rf_status st = table_build(c, s, NULL, own, err);
+    *t = *own;
+    return st;
+}
+
+static rf_status traj_model_prepare(void *vctx, FILE *log, rf_error *err)
+{
+    traj_model_ctx *c = vctx;
+    traj_impact_table *t;
+    return c->shared_table ? shared_table(c, log, &t, err) : RF_OK;
+}
+
+static void traj_model_set_interrupt(void *vctx, const atomic_int *flag)
+{
+    ((traj_model_ctx *)vctx)->stop = flag;
+}
+
 static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_error *err)
 {
     traj_model_ctx *c = vctx;
@@ -191,9 +282,18 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     rf_traj_ensemble e;
     rf_traj_stats t;
     int rasters = c->world && c->sink; /* a study's fuzzy hazard rasters */
-    st = c->world ? terrain_run_world(&s, c->world, 1, rasters, NULL, NULL, &e, err)
-                  : traj_run_with(&s, 1, c->table, 0, &e, err); /* no envelopes: not outputs */
-    if (st == RF_OK && rasters)
+    traj_impact_table *table = NULL, *own = NULL;
+    if (!c->world && s.law == RF_BOUNCE_IMPACT_MODEL)
+        st = table_at(c, &s, &table, &own, err);
+    if (st == RF_OK)
+        st = c->world ? terrain_run_world(&s, c->world, 1, rasters, NULL, NULL, &e, err)
+                      : traj_run_with(&s, 1, table, 0, &e, err); /* no envelopes: not outputs */
+    traj_impact_table_free(own);
+    if (st != RF_OK) {
+        rf_traj_spec_free(&s);
+        return st;
+    }
+    if (rasters)
         st = emit_rasters(c, &s, &e, x, err);
     if (st == RF_OK) {
         if ((st = rf_traj_stats_compute_spec(&s, &e, &t, err)) == RF_OK) {
@@ -208,8 +308,8 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
                 st = rf_fail(err, RF_EINVAL, "output %s: not finite at this point (inputs beyond what the "
                                              "arithmetic holds)", o.bad);
         }
-        rf_traj_ensemble_free(&e);
     }
+    rf_traj_ensemble_free(&e);
     rf_traj_spec_free(&s);
     return st;
 }
@@ -223,6 +323,7 @@ static void traj_model_destroy(void *vctx)
         free(c->paths[i]);
     free(c->paths);
     traj_impact_table_free(c->table);
+    pthread_mutex_destroy(&c->table_lock);
     rf_terrain_world_free(c->world);
     rf_traj_spec_free(&c->spec);
     free(c);
@@ -230,15 +331,15 @@ static void traj_model_destroy(void *vctx)
 
 /* The impact table depends on the block's radius and density, the impact
  * friction and the solver settings: shared by all evaluations unless a
- * parameter is bound to one of them. */
+ * parameter is bound to one of them (then built at every evaluation). */
 static rf_status share_table(traj_model_ctx *c, rf_error *err)
 {
-    if (c->spec.law != RF_BOUNCE_IMPACT_MODEL)
-        return RF_OK;
-    for (size_t i = 0; i < c->n_params; i++)
+    c->shared_table = c->spec.law == RF_BOUNCE_IMPACT_MODEL && !c->spec.terrain;
+    for (size_t i = 0; i < c->n_params && c->shared_table; i++)
         if (!strncmp(c->paths[i], "block.", 6) || strstr(c->paths[i], ".friction_angle"))
-            return RF_OK; /* rebuilt at every evaluation */
-    return traj_impact_table_build(&c->spec, (traj_impact_table **)&c->table, err);
+            c->shared_table = 0;
+    traj_impact_setup setup; /* its settings checked now, when the study is loaded; the FE impacts come later */
+    return c->spec.law == RF_BOUNCE_IMPACT_MODEL ? traj_impact_setup_init(&setup, &c->spec, err) : RF_OK;
 }
 
 static rf_status init_outputs(rf_model *m, const rf_traj_spec *s, rf_error *err)
@@ -294,6 +395,7 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
         free(c);
         return st;
     }
+    pthread_mutex_init(&c->table_lock, NULL);
     if (!c->spec.outputs.n_percentiles) { /* a spec built in code: the defaults */
         c->spec.outputs.n_percentiles = 3;
         c->spec.outputs.percentiles[0] = 50, c->spec.outputs.percentiles[1] = 95, c->spec.outputs.percentiles[2] = 99;
@@ -314,6 +416,8 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
     model->destroy = traj_model_destroy;
     model->eval = traj_model_eval;
     model->threads_per_eval = 1;
+    model->prepare = traj_model_prepare;
+    model->set_interrupt = traj_model_set_interrupt;
     if (st == RF_OK && c->spec.terrain) /* checked as a run checks it, the DEM read once */
         if ((st = rf_traj_spec_validate(&c->spec, err)) == RF_OK)
             st = rf_terrain_world_create(&c->spec, &c->world, err);
@@ -333,11 +437,15 @@ rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *s
 {
     if (m->eval != traj_model_eval)
         return rf_fail(err, RF_EINVAL, "not a trajectory model");
-    const traj_model_ctx *c = m->ctx;
-    rf_status st = rf_traj_spec_copy(&c->spec, spec, err);
+    traj_model_ctx *c = m->ctx;
+    traj_impact_table *t = NULL;
+    *table = NULL;
+    rf_status st = c->shared_table ? shared_table(c, NULL, &t, err) : RF_OK;
+    if (st == RF_OK)
+        st = rf_traj_spec_copy(&c->spec, spec, err);
     for (size_t i = 0; i < c->n_params && st == RF_OK; i++)
         rf_traj_spec_set(spec, c->paths[i], x[i]);
-    *table = c->table;
+    *table = t;
     return st;
 }
 

@@ -1,0 +1,52 @@
+#!/bin/bash
+# cli_fem_budget.sh - an FE impact that would run for hours says so or is
+# refused before it runs (issue 31 item 17):
+#   the step estimate made after assembly is the step count of the run: with
+#   a given end time the run takes exactly the estimated steps (JSON steps),
+#   a budget one below is refused, naming the count;
+#   --end-time 100 (8e7 steps; ran > 120 s before) is refused within the
+#   timeout by the default budget; with --max-steps 0 (no limit) it says its
+#   steps and the time it will take on stderr within its first steps;
+#   --slope-E 1e300 and --velocity 1e-300 are refused naming the input.
+# Usage: bash cli_fem_budget.sh ROCKFUZZ_BINARY SOURCE_DIR
+set -u
+. "${BASH_SOURCE[0]%/*}/cli_lib.sh"
+cli_tmpdir
+fem=("$bin" impact --solver fem --refinement 2)
+
+# the estimate is the run's step count
+"${fem[@]}" --end-time 0.001 --max-steps 1 > /dev/null 2> "$tmp/err"
+n=$(sed -n 's/.*the run needs about \([0-9]*\) time steps of .*/\1/p' "$tmp/err")
+[ -n "$n" ] && [ "$n" -gt 10 ] || fail "estimate: no step count in: $(cat "$tmp/err")"
+if [ -n "$n" ]; then
+    "${fem[@]}" --end-time 0.001 --max-steps "$n" --json > "$tmp/run.json" 2> "$tmp/err" \
+        || fail "a budget equal to the estimate $n refused: $(cat "$tmp/err")"
+    steps=$(python3 -c "import json,sys; print(int(json.load(open(sys.argv[1]))['steps']))" "$tmp/run.json" 2>/dev/null)
+    [ "$steps" = "$n" ] || fail "estimate $n steps, the run took '$steps'"
+    "${fem[@]}" --end-time 0.001 --max-steps $((n - 1)) > /dev/null 2> "$tmp/err"; rc=$?
+    [ $rc -eq 1 ] && grep -q "the run needs about $n time steps .* more than the budget of $((n - 1)) steps" "$tmp/err" \
+        || fail "a budget of $((n - 1)) < $n: exit $rc, $(cat "$tmp/err")"
+    echo "estimate: $n steps, the run took $steps"
+fi
+
+# a long end time: refused by the default budget, at once
+timeout 60 "${fem[@]}" --end-time 100 > /dev/null 2> "$tmp/err"; rc=$?
+[ $rc -eq 1 ] || fail "--end-time 100: exit $rc (124: still running after 60 s), want 1"
+grep -Eq "fem: the run needs about [0-9.e+]+ time steps of .* for 100 s simulated \(the given end time\), more than the budget of 1e\+06 steps" \
+    "$tmp/err" || fail "--end-time 100: message: $(cat "$tmp/err")"
+# ... asked for: it says its steps and time, then runs (stopped here)
+timeout 40 "${fem[@]}" --end-time 100 --max-steps 0 > /dev/null 2> "$tmp/err"; rc=$?
+[ $rc -eq 124 ] || fail "--end-time 100 --max-steps 0: exit $rc, want it still running at 40 s"
+grep -Eq "^rockfuzz impact: fem: about [0-9.e+]+ time steps of .* for 100 s simulated .*; about [0-9]+ s at the .* ms per step of the first 16 steps" \
+    "$tmp/err" || fail "--max-steps 0: no estimate said: $(cat "$tmp/err")"
+"$bin" impact --help | grep -q -- "--max-steps N *fem: the step budget (default 1000000; 0 = no limit)" \
+    || fail "--help does not document --max-steps"
+
+# inputs beyond what the arithmetic or the mesh holds: named
+timeout 120 "$bin" impact --solver fem --slope-E 1e300 > /dev/null 2> "$tmp/err"; rc=$?
+[ $rc -eq 1 ] && grep -q "slope E = 1e+300 Pa" "$tmp/err" || fail "--slope-E 1e300: exit $rc, $(cat "$tmp/err")"
+timeout 120 "$bin" impact --solver fem --velocity 1e-300 > /dev/null 2> "$tmp/err"; rc=$?
+[ $rc -eq 1 ] && grep -q "velocity = 1e-300 m/s" "$tmp/err" || fail "--velocity 1e-300: exit $rc, $(cat "$tmp/err")"
+
+[ $fails -eq 0 ] && echo "cli_fem_budget: all checks passed"
+exit $((fails > 0))
