@@ -551,14 +551,61 @@ static int read_input(const char *oname, const rf_impact_field *field, const cha
     return 1;
 }
 
+/* The options given so far: where each impact input came from, for the messages. */
+typedef struct {
+    const char *input[RF_CLI_MAX_INPUTS];
+    char input_name[RF_CLI_MAX_INPUTS][48];
+    int threads_given;
+} given_opts;
+
+/* --NAME of an impact input or an FE option (their tables' rows): 1 read, 0 not one of them, -1 bad. */
+static int table_option(const char *name, size_t len, const char *eq, int argc, char **argv, int *i,
+                        rf_impact_model_spec *spec, given_opts *g)
+{
+    const rf_impact_field *field = input_option(name, len);
+    const rf_fem_option_field *fem_row = field ? NULL : fem_option(name, len);
+    if (!field && !fem_row)
+        return 0;
+    const char *val = option_value(name, len, eq, argc, argv, i);
+    if (!val)
+        return -1;
+    if (field) {
+        size_t f = (size_t)(field - rf_impact_fields);
+        g->input[f] = val;
+        snprintf(g->input_name[f], sizeof g->input_name[f], "%.*s", (int)len, name);
+        return read_input(g->input_name[f], field, val, &spec->base) ? 1 : -1;
+    }
+    char oname[64];
+    snprintf(oname, sizeof oname, "%.*s", (int)len, name);
+    if (!read_fem_option(oname, fem_row, val, &spec->fem))
+        return -1;
+    g->threads_given |= fem_row->offset == offsetof(rf_fem_options, threads);
+    return 1;
+}
+
+/* 1 if the inputs are valid together; else says why, naming the option given. */
+static int inputs_valid(const rf_impact_input *in, const given_opts *g)
+{
+    rf_error err = {0};
+    if (rf_impact_input_validate(in, &err) == RF_OK)
+        return 1;
+    const rf_impact_field *bad = rf_impact_field_find(rf_impact_input_first_invalid(in));
+    size_t f = bad ? (size_t)(bad - rf_impact_fields) : 0;
+    if (bad && g->input[f])
+        fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", g->input_name[f], g->input[f], err.msg);
+    else
+        fprintf(stderr, "rockfuzz impact: invalid input: %s\n", err.msg);
+    return 0;
+}
+
 int rf_cli_impact(int argc, char **argv)
 {
     rf_impact_model_spec spec;
     rf_impact_model_spec_default(&spec);
     rf_impact_input *in = &spec.base;
-    int json = 0, progress = 0, threads_given = 0;
-    const char *given_input[RF_CLI_MAX_INPUTS] = {0};
-    char given_input_name[RF_CLI_MAX_INPUTS][48];
+    int json = 0, progress = 0;
+    given_opts g;
+    memset(&g, 0, sizeof g);
 
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -572,30 +619,11 @@ int rf_cli_impact(int argc, char **argv)
         }
         const char *name = arg + 2, *eq = strchr(name, '=');
         size_t len = eq ? (size_t)(eq - name) : strlen(name);
-        const rf_impact_field *field = input_option(name, len);
-        if (field) {
-            const char *val = option_value(name, len, eq, argc, argv, &i);
-            if (!val)
-                return EXIT_USAGE;
-            size_t f = (size_t)(field - rf_impact_fields);
-            given_input[f] = val;
-            snprintf(given_input_name[f], sizeof given_input_name[f], "%.*s", (int)len, name);
-            if (!read_input(given_input_name[f], field, val, in))
-                return EXIT_USAGE;
+        int t = table_option(name, len, eq, argc, argv, &i, &spec, &g);
+        if (t < 0)
+            return EXIT_USAGE;
+        if (t > 0)
             continue;
-        }
-        const rf_fem_option_field *fem_row = fem_option(name, len);
-        if (fem_row) {
-            const char *val = option_value(name, len, eq, argc, argv, &i);
-            if (!val)
-                return EXIT_USAGE;
-            char oname[64];
-            snprintf(oname, sizeof oname, "%.*s", (int)len, name);
-            if (!read_fem_option(oname, fem_row, val, &spec.fem))
-                return EXIT_USAGE;
-            threads_given |= fem_row->offset == offsetof(rf_fem_options, threads);
-            continue;
-        }
         size_t k = 0;
         while (k < N_OPTIONS && !(strlen(options[k].name) == len && !strncmp(options[k].name, name, len)))
             k++;
@@ -625,21 +653,13 @@ int rf_cli_impact(int argc, char **argv)
     /* the 3D model on all cores (the solvers give the same bits for any count); the axisymmetric
        one on one: its steps (~0.1 ms) are shorter than a thread hand-off, and 2 threads were up to
        2x slower up to 12 600 elements (docs/fem-speed.md section 5) */
-    if ((!threads_given || spec.fem.threads == 0) && rf_fem_needs_3d(in)) {
+    if ((!g.threads_given || spec.fem.threads == 0) && rf_fem_needs_3d(in)) {
         long cores = sysconf(_SC_NPROCESSORS_ONLN);
         spec.fem.threads = cores < 1 ? 1 : cores > RF_CLI_MAX_THREADS ? RF_CLI_MAX_THREADS : (int)cores;
     }
-    rf_error err = {0};
-    if (rf_impact_input_validate(in, &err) != RF_OK) {
-        const rf_impact_field *bad = rf_impact_field_find(rf_impact_input_first_invalid(in));
-        size_t f = bad ? (size_t)(bad - rf_impact_fields) : 0;
-        if (bad && given_input[f]) {
-            fprintf(stderr, "rockfuzz impact: --%s %s: %s\n", given_input_name[f], given_input[f], err.msg);
-            return EXIT_USAGE;
-        }
-        fprintf(stderr, "rockfuzz impact: invalid input: %s\n", err.msg);
+    if (!inputs_valid(in, &g))
         return EXIT_USAGE;
-    }
+    rf_error err = {0};
 
     rf_impact_output out;
     if (spec.solver == RF_IMPACT_FEM)

@@ -276,13 +276,10 @@ static void write_warnings(FILE *f, const rf_study *s, const rf_tm_result *res, 
         fputs("\n  ", f);
 }
 
-rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
-                               const rf_report_options *opt, rf_error *err)
+/* result.json: the study, its settings and the levels. */
+static void json_head(FILE *f, const rf_study *s, const rf_tm_result *res)
 {
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return rf_fail(err, RF_EIO, "%s: cannot write: %s", path, strerror(errno));
-    size_t n = res->n_inputs, m = res->levels;
+    size_t m = res->levels;
     fputs("{\n  \"version\": ", f);
     rf_json_string(f, ROCKFUZZ_VERSION);
     fputs(",\n  \"name\": ", f);
@@ -307,6 +304,12 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
     write_settings(f, s);
     fputs(",\n  \"mu\": ", f);
     json_levels(f, m);
+}
+
+/* result.json: the fuzzy inputs. */
+static void json_inputs(FILE *f, const rf_study *s, const rf_tm_result *res)
+{
+    size_t n = res->n_inputs, m = res->levels;
     fputs(",\n  \"inputs\": {", f);
     for (size_t i = 0; i < n; i++) {
         fputs(i ? ",\n    " : "\n    ", f);
@@ -328,6 +331,47 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
                     s->param_class[i] != RF_MONO_AUTO ? "true" : "false");
         fputc('}', f);
     }
+}
+
+/* result.json: the influence of each input on output k. */
+static void json_influence(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_analysis *an, size_t k)
+{
+    size_t n = res->n_inputs;
+    fputs("],\n      \"influence\": {", f);
+    for (size_t i = 0; i < n; i++) {
+        size_t q = k * n + i;
+        fputs(i ? ",\n        " : "\n        ", f);
+        rf_json_string(f, s->param_names[i]);
+        fputs(": {\"rho\": ", f);
+        rf_json_number(f, an->rho[q]);
+        fputs(", \"kappa\": ", f);
+        rf_json_number(f, an->kappa[q]);
+        fputs(", \"rho_left\": ", f);
+        rf_json_number(f, an->rho_left[q]);
+        fputs(", \"rho_right\": ", f);
+        rf_json_number(f, an->rho_right[q]);
+        fputs(", \"kappa_left\": ", f);
+        rf_json_number(f, an->kappa_left[q]);
+        fputs(", \"kappa_right\": ", f);
+        rf_json_number(f, an->kappa_right[q]);
+        fputs(", \"mean_gain\": ", f);
+        rf_json_number(f, an->mean_gain[q]);
+        fputs(", \"std_gain\": ", f);
+        rf_json_number(f, an->std_gain[q]);
+        fputs(", \"gain\": ", f);
+        rf_json_array(f, an->gain + q * an->levels, an->levels, 1);
+        fprintf(f, ", \"monotonicity\": \"%s\"", mono_text(res->monotonicity[q]));
+        json_reason(f, "na_reason", an->rho[q], an->reason_hanss[q]);
+        json_reason(f, "na_reason_std", an->std_gain[q], an->reason_std[q]);
+        json_reason(f, "na_reason_lr", an->rho_left[q], an->reason_lr[q]);
+        fputc('}', f);
+    }
+}
+
+/* result.json: the fuzzy outputs, each with its influence measures. */
+static void json_outputs(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_analysis *an)
+{
+    size_t n = res->n_inputs, m = res->levels;
     fputs("\n  },\n  \"outputs\": {", f);
     for (size_t k = 0; k < res->n_outputs; k++) {
         fputs(k ? ",\n    " : "\n    ", f);
@@ -359,35 +403,7 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
             fputs(j ? ", " : "", f);
             json_point(f, s, res->x_hi + (k * (m + 1) + j) * n, n);
         }
-        fputs("],\n      \"influence\": {", f);
-        for (size_t i = 0; i < n; i++) {
-            size_t q = k * n + i;
-            fputs(i ? ",\n        " : "\n        ", f);
-            rf_json_string(f, s->param_names[i]);
-            fputs(": {\"rho\": ", f);
-            rf_json_number(f, an->rho[q]);
-            fputs(", \"kappa\": ", f);
-            rf_json_number(f, an->kappa[q]);
-            fputs(", \"rho_left\": ", f);
-            rf_json_number(f, an->rho_left[q]);
-            fputs(", \"rho_right\": ", f);
-            rf_json_number(f, an->rho_right[q]);
-            fputs(", \"kappa_left\": ", f);
-            rf_json_number(f, an->kappa_left[q]);
-            fputs(", \"kappa_right\": ", f);
-            rf_json_number(f, an->kappa_right[q]);
-            fputs(", \"mean_gain\": ", f);
-            rf_json_number(f, an->mean_gain[q]);
-            fputs(", \"std_gain\": ", f);
-            rf_json_number(f, an->std_gain[q]);
-            fputs(", \"gain\": ", f);
-            rf_json_array(f, an->gain + q * an->levels, an->levels, 1);
-            fprintf(f, ", \"monotonicity\": \"%s\"", mono_text(res->monotonicity[q]));
-            json_reason(f, "na_reason", an->rho[q], an->reason_hanss[q]);
-            json_reason(f, "na_reason_std", an->std_gain[q], an->reason_std[q]);
-            json_reason(f, "na_reason_lr", an->rho_left[q], an->reason_lr[q]);
-            fputc('}', f);
-        }
+        json_influence(f, s, res, an, k);
         fputs("\n      },\n      \"degree_of_uncertainty\": ", f);
         rf_json_number(f, an->degree_of_uncertainty[k]);
         fputs(",\n      \"interaction\": ", f);
@@ -398,6 +414,11 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
         }
         fputs("\n    }", f);
     }
+}
+
+/* result.json: the evaluations, warnings and run figures. */
+static void json_tail(FILE *f, const rf_study *s, const rf_tm_result *res, const rf_report_options *opt)
+{
     fprintf(f, "\n  },\n  \"evaluations\": {\"requested\": %zu, \"distinct\": %zu, \"probe\": %zu, \"left_right\": "
                "%zu, \"cap\": %zu, \"evaluated\": %zu, \"failed\": %zu, \"from_store\": %zu, "
                "\"failed_points\": %zu, \"on_worker_ranks\": %zu, \"model_seconds\": ",
@@ -414,6 +435,18 @@ rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_
                "(Applied Fuzzy Arithmetic, Springer 2005); rho_left, rho_right, degree_of_uncertainty: left/right "
                "analysis, a project definition after Gauger et al. (2008); see docs/user-guide.md section 3\"\n}\n",
             opt ? opt->jobs : 0);
+}
+
+rf_status rf_report_write_json(const char *path, const rf_study *s, const rf_tm_result *res, const rf_analysis *an,
+                               const rf_report_options *opt, rf_error *err)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return rf_fail(err, RF_EIO, "%s: cannot write: %s", path, strerror(errno));
+    json_head(f, s, res);
+    json_inputs(f, s, res);
+    json_outputs(f, s, res, an);
+    json_tail(f, s, res, opt);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad)
         return rf_fail(err, RF_EIO, "%s: write failed: %s", path, strerror(errno));

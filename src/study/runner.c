@@ -93,6 +93,45 @@ static void *worker(void *arg)
     return NULL;
 }
 
+/* Evaluate b's todo list on jobs threads (or the MPI ranks), the calling
+ * thread drawing the progress line. */
+static void run_batch(rf_batch *b, int jobs)
+{
+    const rf_runner *r = b->runner;
+    int started = 0;
+    pthread_t *threads = NULL;
+    if (b->ntodo > 0) {
+        threads = calloc((size_t)jobs, sizeof *threads);
+        if (threads) {
+            for (; started < jobs; started++)
+                if (pthread_create(&threads[started], NULL, worker, b) != 0)
+                    break;
+        }
+        atomic_fetch_sub(&b->workers_left, jobs - started);
+        if (r->mpi_workers > 0) {
+            rf_mpi_serve_batch(b); /* returns when the queue is drained and the ranks are idle */
+        } else if (started == 0) {
+            atomic_fetch_add(&b->workers_left, 1);
+            worker(b); /* no thread could be created: evaluate here */
+        } else if (r->progress == RF_PROGRESS_LINE) {
+            /* The calling thread only draws, so the line moves even with one job. */
+            double last = 0;
+            while (atomic_load(&b->workers_left) > 0) {
+                double t = rf_monotonic_seconds();
+                if (t - last >= 0.5) {
+                    rf_batch_progress(b, 0);
+                    last = t;
+                }
+                struct timespec ts = {0, 20 * 1000 * 1000};
+                nanosleep(&ts, NULL);
+            }
+        }
+        for (int k = 0; k < started; k++)
+            pthread_join(threads[k], NULL);
+        free(threads);
+    }
+}
+
 rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, const double *x, double *y,
                              size_t *failed_index, rf_error *err)
 {
@@ -143,38 +182,7 @@ rf_status rf_runner_evaluate(rf_runner *r, const rf_model *model, size_t count, 
     }
 
     b.t_start = rf_monotonic_seconds();
-    int started = 0;
-    pthread_t *threads = NULL;
-    if (b.ntodo > 0) {
-        threads = calloc((size_t)jobs, sizeof *threads);
-        if (threads) {
-            for (; started < jobs; started++)
-                if (pthread_create(&threads[started], NULL, worker, &b) != 0)
-                    break;
-        }
-        atomic_fetch_sub(&b.workers_left, jobs - started);
-        if (r->mpi_workers > 0) {
-            rf_mpi_serve_batch(&b); /* returns when the queue is drained and the ranks are idle */
-        } else if (started == 0) {
-            atomic_fetch_add(&b.workers_left, 1);
-            worker(&b); /* no thread could be created: evaluate here */
-        } else if (r->progress == RF_PROGRESS_LINE) {
-            /* The calling thread only draws, so the line moves even with one job. */
-            double last = 0;
-            while (atomic_load(&b.workers_left) > 0) {
-                double t = rf_monotonic_seconds();
-                if (t - last >= 0.5) {
-                    rf_batch_progress(&b, 0);
-                    last = t;
-                }
-                struct timespec ts = {0, 20 * 1000 * 1000};
-                nanosleep(&ts, NULL);
-            }
-        }
-        for (int k = 0; k < started; k++)
-            pthread_join(threads[k], NULL);
-        free(threads);
-    }
+    run_batch(&b, jobs);
     rf_batch_progress(&b, 1);
 
     double t_end = rf_monotonic_seconds();
