@@ -16,6 +16,7 @@
  *   terrain_world.c     the world: DEM, classes, barrier lines, release set, impact table
  *   traj_yaml_terrain.c the `terrain:` part of a trajectory file (release, barriers, rasters)
  *   terrain_montecarlo.c ensembles on terrain (threads; same bits at any thread count)
+ *   terrain_parts.c     a run in parts (MPI ranks): a part packed, parts joined
  *   terrain_output.c    JSON, CSV, GeoPackage; terrain_report.c maps and report.html */
 #ifndef ROCKFUZZ_TERRAIN_INTERNAL_H
 #define ROCKFUZZ_TERRAIN_INTERNAL_H
@@ -118,6 +119,12 @@ struct rf_terrain_world {
 rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads, int rasters,
                             rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err);
 double terrain_bytes_per_sample(size_t n_collectors);
+/* terrain_run_world for the samples [first, end) only (rf_terrain_run_part),
+ * and how many of them are recorded (those below spec->record). */
+rf_status terrain_run_world_part(const rf_traj_spec *spec, const rf_terrain_world *w, size_t first, size_t end,
+                                 int threads, int rasters, rf_traj_progress_fn progress, void *ctx,
+                                 rf_traj_ensemble *ens, rf_error *err);
+size_t terrain_part_recorded(const rf_traj_spec *s, size_t first, size_t end);
 /* terrain_files.c: the CSV files of rf_terrain_write_outputs alone
  * (samples.csv, crossings.csv, statistics.csv). */
 rf_status terrain_write_tables(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
