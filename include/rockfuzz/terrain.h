@@ -198,8 +198,9 @@ rf_status rf_terrain_part_pack(const rf_traj_ensemble *part, size_t first, void 
  * first part, from rf_terrain_run_part(spec, 0, ...)): the part must start
  * at ens->samples and come from the same spec.  Joined in order up to
  * spec->samples, ens is what rf_terrain_run gives, bit for bit (the wall
- * time aside).  A refused part (cut, another build, out of order): RF_EINVAL
- * with the reason, ens still freed by rf_traj_ensemble_free. */
+ * time aside).  A part out of order, of another build or cut short in its
+ * header or samples is refused (RF_EINVAL, the reason) leaving ens as it
+ * was; one cut later leaves ens to be freed (rf_traj_ensemble_free) only. */
 rf_status rf_terrain_part_join(rf_traj_ensemble *ens, const void *buf, size_t bytes, rf_error *err);
 
 /* ---- outputs (terrain_output.c, terrain_report.c) ---- */
