@@ -269,7 +269,7 @@ static rf_status write_outputs(run_state *r, rf_error *err)
     snprintf(old, sizeof old, "%s/result.json", o->out_dir);
     if (unlink(old) != 0 && errno != ENOENT)
         return rf_fail(err, RF_EIO, "%s: cannot replace the old result: %s", old, strerror(errno));
-    rf_status st = rf_study_fuzzy_rasters_write(o->out_dir, &r->study, r->fuzzy, &r->res, err);
+    rf_status st = rf_study_fuzzy_rasters_write(o->out_dir, &r->study, r->fuzzy, &r->res, o->plots, err);
     if (st == RF_OK)
         st = rf_report_write(o->out_dir, &r->study, &r->res, &r->an, &ropt, err);
     if (st == RF_OK) /* a trajectory study: its trajectories at the nominal point and the bounds, for the report */

@@ -353,6 +353,23 @@ double terrain_hillshade_cell(const rf_terrain *t, size_t i, size_t j);
 void terrain_map_stem(const char *band, char *buf, size_t size);
 rf_status terrain_draw_maps(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_terrain *dem,
                             const terrain_map_grid *g, const terrain_band *bands, size_t n, rf_error *err);
+/* terrain_maps.c: one band's map as DIR/STEM.png, drawn as a run's maps (to
+ * scale over the hillshade of dem, with the barriers of s), for other
+ * rasters on the same grid (a study's fuzzy hazard maps).  style NULL: as a
+ * run's band map.  range: the colour scale spans that band's values (maps
+ * side by side on one scale); labels: a categorical map, value k = 1 ..
+ * n_labels is category labels[k - 1] in its own colour, named in a legend
+ * (other values transparent); title: the first title line (NULL: the
+ * band's name and unit). */
+typedef struct {
+    const terrain_band *range;
+    const char *const *labels;
+    size_t n_labels;
+    const char *title;
+} terrain_map_style;
+rf_status terrain_draw_band_map(const char *dir, const char *stem, const rf_traj_spec *s, const rf_terrain *dem,
+                                const terrain_map_grid *g, const terrain_band *band, const terrain_map_style *style,
+                                rf_error *err);
 /* terrain_report_barrier.c: per barrier, DIR/terrain_barrier_NAME.png: energy
  * and passing height of each crossing against the distance along the line. */
 void terrain_barrier_stem(const char *name, char *buf, size_t size);
