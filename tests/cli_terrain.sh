@@ -11,7 +11,8 @@
 # fuzzy_rasters.tif whose alpha = 1 cut of the reach probability is, cell by
 # cell and bit for bit, the reach probability raster of a direct run at the
 # nominal values (the same seed and samples: common random numbers), and
-# whose cuts nest (alpha 0 contains alpha 0.5 contains alpha 1).
+# whose cuts nest (alpha 0 contains alpha 0.5 contains alpha 1); its report
+# shows the maps of that raster (nominal, alpha = 0 upper bound, blame).
 # Usage: bash cli_terrain.sh ROCKFUZZ SOURCE_DIR
 set -u
 . "${BASH_SOURCE[0]%/*}/cli_lib.sh"
@@ -103,7 +104,16 @@ model:
     bind: {rock_Rn: materials.rock.R_n, talus_rolling: materials.talus.rolling_resistance}
     rasters: {fuzzy: [reach_probability]}
 EOF
-  "$bin" run "$tmp/study.yaml" --out "$tmp/fz" --quiet || fail "fuzzy terrain study"
+  "$bin" run "$tmp/study.yaml" --out "$tmp/fz" --quiet > /dev/null || fail "fuzzy terrain study"
+  # the maps of the first fuzzy raster: nominal and alpha-0 upper side by side, the blame map, in report.html
+  for m in nominal upper blame; do
+    [ "$(stat -c %s "$tmp/fz/fuzzy_map_$m.png" 2>/dev/null || echo 0)" -gt 20000 ] || fail "no fuzzy_map_$m.png (or blank)"
+    grep -q "<a href=\"fuzzy_map_$m.png\">" "$tmp/fz/report.html" || fail "report.html does not show fuzzy_map_$m.png"
+  done
+  grep -q '<h2 id=fuzzy-maps>' "$tmp/fz/report.html" || fail "report.html has no fuzzy hazard maps section"
+  [ "$(sed -n '/id=fuzzy-maps/,/<h2>Output/p' "$tmp/fz/report.html" | grep -c 'src="data:image/png;base64,')" = 3 ] \
+    || fail "the fuzzy hazard maps section does not embed its 3 maps"
+  cmp -s "$tmp/fz/fuzzy_map_nominal.png" "$tmp/fz/fuzzy_map_upper.png" && fail "the nominal and the upper map are the same image"
   "$bin" trajectory "$tmp/valley.yaml" --samples 60 --out "$tmp/nom" --no-plots --quiet || fail "nominal run"
   for b in 1 2 3 4 5 6; do gdal_translate -q -b $b -of AAIGrid "$tmp/fz/fuzzy_rasters.tif" "$tmp/fz_$b.asc"; done
   gdal_translate -q -b 2 -of AAIGrid "$tmp/nom/hazard.tif" "$tmp/nom_p.asc"

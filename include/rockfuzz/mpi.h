@@ -15,6 +15,9 @@
 #ifndef ROCKFUZZ_MPI_H
 #define ROCKFUZZ_MPI_H
 
+#include <stddef.h>
+#include <stdint.h>
+
 #include "rockfuzz/model.h"
 #include "rockfuzz/status.h"
 
@@ -42,6 +45,23 @@ rf_status rf_mpi_gather_hello(const rf_model *model, rf_error *err);
 
 /* Rank 0: send STOP to every worker. */
 void rf_mpi_release_workers(void);
+
+/* ---- a run shared by every rank (mpi_share.c; `mpirun rockfuzz
+ * trajectory` on a terrain file, src/cli/traj_ranks.c) ---- */
+
+/* Collective (every rank calls it, in the same order): each rank gives its
+ * status (err->msg its message when not RF_OK) and an identity of what it
+ * read; every rank gets RF_OK, or the lowest failing rank's status and
+ * message ("MPI rank r: ..."), or RF_EINVAL when a rank's identity is not
+ * rank 0's.  One rank: returns st. */
+rf_status rf_mpi_agree(rf_status st, uint64_t identity, rf_error *err);
+/* Collective: every rank > 0 sends its bytes to rank 0 and returns RF_OK;
+ * rank 0 hands them to take(ctx, r, buf, bytes, err) for r = 1, 2, ... in
+ * order, receives every rank's bytes even after a failure (no rank waits
+ * forever) and returns the first failure, prefixed "MPI rank r".  One rank:
+ * nothing. */
+typedef rf_status (*rf_mpi_take_fn)(void *ctx, int rank, const void *buf, size_t bytes, rf_error *err);
+rf_status rf_mpi_gather_bytes(const void *buf, size_t bytes, rf_mpi_take_fn take, void *ctx, rf_error *err);
 
 #ifdef __cplusplus
 }

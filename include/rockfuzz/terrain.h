@@ -181,6 +181,28 @@ typedef struct rf_terrain_samples {
 rf_status rf_terrain_run(const rf_traj_spec *spec, int threads, rf_traj_progress_fn progress, void *ctx,
                          rf_traj_ensemble *ens, rf_error *err);
 
+/* ---- a run in parts (MPI ranks; terrain_montecarlo.c, terrain_parts.c) ---- */
+
+/* rf_terrain_run for the samples [first, end) of spec only (first <= end <=
+ * spec->samples): ens->samples = end - first, sample i at index i - first
+ * (each the same bits as in the whole run), the recorded trajectories of
+ * its samples below spec->record, and its samples' rasters.  progress counts
+ * the part's samples. */
+rf_status rf_terrain_run_part(const rf_traj_spec *spec, size_t first, size_t end, int threads,
+                              rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err);
+/* A part (rf_terrain_run_part from `first`) as bytes (*buf malloc'd): its
+ * per-sample results, recorded trajectories and packed rasters; the layout
+ * of this build and machine (another is refused by the join). */
+rf_status rf_terrain_part_pack(const rf_traj_ensemble *part, size_t first, void **buf, size_t *bytes, rf_error *err);
+/* Append a packed part to ens, a run of the samples [0, ens->samples) (the
+ * first part, from rf_terrain_run_part(spec, 0, ...)): the part must start
+ * at ens->samples and come from the same spec.  Joined in order up to
+ * spec->samples, ens is what rf_terrain_run gives, bit for bit (the wall
+ * time aside).  A part out of order, of another build or cut short in its
+ * header or samples is refused (RF_EINVAL, the reason) leaving ens as it
+ * was; one cut later leaves ens to be freed (rf_traj_ensemble_free) only. */
+rf_status rf_terrain_part_join(rf_traj_ensemble *ens, const void *buf, size_t bytes, rf_error *err);
+
 /* ---- outputs (terrain_output.c, terrain_report.c) ---- */
 
 /* The JSON document of `rockfuzz trajectory --json` for a terrain file

@@ -6,6 +6,8 @@
 
 #include <stddef.h>
 
+#include "rockfuzz/trajectory.h"
+
 /* Bound of every thread count option (--jobs, --threads), as in study files. */
 #define RF_CLI_MAX_THREADS 1024
 /* Bounds of `trajectory --samples` and `--seed`, as in trajectory files (a seed above 2^53 would
@@ -32,6 +34,13 @@ int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall traj
 #define RF_CLI_INVOCATION "invocation.json"
 #define RF_CLI_RESULT_MAX (256 << 20) /* bytes of a result.json read back */
 int rf_cli_trajectory_report(const char *dir, int *handled);
+
+/* traj_ranks.c: a terrain file's Monte Carlo shared over MPI ranks `rank` of `size` (collective:
+ * every rank calls it); rank 0 ends with the whole ensemble, as rf_terrain_run gives it bit for bit
+ * (progress: rank 0's, scaled to the run), the other ranks with none; on a failure on any rank every
+ * rank gets the first failing rank's status and message. */
+rf_status rf_cli_terrain_ranks(const rf_traj_spec *spec, int threads, int rank, int size, rf_traj_progress_fn progress,
+                               void *ctx, rf_traj_ensemble *ens, rf_error *err);
 
 /* cli_args.c: *x = the number s, the whole text, finite; else 0 with "rockfuzz CMD: --OPT 'S': not a
  * finite number" on stderr. */

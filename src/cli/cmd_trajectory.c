@@ -3,12 +3,16 @@
  * Monte Carlo ensemble), a readable summary or the JSON document, and with
  * --out the CSV files, plots and report.html.  A terrain file (`terrain:`
  * instead of `profile:`) runs on its DEM (rf_terrain_run) and writes the
- * terrain outputs (hazard.tif, paths.gpkg, maps).  Usage errors exit 2,
- * invalid files or failed runs 1. */
+ * terrain outputs (hazard.tif, paths.gpkg, maps).  Under `mpirun -np K` a
+ * terrain file's samples are shared by the ranks (traj_ranks.c) and rank 0
+ * writes everything, the same bytes as one process; a profile file runs on
+ * rank 0 alone.  Usage errors exit 2, invalid files or failed runs 1. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "cli/cli.h"
+#include "core/hash.h"
 #include "core/json.h"
 #include "core/outdir.h"
+#include "rockfuzz/mpi.h"
 #include "rockfuzz/report.h"
 #include "rockfuzz/terrain.h"
 #include "rockfuzz/trajectory.h"
@@ -59,7 +63,11 @@ static void usage(FILE *f)
         "  --quiet                no summary, no progress line\n"
         "\n"
         "Units: m, s, m/s, rad/s, kg, J (the summary shows energies in kJ); angles in the file\n"
-        "and the terrain outputs (reach angle) in degrees.\n");
+        "and the terrain outputs (reach angle) in degrees.\n"
+        "\n"
+        "MPI: `mpirun -np K rockfuzz trajectory TERRAIN.yaml --out DIR` (if built with MPI) shares\n"
+        "a terrain file's samples among the K ranks (each with --threads threads); rank 0 gathers\n"
+        "them and writes every output, the same as one process. A profile file runs on rank 0.\n");
 }
 
 typedef struct {
@@ -167,19 +175,28 @@ static int write_outputs(const traj_args *a, const rf_traj_spec *s, const rf_tra
     return 0;
 }
 
+/* Load a.file and apply the command line's overrides. */
+static rf_status load_file(const traj_args *a, rf_traj_spec *spec, rf_error *err)
+{
+    rf_status st = rf_traj_load(a->file, spec, err);
+    if (st != RF_OK)
+        return st;
+    if (a->samples > 0)
+        spec->samples = (size_t)a->samples, spec->record = spec->record > spec->samples ? spec->samples : spec->record;
+    if (a->seed >= 0)
+        spec->seed = (uint64_t)a->seed;
+    return RF_OK;
+}
+
 /* Load a.file, apply the command line's overrides, run and compute the
  * statistics; 1 (message printed, everything freed) on an error. */
 static int run_file(const traj_args *a, rf_traj_spec *spec, rf_traj_ensemble *ens, rf_traj_stats *st)
 {
     rf_error err;
-    if (rf_traj_load(a->file, spec, &err) != RF_OK) {
+    if (load_file(a, spec, &err) != RF_OK) {
         fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
         return 1;
     }
-    if (a->samples > 0)
-        spec->samples = (size_t)a->samples, spec->record = spec->record > spec->samples ? spec->samples : spec->record;
-    if (a->seed >= 0)
-        spec->seed = (uint64_t)a->seed;
     rf_cli_progress line;
     rf_cli_progress_begin(&line, a->progress || (!a->json && !a->quiet && isatty(STDERR_FILENO)), "trajectories");
     rf_status rs = spec->terrain ? rf_terrain_run(spec, a->threads, rf_cli_progress_count, &line, ens, &err)
@@ -194,6 +211,97 @@ static int run_file(const traj_args *a, rf_traj_spec *spec, rf_traj_ensemble *en
     return 0;
 }
 
+/* The folder is checked before anything runs: a user's own files are never overwritten. */
+static rf_status check_out(const traj_args *a, rf_error *err)
+{
+    const char *const markers[] = {"invocation.json"};
+    return a->out ? rf_check_out_dir(a->out, a->force, markers, 1, err) : RF_OK;
+}
+
+/* The summary or JSON on stdout, the run folder; frees the run. */
+static int finish(const traj_args *a, rf_traj_spec *spec, rf_traj_ensemble *ens, rf_traj_stats *st)
+{
+    int rc = 0;
+    if (a->json)
+        write_json(stdout, spec, ens, st, a->max_traj);
+    else if (!a->quiet && spec->terrain)
+        rf_terrain_write_summary(stdout, spec, ens, st);
+    else if (!a->quiet)
+        rf_traj_write_summary(stdout, spec, ens, st);
+    if (a->out)
+        rc = write_outputs(a, spec, ens, st);
+    rf_traj_stats_free(st);
+    rf_traj_ensemble_free(ens);
+    rf_traj_spec_free(spec);
+    return rc;
+}
+
+/* One process. */
+static int run_one(const traj_args *a)
+{
+    rf_error ferr = {0};
+    if (check_out(a, &ferr) != RF_OK) {
+        fprintf(stderr, "rockfuzz trajectory: %s\n", ferr.msg);
+        return 2;
+    }
+    rf_traj_spec spec;
+    rf_traj_ensemble ens;
+    rf_traj_stats st;
+    if (run_file(a, &spec, &ens, &st) != 0)
+        return 1;
+    return finish(a, &spec, &ens, &st);
+}
+
+/* What every rank must have read alike: the file's values and text, the run's overrides. */
+static uint64_t run_identity(const rf_traj_spec *s)
+{
+    uint64_t w[5] = {rf_traj_spec_values_hash(s), s->text_hash, s->samples, s->seed, s->record};
+    return rf_fnv1a(0xcbf29ce484222325ull, w, sizeof w);
+}
+
+/* Rank `rank` of `size` > 1 (every rank calls it): the folder checked on
+ * rank 0, the file loaded on every rank, all agreeing; a terrain file's
+ * samples shared (traj_ranks.c), rank 0 writing everything. */
+static int run_ranks(const traj_args *a, int rank, int size)
+{
+    rf_error err = {0};
+    rf_traj_spec spec;
+    rf_status st = rank == 0 ? check_out(a, &err) : RF_OK;
+    int bad_dir = st != RF_OK, loaded = st == RF_OK && load_file(a, &spec, &err) == RF_OK;
+    st = rf_mpi_agree(loaded ? RF_OK : err.code ? err.code : RF_EINVAL, loaded ? run_identity(&spec) : 0, &err);
+    if (st != RF_OK) {
+        if (rank == 0)
+            fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
+        if (loaded)
+            rf_traj_spec_free(&spec);
+        return bad_dir ? 2 : 1;
+    }
+    if (!spec.terrain) {
+        rf_traj_spec_free(&spec);
+        if (rank > 0)
+            return 0;
+        fprintf(stderr, "rockfuzz trajectory: a profile file runs on MPI rank 0 alone (%d ranks idle)\n", size - 1);
+        return run_one(a);
+    }
+    rf_traj_ensemble ens;
+    rf_traj_stats stats;
+    rf_cli_progress line;
+    rf_cli_progress_begin(&line, rank == 0 && (a->progress || (!a->json && !a->quiet && isatty(STDERR_FILENO))),
+                          "trajectories");
+    st = rf_cli_terrain_ranks(&spec, a->threads, rank, size, rf_cli_progress_count, &line, &ens, &err);
+    rf_cli_progress_end(&line);
+    if (st == RF_OK && rank == 0)
+        st = rf_traj_stats_compute_spec(&spec, &ens, &stats, &err);
+    if (st != RF_OK || rank > 0) {
+        if (st != RF_OK && rank == 0)
+            fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
+        rf_traj_ensemble_free(&ens);
+        rf_traj_spec_free(&spec);
+        return st != RF_OK;
+    }
+    return finish(a, &spec, &ens, &stats);
+}
+
 int rf_cli_trajectory(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++)
@@ -204,30 +312,15 @@ int rf_cli_trajectory(int argc, char **argv)
     traj_args a;
     if (!parse_args(argc, argv, &a))
         return 2;
-    /* the folder is checked before anything runs: a user's own files are never overwritten */
-    const char *const markers[] = {"invocation.json"};
-    rf_error ferr = {0};
-    if (a.out && rf_check_out_dir(a.out, a.force, markers, 1, &ferr) != RF_OK) {
-        fprintf(stderr, "rockfuzz trajectory: %s\n", ferr.msg);
-        return 2;
-    }
-    rf_traj_spec spec;
-    rf_traj_ensemble ens;
-    rf_traj_stats st;
-    int rc = 0;
-    if (run_file(&a, &spec, &ens, &st) != 0)
+    int rank = 0, size = 1;
+    rf_error err = {0};
+    if (rf_mpi_start(&argc, &argv, &rank, &size, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
+        rf_mpi_stop();
         return 1;
-    if (a.json)
-        write_json(stdout, &spec, &ens, &st, a.max_traj);
-    else if (!a.quiet && spec.terrain)
-        rf_terrain_write_summary(stdout, &spec, &ens, &st);
-    else if (!a.quiet)
-        rf_traj_write_summary(stdout, &spec, &ens, &st);
-    if (a.out)
-        rc = write_outputs(&a, &spec, &ens, &st);
-    rf_traj_stats_free(&st);
-    rf_traj_ensemble_free(&ens);
-    rf_traj_spec_free(&spec);
+    }
+    int rc = size > 1 ? run_ranks(&a, rank, size) : run_one(&a);
+    rf_mpi_stop();
     return rc;
 }
 

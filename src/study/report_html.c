@@ -76,36 +76,7 @@ static void cell_number(FILE *f, double v)
 /* <img> with the PNG at dir/stem.png as a data URI; a note if it is missing. */
 static void embed_png(FILE *f, const char *dir, const char *stem, const char *alt)
 {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s.png", dir, stem);
-    FILE *in = fopen(path, "rb");
-    if (!in) {
-        fprintf(f, "<p class=note>(figure %s.png not written: run without --no-plots)</p>\n", stem);
-        return;
-    }
-    static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    fputs("<img alt=\"", f);
-    html(f, alt);
-    fputs("\" src=\"data:image/png;base64,", f);
-    unsigned char buf[3 * 1024];
-    size_t got;
-    while ((got = fread(buf, 1, sizeof buf, in)) > 0) {
-        for (size_t i = 0; i < got; i += 3) {
-            unsigned v = (unsigned)buf[i] << 16;
-            if (i + 1 < got)
-                v |= (unsigned)buf[i + 1] << 8;
-            if (i + 2 < got)
-                v |= buf[i + 2];
-            fputc(b64[(v >> 18) & 63], f);
-            fputc(b64[(v >> 12) & 63], f);
-            fputc(i + 1 < got ? b64[(v >> 6) & 63] : '=', f);
-            fputc(i + 2 < got ? b64[v & 63] : '=', f);
-        }
-        if (got < sizeof buf)
-            break;
-    }
-    fclose(in);
-    fputs("\">\n", f);
+    rp_embed_png(f, dir, stem, alt);
 }
 
 /* Horizontal bars of rho (and rho_left/right) per input, inline SVG. */
@@ -170,7 +141,8 @@ static const char *CSS =
     ".summary{background:#eef5ff;border:2px solid #36c;padding:.5em 1em;margin:1em 0}"
     ".summary td.l b{font-weight:600}.wide img{max-width:100%}"
     ".reruns{display:grid;grid-template-columns:repeat(3,1fr);gap:10px}.reruns img{max-width:100%}"
-    ".reruns h3{margin:.2em 0}";
+    ".reruns h3{margin:.2em 0}"
+    ".fuzzymaps{display:grid;grid-template-columns:repeat(2,1fr);gap:10px}.fuzzymaps img{max-width:100%}";
 static void output_status(struct fy_node *o, char *buf, size_t size);
 
 /* The outputs that get no section, one line per kind with the reason. */
@@ -626,6 +598,7 @@ static void write_inputs(FILE *f, const char *dir, struct fy_node *root)
         embed_png(f, dir, stem, a);
     }
     fputs("</div>\n", f);
+    rp_fuzzy_maps_html(f, dir);
     trajectory_reruns(f, dir, root);
 }
 

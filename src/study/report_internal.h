@@ -3,6 +3,7 @@
 #define ROCKFUZZ_REPORT_INTERNAL_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "rockfuzz/study.h"
 #include "rockfuzz/tm.h"
@@ -54,5 +55,16 @@ const char *rp_display_unit(const char *unit, double max_abs, double *factor);
 
 /* The input with the largest finite rho[0..n-1] (relative influence), or -1. */
 int rp_main_input(const double *rho, size_t n);
+
+/* s escaped for HTML text and attribute values. */
+void rp_html(FILE *f, const char *s);
+/* <img> with the PNG at dir/stem.png as a data URI; a note if it is missing. */
+void rp_embed_png(FILE *f, const char *dir, const char *stem, const char *alt);
+
+/* report_fuzzy_maps.c: the section of a terrain study's fuzzy hazard maps
+ * (DIR/fuzzy_map_nominal.png, fuzzy_map_upper.png side by side,
+ * fuzzy_map_blame.png; study_fuzzy_raster.c draws them); nothing when the
+ * run drew none. */
+void rp_fuzzy_maps_html(FILE *f, const char *dir);
 
 #endif

@@ -29,12 +29,13 @@ rf_status rf_traj_study_reruns(const char *dir, const rf_study *s, const rf_tm_r
  * OUT/rasters becomes the trajectory model's raster sink (*f NULL and RF_OK
  * when the study has no fuzzy rasters); write (after it): every point's
  * raster present (missing ones rebuilt by evaluating the point again), the
- * bands of s->fuzzy_rasters retransformed per cell, OUT/fuzzy_rasters.tif;
- * end: the sink cleared. */
+ * bands of s->fuzzy_rasters retransformed per cell, OUT/fuzzy_rasters.tif
+ * and with plots the maps of the first one (OUT/fuzzy_map_*.png, shown in
+ * report.html); end: the sink cleared. */
 typedef struct rf_fuzzy_rasters rf_fuzzy_rasters;
 rf_status rf_study_fuzzy_rasters_begin(const char *out_dir, rf_study *s, rf_fuzzy_rasters **f, rf_error *err);
 rf_status rf_study_fuzzy_rasters_write(const char *out_dir, const rf_study *s, rf_fuzzy_rasters *f,
-                                       const rf_tm_result *res, rf_error *err);
+                                       const rf_tm_result *res, int plots, rf_error *err);
 void rf_study_fuzzy_rasters_end(rf_fuzzy_rasters *f);
 
 #endif

@@ -300,7 +300,7 @@ static rf_status write_outputs(run_state *r, rf_error *err)
         return rf_fail(err, RF_EIO, "%s: cannot replace the old result: %s", old, strerror(errno));
     rf_status st = rf_report_stopped(o->interrupt, "the fuzzy rasters", err);
     if (st == RF_OK)
-        st = rf_study_fuzzy_rasters_write(o->out_dir, &r->study, r->fuzzy, &r->res, err);
+        st = rf_study_fuzzy_rasters_write(o->out_dir, &r->study, r->fuzzy, &r->res, o->plots, err);
     if (st == RF_OK)
         st = rf_report_write(o->out_dir, &r->study, &r->res, &r->an, &ropt, err);
     if (st == RF_OK) /* a trajectory study: its trajectories at the nominal point and the bounds, for the report */

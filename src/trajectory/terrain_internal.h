@@ -16,6 +16,7 @@
  *   terrain_world.c     the world: DEM, classes, barrier lines, release set, impact table
  *   traj_yaml_terrain.c the `terrain:` part of a trajectory file (release, barriers, rasters)
  *   terrain_montecarlo.c ensembles on terrain (threads; same bits at any thread count)
+ *   terrain_parts.c     a run in parts (MPI ranks): a part packed, parts joined
  *   terrain_output.c    JSON, CSV, GeoPackage; terrain_report.c maps and report.html */
 #ifndef ROCKFUZZ_TERRAIN_INTERNAL_H
 #define ROCKFUZZ_TERRAIN_INTERNAL_H
@@ -118,6 +119,12 @@ struct rf_terrain_world {
 rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads, int rasters,
                             rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err);
 double terrain_bytes_per_sample(size_t n_collectors);
+/* terrain_run_world for the samples [first, end) only (rf_terrain_run_part),
+ * and how many of them are recorded (those below spec->record). */
+rf_status terrain_run_world_part(const rf_traj_spec *spec, const rf_terrain_world *w, size_t first, size_t end,
+                                 int threads, int rasters, rf_traj_progress_fn progress, void *ctx,
+                                 rf_traj_ensemble *ens, rf_error *err);
+size_t terrain_part_recorded(const rf_traj_spec *s, size_t first, size_t end);
 /* terrain_files.c: the CSV files of rf_terrain_write_outputs alone
  * (samples.csv, crossings.csv, statistics.csv). */
 rf_status terrain_write_tables(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
@@ -344,6 +351,23 @@ double terrain_hillshade_cell(const rf_terrain *t, size_t i, size_t j);
 void terrain_map_stem(const char *band, char *buf, size_t size);
 rf_status terrain_draw_maps(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e, const rf_terrain *dem,
                             const terrain_map_grid *g, const terrain_band *bands, size_t n, rf_error *err);
+/* terrain_maps.c: one band's map as DIR/STEM.png, drawn as a run's maps (to
+ * scale over the hillshade of dem, with the barriers of s), for other
+ * rasters on the same grid (a study's fuzzy hazard maps).  style NULL: as a
+ * run's band map.  range: the colour scale spans that band's values (maps
+ * side by side on one scale); labels: a categorical map, value k = 1 ..
+ * n_labels is category labels[k - 1] in its own colour, named in a legend
+ * (other values transparent); title: the first title line (NULL: the
+ * band's name and unit). */
+typedef struct {
+    const terrain_band *range;
+    const char *const *labels;
+    size_t n_labels;
+    const char *title;
+} terrain_map_style;
+rf_status terrain_draw_band_map(const char *dir, const char *stem, const rf_traj_spec *s, const rf_terrain *dem,
+                                const terrain_map_grid *g, const terrain_band *band, const terrain_map_style *style,
+                                rf_error *err);
 /* terrain_report_barrier.c: per barrier, DIR/terrain_barrier_NAME.png: energy
  * and passing height of each crossing against the distance along the line. */
 void terrain_barrier_stem(const char *name, char *buf, size_t size);

@@ -94,6 +94,7 @@ typedef struct {
     terrain_map_layout L;
     const terrain_map_grid *g;
     const terrain_band *band;       /* NULL: the end-point map */
+    const terrain_map_style *style; /* NULL: the run's own style */
 } map_data;
 
 /* Map axes: whole metres (map coordinates have 6 or 7 digits: no exponent). */
@@ -340,15 +341,17 @@ static void draw_band_map(const void *v)
     const map_data *d = v;
     double scale, lo, hi;
     const char *unit = band_unit(d->band, &scale);
+    const terrain_band *range = d->style && d->style->range ? d->style->range : d->band;
     page(d);
-    int any = band_range(d->band, d->g->nx * d->g->ny, scale, &lo, &hi);
+    int any = band_range(range, d->g->nx * d->g->ny, scale, &lo, &hi);
     band_colours();
     if (any)
         draw_band_cells(d, lo, hi, scale);
     draw_barriers(d);
-    char title[200], label[120], legend[200];
+    char title[300], label[120], legend[200];
     snprintf(label, sizeof label, "%s [%s]", d->band->name, unit);
-    snprintf(title, sizeof title, "%s%s", label, any ? "" : " (no cell has a value)");
+    snprintf(title, sizeof title, "%s%s", d->style && d->style->title ? d->style->title : label,
+             any ? "" : " (no cell has a value)");
     snprintf(legend, sizeof legend, "transparent: cells %s; red: barriers",
              band_is_count(d->band->name) ? "with 0" : "no block passed");
     map_axes(d, title, legend);
@@ -386,7 +389,7 @@ rf_status terrain_draw_maps(const char *dir, const rf_traj_spec *s, const rf_tra
 {
     double xmin, xmax, ymin, ymax, dx, dy;
     rf_terrain_extent(dem, &xmin, &xmax, &ymin, &ymax, &dx, &dy);
-    map_data d = {s, e, dem, terrain_map_layout_of(xmin, xmax, ymin, ymax), g, NULL};
+    map_data d = {s, e, dem, terrain_map_layout_of(xmin, xmax, ymin, ymax), g, NULL, NULL};
     rf_status rc = RF_OK;
     if (e->terrain)
         rc = rf_plot_figure_png(dir, "terrain_endpoints", d.L.width, d.L.height, draw_end_map, &d, err);
@@ -397,4 +400,95 @@ rf_status terrain_draw_maps(const char *dir, const rf_traj_spec *s, const rf_tra
         rc = rf_plot_figure_png(dir, stem, d.L.width, d.L.height, draw_band_map, &d, err);
     }
     return rc;
+}
+
+/* ---- categories (a blame map): one colour per category, a legend naming them ---- */
+
+/* Qualitative colours (Tableau 10), repeated beyond ten categories. */
+static const unsigned char CATEGORY_RGB[10][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44}, {214, 39, 40},
+                                                   {148, 103, 189}, {140, 86, 75}, {227, 119, 194},
+                                                   {127, 127, 127}, {188, 189, 34}, {23, 190, 207}};
+
+static void category_colours(size_t n)
+{
+    PLINT r[64], g[64], b[64];
+    PLFLT a[64];
+    size_t m = n < 64 ? n : 64;
+    for (size_t k = 0; k < m; k++)
+        r[k] = CATEGORY_RGB[k % 10][0], g[k] = CATEGORY_RGB[k % 10][1], b[k] = CATEGORY_RGB[k % 10][2], a[k] = 0.8;
+    plscmap1n((PLINT)m);
+    plscmap1a(r, g, b, a, (PLINT)m);
+}
+
+/* Category k (1..n) has the colour position (k - 0.5) / n: cmap1 entry k - 1. */
+static void draw_category_cells(const map_data *d, size_t n)
+{
+    const terrain_map_grid *g = d->g;
+    matrix m;
+    if (!matrix_alloc(&m, g->nx, g->ny))
+        return;
+    for (size_t i = 0; i < g->nx; i++)
+        for (size_t j = 0; j < g->ny; j++) {
+            double v = d->band->data[j * g->nx + i];
+            m.col[i][j] = isfinite(v) && v >= 1 && v <= (double)n ? v : -1; /* -1: not drawn */
+        }
+    plimagefr((PLFLT_MATRIX)m.col, (PLINT)g->nx, (PLINT)g->ny, g->x0, g->x0 + (double)g->nx * g->cell, g->y0,
+              g->y0 + (double)g->ny * g->cell, 0.5, (double)n + 0.5, 0.5, (double)n + 0.5, NULL, NULL);
+    matrix_free(&m);
+}
+
+/* The legend at the right of the map: a square of each category's colour and its name. */
+static void draw_category_legend(const map_data *d, size_t n, const size_t *count)
+{
+    const terrain_map_layout *L = &d->L;
+    double W = L->width, H = L->height, x0 = MAP_PAD_L + L->map_w + 10, rows = n > 12 ? (double)n : 12;
+    plvpor(x0 / W, (W - 4) / W, MAP_PAD_B / H, (MAP_PAD_B + L->map_h) / H);
+    plwind(0, 1, 0, rows);
+    plschr(0, 0.62 * 2260.0 / (L->width + L->height + 400)); /* the page's text, smaller: names fit */
+    for (size_t k = 0; k < n && k < 64; k++) {
+        double y = rows - (double)k;
+        PLFLT sx[4] = {0, 0.1, 0.1, 0}, sy[4] = {y - 0.75, y - 0.75, y - 0.15, y - 0.15};
+        plcol1(((double)k + 0.5) / (double)(n < 64 ? n : 64));
+        plfill(4, sx, sy);
+        char label[160];
+        snprintf(label, sizeof label, "%.24s", d->style->labels[k]);
+        plcol0(1);
+        plptex(0.14, y - 0.3, 1, 0, 0, label);
+        snprintf(label, sizeof label, "%zu cells", count[k]);
+        plptex(0.14, y - 0.75, 1, 0, 0, label);
+    }
+}
+
+static void draw_category_map(const void *v)
+{
+    const map_data *d = v;
+    size_t n = d->style->n_labels, cells = d->g->nx * d->g->ny;
+    size_t *count = calloc(n ? n : 1, sizeof *count);
+    for (size_t c = 0; count && c < cells; c++) {
+        double x = d->band->data[c];
+        if (isfinite(x) && x >= 1 && x <= (double)n)
+            count[(size_t)x - 1]++;
+    }
+    page(d);
+    category_colours(n);
+    draw_category_cells(d, n);
+    draw_barriers(d);
+    char legend[200];
+    snprintf(legend, sizeof legend, "a colour per category (legend: its name and cells); transparent: none; red: barriers");
+    map_axes(d, d->style->title ? d->style->title : d->band->name, legend);
+    if (count)
+        draw_category_legend(d, n, count);
+    free(count);
+}
+
+rf_status terrain_draw_band_map(const char *dir, const char *stem, const rf_traj_spec *s, const rf_terrain *dem,
+                                const terrain_map_grid *g, const terrain_band *band, const terrain_map_style *style,
+                                rf_error *err)
+{
+    double xmin, xmax, ymin, ymax, dx, dy;
+    rf_terrain_extent(dem, &xmin, &xmax, &ymin, &ymax, &dx, &dy);
+    map_data d = {s, NULL, dem, terrain_map_layout_of(xmin, xmax, ymin, ymax), g, band, style};
+    int categories = style && style->labels && style->n_labels > 0;
+    return rf_plot_figure_png(dir, stem, d.L.width, d.L.height, categories ? draw_category_map : draw_band_map, &d,
+                              err);
 }

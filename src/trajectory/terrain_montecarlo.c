@@ -5,7 +5,10 @@
  * n_random + 2 (terrain_release_point: feature by weight, then the position
  * in it), all stratified by the Latin hypercube when lhs; its roughness
  * draws come from stream 2i + 1 inside the simulator.  Results go to index
- * i.  Threads take contiguous blocks of samples; each has its own deep copy
+ * i.  A run may be a part: the samples [first, end) only (MPI ranks,
+ * terrain_parts.c joins the parts), sample i at index i - first, the
+ * recorded trajectories those of its samples below spec->record, the
+ * rasters its samples'.  Threads take contiguous blocks of samples; each has its own deep copy
  * of the spec into which the draws are written and its own hazard
  * accumulator, merged at the end in thread order (the merge adds counts:
  * the same bits in any order).  So a run is the same bits at any thread
@@ -31,6 +34,7 @@ typedef struct {
     const rf_terrain_world *w;
     rf_traj_ensemble *ens;
     const size_t *perm;        /* (n_random + 3) * samples (LHS), or NULL */
+    size_t first;              /* the part's first sample: sample i is at index i - first */
     size_t begin, end;
     rf_terrain_hazard *hazard; /* this job's rasters, or NULL */
     rf_status status;
@@ -50,7 +54,7 @@ static void count_sample(const tmc_job *job)
         return;
     size_t done = atomic_fetch_add(&job->progress->done, 1) + 1;
     if (job->reports)
-        job->progress->fn(job->progress->ctx, done, job->spec->samples);
+        job->progress->fn(job->progress->ctx, done, job->ens->samples);
 }
 
 /* Sample i's release point on the map (z: NaN = the ground + height0). */
@@ -63,7 +67,7 @@ static void release_start(const tmc_job *job, size_t i, double start[3])
     start[2] = NAN;
 }
 
-/* Sample i's results into the per-sample arrays. */
+/* Sample first + i's results into the per-sample arrays (index i). */
 static void store_sample(rf_traj_ensemble *ens, size_t i, const rf_terrain_result *res)
 {
     rf_terrain_samples *t = ens->terrain;
@@ -86,12 +90,13 @@ static void run_sample(tmc_job *job, rf_traj_spec *local, const rf_traj_field **
     double start[3];
     traj_draw_inputs(job->spec, job->perm, i, row, field);
     release_start(job, i, start);
-    rf_terrain_result *res = i < ens->terrain->n_recorded ? &ens->terrain->recorded[i] : tmp;
+    size_t k = i - job->first;
+    rf_terrain_result *res = k < ens->terrain->n_recorded ? &ens->terrain->recorded[k] : tmp;
     res->n_impacts = res->n_steps = res->n_events = 0; /* as 2D's simulator does; the buffers are kept */
     memset(res->crossings, 0, ens->n_collectors * sizeof *res->crossings);
     job->status = terrain_simulate_hazard(job->w, local, job->spec->seed, i, start, job->hazard, res, &job->err);
     if (job->status == RF_OK)
-        store_sample(ens, i, res);
+        store_sample(ens, k, res);
     count_sample(job);
 }
 
@@ -121,10 +126,9 @@ static void *tmc_worker(void *arg)
 
 /* The per-sample arrays are estimated before anything is allocated; beyond
  * the machine's physical memory the run is refused with the figure. */
-static rf_status check_memory(const rf_traj_spec *s, rf_error *err)
+static rf_status check_memory(const rf_traj_spec *s, size_t n, size_t rec, rf_error *err)
 {
-    size_t rec = s->record < s->samples ? s->record : s->samples;
-    double bytes = (double)s->samples * terrain_bytes_per_sample(s->n_collectors) +
+    double bytes = (double)n * terrain_bytes_per_sample(s->n_collectors) +
                    (double)rec * (sizeof(rf_terrain_result) + (double)s->n_collectors * sizeof(rf_traj_crossing) +
                                   16.0 * (sizeof(rf_terrain_impact) + sizeof(rf_terrain_event)));
     long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
@@ -132,7 +136,7 @@ static rf_status check_memory(const rf_traj_spec *s, rf_error *err)
     if (bytes > phys)
         return rf_fail(err, RF_ENOMEM, "samples = %zu with %zu barriers need %.3g GB for the per-sample results "
                        "(%.0f bytes each), more than this machine's %.3g GB of memory; use fewer samples",
-                       s->samples, s->n_collectors, bytes / 1e9, terrain_bytes_per_sample(s->n_collectors),
+                       n, s->n_collectors, bytes / 1e9, terrain_bytes_per_sample(s->n_collectors),
                        phys / 1e9);
     return RF_OK;
 }
@@ -155,13 +159,22 @@ static rf_status alloc_recorded(rf_terrain_samples *t, size_t n, size_t nc, rf_e
     return RF_OK;
 }
 
-static rf_status ensemble_alloc(const rf_traj_spec *s, rf_traj_ensemble *e, rf_error *err)
+/* The recorded trajectories of the part [first, end): its samples below spec->record. */
+size_t terrain_part_recorded(const rf_traj_spec *s, size_t first, size_t end)
+{
+    size_t rec_end = s->record < end ? s->record : end;
+    return rec_end > first ? rec_end - first : 0;
+}
+
+/* An ensemble for the samples [first, end) (arrays of end - first). */
+static rf_status ensemble_alloc(const rf_traj_spec *s, size_t first, size_t end, rf_traj_ensemble *e, rf_error *err)
 {
     memset(e, 0, sizeof *e);
-    if (check_memory(s, err) != RF_OK)
+    size_t n = end - first, rec = terrain_part_recorded(s, first, end);
+    if (check_memory(s, n, rec, err) != RF_OK)
         return RF_ENOMEM;
-    size_t N = s->samples ? s->samples : 1, nc = s->n_collectors;
-    e->samples = s->samples;
+    size_t N = n ? n : 1, nc = s->n_collectors;
+    e->samples = n;
     e->n_collectors = nc;
     e->state = malloc(N);
     e->runout_x = malloc(N * sizeof(double));
@@ -170,14 +183,14 @@ static rf_status ensemble_alloc(const rf_traj_spec *s, rf_traj_ensemble *e, rf_e
     e->recorded = calloc(1, sizeof *e->recorded); /* the 2D records stay empty: n_recorded 0 */
     rf_terrain_samples *t = e->terrain = calloc(1, sizeof *t);
     if (!e->state || !e->runout_x || !e->rebound_height || !e->crossings || !e->recorded || !t)
-        return rf_fail(err, RF_ENOMEM, "out of memory for %zu samples", s->samples);
+        return rf_fail(err, RF_ENOMEM, "out of memory for %zu samples", n);
     t->start = malloc(3 * N * sizeof(double));
     t->end = malloc(3 * N * sizeof(double));
     t->runout = malloc(N * sizeof(double));
     t->reach_angle = malloc(N * sizeof(double));
     if (!t->start || !t->end || !t->runout || !t->reach_angle)
-        return rf_fail(err, RF_ENOMEM, "out of memory for %zu samples", s->samples);
-    return alloc_recorded(t, s->record < s->samples ? s->record : s->samples, nc, err);
+        return rf_fail(err, RF_ENOMEM, "out of memory for %zu samples", n);
+    return alloc_recorded(t, rec, nc, err);
 }
 
 /* The first failed job's status, else the jobs' rasters merged in thread order into ens. */
@@ -196,17 +209,17 @@ static rf_status collect(tmc_job *jobs, int threads, rf_traj_ensemble *ens, rf_e
     return RF_OK;
 }
 
-static rf_status run_jobs(const rf_traj_spec *spec, const rf_terrain_world *w, const size_t *perm, int threads,
-                          int rasters, tmc_progress *progress, rf_traj_ensemble *ens, rf_error *err)
+static rf_status run_jobs(const rf_traj_spec *spec, const rf_terrain_world *w, const size_t *perm, size_t first,
+                          int threads, int rasters, tmc_progress *progress, rf_traj_ensemble *ens, rf_error *err)
 {
-    size_t N = spec->samples;
+    size_t N = ens->samples;
     if ((size_t)threads > N)
         threads = N ? (int)N : 1;
     tmc_job *jobs = calloc((size_t)threads, sizeof *jobs);
     rf_status st = jobs ? RF_OK : RF_ENOMEM;
     for (int t = 0; t < threads && st == RF_OK; t++) {
-        jobs[t] = (tmc_job){spec, w, ens, perm, N * (size_t)t / (size_t)threads,
-                            N * (size_t)(t + 1) / (size_t)threads,
+        jobs[t] = (tmc_job){spec, w, ens, perm, first, first + N * (size_t)t / (size_t)threads,
+                            first + N * (size_t)(t + 1) / (size_t)threads,
                             rasters ? terrain_hazard_create(spec, w->dem) : NULL, RF_OK, {RF_OK, ""}, progress, t == 0};
         if (rasters && !jobs[t].hazard)
             st = RF_ENOMEM;
@@ -223,14 +236,18 @@ static rf_status run_jobs(const rf_traj_spec *spec, const rf_terrain_world *w, c
     return st;
 }
 
-rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads, int rasters,
-                            rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err)
+rf_status terrain_run_world_part(const rf_traj_spec *spec, const rf_terrain_world *w, size_t first, size_t end,
+                                 int threads, int rasters, rf_traj_progress_fn progress, void *ctx,
+                                 rf_traj_ensemble *ens, rf_error *err)
 {
     double t0 = rf_monotonic_seconds();
     if (!spec->terrain)
         return rf_fail(err, RF_EINVAL, "%s: not a terrain file (it has no `terrain:`)",
                        spec->file ? spec->file : "spec");
-    rf_status st = ensemble_alloc(spec, ens, err);
+    if (first > end || end > spec->samples)
+        return rf_fail(err, RF_EINVAL, "samples [%zu, %zu) are not a part of the %zu samples", first, end,
+                       spec->samples);
+    rf_status st = ensemble_alloc(spec, first, end, ens, err);
     size_t *perm = NULL;
     if (st == RF_OK && spec->lhs && !(perm = traj_lhs_permutations(spec, spec->n_random + 3)))
         st = rf_fail(err, RF_ENOMEM, "out of memory");
@@ -240,7 +257,8 @@ rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w,
     }
     tmc_progress p = {progress, ctx, 0};
     if (st == RF_OK)
-        st = run_jobs(spec, w, perm, threads, rasters && spec->terrain->statistics, progress ? &p : NULL, ens, err);
+        st = run_jobs(spec, w, perm, first, threads, rasters && spec->terrain->statistics, progress ? &p : NULL,
+                      ens, err);
     if (st == RF_OK)
         ens->terrain_dem = w->dem;
     free(perm);
@@ -250,8 +268,14 @@ rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w,
     return st;
 }
 
-rf_status rf_terrain_run(const rf_traj_spec *spec, int threads, rf_traj_progress_fn progress, void *ctx,
-                         rf_traj_ensemble *ens, rf_error *err)
+rf_status terrain_run_world(const rf_traj_spec *spec, const rf_terrain_world *w, int threads, int rasters,
+                            rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err)
+{
+    return terrain_run_world_part(spec, w, 0, spec->samples, threads, rasters, progress, ctx, ens, err);
+}
+
+rf_status rf_terrain_run_part(const rf_traj_spec *spec, size_t first, size_t end, int threads,
+                              rf_traj_progress_fn progress, void *ctx, rf_traj_ensemble *ens, rf_error *err)
 {
     memset(ens, 0, sizeof *ens);
     rf_status st = rf_traj_spec_validate(spec, err);
@@ -260,10 +284,16 @@ rf_status rf_terrain_run(const rf_traj_spec *spec, int threads, rf_traj_progress
     rf_terrain_world *w = NULL;
     if ((st = rf_terrain_world_create(spec, &w, err)) != RF_OK)
         return st;
-    st = terrain_run_world(spec, w, threads, 1, progress, ctx, ens, err);
+    st = terrain_run_world_part(spec, w, first, end, threads, 1, progress, ctx, ens, err);
     if (st == RF_OK)
         ens->terrain_world = w; /* the outputs draw on its surface */
     else
         rf_terrain_world_free(w);
     return st;
+}
+
+rf_status rf_terrain_run(const rf_traj_spec *spec, int threads, rf_traj_progress_fn progress, void *ctx,
+                         rf_traj_ensemble *ens, rf_error *err)
+{
+    return rf_terrain_run_part(spec, 0, spec->samples, threads, progress, ctx, ens, err);
 }
