@@ -3,6 +3,7 @@
  * map (the alpha = 1 cut) next to its alpha = 0 upper bound, on one colour
  * scale, then the blame map; each image embedded, with a link to its PNG
  * file and to fuzzy_rasters.tif (all bands, for GIS). */
+#include "core/html.h"
 #include "study/report_internal.h"
 
 #include <stdio.h>
@@ -13,7 +14,7 @@ static void figure(FILE *f, const char *dir, const char *stem, const char *capti
     fputs("<div>", f);
     rp_embed_png(f, dir, stem, caption);
     fprintf(f, "<p class=note><a href=\"%s.png\">%s.png</a>: ", stem, stem);
-    rp_html(f, caption);
+    rf_html_text(f, caption);
     fputs("</p></div>\n", f);
 }
 

@@ -9,6 +9,7 @@
  * are shown side by side from their folders. */
 #define _XOPEN_SOURCE 700 /* strndup */
 #include "rockfuzz/report.h"
+#include "core/html.h"
 #include "core/textfile.h"
 
 #include <dirent.h>
@@ -52,19 +53,6 @@ static double number(struct fy_node *n)
     return end && *end == '\0' ? v : NAN;
 }
 
-static void html(FILE *f, const char *s)
-{
-    for (; *s; s++) {
-        switch (*s) {
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '&': fputs("&amp;", f); break;
-        case '"': fputs("&quot;", f); break;
-        default: fputc(*s, f);
-        }
-    }
-}
-
 static void cell_number(FILE *f, double v)
 {
     if (isnan(v))
@@ -105,7 +93,7 @@ static void influence_svg(FILE *f, struct fy_node *influence)
         text(fy_node_pair_key(p), name, sizeof name);
         fprintf(f, "<text x=\"%d\" y=\"%d\" text-anchor=\"end\" font-size=\"13\">", label - 6,
                 y + (bars * row) / 2 + 2);
-        html(f, name);
+        rf_html_text(f, name);
         fputs("</text>\n", f);
         for (int c = 0; c < bars; c++) {
             double v = number(get(fy_node_pair_value(p), keys[c]));
@@ -161,10 +149,10 @@ static void write_skipped(FILE *f, struct fy_node *outputs)
             if (strcmp(st, kinds[k][0]) != 0)
                 continue;
             fputs(any++ ? ", " : "<p class=note>Not shown: ", f);
-            html(f, text(fy_node_pair_key(p), name, sizeof name));
+            rf_html_text(f, text(fy_node_pair_key(p), name, sizeof name));
             if (!kinds[k][1]) {
                 fputs(" (", f);
-                html(f, text(get(fy_node_pair_value(p), "status_reason"), why, sizeof why));
+                rf_html_text(f, text(get(fy_node_pair_value(p), "status_reason"), why, sizeof why));
                 fputs(")", f);
             }
         }
@@ -249,7 +237,7 @@ static void write_headline(FILE *f, struct fy_node *root)
     double big = fmax(fabs(lo), fabs(hi)), r = main_input(o, top, sizeof top);
     const char *du = rp_display_unit(text(get(o, "unit"), unit, sizeof unit), big, &fac);
     fputs("<p class=headline><b>", f);
-    html(f, text(fy_node_pair_key(pick), name, sizeof name));
+    rf_html_text(f, text(fy_node_pair_key(pick), name, sizeof name));
     fprintf(f, "</b> lies between <b>%.4g and %.4g %s</b> with the inputs anywhere in their supports "
                "(membership 0); with every input at its nominal value it is <b>%.4g %s</b>.",
             round_off(lo, big) * fac, round_off(hi, big) * fac, du, round_off(number(get(o, "nominal")), big) * fac,
@@ -258,7 +246,7 @@ static void write_headline(FILE *f, struct fy_node *root)
         fputs(" (0: at some inputs no block reaches the line.)", f);
     if (!isnan(r)) {
         fputs(" The input with the largest influence is <b>", f);
-        html(f, top);
+        rf_html_text(f, top);
         fprintf(f, "</b> (%.0f %% of the relative influence).", 100 * r);
     }
     fputs("</p>\n", f);
@@ -272,9 +260,9 @@ static void summary_row(FILE *f, const char *name, struct fy_node *o)
     double hi = number(fy_node_sequence_get_by_index(get(o, "upper"), 0)), fac;
     const char *du = rp_display_unit(text(get(o, "unit"), unit, sizeof unit), fmax(fabs(lo), fabs(hi)), &fac);
     fputs("<tr><td class=l><b>", f);
-    html(f, name);
+    rf_html_text(f, name);
     fputs("</b></td><td class=l>", f);
-    html(f, du);
+    rf_html_text(f, du);
     double big = fmax(fabs(lo), fabs(hi)), nom = number(get(o, "nominal"));
     fprintf(f, "</td><td>%.4g &ndash; %.4g</td><td>%.4g</td><td class=l>", round_off(lo, big) * fac,
             round_off(hi, big) * fac, round_off(nom, big) * fac);
@@ -282,7 +270,7 @@ static void summary_row(FILE *f, const char *name, struct fy_node *o)
     if (isnan(r))
         fputs("n/a (no input changes it)", f);
     else {
-        html(f, top);
+        rf_html_text(f, top);
         fprintf(f, " (&rho; = %.2f)", r);
     }
     fputs("</td></tr>\n", f);
@@ -329,7 +317,7 @@ static void write_warnings(FILE *f, struct fy_node *root)
     struct fy_node *w;
     while ((w = fy_node_sequence_iterate(warnings, &it))) {
         fputs("<li>", f);
-        html(f, text(w, a, sizeof a));
+        rf_html_text(f, text(w, a, sizeof a));
         fputs("</li>\n", f);
     }
     fputs("</ul></div>\n", f);
@@ -343,7 +331,7 @@ static void write_settings(FILE *f, struct fy_node *root)
     int vs = !strcmp(text(get(root, "model_settings_vs_defaults"), a, sizeof a), "true");
     fprintf(f, "<tr><th>model settings%s</th><td class=l>", vs ? "<br>(those not at their default)" : "");
     if (!set) {
-        html(f, text(get(root, "model_identity"), a, sizeof a)); /* a result from an older version */
+        rf_html_text(f, text(get(root, "model_identity"), a, sizeof a)); /* a result from an older version */
     } else if (fy_node_mapping_item_count(set) == 0) {
         fputs(vs ? "all at their defaults" : "as in the model line above", f);
     } else {
@@ -352,9 +340,9 @@ static void write_settings(FILE *f, struct fy_node *root)
         struct fy_node_pair *p;
         while ((p = fy_node_mapping_iterate(set, &it))) {
             fputs("<tr><td class=l>", f);
-            html(f, text(fy_node_pair_key(p), a, sizeof a));
+            rf_html_text(f, text(fy_node_pair_key(p), a, sizeof a));
             fputs("</td><td class=l>", f);
-            html(f, text(fy_node_pair_value(p), b, sizeof b));
+            rf_html_text(f, text(fy_node_pair_value(p), b, sizeof b));
             fputs("</td></tr>", f);
         }
         fputs("</table>", f);
@@ -377,7 +365,7 @@ static void write_run_table(FILE *f, struct fy_node *root)
         if (!strcmp(meta[k][0], "wall_seconds"))
             fprintf(f, "%.4g", number(get(root, meta[k][0])));
         else
-            html(f, text(get(root, meta[k][0]), a, sizeof a));
+            rf_html_text(f, text(get(root, meta[k][0]), a, sizeof a));
         fputs("</td></tr>\n", f);
     }
     write_settings(f, root);
@@ -399,7 +387,7 @@ static void write_run_table(FILE *f, struct fy_node *root)
         if (!strcmp(counts[k][0], "model_seconds"))
             fprintf(f, "%.4g", number(get(ev, counts[k][0])));
         else
-            html(f, text(get(ev, counts[k][0]), a, sizeof a));
+            rf_html_text(f, text(get(ev, counts[k][0]), a, sizeof a));
         fputs("</td></tr>\n", f);
     }
     fputs("</table>\n", f);
@@ -464,7 +452,7 @@ static void rerun_histograms(FILE *f, const char *dir, const char *sub, const hi
         snprintf(path, sizeof path, "%s/%s/%s.png", dir, sub, h->name[i]);
         if (access(path, R_OK) != 0) {
             fputs("<p class=note>", f);
-            html(f, h->name[i] + 16);
+            rf_html_text(f, h->name[i] + 16);
             fputs(": no block reaches it here (no histogram).</p>\n", f);
             continue;
         }
@@ -484,12 +472,12 @@ static void rerun_inputs(FILE *f, struct fy_node *root, struct fy_node *point)
         text(fy_node_pair_key(p), a, sizeof a);
         double v = point ? number(get(point, a)) : number(get(fy_node_pair_value(p), "nominal"));
         fputs("<tr><td class=l>", f);
-        html(f, a);
+        rf_html_text(f, a);
         fputs("</td>", f);
         cell_number(f, v);
         if (text(get(fy_node_pair_value(p), "unit"), b, sizeof b)[0]) {
             fputs("<td class=l>", f);
-            html(f, b);
+            rf_html_text(f, b);
             fputs("</td>", f);
         }
         fputs("</tr>", f);
@@ -516,7 +504,7 @@ static void rerun_column(FILE *f, const char *dir, struct fy_node *root, int sid
     const char *du = rp_display_unit(text(get(o, "unit"), unit, sizeof unit), big, &fac);
     fprintf(f, "<div><h3>%s</h3>\n<p>", titles[side]);
     if (o) {
-        html(f, text(fy_node_pair_key(mp), name, sizeof name));
+        rf_html_text(f, text(fy_node_pair_key(mp), name, sizeof name));
         fprintf(f, " = <b>%.4g %s</b>", round_off(study, big) * fac, du);
         if (study == 0 && strstr(name, "_energy_"))
             fputs(" (no block reaches the line)", f);
@@ -550,7 +538,7 @@ static void trajectory_reruns(FILE *f, const char *dir, struct fy_node *root)
           "trajectories drawn): with every fuzzy input at its nominal value", f);
     if (bounds && mp) {
         fputs(", and at the inputs the Transformation Method found to give the lower and the upper bound of <b>", f);
-        html(f, text(fy_node_pair_key(mp), name, sizeof name));
+        rf_html_text(f, text(fy_node_pair_key(mp), name, sizeof name));
         fputs("</b> at membership 0. The figures of the three share their axes: profile with trajectories, "
               "envelopes of height and energy along x from all trajectories, end points; then the histograms "
               "per collector", f);
@@ -578,11 +566,11 @@ static void write_inputs(FILE *f, const char *dir, struct fy_node *root)
     while ((p = fy_node_mapping_iterate(inputs, &it))) {
         struct fy_node *v = fy_node_pair_value(p);
         fputs("<tr><td class=l>", f);
-        html(f, text(fy_node_pair_key(p), a, sizeof a));
+        rf_html_text(f, text(fy_node_pair_key(p), a, sizeof a));
         fputs("</td><td class=l>", f);
-        html(f, text(get(v, "shape"), b, sizeof b));
+        rf_html_text(f, text(get(v, "shape"), b, sizeof b));
         fputs("</td><td class=l>", f);
-        html(f, text(get(v, "unit"), c, sizeof c));
+        rf_html_text(f, text(get(v, "unit"), c, sizeof c));
         fputs("</td>", f);
         cell_number(f, number(get(v, "nominal")));
         cell_number(f, number(fy_node_sequence_get_by_index(get(v, "lower"), 0)));
@@ -622,7 +610,7 @@ static void write_cuts(FILE *f, struct fy_node *o)
     if (isnan(nu)) {
         text(get(o, "na_reason_degree_of_uncertainty"), why, sizeof why);
         fputs("<p>degree of uncertainty: n/a (", f);
-        html(f, why[0] ? why : "undefined for this output");
+        rf_html_text(f, why[0] ? why : "undefined for this output");
         fputs(")</p></div>\n", f);
     } else {
         fprintf(f, "<p>degree of uncertainty: %.4g</p></div>\n", nu);
@@ -641,14 +629,14 @@ static void write_influence(FILE *f, struct fy_node *o)
     while ((q = fy_node_mapping_iterate(inf, &jt))) {
         struct fy_node *v = fy_node_pair_value(q);
         fputs("<tr><td class=l>", f);
-        html(f, text(fy_node_pair_key(q), a, sizeof a));
+        rf_html_text(f, text(fy_node_pair_key(q), a, sizeof a));
         fputs("</td>", f);
         cell_number(f, number(get(v, "rho")));
         cell_number(f, number(get(v, "kappa")));
         cell_number(f, number(get(v, "rho_left")));
         cell_number(f, number(get(v, "rho_right")));
         fputs("<td class=l>", f);
-        html(f, text(get(v, "monotonicity"), a, sizeof a));
+        rf_html_text(f, text(get(v, "monotonicity"), a, sizeof a));
         fputs("</td></tr>\n", f);
     }
     fputs("</table>\n", f);
@@ -671,10 +659,10 @@ static void write_outputs(FILE *f, const char *dir, struct fy_node *root)
         text(fy_node_pair_key(p), name, sizeof name);
         rp_safe_name(name, safe, sizeof safe);
         fputs("<h2>Output ", f);
-        html(f, name);
+        rf_html_text(f, name);
         if (text(get(o, "unit"), unit, sizeof unit)[0]) {
             fputs(" [", f);
-            html(f, unit);
+            rf_html_text(f, unit);
             fputs("]", f);
         }
         fputs("</h2>\n<div class=fig>", f);
@@ -690,9 +678,9 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
 {
     char a[2048];
     fputs("<!DOCTYPE html>\n<html lang=en><head><meta charset=utf-8><title>rockfuzz report: ", f);
-    html(f, text(get(root, "name"), a, sizeof a));
+    rf_html_text(f, text(get(root, "name"), a, sizeof a));
     fprintf(f, "</title><style>%s</style></head><body>\n<h1>Study ", CSS);
-    html(f, a);
+    rf_html_text(f, a);
     fputs("</h1>\n", f);
     write_summary(f, dir, root); /* the answer first */
     write_warnings(f, root); /* then what changes how it must be read */
@@ -700,7 +688,7 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
     write_inputs(f, dir, root);
     write_outputs(f, dir, root);
     fputs("<p class=note>", f);
-    html(f, text(get(root, "measures"), a, sizeof a));
+    rf_html_text(f, text(get(root, "measures"), a, sizeof a));
     fputs("</p>\n</body></html>\n", f);
     return RF_OK;
 }

@@ -56,8 +56,7 @@ const char *rp_display_unit(const char *unit, double max_abs, double *factor);
 /* The input with the largest finite rho[0..n-1] (relative influence), or -1. */
 int rp_main_input(const double *rho, size_t n);
 
-/* s escaped for HTML text and attribute values. */
-void rp_html(FILE *f, const char *s);
+
 /* <img> with the PNG at dir/stem.png as a data URI; a note if it is missing. */
 void rp_embed_png(FILE *f, const char *dir, const char *stem, const char *alt);
 

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/html.h"
 #include "core/util.h"
 #include "rockfuzz/impact_model.h"
 
@@ -241,51 +242,12 @@ rf_status rf_report_stopped(const atomic_int *interrupt, const char *writing, rf
     return rf_fail(err, RF_EINTERRUPTED, "interrupted while writing the report (%s)", writing);
 }
 
-void rp_html(FILE *f, const char *s)
-{
-    for (; *s; s++) {
-        switch (*s) {
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '&': fputs("&amp;", f); break;
-        case '"': fputs("&quot;", f); break;
-        default: fputc(*s, f);
-        }
-    }
-}
-
 /* <img> with the PNG at dir/stem.png as a data URI; a note if it is missing. */
 void rp_embed_png(FILE *f, const char *dir, const char *stem, const char *alt)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/%s.png", dir, stem);
-    FILE *in = fopen(path, "rb");
-    if (!in) {
+    if (!rf_html_png(f, path, alt))
         fprintf(f, "<p class=note>(figure %s.png not written: run without --no-plots)</p>\n", stem);
-        return;
-    }
-    static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    fputs("<img alt=\"", f);
-    rp_html(f, alt);
-    fputs("\" src=\"data:image/png;base64,", f);
-    unsigned char buf[3 * 1024];
-    size_t got;
-    while ((got = fread(buf, 1, sizeof buf, in)) > 0) {
-        for (size_t i = 0; i < got; i += 3) {
-            unsigned v = (unsigned)buf[i] << 16;
-            if (i + 1 < got)
-                v |= (unsigned)buf[i + 1] << 8;
-            if (i + 2 < got)
-                v |= buf[i + 2];
-            fputc(b64[(v >> 18) & 63], f);
-            fputc(b64[(v >> 12) & 63], f);
-            fputc(i + 1 < got ? b64[(v >> 6) & 63] : '=', f);
-            fputc(i + 2 < got ? b64[v & 63] : '=', f);
-        }
-        if (got < sizeof buf)
-            break;
-    }
-    fclose(in);
-    fputs("\">\n", f);
 }
 

@@ -5,6 +5,7 @@
  * inputs.  The maps are inlined as data: URIs (the page stands alone, like
  * the 2D and study reports). */
 #include "trajectory/terrain_internal.h"
+#include "core/html.h"
 
 #include <errno.h>
 #include <math.h>
@@ -220,7 +221,7 @@ static void barrier_table(FILE *f, const char *dir, const rf_traj_spec *s, const
         const rf_traj_collector *k = &s->collectors[c];
         const rf_traj_collector_stats *cs = &st->collectors[c];
         fputs("<tr><td class=l>", f);
-        traj_html_text(f, k->name);
+        rf_html_text(f, k->name);
         char h[32], cap[32];
         snprintf(h, sizeof h, k->height > 0 ? "%g" : "unlimited", k->height);
         snprintf(cap, sizeof cap, k->capacity > 0 ? "%g" : "collector", k->capacity * 1e-3);
@@ -292,12 +293,12 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
     double xmin, xmax, ymin, ymax, dx, dy;
     rf_terrain_extent(dem, &xmin, &xmax, &ymin, &ymax, &dx, &dy);
     fputs("<h2>Inputs</h2>\n<table>\n<tr><th>DEM</th><td class=l>", f);
-    traj_html_text(f, td && td->dem ? td->dem : "(in memory)");
+    rf_html_text(f, td && td->dem ? td->dem : "(in memory)");
     fprintf(f, ": %zu x %zu nodes, %g x %g m cells, x %.1f to %.1f m, y %.1f to %.1f m; CRS: %s</td></tr>\n",
             dem->nx, dem->ny, dx, dy, xmin, xmax, ymin, ymax, *rf_terrain_crs_wkt(dem) ? "" : "none (local metres)");
     if (*rf_terrain_crs_wkt(dem)) {
         fputs("<tr><th>CRS (WKT)</th><td class=l><small>", f);
-        traj_html_text(f, rf_terrain_crs_wkt(dem));
+        rf_html_text(f, rf_terrain_crs_wkt(dem));
         fputs("</small></td></tr>\n", f);
     }
     fputs("<tr><th>materials</th><td class=l>", f);
@@ -309,7 +310,7 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
     }
     if (td && td->classes) {
         fputs("<br>classes from ", f);
-        traj_html_text(f, td->classes);
+        rf_html_text(f, td->classes);
     }
     fputs("</td></tr>\n", f);
     if (s->sphere)
@@ -322,7 +323,7 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
         const rf_terrain_release *r = &td->release;
         fprintf(f, "<tr><th>release</th><td class=l>%zu %s feature%s%s", r->n_features, kinds[r->kind % 3],
                 r->n_features == 1 ? "" : "s", r->file ? " from " : "");
-        traj_html_text(f, r->file);
+        rf_html_text(f, r->file);
         fprintf(f, "; %g m above the ground</td></tr>\n", s->height0);
     }
     fprintf(f, "<tr><th>bounce law</th><td class=l>%s</td></tr>\n", rf_traj_bounce_law_names[s->law]);
@@ -331,7 +332,7 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
     for (size_t k = 0; k < s->n_random; k++) {
         const rf_traj_random *r = &s->random[k];
         fputs("<tr><th>random input</th><td class=l>", f);
-        traj_html_text(f, r->path);
+        rf_html_text(f, r->path);
         if (r->dist == RF_DIST_UNIFORM)
             fprintf(f, ": uniform [%g, %g] (as stored)", r->a, r->b);
         else if (r->dist == RF_DIST_NORMAL)
@@ -359,7 +360,7 @@ static void maps_section(FILE *f, const char *dir, const rf_traj_ensemble *e, co
         terrain_map_stem(bands[k].name, stem, sizeof stem);
         const char *unit = bands[k].unit && *bands[k].unit ? bands[k].unit : "-";
         fputs("<h3>", f);
-        traj_html_text(f, bands[k].name);
+        rf_html_text(f, bands[k].name);
         fprintf(f, " [%s]</h3>\n", strcmp(unit, "J") ? unit : "kJ"); /* as on the map */
         image(f, dir, stem);
     }
@@ -388,9 +389,9 @@ static rf_status write_html(const char *dir, const rf_traj_spec *s, const rf_tra
         return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
     }
     fprintf(f, "<!DOCTYPE html><html><head><meta charset=utf-8><title>");
-    traj_html_text(f, s->name);
+    rf_html_text(f, s->name);
     fprintf(f, "</title><style>%s</style></head><body>\n<h1>Rockfall on terrain: ", CSS);
-    traj_html_text(f, s->name);
+    rf_html_text(f, s->name);
     fputs("</h1>\n<div class=summary id=summary><b>The answer.</b> ", f);
     answer_fates(f, s, e, &F);
     answer_runout(f, e);

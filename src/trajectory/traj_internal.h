@@ -209,9 +209,8 @@ void traj_stats_row(FILE *f, const char *c, const char *what, const char *unit, 
                     double scale);
 void traj_stats_collectors(FILE *f, const rf_traj_spec *s, const rf_traj_stats *st);
 
-/* traj_report.c: text escaped for HTML (< > & "), and an <img> of the PNG
- * dir/stem.png inlined as base64 (a note when it is missing): both reports'. */
-void traj_html_text(FILE *f, const char *s);
+/* traj_report.c: an <img> of the PNG dir/stem.png inlined as base64 (a note
+ * when it is missing): both run reports' (text escaping: core/html.h). */
 void traj_html_image(FILE *f, const char *dir, const char *stem);
 
 /* roots.c: the smallest tau in [0, tmax] with c2 tau^2 + c1 tau + c0 = 0; INFINITY if none. */

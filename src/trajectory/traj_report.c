@@ -3,43 +3,18 @@
  * traj_plot.c embedded as data: URIs (the file stands alone, like the study
  * report). */
 #include "trajectory/traj_internal.h"
+#include "core/html.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
-void traj_html_text(FILE *f, const char *s)
-{
-    for (; s && *s; s++)
-        if (*s == '<') fputs("&lt;", f);
-        else if (*s == '>') fputs("&gt;", f);
-        else if (*s == '&') fputs("&amp;", f);
-        else if (*s == '"') fputs("&quot;", f);
-        else fputc(*s, f);
-}
-
 void traj_html_image(FILE *f, const char *dir, const char *stem)
 {
-    static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     char path[4096];
     snprintf(path, sizeof path, "%s/%s.png", dir, stem);
-    FILE *in = fopen(path, "rb");
-    if (!in) {
+    if (!rf_html_png(f, path, stem))
         fprintf(f, "<p>(%s.png missing)</p>", stem);
-        return;
-    }
-    fputs("<img alt=\"", f);
-    traj_html_text(f, stem);
-    fputs("\" src=\"data:image/png;base64,", f);
-    unsigned char b[3];
-    size_t n;
-    while ((n = fread(b, 1, 3, in)) > 0) {
-        unsigned v = (unsigned)b[0] << 16 | (n > 1 ? (unsigned)b[1] << 8 : 0) | (n > 2 ? b[2] : 0);
-        fputc(b64[v >> 18 & 63], f), fputc(b64[v >> 12 & 63], f);
-        fputc(n > 1 ? b64[v >> 6 & 63] : '=', f), fputc(n > 2 ? b64[v & 63] : '=', f);
-    }
-    fclose(in);
-    fputs("\">\n", f);
 }
 
 static void row(FILE *f, const char *what, const char *unit, const rf_traj_percentiles *p, double scale)
@@ -57,10 +32,10 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
     if (!f)
         return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
     fputs("<!DOCTYPE html><html><head><meta charset=utf-8><title>", f);
-    traj_html_text(f, s->name);
+    rf_html_text(f, s->name);
     fputs("</title><style>body{font-family:sans-serif;max-width:960px;margin:auto}td,th{padding:2px 8px;"
           "text-align:right}img{max-width:100%}</style></head><body><h1>Trajectories: ", f);
-    traj_html_text(f, s->name);
+    rf_html_text(f, s->name);
     fprintf(f, "</h1><p>%zu trajector%s, %s sampling, seed %llu, bounce law %s, %s block; stopped %zu, exited "
                "%zu, step_limit %zu; %.3g s.</p>\n", e->samples, e->samples == 1 ? "y" : "ies",
             s->lhs ? "Latin hypercube" : "random", (unsigned long long)s->seed, rf_traj_bounce_law_names[s->law],
@@ -91,7 +66,7 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
     for (size_t c = 0; c < s->n_collectors; c++) {
         char stem[300];
         fputs("<h2>Collector ", f);
-        traj_html_text(f, s->collectors[c].name);
+        rf_html_text(f, s->collectors[c].name);
         fputs("</h2>", f);
         snprintf(stem, sizeof stem, "trajectory_hist_%s", s->collectors[c].name);
         if (st->collectors[c].reach_probability > 0)
