@@ -109,11 +109,12 @@ static inline double fem_dashpot_velocity(double m, double C, double v, double g
 
 /* One contact pair: boulder node s over slope segment (m1, m2) at coordinate xi.
  * Small strain: the vertical gap, z dofs only (nq = 3).  Large deformation:
- * the gap along the current segment's normal n, dofs z then r (nq = 6),
+ * the gap along the normal of the smooth surface (fem_contact_surface.h),
+ * dofs z then r of s, m1, m2, then z and r of the neighbours m0, m3 (nq = 10),
  * the pair linearised anew at every step about the predicted state. */
 typedef struct {
-    int dof[6];    /* z dofs: slave, master 1, master 2; then (large deformation) their r dofs */
-    double c[6];   /* gap gradient: small strain 1, -(1 - xi), -xi; large n_z (1, -(1 - xi), -xi), n_r (...) */
+    int dof[10];   /* z dofs: slave, master 1, master 2; then (large deformation) their r dofs, then m0, m3 */
+    double c[10];  /* gap gradient: small strain 1, -(1 - xi), -xi; large: fem_contact.c pair_relinearise */
     int rdof[3];   /* r dofs, for the slip diagnostic */
     double g0;     /* gap at u = 0 of the linear form g0 + c . u */
     double r;      /* radius of the slave: reference (small strain) or current */
