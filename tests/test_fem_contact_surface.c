@@ -81,7 +81,8 @@ static void test_gradient(void **state)
 static void test_continuous_at_node(void **state)
 {
     (void)state;
-    const double p[6][2] = {{0, 0}, {1e-3, 0.05e-3}, {2e-3, 0.02e-3}, {3.1e-3, 0.09e-3}, {4e-3, 0.2e-3}, {5e-3, 0.25e-3}};
+    const double p[6][2] = {{0, 0},           {1e-3, 0.05e-3}, {2e-3, 0.02e-3},
+                            {3.1e-3, 0.09e-3}, {4e-3, 0.2e-3},  {5e-3, 0.25e-3}};
     fem_surf_segment A = {.has_prev = 1, .has_next = 1}, B = A;
     for (int k = 0; k < 4; k++)
         for (int a = 0; a < 2; a++)

@@ -474,7 +474,8 @@ static void pair_gradient(fem_contact *C, contact_pair *p, int s, const fem_surf
 {
     const fem_mesh *m = C->mesh;
     const long j = p->seg, nsurf = m->n_ssurf;
-    const int mk[4] = {m->ssurf[j > 0 ? j - 1 : j], m->ssurf[j], m->ssurf[j + 1], m->ssurf[j + 2 < nsurf ? j + 2 : j + 1]};
+    const int mk[4] = {m->ssurf[j > 0 ? j - 1 : j], m->ssurf[j], m->ssurf[j + 1],
+                       m->ssurf[j + 2 < nsurf ? j + 2 : j + 1]};
     const int rigid = C->rigid_invm > 0;
     const int dof[10] = {2 * s + 1, 2 * mk[1] + 1, 2 * mk[2] + 1, 2 * s, 2 * mk[1], 2 * mk[2],
                          2 * mk[0] + 1, 2 * mk[3] + 1, 2 * mk[0], 2 * mk[3]};
