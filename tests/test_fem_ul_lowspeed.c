@@ -18,7 +18,9 @@
  * After (h/ul2, the contact's gradient at the start of the step on a smooth
  * master surface, fem_contact.c and fem_contact_surface.c):
  *   updated Lagrangian:         R_n 0.994806, W_p 0, eps_p 0, energy error 7.7e-7;
- *   elastic bodies, updated L.: R_n 0.994809, energy error 7.3e-7.
+ *   elastic bodies, updated L.: R_n 0.994809, energy error 7.3e-7;
+ *   the issue's own 0.02 m/s case (CLI, 312 s CPU): R_n 0.999681 (elastic
+ *   0.99968), W_p 0, eps_p 0, energy error 3.6e-9.
  * The checks: both bodies below yield in updated Lagrangian reproduce the
  * small-strain result (R_n within 1e-4, no plastic work or strain, the
  * energy account closed to 1e-5), and so do elastic bodies.  The cause, and
