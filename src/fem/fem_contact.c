@@ -541,8 +541,9 @@ static void pair_midpoint(fem_contact *C, contact_pair *p, const double *u, cons
         p->g0 -= p->c[q] * u[p->dof[q]];
 }
 
-/* After the predictor (large deformation): every pair linearised about the
- * predicted u, and G v_{n-1/2} with the new gradients for the contact work. */
+/* After the predictor (large deformation): every pair's closest point and gap
+ * at the predicted u; fem_contact_step adds the gradient at the step's start
+ * (pairs_at_midpoint) and G v_{n-1/2} with it for the contact work. */
 void fem_contact_update(fem_contact *C, const double *u)
 {
     for (long i = 0; i < C->npairs; i++)
