@@ -317,8 +317,8 @@ static double pass_time(double x0, double v, double a, double bound, int out, do
     double far = fmax(c0 * out, (c0 + v * h + 0.5 * a * h * h) * out), ta = a != 0 ? -v / a : -1;
     if (ta > 0 && ta < h)
         far = fmax(far, (c0 - 0.5 * v * v / a) * out);
-    if (far < -1e-9 * (1 + fabs(bound)))
-        return INFINITY;
+    if (h < INFINITY && far < -1e-9 * (1 + fabs(bound)))
+        return INFINITY; /* (an exact step may be unbounded: h infinite) */
     double t[2], best = INFINITY;
     int n = roots2(0.5 * a, v, c0, t);
     for (int k = 0; k < n; k++)
