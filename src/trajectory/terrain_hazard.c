@@ -100,7 +100,7 @@ struct rf_terrain_hazard {
     int nomem;
 };
 
-#define PEND_MAX 16384
+#define PEND_MAX 262144
 #define PEND_BIN_BITS 17        /* a bin number has 17 bits (exponent and 6 mantissa bits) */
 
 /* The larger of a and b, NaN only if both are (fmax, inlined: the library
