@@ -547,6 +547,54 @@ static void test_memory_bounded(void **state)
     run_case_free(&rc);
 }
 
+/* The buffered histogram updates (flushed when 262 144 are pending, in the
+ * middle of a trajectory's end as well): one accumulator fed the trajectories
+ * R times, with several flushes on the way, against R accumulators fed them
+ * once each (flushed only when read) and merged one by one into another:
+ * the same bands, to the byte. */
+static void test_pending_flushes(void **state)
+{
+    (void)state;
+    run_case rc;
+    run_case_make(&rc, 1.0, 5);
+    rf_terrain_hazard *one = terrain_hazard_create(&rc.s, rc.dem), *merged = terrain_hazard_create(&rc.s, rc.dem);
+    for (size_t k = 0; k < NTRAJ; k++)
+        feed(one, rc.dem, &rc.t[k]);
+    terrain_band *b;
+    size_t nb;
+    bands_of(one, &rc.s, &b, &nb);
+    terrain_hazard_grid(one, &rc.g.nx, &rc.g.ny, &rc.g.x0, &rc.g.y0, &rc.g.c);
+    size_t cells = rc.g.nx * rc.g.ny;
+    double per_round = 0; /* histogram updates per round: two per passage (energy, height) */
+    for (size_t c = 0; c < cells; c++)
+        per_round += 2 * band_named(b, nb, "passages")->data[c];
+    terrain_bands_free(b, nb);
+    size_t rounds = (size_t)(3 * 262144 / per_round) + 2;
+    printf("%.0f updates per round, %zu rounds\n", per_round, rounds);
+    assert_true(rounds >= 2 && (double)rounds * per_round > 3 * 262144);
+    for (size_t r = 0; r < rounds; r++) {
+        if (r > 0)
+            for (size_t k = 0; k < NTRAJ; k++)
+                feed(one, rc.dem, &rc.t[k]);
+        rf_terrain_hazard *part = terrain_hazard_create(&rc.s, rc.dem);
+        for (size_t k = 0; k < NTRAJ; k++)
+            feed(part, rc.dem, &rc.t[k]);
+        terrain_hazard_merge(merged, part);
+        terrain_hazard_free(part);
+    }
+    terrain_band *b1, *b2;
+    size_t n1, n2;
+    bands_of(one, &rc.s, &b1, &n1);
+    bands_of(merged, &rc.s, &b2, &n2);
+    assert_int_equal(n1, n2);
+    assert_same_bands(b1, b2, n1, cells);
+    terrain_bands_free(b1, n1);
+    terrain_bands_free(b2, n2);
+    terrain_hazard_free(one);
+    terrain_hazard_free(merged);
+    run_case_free(&rc);
+}
+
 /* ---- the walk, exactly ---- */
 
 /* One straight flight on a flat 10 x 10 m DEM of 1 m cells, from (xa, ya)
@@ -739,6 +787,7 @@ int main(void)
         cmocka_unit_test(test_random_dem_cells),       cmocka_unit_test(test_random_coarse_cells),
         cmocka_unit_test(test_random_fine_cells),      cmocka_unit_test(test_merge_deterministic),
         cmocka_unit_test(test_packed_merge),           cmocka_unit_test(test_memory_bounded),
+        cmocka_unit_test(test_pending_flushes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -27,8 +27,10 @@
  * acceleration is constant: the step is exact and ends at the cell's edge,
  * at rest or at the end of the slip (closed-form roots, as in 2D).
  * Elsewhere a second-order step (Heun, with the Euler difference as its
- * error estimate, CC_TOL of the speed per step) of at most one cell length
- * and a quarter of the speed, cut where its path leaves the cell (the patch
+ * error estimate, CC_TOL of the speed per step) of at most two cell lengths
+ * (so that a step from one edge usually reaches the next: one step per
+ * cell, not a cell length and then the sliver left to the edge) and a
+ * quarter of the speed, cut where its path leaves the cell (the patch
  * is smooth inside: its edges are the only kinks); a step in which the
  * speed (or a sliding sphere's slip) would vanish is one Euler step to that
  * instant.  The point is put back on the surface and the velocity into its
@@ -60,14 +62,17 @@
 #include <math.h>
 #include <string.h>
 
-#define CC_TOL 1e-3      /* relative error allowed per numerical step (velocity) */
-#define CC_CELL_FRAC 1.0 /* a numerical step covers at most this share of a cell (and is cut at its edge) */
+#define CC_TOL 5e-4      /* relative error allowed per numerical step (velocity); with the steps of two
+                          * cells, 5e-4 keeps every case of test_across_fall_line closer to RK4 than
+                          * 1e-3 with steps of one cell did */
+#define CC_CELL_FRAC 2.0 /* a numerical step covers at most this share of a cell (and is cut at its edge) */
 #define CC_DV_FRAC 0.25 /* and changes the velocity by at most this share of the speed */
 
 typedef struct {
     long i, j;
     terrain_patch P;
     int planar;              /* d = 0 within round-off */
+    size_t mat;              /* its material */
     double mu, mur;          /* tan(friction angle), rolling resistance of its material */
     double x1, y1;           /* the north-east corner */
 } cc_cell;
@@ -76,6 +81,7 @@ typedef struct {
     double n[3], gt[3];      /* unit normal; gravity along the surface [m/s^2] */
     double N, an;            /* normal load per unit mass; normal acceleration kappa / |grad F| */
     double fx, fy;           /* slopes */
+    double w;                /* 1 / |grad F| */
 } cc_geom;
 
 typedef struct {
@@ -96,7 +102,10 @@ static void cross3(const double a[3], const double b[3], double c[3])
 static double kratio(const terrain_run *r) { return r->inertia / (r->mass * r->radius * r->radius); }
 static int is_sphere(const terrain_run *r) { return r->s->sphere && r->radius > 0 && r->inertia > 0; }
 
-static int cell_load(const terrain_run *r, long i, long j, cc_cell *c)
+/* Cell (i, j) into *c; its material's friction from *hint when the same
+ * (NULL: none; a cell next to the current one mostly shares its material, and
+ * tan is a tenth of a step's time).  0 outside the DEM or on no-data. */
+static int cell_load_near(const terrain_run *r, long i, long j, cc_cell *c, const cc_cell *hint)
 {
     const rf_terrain *t = r->dem;
     if (i < 0 || j < 0 || (size_t)i + 1 >= t->nx || (size_t)j + 1 >= t->ny || !t->valid[(size_t)j * (t->nx - 1) + (size_t)i])
@@ -108,11 +117,18 @@ static int cell_load(const terrain_run *r, long i, long j, cc_cell *c)
     c->planar = fabs(c->P.d) * t->dx * t->dy <= 1e-13 * zs;
     if (c->planar)
         c->P.d = 0;
-    const rf_traj_material *m = &r->s->materials[terrain_material_of(t, (size_t)i, (size_t)j)];
-    c->mu = tan(m->friction_angle), c->mur = m->rolling_resistance;
+    c->mat = terrain_material_of(t, (size_t)i, (size_t)j);
+    if (hint && hint->mat == c->mat) {
+        c->mu = hint->mu, c->mur = hint->mur;
+    } else {
+        const rf_traj_material *m = &r->s->materials[c->mat];
+        c->mu = tan(m->friction_angle), c->mur = m->rolling_resistance;
+    }
     c->x1 = c->P.xi + t->dx, c->y1 = c->P.yj + t->dy;
     return 1;
 }
+
+static int cell_load(const terrain_run *r, long i, long j, cc_cell *c) { return cell_load_near(r, i, j, c, NULL); }
 
 static double height(const cc_cell *c, double x, double y)
 {
@@ -120,16 +136,28 @@ static double height(const cc_cell *c, double x, double y)
     return c->P.a + c->P.b * X + c->P.c * Y + c->P.d * X * Y;
 }
 
-static void geom(const terrain_run *r, const cc_cell *c, const double p[3], const double v[3], cc_geom *G)
+/* The geometry at p that does not depend on the velocity (slopes, normal, gravity along the surface). */
+static void geom_at(const terrain_run *r, const cc_cell *c, const double p[3], cc_geom *G)
 {
     double X = p[0] - c->P.xi, Y = p[1] - c->P.yj;
     double fx = c->P.b + c->P.d * Y, fy = c->P.c + c->P.d * X, q = 1 + fx * fx + fy * fy, w = 1 / sqrt(q);
-    double kappa = 2 * c->P.d * v[0] * v[1];
-    G->fx = fx, G->fy = fy;
+    G->fx = fx, G->fy = fy, G->w = w;
     G->n[0] = -fx * w, G->n[1] = -fy * w, G->n[2] = w;
     G->gt[0] = -r->g * fx / q, G->gt[1] = -r->g * fy / q, G->gt[2] = -r->g * (fx * fx + fy * fy) / q;
-    G->N = (r->g + kappa) * w;
-    G->an = kappa * w;
+}
+
+/* The normal load and acceleration at velocity v, on the geometry of geom_at. */
+static void geom_load(const terrain_run *r, const cc_cell *c, const double v[3], cc_geom *G)
+{
+    double kappa = 2 * c->P.d * v[0] * v[1];
+    G->N = (r->g + kappa) * G->w;
+    G->an = kappa * G->w;
+}
+
+static void geom(const terrain_run *r, const cc_cell *c, const double p[3], const double v[3], cc_geom *G)
+{
+    geom_at(r, c, p, G);
+    geom_load(r, c, v, G);
 }
 
 /* The 2D rule: a sphere rolls where rolling needs no more friction than mu N. */
@@ -177,15 +205,15 @@ static int pick_cell(const terrain_run *r, double x, double y, double hx, double
     return 0;
 }
 
-/* Put the state on the surface of c: z on the patch, v in its tangent plane. */
-static void onto_surface(terrain_run *r, const cc_cell *c)
+/* Put the state on the surface of c: z on the patch, v in its tangent plane;
+ * the geometry there in *G (geom_at: its load is not set). */
+static void onto_surface(terrain_run *r, const cc_cell *c, cc_geom *G)
 {
-    cc_geom G;
     r->p[2] = height(c, r->p[0], r->p[1]);
-    geom(r, c, r->p, r->v, &G);
-    double vn = dot3(r->v, G.n);
+    geom_at(r, c, r->p, G);
+    double vn = dot3(r->v, G->n);
     for (int k = 0; k < 3; k++)
-        r->v[k] -= vn * G.n[k];
+        r->v[k] -= vn * G->n[k];
 }
 
 /* Mechanical energy per unit mass [J/kg]. */
@@ -226,11 +254,11 @@ static void slip_dir(const terrain_run *r, const cc_geom *G, const double v[3], 
             e[k] = s[k] / ss;
 }
 
-static void accel(const terrain_run *r, const cc_cell *c, const double p[3], const double v[3], const double w[3],
-                  int rolling, double a[3], double dw[3])
+/* The acceleration and spin rate at velocity v and spin w on the geometry G (load set). */
+static void accel_g(const terrain_run *r, const cc_cell *c, const cc_geom *Gp, const double v[3], const double w[3],
+                    int rolling, double a[3], double dw[3])
 {
-    cc_geom G;
-    geom(r, c, p, v, &G);
+    const cc_geom G = *Gp;
     double N = G.N > 0 ? G.N : 0, e[3];
     memset(dw, 0, 3 * sizeof *dw);
     if (rolling) {
@@ -249,6 +277,14 @@ static void accel(const terrain_run *r, const cc_cell *c, const double p[3], con
         for (int k = 0; k < 3; k++)
             dw[k] = f * ne[k];
     }
+}
+
+static void accel(const terrain_run *r, const cc_cell *c, const double p[3], const double v[3], const double w[3],
+                  int rolling, double a[3], double dw[3])
+{
+    cc_geom G;
+    geom(r, c, p, v, &G);
+    accel_g(r, c, &G, v, w, rolling, a, dw);
 }
 
 /* The real roots of c2 t^2 + c1 t + c0 (NR 5.6); their number. */
@@ -276,6 +312,13 @@ static double pass_time(double x0, double v, double a, double bound, int out, do
     double c0 = x0 - bound;
     if (c0 * out >= 0 && (v * out > 0 || (v == 0 && a * out > 0)))
         return 0; /* on (or past) it, leaving */
+    /* the farthest the path gets towards the bound over [0, h] (ends, apex):
+     * clearly short of it, no root to look for (the roots cost a square root) */
+    double far = fmax(c0 * out, (c0 + v * h + 0.5 * a * h * h) * out), ta = a != 0 ? -v / a : -1;
+    if (ta > 0 && ta < h)
+        far = fmax(far, (c0 - 0.5 * v * v / a) * out);
+    if (h < INFINITY && far < -1e-9 * (1 + fabs(bound)))
+        return INFINITY; /* (an exact step may be unbounded: h infinite) */
     double t[2], best = INFINITY;
     int n = roots2(0.5 * a, v, c0, t);
     for (int k = 0; k < n; k++)
@@ -353,13 +396,12 @@ static int exact_step(terrain_run *r, const cc_cell *c, const cc_geom *G, int ro
 
 /* A sliding sphere: the time at which its slip s = v + r n x omega, changing
  * at ds/dt = a + r n x d omega/dt, vanishes (INFINITY if it does not shrink). */
-static double slip_end_time(const terrain_run *r, const cc_cell *c, int rolling, const double a[3],
+static double slip_end_time(const terrain_run *r, const cc_geom *Gp, int rolling, const double a[3],
                             const double dw[3])
 {
     if (rolling || !is_sphere(r))
         return INFINITY;
-    cc_geom G;
-    geom(r, c, r->p, r->v, &G);
+    const cc_geom G = *Gp;
     double nw[3], ndw[3], s[3], ds[3];
     cross3(G.n, r->omega, nw);
     cross3(G.n, dw, ndw);
@@ -371,11 +413,14 @@ static double slip_end_time(const terrain_run *r, const cc_cell *c, int rolling,
     return sd < 0 ? dot3(s, s) / -sd : INFINITY;
 }
 
-/* One Heun step with error control from the current state. */
-static void numeric_step(const terrain_run *r, const cc_cell *c, int rolling, cc_step *st)
+/* One Heun step with error control from the current state; G0: the geometry
+ * at the current point (geom_at). */
+static void numeric_step(const terrain_run *r, const cc_cell *c, const cc_geom *G0, int rolling, cc_step *st)
 {
     double a0[3], dw0[3], a1[3], dw1[3], ps[3], vs[3], ws[3];
-    accel(r, c, r->p, r->v, r->omega, rolling, a0, dw0);
+    cc_geom G = *G0;
+    geom_load(r, c, r->v, &G);
+    accel_g(r, c, &G, r->v, r->omega, rolling, a0, dw0);
     double sp = norm3(r->v), am = norm3(a0), cell = fmin(r->dem->dx, r->dem->dy);
     double h = am > 0 ? sqrt(2 * CC_CELL_FRAC * cell / am) : INFINITY;
     if (sp > 0)
@@ -391,7 +436,7 @@ static void numeric_step(const terrain_run *r, const cc_cell *c, int rolling, cc
         cut_at_edge(r, c, st->a, st);
         return;
     }
-    double tslip = slip_end_time(r, c, rolling, a0, dw0);
+    double tslip = slip_end_time(r, &G, rolling, a0, dw0);
     if (tslip <= h) { /* a sliding sphere's slip ends within the step: one Euler step there */
         memset(st, 0, sizeof *st);
         st->tau = tslip, st->slip_end = 1;
@@ -523,7 +568,8 @@ static int crease_shift(const terrain_run *r, cc_crease *k, int dir)
 {
     long di = k->axis ? 0 : dir, dj = k->axis ? dir : 0;
     cc_crease n = *k;
-    if (!cell_load(r, k->A.i + di, k->A.j + dj, &n.A) || !cell_load(r, k->B.i + di, k->B.j + dj, &n.B))
+    if (!cell_load_near(r, k->A.i + di, k->A.j + dj, &n.A, &k->A) ||
+        !cell_load_near(r, k->B.i + di, k->B.j + dj, &n.B, &k->B))
         return 0;
     *k = n;
     return 1;
@@ -673,20 +719,20 @@ static int rest_at(terrain_run *r, cc_cell *c)
 
 /* At the edge (ex, ey) of c after a step: the next cell, launch, kink,
  * valley line or exit.  1 to go on in *c, 0 if the phase ended. */
-static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey)
+static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey, const cc_geom *GAp)
 {
     cc_cell b;
     if (ex)
         r->p[0] = ex > 0 ? c->x1 : c->P.xi;
     if (ey)
         r->p[1] = ey > 0 ? c->y1 : c->P.yj;
-    if (!cell_load(r, c->i + ex, c->j + ey, &b)) {
+    if (!cell_load_near(r, c->i + ex, c->j + ey, &b, c)) {
         finish(r, RF_TRAJ_EXITED, RF_EV_EXIT);
         return 0;
     }
-    cc_geom GA, GB;
-    geom(r, &b, r->p, r->v, &GB);
-    geom(r, c, r->p, r->v, &GA);
+    cc_geom GB;
+    const cc_geom GA = *GAp;
+    geom_at(r, &b, r->p, &GB);
     double sp = norm3(r->v), vn = dot3(r->v, GB.n);
     if (vn > 1e-9 * sp) { /* the velocity points above the new patch: convex */
         launch(r);
@@ -694,7 +740,7 @@ static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey)
     }
     for (int k = 0; k < 3; k++)
         r->v[k] -= vn * GB.n[k]; /* concave: the part into the new patch is lost */
-    double m[2] = {(double)ex, (double)ey}, mm = hypot(m[0], m[1]);
+    double m[2] = {(double)ex, (double)ey}, mm = ex && ey ? sqrt(2.0) : 1.0;
     double sB = (GB.fx * m[0] + GB.fy * m[1]) / mm, sA = (GA.fx * m[0] + GA.fy * m[1]) / mm;
     double away = (r->v[0] * m[0] + r->v[1] * m[1]) / mm * sqrt(1 + sB * sB);
     cc_cell a = *c;
@@ -747,15 +793,15 @@ static int take_step(terrain_run *r, cc_cell *c, const cc_step *s, const cc_geom
     if (!cut && st.ey)
         r->p[1] = st.ey > 0 ? c->y1 : c->P.yj;
     r->p[0] = fmin(fmax(r->p[0], c->P.xi), c->x1), r->p[1] = fmin(fmax(r->p[1], c->P.yj), c->y1);
-    onto_surface(r, c);
+    cc_geom G1;
+    onto_surface(r, c, &G1);
     if (o == TERRAIN_PIECE_STOPPED) {
         stop_here(r);
         return 0;
     }
     if (!cut && st.rest)
         memset(r->v, 0, sizeof r->v);
-    cc_geom G1;
-    geom(r, c, r->p, r->v, &G1);
+    geom_load(r, c, r->v, &G1);
     if (rolling || (!cut && st.slip_end))
         set_rolling(r, &G1, 0);
     if (!exact) {
@@ -770,7 +816,7 @@ static int take_step(terrain_run *r, cc_cell *c, const cc_step *s, const cc_geom
         return 1;
     }
     if (!cut && (st.ex || st.ey))
-        return cross_edge(r, c, st.ex, st.ey);
+        return cross_edge(r, c, st.ex, st.ey, &G1);
     return 1;
 }
 
@@ -807,7 +853,7 @@ static int step_once(terrain_run *r, cc_cell *c)
             stop_here(r); /* creeping on ground where it cannot start again */
             return 0;
         }
-        numeric_step(r, c, rolling, &st);
+        numeric_step(r, c, &G, rolling, &st);
     }
     if (!isfinite(st.tau)) {
         stop_here(r);
@@ -825,7 +871,8 @@ void terrain_contact_run(terrain_run *r)
         finish(r, RF_TRAJ_EXITED, RF_EV_EXIT);
         return;
     }
-    onto_surface(r, &c);
+    cc_geom G;
+    onto_surface(r, &c, &G);
     terrain_event(r, RF_EV_CONTACT, 0);
     double last[3] = {NAN, NAN, NAN};
     for (int idle = 0; r->phase == TERRAIN_CONTACT && !r->nomem;) {

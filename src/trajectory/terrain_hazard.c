@@ -29,6 +29,17 @@
  * grow with the number of trajectories.  Merging adds counts and takes
  * maxima of maxima: integers and fmax, so the same bits in any order.
  *
+ * Pending updates.  The histogram updates of a trajectory's end are not
+ * applied at once (each was a cache miss on its cell's bins, a quarter of
+ * the run's time): they are kept as keys (record << 18 | histogram << 17 |
+ * bin) in a buffer of PEND_MAX and applied when it is full, sorted (LSD
+ * radix), so each histogram is visited once per flush for all its updates.
+ * Counts are integers: the histograms are the same in any order of
+ * application.  Every reader (merge, pack, bands, bytes) applies the
+ * pending updates first; these readers take a const accumulator and write
+ * its private buffer (the object is never const itself): an accumulator is
+ * not read by two threads at once.
+ *
  * Percentiles: Hyndman-Fan type 7 as rf_traj_percentiles_at (stats.c),
  * q = v[lo] + f (v[lo+1] - v[lo]) with h = (n - 1) p, lo = floor(h),
  * f = h - lo, v[n - 1] (the exact max) when lo + 1 >= n, where the order
@@ -84,8 +95,13 @@ struct rf_terrain_hazard {
     size_t n_rec, cap_rec;
     hz_touch *touch;
     size_t n_touch, cap_touch;
+    uint64_t *pend, *pend_tmp;  /* PEND_MAX pending histogram updates (keys), and the sort's scratch */
+    size_t n_pend;
     int nomem;
 };
+
+#define PEND_MAX 262144
+#define PEND_BIN_BITS 17        /* a bin number has 17 bits (exponent and 6 mantissa bits) */
 
 /* The larger of a and b, NaN only if both are (fmax, inlined: the library
  * call was a tenth of the time of a piece). */
@@ -127,10 +143,11 @@ static int hist_reserve(hz_hist *hh, uint32_t n)
     return 1;
 }
 
-/* Index of the first entry whose bin is >= b. */
-static uint32_t hist_find(const hz_hist *hh, uint64_t b)
+/* Add `count` values in bin b, searching from entry `from` (the bins of one
+ * flush come in increasing order); the entry it is in, NO_POS if out of memory. */
+static uint32_t hist_add_bin(hz_hist *hh, uint64_t b, uint64_t count, uint32_t from)
 {
-    uint32_t lo = 0, hi = hh->n;
+    uint32_t lo = from, hi = hh->n;
     while (lo < hi) {
         uint32_t mid = lo + (hi - lo) / 2;
         if ((hh->v[mid] >> BIN_SHIFT) < b)
@@ -138,23 +155,16 @@ static uint32_t hist_find(const hz_hist *hh, uint64_t b)
         else
             hi = mid;
     }
-    return lo;
-}
-
-static int hist_add(hz_hist *hh, double value)
-{
-    uint64_t b = bin_of(value);
-    uint32_t k = hist_find(hh, b);
-    if (k < hh->n && (hh->v[k] >> BIN_SHIFT) == b) {
-        hh->v[k]++;
-        return 1;
+    if (lo < hh->n && (hh->v[lo] >> BIN_SHIFT) == b) {
+        hh->v[lo] += count;
+        return lo;
     }
     if (!hist_reserve(hh, hh->n + 1))
-        return 0;
-    memmove(hh->v + k + 1, hh->v + k, (hh->n - k) * sizeof *hh->v);
-    hh->v[k] = b << BIN_SHIFT | 1;
+        return NO_POS;
+    memmove(hh->v + lo + 1, hh->v + lo, (hh->n - lo) * sizeof *hh->v);
+    hh->v[lo] = b << BIN_SHIFT | count;
     hh->n++;
-    return 1;
+    return lo;
 }
 
 /* into += from, bin by bin. */
@@ -222,6 +232,70 @@ static double hist_quantile(const hz_hist *hh, double vmax, double p)
         return vmax;
     double a = hist_order(hh, n, vmax, lo), b = hist_order(hh, n, vmax, lo + 1);
     return a + (h - (double)lo) * (b - a);
+}
+
+/* ---- pending updates ---- */
+
+/* Sort n keys (LSD radix, 11-bit digits over the bits in use); tmp: scratch of n. */
+static void radix_sort(uint64_t *k, uint64_t *tmp, size_t n)
+{
+    uint64_t top = 0;
+    for (size_t i = 0; i < n; i++)
+        top |= k[i];
+    for (int shift = 0; shift < 64 && (top >> shift); shift += 11) {
+        size_t cnt[2048] = {0};
+        for (size_t i = 0; i < n; i++)
+            cnt[(k[i] >> shift) & 2047]++;
+        for (size_t d = 0, sum = 0; d < 2048; d++) {
+            size_t c = cnt[d];
+            cnt[d] = sum, sum += c;
+        }
+        for (size_t i = 0; i < n; i++)
+            tmp[cnt[(k[i] >> shift) & 2047]++] = k[i];
+        memcpy(k, tmp, n * sizeof *k);
+    }
+}
+
+/* Apply the pending updates (see the top of the file). */
+static void pend_flush(rf_terrain_hazard *h)
+{
+    if (!h->n_pend)
+        return;
+    radix_sort(h->pend, h->pend_tmp, h->n_pend);
+    uint64_t binmask = (UINT64_C(1) << PEND_BIN_BITS) - 1, prev_hist = UINT64_MAX;
+    uint32_t from = 0;
+    for (size_t i = 0; i < h->n_pend;) {
+        uint64_t key = h->pend[i], count = 1;
+        while (i + count < h->n_pend && h->pend[i + count] == key)
+            count++;
+        i += count;
+        uint64_t hist = key >> PEND_BIN_BITS;
+        hz_rec *r = &h->rec[hist >> 1];
+        if (hist != prev_hist)
+            from = 0, prev_hist = hist;
+        from = hist_add_bin(hist & 1 ? &r->h : &r->e, key & binmask, count, from);
+        if (from == NO_POS)
+            h->nomem = 1, from = 0;
+    }
+    h->n_pend = 0;
+}
+
+/* The readers' flush (see the top of the file: the buffer is private state). */
+static void pend_flush_const(const rf_terrain_hazard *h) { pend_flush((rf_terrain_hazard *)h); }
+
+static void pend_add(rf_terrain_hazard *h, uint32_t rec, int height, double value)
+{
+    if (!h->pend) {
+        h->pend = malloc(PEND_MAX * sizeof *h->pend), h->pend_tmp = malloc(PEND_MAX * sizeof *h->pend_tmp);
+        if (!h->pend || !h->pend_tmp) {
+            h->nomem = 1;
+            free(h->pend), free(h->pend_tmp), h->pend = h->pend_tmp = NULL;
+            return;
+        }
+    }
+    if (h->n_pend == PEND_MAX)
+        pend_flush(h);
+    h->pend[h->n_pend++] = ((uint64_t)rec << 1 | (uint64_t)(height != 0)) << PEND_BIN_BITS | bin_of(value);
 }
 
 /* ---- records and the touch list ---- */
@@ -460,11 +534,11 @@ void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3])
         r->passages++;
         if ((h->stats & RF_TERRAIN_ENERGY) && isfinite(t->e)) {
             r->e_max = max_of(r->e_max, t->e);
-            h->nomem |= !hist_add(&r->e, t->e);
+            pend_add(h, t->rec, 0, t->e);
         }
         if ((h->stats & RF_TERRAIN_HEIGHT) && isfinite(t->h)) {
             r->h_max = max_of(r->h_max, t->h);
-            h->nomem |= !hist_add(&r->h, t->h);
+            pend_add(h, t->rec, 1, t->h);
         }
     }
     h->n_touch = 0;
@@ -484,6 +558,7 @@ void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from
 {
     if (!into || !from)
         return;
+    pend_flush(into), pend_flush_const(from);
     if (into->nx != from->nx || into->ny != from->ny || from->nomem) {
         into->nomem = 1; /* not the same grid (a bug) or an incomplete part: refuse the bands */
         return;
@@ -518,6 +593,7 @@ static size_t pack_words(const rf_terrain_hazard *h)
 rf_status terrain_hazard_pack(const rf_terrain_hazard *h, uint64_t **buf, size_t *words, rf_error *err)
 {
     *buf = NULL, *words = 0;
+    pend_flush_const(h);
     if (h->nomem)
         return rf_fail(err, RF_ENOMEM, "out of memory while accumulating the hazard rasters");
     size_t n = pack_words(h), w = 0;
@@ -545,7 +621,9 @@ rf_status terrain_hazard_merge_packed(rf_terrain_hazard *into, const uint64_t *b
         return rf_fail(err, RF_EINVAL, "packed hazard rasters: not a %zu x %zu grid's accumulator", into->nx,
                        into->ny);
     size_t w = 4;
+    pend_flush(into);
     rf_terrain_hazard one = *into; /* a one-record accumulator over the packed words */
+    one.pend = one.pend_tmp = NULL, one.n_pend = 0;
     for (uint64_t k = 0; k < b[3]; k++) {
         if (words - w < 6 || (b[w] & 0xffffffffu) >= into->nx * into->ny ||
             (b[w] >> 32) + b[w + 1] > words - w - 6)
@@ -570,13 +648,14 @@ void terrain_hazard_free(rf_terrain_hazard *h)
         return;
     for (size_t k = 0; k < h->n_rec; k++)
         free(h->rec[k].e.v), free(h->rec[k].h.v);
-    free(h->rec), free(h->touch), free(h->slot), free(h);
+    free(h->rec), free(h->touch), free(h->slot), free(h->pend), free(h->pend_tmp), free(h);
 }
 
 size_t terrain_hazard_bytes(const rf_terrain_hazard *h)
 {
+    pend_flush_const(h);
     size_t n = sizeof *h + h->nx * h->ny * sizeof *h->slot + h->cap_rec * sizeof *h->rec +
-               h->cap_touch * sizeof *h->touch;
+               h->cap_touch * sizeof *h->touch + (h->pend ? 2 * PEND_MAX * sizeof *h->pend : 0);
     for (size_t k = 0; k < h->n_rec; k++)
         n += ((size_t)h->rec[k].e.cap + h->rec[k].h.cap) * sizeof(uint64_t);
     return n;
@@ -649,6 +728,7 @@ rf_status terrain_hazard_bands(const rf_terrain_hazard *h, const rf_traj_spec *s
                                size_t *n, rf_error *err)
 {
     *bands = NULL, *n = 0;
+    pend_flush_const(h);
     if (h->nomem)
         return rf_fail(err, RF_ENOMEM, "out of memory while accumulating the hazard rasters");
     hz_band_def def[3 + 2 * (1 + RF_TRAJ_MAX_PERCENTILES)];
