@@ -1,5 +1,5 @@
 /* fem3d_spec.c - the 3D impact's mesh specification (see fem3d_spec.h).
- * The arithmetic is the solver's own (fem3d_solver.c, "fine boxes"): Hertz
+ * The arithmetic is the solver's own (fem3d_prepare.c, "fine boxes"): Hertz
  * radius and duration from the normal velocity component, uniform cubes of
  * size a/refinement over core_factor * a, elongated down-slope by the patch
  * travel; a thick layer's own contact (f3_layer_contact_estimate, below).

@@ -205,9 +205,7 @@ rf_status fem_drive(const fem_geometry *g, void *run, const fem_attempt *a, long
     memset(&R, 0, sizeof R);
     fem_drive_params p = {0};
     rf_status st = g->prepare(run, a, err);
-    if (st == RF_OK)
-        st = g->mesh(run, err);
-    if (st != RF_OK)
+    if (st == RF_OK && (st = g->mesh(run, err)) != RF_OK) /* not after prepare: its input may be invalid or NULL */
         mesh_hint(a->in, err);
     if (st == RF_OK)
         st = g->assemble(run, err);

@@ -1,5 +1,5 @@
 /* fem_spec.c - the axisymmetric impact's mesh specification (fem_spec.h).
- * The arithmetic is the solver's own (fem_solver.c, "mesh sizing from the
+ * The arithmetic is the solver's own (fem_axi_setup.c, "mesh sizing from the
  * Hertz contact radius"); until the solver calls this function the two must
  * be kept equal, and test_quad4_kernel checks the element count against a
  * solver run. */

@@ -4,7 +4,7 @@
  *
  * Every kernel reads a nodal displacement field u (3 doubles per node) and
  * writes the 24 element forces f_e = dE/du_e of each listed element e at
- * fe + 24 e, the layout of fem3d_solver.c's element-force array, so that the
+ * fe + 24 e, the layout of fem3d_assemble.c's element-force array, so that the
  * node-ordered gather that follows stays as it is.  Each element's forces
  * are computed by one call from that element's data alone, in a fixed order:
  * any split of the element list over threads gives the same bits.
