@@ -65,19 +65,6 @@
  * they pin what only soil runs use by default (the contact face's mass redistribution in both models, a
  * rigid sphere's exact 3D contact, large deformation, dashpots), as the code printed them then.
  *
- * The three axisymmetric soil rows (updated Lagrangian: axi_vm_slope_f0.3, axi_vm_slope_ale, axi_rigid_soil)
- * were re-based for a defect fix in the large-deformation contact (issue 29 item 1,
- * docs/validation-plastic.md 6f): its impulse now acts along the gap's gradient at the start of the
- * step, on a G1 master surface (it was the faceted surface's gradient at the predicted end, whose work
- * fed closed pairs energy, lambda dt^2 v'Hv).  The von Mises slope (1 ms of a 10 m/s impact): v_n at
- * 1 ms moved by 3.4e-4 / 5.1e-4 relative (without / with ALE), R_ke by -6.9e-4 / -1.0e-3, the peak force
- * by +1.4e-3 / -1.4e-3, the compression by < 7e-5; the closure residual from 2.16e-4 / 2.55e-4 to
- * 2.20e-4 / 2.72e-4 of KE0.  The rigid ball on the soil layer: v_n at 3 ms by 7.9e-4, the compression by
- * 7e-5, the contact radius by +2.2 %, the peak force by +29 % (a one-step spike, 2.41e5 -> 3.63e5 ->
- * 2.51e5 N at 2.69 ms, of a boulder node closing on the coarse a/h 2.5 mesh: the mean force after
- * 1.5 ms moved by 3 %), the closure residual (the contact's inelastic node closures) from 6.2e-4 to
- * 1.05e-3 of KE0.  The small-strain and 3D rows did not move.
- *
  * RF_REGRESSION_PRINT=1 prints the table in the layout of `refs` below. */
 #include <setjmp.h>
 #include <stdarg.h>
