@@ -17,7 +17,8 @@
  * The small-strain run is the reference and is checked here.  The
  * updated-Lagrangian checks are red until the defect is fixed: they run only
  * with ROCKFUZZ_UL_DEFECT=1 in the environment (skipped otherwise), so the
- * default suite stays green.  What the diagnosis found is in the comment of
+ * default suite stays green.  The cause and the fix tried (branches h/ul2,
+ * h/ul3): docs/validation-plastic.md section 6f.  The first diagnosis is in the comment of
  * test_ul_below_yield. */
 #include <math.h>
 #include <stdio.h>
