@@ -21,6 +21,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "terrain_fixture.h"
 #include "trajectory/terrain_internal.h"
 
 /* |a - b| <= tol in double (cmocka's assert_float_equal compares floats). */
@@ -45,26 +46,11 @@ static double ground(double x, double y)
     return z + 0.6 * sin(x / 7.0) * cos(y / 9.0);
 }
 
-static void write_asc(const char *path, int classes)
-{
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fprintf(f, "ncols %d\nnrows %d\nxllcenter 0\nyllcenter 0\ncellsize %g\nNODATA_value -9999\n", NX, NY, CELL);
-    for (int j = NY - 1; j >= 0; j--) { /* north first */
-        for (int i = 0; i < NX; i++) {
-            if (classes)
-                fprintf(f, "%s%d", i ? " " : "", j * CELL > 250 ? 1 : 2);
-            else
-                fprintf(f, "%s%.6f", i ? " " : "", ground(i * CELL, j * CELL));
-        }
-        fputc('\n', f);
-    }
-    assert_int_equal(fclose(f), 0);
-}
+static const terrain_fixture terrain = {NX, NY, CELL, ground, 250};
 
 static void load(rf_traj_spec *s, int lhs, size_t samples)
 {
-    char yaml[4096], path[256];
+    char yaml[4096];
     snprintf(yaml, sizeof yaml,
              "name: mc\n"
              "terrain: {dem: %s/dem.asc, materials: {raster: %s/classes.asc, classes: {1: rock, 2: talus}}}\n"
@@ -79,35 +65,19 @@ static void load(rf_traj_spec *s, int lhs, size_t samples)
              "rasters: {cell: 4, statistics: [passages, reach_probability, deposits, energy_p95, height_p95]}\n"
              "samples: %zu\nseed: 11\nsampling: %s\nrecord: 20\n",
              dir, dir, samples, lhs ? "lhs" : "random");
-    snprintf(path, sizeof path, "%s/mc.yaml", dir);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(yaml, f);
-    assert_int_equal(fclose(f), 0);
-    rf_error err;
-    if (rf_traj_load(path, s, &err) != RF_OK)
-        fail_msg("%s", err.msg);
+    fixture_load(dir, "mc.yaml", yaml, s);
 }
 
 static int setup(void **state)
 {
     (void)state;
-    if (!mkdtemp(dir))
-        return -1;
-    char p[256];
-    snprintf(p, sizeof p, "%s/dem.asc", dir), write_asc(p, 0);
-    snprintf(p, sizeof p, "%s/classes.asc", dir), write_asc(p, 1);
-    return 0;
+    return fixture_setup(dir, &terrain);
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    char p[256];
-    const char *names[3] = {"dem.asc", "classes.asc", "mc.yaml"};
-    for (int k = 0; k < 3; k++)
-        snprintf(p, sizeof p, "%s/%s", dir, names[k]), unlink(p);
-    rmdir(dir);
+    fixture_teardown(dir, "mc.yaml");
     return 0;
 }
 
