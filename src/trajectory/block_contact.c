@@ -49,6 +49,10 @@
  * coordinates (1e5 m x 1e-16), so that a block set down exactly on the
  * ground does not fall a step at the points whose gap rounds to +1e-17. */
 #define GAP_ACTIVE 1e-9
+/* A point higher than CAP_MARGIN [m] above the ground's bound (or the
+ * bounding sphere farther than that from a plane) is not tested: its gap
+ * along the ground's normal exceeds GAP_ACTIVE wherever n_z >= 1e-3. */
+#define CAP_MARGIN 1e-6
 
 typedef struct {
     double rb[3];      /* contact point - centre, body frame */
@@ -66,6 +70,7 @@ typedef struct {
     contact c[MAX_CONTACTS];
     int n;
     unsigned char far[64]; /* plane k farther than the bounding sphere (k < 64) */
+    double zcap;       /* no ground above this height under the bounding sphere [m] (+inf: unknown) */
 } contact_set;
 
 int rf_block_ground_profile(void *profile, double x, double y, double *z, double normal[3])
@@ -140,7 +145,8 @@ static void test_point(contact_set *cs, const rf_block_world *wd, const double r
             add_contact(cs, rb, wd->planes[k].normal, v, w);
     }
     double z, n[3];
-    if (wd->ground && wd->ground(wd->ground_ctx, p[0], p[1], &z, n) && (p[2] - z) * n[2] <= GAP_ACTIVE)
+    if (wd->ground && p[2] <= cs->zcap + CAP_MARGIN && wd->ground(wd->ground_ctx, p[0], p[1], &z, n) &&
+        (p[2] - z) * n[2] <= GAP_ACTIVE)
         add_contact(cs, rb, n, v, w);
 }
 
@@ -179,7 +185,8 @@ static void smooth_contacts(contact_set *cs, const rf_block_world *wd, const dou
 static void find_contacts(contact_set *cs, const rf_block_world *wd, const double v[3], const double w[3])
 {
     cs->n = 0;
-    int near = wd->ground != NULL || wd->n_planes > 64;
+    int ground_near = wd->ground && cs->x[2] - cs->s->bound_radius <= cs->zcap + CAP_MARGIN;
+    int near = ground_near || wd->n_planes > 64;
     for (size_t k = 0; k < wd->n_planes && k < 64; k++) {
         double d[3];
         bk_sub(cs->x, wd->planes[k].point, d);
@@ -266,17 +273,28 @@ static double cap_energy(const rf_block_shape *s, const rf_block_world *w, rf_bl
     return ke - rf_block_kinetic_energy(s, st, NULL);
 }
 
-void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, rf_block_step_info *info)
+/* The ground's bound under the bounding sphere at x (+inf if unknown, -inf
+ * if no ground there). */
+static double ground_cap(const rf_block_shape *s, const rf_block_world *w, const double x[3])
+{
+    double r = s->bound_radius, z;
+    if (!w->ground || !w->ground_max)
+        return w->ground ? INFINITY : -INFINITY;
+    return w->ground_max(w->ground_ctx, x[0] - r, x[1] - r, x[0] + r, x[1] + r, &z) ? z : -INFINITY;
+}
+
+/* rf_block_step with the ground bounded by zcap under the midpoint's
+ * bounding sphere (NAN: find it). */
+static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st,
+                         rf_block_step_info *info, double zcap)
 {
     static _Thread_local contact_set cs;
-    rf_block_step_info local;
-    if (!info)
-        info = &local;
     double h = w->h, e_start = rf_block_energy(s, st, w->g);
     for (int i = 0; i < 3; i++)
         st->x[i] += 0.5 * h * st->v[i];
     rf_block_rotor_step(s->inertia, st->q, st->w, 0.5 * h);
     cs.s = s;
+    cs.zcap = isnan(zcap) ? ground_cap(s, w, st->x) : zcap;
     bk_quat_matrix(st->q, cs.r);
     memcpy(cs.x, st->x, sizeof cs.x);
     find_contacts(&cs, w, st->v, st->w);
@@ -290,4 +308,86 @@ void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_st
         st->x[i] += 0.5 * h * st->v[i];
     rf_block_rotor_step(s->inertia, st->q, st->w, 0.5 * h);
     info->energy_cap = cs.n ? cap_energy(s, w, st, e_start) : 0;
+}
+
+void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, rf_block_step_info *info)
+{
+    rf_block_step_info local;
+    contact_step(s, w, st, info ? info : &local, NAN);
+}
+
+/* The lowest value over [0, tau] of d0 + d1 t - d2 t^2 / 2. */
+static double quad_min(double d0, double d1, double d2, double tau)
+{
+    double m = fmin(d0, d0 + d1 * tau - 0.5 * d2 * tau * tau);
+    if (d2 < 0 && d1 < 0 && d1 / d2 < tau) /* convex: an interior minimum at t = d1 / d2 */
+        m = fmin(m, d0 + 0.5 * d1 * d1 / d2);
+    return m;
+}
+
+/* Whether the bounding sphere stays clear of every plane and of the ground
+ * over [0, tau] of free flight; *zcap the ground's bound over the swept
+ * rectangle (it holds under the midpoint of a step up to tau). */
+static int flight_clear(const rf_block_shape *s, const rf_block_world *w, const rf_block_state *st, double tau,
+                        double *zcap)
+{
+    double r = s->bound_radius + CAP_MARGIN;
+    *zcap = NAN;
+    for (size_t k = 0; k < w->n_planes; k++) {
+        const double *n = w->planes[k].normal;
+        double d[3];
+        bk_sub(st->x, w->planes[k].point, d);
+        if (quad_min(bk_dot(n, d), bk_dot(n, st->v), n[2] * w->g, tau) <= r)
+            return 0;
+    }
+    *zcap = -INFINITY;
+    if (!w->ground)
+        return 1;
+    if (!w->ground_max)
+        return *zcap = INFINITY, 0;
+    double lo[2], hi[2], z;
+    for (int i = 0; i < 2; i++) {
+        double x1 = st->x[i] + st->v[i] * tau;
+        lo[i] = fmin(st->x[i], x1) - s->bound_radius, hi[i] = fmax(st->x[i], x1) + s->bound_radius;
+    }
+    if (!w->ground_max(w->ground_ctx, lo[0], lo[1], hi[0], hi[1], &z))
+        return 1;
+    *zcap = z;
+    return quad_min(st->x[2], st->v[2], w->g, tau) - r > z;
+}
+
+/* Free flight over tau: exact parabola, the rotor in sub-steps of at most
+ * ROTOR_ANGLE [rad] each. */
+#define ROTOR_ANGLE 0.05
+static void long_flight(const rf_block_shape *s, rf_block_state *st, double g, double tau)
+{
+    for (int i = 0; i < 3; i++)
+        st->x[i] += st->v[i] * tau;
+    st->x[2] -= 0.5 * g * tau * tau;
+    st->v[2] -= g * tau;
+    const double *I = s->inertia; /* |w_i| <= |L| / I1 all along */
+    double wmax = sqrt(pow(I[0] * st->w[0], 2) + pow(I[1] * st->w[1], 2) + pow(I[2] * st->w[2], 2)) / I[0];
+    int n = (int)ceil(wmax * tau / ROTOR_ANGLE);
+    n = n < 1 ? 1 : n;
+    for (int k = 0; k < n; k++)
+        rf_block_rotor_step(s->inertia, st->q, st->w, tau / n);
+}
+
+double rf_block_advance(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, double h_max,
+                        rf_block_step_info *info)
+{
+    rf_block_step_info local;
+    if (!info)
+        info = &local;
+    double tau = 2 * w->h, zcap;
+    if (tau > h_max || !flight_clear(s, w, st, tau, &zcap)) {
+        contact_step(s, w, st, info, tau > h_max ? NAN : zcap);
+        return w->h;
+    }
+    double z2;
+    while (2 * tau <= h_max && flight_clear(s, w, st, 2 * tau, &z2))
+        tau *= 2;
+    long_flight(s, st, w->g, tau);
+    *info = (rf_block_step_info){.converged = 1};
+    return tau;
 }
