@@ -199,6 +199,18 @@ void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_st
 double rf_block_advance(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, double h_max,
                         rf_block_step_info *info);
 
+/* ---- ParaView output (block_vtk.c) ---- */
+
+/* The block's surface at each of the n recorded states (times [s],
+ * increasing) for ParaView: dir/stem.pvd, a VTK collection of
+ * dir/stem_NNNN.vtp (NNNN = 0000, 0001, ...), each VTK XML PolyData (ASCII)
+ * of the hull's triangles in space at that pose (a sphere or ellipsoid as a
+ * 12 x 24 latitude-longitude tessellation), with the time as field data and
+ * each point's velocity [m/s]; coordinates in m.  dir must exist; stem is a
+ * file name without '/'. */
+rf_status rf_block_write_vtk(const char *dir, const char *stem, const rf_block_shape *s, const rf_block_state *states,
+                             const double *times, size_t n, rf_error *err);
+
 #ifdef __cplusplus
 }
 #endif
