@@ -97,7 +97,7 @@ static int dem_max(void *ctx, double x0, double y0, double x1, double y1, double
 }
 
 typedef struct {
-    double steps, contact_steps, contacts, cap, runout, path, duration, cpu;
+    double steps, contact_steps, contacts, iters, cap, runout, path, duration, cpu;
     int stopped, exited, n;
 } stats;
 
@@ -131,7 +131,7 @@ static void trajectory(const rf_block_shape *s, const rf_block_world *w, int mod
         else
             rf_block_step(s, w, &st, &info);
         t += h;
-        a->steps++, a->contact_steps += info.n_contacts > 0, a->contacts += info.n_contacts;
+        a->steps++, a->contact_steps += info.n_contacts > 0, a->contacts += info.n_contacts, a->iters += info.iterations;
         a->cap += info.energy_cap;
         a->path += sqrt(pow(st.x[0] - p[0], 2) + pow(st.x[1] - p[1], 2) + pow(st.x[2] - p[2], 2));
         if (!(st.x[0] > 1 && st.x[0] < 999 && st.x[1] > 1 && st.x[1] < 999)) {
@@ -161,10 +161,10 @@ static void run(const char *name, const rf_block_shape *s, rf_block_world w, int
     for (int k = 0; k < n; k++)
         trajectory(s, &w, mode, release(s, k, &seed), &a);
     double cpu = cpu_seconds() - c0;
-    printf("%-6s %-11s %5d: %8.1f traj/s  %8.0f steps/traj  %6.3f us/step  %5.2f contacts/step (%4.1f %% of steps)  "
+    printf("%-6s %-11s %5d: %8.1f traj/s  %8.0f steps/traj  %6.3f us/step  %5.2f contacts/step (%4.1f %% of steps, %4.1f sweeps)  "
            "cap %6.2f J/traj  run %5.1f s, path %5.1f m, runout %5.1f m  stopped %3.0f %% exited %3.0f %%\n",
            name, modes[mode], n, n / cpu, a.steps / n, 1e6 * cpu / a.steps, a.contacts / a.steps,
-           100 * a.contact_steps / a.steps, a.cap / n, a.duration / n, a.path / n, a.runout / n, 100.0 * a.stopped / n,
+           100 * a.contact_steps / a.steps, a.iters / fmax(a.contact_steps, 1), a.cap / n, a.duration / n, a.path / n, a.runout / n, 100.0 * a.stopped / n,
            100.0 * a.exited / n);
 }
 

@@ -61,6 +61,7 @@ typedef struct {
     double G[9];       /* Delassus block */
     double gA[3];      /* velocities before the step */
     double lam[3];     /* impulses [N s] */
+    long key;          /* which point against which surface (warm start) */
 } contact;
 
 typedef struct {
@@ -106,11 +107,13 @@ static void tangents(const double n[3], double t1[3], double t2[3])
 }
 
 /* The contact of body point rb (body frame) with normal n; u = (v, w). */
-static void add_contact(contact_set *cs, const double rb[3], const double n[3], const double v[3], const double w[3])
+static void add_contact(contact_set *cs, const double rb[3], const double n[3], const double v[3], const double w[3],
+                        long key)
 {
     if (cs->n >= MAX_CONTACTS)
         return;
     contact *c = &cs->c[cs->n++];
+    c->key = key;
     memcpy(c->rb, rb, sizeof c->rb);
     memcpy(c->d[0], n, sizeof c->d[0]);
     tangents(n, c->d[1], c->d[2]);
@@ -128,10 +131,11 @@ static void add_contact(contact_set *cs, const double rb[3], const double n[3], 
                               c->a[j][1] * c->a[k][1] / I[1] + c->a[j][2] * c->a[k][2] / I[2];
 }
 
-/* A body point against the planes and the ground. */
-static void test_point(contact_set *cs, const rf_block_world *wd, const double rb[3], const double v[3],
-                       const double w[3])
+/* Vertex i against the planes and the ground. */
+static void test_point(contact_set *cs, const rf_block_world *wd, size_t i, const double v[3], const double w[3])
 {
+    const double *rb = cs->s->vertices + 3 * i;
+    long key = (long)(i * (wd->n_planes + 1));
     double p[3];
     bk_mat_vec(cs->r, rb, p);
     for (int i = 0; i < 3; i++)
@@ -142,12 +146,12 @@ static void test_point(contact_set *cs, const rf_block_world *wd, const double r
             continue;
         bk_sub(p, wd->planes[k].point, d);
         if (bk_dot(wd->planes[k].normal, d) <= GAP_ACTIVE)
-            add_contact(cs, rb, wd->planes[k].normal, v, w);
+            add_contact(cs, rb, wd->planes[k].normal, v, w, key + (long)k);
     }
     double z, n[3];
     if (wd->ground && p[2] <= cs->zcap + CAP_MARGIN && wd->ground(wd->ground_ctx, p[0], p[1], &z, n) &&
         (p[2] - z) * n[2] <= GAP_ACTIVE)
-        add_contact(cs, rb, n, v, w);
+        add_contact(cs, rb, n, v, w, key + (long)wd->n_planes);
 }
 
 /* A smooth block: its support point along -n of each plane and of the
@@ -167,7 +171,7 @@ static void smooth_contacts(contact_set *cs, const rf_block_world *wd, const dou
             p[i] += cs->x[i];
         bk_sub(p, wd->planes[k].point, d);
         if (bk_dot(n, d) <= GAP_ACTIVE)
-            add_contact(cs, rb, n, v, w);
+            add_contact(cs, rb, n, v, w, (long)k);
     }
     double z, n[3];
     if (!wd->ground || !wd->ground(wd->ground_ctx, cs->x[0], cs->x[1], &z, n))
@@ -179,7 +183,7 @@ static void smooth_contacts(contact_set *cs, const rf_block_world *wd, const dou
     for (int i = 0; i < 3; i++)
         p[i] += cs->x[i];
     if (wd->ground(wd->ground_ctx, p[0], p[1], &z, n) && (p[2] - z) * n[2] <= GAP_ACTIVE)
-        add_contact(cs, rb, n, v, w);
+        add_contact(cs, rb, n, v, w, (long)wd->n_planes);
 }
 
 static void find_contacts(contact_set *cs, const rf_block_world *wd, const double v[3], const double w[3])
@@ -200,7 +204,7 @@ static void find_contacts(contact_set *cs, const rf_block_world *wd, const doubl
         return;
     }
     for (size_t i = 0; i < cs->s->n_vertices; i++)
-        test_point(cs, wd, cs->s->vertices + 3 * i, v, w);
+        test_point(cs, wd, i, v, w);
 }
 
 /* u += M^-1 W_c^T dl */
@@ -219,22 +223,22 @@ static double prox_contact(const rf_block_shape *s, const rf_block_world *wd, co
     double g[3], lam[3];
     for (int k = 0; k < 3; k++)
         g[k] = bk_dot(c->d[k], v) + bk_dot(c->a[k], w);
-    double xn = g[0] + wd->e_n * fmin(c->gA[0], 0);
-    lam[0] = fmax(0, c->lam[0] - xn / c->G[0]);
-    double rt = 1 / fmax(c->G[4], c->G[8]);
+    double xn = g[0] + wd->e_n * (c->gA[0] < 0 ? c->gA[0] : 0);
+    lam[0] = bk_max(0, c->lam[0] - xn / c->G[0]);
+    double rt = 1 / bk_max(c->G[4], c->G[8]);
     /* the normal change first enters the tangential velocities (Gauss-Seidel within the contact) */
     double dn = lam[0] - c->lam[0];
     for (int k = 1; k < 3; k++) {
         double gk = g[k] + c->G[3 * k] * dn;
         lam[k] = c->lam[k] - rt * (gk + wd->e_t * c->gA[k]);
     }
-    double lt = hypot(lam[1], lam[2]), cap = wd->mu * lam[0];
+    double lt = sqrt(lam[1] * lam[1] + lam[2] * lam[2]), cap = wd->mu * lam[0];
     if (lt > cap)
         lam[1] *= cap / lt, lam[2] *= cap / lt;
     double dl[3], change = 0;
     for (int k = 0; k < 3; k++) {
         dl[k] = lam[k] - c->lam[k];
-        change = fmax(change, fabs(dl[k]));
+        change = bk_max(change, fabs(dl[k]));
         c->lam[k] = lam[k];
     }
     apply(s, c, dl, v, w);
@@ -250,8 +254,9 @@ static void solve(contact_set *cs, const rf_block_world *wd, double v[3], double
     for (int it = 0; it < wd->max_iter; it++) {
         double change = 0, big = 0;
         for (int k = 0; k < cs->n; k++) {
-            change = fmax(change, prox_contact(cs->s, wd, &cs->c[k], v, w));
-            big = fmax(big, fmax(cs->c[k].lam[0], hypot(cs->c[k].lam[1], cs->c[k].lam[2])));
+            const double *l = cs->c[k].lam;
+            change = bk_max(change, prox_contact(cs->s, wd, &cs->c[k], v, w));
+            big = bk_max(big, bk_max(l[0], sqrt(l[1] * l[1] + l[2] * l[2])));
         }
         info->iterations = it + 1;
         if (change <= wd->tol * big) {
@@ -283,12 +288,57 @@ static double ground_cap(const rf_block_shape *s, const rf_block_world *w, const
     return w->ground_max(w->ground_ctx, x[0] - r, x[1] - r, x[0] + r, x[1] + r, &z) ? z : -INFINITY;
 }
 
+/* Warm start: the impulses (in space) of the last step's contacts, used as
+ * the first guess of this step's when it continues that step (same shape,
+ * same world, this step starts where that one ended: a trajectory stepped
+ * through, so the result does not depend on what else the thread ran). */
+typedef struct {
+    const rf_block_shape *s;
+    const rf_block_world *w;
+    rf_block_state end;
+    int n;
+    long key[MAX_CONTACTS];
+    double lam[MAX_CONTACTS][3];
+} warm_cache;
+
+static void warm_start(const warm_cache *wc, contact_set *cs, const rf_block_world *w, double v[3], double u[3])
+{
+    for (int k = 0; k < cs->n; k++) {
+        contact *c = &cs->c[k];
+        int j = 0;
+        while (j < wc->n && wc->key[j] != c->key)
+            j++;
+        if (j == wc->n)
+            continue;
+        for (int i = 0; i < 3; i++)
+            c->lam[i] = bk_dot(c->d[i], wc->lam[j]);
+        c->lam[0] = bk_max(c->lam[0], 0);
+        double lt = sqrt(c->lam[1] * c->lam[1] + c->lam[2] * c->lam[2]), cap = w->mu * c->lam[0];
+        if (lt > cap)
+            c->lam[1] *= cap / lt, c->lam[2] *= cap / lt;
+        apply(cs->s, c, c->lam, v, u);
+    }
+}
+
+static void warm_store(warm_cache *wc, const contact_set *cs, const rf_block_world *w, const rf_block_state *st)
+{
+    wc->s = cs->s, wc->w = w, wc->end = *st, wc->n = cs->n;
+    for (int k = 0; k < cs->n; k++) {
+        const contact *c = &cs->c[k];
+        wc->key[k] = c->key;
+        for (int i = 0; i < 3; i++)
+            wc->lam[k][i] = c->lam[0] * c->d[0][i] + c->lam[1] * c->d[1][i] + c->lam[2] * c->d[2][i];
+    }
+}
+
 /* rf_block_step with the ground bounded by zcap under the midpoint's
  * bounding sphere (NAN: find it). */
 static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st,
                          rf_block_step_info *info, double zcap)
 {
     static _Thread_local contact_set cs;
+    static _Thread_local warm_cache wc;
+    int warm = wc.s == s && wc.w == w && !memcmp(&wc.end, st, sizeof *st);
     double h = w->h, e_start = rf_block_energy(s, st, w->g);
     for (int i = 0; i < 3; i++)
         st->x[i] += 0.5 * h * st->v[i];
@@ -299,6 +349,8 @@ static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_bl
     memcpy(cs.x, st->x, sizeof cs.x);
     find_contacts(&cs, w, st->v, st->w);
     st->v[2] -= w->g * h;
+    if (warm)
+        warm_start(&wc, &cs, w, st->v, st->w);
     solve(&cs, w, st->v, st->w, info);
     info->n_contacts = cs.n;
     info->impulse_n = 0;
@@ -308,6 +360,7 @@ static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_bl
         st->x[i] += 0.5 * h * st->v[i];
     rf_block_rotor_step(s->inertia, st->q, st->w, 0.5 * h);
     info->energy_cap = cs.n ? cap_energy(s, w, st, e_start) : 0;
+    warm_store(&wc, &cs, w, st);
 }
 
 void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, rf_block_step_info *info)
