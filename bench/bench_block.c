@@ -6,7 +6,7 @@
  *    DEM of bench/bench_terrain.c (1 km^2 at 2 m cells, 35 deg rock, then
  *    talus at 20, 8 and 2 deg, gullies and bumps; the same ground(x, y)),
  *    held here as a height grid with a bilinear ground callback and its
- *    highest-node bound (rf_block_ground_max_fn).  Three shapes of 1 m^3,
+ *    exact bound above a plane (rf_block_ground_bound_fn).  Three shapes of 1 m^3,
  *    2650 kg/m^3: the EOTA cube and wheel stand-ins (24 vertices) and a
  *    scanned-rock-like hull (20 points on an ellipsoid of semi-axes 0.8 :
  *    0.62 : 0.48 m, all hull vertices).  Released from rest with a random
@@ -21,7 +21,7 @@
  *    second, steps per trajectory, time per step, contacts per step, the
  *    energy the contact step's cap removed per trajectory, runout.
  * Usage: bench_block [adaptive trajectories per shape (default 1000)]
- *                    [fixed-step trajectories per shape (default 20)] */
+ *                    [fixed-step trajectories per shape (default 20)] [h (default 0.001 s)] */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -78,21 +78,32 @@ static int dem_ground(void *ctx, double x, double y, double *z, double n[3])
     return 1;
 }
 
-/* The highest node of the cells the rectangle touches (a bilinear patch lies
- * within its corners' range). */
-static int dem_max(void *ctx, double x0, double y0, double x1, double y1, double *zmax)
+/* The largest height of the ground above the plane z = p0 + p1 x + p2 y
+ * over the rectangle (rf_block_ground_bound_fn), exact: bilinear minus
+ * linear is bilinear in each cell, so its largest value over a rectangle
+ * lies at x in {x0, x1, the grid lines between} times y likewise. */
+static int dem_bound(void *ctx, double x0, double y0, double x1, double y1, const double p[3], double *dz)
 {
     (void)ctx;
-    int i0 = (int)floor(x0 / CELL), i1 = (int)ceil(x1 / CELL), j0 = (int)floor(y0 / CELL), j1 = (int)ceil(y1 / CELL);
-    i0 = i0 < 0 ? 0 : i0, j0 = j0 < 0 ? 0 : j0;
-    i1 = i1 > NODES - 1 ? NODES - 1 : i1, j1 = j1 > NODES - 1 ? NODES - 1 : j1;
-    if (i0 > i1 || j0 > j1)
+    double top = (NODES - 1) * CELL, xs[64], ys[64], z, n[3];
+    x0 = fmax(x0, 0), y0 = fmax(y0, 0), x1 = fmin(x1, top), y1 = fmin(y1, top);
+    if (!(x0 <= x1 && y0 <= y1))
         return 0;
+    int nx = 0, ny = 0;
+    xs[nx++] = x0, ys[ny++] = y0;
+    for (double g = (floor(x0 / CELL) + 1) * CELL; g < x1 && nx < 62; g += CELL)
+        xs[nx++] = g;
+    for (double g = (floor(y0 / CELL) + 1) * CELL; g < y1 && ny < 62; g += CELL)
+        ys[ny++] = g;
+    xs[nx++] = x1, ys[ny++] = y1;
     double m = -INFINITY;
-    for (int j = j0; j <= j1; j++)
-        for (int i = i0; i <= i1; i++)
-            m = fmax(m, dem[j * NODES + i]);
-    *zmax = m;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            if (dem_ground(NULL, xs[i], ys[j], &z, n))
+                m = fmax(m, z - p[0] - p[1] * xs[i] - p[2] * ys[j]);
+    if (nx >= 64 || ny >= 64) /* a rectangle beyond 120 m: never asked by a block of metres */
+        return *dz = INFINITY, 1;
+    *dz = m;
     return 1;
 }
 
@@ -112,7 +123,7 @@ static rf_block_state release(const rf_block_shape *s, int k, unsigned *seed)
         st.q[i] /= sqrt(qn);
     for (int i = 0; i < 3; i++)
         st.w[i] = 2 * urand(seed) - 1;
-    double zg, n[3], up[3] = {0, 0, 1}, p[3];
+    double zg = 0, n[3], up[3] = {0, 0, 1}, p[3];
     dem_ground(NULL, st.x[0], st.x[1], &zg, n);
     st.x[2] = zg + 1 - rf_block_lowest_point(s, &st, up, p);
     return st;
@@ -156,7 +167,7 @@ static void run(const char *name, const rf_block_shape *s, rf_block_world w, int
     stats a = {0};
     unsigned seed = 7;
     if (mode == FIXED)
-        w.ground_max = NULL;
+        w.ground_bound = NULL;
     double c0 = cpu_seconds();
     for (int k = 0; k < n; k++)
         trajectory(s, &w, mode, release(s, k, &seed), &a);
@@ -213,6 +224,7 @@ static int rock20(rf_block_shape *s, rf_error *err)
 int main(int argc, char **argv)
 {
     int n_adapt = argc > 1 ? atoi(argv[1]) : 1000, n_fixed = argc > 2 ? atoi(argv[2]) : 20;
+    double h = argc > 3 ? atof(argv[3]) : 1e-3;
     rf_block_shape shape[3];
     const char *names[3] = {"cube", "wheel", "rock20"};
     rf_error err;
@@ -225,9 +237,9 @@ int main(int argc, char **argv)
     for (int j = 0; j < NODES; j++)
         for (int i = 0; i < NODES; i++)
             dem[j * NODES + i] = terrain(i * CELL, j * CELL);
-    rf_block_world w = {.e_n = 0.3, .e_t = 0, .mu = 0.6, .g = G, .h = 1e-3, .tol = 1e-8, .max_iter = 200,
-                        .ground = dem_ground, .ground_max = dem_max};
-    printf("DEM of bench_terrain (1 km^2, 2 m cells), 1 m^3 blocks released 1 m above (450|500|550, 850):\n");
+    rf_block_world w = {.e_n = 0.3, .e_t = 0, .mu = 0.6, .g = G, .h = h, .tol = 1e-8, .max_iter = 200,
+                        .ground = dem_ground, .ground_bound = dem_bound};
+    printf("DEM of bench_terrain (1 km^2, 2 m cells), 1 m^3 blocks released 1 m above (450|500|550, 850), h = %g ms:\n", 1e3 * h);
     for (int k = 0; k < 3; k++) {
         printf("%s: %zu vertices, bounding radius %.3f m\n", names[k], shape[k].n_vertices, shape[k].bound_radius);
         if (n_fixed > 0) {

@@ -59,10 +59,27 @@ typedef struct {
     double d[3][3];    /* n, t1, t2 in space */
     double a[3][3];    /* r_b x d_b for each direction */
     double G[9];       /* Delassus block */
+    double rn, rt;     /* prox factors 1/G_NN, 1/max(G_T1T1, G_T2T2) */
+    double md[3][3];   /* d_k / m and a_k / I: u += dl_k (md_k, ma_k) */
+    double ma[3][3];
     double gA[3];      /* velocities before the step */
     double lam[3];     /* impulses [N s] */
     long key;          /* which point against which surface (warm start) */
 } contact;
+
+/* The ground near the block: below the plane z = p[0] + p[1] x + p[2] y +
+ * dev over a rectangle that covers the bounding sphere (w->ground_bound). */
+typedef struct {
+    enum { GB_NONE, GB_BOUNDED, GB_UNKNOWN } state; /* no ground there; bounded; no bound (test every point) */
+    double p[3], dev;
+    double len;        /* sqrt(1 + p1^2 + p2^2): vertical height / len = distance along the plane's normal */
+} ground_bound;
+
+/* The height of q above the bound's plane (its vertical distance, m). */
+static double above(const ground_bound *gb, const double q[3])
+{
+    return q[2] - gb->p[0] - gb->p[1] * q[0] - gb->p[2] * q[1] - gb->dev;
+}
 
 typedef struct {
     const rf_block_shape *s;
@@ -71,7 +88,7 @@ typedef struct {
     contact c[MAX_CONTACTS];
     int n;
     unsigned char far[64]; /* plane k farther than the bounding sphere (k < 64) */
-    double zcap;       /* no ground above this height under the bounding sphere [m] (+inf: unknown) */
+    ground_bound gb;   /* the ground under the bounding sphere */
 } contact_set;
 
 int rf_block_ground_profile(void *profile, double x, double y, double *z, double normal[3])
@@ -129,6 +146,10 @@ static void add_contact(contact_set *cs, const double rb[3], const double n[3], 
         for (int k = 0; k < 3; k++)
             c->G[3 * j + k] = (j == k) / cs->s->mass + c->a[j][0] * c->a[k][0] / I[0] +
                               c->a[j][1] * c->a[k][1] / I[1] + c->a[j][2] * c->a[k][2] / I[2];
+    c->rn = 1 / c->G[0], c->rt = 1 / bk_max(c->G[4], c->G[8]);
+    for (int k = 0; k < 3; k++)
+        for (int i = 0; i < 3; i++)
+            c->md[k][i] = c->d[k][i] / cs->s->mass, c->ma[k][i] = c->a[k][i] / I[i];
 }
 
 /* Vertex i against the planes and the ground. */
@@ -149,7 +170,8 @@ static void test_point(contact_set *cs, const rf_block_world *wd, size_t i, cons
             add_contact(cs, rb, wd->planes[k].normal, v, w, key + (long)k);
     }
     double z, n[3];
-    if (wd->ground && p[2] <= cs->zcap + CAP_MARGIN && wd->ground(wd->ground_ctx, p[0], p[1], &z, n) &&
+    if (wd->ground && (cs->gb.state == GB_UNKNOWN || (cs->gb.state == GB_BOUNDED && above(&cs->gb, p) <= CAP_MARGIN)) &&
+        wd->ground(wd->ground_ctx, p[0], p[1], &z, n) &&
         (p[2] - z) * n[2] <= GAP_ACTIVE)
         add_contact(cs, rb, n, v, w, key + (long)wd->n_planes);
 }
@@ -189,7 +211,9 @@ static void smooth_contacts(contact_set *cs, const rf_block_world *wd, const dou
 static void find_contacts(contact_set *cs, const rf_block_world *wd, const double v[3], const double w[3])
 {
     cs->n = 0;
-    int ground_near = wd->ground && cs->x[2] - cs->s->bound_radius <= cs->zcap + CAP_MARGIN;
+    const ground_bound *gb = &cs->gb;
+    int ground_near = gb->state == GB_UNKNOWN ||
+                      (gb->state == GB_BOUNDED && above(gb, cs->x) <= (cs->s->bound_radius + CAP_MARGIN) * gb->len);
     int near = ground_near || wd->n_planes > 64;
     for (size_t k = 0; k < wd->n_planes && k < 64; k++) {
         double d[3];
@@ -208,24 +232,24 @@ static void find_contacts(contact_set *cs, const rf_block_world *wd, const doubl
 }
 
 /* u += M^-1 W_c^T dl */
-static void apply(const rf_block_shape *s, const contact *c, const double dl[3], double v[3], double w[3])
+static void apply(const contact *c, const double dl[3], double v[3], double w[3])
 {
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < 3; i++) {
-            v[i] += dl[k] * c->d[k][i] / s->mass;
-            w[i] += dl[k] * c->a[k][i] / s->inertia[i];
+            v[i] += dl[k] * c->md[k][i];
+            w[i] += dl[k] * c->ma[k][i];
         }
 }
 
 /* One contact's prox update; returns the largest change of its impulses. */
-static double prox_contact(const rf_block_shape *s, const rf_block_world *wd, contact *c, double v[3], double w[3])
+static double prox_contact(const rf_block_world *wd, contact *c, double v[3], double w[3])
 {
     double g[3], lam[3];
     for (int k = 0; k < 3; k++)
         g[k] = bk_dot(c->d[k], v) + bk_dot(c->a[k], w);
     double xn = g[0] + wd->e_n * (c->gA[0] < 0 ? c->gA[0] : 0);
-    lam[0] = bk_max(0, c->lam[0] - xn / c->G[0]);
-    double rt = 1 / bk_max(c->G[4], c->G[8]);
+    lam[0] = bk_max(0, c->lam[0] - xn * c->rn);
+    double rt = c->rt;
     /* the normal change first enters the tangential velocities (Gauss-Seidel within the contact) */
     double dn = lam[0] - c->lam[0];
     for (int k = 1; k < 3; k++) {
@@ -241,7 +265,7 @@ static double prox_contact(const rf_block_shape *s, const rf_block_world *wd, co
         change = bk_max(change, fabs(dl[k]));
         c->lam[k] = lam[k];
     }
-    apply(s, c, dl, v, w);
+    apply(c, dl, v, w);
     return change;
 }
 
@@ -255,7 +279,7 @@ static void solve(contact_set *cs, const rf_block_world *wd, double v[3], double
         double change = 0, big = 0;
         for (int k = 0; k < cs->n; k++) {
             const double *l = cs->c[k].lam;
-            change = bk_max(change, prox_contact(cs->s, wd, &cs->c[k], v, w));
+            change = bk_max(change, prox_contact(wd, &cs->c[k], v, w));
             big = bk_max(big, bk_max(l[0], sqrt(l[1] * l[1] + l[2] * l[2])));
         }
         info->iterations = it + 1;
@@ -278,14 +302,25 @@ static double cap_energy(const rf_block_shape *s, const rf_block_world *w, rf_bl
     return ke - rf_block_kinetic_energy(s, st, NULL);
 }
 
-/* The ground's bound under the bounding sphere at x (+inf if unknown, -inf
- * if no ground there). */
-static double ground_cap(const rf_block_shape *s, const rf_block_world *w, const double x[3])
+/* The ground's bound over [lo, hi] (x, y): the plane through the ground
+ * under x (horizontal if there is none there) raised by the callback's
+ * bound of the ground above it. */
+static void bound_ground(const rf_block_world *w, const double x[3], const double lo[2], const double hi[2],
+                         ground_bound *gb)
 {
-    double r = s->bound_radius, z;
-    if (!w->ground || !w->ground_max)
-        return w->ground ? INFINITY : -INFINITY;
-    return w->ground_max(w->ground_ctx, x[0] - r, x[1] - r, x[0] + r, x[1] + r, &z) ? z : -INFINITY;
+    double z, n[3];
+    gb->state = !w->ground ? GB_NONE : !w->ground_bound ? GB_UNKNOWN : GB_BOUNDED;
+    if (gb->state != GB_BOUNDED)
+        return;
+    if (w->ground(w->ground_ctx, x[0], x[1], &z, n) && n[2] > 1e-3) {
+        gb->p[1] = -n[0] / n[2], gb->p[2] = -n[1] / n[2];
+        gb->p[0] = z - gb->p[1] * x[0] - gb->p[2] * x[1];
+    } else {
+        gb->p[0] = gb->p[1] = gb->p[2] = 0;
+    }
+    gb->len = sqrt(1 + gb->p[1] * gb->p[1] + gb->p[2] * gb->p[2]);
+    if (!w->ground_bound(w->ground_ctx, lo[0], lo[1], hi[0], hi[1], gb->p, &gb->dev))
+        gb->state = GB_NONE;
 }
 
 /* Warm start: the impulses (in space) of the last step's contacts, used as
@@ -316,7 +351,7 @@ static void warm_start(const warm_cache *wc, contact_set *cs, const rf_block_wor
         double lt = sqrt(c->lam[1] * c->lam[1] + c->lam[2] * c->lam[2]), cap = w->mu * c->lam[0];
         if (lt > cap)
             c->lam[1] *= cap / lt, c->lam[2] *= cap / lt;
-        apply(cs->s, c, c->lam, v, u);
+        apply(c, c->lam, v, u);
     }
 }
 
@@ -331,10 +366,10 @@ static void warm_store(warm_cache *wc, const contact_set *cs, const rf_block_wor
     }
 }
 
-/* rf_block_step with the ground bounded by zcap under the midpoint's
- * bounding sphere (NAN: find it). */
+/* rf_block_step with the ground's bound gb over the midpoint's bounding
+ * sphere (NULL: find it). */
 static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st,
-                         rf_block_step_info *info, double zcap)
+                         rf_block_step_info *info, const ground_bound *gb)
 {
     static _Thread_local contact_set cs;
     static _Thread_local warm_cache wc;
@@ -344,7 +379,12 @@ static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_bl
         st->x[i] += 0.5 * h * st->v[i];
     rf_block_rotor_step(s->inertia, st->q, st->w, 0.5 * h);
     cs.s = s;
-    cs.zcap = isnan(zcap) ? ground_cap(s, w, st->x) : zcap;
+    if (gb) {
+        cs.gb = *gb;
+    } else {
+        double r = s->bound_radius, lo[2] = {st->x[0] - r, st->x[1] - r}, hi[2] = {st->x[0] + r, st->x[1] + r};
+        bound_ground(w, st->x, lo, hi, &cs.gb);
+    }
     bk_quat_matrix(st->q, cs.r);
     memcpy(cs.x, st->x, sizeof cs.x);
     find_contacts(&cs, w, st->v, st->w);
@@ -366,7 +406,7 @@ static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_bl
 void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, rf_block_step_info *info)
 {
     rf_block_step_info local;
-    contact_step(s, w, st, info ? info : &local, NAN);
+    contact_step(s, w, st, info ? info : &local, NULL);
 }
 
 /* The lowest value over [0, tau] of d0 + d1 t - d2 t^2 / 2. */
@@ -378,35 +418,50 @@ static double quad_min(double d0, double d1, double d2, double tau)
     return m;
 }
 
-/* Whether the bounding sphere stays clear of every plane and of the ground
- * over [0, tau] of free flight; *zcap the ground's bound over the swept
- * rectangle (it holds under the midpoint of a step up to tau). */
+/* Whether the block stays clear of every plane (its bounding sphere) and of
+ * the ground over [0, tau] of free flight; *gb the ground's bound over the
+ * swept rectangle (it holds under the midpoint of a step up to tau).  The
+ * distance along the bound plane's normal N of the centre is exact
+ * (quadratic in t); a vertex at r_i from the centre turns by at most
+ * |r_i| wmax t (wmax = |L| / I1), so its distance is at least its own plus
+ * the centre's change minus R wmax t. */
 static int flight_clear(const rf_block_shape *s, const rf_block_world *w, const rf_block_state *st, double tau,
-                        double *zcap)
+                        ground_bound *gb)
 {
-    double r = s->bound_radius + CAP_MARGIN;
-    *zcap = NAN;
+    double R = s->bound_radius;
+    gb->state = GB_UNKNOWN;
     for (size_t k = 0; k < w->n_planes; k++) {
         const double *n = w->planes[k].normal;
         double d[3];
         bk_sub(st->x, w->planes[k].point, d);
-        if (quad_min(bk_dot(n, d), bk_dot(n, st->v), n[2] * w->g, tau) <= r)
+        if (quad_min(bk_dot(n, d), bk_dot(n, st->v), n[2] * w->g, tau) <= R + CAP_MARGIN)
             return 0;
     }
-    *zcap = -INFINITY;
-    if (!w->ground)
-        return 1;
-    if (!w->ground_max)
-        return *zcap = INFINITY, 0;
-    double lo[2], hi[2], z;
+    double lo[2], hi[2];
     for (int i = 0; i < 2; i++) {
         double x1 = st->x[i] + st->v[i] * tau;
-        lo[i] = fmin(st->x[i], x1) - s->bound_radius, hi[i] = fmax(st->x[i], x1) + s->bound_radius;
+        lo[i] = fmin(st->x[i], x1) - R, hi[i] = fmax(st->x[i], x1) + R;
     }
-    if (!w->ground_max(w->ground_ctx, lo[0], lo[1], hi[0], hi[1], &z))
+    bound_ground(w, st->x, lo, hi, gb);
+    if (gb->state != GB_BOUNDED)
+        return gb->state == GB_NONE;
+    double dv = (st->v[2] - gb->p[1] * st->v[0] - gb->p[2] * st->v[1]) / gb->len, dg = w->g / gb->len;
+    if (quad_min(above(gb, st->x) / gb->len, dv, dg, tau) > R + CAP_MARGIN)
         return 1;
-    *zcap = z;
-    return quad_min(st->x[2], st->v[2], w->g, tau) - r > z;
+    if (s->kind != RF_BLOCK_POLYHEDRON)
+        return 0;
+    const double *I = s->inertia;
+    double wmax = sqrt(pow(I[0] * st->w[0], 2) + pow(I[1] * st->w[1], 2) + pow(I[2] * st->w[2], 2)) / I[0], r[9];
+    bk_quat_matrix(st->q, r);
+    for (size_t i = 0; i < s->n_vertices; i++) {
+        double p[3];
+        bk_mat_vec(r, s->vertices + 3 * i, p);
+        for (int k = 0; k < 3; k++)
+            p[k] += st->x[k];
+        if (quad_min(above(gb, p) / gb->len, dv - R * wmax, dg, tau) <= CAP_MARGIN)
+            return 0;
+    }
+    return 1;
 }
 
 /* Free flight over tau: exact parabola, the rotor in sub-steps of at most
@@ -432,13 +487,13 @@ double rf_block_advance(const rf_block_shape *s, const rf_block_world *w, rf_blo
     rf_block_step_info local;
     if (!info)
         info = &local;
-    double tau = 2 * w->h, zcap;
-    if (tau > h_max || !flight_clear(s, w, st, tau, &zcap)) {
-        contact_step(s, w, st, info, tau > h_max ? NAN : zcap);
+    double tau = 2 * w->h;
+    ground_bound gb, gb2;
+    if (tau > h_max || !flight_clear(s, w, st, tau, &gb)) {
+        contact_step(s, w, st, info, tau > h_max ? NULL : &gb);
         return w->h;
     }
-    double z2;
-    while (2 * tau <= h_max && flight_clear(s, w, st, 2 * tau, &z2))
+    while (2 * tau <= h_max && flight_clear(s, w, st, 2 * tau, &gb2))
         tau *= 2;
     long_flight(s, st, w->g, tau);
     *info = (rf_block_step_info){.converged = 1};
