@@ -191,7 +191,11 @@ typedef struct {
  * sphere's or ellipsoid's support point along the ground's -n.  A step
  * with contacts never ends with more energy (kinetic + m g z) than it
  * started with: the scheme's O(h) gain on a turning persistent contact is
- * capped (block_contact.c). */
+ * capped (block_contact.c).  A step that continues the calling thread's
+ * last step (same shape and world, from the state it ended in) starts the
+ * prox sweeps from that step's impulses (the same solution to tol, fewer
+ * sweeps).  With w->ground_bound the ground is evaluated only at the
+ * vertices within the bound. */
 void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, rf_block_step_info *info);
 
 /* One step of adaptive length (docs/block-shape.md, "Speed"): when the

@@ -39,7 +39,15 @@
  * energy, scaling v and w alike (which keeps the contact velocities' signs);
  * the energy removed is reported (rf_block_step_info.energy_cap).  Flight
  * steps are not capped (the rotor's bounded O(h^2) oscillation would be
- * ratcheted down). */
+ * ratcheted down).
+ *
+ * Speed (docs/block-shape.md, "Adaptive steps"): with the world's ground
+ * bound (rf_block_ground_bound_fn: the ground's height above a plane over a
+ * rectangle) the ground is evaluated only at the vertices within the bound;
+ * rf_block_advance takes exact flight steps of up to h_max while the
+ * bounding sphere or every vertex provably clears planes and ground; the
+ * prox sweeps start from the last step's impulses when the step continues
+ * it (warm start, per thread). */
 #include "trajectory/block_internal.h"
 
 #include <string.h>
@@ -70,7 +78,8 @@ typedef struct {
 /* The ground near the block: below the plane z = p[0] + p[1] x + p[2] y +
  * dev over a rectangle that covers the bounding sphere (w->ground_bound). */
 typedef struct {
-    enum { GB_NONE, GB_BOUNDED, GB_UNKNOWN } state; /* no ground there; bounded; no bound (test every point) */
+    /* no ground there; bounded; no bound (test every point); not looked at */
+    enum { GB_NONE, GB_BOUNDED, GB_UNKNOWN, GB_UNSET } state;
     double p[3], dev;
     double len;        /* sqrt(1 + p1^2 + p2^2): vertical height / len = distance along the plane's normal */
 } ground_bound;
@@ -429,7 +438,7 @@ static int flight_clear(const rf_block_shape *s, const rf_block_world *w, const 
                         ground_bound *gb)
 {
     double R = s->bound_radius;
-    gb->state = GB_UNKNOWN;
+    gb->state = GB_UNSET;
     for (size_t k = 0; k < w->n_planes; k++) {
         const double *n = w->planes[k].normal;
         double d[3];
@@ -490,7 +499,7 @@ double rf_block_advance(const rf_block_shape *s, const rf_block_world *w, rf_blo
     double tau = 2 * w->h;
     ground_bound gb, gb2;
     if (tau > h_max || !flight_clear(s, w, st, tau, &gb)) {
-        contact_step(s, w, st, info, tau > h_max ? NULL : &gb);
+        contact_step(s, w, st, info, tau > h_max || gb.state == GB_UNSET ? NULL : &gb);
         return w->h;
     }
     while (2 * tau <= h_max && flight_clear(s, w, st, 2 * tau, &gb2))
