@@ -68,6 +68,7 @@ typedef struct {
     double a[3][3];    /* r_b x d_b for each direction */
     double G[9];       /* Delassus block */
     double rn, rt;     /* prox factors 1/G_NN, 1/max(G_T1T1, G_T2T2) */
+    double Gi[9];      /* G^-1 (the local sticking solve) */
     double md[3][3];   /* d_k / m and a_k / I: u += dl_k (md_k, ma_k) */
     double ma[3][3];
     double gA[3];      /* velocities before the step */
@@ -132,6 +133,17 @@ static void tangents(const double n[3], double t1[3], double t2[3])
     bk_cross(n, t1, t2);
 }
 
+/* The inverse of a symmetric positive definite 3x3 matrix (adjugate). */
+static void invert3(const double a[9], double b[9])
+{
+    b[0] = a[4] * a[8] - a[5] * a[7], b[1] = a[2] * a[7] - a[1] * a[8], b[2] = a[1] * a[5] - a[2] * a[4];
+    b[3] = a[5] * a[6] - a[3] * a[8], b[4] = a[0] * a[8] - a[2] * a[6], b[5] = a[2] * a[3] - a[0] * a[5];
+    b[6] = a[3] * a[7] - a[4] * a[6], b[7] = a[1] * a[6] - a[0] * a[7], b[8] = a[0] * a[4] - a[1] * a[3];
+    double det = a[0] * b[0] + a[1] * b[3] + a[2] * b[6];
+    for (int i = 0; i < 9; i++)
+        b[i] /= det;
+}
+
 /* The contact of body point rb (body frame) with normal n; u = (v, w). */
 static void add_contact(contact_set *cs, const double rb[3], const double n[3], const double v[3], const double w[3],
                         long key)
@@ -156,6 +168,7 @@ static void add_contact(contact_set *cs, const double rb[3], const double n[3], 
             c->G[3 * j + k] = (j == k) / cs->s->mass + c->a[j][0] * c->a[k][0] / I[0] +
                               c->a[j][1] * c->a[k][1] / I[1] + c->a[j][2] * c->a[k][2] / I[2];
     c->rn = 1 / c->G[0], c->rt = 1 / bk_max(c->G[4], c->G[8]);
+    invert3(c->G, c->Gi);
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < 3; i++)
             c->md[k][i] = c->d[k][i] / cs->s->mass, c->ma[k][i] = c->a[k][i] / I[i];
@@ -250,13 +263,34 @@ static void apply(const contact *c, const double dl[3], double v[3], double w[3]
         }
 }
 
-/* One contact's prox update; returns the largest change of its impulses. */
+/* Sets the contact's impulses to lam; returns the largest change. */
+static double update(contact *c, const double lam[3], double v[3], double w[3])
+{
+    double dl[3], change = 0;
+    for (int k = 0; k < 3; k++) {
+        dl[k] = lam[k] - c->lam[k];
+        change = bk_max(change, fabs(dl[k]));
+        c->lam[k] = lam[k];
+    }
+    apply(c, dl, v, w);
+    return change;
+}
+
+/* One contact's update (block Gauss-Seidel): the local sticking solution
+ * when it lies in the friction cone, else the prox step; returns the
+ * largest change of its impulses. */
 static double prox_contact(const rf_block_world *wd, contact *c, double v[3], double w[3])
 {
     double g[3], lam[3];
     for (int k = 0; k < 3; k++)
         g[k] = bk_dot(c->d[k], v) + bk_dot(c->a[k], w);
     double xn = g[0] + wd->e_n * (c->gA[0] < 0 ? c->gA[0] : 0);
+    /* the local sticking solution, xi = 0: exact for this contact if it is in the friction cone */
+    double xi[3] = {xn, g[1] + wd->e_t * c->gA[1], g[2] + wd->e_t * c->gA[2]};
+    for (int k = 0; k < 3; k++)
+        lam[k] = c->lam[k] - (c->Gi[3 * k] * xi[0] + c->Gi[3 * k + 1] * xi[1] + c->Gi[3 * k + 2] * xi[2]);
+    if (lam[0] > 0 && lam[1] * lam[1] + lam[2] * lam[2] <= wd->mu * wd->mu * lam[0] * lam[0])
+        return update(c, lam, v, w);
     lam[0] = bk_max(0, c->lam[0] - xn * c->rn);
     double rt = c->rt;
     /* the normal change first enters the tangential velocities (Gauss-Seidel within the contact) */
@@ -268,14 +302,7 @@ static double prox_contact(const rf_block_world *wd, contact *c, double v[3], do
     double lt = sqrt(lam[1] * lam[1] + lam[2] * lam[2]), cap = wd->mu * lam[0];
     if (lt > cap)
         lam[1] *= cap / lt, lam[2] *= cap / lt;
-    double dl[3], change = 0;
-    for (int k = 0; k < 3; k++) {
-        dl[k] = lam[k] - c->lam[k];
-        change = bk_max(change, fabs(dl[k]));
-        c->lam[k] = lam[k];
-    }
-    apply(c, dl, v, w);
-    return change;
+    return update(c, lam, v, w);
 }
 
 static void solve(contact_set *cs, const rf_block_world *wd, double v[3], double w[3], rf_block_step_info *info)
