@@ -21,7 +21,8 @@
  *    second, steps per trajectory, time per step, contacts per step, the
  *    energy the contact step's cap removed per trajectory, runout.
  * Usage: bench_block [adaptive trajectories per shape (default 1000)]
- *                    [fixed-step trajectories per shape (default 20)] [h (default 0.001 s)] */
+ *                    [fixed-step trajectories per shape (default 20)] [h (default 0.001 s)]
+ *                    [folder: one trajectory per shape for ParaView, every 20 ms] */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -179,6 +180,31 @@ static void run(const char *name, const rf_block_shape *s, rf_block_world w, int
            100.0 * a.exited / n);
 }
 
+/* One adaptive trajectory per shape recorded every 20 ms (or each step, if
+ * longer) for ParaView: dir/<shape>.pvd and its .vtp files. */
+static int write_vtk(const char *dir, const char *name, const rf_block_shape *s, const rf_block_world *w)
+{
+    enum { CAP = 4000 };
+    static rf_block_state st[CAP];
+    static double t[CAP];
+    unsigned seed = 7;
+    rf_block_state b = release(s, 1, &seed);
+    size_t n = 0;
+    double time = 0, next = 0;
+    while (time < 60 && n < CAP && b.x[0] > 1 && b.x[0] < 999 && b.x[1] > 1 && b.x[1] < 999) {
+        if (time >= next)
+            st[n] = b, t[n++] = time, next = time + 0.02;
+        time += rf_block_advance(s, w, &b, 0.064, NULL);
+    }
+    rf_error err;
+    if (rf_block_write_vtk(dir, name, s, st, t, n, &err)) {
+        fprintf(stderr, "bench_block: %s\n", err.msg);
+        return 1;
+    }
+    printf("%s: %zu states over %.1f s written to %s/%s.pvd\n", name, n, time, dir, name);
+    return 0;
+}
+
 static double steps_per_second(const rf_block_shape *s, const rf_block_world *w, rf_block_state st, long n,
                                double *contacts)
 {
@@ -225,6 +251,7 @@ int main(int argc, char **argv)
 {
     int n_adapt = argc > 1 ? atoi(argv[1]) : 1000, n_fixed = argc > 2 ? atoi(argv[2]) : 20;
     double h = argc > 3 ? atof(argv[3]) : 1e-3;
+    const char *vtk_dir = argc > 4 ? argv[4] : NULL;
     rf_block_shape shape[3];
     const char *names[3] = {"cube", "wheel", "rock20"};
     rf_error err;
@@ -247,6 +274,8 @@ int main(int argc, char **argv)
             run(names[k], &shape[k], w, FIXED_BOUND, n_fixed);
         }
         run(names[k], &shape[k], w, ADAPTIVE, n_adapt);
+        if (vtk_dir && write_vtk(vtk_dir, names[k], &shape[k], &w))
+            return 1;
     }
     for (int k = 0; k < 3; k++)
         rf_block_shape_free(&shape[k]);
