@@ -133,6 +133,19 @@ double rf_block_lowest_point(const rf_block_shape *s, const rf_block_state *st, 
  * returns 0 outside (no ground there).  A one-line wrapper of
  * rf_terrain_height (terrain.h) with the terrain as ctx is one. */
 typedef int (*rf_block_ground_fn)(void *ctx, double x, double y, double *z, double normal[3]);
+/* An upper bound over the rectangle [x0, x1] x [y0, y1] of the ground's
+ * height above the plane z = plane[0] + plane[1] x + plane[2] y:
+ * *dz >= z_ground(x, y) - (plane[0] + plane[1] x + plane[2] y) there [m];
+ * returns 0 when no ground lies in the rectangle.  Optional
+ * (rf_block_world.ground_bound; the block passes the ground's tangent plane
+ * under its centre): with it rf_block_advance takes long flight steps and
+ * a contact step evaluates the ground only at the vertices within the
+ * bound.  For a bilinear DEM the bound can be exact: the ground minus a
+ * plane is bilinear in each cell, so its largest value over the rectangle
+ * lies at one of the points (x, y) with x in {x0, x1, the grid lines
+ * between} and y likewise (bench/bench_block.c has one). */
+typedef int (*rf_block_ground_bound_fn)(void *ctx, double x0, double y0, double x1, double y1,
+                                        const double plane[3], double *dz);
 
 /* A contact plane: the points p with n . (p - point) >= 0 are free. */
 typedef struct {
@@ -159,6 +172,7 @@ typedef struct {
     const rf_block_plane *planes;
     rf_block_ground_fn ground; /* may be NULL */
     void *ground_ctx;
+    rf_block_ground_bound_fn ground_bound; /* may be NULL (ground_ctx is its ctx) */
 } rf_block_world;
 
 /* What the last step did. */
@@ -177,8 +191,36 @@ typedef struct {
  * sphere's or ellipsoid's support point along the ground's -n.  A step
  * with contacts never ends with more energy (kinetic + m g z) than it
  * started with: the scheme's O(h) gain on a turning persistent contact is
- * capped (block_contact.c). */
+ * capped (block_contact.c).  A step that continues the calling thread's
+ * last step (same shape and world, from the state it ended in) starts the
+ * prox sweeps from that step's impulses (the same solution to tol, fewer
+ * sweeps).  With w->ground_bound the ground is evaluated only at the
+ * vertices within the bound. */
 void rf_block_step(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, rf_block_step_info *info);
+
+/* One step of adaptive length (docs/block-shape.md, "Speed"): when the
+ * block provably stays clear of every plane (its bounding sphere) and of
+ * the ground (its bounding sphere or each vertex against
+ * w->ground_bound's plane over the swept rectangle) for tau = 2^k h, k >= 1,
+ * a free flight of the longest such tau <= h_max (exact parabola; the
+ * rotor in sub-steps turning at most 0.05 rad each); otherwise one
+ * rf_block_step of w->h.  Without w->ground_bound, a world with a ground
+ * always takes the contact step.  Returns the time advanced [s]; info as
+ * rf_block_step's (n_contacts 0 in flight). */
+double rf_block_advance(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, double h_max,
+                        rf_block_step_info *info);
+
+/* ---- ParaView output (block_vtk.c) ---- */
+
+/* The block's surface at each of the n recorded states (times [s],
+ * increasing) for ParaView: dir/stem.pvd, a VTK collection of
+ * dir/stem_NNNN.vtp (NNNN = 0000, 0001, ...), each VTK XML PolyData (ASCII)
+ * of the hull's triangles in space at that pose (a sphere or ellipsoid as a
+ * 12 x 24 latitude-longitude tessellation), with the time as field data and
+ * each point's velocity [m/s]; coordinates in m.  dir must exist; stem is a
+ * file name without '/'. */
+rf_status rf_block_write_vtk(const char *dir, const char *stem, const rf_block_shape *s, const rf_block_state *states,
+                             const double *times, size_t n, rf_error *err);
 
 #ifdef __cplusplus
 }

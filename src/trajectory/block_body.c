@@ -75,11 +75,26 @@ double rf_block_energy(const rf_block_shape *s, const rf_block_state *st, double
     return rf_block_kinetic_energy(s, st, NULL) + s->mass * g * st->x[2];
 }
 
+/* sin and cos of x; below |x| = 0.02 by their Taylor series, whose first
+ * omitted terms (x^9/9!, x^10/10!) are below 1e-19 of the result there:
+ * the same to round-off, without the libm call (the rotor's angles are
+ * small at millisecond steps). */
+static void sin_cos(double x, double *s, double *c)
+{
+    if (fabs(x) < 0.02) {
+        double x2 = x * x;
+        *s = x * (1 - x2 / 6 * (1 - x2 / 20 * (1 - x2 / 42)));
+        *c = 1 - x2 / 2 * (1 - x2 / 12 * (1 - x2 / 30 * (1 - x2 / 56)));
+    } else {
+        *s = sin(x), *c = cos(x);
+    }
+}
+
 /* The exact flow of L_i^2/2I_i over tau. */
 static void rotor_axis(const double inertia[3], double q[4], double L[3], int i, double tau)
 {
-    double theta = tau * L[i] / inertia[i];
-    double c = cos(theta / 2), s = sin(theta / 2);
+    double theta = tau * L[i] / inertia[i], c, s;
+    sin_cos(theta / 2, &s, &c);
     double r[4] = {c, 0, 0, 0}, out[4];
     r[1 + i] = s;
     bk_quat_mul(q, r, out);

@@ -23,6 +23,12 @@ static inline void bk_sub(const double a[3], const double b[3], double c[3])
     c[0] = a[0] - b[0], c[1] = a[1] - b[1], c[2] = a[2] - b[2];
 }
 
+/* max without fmax's NaN rules (a libm call unless -ffinite-math-only) */
+static inline double bk_max(double a, double b)
+{
+    return a > b ? a : b;
+}
+
 static inline double bk_norm(const double a[3])
 {
     return sqrt(bk_dot(a, a));
