@@ -67,7 +67,7 @@
 /* Which sides of c the point lies on (within round-off). */
 static void on_sides(const terrain_run *r, const cc_cell *c, int *sx, int *sy)
 {
-    double tol = 1e-9 * fmin(r->dem->dx, r->dem->dy);
+    double tol = 1e-9 * tc_fmin(r->dem->dx, r->dem->dy);
     *sx = fabs(r->p[0] - c->P.xi) <= tol ? -1 : fabs(r->p[0] - c->x1) <= tol ? 1 : 0;
     *sy = fabs(r->p[1] - c->P.yj) <= tol ? -1 : fabs(r->p[1] - c->y1) <= tol ? 1 : 0;
 }
@@ -145,6 +145,7 @@ static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey, const cc_geom 
     cc_geom GB;
     const cc_geom GA = *GAp;
     geom_at(r, &b, r->p, &GB);
+    GB.N = GB.an = 0; /* (not set by geom_at) */
     double sp = norm3(r->v), vn = dot3(r->v, GB.n);
     if (vn > 1e-9 * sp) { /* the velocity points above the new patch: convex */
         tc_launch(r);
@@ -157,6 +158,7 @@ static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey, const cc_geom 
     double away = (r->v[0] * m[0] + r->v[1] * m[1]) / mm * sqrt(1 + sB * sB);
     cc_cell a = *c;
     *c = b;
+    geom_keep(c, r->p, &GB); /* the next step starts here */
     if (vn < -1e-9 * sp)
         terrain_event(r, RF_EV_VERTEX, 0);
     if (sB >= 0 && away < r->s->v_stop && sA < sB) { /* the new patch pulls back: a notch or hollow */
@@ -204,7 +206,7 @@ static int take_step(terrain_run *r, cc_cell *c, const cc_step *s, const cc_geom
         r->p[0] = st.ex > 0 ? c->x1 : c->P.xi;
     if (!cut && st.ey)
         r->p[1] = st.ey > 0 ? c->y1 : c->P.yj;
-    r->p[0] = fmin(fmax(r->p[0], c->P.xi), c->x1), r->p[1] = fmin(fmax(r->p[1], c->P.yj), c->y1);
+    r->p[0] = tc_fmin(tc_fmax(r->p[0], c->P.xi), c->x1), r->p[1] = tc_fmin(tc_fmax(r->p[1], c->P.yj), c->y1);
     cc_geom G1;
     tc_onto_surface(r, c, &G1);
     if (o == TERRAIN_PIECE_STOPPED) {
@@ -214,11 +216,12 @@ static int take_step(terrain_run *r, cc_cell *c, const cc_step *s, const cc_geom
     if (!cut && st.rest)
         memset(r->v, 0, sizeof r->v);
     geom_load(r, c, r->v, &G1);
+    geom_keep(c, r->p, &G1); /* the next step starts here */
     if (rolling || (!cut && st.slip_end))
         tc_set_rolling(r, &G1, 0);
     if (!exact) {
         double d[3] = {r->p[0] - p0[0], r->p[1] - p0[1], r->p[2] - p0[2]};
-        double N = fmax(0, fmin(G->N, G1.N));
+        double N = tc_fmax(0, tc_fmin(G->N, G1.N));
         double work = is_sphere(r) && !rolling ? 0 : (rolling ? c->mur : c->mu) * N * norm3(d);
         tc_cap_energy(r, e0, work);
     }
@@ -240,7 +243,8 @@ static int step_once(terrain_run *r, cc_cell *c)
         return 0;
     }
     cc_geom G;
-    geom(r, c, r->p, r->v, &G);
+    geom_at_cached(r, c, r->p, &G);
+    geom_load(r, c, r->v, &G);
     if (G.N <= 0) {
         tc_launch(r);
         return 0;
@@ -253,7 +257,8 @@ static int step_once(terrain_run *r, cc_cell *c)
         int k = rest_at(r, c);
         if (k != 1)
             return k;
-        geom(r, c, r->p, r->v, &G);
+        geom_at_cached(r, c, r->p, &G);
+        geom_load(r, c, r->v, &G);
         rolling = rolls(r, c, &G);
     }
     cc_step st;

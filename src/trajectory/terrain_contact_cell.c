@@ -6,6 +6,16 @@
 #include <math.h>
 #include <string.h>
 
+/* tan(x), from the thread's last argument when the same (a contact phase
+ * starts without a neighbour cell to take the friction from; the same bits). */
+static double tan_cached(double x)
+{
+    static _Thread_local double last_x = 0, last_tan = 0;
+    if (x != last_x)
+        last_tan = tan(x), last_x = x;
+    return last_tan;
+}
+
 /* Cell (i, j) into *c; its material's friction from *hint when the same
  * (NULL: none; a cell next to the current one mostly shares its material, and
  * tan is a tenth of a step's time).  0 outside the DEM or on no-data. */
@@ -14,7 +24,7 @@ int tc_cell_load_near(const terrain_run *r, long i, long j, cc_cell *c, const cc
     const rf_terrain *t = r->dem;
     if (i < 0 || j < 0 || (size_t)i + 1 >= t->nx || (size_t)j + 1 >= t->ny || !t->valid[(size_t)j * (t->nx - 1) + (size_t)i])
         return 0;
-    c->i = i, c->j = j;
+    c->i = i, c->j = j, c->has_g = 0;
     c->P = terrain_patch_of(t, (size_t)i, (size_t)j);
     const double *z = t->z + (size_t)j * t->nx + (size_t)i;
     double zs = fabs(z[0]) + fabs(z[1]) + fabs(z[t->nx]) + fabs(z[t->nx + 1]);
@@ -26,7 +36,7 @@ int tc_cell_load_near(const terrain_run *r, long i, long j, cc_cell *c, const cc
         c->mu = hint->mu, c->mur = hint->mur;
     } else {
         const rf_traj_material *m = &r->s->materials[c->mat];
-        c->mu = tan(m->friction_angle), c->mur = m->rolling_resistance;
+        c->mu = tan_cached(m->friction_angle), c->mur = m->rolling_resistance;
     }
     c->x1 = c->P.xi + t->dx, c->y1 = c->P.yj + t->dy;
     return 1;
@@ -39,7 +49,8 @@ int tc_cell_load(const terrain_run *r, long i, long j, cc_cell *c) { return tc_c
 int tc_pick_cell(const terrain_run *r, double x, double y, double hx, double hy, cc_cell *c)
 {
     const rf_terrain *t = r->dem;
-    double h = hypot(hx, hy), eps = 1e-9 * fmin(t->dx, t->dy), u, v;
+    double h = sqrt(hx * hx + hy * hy), /* (not hypot: a tenth of a step's time; no overflow at map scales) */
+           eps = 1e-9 * tc_fmin(t->dx, t->dy), u, v;
     size_t i, j;
     if (h > 0 && terrain_cell_of(t, x + eps * hx / h, y + eps * hy / h, &i, &j, &u, &v))
         return tc_cell_load(r, (long)i, (long)j, c);

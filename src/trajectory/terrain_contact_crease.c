@@ -25,7 +25,7 @@ int tc_crease_loads(const terrain_run *r, const cc_crease *k, double *resist, do
     double NA = (bA - cAB * bB) / det, NB = (bB - cAB * bA) / det;
     if (!(NA >= -1e-12 * r->g && NB >= -1e-12 * r->g))
         return 0;
-    NA = fmax(NA, 0), NB = fmax(NB, 0);
+    NA = tc_fmax(NA, 0), NB = tc_fmax(NB, 0);
     double s = k->axis ? GA.fy : GA.fx, q = sqrt(1 + s * s); /* slope along the edge (the same on both) */
     e[0] = k->axis ? 0 : 1 / q, e[1] = k->axis ? 1 / q : 0, e[2] = s / q;
     *along_g = -r->g * e[2];
@@ -82,7 +82,7 @@ int tc_crease_run(terrain_run *r, cc_crease k, cc_cell *c)
             tau_end = U > 0 ? d / U : INFINITY;
         else if (U * U + 2 * A * d >= 0)
             tau_end = 2 * d / (U + sqrt(U * U + 2 * A * d));
-        double tau = fmin(tau_stop, tau_end), a[3], zero[3] = {0, 0, 0}, scale;
+        double tau = tc_fmin(tau_stop, tau_end), a[3], zero[3] = {0, 0, 0}, scale;
         if (tau > 0 || U > 0)
             idle = 0;
         else if (idle >= 4) { /* at rest at a node that every segment pulls it back to: a pit */

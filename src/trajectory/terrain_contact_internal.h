@@ -14,20 +14,23 @@
 #include <math.h>
 
 typedef struct {
+    double n[3], gt[3];      /* unit normal; gravity along the surface [m/s^2] */
+    double N, an;            /* normal load per unit mass; normal acceleration kappa / |grad F| */
+    double fx, fy;           /* slopes */
+    double w;                /* 1 / |grad F| */
+} cc_geom;
+
+typedef struct {
     long i, j;
     terrain_patch P;
     int planar;              /* d = 0 within round-off */
     size_t mat;              /* its material */
     double mu, mur;          /* tan(friction angle), rolling resistance of its material */
     double x1, y1;           /* the north-east corner */
+    int has_g;               /* G holds the velocity-free geometry (geom_at) at the point gp */
+    double gp[3];
+    cc_geom G;
 } cc_cell;
-
-typedef struct {
-    double n[3], gt[3];      /* unit normal; gravity along the surface [m/s^2] */
-    double N, an;            /* normal load per unit mass; normal acceleration kappa / |grad F| */
-    double fx, fy;           /* slopes */
-    double w;                /* 1 / |grad F| */
-} cc_geom;
 
 typedef struct {
     double tau, a[3], dw[3]; /* duration, acceleration, spin rate of the piece */
@@ -43,6 +46,10 @@ typedef struct {
     cc_cell A, B;            /* the two cells, A west / south of B */
     int axis;                /* 0: the edge runs along x (y = const), 1: along y (x = const) */
 } cc_crease;
+
+/* fmin and fmax with the library's results (NaN: the other argument), inline. */
+static inline double tc_fmin(double a, double b) { return a < b || isnan(b) ? a : b; }
+static inline double tc_fmax(double a, double b) { return a > b || isnan(b) ? a : b; }
 
 static inline double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static inline double norm3(const double a[3]) { return sqrt(dot3(a, a)); }
@@ -76,6 +83,22 @@ static inline void geom_load(const terrain_run *r, const cc_cell *c, const doubl
     double kappa = 2 * c->P.d * v[0] * v[1];
     G->N = (r->g + kappa) * G->w;
     G->an = kappa * G->w;
+}
+
+/* geom_at at the point p of c, from the cell's cache when it holds that point (the same bits). */
+static inline void geom_at_cached(const terrain_run *r, const cc_cell *c, const double p[3], cc_geom *G)
+{
+    if (c->has_g && c->gp[0] == p[0] && c->gp[1] == p[1] && c->gp[2] == p[2])
+        *G = c->G;
+    else
+        geom_at(r, c, p, G);
+}
+
+/* Keep G (geom_at at p) in c's cache. */
+static inline void geom_keep(cc_cell *c, const double p[3], const cc_geom *G)
+{
+    c->has_g = 1, c->G = *G;
+    c->gp[0] = p[0], c->gp[1] = p[1], c->gp[2] = p[2];
 }
 
 static inline void geom(const terrain_run *r, const cc_cell *c, const double p[3], const double v[3], cc_geom *G)

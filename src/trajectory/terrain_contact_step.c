@@ -102,9 +102,9 @@ static double pass_time(double x0, double v, double a, double bound, int out, do
         return 0; /* on (or past) it, leaving */
     /* the farthest the path gets towards the bound over [0, h] (ends, apex):
      * clearly short of it, no root to look for (the roots cost a square root) */
-    double far = fmax(c0 * out, (c0 + v * h + 0.5 * a * h * h) * out), ta = a != 0 ? -v / a : -1;
+    double far = tc_fmax(c0 * out, (c0 + v * h + 0.5 * a * h * h) * out), ta = a != 0 ? -v / a : -1;
     if (ta > 0 && ta < h)
-        far = fmax(far, (c0 - 0.5 * v * v / a) * out);
+        far = tc_fmax(far, (c0 - 0.5 * v * v / a) * out);
     if (h < INFINITY && far < -1e-9 * (1 + fabs(bound)))
         return INFINITY; /* (an exact step may be unbounded: h infinite) */
     double t[2], best = INFINITY;
@@ -121,7 +121,7 @@ static void cut_at_edge(const terrain_run *r, const cc_cell *c, const double a[3
     const double *p = r->p, *v = r->v;
     double tw = pass_time(p[0], v[0], a[0], c->P.xi, -1, st->tau), te = pass_time(p[0], v[0], a[0], c->x1, 1, st->tau);
     double ts = pass_time(p[1], v[1], a[1], c->P.yj, -1, st->tau), tn = pass_time(p[1], v[1], a[1], c->y1, 1, st->tau);
-    double tx = fmin(tw, te), ty = fmin(ts, tn), tmin = fmin(tx, ty);
+    double tx = tc_fmin(tw, te), ty = tc_fmin(ts, tn), tmin = tc_fmin(tx, ty);
     if (!(tmin <= st->tau))
         return;
     st->tau = tmin, st->rest = st->slip_end = 0;
@@ -165,7 +165,7 @@ int tc_exact_step(terrain_run *r, const cc_cell *c, const cc_geom *G, int rollin
     }
     double tau_stop = A < 0 && U > 0 ? U / -A : INFINITY;
     memset(st, 0, sizeof *st);
-    st->tau = fmin(tau_stop, tau_slip);
+    st->tau = tc_fmin(tau_stop, tau_slip);
     for (int q = 0; q < 3; q++)
         st->a[q] = A * e[q];
     if (is_sphere(r) && !rolling) {
@@ -209,12 +209,12 @@ void tc_numeric_step(const terrain_run *r, const cc_cell *c, const cc_geom *G0, 
     cc_geom G = *G0;
     geom_load(r, c, r->v, &G);
     accel_g(r, c, &G, r->v, r->omega, rolling, a0, dw0);
-    double sp = norm3(r->v), am = norm3(a0), cell = fmin(r->dem->dx, r->dem->dy);
+    double sp = norm3(r->v), am = norm3(a0), cell = tc_fmin(r->dem->dx, r->dem->dy);
     double h = am > 0 ? sqrt(2 * CC_CELL_FRAC * cell / am) : INFINITY;
     if (sp > 0)
-        h = fmin(h, CC_CELL_FRAC * cell / sp);
+        h = tc_fmin(h, CC_CELL_FRAC * cell / sp);
     if (am > 0)
-        h = fmin(h, CC_DV_FRAC * fmax(sp, 0.05 * sqrt(r->g * cell)) / am);
+        h = tc_fmin(h, CC_DV_FRAC * tc_fmax(sp, 0.05 * sqrt(r->g * cell)) / am);
     double va0 = dot3(r->v, a0);
     if (va0 < 0 && sp * sp / -va0 <= h) { /* it comes to rest within the step: one Euler step there */
         memset(st, 0, sizeof *st);
@@ -244,7 +244,7 @@ void tc_numeric_step(const terrain_run *r, const cc_cell *c, const cc_geom *G0, 
         double err = 0.5 * norm3(d) * h, tol = CC_TOL * (sp + r->g * h);
         if (err <= tol || tries >= 30)
             break;
-        h *= fmax(0.2, 0.9 * sqrt(tol / err));
+        h *= tc_fmax(0.2, 0.9 * sqrt(tol / err));
     }
     memset(st, 0, sizeof *st);
     st->tau = h;
