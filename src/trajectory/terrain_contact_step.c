@@ -18,9 +18,15 @@
 /* Unit direction of motion: along v, or from rest along gravity (0 if neither). */
 static void motion_dir(const double v[3], const double gt[3], double e[3])
 {
-    double s = norm3(v), gs = norm3(gt);
+    double s = norm3(v);
+    if (s > 0) {
+        for (int k = 0; k < 3; k++)
+            e[k] = v[k] / s;
+        return;
+    }
+    double gs = norm3(gt); /* (only from rest: a square root less per call) */
     for (int k = 0; k < 3; k++)
-        e[k] = s > 0 ? v[k] / s : gs > 0 ? gt[k] / gs : 0;
+        e[k] = gs > 0 ? gt[k] / gs : 0;
 }
 
 /* Direction of the slip of a sliding block's contact point (2D friction_dir). */
@@ -100,6 +106,8 @@ static double pass_time(double x0, double v, double a, double bound, int out, do
     double c0 = x0 - bound;
     if (c0 * out >= 0 && (v * out > 0 || (v == 0 && a * out > 0)))
         return 0; /* on (or past) it, leaving */
+    if (v * out <= 0 && a * out <= 0)
+        return INFINITY; /* never moving outwards: no root can leave (before the bounds' arithmetic) */
     /* the farthest the path gets towards the bound over [0, h] (ends, apex):
      * clearly short of it, no root to look for (the roots cost a square root) */
     double far = tc_fmax(c0 * out, (c0 + v * h + 0.5 * a * h * h) * out), ta = a != 0 ? -v / a : -1;
