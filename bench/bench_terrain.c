@@ -11,7 +11,9 @@
  * growth must stay within the per-sample arrays), and the mean runout,
  * impacts and contact steps per trajectory (the latter over 1000 recorded
  * trajectories).
- * Usage: bench_terrain [samples (default 100000)] [release y (default 850 m)] */
+ * Usage: bench_terrain [samples (default 100000)] [release y (default 850 m)] [once]
+ * "once": one run of `samples` blocks (>= 100) at 1 thread and nothing else,
+ * for instruction counts (valgrind --tool=callgrind --toggle-collect=tmc_worker). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -151,13 +153,26 @@ static int measure(rf_traj_spec *s, size_t big)
     return 0;
 }
 
+/* One run of n blocks at one thread: its rate, mean runout and steps. */
+static int measure_once(rf_traj_spec *s, size_t n)
+{
+    rf_traj_ensemble e;
+    double rate;
+    if (run(s, n, 0, 1, &e, &rate))
+        return 1;
+    printf("mean runout %.6f m over %zu blocks\n", mean_of(e.runout_x, e.samples), e.samples);
+    rf_traj_ensemble_free(&e);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     size_t big = argc > 1 ? (size_t)strtoull(argv[1], NULL, 10) : 100000;
     double release_y = argc > 2 ? strtod(argv[2], NULL) : 850;
+    int once = argc > 3 && !strcmp(argv[3], "once");
     char dir[] = "/tmp/bench_terrain_XXXXXX", path[512];
-    if (big < 10000 || !mkdtemp(dir)) {
-        fprintf(stderr, "usage: bench_terrain [samples >= 10000] [release y m]\n");
+    if (big < (once ? 100 : 10000) || !mkdtemp(dir)) {
+        fprintf(stderr, "usage: bench_terrain [samples >= 10000] [release y m] [once (samples >= 100)]\n");
         return 2;
     }
     snprintf(path, sizeof path, "%s/dem.asc", dir);
@@ -172,7 +187,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_terrain: %s\n", bad ? "cannot write the grids" : err.msg);
     } else {
         printf("terrain: 501 x 501 nodes at 2 m, sphere r 0.5 m, constant law, rasters at 2 m (5 statistics)\n");
-        rc = measure(&s, big);
+        rc = once ? measure_once(&s, big) : measure(&s, big);
         rf_traj_spec_free(&s);
     }
     const char *names[3] = {"dem.asc", "classes.asc", "bench.yaml"};

@@ -7,7 +7,7 @@
  *                       rasters (terrain_io_release.c), GeoTIFF and GeoPackage (terrain_io_write.c)
  *   terrain_flight.c    exact first impact of a parabola with the bilinear surface
  *   terrain_bounce.c    the bounce laws in the local frame of the normal (3D)
- *   terrain_contact.c   sliding and rolling on the surface
+ *   terrain_contact*.c  sliding and rolling on the surface (terrain_contact_internal.h)
  *   terrain_barrier.c   barrier crossings of a piece (first crossing, capacity rule)
  *   terrain_simulate.c  one trajectory: the state machine over those
  *   terrain_hazard.c    hazard raster accumulators (counts, log histograms), merge, percentiles
