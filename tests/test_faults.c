@@ -16,9 +16,13 @@
  *     fails with SQLITE_IOERR_WRITE on the n-th call;
  *   - stdio files (reports): fclose of the n-th file reports ENOSPC, as a
  *     full disk does when the buffer is flushed.
+ *   - file writes of the JSON writers: the file size limit (RLIMIT_FSIZE)
+ *     set to n bytes, so that the write crossing it fails with EFBIG;
  * Operations: the TM (formula model), the result store, one FE impact (as a
- * study's model), a whole study run (rf_study_run) into a folder, and a
- * trajectory run with its CSV writers (a failed close must fail the run). */
+ * study's model), a whole study run (rf_study_run) into a folder, a
+ * trajectory run with its CSV writers (a failed close must fail the run),
+ * and a profile run's and a terrain run's result.json
+ * (rf_traj_write_json_file: never left truncated, a previous one kept). */
 #include <errno.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -30,7 +34,9 @@
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <signal.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -38,6 +44,7 @@
 #include "rockfuzz/store.h"
 #include "rockfuzz/study.h"
 #include "rockfuzz/study_run.h"
+#include "rockfuzz/terrain.h"
 #include "rockfuzz/tm.h"
 #include "rockfuzz/trajectory.h"
 
@@ -452,6 +459,141 @@ static rf_status op_traj(void *user, rf_error *err)
     return st;
 }
 
+/* The JSON document of a profile run and of a terrain run (a plane DEM as an
+ * ESRI ASCII grid written here) into DIR/result.json by
+ * rf_traj_write_json_file: on any failure DIR/result.json.tmp is gone and
+ * DIR/result.json is byte for byte what it was before; on success it is the
+ * whole document. */
+static const char *terrain_fmt =
+    "name: t\nterrain: {dem: %s/dem.asc, material: rock}\n"
+    "materials: {rock: {R_n: {uniform: [0.3, 0.4]}, R_t: 0.8, friction_angle: 30}}\n"
+    "block: {shape: sphere, radius: 0.5, density: 2600}\n"
+    "release: {points: [[50, 80], [40, 85]], height: 1.0, velocity: [0, 0, 0]}\n"
+    "bounce: {law: constant}\nbarriers: [{name: fence, line: [[10, 40], [90, 40]], height: 4, capacity: 2.0e6}]\n"
+    "samples: 10\nrecord: 3\nseed: 3\n";
+
+typedef struct {
+    char dir[64];
+    char path[128];  /* DIR/result.json */
+    char yaml[1024]; /* the trajectory or terrain file */
+    char before[1 << 17];
+    long n_before;   /* bytes of result.json before the operation, -1: none */
+} json_case;
+
+static long slurp(const char *path, char *buf, size_t size)
+{
+    long saved = atomic_load(&alloc_countdown);
+    atomic_store(&alloc_countdown, 0);
+    FILE *f = fopen(path, "rb");
+    long n = -1;
+    if (f) {
+        n = (long)fread(buf, 1, size - 1, f);
+        buf[n] = '\0';
+        __real_fclose(f);
+    }
+    atomic_store(&alloc_countdown, saved);
+    return n;
+}
+
+/* Load, run and write the JSON file (ensemble and statistics freed). */
+static rf_status json_run(json_case *c, rf_traj_spec *spec, rf_traj_ensemble *e, rf_traj_stats *t, rf_error *err)
+{
+    rf_status st = rf_traj_load_buffer("j.yaml", c->yaml, strlen(c->yaml), spec, err);
+    if (st != RF_OK)
+        return st;
+    st = spec->terrain ? rf_terrain_run(spec, 1, NULL, NULL, e, err) : rf_traj_run(spec, 1, e, err);
+    if (st == RF_OK) {
+        if ((st = rf_traj_stats_compute_spec(spec, e, t, err)) != RF_OK)
+            rf_traj_ensemble_free(e);
+    }
+    if (st != RF_OK)
+        rf_traj_spec_free(spec);
+    return st;
+}
+
+static rf_status op_json(void *user, rf_error *err)
+{
+    json_case *c = user;
+    c->n_before = slurp(c->path, c->before, sizeof c->before);
+    rf_traj_spec spec;
+    rf_traj_ensemble e;
+    rf_traj_stats t;
+    rf_status st = json_run(c, &spec, &e, &t, err);
+    if (st != RF_OK)
+        return st;
+    st = rf_traj_write_json_file(c->path, &spec, &e, &t, 100, err);
+    rf_traj_stats_free(&t);
+    rf_traj_ensemble_free(&e);
+    rf_traj_spec_free(&spec);
+    return st;
+}
+
+static void check_json(void *user, rf_status st)
+{
+    json_case *c = user;
+    char tmp[160], now[1 << 17];
+    snprintf(tmp, sizeof tmp, "%s.tmp", c->path);
+    assert_int_not_equal(access(tmp, F_OK), 0);
+    long n = slurp(c->path, now, sizeof now);
+    if (st != RF_OK) {
+        assert_int_equal(n, c->n_before);
+        assert_true(n < 0 || !memcmp(now, c->before, (size_t)n));
+        return;
+    }
+    assert_true(n > 100 && n < (long)sizeof now - 1);
+    assert_true(now[0] == '{' && !strcmp(now + n - 2, "}\n") && strstr(now, "\"wall_seconds\": "));
+    assert_non_null(strstr(now, "\"fence\""));
+}
+
+/* Failed writes: the file size limit (RLIMIT_FSIZE, SIGXFSZ ignored) set to
+ * n bytes makes the write that crosses it fail with EFBIG, as a full disk
+ * does, at every n from 0 to the document's size (a sample of them). */
+static void write_limits(json_case *c, const char *what)
+{
+    rf_traj_spec spec;
+    rf_traj_ensemble e;
+    rf_traj_stats t;
+    rf_error err;
+    if (json_run(c, &spec, &e, &t, &err) != RF_OK)
+        fail_msg("%s: %s", what, err.msg);
+    assert_int_equal(rf_traj_write_json_file(c->path, &spec, &e, &t, 100, &err), RF_OK);
+    check_json(c, RF_OK);
+    long size = slurp(c->path, c->before, sizeof c->before), failed = 0;
+    c->n_before = size;
+    struct rlimit saved, lim;
+    assert_int_equal(getrlimit(RLIMIT_FSIZE, &saved), 0);
+    void (*old)(int) = signal(SIGXFSZ, SIG_IGN);
+    for (long n = 0; n < size; n += size / 60 + 1) {
+        lim = saved, lim.rlim_cur = (rlim_t)n;
+        assert_int_equal(setrlimit(RLIMIT_FSIZE, &lim), 0);
+        memset(&err, 0, sizeof err);
+        rf_status st = rf_traj_write_json_file(c->path, &spec, &e, &t, 100, &err);
+        assert_int_equal(setrlimit(RLIMIT_FSIZE, &saved), 0);
+        if (st == RF_OK)
+            fail_msg("%s: a file size limit of %ld < %ld bytes, yet the write reported success", what, n, size);
+        if (!strstr(err.msg, c->path) || !strstr(err.msg, "File too large"))
+            fail_msg("%s: limit %ld: '%s'", what, n, err.msg);
+        check_json(c, st);
+        failed++;
+    }
+    signal(SIGXFSZ, old);
+    print_message("%-22s %-12s: %ld bytes, %ld limits: %ld failed cleanly\n", what, "write", size, failed, failed);
+    rf_traj_stats_free(&t);
+    rf_traj_ensemble_free(&e);
+    rf_traj_spec_free(&spec);
+}
+
+static void json_faults(json_case *c, const char *what)
+{
+    write_limits(c, what);
+    inject(what, FAULT_ALLOC, op_json, check_json, c);
+    strict = 1; /* a failed close is a failed write */
+    inject(what, FAULT_CLOSE, op_json, check_json, c);
+    strict = 0;
+    unlink(c->path); /* and with no file before */
+    inject(what, FAULT_CLOSE, op_json, check_json, c);
+}
+
 /* ---- the tests ---------------------------------------------------------- */
 
 /* A fresh folder, in memory (/dev/shm) when there is one: the loops fsync a lot. */
@@ -523,6 +665,37 @@ static void test_traj_run(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+static void test_traj_json(void **state)
+{
+    (void)state;
+    json_case *c = calloc(1, sizeof *c);
+    assert_non_null(c);
+    temp_dir(c->dir, sizeof c->dir);
+    assert_non_null(mkdtemp(c->dir));
+    snprintf(c->path, sizeof c->path, "%s/result.json", c->dir);
+    snprintf(c->yaml, sizeof c->yaml, "%s", traj_file);
+    json_faults(c, "trajectory JSON");
+    /* a terrain run: a plane falling to the south, 41 x 41 nodes 2.5 m apart */
+    char dem[160];
+    snprintf(dem, sizeof dem, "%s/dem.asc", c->dir);
+    FILE *f = fopen(dem, "w");
+    assert_non_null(f);
+    fprintf(f, "ncols 41\nnrows 41\nxllcorner -1.25\nyllcorner -1.25\ncellsize 2.5\n");
+    for (int r = 0; r < 41; r++) {
+        for (int k = 0; k < 41; k++)
+            fprintf(f, "%g ", 0.6 * 2.5 * (40 - r));
+        fputc('\n', f);
+    }
+    assert_int_equal(__real_fclose(f), 0);
+    snprintf(c->yaml, sizeof c->yaml, terrain_fmt, c->dir);
+    unlink(c->path);
+    json_faults(c, "terrain JSON");
+    char cmd[160];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", c->dir);
+    assert_int_equal(system(cmd), 0);
+    free(c);
+}
+
 int main(void)
 {
     install_faults();
@@ -532,6 +705,7 @@ int main(void)
         cmocka_unit_test(test_fe_impact),
         cmocka_unit_test(test_study_run),
         cmocka_unit_test(test_traj_run),
+        cmocka_unit_test(test_traj_json),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -43,6 +43,14 @@ rf_status rf_terrain_from_nodes(size_t nx, size_t ny, double x0, double y0, doub
  * geographic or non-metre CRS is refused; no CRS at all is accepted and
  * said so by rf_terrain_crs_wkt returning ""), no-data cells as NaN. */
 rf_status rf_terrain_read(const char *path, int band, rf_terrain **t, rf_error *err);
+/* The same, of the nodes covering window = {xmin, ymin, xmax, ymax} [m]
+ * (NULL: the whole DEM): the cell centres in it and the next one beyond each
+ * side (clamped to the raster), so the surface covers the window; only those
+ * rows and columns are read.  The memory the surface takes is estimated
+ * before anything is allocated and refused beyond RF_TERRAIN_MAX_DEM_BYTES,
+ * naming the file, its size and the window. */
+#define RF_TERRAIN_MAX_DEM_BYTES (4.0 * 1024 * 1024 * 1024)
+rf_status rf_terrain_read_window(const char *path, int band, const double *window, rf_terrain **t, rf_error *err);
 /* Material per cell from an integer raster: each raster value class_value[k]
  * maps to material class_material[k]; the raster is sampled at the centre of
  * each surface cell (nearest value, so any grid in the same CRS works); a
@@ -102,6 +110,8 @@ typedef struct rf_terrain_def {
     size_t material;            /* without a class raster: the one material */
     char *roughness;            /* raster of roughness SD [deg] per cell, or NULL */
     int roughness_band;         /* its band, default 1 */
+    int has_window;             /* terrain.window given: only the DEM's nodes it needs are read */
+    double window[4];           /* xmin, ymin, xmax, ymax [m] */
     rf_terrain_release release;
     /* per collector (spec->collectors[c]): its line on the map */
     size_t n_barriers;          /* = spec->n_collectors (barrier_start holds n_barriers + 1) */

@@ -508,6 +508,13 @@ double rf_traj_normal_quantile(double p);
  * samples, the recorded trajectories (at most max_trajectories), statistics. */
 void rf_traj_write_json(FILE *f, const rf_traj_spec *spec, const rf_traj_ensemble *ens, const rf_traj_stats *st,
                         size_t max_trajectories);
+/* traj_json_file.c: that document (a terrain run's, rf_terrain_write_json,
+ * when spec->terrain) into the file at path, written as path.tmp and renamed
+ * into place only when every byte was written and closed: a failed write
+ * (full disk, file size limit) or close is an error naming the file and the
+ * cause, path.tmp is removed and a previous file at path stays as it was. */
+rf_status rf_traj_write_json_file(const char *path, const rf_traj_spec *spec, const rf_traj_ensemble *ens,
+                                  const rf_traj_stats *st, size_t max_trajectories, rf_error *err);
 /* A readable summary (states, runout, per collector reach/energy/height). */
 void rf_traj_write_summary(FILE *f, const rf_traj_spec *spec, const rf_traj_ensemble *ens, const rf_traj_stats *st);
 /* traj_csv.c: DIR/trajectories.csv (recorded paths: every event and 15

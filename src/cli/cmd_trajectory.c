@@ -156,14 +156,8 @@ static int write_outputs(const traj_args *a, const rf_traj_spec *s, const rf_tra
         return 1;
     }
     snprintf(path, sizeof path, "%s/result.json", a->out);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "rockfuzz trajectory: cannot write %s\n", path);
-        return 1;
-    }
-    write_json(f, s, e, st, a->max_traj);
-    if (fclose(f) != 0) {
-        fprintf(stderr, "rockfuzz trajectory: cannot write %s\n", path);
+    if (rf_traj_write_json_file(path, s, e, st, a->max_traj, &err) != RF_OK) {
+        fprintf(stderr, "rockfuzz trajectory: %s\n", err.msg);
         return 1;
     }
     if (write_invocation(a) != 0)

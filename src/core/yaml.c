@@ -415,6 +415,63 @@ rf_status yr_check_text(const char *name, const char *buf, size_t len, rf_error 
     return RF_OK;
 }
 
+/* Flow collections ('[', '{') nested deeper than this are refused before
+ * libfyaml parses them: it takes ~250 bytes per level (4 MB of '[': 1 GB and
+ * over 30 s) before its own depth error.  The nodes' walk stops at the same
+ * depth (yr_line). */
+#define YR_MAX_FLOW_DEPTH 64
+
+/* The scan's place: line, column, and the last character that was not blank. */
+typedef struct {
+    int line;
+    size_t col;
+    char prev;
+} flow_pos;
+
+/* A bracket or quote opens something only where a token starts: after a line's indent, ':', ',', '[', '{', '-' or
+ * '?' (in "a[1]" or "O'Brien" it is part of a plain scalar). */
+static int token_start(char prev) { return prev && strchr("\n:,[{-?", prev) != NULL; }
+
+/* The end of the quoted scalar opened at buf[k] (the index of its closing quote, or len), counting lines. */
+static size_t skip_quoted(const char *buf, size_t len, size_t k, flow_pos *at)
+{
+    const char q = buf[k];
+    for (k++; k < len && (buf[k] != q || (q == '\'' && k + 1 < len && buf[k + 1] == '\'')); k++) {
+        if ((q == '"' && buf[k] == '\\' && k + 1 < len) || (q == '\'' && buf[k] == '\''))
+            k++; /* an escape, or '' in single quotes */
+        if (buf[k] == '\n')
+            at->line++, at->col = 0;
+    }
+    return k;
+}
+
+static rf_status flow_depth_check(const char *name, const char *buf, size_t len, rf_error *err)
+{
+    flow_pos at = {1, 1, '\n'};
+    int depth = 0;
+    for (size_t k = 0; k < len; k++, at.col++) {
+        const char ch = buf[k];
+        if (ch == '\n') {
+            at.line++, at.col = 0, at.prev = '\n';
+        } else if (ch == '#' && (k == 0 || buf[k - 1] == ' ' || buf[k - 1] == '\t' || buf[k - 1] == '\n')) {
+            while (k + 1 < len && buf[k + 1] != '\n')
+                k++;
+        } else if ((ch == '"' || ch == '\'') && token_start(at.prev)) {
+            k = skip_quoted(buf, len, k, &at), at.prev = ch;
+        } else if ((ch == '[' || ch == '{') && token_start(at.prev)) {
+            if (++depth > YR_MAX_FLOW_DEPTH)
+                return rf_fail(err, RF_EPARSE, "%s:%d: column %zu: collections nested deeper than %d levels", name,
+                               at.line, at.col, YR_MAX_FLOW_DEPTH);
+            at.prev = ch;
+        } else if ((ch == ']' || ch == '}') && depth > 0) {
+            depth--, at.prev = ch;
+        } else if (ch != ' ' && ch != '\t' && ch != '\r') {
+            at.prev = strchr("[{\"'", ch) ? 'a' : ch; /* inside a plain scalar: it opens nothing */
+        }
+    }
+    return RF_OK;
+}
+
 static rf_status first_document(yr_doc *d, const char *name, const char *buf, size_t len, const char *what,
                                 rf_error *err)
 {
@@ -456,6 +513,8 @@ rf_status yr_doc_load(yr_doc *d, const char *name, const char *buf, size_t len, 
 {
     memset(d, 0, sizeof *d);
     rf_status st = yr_check_text(name, buf, len, err);
+    if (st == RF_OK)
+        st = flow_depth_check(name, buf, len, err);
     if (st != RF_OK)
         return st;
     struct fy_diag_cfg dc;

@@ -63,7 +63,9 @@ rf_status yr_next(yr_ctx *c, yr_iter *it, const char *path, const char **key, st
 rf_status yr_check_text(const char *name, const char *buf, size_t len, rf_error *err);
 
 /* Exactly one YAML document parsed from buf (checked with yr_check_text
- * first); `what` names the kind of file in messages ("study file").  Invalid
+ * first, and for flow collections nested deeper than 64 levels, refused
+ * before libfyaml spends memory on them); `what` names the kind of file in
+ * messages ("study file").  Invalid
  * YAML, no document or a second one is a located error.  Free with
  * yr_doc_free (also after a failure). */
 typedef struct {

@@ -117,6 +117,51 @@ static rf_status budget_check(const char *who, const fem_drive_params *p, const 
                    budget, inputs);
 }
 
+/* Before meshing (a nearly incompressible slope's automatic domain takes
+ * minutes to mesh): a lower bound of the step count from one element the mesh
+ * is known to hold, the slope's cube (square) of side h = a / refinement under
+ * the contact (a the Hertz radius at the normal speed).  Its own stable step
+ * is at most h / c_p (a lumped 1D bar: h / c_p, a square or cube: less), and
+ * the run's step is the least over its elements, so the run takes at least
+ * least_time / (h / c_p) steps.  Only without a layer (the element under the
+ * contact is then the layer's). */
+static rf_status budget_before_mesh(const fem_geometry *g, const fem_attempt *a, rf_error *err)
+{
+    const rf_impact_input *in = a->in;
+    if (!in || in->layer_thickness > 0)
+        return RF_OK;
+    rf_hertz_reference H;
+    rf_wave_speeds w;
+    rf_impact_hertz_reference(in, &H);
+    rf_impact_wave_speeds(in, 1, &w);
+    const double h = H.contact_radius / rf_fem_refinement(a->opt, !strcmp(g->who, "fem3d"));
+    const fem_drive_params p = {.dt = h / w.p, .t_hertz = H.duration};
+    const double steps = ceil(least_time(&p, a->opt) / p.dt);
+    char cause[256] = "", text[512], count[32];
+    const double t = least_time(&p, a->opt);
+    snprintf(count, sizeof count, steps < 1e12 ? "%.0f" : "%.3g", steps); /* exact: a budget can be set to it */
+    if (isfinite(steps) && steps <= step_budget(a->opt)) { /* a long run allowed: said before the mesh */
+        if (steps > RF_FEM_DEFAULT_MAX_STEPS && a->opt->say) {
+            snprintf(text, sizeof text, "%s: at least %s time steps (of at most %.3g s) for %.3g s simulated, "
+                     "estimated before meshing; meshing comes first", g->who, count, p.dt, t);
+            a->opt->say(a->opt->say_ctx, text);
+        }
+        return RF_OK;
+    }
+    if (!isfinite(steps))
+        return RF_OK; /* named after assembly, with the stiffness inputs */
+    if (in->slope_poisson > 0.49)
+        snprintf(cause, sizeof cause, "the slope is nearly incompressible (poisson = %.10g: its P waves run at "
+                 "%.3g m/s, %.3g times its S waves), ", in->slope_poisson, w.p, w.p / w.s);
+    return rf_fail(err, RF_EINVAL, "%s: before meshing: the run needs at least %s time steps (of at most %.3g s) for "
+                   "%.3g s simulated (%s), more than the budget of %.3g steps (max_steps; `rockfuzz impact --max-steps "
+                   "N`, 0 = no limit): %sthe time step is at most the finest element's h / c_p = %.3g m / %.3g m/s "
+                   "(slope E = %g Pa, poisson = %.10g, density = %g kg/m^3; h = Hertz contact radius %.3g m / "
+                   "refinement)", g->who, count, p.dt, t, a->opt->end_time > 0 ? "the given end time" : "1.3 Hertz "
+                   "contact durations at least", step_budget(a->opt), cause, h, w.p, in->slope_E, in->slope_poisson,
+                   in->slope_density, H.contact_radius);
+}
+
 /* After PROBE_STEPS steps (wall0: when the first began): say the time a long run will take. */
 static void say_estimate(const fem_drive_params *p, const rf_fem_options *o, const fem_run *R, long done,
                          double wall0)
@@ -205,6 +250,8 @@ rf_status fem_drive(const fem_geometry *g, void *run, const fem_attempt *a, long
     memset(&R, 0, sizeof R);
     fem_drive_params p = {0};
     rf_status st = g->prepare(run, a, err);
+    if (st == RF_OK)
+        st = budget_before_mesh(g, a, err);
     if (st == RF_OK && (st = g->mesh(run, err)) != RF_OK) /* not after prepare: its input may be invalid or NULL */
         mesh_hint(a->in, err);
     if (st == RF_OK)

@@ -6,8 +6,10 @@
  * the raster's rows flipped so that j grows to the north; dx != dy allowed).
  * No-data cells (and NaN) become NaN nodes; a value beyond
  * RF_TRAJ_MAX_COORD that is not the declared no-data is refused (a Float32
- * DEM holding 3.4e38 without saying it is no-data).  The size is checked
- * before anything is read.
+ * DEM holding 3.4e38 without saying it is no-data).  Only the nodes a
+ * terrain.window needs are read (all without one), row by row; the memory
+ * they take is estimated before anything is allocated and refused beyond
+ * RF_TERRAIN_MAX_DEM_BYTES (terrain.h) with the figure.
  *
  * Classes and roughness: a raster in the DEM's CRS (or none), on any north-up
  * grid, sampled at each surface cell's centre (the midpoint of its four
@@ -37,36 +39,86 @@
 
 /* ---- the DEM ---- */
 
-static rf_status check_dem_size(const traj_gdal_raster *r, const char *path, rf_error *err)
+/* The part of the raster read: columns c0 .. c0 + w - 1, rows r0 .. r0 + h - 1. */
+typedef struct {
+    int c0, r0, w, h;
+    const double *window;       /* the terrain.window asked, or NULL: the whole raster */
+} dem_window;
+
+/* The cell centres within [lo, hi] along one axis (pixel coordinate f = (map
+ * - origin) / size, centres at k + 0.5) and the next beyond each side, clamped
+ * to [0, n - 1]; 0 when none of them is in the raster. */
+static int axis_range(double lo, double hi, int n, int *k0, int *k1)
 {
-    size_t w = (size_t)r->w, h = (size_t)r->h;
-    if (w < 2 || h < 2)
-        return rf_fail(err, RF_EINVAL, "the DEM '%s' has %zu x %zu cells; a surface needs at least 2 x 2", path, w, h);
-    double gb = (double)w * (double)h * (sizeof(double) + 1) / 1e9;
-    if (w > TERRAIN_MAX_SIDE || h > TERRAIN_MAX_SIDE || (double)w * (double)h > (double)TERRAIN_MAX_NODES)
-        return rf_fail(err, RF_EINVAL, "the DEM '%s' has %zu x %zu cells, which would take %.1f GB of memory; at "
-                       "most %zu per side and %zu in all are read: cut it (gdal_translate -projwin) or coarsen it "
-                       "(gdalwarp -tr)", path, w, h, gb, TERRAIN_MAX_SIDE, TERRAIN_MAX_NODES);
+    double a = floor(lo - 0.5), b = ceil(hi - 0.5);
+    if (!(b >= 0 && a <= n - 1))
+        return 0;
+    *k0 = (int)fmax(a, 0), *k1 = (int)fmin(b, n - 1);
+    return 1;
+}
+
+/* The nodes the window needs (the whole raster without one). */
+static rf_status dem_window_of(const traj_gdal_raster *r, const char *path, const double *win, dem_window *w,
+                               rf_error *err)
+{
+    w->window = win;
+    if (!win) {
+        *w = (dem_window){0, 0, r->w, r->h, NULL};
+        return RF_OK;
+    }
+    int c0 = 0, c1 = 0, r0 = 0, r1 = 0;
+    int in = axis_range((win[0] - r->gt[0]) / r->gt[1], (win[2] - r->gt[0]) / r->gt[1], r->w, &c0, &c1) &&
+             axis_range((win[3] - r->gt[3]) / r->gt[5], (win[1] - r->gt[3]) / r->gt[5], r->h, &r0, &r1);
+    if (!in)
+        return rf_fail(err, RF_EINVAL, "the DEM '%s': terrain.window [%.10g, %.10g, %.10g, %.10g] lies outside its "
+                       "extent [%.10g, %.10g, %.10g, %.10g]", path, win[0], win[1], win[2], win[3], r->gt[0],
+                       r->gt[3] + r->h * r->gt[5], r->gt[0] + r->w * r->gt[1], r->gt[3]);
+    *w = (dem_window){c0, r0, c1 - c0 + 1, r1 - r0 + 1, win};
     return RF_OK;
 }
 
-/* Raster row r into surface row j = h - 1 - r, no-data as NaN; refuses a huge undeclared value. */
-static rf_status dem_row(const traj_gdal_raster *r, const char *path, int row, rf_terrain *t, rf_error *err)
+/* The surface's memory (a double per node, a byte per cell), estimated before allocating. */
+static rf_status check_dem_size(const traj_gdal_raster *r, const char *path, const dem_window *win, rf_error *err)
 {
-    double *z = t->z + (size_t)(r->h - 1 - row) * t->nx;
-    if (GDALRasterIO(r->band, GF_Read, 0, row, r->w, 1, z, r->w, 1, GDT_Float64, 0, 0) != CE_None)
+    size_t w = (size_t)win->w, h = (size_t)win->h;
+    char where[200] = "the whole DEM (no terrain.window)";
+    if (win->window)
+        snprintf(where, sizeof where, "terrain.window [%.10g, %.10g, %.10g, %.10g]", win->window[0], win->window[1],
+                 win->window[2], win->window[3]);
+    if (w < 2 || h < 2)
+        return rf_fail(err, RF_EINVAL, "the DEM '%s' (%d x %d cells): %s covers %zu x %zu cells; a surface needs at "
+                       "least 2 x 2", path, r->w, r->h, where, w, h);
+    double bytes = (double)w * (double)h * sizeof(double) + (double)(w - 1) * (double)(h - 1);
+    if (w > TERRAIN_MAX_SIDE || h > TERRAIN_MAX_SIDE || (double)w * (double)h > (double)TERRAIN_MAX_NODES ||
+        bytes > RF_TERRAIN_MAX_DEM_BYTES)
+        return rf_fail(err, RF_EINVAL, "the DEM '%s' (%d x %d cells): %s covers %zu x %zu cells, which would take "
+                       "%.2f GB of memory; at most %zu cells per side, %zu in all and %.2f GB are read: give a "
+                       "smaller terrain.window [xmin, ymin, xmax, ymax], cut the DEM (gdal_translate -projwin) or "
+                       "coarsen it (gdalwarp -tr)", path, r->w, r->h, where, w, h, bytes / 1e9, TERRAIN_MAX_SIDE,
+                       TERRAIN_MAX_NODES, RF_TERRAIN_MAX_DEM_BYTES / 1e9);
+    return RF_OK;
+}
+
+/* Raster row `row` (columns of the window) into surface row j = r0 + h - 1 - row, no-data as NaN; refuses a huge
+ * undeclared value. */
+static rf_status dem_row(const traj_gdal_raster *r, const char *path, const dem_window *w, int row, rf_terrain *t,
+                         rf_error *err)
+{
+    double *z = t->z + (size_t)(w->r0 + w->h - 1 - row) * t->nx;
+    if (GDALRasterIO(r->band, GF_Read, w->c0, row, w->w, 1, z, w->w, 1, GDT_Float64, 0, 0) != CE_None)
         return rf_fail(err, RF_EIO, "cannot read row %d of the DEM '%s'", row, path);
-    for (int c = 0; c < r->w; c++) {
-        if (traj_gdal_is_nodata(r, z[c])) {
-            z[c] = NAN;
-        } else if (!(fabs(z[c]) <= RF_TRAJ_MAX_COORD)) {
+    for (int k = 0; k < w->w; k++) {
+        int c = w->c0 + k;
+        if (traj_gdal_is_nodata(r, z[k])) {
+            z[k] = NAN;
+        } else if (!(fabs(z[k]) <= RF_TRAJ_MAX_COORD)) {
             char nd[64] = "none is declared";
             if (r->has_nodata)
                 snprintf(nd, sizeof nd, "it is %.9g", r->nodata);
             return rf_fail(err, RF_EINVAL, "the DEM '%s': cell (column %d, row %d) at map point (%.10g, %.10g) holds "
                            "%g, beyond +-%g m and not the no-data value (%s); declare the no-data value "
                            "(gdal_edit.py -a_nodata VALUE) or correct the cell", path, c, row,
-                           r->gt[0] + (c + 0.5) * r->gt[1], r->gt[3] + (row + 0.5) * r->gt[5], z[c], RF_TRAJ_MAX_COORD,
+                           r->gt[0] + (c + 0.5) * r->gt[1], r->gt[3] + (row + 0.5) * r->gt[5], z[k], RF_TRAJ_MAX_COORD,
                            nd);
         }
     }
@@ -92,14 +144,19 @@ static rf_status dem_crs(const traj_gdal_raster *r, rf_terrain *t, rf_error *err
     return RF_OK;
 }
 
-static rf_status dem_build(const traj_gdal_raster *r, const char *path, rf_terrain **out, rf_error *err)
+/* The window's rows one at a time (GDAL reads the blocks holding them). */
+static rf_status dem_build(const traj_gdal_raster *r, const char *path, const double *window, rf_terrain **out,
+                           rf_error *err)
 {
-    rf_status st = check_dem_size(r, path, err);
+    dem_window w = {0};
+    rf_status st = dem_window_of(r, path, window, &w, err);
+    if (st == RF_OK)
+        st = check_dem_size(r, path, &w, err);
     rf_terrain *t = NULL;
-    if (st == RF_OK && (st = terrain_alloc((size_t)r->w, (size_t)r->h, &t, err)) != RF_OK)
+    if (st == RF_OK && (st = terrain_alloc((size_t)w.w, (size_t)w.h, &t, err)) != RF_OK)
         rf_error_prefix(err, "the DEM '%s'", path);
-    for (int row = 0; st == RF_OK && row < r->h; row++)
-        st = dem_row(r, path, row, t, err);
+    for (int row = w.r0; st == RF_OK && row < w.r0 + w.h; row++)
+        st = dem_row(r, path, &w, row, t, err);
     if (st == RF_OK)
         st = dem_crs(r, t, err);
     if (st != RF_OK) {
@@ -107,14 +164,14 @@ static rf_status dem_build(const traj_gdal_raster *r, const char *path, rf_terra
         return st;
     }
     t->dx = r->gt[1], t->dy = -r->gt[5];
-    t->x0 = r->gt[0] + 0.5 * r->gt[1];
-    t->y0 = r->gt[3] + (r->h - 0.5) * r->gt[5];
+    t->x0 = r->gt[0] + (w.c0 + 0.5) * r->gt[1];
+    t->y0 = r->gt[3] + (w.r0 + w.h - 0.5) * r->gt[5];
     terrain_finish(t);
     *out = t;
     return RF_OK;
 }
 
-rf_status rf_terrain_read(const char *path, int band, rf_terrain **t, rf_error *err)
+rf_status rf_terrain_read_window(const char *path, int band, const double *window, rf_terrain **t, rf_error *err)
 {
     *t = NULL;
     traj_gdal_capture cap;
@@ -122,12 +179,17 @@ rf_status rf_terrain_read(const char *path, int band, rf_terrain **t, rf_error *
     traj_gdal_begin(&cap);
     rf_status st = traj_gdal_raster_open(path, band, "DEM", &r, err);
     if (st == RF_OK)
-        st = dem_build(&r, path, t, err);
+        st = dem_build(&r, path, window, t, err);
     if (st != RF_OK)
         traj_gdal_explain(err, &cap);
     traj_gdal_raster_close(&r);
     traj_gdal_end(&cap);
     return st;
+}
+
+rf_status rf_terrain_read(const char *path, int band, rf_terrain **t, rf_error *err)
+{
+    return rf_terrain_read_window(path, band, NULL, t, err);
 }
 
 /* ---- rasters sampled at the surface's cell centres ---- */
@@ -360,6 +422,12 @@ rf_status rf_terrain_read(const char *path, int band, rf_terrain **t, rf_error *
     (void)band;
     *t = NULL;
     return no_gdal(path, "DEM", err);
+}
+
+rf_status rf_terrain_read_window(const char *path, int band, const double *window, rf_terrain **t, rf_error *err)
+{
+    (void)window;
+    return rf_terrain_read(path, band, t, err);
 }
 
 rf_status rf_terrain_read_classes(rf_terrain *t, const char *path, int band, size_t n_classes, const long *class_value,

@@ -136,7 +136,8 @@ uint64_t rf_terrain_def_hash(const rf_terrain_def *d, uint64_t h)
     h = rf_fnv1a(h, d->barrier_x, nbv * sizeof *d->barrier_x);
     h = rf_fnv1a(h, d->barrier_y, nbv * sizeof *d->barrier_y);
     h = rf_fnv1a(h, &d->raster_cell, sizeof d->raster_cell);
-    return rf_fnv1a(h, &d->statistics, sizeof d->statistics);
+    h = rf_fnv1a(h, &d->statistics, sizeof d->statistics);
+    return d->has_window ? rf_fnv1a(h, d->window, sizeof d->window) : h; /* files without one: identity unchanged */
 }
 
 /* Every material is used: by a class of the class raster, or as the one material. */

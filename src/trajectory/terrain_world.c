@@ -180,7 +180,7 @@ rf_status rf_terrain_world_create(const rf_traj_spec *s, rf_terrain_world **w, r
     if (!d)
         return rf_fail(err, RF_EINVAL, "not a terrain spec (no terrain:)");
     rf_terrain *t = NULL;
-    rf_status st = rf_terrain_read(d->dem, d->band ? d->band : 1, &t, err);
+    rf_status st = rf_terrain_read_window(d->dem, d->band ? d->band : 1, d->has_window ? d->window : NULL, &t, err);
     if (st == RF_OK && d->classes)
         st = rf_terrain_read_classes(t, d->classes, d->classes_band ? d->classes_band : 1, d->n_classes,
                                      d->class_value, d->class_material, err);

@@ -69,16 +69,7 @@ rf_status rf_traj_point_run_write(const rf_traj_point_run *r, const char *dir, i
 {
     char path[4200];
     snprintf(path, sizeof path, "%s/result.json", dir);
-    FILE *f = fopen(path, "w");
-    rf_status st = f ? RF_OK : rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
-    if (f) {
-        if (r->spec.terrain)
-            rf_terrain_write_json(f, &r->spec, &r->ens, &r->stats, 100);
-        else
-            rf_traj_write_json(f, &r->spec, &r->ens, &r->stats, 100);
-        if (fclose(f) != 0)
-            st = rf_fail(err, RF_EIO, "cannot write %s", path);
-    }
+    rf_status st = rf_traj_write_json_file(path, &r->spec, &r->ens, &r->stats, 100, err);
     if (st == RF_OK && r->spec.terrain)
         return rf_terrain_write_outputs(dir, &r->spec, &r->ens, &r->stats, plots, err);
     if (st == RF_OK)

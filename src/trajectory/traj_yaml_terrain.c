@@ -135,6 +135,22 @@ static rf_status parse_roughness(ty_ctx *c, struct fy_node *n, rf_terrain_def *d
     return st == RF_OK ? band_of(c, key_node(n, "band"), "terrain.roughness.band", &d->roughness_band) : st;
 }
 
+/* window: [xmin, ymin, xmax, ymax] in map metres: the part of the DEM read. */
+static rf_status window_of(ty_ctx *c, struct fy_node *n, const char *path, rf_terrain_def *d)
+{
+    rf_status st = yr_numbers(&c->sp, n, path, 4, 4, d->window, NULL);
+    if (st != RF_OK)
+        return st;
+    for (int k = 0; k < 4; k++)
+        if (!(fabs(d->window[k]) <= RF_TRAJ_MAX_COORD))
+            return yr_fail(&c->sp, n, path, "%g is not a map coordinate within +-%g m", d->window[k],
+                           RF_TRAJ_MAX_COORD);
+    if (!(d->window[0] < d->window[2] && d->window[1] < d->window[3]))
+        return yr_fail(&c->sp, n, path, "expected [xmin, ymin, xmax, ymax] [m] with xmin < xmax and ymin < ymax");
+    d->has_window = 1;
+    return RF_OK;
+}
+
 static rf_status terrain_key(ty_ctx *c, const char *key, struct fy_node *k, struct fy_node *v, rf_terrain_def *d)
 {
     char p[300];
@@ -149,7 +165,9 @@ static rf_status terrain_key(ty_ctx *c, const char *key, struct fy_node *k, stru
         return material_of(c, v, p, &d->material);
     if (!strcmp(key, "roughness"))
         return parse_roughness(c, v, d);
-    return yr_fail(&c->sp, k, p, "unknown key; terrain takes dem, band, materials | material, roughness");
+    if (!strcmp(key, "window"))
+        return window_of(c, v, p, d);
+    return yr_fail(&c->sp, k, p, "unknown key; terrain takes dem, band, window, materials | material, roughness");
 }
 
 rf_status ty_parse_terrain(ty_ctx *c, struct fy_node *n)
