@@ -10,7 +10,9 @@
  *     fem_impact_mesh_spec describes (element count of a solver run), its
  *     element size is the layer contact's estimated radius / refinement and its
  *     uniform zone covers that radius; a thin layer and the option off keep
- *     the default sizing (the same element count as without the option).
+ *     the default sizing (the same element count as without the option); a
+ *     soil contact wider than the boulder's fine zone (15 m/s) is meshed with
+ *     that zone capped, not refused.
  * No check of the FE model against the law: the law's scatter band is not
  * published in a source read here (the comparison is in the docs only). */
 #include <math.h>
@@ -112,6 +114,18 @@ static void test_soil_mesh(void **state)
     assert_int_equal(fem_impact_mesh_spec(&in, &o, &bs, &ss, &err), RF_OK);
     assert_true(ss.n * ss.h >= lc.zone_radius - 1e-12); /* the uniform zone covers the estimated contact */
     assert_true(bs.n * bs.h >= lc.radius);               /* and so do the boulder's slaves */
+    /* 15 m/s: the soil contact is wider than the boulder's fine zone may be (0.55 r0); the zone is
+       capped there, not refused, and the spec is still the solver's mesh */
+    in.velocity = 15;
+    long n15, n15_solver;
+    double h15;
+    spec_and_solver(&in, &o, &n15, &n15_solver, &h15);
+    assert_int_equal(n15, n15_solver);
+    f3_layer_contact_estimate(&in, &lc);
+    assert_true(lc.thick && lc.radius > 0.55 * in.radius);
+    assert_int_equal(fem_impact_mesh_spec(&in, &o, &bs, &ss, &err), RF_OK);
+    assert_true(bs.n * bs.h <= 0.6 * in.radius + 1e-12 && ss.n * ss.h >= lc.zone_radius - 1e-12);
+    in.velocity = 5;
     /* a thin layer (0.1 m: the boulder reaches through it) keeps the default sizing */
     in.layer_thickness = 0.1;
     long n_thin, n_thin_solver, n_thin_off, n_off_solver;

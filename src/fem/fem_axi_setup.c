@@ -43,9 +43,9 @@ rf_status axi_mesh(axi_run *S, rf_error *err)
     const double h = S->sys.h, hb = S->sys.hb;
     /* the uniform fine zone must stay well inside the boulder: shrink it at
        very high speed (a/R > 0.24 with the default 2.5 a) down to 1.5 a */
-    double core = soil ? fmin(zone / a, 0.55 * fmin(H->c, H->d) / a)
+    double core = soil ? fmin(zone / a, 0.55 * fmin(H->c, H->d) / a) /* a soil contact wider than the */
                        : fmin(S->set.t.fine_zone_factor, 0.55 * fmin(H->c, H->d) / H->contact_radius);
-    if (core < (soil ? 1.0 : 1.5))
+    if (!soil && core < 1.5) /* boulder's fine zone: the slaves beyond it are graded, not refused */
         return rf_fail(err, RF_EINVAL,
                        "fem: the Hertz contact radius a = %.4g m is too large for the boulder (c = %g m, d = %g m): "
                        "a fine zone of 1.5 a must fit in 0.55 min(c, d); Hertz-based meshing needs a << min(c, d)",

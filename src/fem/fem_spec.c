@@ -52,7 +52,7 @@ rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *
     const double refinement = rf_fem_refinement(o, 0); /* automatic settings resolved as the solver does */
     const double h = a / refinement, hb = h * t->boulder_mesh_ratio;
     const double core = soil ? fmin(zone / a, 0.55 * fmin(c, d) / a) : fmin(t->fine_zone_factor, 0.55 * fmin(c, d) / a);
-    if (core < (soil ? 1.0 : 1.5))
+    if (!soil && core < 1.5) /* soil: the boulder's zone is capped below, not refused (axi_mesh) */
         return rf_fail(err, RF_EINVAL, "fem spec: the Hertz contact radius %.4g m is too large for the boulder", a);
     memset(bs, 0, sizeof *bs), memset(ss, 0, sizeof *ss);
     ss->h = h;
