@@ -3,6 +3,7 @@
  * reference that sizes the mesh and the run, the bodies' laws; the sizing and
  * meshing (fem_mesh.c); and the release of what the run holds outside the pool. */
 #include "fem_axi_run.h"
+#include "fem_spec.h"
 
 #include <math.h>
 
@@ -35,20 +36,24 @@ rf_status axi_mesh(axi_run *S, rf_error *err)
 {
     const rf_fem_options *o = &S->set.o;
     const rf_hertz_reference *H = &S->set.H;
-    S->sys.h = H->contact_radius / o->refinement, S->sys.hb = S->sys.h * S->set.t.boulder_mesh_ratio;
+    double a_soil = 0, zone = 0; /* tuning soil_contact_mesh: a thick layer's own contact (fem_spec.h) */
+    const int soil = fem_soil_contact_zone(S->set.in, &S->set.t, &a_soil, &zone);
+    const double a = soil ? a_soil : H->contact_radius;
+    S->sys.h = a / o->refinement, S->sys.hb = S->sys.h * S->set.t.boulder_mesh_ratio;
     const double h = S->sys.h, hb = S->sys.hb;
     /* the uniform fine zone must stay well inside the boulder: shrink it at
        very high speed (a/R > 0.24 with the default 2.5 a) down to 1.5 a */
-    double core = fmin(S->set.t.fine_zone_factor, 0.55 * fmin(H->c, H->d) / H->contact_radius);
-    if (core < 1.5)
+    double core = soil ? fmin(zone / a, 0.55 * fmin(H->c, H->d) / a) /* a soil contact wider than the */
+                       : fmin(S->set.t.fine_zone_factor, 0.55 * fmin(H->c, H->d) / H->contact_radius);
+    if (!soil && core < 1.5) /* boulder's fine zone: the slaves beyond it are graded, not refused */
         return rf_fail(err, RF_EINVAL,
                        "fem: the Hertz contact radius a = %.4g m is too large for the boulder (c = %g m, d = %g m): "
                        "a fine zone of 1.5 a must fit in 0.55 min(c, d); Hertz-based meshing needs a << min(c, d)",
                        H->contact_radius, H->c, H->d);
     fem_body_spec bs = {0}, ss = {0};
     ss.h = h;
-    ss.n = 3 * (int)ceil(core * o->refinement / 3 - 1e-9);
-    while (ss.n > 3 && ss.n * h > 0.6 * fmin(H->c, H->d))
+    ss.n = 3 * (int)ceil((soil ? zone / a : core) * o->refinement / 3 - 1e-9);
+    while (!soil && ss.n > 3 && ss.n * h > 0.6 * fmin(H->c, H->d))
         ss.n -= 3;
     ss.grading = S->set.t.grading;
     const double c_r = S->set.layer ? fmin(S->body.w[1].rayleigh, S->body.w[2].rayleigh) : S->body.w[1].rayleigh;

@@ -2,14 +2,28 @@
  * The arithmetic is the solver's own (fem_axi_setup.c, "mesh sizing from the
  * Hertz contact radius"); until the solver calls this function the two must
  * be kept equal, and test_quad4_kernel checks the element count against a
- * solver run. */
+ * solver run (test_soil_mesh for a thick layer with soil_contact_mesh on).
+ * Also the contact that sizes a thick soil layer's mesh (fem_soil_contact_zone),
+ * which the solver calls. */
 #include "fem_spec.h"
-#include "core/util.h"
+#include "fem3d_spec.h"
 
 #include <math.h>
 #include <string.h>
 
 #include "core/util.h"
+
+int fem_soil_contact_zone(const rf_impact_input *in, const rf_fem_tuning *t, double *a, double *zone)
+{
+    if (!t->soil_contact_mesh || !(in->layer_thickness > 0))
+        return 0;
+    f3_layer_contact lc;
+    f3_layer_contact_estimate(in, &lc);
+    if (!lc.thick)
+        return 0;
+    *a = lc.radius, *zone = lc.zone_radius;
+    return 1;
+}
 
 rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *o, fem_body_spec *bs,
                                fem_body_spec *ss, rf_error *err)
@@ -19,23 +33,31 @@ rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *
         c = in->horizontal_axis;
         d = in->vertical_axis > 0 ? in->vertical_axis : in->radius * in->radius * in->radius / (c * c);
     }
-    const double R = c * c / d, mass = 4.0 / 3.0 * RF_PI * c * c * d * in->boulder_density, V = in->velocity;
-    const double Estar = 1 / ((1 - in->boulder_poisson * in->boulder_poisson) / in->boulder_E +
-                              (1 - in->slope_poisson * in->slope_poisson) / in->slope_E);
-    const double delta = pow(15 * mass * V * V / (16 * Estar * sqrt(R)), 0.4);
-    const double a = sqrt(R * delta), duration = 2.94328 * delta / V, L = rf_fem_domain_factor(o, in) * in->radius;
-    const double nu = in->slope_poisson, mu = in->slope_E / (2 * (1 + nu));
-    const double cs = sqrt(mu / in->slope_density), cr = cs * (0.87 + 1.12 * nu) / (1 + nu);
+    rf_hertz_reference H;
+    rf_wave_speeds w;
+    rf_impact_hertz_reference(in, &H);
+    rf_impact_wave_speeds(in, 1, &w);
+    double a = H.contact_radius, duration = H.duration, cr = w.rayleigh, zone = 0;
+    if (in->layer_thickness > 0) { /* the finer of the two contacts, the longer duration (axi_prepare) */
+        rf_impact_input lay = *in;
+        lay.slope_density = in->layer_density, lay.slope_E = in->layer_E, lay.slope_poisson = in->layer_poisson;
+        rf_hertz_reference HL;
+        rf_impact_hertz_reference(&lay, &HL);
+        rf_impact_wave_speeds(&lay, 1, &w);
+        a = fmin(a, HL.contact_radius), duration = fmax(duration, HL.duration), cr = fmin(cr, w.rayleigh);
+    }
     const rf_fem_tuning *t = fem_tuning_of(o);
+    const int soil = fem_soil_contact_zone(in, t, &a, &zone);
+    const double L = rf_fem_domain_factor(o, in) * in->radius;
     const double refinement = rf_fem_refinement(o, 0); /* automatic settings resolved as the solver does */
     const double h = a / refinement, hb = h * t->boulder_mesh_ratio;
-    const double core = fmin(t->fine_zone_factor, 0.55 * fmin(c, d) / a);
-    if (core < 1.5)
+    const double core = soil ? fmin(zone / a, 0.55 * fmin(c, d) / a) : fmin(t->fine_zone_factor, 0.55 * fmin(c, d) / a);
+    if (!soil && core < 1.5) /* soil: the boulder's zone is capped below, not refused (axi_mesh) */
         return rf_fail(err, RF_EINVAL, "fem spec: the Hertz contact radius %.4g m is too large for the boulder", a);
     memset(bs, 0, sizeof *bs), memset(ss, 0, sizeof *ss);
     ss->h = h;
-    ss->n = 3 * (int)ceil(core * refinement / 3 - 1e-9);
-    while (ss->n > 3 && ss->n * h > 0.6 * fmin(c, d))
+    ss->n = 3 * (int)ceil((soil ? zone / a : core) * refinement / 3 - 1e-9);
+    while (!soil && ss->n > 3 && ss->n * h > 0.6 * fmin(c, d))
         ss->n -= 3;
     ss->grading = t->grading;
     ss->h_far = fmax(h, fmin(cr * duration / 12, L / 8));
