@@ -19,10 +19,11 @@
  * step, on a C1 master surface: the surface polygon with rounded corners,
  * fem_contact.c and fem_contact_surface.c):
  *   updated Lagrangian:         R_n 0.994812, W_p 0, eps_p 0, energy error 7.7e-7;
- *   elastic bodies, updated L.: R_n 0.994814, energy error 7.3e-7.
+ *   elastic bodies, updated L.: R_n 0.994814, energy error 7.3e-7;
+ *   the issue's own 0.02 m/s case (CLI, 352 s CPU): R_n 0.999681 (elastic
+ *   0.99968), W_p 0, eps_p 0, energy error 3.5e-9.
  * (The same gradient on the Hermite surface of branch h/ul2 gave 0.994806 and
- * 0.994809, and on the issue's own 0.02 m/s case R_n 0.999681, W_p 0, energy
- * error 3.6e-9; that surface failed the soil checks: docs 6f.)
+ * 0.994809; that surface failed the soil checks: docs 6f.)
  * The checks: both bodies below yield in updated Lagrangian reproduce the
  * small-strain result (R_n within 1e-4, no plastic work or strain, the
  * energy account closed to 1e-5), and so do elastic bodies.  The cause, and
