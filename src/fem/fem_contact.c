@@ -1,14 +1,16 @@
 /* fem_contact.c - contact of the axisymmetric solver: node-to-segment pairs
  * (boulder surface nodes on slope surface segments; small strain: small
  * sliding, vertical gaps in the reference configuration; large deformation:
- * each slave's segment found again on the current surface at every step,
- * the gap along the current segment's normal), forward-increment Lagrange multipliers
+ * each slave's closest point found again on the current surface at every
+ * step, the gap along its normal, the surface the slope's surface polygon
+ * with its corners rounded, C1: fem_contact_surface.c), forward-increment Lagrange multipliers
  * (Carpenter, Taylor & Katona 1991, IJNME 32:103): the multipliers lambda_n
  * >= 0 are the forces at step n that make the predicted gaps at n+1 exactly
  * non-negative, a small linear complementarity problem over the pairs near
  * contact solved by an active set with dense Cholesky.  They add no
  * compliance and do not restrict dt.  Coulomb friction, when asked, in
  * fem_contact_friction.c. */
+#include "fem_contact_surface.h"
 #include "fem_internal.h"
 
 #include <math.h>
@@ -339,12 +341,16 @@ static double apply_normal(fem_contact *C, const double *invm, double dt, double
     return F;
 }
 
+static void pairs_at_midpoint(fem_contact *C, const double *u, const double *v, double dt);
+
 /* Multipliers for the predicted u, their corrections of u and v, the
  * contact work lambda' G (v_{n+1/2} + v_{n-1/2}) dt / 2; returns the total
  * vertical contact force on the boulder in *Fc. */
 rf_status fem_contact_step(fem_contact *C, const double *invm, double dt, double *u, double *v, double *Fc,
                            rf_error *err)
 {
+    if (C->mesh) /* large deformation: after fem_contact_update */
+        pairs_at_midpoint(C, u, v, dt);
     rf_status st = contact_solve(C, u, invm, dt, err);
     if (st != RF_OK)
         return st;
@@ -419,7 +425,7 @@ double fem_contact_measure(fem_contact *C, const double *u)
 
 rf_status fem_contact_large(fem_contact *C, const fem_mesh *mesh, long ndof, rf_error *err)
 {
-    C->nq = 6, C->mesh = mesh;
+    C->nq = 10, C->mesh = mesh;
     if (!(C->vold = calloc((size_t)ndof + 1, sizeof *C->vold)))
         return rf_fail(err, RF_ENOMEM, "fem: out of memory");
     return RF_OK;
@@ -431,63 +437,128 @@ static void node_x(const fem_mesh *m, const double *u, int n, double x[2])
     x[0] = m->r[n] + u[2 * n], x[1] = m->z[n] + u[2 * n + 1];
 }
 
-/* Current radius of slope surface node j. */
-static double surf_r(const fem_mesh *m, const double *u, long j)
+/* Segment j of the current slope surface with its neighbours (fem_contact_surface.h). */
+static void surface_segment(const fem_mesh *m, const double *u, long j, fem_surf_segment *S)
 {
-    return m->r[m->ssurf[j]] + u[2 * m->ssurf[j]];
+    S->has_prev = j > 0, S->has_next = j + 2 < m->n_ssurf;
+    for (int k = 0; k < 4; k++) {
+        const long i = j - 1 + k;
+        node_x(m, u, m->ssurf[i < 0 ? 0 : i >= m->n_ssurf ? m->n_ssurf - 1 : i], S->p[k]);
+    }
 }
 
-/* The segment of the current slope surface under radius r (the surface
- * stays a graph z(r)), walking from the pair's last one. */
-static long find_segment(const fem_mesh *m, const double *u, long j, double r)
+/* The slave's closest point on the smooth current surface, from the pair's
+ * last segment on: moves to the neighbouring segment while the point lies
+ * beyond the segment's ends (the curve is C1, so the walk cannot turn back
+ * and forth at a node; bounded anyway). */
+static long surface_gap(const fem_mesh *m, const double *u, long j, const double x[2], fem_surf_segment *S,
+                        fem_surf_gap *G)
 {
     const long last = m->n_ssurf - 2;
-    while (j < last && surf_r(m, u, j + 1) <= r)
-        j++;
-    while (j > 0 && surf_r(m, u, j) > r)
-        j--;
+    for (long walk = 0; walk <= m->n_ssurf; walk++) {
+        surface_segment(m, u, j, S);
+        const int side = fem_surf_project(S, x, G);
+        if ((side < 0 && j == 0) || (side > 0 && j == last) || side == 0)
+            break;
+        j += side;
+    }
     return j;
 }
 
-/* Pair p for the current slave position: the segment under it, the point
- * x(xi) of the segment below it, the gap g = n . (x_s - x(xi)) along the
- * segment's normal n, and g0 such that g0 + c . u is g at u.  The gradient
- * c = n . d(x_s - x(xi)) has no term from xi or n: n is normal to the
- * segment and of unit length.  Different slaves have different xi, so no two
- * pairs have the same gradient (as two slaves clamped to one node of a
- * concave crater would under a normal projection). */
+/* The pair's gradient c and dofs from the gap G of segment S (nodes of
+ * segment p->seg) for slave s: n on the slave, -(dx(xi)/dx_k)' n on the
+ * masters m0..m3 (the segment's nodes and the neighbours that shape its
+ * rounded corners; xi and n drop out at a closest point); absent neighbours
+ * (axis, end of the surface) get zero entries. */
+static void pair_gradient(fem_contact *C, contact_pair *p, int s, const fem_surf_segment *S, const fem_surf_gap *G)
+{
+    const fem_mesh *m = C->mesh;
+    const long j = p->seg, nsurf = m->n_ssurf;
+    const int mk[4] = {m->ssurf[j > 0 ? j - 1 : j], m->ssurf[j], m->ssurf[j + 1],
+                       m->ssurf[j + 2 < nsurf ? j + 2 : j + 1]};
+    const int rigid = C->rigid_invm > 0;
+    const int dof[10] = {2 * s + 1, 2 * mk[1] + 1, 2 * mk[2] + 1, 2 * s, 2 * mk[1], 2 * mk[2],
+                         2 * mk[0] + 1, 2 * mk[3] + 1, 2 * mk[0], 2 * mk[3]};
+    const double c[10] = {G->n[1], G->dg[1][1], G->dg[2][1], rigid ? 0 : G->n[0], G->dg[1][0], G->dg[2][0],
+                          S->has_prev ? G->dg[0][1] : 0, S->has_next ? G->dg[3][1] : 0,
+                          S->has_prev ? G->dg[0][0] : 0, S->has_next ? G->dg[3][0] : 0};
+    for (int q = 0; q < 10; q++)
+        p->dof[q] = dof[q], p->c[q] = c[q];
+    p->rdof[0] = 2 * s, p->rdof[1] = 2 * mk[1], p->rdof[2] = 2 * mk[2];
+    p->xi = G->xi, p->n[0] = G->n[0], p->n[1] = G->n[1];
+}
+
+/* Pair p for the predicted slave position x_s: its closest point x(xi) on
+ * the smooth surface (the slope's surface polygon with its corners rounded
+ * by quadratic arcs, normal continuous along it: fem_contact_surface.c) and the gap
+ * g = n . (x_s - x(xi)) along the normal there, kept in p->g0 until
+ * pair_midpoint makes the linear form. */
 static void pair_relinearise(fem_contact *C, contact_pair *p, const double *u)
 {
     const fem_mesh *m = C->mesh;
     const int s = (p->dof[0] - 1) / 2;
-    double x[2], a[2], b[2];
+    double x[2];
     node_x(m, u, s, x);
-    p->seg = find_segment(m, u, p->seg, x[0]);
-    const int m1 = m->ssurf[p->seg], m2 = m->ssurf[p->seg + 1];
-    node_x(m, u, m1, a), node_x(m, u, m2, b);
-    const double len = hypot(b[0] - a[0], b[1] - a[1]);
-    const double nr = -(b[1] - a[1]) / len, nz = (b[0] - a[0]) / len;
-    const double xi = fmin(fmax((x[0] - a[0]) / (b[0] - a[0]), 0), 1);
-    const int rigid = C->rigid_invm > 0;
-    const int dof[6] = {2 * s + 1, 2 * m1 + 1, 2 * m2 + 1, 2 * s, 2 * m1, 2 * m2};
-    const double c[6] = {nz, -(1 - xi) * nz, -xi * nz, rigid ? 0 : nr, -(1 - xi) * nr, -xi * nr};
-    const double g = nr * (x[0] - a[0] - xi * (b[0] - a[0])) + nz * (x[1] - a[1] - xi * (b[1] - a[1]));
-    p->g0 = g;
-    for (int q = 0; q < 6; q++)
-        p->dof[q] = dof[q], p->c[q] = c[q], p->g0 -= c[q] * u[dof[q]];
-    p->rdof[0] = 2 * s, p->rdof[1] = 2 * m1, p->rdof[2] = 2 * m2;
-    p->xi = xi, p->r = x[0], p->n[0] = nr, p->n[1] = nz;
+    fem_surf_segment S;
+    fem_surf_gap G;
+    p->seg = surface_gap(m, u, p->seg, x, &S, &G);
+    pair_gradient(C, p, s, &S, &G);
+    p->g0 = G.g, p->r = x[0];
 }
 
-/* After the predictor (large deformation): every pair linearised about the
- * predicted u, and G v_{n-1/2} with the new gradients for the contact work. */
+/* The linear form g0 + c . u of pair p for the step from u_n = u - dt v to
+ * the predicted u: the gap at the predicted u (pair_relinearise), the
+ * gradient at u_n, on the same segment's curve (extended past its ends if
+ * the slave was beyond them).  The gradient at the start of the step, the
+ * midpoint of u_{n-1} and u_{n+1}, makes the impulse's work
+ * lambda c . (u_{n+1} - u_{n-1}) / 2 the gap's change to third order in the
+ * step (a closed pair's force does no work, up to round-off and O(dt^3)); the
+ * gradient at the predicted end, which the contact used before, is off by
+ * the gap's curvature times the step, and its work lambda dt^2 v' H v has
+ * the sign of that curvature: it fed the relative motion of closed pairs
+ * energy in proportion to its own (issue 29 item 1, exponential growth). */
+static void pair_midpoint(fem_contact *C, contact_pair *p, const double *u, const double *v, double dt)
+{
+    const fem_mesh *m = C->mesh;
+    const int s = p->rdof[0] / 2;
+    double un[2 * 5];
+    int nodes[5] = {s, m->ssurf[p->seg > 0 ? p->seg - 1 : p->seg], m->ssurf[p->seg], m->ssurf[p->seg + 1],
+                    m->ssurf[p->seg + 2 < m->n_ssurf ? p->seg + 2 : p->seg + 1]};
+    for (int k = 0; k < 5; k++)
+        for (int a = 0; a < 2; a++) {
+            const int d = 2 * nodes[k] + a;
+            un[2 * k + a] = (a ? m->z[nodes[k]] : m->r[nodes[k]]) + u[d] - dt * v[d];
+        }
+    fem_surf_segment S = {.has_prev = p->seg > 0, .has_next = p->seg + 2 < m->n_ssurf};
+    for (int k = 0; k < 4; k++)
+        S.p[k][0] = un[2 * (k + 1)], S.p[k][1] = un[2 * (k + 1) + 1];
+    fem_surf_gap G;
+    fem_surf_project_extended(&S, un, &G);
+    const double g = p->g0;
+    pair_gradient(C, p, s, &S, &G);
+    p->g0 = g;
+    for (int q = 0; q < C->nq; q++)
+        p->g0 -= p->c[q] * u[p->dof[q]];
+}
+
+/* After the predictor (large deformation): every pair's closest point and gap
+ * at the predicted u; fem_contact_step adds the gradient at the step's start
+ * (pairs_at_midpoint) and G v_{n-1/2} with it for the contact work. */
 void fem_contact_update(fem_contact *C, const double *u)
+{
+    for (long i = 0; i < C->npairs; i++)
+        pair_relinearise(C, C->pair + i, u);
+}
+
+/* Large deformation, at the start of the step's contact: each pair's linear
+ * form (pair_midpoint) and G v_{n-1/2} with its gradient, for the work. */
+static void pairs_at_midpoint(fem_contact *C, const double *u, const double *v, double dt)
 {
     for (long i = 0; i < C->npairs; i++) {
         contact_pair *p = C->pair + i;
-        pair_relinearise(C, p, u);
+        pair_midpoint(C, p, u, v, dt);
         double gv = 0;
-        for (int q = 0; q < 6; q++)
+        for (int q = 0; q < C->nq; q++)
             gv += p->c[q] * C->vold[p->dof[q]];
         C->gvo[i] = gv;
     }

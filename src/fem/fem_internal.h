@@ -109,11 +109,12 @@ static inline double fem_dashpot_velocity(double m, double C, double v, double g
 
 /* One contact pair: boulder node s over slope segment (m1, m2) at coordinate xi.
  * Small strain: the vertical gap, z dofs only (nq = 3).  Large deformation:
- * the gap along the current segment's normal n, dofs z then r (nq = 6),
- * the pair linearised anew at every step about the predicted state. */
+ * the gap along the normal of the smooth surface (fem_contact_surface.h),
+ * dofs z then r of s, m1, m2, then z and r of the neighbours m0, m3 (nq = 10),
+ * the pair linearised anew at every step: gap at the predicted state, gradient at the step's start. */
 typedef struct {
-    int dof[6];    /* z dofs: slave, master 1, master 2; then (large deformation) their r dofs */
-    double c[6];   /* gap gradient: small strain 1, -(1 - xi), -xi; large n_z (1, -(1 - xi), -xi), n_r (...) */
+    int dof[10];   /* z dofs: slave, master 1, master 2; then (large deformation) their r dofs, then m0, m3 */
+    double c[10];  /* gap gradient: small strain 1, -(1 - xi), -xi; large: fem_contact.c pair_gradient */
     int rdof[3];   /* r dofs, for the slip diagnostic */
     double g0;     /* gap at u = 0 of the linear form g0 + c . u */
     double r;      /* radius of the slave: reference (small strain) or current */
@@ -164,8 +165,9 @@ typedef struct {
 /* Pairs of the boulder surface nodes below its equator, height d (fem_contact.c). */
 rf_status fem_contact_setup(fem_contact *C, const fem_mesh *mesh, long ndof, double d, rf_error *err);
 /* Switch the pairs to large deformation: after the predictor,
- * fem_contact_update finds each slave's segment on the current slope surface
- * and linearises its normal gap there (mesh must outlive C). */
+ * fem_contact_update finds each slave's closest point on the current slope
+ * surface and its gap there; fem_contact_step takes the gap's gradient at the
+ * step's start (mesh must outlive C). */
 rf_status fem_contact_large(fem_contact *C, const fem_mesh *mesh, long ndof, rf_error *err);
 void fem_contact_update(fem_contact *C, const double *u);
 /* Before the predictor: keep G v_{n-1/2}. */
