@@ -212,7 +212,7 @@ static rf_status table_build(const traj_model_ctx *c, const rf_traj_spec *s, FIL
                              rf_error *err)
 {
     table_progress p = {log, rf_monotonic_seconds(), rf_monotonic_seconds()};
-    traj_table_watch w = {c->stop, table_say, &p};
+    traj_table_watch w = {c->stop, table_say, &p, NULL, NULL};
     if (log) {
         fprintf(log, "Impact table (bounce law impact_model, solver %s): R_n, R_t and spin over normal speeds "
                      "[%g, %g] m/s and incidences [0, %g] deg to %g, before the first evaluation%s%s\n",
