@@ -11,6 +11,10 @@
  *    function put in place of the impact model) is refined along r to the
  *    tolerance, checked at random points;
  *  - a material's impact model is checked at load (file:line);
+ *  - in a study's store (side rows): a build interrupted by the stop flag
+ *    keeps its impacts, the resumed one computes only the missing ones (counted),
+ *    a third reuses all, also through the model's prepare; a damaged value or
+ *    a conflicting repeat in the store is refused with a message;
  *  - the cache file keeps each material's impacts apart and at every radius. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -21,6 +25,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "rockfuzz/store.h"
 #include "rockfuzz/trajectory.h"
 #include "test_traj_util.h"
 #include "trajectory/traj_impact.h"
@@ -317,6 +322,124 @@ static void test_cache_per_material(void **state)
     remove("traj_impact_tables_cache.txt");
 }
 
+/* ---- the study store ---- */
+
+static rf_status side_put(void *user, const char *key, const double *row, size_t width, rf_error *err)
+{
+    return rf_store_side_put(user, key, row, width, err);
+}
+
+static rf_status side_each(void *user, const char *key, size_t width, rf_status (*fn)(void *u, const double *row),
+                           void *u, rf_error *err)
+{
+    return rf_store_side_each(user, key, width, fn, u, err);
+}
+
+typedef struct {
+    atomic_int stop;
+    size_t after, computed; /* set stop once `after` impacts are computed */
+} stopper;
+
+static void stop_after(void *user, size_t computed, size_t from_cache, size_t nv, size_t nt)
+{
+    (void)from_cache, (void)nv, (void)nt;
+    stopper *p = user;
+    p->computed = computed;
+    if (computed >= p->after)
+        atomic_store(&p->stop, 1);
+}
+
+static rf_store *open_store(const char *path)
+{
+    const char *in[1] = {"x"}, *out[1] = {"y"};
+    rf_store_key key = {"test model", "0", 1, 1, in, out};
+    rf_store *st;
+    rf_error err;
+    remove(path);
+    if (rf_store_open(path, &key, 1, &st, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    return st;
+}
+
+static void build_counts(const rf_traj_spec *s, const traj_table_watch *w, rf_status want, size_t *evals,
+                         size_t *cached, rf_error *err)
+{
+    traj_impact_table *t = NULL;
+    rf_status st = traj_impact_table_build_watched(s, w, &t, err);
+    if (st != want)
+        fail_msg("build: status %d, want %d: %s", st, want, st != RF_OK ? err->msg : "");
+    size_t nv, nt;
+    double est;
+    *evals = *cached = 0;
+    if (t)
+        traj_impact_table_info(t, &nv, &nt, evals, cached, &est);
+    traj_impact_table_free(t);
+}
+
+static void test_store_resume_and_reuse(void **state)
+{
+    (void)state;
+    rf_traj_spec s;
+    rf_error err;
+    load_three(&s, "");
+    size_t e0, c0, e, c;
+    build_counts(&s, NULL, RF_OK, &e0, &c0, &err); /* without a store: every impact computed */
+    rf_store *db = open_store("traj_impact_tables.sqlite");
+    rf_model_side_store side = {db, side_put, side_each};
+    traj_impact_store ts;
+    traj_impact_store_from_side(&side, &ts);
+    stopper p = {0, 20, 0};
+    traj_table_watch w = {&p.stop, stop_after, &p, &ts, NULL};
+    build_counts(&s, &w, RF_EINTERRUPTED, &e, &c, &err);
+    assert_non_null(strstr(err.msg, "kept in the study store"));
+    assert_int_equal(p.computed, 20);
+    traj_table_watch w2 = {NULL, NULL, NULL, &ts, NULL};
+    build_counts(&s, &w2, RF_OK, &e, &c, &err); /* resumed: only the missing ones */
+    print_message("store: %zu impacts without it; interrupted after 20, resumed computed %zu and took %zu\n", e0, e, c);
+    assert_int_equal(c, 20);
+    assert_int_equal(e, e0 - 20);
+    build_counts(&s, &w2, RF_OK, &e, &c, &err); /* a second study on the store: all reused */
+    assert_int_equal(e, 0);
+    assert_int_equal(c, e0);
+    /* through the model: prepare builds the table from the store alone */
+    rf_model m;
+    assert_int_equal(rf_traj_model_create(&s, 0, NULL, NULL, &m, &err), RF_OK);
+    rf_model_set_side_store(&m, &side);
+    char *log = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&log, &len);
+    assert_int_equal(rf_model_prepare(&m, f, &err), RF_OK);
+    fclose(f);
+    char want[80];
+    snprintf(want, sizeof want, "0 impacts computed, %zu taken from", e0);
+    if (!strstr(log, want))
+        fail_msg("prepare's log lacks '%s': %s", want, log);
+    free(log);
+    rf_model_free(&m);
+    /* damaged values: refused, naming the row */
+    traj_impact_setup setup;
+    assert_int_equal(traj_impact_setup_material(&setup, &s, 1, &err), RF_OK);
+    double bad[6] = {40, 0.1, 0.5, 5, 0.5, 0};
+    assert_int_equal(ts.put(ts.user, &setup, bad, &err), RF_OK);
+    build_counts(&s, &w2, RF_EIO, &e, &c, &err);
+    if (!strstr(err.msg, "R_n must lie in [0, 1]") || !strstr(err.msg, "damaged"))
+        fail_msg("%s", err.msg);
+    rf_store_close(db);
+    db = open_store("traj_impact_tables.sqlite");
+    side.user = db;
+    double r1[6] = {3, 0.2, 0.5, 0.6, 0.7, 1}, r2[6] = {3, 0.2, 0.5, 0.61, 0.7, 1};
+    assert_int_equal(ts.put(ts.user, &setup, r1, &err), RF_OK);
+    assert_int_equal(ts.put(ts.user, &setup, r1, &err), RF_OK); /* an identical repeat: once */
+    build_counts(&s, &w2, RF_OK, &e, &c, &err);
+    assert_int_equal(ts.put(ts.user, &setup, r2, &err), RF_OK);
+    build_counts(&s, &w2, RF_EIO, &e, &c, &err);
+    if (!strstr(err.msg, "two different results"))
+        fail_msg("%s", err.msg);
+    rf_store_close(db);
+    remove("traj_impact_tables.sqlite");
+    rf_traj_spec_free(&s);
+}
+
 /* The rows materials.NAME.impact.* and the impact inputs they feed are paired by index. */
 static void test_rows_name_impact_inputs(void **state)
 {
@@ -347,6 +470,7 @@ int main(void)
         cmocka_unit_test(test_checked_at_load),
         cmocka_unit_test(test_cache_per_material),
         cmocka_unit_test(test_rows_name_impact_inputs),
+        cmocka_unit_test(test_store_resume_and_reuse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

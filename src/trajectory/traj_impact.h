@@ -6,6 +6,8 @@
 
 #include "rockfuzz/trajectory.h"
 
+#include "rockfuzz/model.h"
+
 #include <stdatomic.h>
 
 typedef struct traj_impact_setup_s {
@@ -51,6 +53,10 @@ void traj_impact_radius_range(const rf_traj_spec *s, double *lo, double *hi);
 /* One impact: normal speed vn [m/s] > 0, incidence theta [rad] from the normal. */
 rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double theta, double *R_n, double *R_t,
                                    double *spin, rf_error *err);
+
+/* traj_impact_store.c: the impacts kept in a study's store (side rows): a
+ * traj_impact_store over side (which must outlive it). */
+void traj_impact_store_from_side(const rf_model_side_store *side, traj_impact_store *out);
 
 /* traj_impact_cache.c: rows of (v_n, theta, radius, R_n, R_t, spin) for this
  * setup (any radius) appended to *memo from the file, each checked (finite,
