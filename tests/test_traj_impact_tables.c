@@ -15,7 +15,9 @@
  *    keeps its impacts, the resumed one computes only the missing ones (counted),
  *    a third reuses all, also through the model's prepare; a damaged value or
  *    a conflicting repeat in the store is refused with a message;
- *  - the cache file keeps each material's impacts apart and at every radius. */
+ *  - the cache file keeps each material's impacts apart and at every radius;
+ *  - a terrain study's model builds its table in the run (prepare), not when
+ *    it is created: nothing computed at load, the stop flag answered. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -30,6 +32,8 @@
 #include "test_traj_util.h"
 #include "trajectory/traj_impact.h"
 #include "trajectory/traj_internal.h"
+#include "trajectory/terrain_internal.h"
+#include "terrain_fixture.h"
 
 #define DEG (3.14159265358979323846 / 180)
 
@@ -440,6 +444,60 @@ static void test_store_resume_and_reuse(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* ---- a terrain model: the table in the run ---- */
+
+static double slope(double x, double y) { return 0.5 * y + 0.01 * x; }
+
+static void test_terrain_table_in_run(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/rf_impact_tables_XXXXXX";
+    const terrain_fixture t = {30, 60, 2, slope, 60};
+    assert_int_equal(fixture_setup(dir, &t), 0);
+    char yaml[2048], cache[300];
+    snprintf(cache, sizeof cache, "%s/cache.txt", dir);
+    snprintf(yaml, sizeof yaml,
+             "name: tt\n"
+             "terrain: {dem: %s/dem.asc, materials: {raster: %s/classes.asc, classes: {1: rock, 2: talus}}}\n"
+             "materials:\n"
+             "  rock:  {R_n: 0.4, R_t: 0.8, friction_angle: 30, impact: {solver: hunter}}\n"
+             "  talus: {R_n: 0.35, R_t: 0.75, friction_angle: 35, impact: {slope_E: 50e6, slope_density: 1800}}\n"
+             "block: {shape: sphere, radius: 0.5, density: 2600}\n"
+             "release: {points: [[30, 110]], height: 1, velocity: [0, 0, 0]}\n"
+             "bounce: {law: impact_model, impact: {solver: rigid, tolerance: 0.02, cache: %s}}\n"
+             "barriers: [{name: fence, line: [[2, 40], [58, 40]]}]\n"
+             "samples: 2\n", dir, dir, cache);
+    rf_traj_spec s;
+    fixture_load(dir, "tt.yaml", yaml, &s);
+    rf_model m;
+    rf_error err;
+    assert_int_equal(rf_traj_model_create(&s, 0, NULL, NULL, &m, &err), RF_OK);
+    assert_int_equal(access(cache, F_OK), -1); /* nothing computed at load */
+    atomic_int stop = 1;
+    rf_model_set_interrupt(&m, &stop);
+    assert_int_equal(rf_model_prepare(&m, NULL, &err), RF_EINTERRUPTED);
+    atomic_store(&stop, 0);
+    assert_int_equal(rf_model_prepare(&m, NULL, &err), RF_OK);
+    assert_int_equal(access(cache, F_OK), 0);
+    double y[64];
+    assert_true(m.n_outputs <= 64);
+    if (rf_model_eval(&m, NULL, y, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    rf_model_free(&m);
+    /* the world of a standalone run: one grid per class, each its own model */
+    rf_terrain_world *w;
+    assert_int_equal(rf_terrain_world_create(&s, &w, &err), RF_OK);
+    assert_int_equal(traj_impact_table_grids(w->impact_table), 2);
+    double rn[2], rt, sp;
+    for (size_t k = 0; k < 2; k++)
+        traj_impact_table_lookup(w->impact_table, k, 0.5, 10, 30 * DEG, &rn[k], &rt, &sp);
+    assert_true(rn[0] - rn[1] > 0.05); /* the soft talus keeps less of v_n */
+    rf_terrain_world_free(w);
+    rf_traj_spec_free(&s);
+    unlink(cache);
+    fixture_teardown(dir, "tt.yaml");
+}
+
 /* The rows materials.NAME.impact.* and the impact inputs they feed are paired by index. */
 static void test_rows_name_impact_inputs(void **state)
 {
@@ -471,6 +529,7 @@ int main(void)
         cmocka_unit_test(test_cache_per_material),
         cmocka_unit_test(test_rows_name_impact_inputs),
         cmocka_unit_test(test_store_resume_and_reuse),
+        cmocka_unit_test(test_terrain_table_in_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
