@@ -297,6 +297,34 @@ static void test_checked_at_load(void **state)
     }
 }
 
+/* The model's identity covers a material's impact model: its words and its presence. */
+static void test_identity_covers_impact(void **state)
+{
+    (void)state;
+    const char *impacts[] = {"", ", impact: {}", ", impact: {solver: hunter}", ", impact: {slope_material: von_mises, "
+                             "slope_yield: 1e8, solver: fem}", ", impact: {boulder_material: rigid}"};
+    char ids[5][512];
+    for (int k = 0; k < 5; k++) {
+        char y[1024];
+        snprintf(y, sizeof y, "profile: {points: [[0, 10], [10, 0]], material: m}\n"
+                              "materials: {m: {R_n: 0.3, R_t: 0.8%s}}\n"
+                              "block: {shape: sphere, radius: 0.5, density: 2600}\nrelease: {x: 1, y: 10}\n"
+                              "bounce: {law: impact_model}\n", impacts[k]);
+        rf_traj_spec s;
+        load(y, &s);
+        s.text_hash = 0; /* the values alone, not the file's text */
+        rf_model m;
+        rf_error err;
+        assert_int_equal(rf_traj_model_create(&s, 0, NULL, NULL, &m, &err), RF_OK);
+        snprintf(ids[k], sizeof ids[k], "%s", m.identity);
+        for (int j = 0; j < k; j++)
+            if (!strcmp(ids[j], ids[k]))
+                fail_msg("'%s' and '%s' have the same identity", impacts[j], impacts[k]);
+        rf_model_free(&m);
+        rf_traj_spec_free(&s);
+    }
+}
+
 /* bounce.impact.cache: a second build reads every impact of every grid from the file. */
 static void test_cache_per_material(void **state)
 {
@@ -527,6 +555,7 @@ int main(void)
         cmocka_unit_test(test_radius_axis_refined),
         cmocka_unit_test(test_checked_at_load),
         cmocka_unit_test(test_cache_per_material),
+        cmocka_unit_test(test_identity_covers_impact),
         cmocka_unit_test(test_rows_name_impact_inputs),
         cmocka_unit_test(test_store_resume_and_reuse),
         cmocka_unit_test(test_terrain_table_in_run),
