@@ -4,7 +4,8 @@
 #   the impact table of a trajectory model (bounce law impact_model, FE
 #   impacts) is built inside the run, after the folder lock: a second run into
 #   the folder is refused at once, SIGTERM ends the run within 2 s with 143
-#   and the study side's message, the impacts computed so far stay in the cache;
+#   and the study side's message, the impacts computed so far stay in the study's
+#   store (store.sqlite, side rows; not in a side file);
 #   planning a general-form grid (6 inputs, 20 levels) with the cap off answers SIGTERM
 #   within 2 s (before: the count ran on, then the grid was built: 9 GB in 16 min);
 #   SIGTERM while the report is written: a clean stop within 3 s (the figure
@@ -57,7 +58,7 @@ materials:
   rock: {R_n: 0.35, R_t: 0.8, friction_angle: 30}
 block: {shape: sphere, radius: 0.5, density: 2600}
 release: {x: 1, y: 31, vx: 1, vy: 0}
-bounce: {law: impact_model, impact: {solver: fem, refinement: 2, tolerance: 0.01, speeds: [1, 12], max_incidence: 60, cache: impacts.txt}}
+bounce: {law: impact_model, impact: {solver: fem, refinement: 2, tolerance: 0.01, speeds: [1, 12], max_incidence: 60}}
 collectors: [{name: fence, x: 50}]
 samples: 20
 Y
@@ -84,7 +85,8 @@ grep -q "in use by another rockfuzz run (pid $pid " "$tmp/second.err" \
 [ $(( (t1 - t0) / 1000000 )) -lt 3000 ] || fail "table: the refusal took $(( (t1 - t0) / 1000000 )) ms"
 grep -q "Impact table" "$tmp/second.out" && fail "table: the refused run built an impact table"
 # let it compute a few impacts, then SIGTERM: answered within 2 s
-wait_for "$tmp/impacts.txt" "." 60 || fail "table: no impact in the cache within 60 s"
+wait_for "$tmp/table.out" "^Impact table: [1-9][0-9]* impacts* computed" 60 \
+    || fail "table: no impact computed within 60 s: $(cat "$tmp/table.out")"
 sleep 1
 kill -0 "$pid" 2>/dev/null || fail "table: the run ended before SIGTERM: $(cat "$tmp/table.err")"
 stop_within table 2
@@ -92,9 +94,10 @@ grep -q "^rockfuzz run: $tmp/s.yaml: interrupted while building the impact table
     "$tmp/table.err" || fail "table: message: $(cat "$tmp/table.err")"
 grep -q "nothing was evaluated yet: rerun to resume" "$tmp/table.err" || fail "table: no resume hint: $(cat "$tmp/table.err")"
 [ -e "$tmp/table/result.json" ] && fail "table: result.json written by an interrupted run"
-n=$(grep -c . "$tmp/impacts.txt")
-[ "$n" -ge 1 ] || fail "table: the computed impacts are not in the cache"
-echo "table: $n impacts kept in the cache"
+n=$(python3 -c "import sqlite3,sys; print(sqlite3.connect(sys.argv[1]).execute(\"select count(*) from side_rows where key like 'impact_model %'\").fetchone()[0])" "$tmp/table/store.sqlite")
+[ "$n" -ge 1 ] || fail "table: the computed impacts are not in the study's store"
+[ -e "$tmp/impacts.txt" ] && fail "table: a study wrote a side file"
+echo "table: $n impacts kept in the study's store"
 
 # ---- planning with the cap off answers SIGTERM ----
 cat > "$tmp/big.yaml" <<'Y'

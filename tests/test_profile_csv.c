@@ -23,7 +23,7 @@ static void write_bytes(const char *text, size_t len)
     assert_int_equal(fclose(f), 0);
 }
 
-static rf_traj_material mats[2] = {{"rock", 0.4, 0.7, 30, 0, 0}, {"soil", 0.3, 0.6, 35, 0, 0}};
+static rf_traj_material mats[2] = {{"rock", 0.4, 0.7, 30, 0, 0, {0}}, {"soil", 0.3, 0.6, 35, 0, 0, {0}}};
 
 static rf_status read_len(const char *text, size_t len, rf_traj_spec *s, rf_error *err)
 {

@@ -52,8 +52,8 @@ static const rf_traj_state STATE[N] = {RF_TRAJ_STOPPED, RF_TRAJ_EXITED, RF_TRAJ_
 static void make_spec(fixture *f)
 {
     memset(&f->spec, 0, sizeof f->spec);
-    f->mat[0] = (rf_traj_material){"rock", 0.5, 0.8, 0.5, 0.1, 0};
-    f->mat[1] = (rf_traj_material){"soil", 0.3, 0.6, 0.6, 0.4, 0};
+    f->mat[0] = (rf_traj_material){"rock", 0.5, 0.8, 0.5, 0.1, 0, {0}};
+    f->mat[1] = (rf_traj_material){"soil", 0.3, 0.6, 0.6, 0.4, 0, {0}};
     memset(&f->col, 0, sizeof f->col);
     f->col.name = "fence", f->col.capacity = 2e6, f->col.height = 4;
     memset(&f->def, 0, sizeof f->def);

@@ -161,7 +161,7 @@ static void fill(run *r)
     double X0 = 2600000, Y0 = 1100000;
     static char *names[3] = {"rock", "talus", "soil"};
     for (int m = 0; m < 3; m++)
-        r->mat[m] = (rf_traj_material){names[m], 0.4, 0.8, 30 * PI / 180, 0.1, 5 * PI / 180};
+        r->mat[m] = (rf_traj_material){names[m], 0.4, 0.8, 30 * PI / 180, 0.1, 5 * PI / 180, {0}};
     r->col[0] = (rf_traj_collector){.name = "fence", .capacity = 2e6, .height = 4};
     r->bstart[1] = 2, r->bx[0] = r->bx[1] = X0 + 220, r->by[0] = Y0 + 40, r->by[1] = Y0 + 160;
     r->rstart[1] = 4, r->rw[0] = 1;

@@ -75,7 +75,7 @@ static inline void tt_spec_init(tt_spec *t, double Rn, double Rt)
     rf_traj_spec *s = &t->spec;
     s->gravity = TT_G;
     s->n_materials = 1, s->materials = t->mat;
-    t->mat[0] = (rf_traj_material){"rock", Rn, Rt, 30 * TT_DEG, 0.1, 0};
+    t->mat[0] = (rf_traj_material){"rock", Rn, Rt, 30 * TT_DEG, 0.1, 0, {0}};
     s->mass = 1000;
     s->law = RF_BOUNCE_CONSTANT;
     s->scale_speed = RF_TRAJ_PFEIFFER_BOWEN_K;

@@ -76,6 +76,8 @@ static void make_yaml(const build *b, char *y, size_t size)
     snprintf(y + n, size - n, "\nprofile: {points: [[0, 20], [10, 0], [100, 0]], material: m}\nmaterials: {m: {");
     section(y, size, "materials.m.", b, NULL, NULL);
     n = strlen(y);
+    if (b->set && !strncmp(b->set, "materials.m.impact.", 19)) /* a row of the material's impact model */
+        n += (size_t)snprintf(y + n, size - n, ", impact: {solver: fem, %s: %.17g}", b->set + 19, b->value);
     snprintf(y + n, size - n, "}}\nblock: {shape: %s, ", b->sphere ? "sphere" : "point");
     section(y, size, "block.", b, b->sphere ? "mass" : "radius", b->sphere ? NULL : "density");
     n = strlen(y);

@@ -26,6 +26,18 @@ extern "C" {
 
 typedef rf_status (*rf_model_eval_fn)(void *ctx, const double *x, double *y, rf_error *err);
 
+/* Rows of doubles a model keeps across runs beside its results (a trajectory
+ * model's impact table), in the study's result store: put keeps one row of
+ * `width` values under a text key (an identical row once); each calls fn on
+ * every row stored under key with that width, in the order stored, and stops
+ * at the first status fn returns that is not RF_OK. */
+typedef struct {
+    void *user;
+    rf_status (*put)(void *user, const char *key, const double *row, size_t width, rf_error *err);
+    rf_status (*each)(void *user, const char *key, size_t width, rf_status (*fn)(void *u, const double *row),
+                      void *u, rf_error *err);
+} rf_model_side_store;
+
 typedef struct rf_model {
     size_t n_inputs;
     size_t n_outputs;
@@ -51,6 +63,9 @@ typedef struct rf_model {
      * says what it does on log (NULL: silent).  Without it the first
      * evaluation that needs the work does it. */
     rf_status (*prepare)(void *ctx, FILE *log, rf_error *err);
+    /* Optional (may be NULL): where the model keeps its side rows (a study
+     * run's store), handed before prepare; the store outlives the evaluations. */
+    void (*set_side_store)(void *ctx, const rf_model_side_store *store);
 } rf_model;
 
 /* Evaluate (convenience wrapper checking for NULL and non-finite outputs). */
@@ -64,6 +79,9 @@ rf_status rf_model_eval_many(const rf_model *model, size_t count, const double *
 
 /* Hand the model an interrupt flag (no-op when it has no set_interrupt). */
 void rf_model_set_interrupt(rf_model *model, const atomic_int *flag);
+
+/* Hand the model its side store (no-op when it has no set_side_store). */
+void rf_model_set_side_store(rf_model *model, const rf_model_side_store *store);
 
 /* Do the model's deferred work (see prepare; RF_OK when it has none). */
 rf_status rf_model_prepare(rf_model *model, FILE *log, rf_error *err);

@@ -78,6 +78,14 @@ void rf_store_close(rf_store *s);
 rf_status rf_store_note_set(rf_store *s, const char *key, const char *value, rf_error *err);
 rf_status rf_store_note_get(rf_store *s, const char *key, char *buf, size_t size, rf_error *err);
 
+/* Side rows of a model (rf_model_side_store, model.h): width doubles under a
+ * text key, committed at once (an identical row kept once); each calls fn
+ * on every row of key in the order written, checks each row's width (a
+ * wrong one: RF_EIO naming the store) and stops at fn's first error. */
+rf_status rf_store_side_put(rf_store *s, const char *key, const double *row, size_t width, rf_error *err);
+rf_status rf_store_side_each(rf_store *s, const char *key, size_t width, rf_status (*fn)(void *u, const double *row),
+                             void *u, rf_error *err);
+
 /* Fault injection for tests (SQLite's PRAGMA max_page_count): writes beyond
  * this many pages fail as a full disk would. */
 rf_status rf_store_limit_pages(rf_store *s, long pages, rf_error *err);

@@ -38,6 +38,22 @@ extern "C" {
  * value is not a physical height or distance (e.g. a DEM's undeclared no-data). */
 #define RF_TRAJ_MAX_COORD 1e7
 
+/* A material's own impact model (materials.NAME.impact, the impact_model
+ * law; docs/trajectories.md sec. 3): the ground of `rockfuzz impact` (its
+ * slope_* and layer_* inputs, same names and units) under the block.  The
+ * numbers are the rows materials.NAME.impact.* of the material table, as
+ * given (angles in degrees), with the impact model's defaults; the impact
+ * friction is bounce.impact.friction, else tan(friction_angle) of the material. */
+#define RF_TRAJ_IMPACT_N 16
+typedef struct {
+    int given;                  /* the material names its impact model (impact:) */
+    char solver[16];            /* "" = bounce.impact.solver */
+    char boulder_material[16];  /* "" = elastic (the block); elastic | von_mises | rigid */
+    char slope_material[16];    /* "" = elastic; elastic | von_mises | drucker_prager */
+    char layer_material[16];    /* "" = elastic */
+    double v[RF_TRAJ_IMPACT_N]; /* the rows impact.slope_E ... impact.layer_cap_hardening (traj_fields.c) */
+} rf_traj_impact_ground;
+
 typedef struct {
     char *name;
     double R_n;                 /* normal COR [-], in [0, 1] */
@@ -45,6 +61,7 @@ typedef struct {
     double friction_angle;      /* [rad] (given in deg), sliding mu = tan(phi); also the impact friction of rigid_sphere */
     double rolling_resistance;  /* [-] rolling resistance coefficient mu_r (force mu_r N) */
     double roughness;           /* [rad] (given in deg) SD of the slope-angle perturbation at each impact */
+    rf_traj_impact_ground impact; /* impact_model law: this material's impact model (impact.given = 0: bounce.impact) */
 } rf_traj_material;
 
 typedef enum {

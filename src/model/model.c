@@ -47,6 +47,12 @@ void rf_model_set_interrupt(rf_model *model, const atomic_int *flag)
         model->set_interrupt(model->ctx, flag);
 }
 
+void rf_model_set_side_store(rf_model *model, const rf_model_side_store *store)
+{
+    if (model && model->set_side_store)
+        model->set_side_store(model->ctx, store);
+}
+
 rf_status rf_model_prepare(rf_model *model, FILE *log, rf_error *err)
 {
     return model && model->prepare ? model->prepare(model->ctx, log, err) : RF_OK;

@@ -41,6 +41,12 @@ static void bind_interrupt(void *ctx, const atomic_int *flag)
     rf_model_set_interrupt(&c->inner, flag);
 }
 
+static void bind_side_store(void *ctx, const rf_model_side_store *store)
+{
+    bind_ctx *c = ctx;
+    rf_model_set_side_store(&c->inner, store);
+}
+
 static int is_identity(const sb_binding *b, size_t n_params)
 {
     if (b->n != n_params)
@@ -91,6 +97,7 @@ static rf_status fill(rf_model *m, bind_ctx *c, size_t n_params, rf_error *err)
     m->threads_per_eval = c->inner.threads_per_eval;
     m->warnings = c->inner.warnings ? bind_warnings : NULL;
     m->set_interrupt = c->inner.set_interrupt ? bind_interrupt : NULL;
+    m->set_side_store = c->inner.set_side_store ? bind_side_store : NULL;
     rf_status st = rf_model_init_outputs(m, c->inner.n_outputs, (const char *const *)c->inner.output_names,
                                          (const char *const *)c->inner.output_units, err);
     return st == RF_OK ? set_identity(m, c, err) : st;

@@ -602,3 +602,75 @@ size_t rf_store_failures(const char *path, size_t max, char (*x_text)[512], char
     sqlite3_close(db);
     return n;
 }
+
+/* ---- side rows: a model's own data kept with its results (rf_model_side_store) ----
+ * Table side_rows(key, row): a row of doubles as a blob under a text key,
+ * created when the first row is written (stores of before have none); an
+ * identical (key, row) is kept once.  Each row read back is checked for its
+ * width; what the values mean is checked by the model. */
+static const char *SIDE_SCHEMA = "CREATE TABLE IF NOT EXISTS side_rows(key TEXT NOT NULL, row BLOB NOT NULL,"
+                                 " finished REAL NOT NULL, PRIMARY KEY(key, row))";
+
+rf_status rf_store_side_put(rf_store *s, const char *key, const double *row, size_t width, rf_error *err)
+{
+    sqlite3_stmt *st = NULL;
+    pthread_mutex_lock(&s->lock);
+    int rc = sqlite3_exec(s->db, SIDE_SCHEMA, NULL, NULL, NULL);
+    if (rc == SQLITE_OK)
+        rc = sqlite3_prepare_v2(s->db, "INSERT OR IGNORE INTO side_rows(key, row, finished) VALUES(?, ?, ?)", -1,
+                                &st, NULL);
+    if (rc == SQLITE_OK) {
+        sqlite3_bind_text(st, 1, key, -1, SQLITE_STATIC);
+        sqlite3_bind_blob(st, 2, row, (int)(width * sizeof *row), SQLITE_STATIC);
+        sqlite3_bind_double(st, 3, unix_now());
+        rc = sqlite3_step(st) == SQLITE_DONE ? SQLITE_OK : SQLITE_ERROR;
+    }
+    rf_status out = rc == SQLITE_OK ? RF_OK : db_fail(err, s->db, s->path, "cannot commit a side row");
+    sqlite3_finalize(st);
+    pthread_mutex_unlock(&s->lock);
+    return out;
+}
+
+/* 1 if the store has the table side_rows, 0 if not, -1 on error. */
+static int has_side_rows(sqlite3 *db)
+{
+    sqlite3_stmt *st = NULL;
+    if (sqlite3_prepare_v2(db, "SELECT 1 FROM sqlite_master WHERE type = 'table' AND name = 'side_rows'", -1, &st,
+                           NULL) != SQLITE_OK)
+        return -1;
+    int rc = sqlite3_step(st);
+    sqlite3_finalize(st);
+    return rc == SQLITE_ROW ? 1 : rc == SQLITE_DONE ? 0 : -1;
+}
+
+rf_status rf_store_side_each(rf_store *s, const char *key, size_t width, rf_status (*fn)(void *u, const double *row),
+                             void *u, rf_error *err)
+{
+    sqlite3_stmt *st = NULL;
+    pthread_mutex_lock(&s->lock);
+    int has = has_side_rows(s->db);
+    rf_status out = has < 0 ? db_fail(err, s->db, s->path, "cannot read the side rows") : RF_OK;
+    if (has > 0 && sqlite3_prepare_v2(s->db, "SELECT row FROM side_rows WHERE key = ? ORDER BY rowid", -1, &st,
+                                      NULL) != SQLITE_OK)
+        out = db_fail(err, s->db, s->path, "cannot read the side rows");
+    if (st)
+        sqlite3_bind_text(st, 1, key, -1, SQLITE_STATIC);
+    double *row = malloc(width * sizeof *row + 1);
+    int rc = SQLITE_DONE;
+    if (!row && out == RF_OK)
+        out = rf_fail(err, RF_ENOMEM, "out of memory");
+    while (out == RF_OK && st && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        const void *blob = sqlite3_column_blob(st, 0);
+        if ((size_t)sqlite3_column_bytes(st, 0) != width * sizeof *row || !blob)
+            out = rf_fail(err, RF_EIO, "result store %s: a side row of %s has %d bytes, not %zu values: the store "
+                          "is damaged; rerun with --fresh", s->path, key, sqlite3_column_bytes(st, 0), width);
+        else
+            out = (memcpy(row, blob, width * sizeof *row), fn(u, row));
+    }
+    if (out == RF_OK && st && rc != SQLITE_DONE)
+        out = db_fail(err, s->db, s->path, "cannot read the side rows");
+    free(row);
+    sqlite3_finalize(st);
+    pthread_mutex_unlock(&s->lock);
+    return out;
+}

@@ -122,6 +122,7 @@ typedef struct {
     double t0;
     int lock_fd;
     rf_fuzzy_rasters *fuzzy; /* a terrain study's per-point raster store as the model's sink, or NULL */
+    rf_model_side_store side; /* the store as the model's side store (its impact table) */
 } run_state;
 
 static int on_plan(void *user, size_t requested, size_t distinct)
@@ -214,10 +215,26 @@ static rf_status plan(run_state *r, rf_error *err)
     return RF_OK;
 }
 
+static rf_status side_put(void *user, const char *key, const double *row, size_t width, rf_error *err)
+{
+    return rf_store_side_put(user, key, row, width, err);
+}
+
+static rf_status side_each(void *user, const char *key, size_t width, rf_status (*fn)(void *u, const double *row),
+                           void *u, rf_error *err)
+{
+    return rf_store_side_each(user, key, width, fn, u, err);
+}
+
 /* The model's deferred work (a trajectory model's impact table), inside the
- * run: after the lock and the plan, answering the stop flag, saying progress. */
+ * run: after the lock and the plan, answering the stop flag, saying progress;
+ * what it computes is kept in the store (side rows). */
 static rf_status prepare_model(run_state *r, rf_error *err)
 {
+    if (r->store) {
+        r->side = (rf_model_side_store){r->store, side_put, side_each};
+        rf_model_set_side_store(&r->study.model, &r->side);
+    }
     if (r->opt->interrupt && atomic_load(r->opt->interrupt))
         return rf_fail(err, RF_EINTERRUPTED, "interrupted before the first evaluation; nothing was evaluated");
     rf_status st = rf_model_prepare(&r->study.model, r->opt->out, err);

@@ -85,9 +85,9 @@ static void law_rigid_sphere(traj_run *r, const rf_traj_material *m, double vn, 
 static void law_impact_model(traj_run *r, const rf_traj_material *m, double vn, double vt, double *vn_out,
                              double *vt_out, double *omega)
 {
-    (void)m;
-    double rn, rt, spin;
-    traj_impact_table_eval(r->w->impact_table, fabs(vn), atan2(fabs(vt), fabs(vn)), &rn, &rt, &spin);
+    double rn, rt, spin; /* the table of the segment's material at the block's radius */
+    traj_impact_table_lookup(r->w->impact_table, (size_t)(m - r->s->materials), r->radius, fabs(vn),
+                             atan2(fabs(vt), fabs(vn)), &rn, &rt, &spin);
     *vn_out = rn * fabs(vn);
     *vt_out = rt * vt;
     double w_in = *omega;

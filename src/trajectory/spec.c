@@ -3,6 +3,7 @@
  * the release above the ground, a release line above it; the profile's
  * geometry is checked in profile.c). */
 #include "trajectory/terrain_internal.h"
+#include "trajectory/traj_impact.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -311,10 +312,22 @@ static rf_status names_valid(const rf_traj_spec *s, rf_error *err)
     return RF_OK;
 }
 
+/* Each material's own impact model (materials.NAME.impact) against the impact model and its solver. */
+static rf_status check_impact_grounds(const rf_traj_spec *s, rf_error *err)
+{
+    for (size_t i = 0; i < s->n_materials; i++)
+        if (s->materials[i].impact.given &&
+            traj_impact_ground_check(&s->materials[i].impact, s->impact_solver, err) != RF_OK)
+            return rf_error_prefix(err, "materials.%s.impact", s->materials[i].name);
+    return RF_OK;
+}
+
 rf_status rf_traj_spec_validate(const rf_traj_spec *s, rf_error *err)
 {
     rf_status st = names_valid(s, err);
     if (st == RF_OK)
         st = validate_values(s, err);
+    if (st == RF_OK)
+        st = check_impact_grounds(s, err);
     return st != RF_OK ? st : check_random_ranges(s, err);
 }

@@ -74,7 +74,8 @@ static void impact_model3(const bounce_ctx *c, double vn, double vt[3], double w
 {
     const terrain_run *r = c->r;
     double st = sqrt(dot3(vt, vt)), rn, rt, spin;
-    traj_impact_table_eval(r->w->impact_table, fabs(vn), atan2(st, fabs(vn)), &rn, &rt, &spin);
+    traj_impact_table_lookup(r->w->impact_table, (size_t)(c->m - r->s->materials), r->radius, fabs(vn),
+                             atan2(st, fabs(vn)), &rn, &rt, &spin); /* the cell class's table at the block's radius */
     double i_m = r->mass > 0 ? r->inertia / r->mass : 0, e_in = vn * vn + energy2(vt, w, i_m);
     *vn_out = rn * fabs(vn);
     for (int q = 0; q < 3; q++)

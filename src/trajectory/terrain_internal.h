@@ -394,5 +394,9 @@ rf_status terrain_spec_check(const rf_traj_spec *s, rf_error *err);
  * material per cell set or NULL), which it takes over (freed on failure too);
  * without a class raster every cell gets spec->terrain->material. */
 rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_terrain_world **w, rf_error *err);
+/* rf_terrain_world_create without the impact table (impact_model law): the
+ * caller builds it into w->impact_table inside its run (a study: after the
+ * folder lock, answering the stop flag; traj_model.c). */
+rf_status terrain_world_create_deferred(const rf_traj_spec *s, rf_terrain_world **w, rf_error *err);
 
 #endif

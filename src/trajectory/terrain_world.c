@@ -145,7 +145,9 @@ static rf_status release_on_dem(const rf_terrain *t, const rf_terrain_world *w, 
     return RF_OK;
 }
 
-rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_terrain_world **out, rf_error *err)
+/* The world; with_table: and the impact table of the impact_model law (else left NULL for the caller to build). */
+static rf_status world_from_surface(const rf_traj_spec *s, rf_terrain *dem, int with_table, rf_terrain_world **out,
+                                    rf_error *err)
 {
     *out = NULL;
     rf_terrain_world *w = calloc(1, sizeof *w);
@@ -163,7 +165,7 @@ rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_
         st = terrain_release_prepare(s, &w->release, err);
     if (st == RF_OK)
         st = release_on_dem(dem, w, s->terrain, err);
-    if (st == RF_OK && s->law == RF_BOUNCE_IMPACT_MODEL)
+    if (st == RF_OK && with_table && s->law == RF_BOUNCE_IMPACT_MODEL)
         st = traj_impact_table_build(s, (traj_impact_table **)&w->impact_table, err);
     if (st != RF_OK) {
         rf_terrain_world_free(w);
@@ -173,7 +175,13 @@ rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_
     return RF_OK;
 }
 
-rf_status rf_terrain_world_create(const rf_traj_spec *s, rf_terrain_world **w, rf_error *err)
+rf_status terrain_world_from_surface(const rf_traj_spec *s, rf_terrain *dem, rf_terrain_world **out, rf_error *err)
+{
+    return world_from_surface(s, dem, 1, out, err);
+}
+
+/* The world read from the spec's files; with_table as world_from_surface. */
+static rf_status world_create(const rf_traj_spec *s, int with_table, rf_terrain_world **w, rf_error *err)
 {
     *w = NULL;
     const rf_terrain_def *d = s->terrain;
@@ -190,5 +198,15 @@ rf_status rf_terrain_world_create(const rf_traj_spec *s, rf_terrain_world **w, r
         rf_terrain_free(t);
         return st;
     }
-    return terrain_world_from_surface(s, t, w, err);
+    return world_from_surface(s, t, with_table, w, err);
+}
+
+rf_status rf_terrain_world_create(const rf_traj_spec *s, rf_terrain_world **w, rf_error *err)
+{
+    return world_create(s, 1, w, err);
+}
+
+rf_status terrain_world_create_deferred(const rf_traj_spec *s, rf_terrain_world **w, rf_error *err)
+{
+    return world_create(s, 0, w, err);
 }

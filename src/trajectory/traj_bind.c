@@ -217,8 +217,13 @@ uint64_t rf_traj_spec_values_hash(const rf_traj_spec *s)
         const rf_traj_field_table *tb = &rf_traj_field_tables[t];
         if (tb->owner == RF_TRAJ_OWNER_SPEC)
             h = hash_rows(h, tb, s);
-        for (size_t i = 0; tb->owner == RF_TRAJ_OWNER_MATERIAL && i < s->n_materials; i++)
+        for (size_t i = 0; tb->owner == RF_TRAJ_OWNER_MATERIAL && i < s->n_materials; i++) {
+            const rf_traj_impact_ground *g = &s->materials[i].impact;
             h = hash_rows(hash_str(h, s->materials[i].name), tb, &s->materials[i]);
+            if (g->given) /* its impact model's words (its numbers are rows) */
+                h = hash_str(hash_str(hash_str(hash_str(hash_str(h, "impact"), g->solver), g->boulder_material),
+                                      g->slope_material), g->layer_material);
+        }
         for (size_t i = 0; tb->owner == RF_TRAJ_OWNER_COLLECTOR && i < s->n_collectors; i++) {
             const rf_traj_collector *c = &s->collectors[i];
             h = hash_rows(hash_str(h, c->name), tb, c);

@@ -20,6 +20,9 @@
     {key, offsetof(rf_traj_spec, field), deg, unit, def, probe, check, when, random, bind, help}
 #define MAT(field, deg, unit, def, probe, check, help) \
     {#field, offsetof(rf_traj_material, field), deg, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 1, 1, help}
+/* A number of materials.NAME.impact: stored as given (angles in degrees: the impact model converts them). */
+#define IMP(k, name, unit, def, probe, check, help) \
+    {"impact." #name, offsetof(rf_traj_material, impact.v[k]), 0, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 0, 0, help}
 #define COL(field, unit, def, probe, check, help) \
     {#field, offsetof(rf_traj_collector, field), 0, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 0, 1, help}
 
@@ -63,7 +66,30 @@ static const rf_traj_field material_rows[] = {
     MAT(rolling_resistance, 0, "", 0.0, 0.07, RF_TRAJ_CHECK_NONNEGATIVE,
         "rolling resistance coefficient mu_r (force mu_r N)"),
     MAT(roughness, 1, "deg", 0.0, 4.0, RF_TRAJ_CHECK_ANGLE_45, "SD of the slope-angle tilt drawn at each impact"),
+    /* impact_model law: the material's own impact model (impact: {...}), the
+     * ground inputs of `rockfuzz impact` with its names, units and defaults
+     * (traj_impact_yaml.c reads them, traj_impact_adapter.c applies them by name) */
+    IMP(0, slope_E, "Pa", 68.2e9, 30e9, RF_TRAJ_CHECK_POSITIVE, "Young's modulus of the rock (under a layer)"),
+    IMP(1, slope_poisson, "", 0.25, 0.3, RF_TRAJ_CHECK_FINITE, "Poisson's ratio of the rock, in (-1, 0.5)"),
+    IMP(2, slope_density, "kg/m^3", 2600.0, 2400.0, RF_TRAJ_CHECK_POSITIVE, "density of the rock"),
+    IMP(3, slope_yield, "Pa", 0.0, 1e8, RF_TRAJ_CHECK_NONNEGATIVE, "von_mises rock: initial yield stress Y"),
+    IMP(4, slope_hardening, "Pa", 0.0, 1e9, RF_TRAJ_CHECK_NONNEGATIVE, "von_mises rock: hardening modulus H"),
+    IMP(5, layer_thickness, "m", 0.0, 0.5, RF_TRAJ_CHECK_NONNEGATIVE, "soil layer on the rock; 0 = rock only"),
+    IMP(6, layer_E, "Pa", 68.2e9, 50e6, RF_TRAJ_CHECK_POSITIVE, "layer Young's modulus"),
+    IMP(7, layer_poisson, "", 0.25, 0.3, RF_TRAJ_CHECK_FINITE, "layer Poisson's ratio, in (-1, 0.5)"),
+    IMP(8, layer_density, "kg/m^3", 2600.0, 1900.0, RF_TRAJ_CHECK_POSITIVE, "layer density"),
+    IMP(9, layer_yield, "Pa", 0.0, 1e6, RF_TRAJ_CHECK_NONNEGATIVE, "von_mises layer: initial yield stress Y"),
+    IMP(10, layer_hardening, "Pa", 0.0, 1e6, RF_TRAJ_CHECK_NONNEGATIVE, "von_mises layer: hardening modulus H"),
+    IMP(11, layer_cohesion, "Pa", 0.0, 1e4, RF_TRAJ_CHECK_NONNEGATIVE, "drucker_prager layer: cohesion c"),
+    IMP(12, layer_friction_angle, "deg", 0.0, 35.0, RF_TRAJ_CHECK_ANGLE_90, "drucker_prager layer: friction angle"),
+    IMP(13, layer_dilatancy_angle, "deg", 0.0, 5.0, RF_TRAJ_CHECK_ANGLE_90,
+        "drucker_prager layer: dilatancy angle, in [0, friction_angle]"),
+    IMP(14, layer_cap_pressure, "Pa", 0.0, 2e5, RF_TRAJ_CHECK_NONNEGATIVE,
+        "drucker_prager layer: cap crush pressure; 0 = no cap"),
+    IMP(15, layer_cap_hardening, "Pa", 0.0, 4e7, RF_TRAJ_CHECK_NONNEGATIVE,
+        "drucker_prager layer: cap compaction modulus"),
 };
+_Static_assert(RF_TRAJ_IMPACT_N == 16, "one row per impact ground number");
 
 static const rf_traj_field run_rows[] = {
     ROW("gravity", gravity, 0, "m/s^2", 9.81, 9.7, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_ALWAYS, 1, 1, "gravity g"),

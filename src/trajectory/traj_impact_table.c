@@ -1,12 +1,17 @@
 /* traj_impact_table.c - R_n, R_t and the spin ratio of an impact model
- * tabulated over normal speed v_n in bounce.impact.speeds (default [0.25, 40] m/s) and incidence theta in
- * [0, max_incidence] (default 80 deg, the 3D FE model's limit; from the normal) on a tensor grid refined adaptively: an
- * interval (in v_n or theta) is halved while, at its midpoint, bilinear
- * interpolation from the current nodes misses the model by more than the
- * tolerance (absolute, on R_n and R_t) on any grid line.  After the last
- * refinement every cell centre is evaluated as an independent check: the
- * largest |interpolated - model| there is the reported error estimate.
- * Outside the box the table is clamped.  Built once per run (per world).
+ * tabulated, per material (its own impact model, materials.NAME.impact, or
+ * the run's bounce.impact for a material without one: one shared grid),
+ * over normal speed v_n in bounce.impact.speeds (default [0.25, 40] m/s),
+ * incidence theta in [0, max_incidence] (default 80 deg, the 3D FE model's
+ * limit; from the normal) and the block radius over the run's range (the
+ * sphere's radius, or the range of a random block.radius; one node when it
+ * is fixed) on a tensor grid refined adaptively: an interval (in v_n, theta
+ * or radius) is halved while, at its midpoint, multilinear interpolation
+ * from the current nodes misses the model by more than the tolerance
+ * (absolute, on R_n and R_t) on any grid line.  After the last refinement
+ * every cell centre is evaluated as an independent check: the largest
+ * |interpolated - model| there is the reported error estimate.  Outside the
+ * box the table is clamped.  Built once per run (per world).
  * A watched build (traj_impact_table_build_watched) checks a stop flag before
  * every impact it computes (RF_EINTERRUPTED; the impacts computed so far stay
  * in the cache file) and reports each one to a progress callback. */
@@ -20,66 +25,108 @@
 
 #define MAX_NODES 65
 
-struct traj_impact_table {
-    size_t nv, nt;
-    double v[MAX_NODES], th[MAX_NODES];
-    double *c;                 /* [(i * nt + j) * 3 + q]: R_n, R_t, spin */
-    size_t evaluations;        /* impacts computed by the model for this table */
-    size_t from_cache;         /* impacts of the table taken from bounce.impact.cache */
+/* One material's grid: nodes x[0] (v_n), x[1] (theta), x[2] (radius). */
+typedef struct {
+    size_t n[3];
+    double x[3][MAX_NODES];
+    double *c;                 /* [((i * n1 + j) * n2 + l) * 3 + q]: R_n, R_t, spin */
+    size_t evaluations;        /* impacts computed by the model for this grid */
+    size_t from_cache;         /* impacts of the grid taken from the cache (file or store) */
     double error_estimate;
+} grid;
+
+struct traj_impact_table {
+    size_t n_grids, n_materials;
+    grid *grids;
+    size_t *of;                /* n_materials: the grid of material k */
 };
 
 typedef struct {
     traj_impact_setup setup;
-    traj_impact_table *t;
+    grid *g;
+    const traj_impact_table *t; /* for the progress totals */
     rf_error *err;
-    double *memo;             /* (v, theta, R_n, R_t, spin) of every impact computed */
+    double *memo;             /* (v, theta, radius, R_n, R_t, spin) of every impact known */
     size_t n_memo, cap_memo;
-    size_t n_cached;          /* the first n_cached rows of memo came from the cache file */
-    unsigned char *hit;       /* n_cached flags: the row was used by the table */
+    size_t n_cached;          /* the first n_cached rows of memo came from the cache */
+    unsigned char *hit;       /* n_cached flags: the row was used by the grid */
     const char *cache;        /* bounce.impact.cache or NULL */
-    const traj_table_watch *watch; /* stop flag and progress, or NULL */
+    const traj_table_watch *watch; /* stop flag, progress and store, or NULL */
 } builder;
 
-/* One impact of the model, computed once (the grid is refilled after each refinement). */
-static rf_status eval(builder *b, double v, double th, double *c)
+static size_t at(const grid *g, size_t i, size_t j, size_t l) { return (i * g->n[1] + j) * g->n[2] + l; }
+
+static void totals(const traj_impact_table *t, size_t *computed, size_t *cached)
 {
-    for (size_t k = 0; k < b->n_memo; k++)
-        if (b->memo[5 * k] == v && b->memo[5 * k + 1] == th) {
-            memcpy(c, &b->memo[5 * k + 2], 3 * sizeof *c);
-            if (k < b->n_cached && b->hit && !b->hit[k]) /* a cache hit, counted once per impact */
-                b->hit[k] = 1, b->t->from_cache++;
-            return RF_OK;
-        }
-    const traj_table_watch *w = b->watch;
-    rf_status st = w && w->stop && atomic_load(w->stop) ? RF_EINTERRUPTED : RF_OK;
-    if (st == RF_OK)
-        st = traj_impact_coefficients(&b->setup, v, th, &c[0], &c[1], &c[2], b->err);
-    if (st == RF_EINTERRUPTED) /* before this impact or inside it (an FE run stops between two steps) */
-        return rf_fail(b->err, RF_EINTERRUPTED, "interrupted while building the impact table after %zu impact%s of "
-                       "the impact model%s%s", b->t->evaluations, b->t->evaluations == 1 ? "" : "s",
-                       b->cache ? "; they are kept in " : "", b->cache ? b->cache : "");
-    if (st != RF_OK)
-        return st;
-    b->t->evaluations++;
-    if (w && w->progress)
-        w->progress(w->user, b->t->evaluations, b->t->from_cache, b->t->nv, b->t->nt);
+    *computed = *cached = 0;
+    for (size_t k = 0; k < t->n_grids; k++)
+        *computed += t->grids[k].evaluations, *cached += t->grids[k].from_cache;
+}
+
+static rf_status interrupted(builder *b)
+{
+    size_t computed, cached;
+    totals(b->t, &computed, &cached);
+    const char *kept = b->watch && b->watch->store ? "the study store" : b->cache;
+    return rf_fail(b->err, RF_EINTERRUPTED, "interrupted while building the impact table after %zu impact%s of the "
+                   "impact model%s%s", computed, computed == 1 ? "" : "s", kept ? "; they are kept in " : "",
+                   kept ? kept : "");
+}
+
+/* Keep a computed impact: in the memo, then in the store or the cache file at once
+ * (an interrupted build keeps its impacts). */
+static rf_status keep(builder *b, const double p[3], const double *c)
+{
     if (b->n_memo == b->cap_memo) {
         size_t cap = b->cap_memo ? 2 * b->cap_memo : 256;
-        double *m = realloc(b->memo, cap * 5 * sizeof *m);
+        double *m = realloc(b->memo, cap * 6 * sizeof *m);
         if (!m)
             return RF_OK; /* only the memo is lost */
         b->memo = m, b->cap_memo = cap;
     }
-    double *m = &b->memo[5 * b->n_memo++];
-    m[0] = v, m[1] = th, memcpy(m + 2, c, 3 * sizeof *c);
-    traj_impact_cache_append(b->cache, &b->setup, m, 1); /* at once: an interrupted build keeps its impacts */
+    double *m = &b->memo[6 * b->n_memo++];
+    memcpy(m, p, 3 * sizeof *m), memcpy(m + 3, c, 3 * sizeof *c);
+    const traj_impact_store *s = b->watch ? b->watch->store : NULL;
+    if (s)
+        return s->put(s->user, &b->setup, m, b->err);
+    traj_impact_cache_append(b->cache, &b->setup, m, 1);
     return RF_OK;
 }
 
+/* One impact of the model at p = (v, theta, radius), computed once (the grid is refilled after each refinement). */
+static rf_status eval(builder *b, const double p[3], double *c)
+{
+    for (size_t k = 0; k < b->n_memo; k++)
+        if (b->memo[6 * k] == p[0] && b->memo[6 * k + 1] == p[1] && b->memo[6 * k + 2] == p[2]) {
+            memcpy(c, &b->memo[6 * k + 3], 3 * sizeof *c);
+            if (k < b->n_cached && b->hit && !b->hit[k]) /* a cache hit, counted once per impact */
+                b->hit[k] = 1, b->g->from_cache++;
+            return RF_OK;
+        }
+    const traj_table_watch *w = b->watch;
+    rf_status st = w && w->stop && atomic_load(w->stop) ? RF_EINTERRUPTED : RF_OK;
+    b->setup.radius = p[2];
+    if (st == RF_OK && w && w->model)
+        st = w->model(&b->setup, p[0], p[1], c, b->err);
+    else if (st == RF_OK)
+        st = traj_impact_coefficients(&b->setup, p[0], p[1], &c[0], &c[1], &c[2], b->err);
+    if (st == RF_EINTERRUPTED) /* before this impact or inside it (an FE run stops between two steps) */
+        return interrupted(b);
+    if (st != RF_OK)
+        return st;
+    b->g->evaluations++;
+    if (w && w->progress) {
+        size_t computed, cached;
+        totals(b->t, &computed, &cached);
+        w->progress(w->user, computed, cached, b->g->n[0], b->g->n[1]);
+    }
+    return keep(b, p, c);
+}
+
+/* Lower node and fraction of v on the axis x[0..n) (clamped; one node: itself). */
 static size_t locate(const double *x, size_t n, double v, double *f)
 {
-    if (v <= x[0]) {
+    if (n < 2 || v <= x[0]) {
         *f = 0;
         return 0;
     }
@@ -96,65 +143,94 @@ static size_t locate(const double *x, size_t n, double v, double *f)
     return lo;
 }
 
-static void interp(const traj_impact_table *t, double v, double th, double *c)
+/* Bilinear in (v, theta) on the radius node l. */
+static void interp2(const grid *g, size_t i, size_t j, size_t l, double fv, double ft, double *c)
 {
-    double fv, ft;
-    size_t i = locate(t->v, t->nv, v, &fv), j = locate(t->th, t->nt, th, &ft);
     for (int q = 0; q < 3; q++) {
-        double a = t->c[(i * t->nt + j) * 3 + q], b = t->c[(i * t->nt + j + 1) * 3 + q];
-        double d = t->c[((i + 1) * t->nt + j) * 3 + q], e = t->c[((i + 1) * t->nt + j + 1) * 3 + q];
+        double a = g->c[at(g, i, j, l) * 3 + q], b = g->c[at(g, i, j + 1, l) * 3 + q];
+        double d = g->c[at(g, i + 1, j, l) * 3 + q], e = g->c[at(g, i + 1, j + 1, l) * 3 + q];
         c[q] = (1 - fv) * ((1 - ft) * a + ft * b) + fv * ((1 - ft) * d + ft * e);
     }
+}
+
+/* Multilinear interpolation at p; one radius node: the bilinear table of before. */
+static void interp(const grid *g, const double p[3], double *c)
+{
+    double fv, ft, fr;
+    size_t i = locate(g->x[0], g->n[0], p[0], &fv), j = locate(g->x[1], g->n[1], p[1], &ft);
+    size_t l = locate(g->x[2], g->n[2], p[2], &fr);
+    interp2(g, i, j, l, fv, ft, c);
+    if (g->n[2] < 2)
+        return;
+    double d[3];
+    interp2(g, i, j, l + 1, fv, ft, d);
+    for (int q = 0; q < 3; q++)
+        c[q] = (1 - fr) * c[q] + fr * d[q];
+}
+
+static void clamp_out(const double *c, double *R_n, double *R_t, double *spin_ratio)
+{
+    *R_n = fmin(fmax(c[0], 0), 1), *R_t = fmin(fmax(c[1], 0), 1), *spin_ratio = fmax(c[2], 0);
+}
+
+void traj_impact_table_lookup(const traj_impact_table *t, size_t material, double radius, double vn, double theta,
+                              double *R_n, double *R_t, double *spin_ratio)
+{
+    const grid *g = &t->grids[t->of[material < t->n_materials ? material : 0]];
+    double p[3] = {vn, theta, radius}, c[3];
+    interp(g, p, c);
+    clamp_out(c, R_n, R_t, spin_ratio);
 }
 
 void traj_impact_table_eval(const traj_impact_table *t, double vn, double theta, double *R_n, double *R_t,
                             double *spin_ratio)
 {
-    double c[3];
-    interp(t, vn, theta, c);
-    *R_n = fmin(fmax(c[0], 0), 1), *R_t = fmin(fmax(c[1], 0), 1), *spin_ratio = fmax(c[2], 0);
+    traj_impact_table_lookup(t, 0, t->grids[t->of[0]].x[2][0], vn, theta, R_n, R_t, spin_ratio);
 }
 
 /* Evaluate every node (known ones come from the memo). */
 static rf_status fill(builder *b)
 {
-    traj_impact_table *t = b->t;
-    free(t->c);
-    t->c = malloc(t->nv * t->nt * 3 * sizeof *t->c);
-    if (!t->c)
+    grid *g = b->g;
+    free(g->c);
+    g->c = malloc(g->n[0] * g->n[1] * g->n[2] * 3 * sizeof *g->c);
+    if (!g->c)
         return rf_fail(b->err, RF_ENOMEM, "out of memory");
-    for (size_t i = 0; i < t->nv; i++)
-        for (size_t j = 0; j < t->nt; j++) {
-            rf_status st = eval(b, t->v[i], t->th[j], &t->c[(i * t->nt + j) * 3]);
-            if (st != RF_OK)
-                return st;
-        }
+    for (size_t i = 0; i < g->n[0]; i++)
+        for (size_t j = 0; j < g->n[1]; j++)
+            for (size_t l = 0; l < g->n[2]; l++) {
+                double p[3] = {g->x[0][i], g->x[1][j], g->x[2][l]};
+                rf_status st = eval(b, p, &g->c[at(g, i, j, l) * 3]);
+                if (st != RF_OK)
+                    return st;
+            }
     return RF_OK;
 }
 
-static void insert(double *x, size_t *n, size_t at, double v)
+static void insert(double *x, size_t *n, size_t at_, double v)
 {
-    memmove(x + at + 2, x + at + 1, (*n - at - 1) * sizeof *x);
-    x[at + 1] = v;
+    memmove(x + at_ + 2, x + at_ + 1, (*n - at_ - 1) * sizeof *x);
+    x[at_ + 1] = v;
     (*n)++;
 }
 
-/* Midpoint errors along one axis; split[k] = 1 for the intervals to halve. */
+/* Midpoint errors along one axis; split[k] = 1 for the intervals to halve.
+ * The grid lines run over the nodes of the two other axes (in axis order). */
 static rf_status refine_axis(builder *b, int axis, double tol, int *split, int *any)
 {
-    traj_impact_table *t = b->t;
-    size_t n = axis ? t->nt : t->nv, m = axis ? t->nv : t->nt;
-    const double *x = axis ? t->th : t->v, *y = axis ? t->v : t->th;
-    for (size_t k = 0; k + 1 < n; k++) {
+    const grid *g = b->g;
+    int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
+    for (size_t k = 0; k + 1 < g->n[axis]; k++) {
         split[k] = 0;
-        for (size_t l = 0; l < m && !split[k]; l++) {
-            double mid = 0.5 * (x[k] + x[k + 1]), c[3], p[3];
-            double v = axis ? y[l] : mid, th = axis ? mid : y[l];
-            rf_status st = eval(b, v, th, c);
+        for (size_t line = 0; line < g->n[a1] * g->n[a2] && !split[k]; line++) {
+            double p[3], c[3], q[3];
+            p[axis] = 0.5 * (g->x[axis][k] + g->x[axis][k + 1]);
+            p[a1] = g->x[a1][line / g->n[a2]], p[a2] = g->x[a2][line % g->n[a2]];
+            rf_status st = eval(b, p, c);
             if (st != RF_OK)
                 return st;
-            interp(t, v, th, p);
-            split[k] = fabs(c[0] - p[0]) > tol || fabs(c[1] - p[1]) > tol;
+            interp(g, p, q);
+            split[k] = fabs(c[0] - q[0]) > tol || fabs(c[1] - q[1]) > tol;
         }
         *any |= split[k];
     }
@@ -163,41 +239,142 @@ static rf_status refine_axis(builder *b, int axis, double tol, int *split, int *
 
 static rf_status refine(builder *b, double tol)
 {
-    traj_impact_table *t = b->t;
+    grid *g = b->g;
     for (int round = 0; round < 8; round++) {
-        int split[2][MAX_NODES], any = 0;
-        rf_status st;
-        if ((st = refine_axis(b, 0, tol, split[0], &any)) != RF_OK || (st = refine_axis(b, 1, tol, split[1], &any)))
-            return st;
+        int split[3][MAX_NODES], any = 0;
+        for (int axis = 0; axis < 3; axis++) {
+            rf_status st = refine_axis(b, axis, tol, split[axis], &any);
+            if (st != RF_OK)
+                return st;
+        }
         if (!any)
             return RF_OK;
-        for (int axis = 0; axis < 2; axis++) {
-            double *x = axis ? t->th : t->v;
-            size_t *n = axis ? &t->nt : &t->nv, n0 = *n;
+        for (int axis = 0; axis < 3; axis++) {
+            size_t n0 = g->n[axis];
             for (size_t k = n0 - 1; k-- > 0;)
-                if (split[axis][k] && *n < MAX_NODES)
-                    insert(x, n, k, 0.5 * (x[k] + x[k + 1]));
+                if (split[axis][k] && g->n[axis] < MAX_NODES)
+                    insert(g->x[axis], &g->n[axis], k, 0.5 * (g->x[axis][k] + g->x[axis][k + 1]));
         }
-        if ((st = fill(b)) != RF_OK)
+        rf_status st = fill(b);
+        if (st != RF_OK)
             return st;
     }
     return RF_OK;
 }
 
-/* The error estimate: the largest miss at the cell centres of the final grid. */
+/* The error estimate: the largest miss at the cell centres of the final grid
+ * (one radius node: the centres of the (v_n, theta) cells at that radius). */
 static rf_status estimate_error(builder *b)
 {
-    traj_impact_table *t = b->t;
-    t->error_estimate = 0;
-    for (size_t i = 0; i + 1 < t->nv; i++)
-        for (size_t j = 0; j + 1 < t->nt; j++) {
-            double v = 0.5 * (t->v[i] + t->v[i + 1]), th = 0.5 * (t->th[j] + t->th[j + 1]), c[3], p[3];
-            rf_status st = eval(b, v, th, c);
-            if (st != RF_OK)
-                return st;
-            interp(t, v, th, p);
-            t->error_estimate = fmax(t->error_estimate, fmax(fabs(c[0] - p[0]), fabs(c[1] - p[1])));
+    grid *g = b->g;
+    g->error_estimate = 0;
+    size_t nr = g->n[2] > 1 ? g->n[2] - 1 : 1;
+    for (size_t i = 0; i + 1 < g->n[0]; i++)
+        for (size_t j = 0; j + 1 < g->n[1]; j++)
+            for (size_t l = 0; l < nr; l++) {
+                double p[3] = {0.5 * (g->x[0][i] + g->x[0][i + 1]), 0.5 * (g->x[1][j] + g->x[1][j + 1]),
+                               g->n[2] > 1 ? 0.5 * (g->x[2][l] + g->x[2][l + 1]) : g->x[2][0]}, c[3], q[3];
+                rf_status st = eval(b, p, c);
+                if (st != RF_OK)
+                    return st;
+                interp(g, p, q);
+                g->error_estimate = fmax(g->error_estimate, fmax(fabs(c[0] - q[0]), fabs(c[1] - q[1])));
+            }
+    return RF_OK;
+}
+
+/* The block radii a run meets: the sphere's radius, or the range of a random
+ * block.radius (uniform [a, b]; normal: its truncation, else mean +- 4 SD,
+ * kept > 0). */
+void traj_impact_radius_range(const rf_traj_spec *s, double *lo, double *hi)
+{
+    *lo = *hi = s->radius;
+    for (size_t k = 0; k < s->n_random; k++) {
+        const rf_traj_random *r = &s->random[k];
+        if (strcmp(r->path, "block.radius") != 0 || r->dist == RF_DIST_FIXED)
+            continue;
+        double a = r->dist == RF_DIST_UNIFORM ? r->a : r->a - 4 * r->b;
+        double b = r->dist == RF_DIST_UNIFORM ? r->b : r->a + 4 * r->b;
+        a = fmax(a, r->lo), b = fmin(b, r->hi);
+        if (!(a > 0))
+            a = fmin(b, r->a) * 1e-2;
+        if (a > 0 && b > a)
+            *lo = a, *hi = b;
+    }
+}
+
+/* The first nodes: v_n geometric, theta uniform, 5 each; radius geometric, 3 (1 when fixed). */
+static void first_nodes(grid *g, const rf_traj_spec *spec)
+{
+    double rlo, rhi;
+    traj_impact_radius_range(spec, &rlo, &rhi);
+    g->n[0] = g->n[1] = 5;
+    for (size_t i = 0; i < 5; i++) {
+        g->x[0][i] = spec->impact_speed_min * pow(spec->impact_speed_max / spec->impact_speed_min, (double)i / 4);
+        g->x[1][i] = spec->impact_max_incidence * (double)i / 4;
+    }
+    g->n[2] = rhi > rlo ? 3 : 1;
+    g->x[2][0] = rlo;
+    if (g->n[2] == 3)
+        g->x[2][1] = sqrt(rlo * rhi), g->x[2][2] = rhi;
+}
+
+/* The impacts already known for this setup: from the store, else the cache file. */
+static rf_status known(builder *b)
+{
+    const traj_impact_store *s = b->watch ? b->watch->store : NULL;
+    if (s)
+        return s->load(s->user, &b->setup, &b->memo, &b->n_memo, &b->cap_memo, b->err);
+    return traj_impact_cache_load(b->cache, &b->setup, &b->memo, &b->n_memo, &b->cap_memo, b->err);
+}
+
+/* Build grid g for the setup of material k (its own impact model, or the run's). */
+static rf_status build_grid(const rf_traj_spec *spec, const traj_table_watch *watch, traj_impact_table *t, grid *g,
+                            size_t k, rf_error *err)
+{
+    builder b = {{0}, g, t, err, NULL, 0, 0, 0, NULL, spec->impact_cache, watch};
+    rf_status st = traj_impact_setup_material(&b.setup, spec, k, err);
+    b.setup.stop = watch ? watch->stop : NULL;
+    first_nodes(g, spec);
+    if (st == RF_OK)
+        st = known(&b);
+    b.n_cached = b.n_memo;
+    if (st == RF_OK && b.n_cached && !(b.hit = calloc(b.n_cached, 1)))
+        st = rf_fail(err, RF_ENOMEM, "out of memory");
+    if (st == RF_OK)
+        st = fill(&b);
+    if (st == RF_OK)
+        st = refine(&b, spec->impact_tolerance);
+    if (st == RF_OK)
+        st = estimate_error(&b);
+    free(b.memo);
+    free(b.hit);
+    if (st != RF_OK && spec->n_materials > 1 && spec->materials[k].impact.given)
+        rf_error_prefix(err, "materials.%s.impact", spec->materials[k].name);
+    return st;
+}
+
+/* Which grid each material uses: its own when it names an impact model, else
+ * the one grid of bounce.impact (grid 0 when material 0 has none). */
+static rf_status assign_grids(const rf_traj_spec *spec, traj_impact_table *t, size_t *first, rf_error *err)
+{
+    t->n_materials = spec->n_materials ? spec->n_materials : 1;
+    t->of = calloc(t->n_materials, sizeof *t->of);
+    t->grids = calloc(t->n_materials, sizeof *t->grids);
+    if (!t->of || !t->grids)
+        return rf_fail(err, RF_ENOMEM, "out of memory");
+    size_t shared = TRAJ_NONE;
+    for (size_t k = 0; k < t->n_materials; k++) {
+        int own = k < spec->n_materials && spec->materials[k].impact.given;
+        if (!own && shared != TRAJ_NONE) {
+            t->of[k] = shared;
+            continue;
         }
+        first[t->n_grids] = k;
+        t->of[k] = t->n_grids++;
+        if (!own)
+            shared = t->of[k];
+    }
     return RF_OK;
 }
 
@@ -211,29 +388,11 @@ rf_status traj_impact_table_build_watched(const rf_traj_spec *spec, const traj_t
 {
     *out = NULL;
     traj_impact_table *t = calloc(1, sizeof *t);
-    if (!t)
-        return rf_fail(err, RF_ENOMEM, "out of memory");
-    builder b = {{0}, t, err, NULL, 0, 0, 0, NULL, spec->impact_cache, watch};
-    rf_status st = traj_impact_setup_init(&b.setup, spec, err);
-    b.setup.stop = watch ? watch->stop : NULL;
-    t->nv = t->nt = 5;
-    for (size_t i = 0; i < 5; i++) { /* v_n geometric, theta uniform */
-        t->v[i] = spec->impact_speed_min * pow(spec->impact_speed_max / spec->impact_speed_min, (double)i / 4);
-        t->th[i] = spec->impact_max_incidence * (double)i / 4;
-    }
-    if (st == RF_OK)
-        st = traj_impact_cache_load(spec->impact_cache, &b.setup, &b.memo, &b.n_memo, &b.cap_memo, err);
-    b.n_cached = b.n_memo;
-    if (st == RF_OK && b.n_cached && !(b.hit = calloc(b.n_cached, 1)))
-        st = rf_fail(err, RF_ENOMEM, "out of memory");
-    if (st == RF_OK)
-        st = fill(&b);
-    if (st == RF_OK)
-        st = refine(&b, spec->impact_tolerance);
-    if (st == RF_OK)
-        st = estimate_error(&b);
-    free(b.memo);
-    free(b.hit);
+    size_t n = spec->n_materials ? spec->n_materials : 1, *first = calloc(n, sizeof *first);
+    rf_status st = t && first ? assign_grids(spec, t, first, err) : rf_fail(err, RF_ENOMEM, "out of memory");
+    for (size_t k = 0; st == RF_OK && k < t->n_grids; k++)
+        st = build_grid(spec, watch, t, &t->grids[k], first[k], err);
+    free(first);
     if (st != RF_OK) {
         traj_impact_table_free(t);
         return st;
@@ -246,15 +405,32 @@ void traj_impact_table_free(traj_impact_table *t)
 {
     if (!t)
         return;
-    free(t->c);
+    for (size_t k = 0; t->grids && k < t->n_grids; k++)
+        free(t->grids[k].c);
+    free(t->grids);
+    free(t->of);
     free(t);
 }
 
 void traj_impact_table_info(const traj_impact_table *t, size_t *nv, size_t *nt, size_t *evaluations,
                             size_t *from_cache, double *error_estimate)
 {
-    *nv = t ? t->nv : 0, *nt = t ? t->nt : 0;
-    *from_cache = t ? t->from_cache : 0;
-    *evaluations = t ? t->evaluations : 0;
-    *error_estimate = t ? t->error_estimate : NAN;
+    *nv = *nt = *evaluations = *from_cache = 0;
+    *error_estimate = t ? 0 : NAN;
+    for (size_t k = 0; t && k < t->n_grids; k++) {
+        const grid *g = &t->grids[k];
+        *nv = g->n[0] > *nv ? g->n[0] : *nv, *nt = g->n[1] > *nt ? g->n[1] : *nt;
+        *evaluations += g->evaluations, *from_cache += g->from_cache;
+        *error_estimate = fmax(*error_estimate, g->error_estimate);
+    }
+}
+
+size_t traj_impact_table_grids(const traj_impact_table *t) { return t ? t->n_grids : 0; }
+
+void traj_impact_table_grid_info(const traj_impact_table *t, size_t k, size_t nodes[3], size_t *evaluations,
+                                 size_t *from_cache, double *error_estimate)
+{
+    const grid *g = &t->grids[k];
+    memcpy(nodes, g->n, sizeof g->n);
+    *evaluations = g->evaluations, *from_cache = g->from_cache, *error_estimate = g->error_estimate;
 }

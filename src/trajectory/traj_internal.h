@@ -245,10 +245,15 @@ rf_status traj_impact_table_build(const rf_traj_spec *spec, traj_impact_table **
  * build with RF_EINTERRUPTED (the impacts computed so far stay in the cache
  * file); after each, progress(user, impacts computed, taken from the cache,
  * nodes in v_n, nodes in theta).  Every member may be NULL. */
+struct traj_impact_setup_s; /* traj_impact.h: traj_impact_setup */
+typedef struct traj_impact_store traj_impact_store; /* traj_impact.h: where impacts are kept (a study's store) */
 typedef struct {
     const atomic_int *stop;
     void (*progress)(void *user, size_t computed, size_t from_cache, size_t nv, size_t nt);
     void *user;
+    const traj_impact_store *store; /* NULL: bounce.impact.cache (a file) or nothing */
+    /* the model tabulated instead of the impact model (tests: a known function); NULL: the impact model */
+    rf_status (*model)(const struct traj_impact_setup_s *s, double vn, double theta, double c[3], rf_error *err);
 } traj_table_watch;
 rf_status traj_impact_table_build_watched(const rf_traj_spec *spec, const traj_table_watch *watch,
                                           traj_impact_table **table, rf_error *err);
@@ -259,5 +264,15 @@ void traj_impact_table_eval(const traj_impact_table *t, double vn, double theta,
                             double *spin_ratio);
 void traj_impact_table_info(const traj_impact_table *t, size_t *nv, size_t *nt, size_t *evaluations,
                             size_t *from_cache, double *error_estimate);
+/* The table of the contact's material (its own impact model, or bounce.impact)
+ * at the block radius [m] (clamped to the run's range): R_n, R_t and
+ * omega*r/v_t.  traj_impact_table_eval is material 0 at the smallest radius. */
+void traj_impact_table_lookup(const traj_impact_table *t, size_t material, double radius, double vn, double theta,
+                              double *R_n, double *R_t, double *spin_ratio);
+/* The grids of the table (one per material with its own impact model, one for
+ * the others) and grid k's nodes (v_n, theta, radius) and figures. */
+size_t traj_impact_table_grids(const traj_impact_table *t);
+void traj_impact_table_grid_info(const traj_impact_table *t, size_t k, size_t nodes[3], size_t *evaluations,
+                                 size_t *from_cache, double *error_estimate);
 
 #endif

@@ -15,7 +15,9 @@
  * when the model is created (a study is loaded before its output folder is
  * locked) but by the model's prepare (rf_model_prepare: the study run calls
  * it after the lock, saying progress), else by the first evaluation; every
- * build answers the interrupt flag (set_interrupt) between two impacts.
+ * build answers the interrupt flag (set_interrupt) between two impacts.  In a
+ * study run the impacts are kept in the study's store (set_side_store:
+ * traj_impact_store.c), else in bounce.impact.cache if given.
  * A terrain file (spec->terrain) evaluates by the terrain Monte Carlo
  * (terrain_run_world on a world prepared once: the DEM is read once per
  * model; no rasters) and gives runout_pXX and reach_angle_pXX [deg] where a
@@ -39,6 +41,7 @@ typedef struct {
     int shared_table;        /* the impact_model law and no parameter changes the table */
     pthread_mutex_t table_lock; /* the shared table's build (prepare or the first evaluation) */
     const atomic_int *stop;  /* the run's interrupt flag (set_interrupt), or NULL */
+    const rf_model_side_store *side; /* a study run's store: the impact table's impacts kept there, or NULL */
     rf_terrain_world *world; /* a terrain file: its world, prepared once */
     size_t n_outputs;
     traj_raster_sink sink;   /* a study's fuzzy hazard rasters (traj_model_raster_sink_set), or NULL */
@@ -212,13 +215,16 @@ static rf_status table_build(const traj_model_ctx *c, const rf_traj_spec *s, FIL
                              rf_error *err)
 {
     table_progress p = {log, rf_monotonic_seconds(), rf_monotonic_seconds()};
-    traj_table_watch w = {c->stop, table_say, &p};
+    const char *kept = c->side ? "the study's store" : s->impact_cache;
+    traj_impact_store store;
+    if (c->side)
+        traj_impact_store_from_side(c->side, &store);
+    traj_table_watch w = {c->stop, table_say, &p, c->side ? &store : NULL, NULL};
     if (log) {
         fprintf(log, "Impact table (bounce law impact_model, solver %s): R_n, R_t and spin over normal speeds "
                      "[%g, %g] m/s and incidences [0, %g] deg to %g, before the first evaluation%s%s\n",
                 s->impact_solver, s->impact_speed_min, s->impact_speed_max, s->impact_max_incidence * 180 / RF_PI,
-                s->impact_tolerance, s->impact_cache ? "; impacts kept in " : "",
-                s->impact_cache ? s->impact_cache : "");
+                s->impact_tolerance, kept ? "; impacts kept in " : "", kept ? kept : "");
         fflush(log);
     }
     rf_status st = traj_impact_table_build_watched(s, &w, t, err);
@@ -241,6 +247,8 @@ static rf_status shared_table(traj_model_ctx *c, FILE *log, traj_impact_table **
     rf_status st = RF_OK;
     if (!c->table)
         st = table_build(c, &c->spec, log, (traj_impact_table **)&c->table, err);
+    if (c->world)
+        c->world->impact_table = c->table; /* a terrain world's table, built in the run (not at load) */
     *t = c->table;
     pthread_mutex_unlock(&c->table_lock);
     return st;
@@ -269,6 +277,11 @@ static void traj_model_set_interrupt(void *vctx, const atomic_int *flag)
     ((traj_model_ctx *)vctx)->stop = flag;
 }
 
+static void traj_model_set_side_store(void *vctx, const rf_model_side_store *store)
+{
+    ((traj_model_ctx *)vctx)->side = store;
+}
+
 static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_error *err)
 {
     traj_model_ctx *c = vctx;
@@ -283,7 +296,7 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
     rf_traj_stats t;
     int rasters = c->world && c->sink; /* a study's fuzzy hazard rasters */
     traj_impact_table *table = NULL, *own = NULL;
-    if (!c->world && s.law == RF_BOUNCE_IMPACT_MODEL)
+    if (s.law == RF_BOUNCE_IMPACT_MODEL)
         st = table_at(c, &s, &table, &own, err);
     if (st == RF_OK)
         st = c->world ? terrain_run_world(&s, c->world, 1, rasters, NULL, NULL, &e, err)
@@ -322,6 +335,8 @@ static void traj_model_destroy(void *vctx)
     for (size_t i = 0; i < c->n_params; i++)
         free(c->paths[i]);
     free(c->paths);
+    if (c->world && c->world->impact_table == c->table)
+        c->world->impact_table = NULL; /* the model's, lent to the world */
     traj_impact_table_free(c->table);
     pthread_mutex_destroy(&c->table_lock);
     rf_terrain_world_free(c->world);
@@ -331,11 +346,12 @@ static void traj_model_destroy(void *vctx)
 
 /* The impact table depends on the block's radius and density, the impact
  * friction and the solver settings: shared by all evaluations unless a
- * parameter is bound to one of them (then built at every evaluation). */
+ * parameter is bound to one of them (then built at every evaluation); a
+ * terrain world has one table, of the nominal block, built in the run. */
 static rf_status share_table(traj_model_ctx *c, rf_error *err)
 {
-    c->shared_table = c->spec.law == RF_BOUNCE_IMPACT_MODEL && !c->spec.terrain;
-    for (size_t i = 0; i < c->n_params && c->shared_table; i++)
+    c->shared_table = c->spec.law == RF_BOUNCE_IMPACT_MODEL;
+    for (size_t i = 0; i < c->n_params && c->shared_table && !c->spec.terrain; i++) /* a terrain world: one table */
         if (!strncmp(c->paths[i], "block.", 6) || strstr(c->paths[i], ".friction_angle"))
             c->shared_table = 0;
     traj_impact_setup setup; /* its settings checked now, when the study is loaded; the FE impacts come later */
@@ -418,9 +434,10 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
     model->threads_per_eval = 1;
     model->prepare = traj_model_prepare;
     model->set_interrupt = traj_model_set_interrupt;
+    model->set_side_store = traj_model_set_side_store;
     if (st == RF_OK && c->spec.terrain) /* checked as a run checks it, the DEM read once */
         if ((st = rf_traj_spec_validate(&c->spec, err)) == RF_OK)
-            st = rf_terrain_world_create(&c->spec, &c->world, err);
+            st = terrain_world_create_deferred(&c->spec, &c->world, err); /* its impact table: in the run */
     if (st == RF_OK)
         st = share_table(c, err);
     if (st == RF_OK)

@@ -49,6 +49,9 @@ rf_status ty_setting(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g);
  * `extra` keys (read by the caller). */
 rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *extra);
 
+/* materials.NAME.impact of the material mapping `mat` (traj_impact_yaml.c), if given. */
+rf_status traj_impact_yaml(ty_ctx *c, struct fy_node *mat, const char *path, rf_traj_material *m);
+
 /* The defaults of the rows of the tables owned by `owner` into obj (an
  * rf_traj_spec, rf_traj_material or rf_traj_collector). */
 void ty_row_defaults(rf_traj_field_owner owner, void *obj);

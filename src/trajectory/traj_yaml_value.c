@@ -129,13 +129,19 @@ static void keys_under(const char *prefix, const char *extra, char *buf, size_t 
                                 : !strncmp(prefix, "collectors.", 11) ? RF_TRAJ_OWNER_COLLECTOR
                                                                       : RF_TRAJ_OWNER_SPEC;
     buf[0] = '\0';
+    /* a material's or collector's rows: those under the sub-mapping ("materials.rock.impact": "impact.") */
+    const char *dot = owner != RF_TRAJ_OWNER_SPEC ? strchr(strchr(prefix, '.') + 1, '.') : NULL;
+    const char *sub = dot ? dot + 1 : "";
+    size_t ls = strlen(sub);
     for (size_t t = 0; t < rf_traj_n_field_tables; t++) {
         const rf_traj_field_table *tb = &rf_traj_field_tables[t];
         for (size_t k = 0; tb->owner == owner && k < tb->n_rows && len < size; k++) {
             char full[200];
             snprintf(full, sizeof full, "%s%s", owner == RF_TRAJ_OWNER_SPEC ? tb->prefix : "", tb->rows[k].key);
-            const char *key = owner == RF_TRAJ_OWNER_SPEC ? full + lp + 1 : full;
-            if (owner != RF_TRAJ_OWNER_SPEC || (!strncmp(full, prefix, lp) && full[lp] == '.' && !strchr(key, '.')))
+            const char *key = owner == RF_TRAJ_OWNER_SPEC ? full + lp + 1 : full + (ls ? ls + 1 : 0);
+            int mine = owner == RF_TRAJ_OWNER_SPEC ? !strncmp(full, prefix, lp) && full[lp] == '.'
+                                                   : !ls || (!strncmp(full, sub, ls) && full[ls] == '.');
+            if (mine && !strchr(key, '.'))
                 len += (size_t)snprintf(buf + len, size - len, "%s%s", len ? " " : "", key);
         }
     }
