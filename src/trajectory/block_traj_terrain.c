@@ -90,9 +90,14 @@ static void emit(ter_run *q)
         before[c] = (unsigned char)q->r.res->crossings[c].reached;
     double cut, scale;
     terrain_piece_outcome o = terrain_emit(&q->r, &pc, &cut, &scale);
-    for (size_t c = 0; c < nc; c++) /* the centre's height: the lowest point's plus the centre above it */
-        if (!before[c] && q->r.res->crossings[c].reached)
-            q->r.res->crossings[c].height_centre = q->r.res->crossings[c].height_lowest + (a->x[2] - lp[2]);
+    for (size_t c = 0; c < nc; c++) /* the centre's height above the ground under it, at the crossing */
+        if (!before[c] && q->r.res->crossings[c].reached) {
+            double f = (q->r.res->crossings[c].t - pc.t) / h, xc[3], zg;
+            for (int k = 0; k < 3; k++)
+                xc[k] = a->x[k] + f * (e->x[k] - a->x[k]);
+            if (rf_terrain_height(q->r.dem, xc[0], xc[1], &zg, NULL))
+                q->r.res->crossings[c].height_centre = xc[2] - zg;
+        }
     if (o == TERRAIN_PIECE_STOPPED) {
         q->b.t = q->b.t - h + cut;
         memset(q->b.st.v, 0, sizeof q->b.st.v), memset(q->b.st.w, 0, sizeof q->b.st.w);
