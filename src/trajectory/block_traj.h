@@ -97,4 +97,11 @@ rf_status terrain_block_simulate(const rf_terrain_world *w, const rf_traj_spec *
                                  const double start[3], struct rf_terrain_hazard *hazard, rf_terrain_result *res,
                                  traj_block_observer obs, void *ctx, rf_error *err);
 
+/* block_traj_output.c: the JSON additions of a rigid block (after an
+ * impact's members: "q", "rotational_energy_axes" [J]; after a recorded
+ * trajectory's: "orientation": [[t, w, x, y, z], ...] at its events). */
+void traj_block_json_impact(FILE *f, const double q[4], const double rot_energy[3]);
+void traj_block_json_orientation(FILE *f, const rf_traj_result *r);
+void terrain_block_json_orientation(FILE *f, const rf_terrain_result *r);
+
 #endif
