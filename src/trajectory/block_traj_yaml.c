@@ -186,6 +186,24 @@ static rf_status axis_ratios(ty_ctx *c, struct fy_node *v)
     return st;
 }
 
+/* The shape at the file's values, built once here: a shape that cannot be
+ * built (coplanar points) is refused at load, and its mass becomes the
+ * spec's mass (what the envelopes along x weigh; each trajectory builds its
+ * own shape with its sample's values). */
+static rf_status nominal_shape(ty_ctx *c, struct fy_node *n)
+{
+    rf_block_shape shape;
+    rf_error e;
+    if (!(c->spec->density > 0) || !(c->spec->block_ratio_b > 0) || !(c->spec->block_ratio_c > 0) ||
+        !(c->spec->block_volume >= 0))
+        return RF_OK; /* the validation names the row */
+    if (traj_block_shape(c->spec, &shape, &e) != RF_OK)
+        return yr_fail(&c->sp, n, "block", "shape %s: %s", kind_names[c->spec->block_kind], e.msg);
+    c->spec->mass = shape.mass;
+    rf_block_shape_free(&shape);
+    return RF_OK;
+}
+
 /* The shape's own keys, after ty_fields read the rows. */
 rf_status ty_parse_block_shape(ty_ctx *c, struct fy_node *n)
 {
@@ -229,7 +247,7 @@ rf_status ty_parse_block_shape(ty_ctx *c, struct fy_node *n)
     }
     if (st == RF_OK && isnan(s->density))
         return yr_fail(&c->sp, n, "block", "shape %s needs density [kg/m^3]", kind_names[kind]);
-    return st;
+    return st == RF_OK ? nominal_shape(c, n) : st;
 }
 
 const char *traj_block_kind_name(int kind)
