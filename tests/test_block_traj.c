@@ -225,7 +225,8 @@ static void test_energy_never_gained_profile(void **state)
 {
     (void)state;
     char y[1024];
-    const char *blocks[3] = {"shape: box, edges: [1.2, 0.8, 0.5], density: 2600, orientation: {pitch: 20}, spin: [0, 2, 0]",
+    const char *blocks[3] = {"shape: box, edges: [1.2, 0.8, 0.5], density: 2600, orientation: {pitch: 20}, "
+                             "spin: [0, 2, 0]",
                              "shape: ellipsoid, axes: [0.8, 0.5, 0.4], density: 2600, orientation: random",
                              "shape: eota_wheel, volume: 1, density: 2400, orientation: {pitch: 33, roll: 90}"};
     for (int k = 0; k < 3; k++) {
@@ -235,8 +236,8 @@ static void test_energy_never_gained_profile(void **state)
         energy_watch w = {9.81, 0, 0, 0, 0, 0, 0};
         pcase_run(&c, watch_energy, &w);
         if (w.worst_gain > CONTACT_LIFT || w.worst_above > 1e-7)
-            fail_msg("%s: a contact step gained m g (%.3g m), the energy rose %.3g above the start", blocks[k], w.worst_gain,
-                     w.worst_above);
+            fail_msg("%s: a contact step gained m g (%.3g m), the energy rose %.3g above the start", blocks[k],
+                     w.worst_gain, w.worst_above);
         assert_true(c.res.n_impacts >= 1);
         pcase_free(&c);
     }

@@ -115,7 +115,8 @@ static void step(ter_run *q)
     size_t ci, cj;
     double u, v;
     block_run_lowest(&q->b, &q->b.st, lp);
-    if (!rf_terrain_height(q->r.dem, lp[0], lp[1], &z, NULL) || !terrain_cell_of(q->r.dem, lp[0], lp[1], &ci, &cj, &u, &v)) {
+    if (!rf_terrain_height(q->r.dem, lp[0], lp[1], &z, NULL) ||
+        !terrain_cell_of(q->r.dem, lp[0], lp[1], &ci, &cj, &u, &v)) {
         finish(q, RF_TRAJ_EXITED, RF_EV_EXIT);
         return;
     }
@@ -154,12 +155,14 @@ static rf_status start(ter_run *q, const double start[3], rf_error *err)
                        "no-data cell", (unsigned long long)q->r.sample, start[0], start[1]);
     double p[3] = {start[0], start[1], isnan(start[2]) ? zg + s->height0 : fmax(start[2], zg)};
     if (!traj_block_place(&q->b.shape, ground, (void *)q->r.dem, p, &q->b.st))
-        return rf_fail(err, RF_EINVAL, "sample %llu: no ground under the release point", (unsigned long long)q->r.sample);
+        return rf_fail(err, RF_EINVAL, "sample %llu: no ground under the release point",
+                       (unsigned long long)q->r.sample);
     if (!s->release_by_speed)
         q->b.st.v[0] = s->vx0, q->b.st.v[1] = s->vy0, q->b.st.v[2] = s->vz0;
     else {
         double hs = s->speed0 * cos(s->dip0);
-        q->b.st.v[0] = hs * sin(s->azimuth0), q->b.st.v[1] = hs * cos(s->azimuth0), q->b.st.v[2] = -s->speed0 * sin(s->dip0);
+        q->b.st.v[0] = hs * sin(s->azimuth0), q->b.st.v[1] = hs * cos(s->azimuth0);
+        q->b.st.v[2] = -s->speed0 * sin(s->dip0);
     }
     memcpy(q->r.res->start, p, sizeof p);
     event(q, RF_EV_RELEASE, 1);

@@ -27,7 +27,10 @@ int traj_block_kind_of(const char *str, size_t len)
     return 0;
 }
 
-static struct fy_node *key_of(struct fy_node *n, const char *k) { return fy_node_mapping_lookup_by_string(n, k, FY_NT); }
+static struct fy_node *key_of(struct fy_node *n, const char *k)
+{
+    return fy_node_mapping_lookup_by_string(n, k, FY_NT);
+}
 
 /* Three positive finite numbers under `path`. */
 static rf_status positive3(ty_ctx *c, struct fy_node *v, const char *path, double out[3])
