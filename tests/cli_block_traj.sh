@@ -56,6 +56,25 @@ for f in result.json samples.csv crossings.csv statistics.csv; do
   [ -s "$tmp/out/$f" ] || fail "missing $f"
 done
 
+# outputs.vtk: the box's hull along each recorded trajectory, a ParaView time series whose every frame
+# is the box (8 points, its diagonal sqrt(1.2^2 + 0.9^2 + 0.6^2) m apart at most)
+printf 'outputs: {vtk: true}\nrecord: 2\n' >> "$tmp/box.yaml"
+"$bin" trajectory "$tmp/box.yaml" --out "$tmp/vout" --quiet || fail "--out with outputs.vtk"
+python3 - "$tmp/vout" <<'PY' || fail "the ParaView files"
+import glob, math, sys, xml.etree.ElementTree as ET
+d = sys.argv[1]
+for k in (0, 1):
+    frames = ET.parse(f"{d}/block_{k}.pvd").getroot().findall(".//DataSet")
+    assert len(frames) > 2, len(frames)
+    for fr in frames[:: max(1, len(frames) // 7)]:
+        p = ET.parse(f"{d}/{fr.get('file')}").getroot().find(".//Points/DataArray").text.split()
+        pts = [tuple(map(float, p[i:i + 3])) for i in range(0, len(p), 3)]
+        assert len(pts) == 8, len(pts)
+        far = max(math.dist(a, b) for a in pts for b in pts)
+        assert abs(far - math.sqrt(1.2**2 + 0.9**2 + 0.6**2)) < 1e-6, far
+assert not glob.glob(f"{d}/block_2.pvd")
+PY
+
 cat > "$tmp/p.yaml" <<EOF
 name: p
 profile: {points: [[0, 30], [30, 10], [60, 5], [100, 5]], material: m}

@@ -105,6 +105,7 @@ typedef struct {
     size_t n_runout_thresholds;
     double runout_thresholds[RF_TRAJ_MAX_THRESHOLDS];  /* [m]: P(runout_x > x) */
     size_t runout_bins;                       /* bins of the runout histogram, default 20 */
+    int vtk;                                  /* a rigid block: ParaView files of the recorded trajectories */
 } rf_traj_outputs;
 
 typedef struct {

@@ -144,13 +144,15 @@ static rf_status parse_outputs(ty_ctx *c, struct fy_node *n)
         } else if (!strcmp(key, "runout_bins")) {
             if ((st = yr_integer(&c->sp, v, "outputs.runout_bins", 1, RF_TRAJ_MAX_BINS, &bins)) == RF_OK)
                 o->runout_bins = (size_t)bins;
+        } else if (!strcmp(key, "vtk")) { /* a rigid block's hull along its recorded paths (block_traj_vtk.c) */
+            st = yr_bool(&c->sp, v, "outputs.vtk", &o->vtk);
         } else if (!strcmp(key, "max_paths") && c->spec->terrain) {
             if ((st = yr_integer(&c->sp, v, "outputs.max_paths", 0, 1000000, &bins)) == RF_OK)
                 c->spec->terrain->max_paths = (size_t)bins;
         } else {
             char p[300];
             yr_pathf(p, sizeof p, "outputs.%s", key);
-            st = yr_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins%s",
+            st = yr_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins, vtk%s",
                          c->spec->terrain ? ", max_paths" : "");
         }
     }
