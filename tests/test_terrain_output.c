@@ -89,8 +89,8 @@ static void make_recorded(rf_terrain_samples *t)
         r->n_impacts = i == 0 ? 2 : 0;
     }
     rf_terrain_impact *m = t->recorded[0].impacts;
-    m[0] = (rf_terrain_impact){1.0, 5, 6, 90, {1, -2, -9}, {0.5, -1, 4}, {0.1, 0.2, 0.3}, 0};
-    m[1] = (rf_terrain_impact){2.5, 15, 20, 80, {2, 3, -8}, {1, 1.5, 3}, {0, 0, 0}, 1};
+    m[0] = (rf_terrain_impact){1.0, 5, 6, 90, {1, -2, -9}, {0.5, -1, 4}, {0.1, 0.2, 0.3}, 0, {0}, {0}};
+    m[1] = (rf_terrain_impact){2.5, 15, 20, 80, {2, 3, -8}, {1, 1.5, 3}, {0, 0, 0}, 1, {0}, {0}};
     t->recorded[0].crossings[0] = crossing(2, 1e6, 0);
 }
 

@@ -38,6 +38,9 @@ static const kv base_values[] = {
     {"stop.v_stop", 0.1}, {"materials.m.R_n", 0.4}, {"materials.m.R_t", 0.7}, {"materials.m.friction_angle", 30},
     {"materials.m.rolling_resistance", 0}, {"materials.m.roughness", 2}, {"collectors.c.x", 60},
     {"collectors.c.capacity", 5e5}, {"collectors.c.height", 0},
+    /* a rigid block's rows (written only when the build is a box) */
+    {"block.volume", 0.9}, {"block.axis_ratio_b", 1}, {"block.axis_ratio_c", 1}, {"block.time_step", 1e-3},
+    {"block.max_time", 60}, {"block.rest_time", 0.5},
 };
 #define N_BASE (sizeof base_values / sizeof base_values[0])
 
@@ -46,7 +49,18 @@ typedef struct {
     const char *set;     /* this path gets `value` ... */
     double value;
     const char *omit;    /* ... and this one is left out */
+    int block;           /* a rigid block (shape: box) */
 } build;
+
+/* A row only a rigid block has. */
+static int block_only(const char *path)
+{
+    double *at;
+    rf_traj_spec s;
+    memset(&s, 0, sizeof s);
+    const rf_traj_field *f = rf_traj_field_at(&s, path, &at);
+    return f && f->when == RF_TRAJ_WHEN_BLOCK;
+}
 
 /* ", key: value" for every base path under `section` (e.g. "block."). */
 static void section(char *buf, size_t size, const char *sec, const build *b, const char *skip1, const char *skip2)
@@ -58,6 +72,8 @@ static void section(char *buf, size_t size, const char *sec, const build *b, con
         if (strncmp(p, sec, ls) || strchr(p + ls, '.') || (b->omit && !strcmp(p, b->omit)))
             continue;
         if ((skip1 && !strcmp(p + ls, skip1)) || (skip2 && !strcmp(p + ls, skip2)))
+            continue;
+        if (!b->block && block_only(p))
             continue;
         double v = b->set && !strcmp(p, b->set) ? b->value : base_values[k].v;
         n += (size_t)snprintf(buf + n, size - n, "%s%s: %.17g", first ? "" : ", ", p + ls, v);
@@ -78,8 +94,10 @@ static void make_yaml(const build *b, char *y, size_t size)
     n = strlen(y);
     if (b->set && !strncmp(b->set, "materials.m.impact.", 19)) /* a row of the material's impact model */
         n += (size_t)snprintf(y + n, size - n, ", impact: {solver: fem, %s: %.17g}", b->set + 19, b->value);
-    snprintf(y + n, size - n, "}}\nblock: {shape: %s, ", b->sphere ? "sphere" : "point");
-    section(y, size, "block.", b, b->sphere ? "mass" : "radius", b->sphere ? NULL : "density");
+    snprintf(y + n, size - n, "}}\nblock: {shape: %s, ",
+             b->block ? "box, edges: [1, 0.9, 0.8]" : b->sphere ? "sphere" : "point");
+    section(y, size, "block.", b, b->sphere || b->block ? "mass" : "radius",
+            b->block ? "radius" : b->sphere ? NULL : "density");
     n = strlen(y);
     snprintf(y + n, size - n, "}\nrelease: {");
     section(y, size, "release.", b, b->by_speed ? "vx" : "speed", b->by_speed ? "vy" : "angle");
@@ -119,8 +137,9 @@ static void row_path(const rf_traj_field_table *t, const rf_traj_field *f, char 
 
 static build build_for(const rf_traj_field *f)
 {
-    build b = {f->when == RF_TRAJ_WHEN_SPHERE,
-               f->when == RF_TRAJ_WHEN_SPEED || f->when == RF_TRAJ_WHEN_PROFILE_SPEED, NULL, 0, NULL};
+    build b = {f->when == RF_TRAJ_WHEN_SPHERE || f->when == RF_TRAJ_WHEN_RIGID,
+               f->when == RF_TRAJ_WHEN_SPEED || f->when == RF_TRAJ_WHEN_PROFILE_SPEED, NULL, 0, NULL,
+               f->when == RF_TRAJ_WHEN_BLOCK};
     return b;
 }
 
@@ -249,7 +268,7 @@ static void test_bindable_where_marked(void **state)
     char why[2400];
     rf_traj_spec s;
     rf_error err;
-    build b = {1, 0, NULL, 0, NULL}; /* a sphere: block.mass is not used */
+    build b = {1, 0, NULL, 0, NULL, 0}; /* a sphere: block.mass is not used */
     assert_int_equal(load(&b, &s, &err), RF_OK);
     assert_false(rf_traj_path_bindable(&s, "block.mass", why, sizeof why));
     assert_non_null(strstr(why, "only a point block"));
@@ -327,7 +346,7 @@ static void test_docs_table(void **state)
 static void test_bound_angle_in_degrees(void **state)
 {
     (void)state;
-    build b = {0, 0, NULL, 0, NULL};
+    build b = {0, 0, NULL, 0, NULL, 0};
     rf_traj_spec s;
     rf_error err;
     assert_int_equal(load(&b, &s, &err), RF_OK);
@@ -338,7 +357,7 @@ static void test_bound_angle_in_degrees(void **state)
     double x[2] = {33, 7}, *y = calloc(m.n_outputs, sizeof *y), *z = calloc(m.n_outputs, sizeof *z);
     assert_int_equal(m.eval(m.ctx, x, y, &err), RF_OK);
     rf_traj_spec s2;
-    build b2 = {0, 0, "materials.m.friction_angle", 33, NULL};
+    build b2 = {0, 0, "materials.m.friction_angle", 33, NULL, 0};
     assert_int_equal(load(&b2, &s2, &err), RF_OK);
     s2.samples = 50;
     s2.materials[0].roughness = 7 * (RF_PI / 180);

@@ -134,12 +134,17 @@ typedef struct {
     double t, x, y, z;
     double v_in[3], v_out[3], omega_out[3];
     size_t material;
+    /* A rigid block (spec->block_kind): x, y, z are its lowest point, the
+     * velocities its centre's; orientation (w, x, y, z) and rotational energy
+     * about each body axis [J] after the impact (not set for a point or sphere). */
+    double q[4], rot_energy[3];
 } rf_terrain_impact;
 
 typedef struct {
     rf_traj_event_kind kind;
     int flying;                 /* the motion after this event is a flight (else contact) */
     double t, p[3], v[3], omega[3];  /* state after the event */
+    double q[4];                /* a rigid block: orientation (w, x, y, z) (not set for a point or sphere) */
 } rf_terrain_event;
 
 typedef struct {

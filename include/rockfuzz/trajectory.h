@@ -122,6 +122,7 @@ typedef struct {
     size_t n_runout_thresholds;
     double runout_thresholds[RF_TRAJ_MAX_THRESHOLDS];  /* [m]: P(runout_x > x) */
     size_t runout_bins;                       /* bins of the runout histogram, default 20 */
+    int vtk;                                  /* a rigid block: ParaView files of the recorded trajectories */
 } rf_traj_outputs;
 
 typedef struct {
@@ -173,7 +174,27 @@ typedef struct {
     double impact_speed_min, impact_speed_max; /* normal speeds tabulated [m/s], default 0.25 .. 40 */
     double impact_max_incidence;  /* largest incidence tabulated [rad] from the normal (given in deg), default 80 deg */
     char *impact_cache;         /* file of impacts already computed (read, then appended), or NULL */
+    /* A rigid convex block (block.shape ellipsoid, box, polyhedron, eota_cube,
+     * eota_wheel; block.h, docs/block-shape.md "Wiring"): run by the rigid-body
+     * dynamics (block_traj*.c) instead of the point/sphere engines. */
+    int block_kind;             /* rf_traj_block_kind; RF_TRAJ_BLOCK_NONE: point or sphere (`sphere`) */
+    double block_dims[3];       /* ellipsoid: semi-axes a, b, c; box: edges lx, ly, lz [m] */
+    size_t block_n_points;      /* polyhedron: its points (3 per point) in block_points [m] */
+    double *block_points;
+    double block_volume;        /* [m^3] scale to it (NaN: as given; required by eota_*) */
+    double block_ratio_b, block_ratio_c;  /* axis_ratios [1, b/a, c/a] at constant volume (1: none) */
+    int block_random_orientation;  /* orientation: random (drawn per trajectory) */
+    double block_q0[4];         /* initial orientation (w, x, y, z) of the block as given, body to space */
+    int block_spin_given;       /* spin given: block_spin0, else release.omega (2D) / release.spin (terrain) */
+    double block_spin0[3];      /* [rad/s] initial angular velocity in space */
+    double block_time_step;     /* [s] the rigid-body time step */
+    double block_max_time;      /* [s] a block still moving then ends as step_limit */
+    double block_rest_time;     /* [s] at rest when the kinetic energy stays below m v_stop^2 / 2 that long */
 } rf_traj_spec;
+
+/* The shape of a rigid block (spec->block_kind). */
+typedef enum { RF_TRAJ_BLOCK_NONE = 0, RF_TRAJ_BLOCK_ELLIPSOID, RF_TRAJ_BLOCK_BOX, RF_TRAJ_BLOCK_POLYHEDRON,
+               RF_TRAJ_BLOCK_EOTA_CUBE, RF_TRAJ_BLOCK_EOTA_WHEEL } rf_traj_block_kind;
 
 void rf_traj_spec_free(rf_traj_spec *spec);
 /* Deep copy (for binding values without touching the original). */
@@ -217,7 +238,9 @@ typedef enum { RF_TRAJ_WHEN_ALWAYS = 0, RF_TRAJ_WHEN_POINT, RF_TRAJ_WHEN_SPHERE,
                RF_TRAJ_WHEN_PROFILE_SPEED,  /* a profile file, release by speed and angle */
                RF_TRAJ_WHEN_TERRAIN,        /* a terrain file */
                RF_TRAJ_WHEN_TERRAIN_VXVY,   /* a terrain file, release by vx, vy, vz */
-               RF_TRAJ_WHEN_TERRAIN_SPEED   /* a terrain file, release by speed, azimuth, dip */
+               RF_TRAJ_WHEN_TERRAIN_SPEED,  /* a terrain file, release by speed, azimuth, dip */
+               RF_TRAJ_WHEN_BLOCK,          /* a rigid block (block_kind: ellipsoid, box, polyhedron, eota_*) */
+               RF_TRAJ_WHEN_RIGID           /* a sphere or a rigid block (density) */
 } rf_traj_when;
 typedef struct {
     const char *key;            /* path below its table's prefix: "mass", "R_n", "bounce.scale_speed" */
@@ -333,6 +356,11 @@ typedef struct {
     double t, x, y;
     size_t segment;
     double vx_in, vy_in, vx_out, vy_out, omega_out;
+    /* A rigid block (spec->block_kind): x, y are its lowest point, the
+     * velocities its centre's; its orientation and rotational energy about
+     * each body axis after the impact (else q = 0). */
+    double q[4];                /* (w, x, y, z), body to space (the profile's x-y is the block's x-z) */
+    double rot_energy[3];       /* [J] */
 } rf_traj_impact;
 
 /* Event kinds along a recorded trajectory (the motion between two events is
@@ -347,6 +375,7 @@ typedef struct {
     int flying;                 /* the motion after this event is a flight */
     double t, x, y, vx, vy, omega;  /* state after the event */
     double ax, ay;              /* acceleration after the event [m/s^2] */
+    double q[4];                /* a rigid block: its orientation (w, x, y, z); else 0 */
 } rf_traj_event;
 
 typedef struct {

@@ -3,6 +3,7 @@
  * events and the end of transitions.c, leaving the profile (exited) and the
  * step limit. */
 #include "trajectory/traj_internal.h"
+#include "trajectory/block_traj.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -127,6 +128,8 @@ static rf_status check_finite(const traj_run *r, rf_error *err)
 rf_status rf_traj_simulate(const rf_traj_world *w, const rf_traj_spec *s, uint64_t seed, uint64_t sample,
                            rf_traj_result *res, rf_error *err)
 {
+    if (s->block_kind != RF_TRAJ_BLOCK_NONE) /* a rigid block: the rigid-body dynamics (block_traj_profile.c) */
+        return traj_block_simulate(w, s, seed, sample, res, err);
     traj_run r;
     memset(&r, 0, sizeof r);
     r.w = w, r.s = s, r.res = res, r.seed = seed, r.sample = sample;

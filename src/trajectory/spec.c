@@ -34,6 +34,7 @@ void rf_traj_spec_free(rf_traj_spec *s)
     if (s->terrain)
         rf_terrain_def_free(s->terrain);
     free(s->terrain);
+    free(s->block_points);
     memset(s, 0, sizeof *s);
 }
 
@@ -59,8 +60,9 @@ rf_status rf_traj_spec_copy(const rf_traj_spec *src, rf_traj_spec *d, rf_error *
     d->materials = dup_mem(src->materials, src->n_materials * sizeof *d->materials);
     d->collectors = dup_mem(src->collectors, src->n_collectors * sizeof *d->collectors);
     d->random = dup_mem(src->random, src->n_random * sizeof *d->random);
+    d->block_points = src->block_points ? dup_mem(src->block_points, 3 * src->block_n_points * sizeof(double)) : NULL;
     int ok = (d->impact_cache || !src->impact_cache) && d->px && d->py && d->release_px && d->release_py &&
-             d->seg_material && d->materials && d->collectors && d->random;
+             d->seg_material && d->materials && d->collectors && d->random && (d->block_points || !src->block_points);
     for (size_t i = 0; i < src->n_materials; i++)
         if (d->materials)
             ok &= (d->materials[i].name = rf_strdup(src->materials[i].name)) != NULL;

@@ -22,6 +22,7 @@ void terrain_event(terrain_run *r, rf_traj_event_kind kind, int flying)
     rf_terrain_event *e = &res->events[res->n_events++];
     e->kind = kind, e->flying = flying, e->t = r->t;
     memcpy(e->p, r->p, sizeof e->p), memcpy(e->v, r->v, sizeof e->v), memcpy(e->omega, r->omega, sizeof e->omega);
+    memset(e->q, 0, sizeof e->q); /* a rigid block's orientation: set by block_traj_terrain.c */
 }
 
 /* Largest rise of a flight with initial upward speed vz over [0, T]. */

@@ -7,6 +7,7 @@
  * and recorded trajectories, terrain_gpkg_write), and with plots the maps
  * and report.html (terrain_write_maps). */
 #include "trajectory/terrain_internal.h"
+#include "trajectory/block_traj.h"
 
 #include <errno.h>
 #include <math.h>
@@ -107,5 +108,6 @@ rf_status rf_terrain_write_outputs(const char *dir, const rf_traj_spec *s, const
                                    const rf_traj_stats *st, int plots, rf_error *err)
 {
     rf_status rc = terrain_write_tables(dir, s, e, st, err);
-    return rc == RF_OK ? write_geo(dir, s, e, st, plots, err) : rc;
+    rc = rc == RF_OK ? write_geo(dir, s, e, st, plots, err) : rc;
+    return rc == RF_OK ? traj_block_write_vtk_runs(dir, s, e, err) : rc; /* a rigid block: block_traj_vtk.c */
 }

@@ -4,6 +4,7 @@
  * kJ); the run folder is terrain_files.c's.  The JSON pieces shared with
  * the profile document come from traj_output.c. */
 #include "trajectory/terrain_internal.h"
+#include "trajectory/block_traj.h"
 #include "core/json.h"
 
 #include <errno.h>
@@ -41,6 +42,8 @@ static void json_impacts(FILE *f, const rf_traj_spec *s, const rf_terrain_result
         fputs(", \"v_out\": ", f), rf_json_array(f, m->v_out, 3, 1);
         fputs(", \"omega_out\": ", f), rf_json_array(f, m->omega_out, 3, 1);
         fputs(", \"class\": ", f), rf_json_string(f, material_name(s, m->material));
+        if (s->block_kind != RF_TRAJ_BLOCK_NONE) /* a rigid block (block_traj_output.c) */
+            traj_block_json_impact(f, m->q, m->rot_energy);
         fputc('}', f);
     }
     fputs("]", f);
@@ -68,6 +71,8 @@ static void json_trajectory(FILE *f, const rf_traj_spec *s, size_t sample, const
     rf_json_array(f, r->start, 3, 1);
     fputs(", ", f);
     json_impacts(f, s, r);
+    if (s->block_kind != RF_TRAJ_BLOCK_NONE)
+        terrain_block_json_orientation(f, r);
     fputs(", ", f);
     if (r->state == RF_TRAJ_STOPPED)
         json_point(f, "rest", r->t_end, r->end);

@@ -16,6 +16,7 @@
  * runout).  terrain_check_invariants checks what any recorded trajectory
  * must satisfy. */
 #include "trajectory/terrain_internal.h"
+#include "trajectory/block_traj.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -75,6 +76,7 @@ static void record_impact(terrain_run *r, size_t ci, size_t cj, const double v_i
         memcpy(m->v_in, v_in, sizeof m->v_in), memcpy(m->v_out, r->v, sizeof m->v_out);
         memcpy(m->omega_out, r->omega, sizeof m->omega_out);
         m->material = terrain_material_of(r->dem, ci, cj);
+        memset(m->q, 0, sizeof m->q), memset(m->rot_energy, 0, sizeof m->rot_energy); /* a rigid block's only */
     }
     res->n_impacts++;
 }
@@ -235,6 +237,10 @@ rf_status terrain_simulate_hazard(const rf_terrain_world *w, const rf_traj_spec 
                                   const double start[3], rf_terrain_hazard *hazard, rf_terrain_result *res,
                                   rf_error *err)
 {
+    if (s->block_kind != RF_TRAJ_BLOCK_NONE) { /* a rigid block: the rigid-body dynamics (block_traj_terrain.c) */
+        rf_status st = check_law(w, s, err);
+        return st != RF_OK ? st : terrain_block_simulate(w, s, seed, sample, start, hazard, res, NULL, NULL, err);
+    }
     terrain_run r;
     run_init(&r, w, s, seed, sample, hazard, res);
     rf_status st = check_law(w, s, err);

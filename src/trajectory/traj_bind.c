@@ -6,6 +6,7 @@
 #include "trajectory/traj_internal.h"
 #include "rockfuzz/terrain.h"
 #include "core/hash.h"
+#include "trajectory/block_traj.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -65,6 +66,8 @@ const char *traj_field_unused_reason(const rf_traj_field *f)
     switch (f->when) {
     case RF_TRAJ_WHEN_POINT: return "only a point block has it (a sphere's mass comes from radius and density)";
     case RF_TRAJ_WHEN_SPHERE: return "only a sphere has it";
+    case RF_TRAJ_WHEN_BLOCK: return "only a rigid block (shape ellipsoid, box, polyhedron, eota_cube, eota_wheel) has it";
+    case RF_TRAJ_WHEN_RIGID: return "a point block has a mass, no density";
     case RF_TRAJ_WHEN_VXVY: return "the release velocity is given by speed and angle";
     case RF_TRAJ_WHEN_SPEED: return "the release velocity is given by vx and vy";
     case RF_TRAJ_WHEN_AT_POINT: return "the release is drawn along a line or in a zone";
@@ -237,5 +240,7 @@ uint64_t rf_traj_spec_values_hash(const rf_traj_spec *s)
         h = rf_fnv1a(hash_str(h, q->path), v, sizeof v);
     }
     h = traj_settings_hash(hash_release_and_outputs(h, s), s);
+    if (s->block_kind) /* a rigid block's shape, orientation and spin (not rows); a profile's hash as before */
+        h = traj_block_hash(h, s);
     return s->terrain ? rf_terrain_def_hash(s->terrain, h) : h; /* a profile's hash as before */
 }

@@ -3,6 +3,7 @@
  * collector crossings, statistics, exceedance probabilities and the runout
  * histogram; every header names its unit. */
 #include "trajectory/traj_internal.h"
+#include "trajectory/block_traj.h"
 #include "core/fmt.h"
 
 #include <ctype.h>
@@ -172,5 +173,6 @@ rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *s, const rf_tra
         if (fclose(f) != 0 || rc != RF_OK)
             return rf_fail(err, RF_EIO, "cannot write %s", path);
     }
-    return traj_write_envelopes_csv(dir, e, err); /* envelope.c */
+    rf_status rc = traj_write_envelopes_csv(dir, e, err); /* envelope.c */
+    return rc == RF_OK ? traj_block_write_vtk_runs(dir, s, e, err) : rc; /* a rigid block: block_traj_vtk.c */
 }

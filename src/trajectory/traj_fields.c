@@ -31,8 +31,20 @@ static const rf_traj_field block_rows[] = {
         "mass of a point block (required with shape: point)"),
     ROW("radius", radius, 0, "m", NAN, 0.7, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_SPHERE, 1, 1,
         "radius of a sphere (required with shape: sphere)"),
-    ROW("density", density, 0, "kg/m^3", NAN, 2700.0, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_SPHERE, 1, 1,
-        "density of a sphere (required with shape: sphere)"),
+    ROW("density", density, 0, "kg/m^3", NAN, 2700.0, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_RIGID, 1, 1,
+        "density of a sphere or a rigid block (required with every shape but point)"),
+    ROW("volume", block_volume, 0, "m^3", 0.0, 2.0, RF_TRAJ_CHECK_NONNEGATIVE, RF_TRAJ_WHEN_BLOCK, 1, 1,
+        "rigid block: scale it to this volume (0: as given; required by eota_cube, eota_wheel)"),
+    ROW("axis_ratio_b", block_ratio_b, 0, "", 1.0, 0.6, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_BLOCK, 1, 1,
+        "rigid block: stretch of its y axis against x at constant volume (axis_ratios: [1, b/a, c/a])"),
+    ROW("axis_ratio_c", block_ratio_c, 0, "", 1.0, 0.4, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_BLOCK, 1, 1,
+        "rigid block: stretch of its z axis against x at constant volume"),
+    ROW("time_step", block_time_step, 0, "s", 1e-3, 5e-4, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_BLOCK, 0, 1,
+        "rigid block: time step of the rigid-body dynamics (Moreau midpoint)"),
+    ROW("max_time", block_max_time, 0, "s", 120.0, 30.0, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_BLOCK, 0, 1,
+        "rigid block: a block still moving then ends as step_limit"),
+    ROW("rest_time", block_rest_time, 0, "s", 0.5, 0.3, RF_TRAJ_CHECK_POSITIVE, RF_TRAJ_WHEN_BLOCK, 0, 1,
+        "rigid block: at rest when its kinetic energy stays below m v_stop^2 / 2 this long"),
 };
 
 static const rf_traj_field release_rows[] = {
@@ -408,8 +420,10 @@ int traj_field_used(const rf_traj_spec *s, const rf_traj_field *f)
 {
     switch (f->when) {
     case RF_TRAJ_WHEN_ALWAYS: return 1;
-    case RF_TRAJ_WHEN_POINT: return !s->sphere;
+    case RF_TRAJ_WHEN_POINT: return !s->sphere && !s->block_kind;
     case RF_TRAJ_WHEN_SPHERE: return s->sphere;
+    case RF_TRAJ_WHEN_BLOCK: return s->block_kind != RF_TRAJ_BLOCK_NONE;
+    case RF_TRAJ_WHEN_RIGID: return s->sphere || s->block_kind != RF_TRAJ_BLOCK_NONE;
     case RF_TRAJ_WHEN_VXVY: return !s->release_by_speed;
     case RF_TRAJ_WHEN_SPEED: return s->release_by_speed;
     case RF_TRAJ_WHEN_AT_POINT: return s->release_kind == RF_TRAJ_RELEASE_POINT;

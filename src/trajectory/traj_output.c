@@ -4,6 +4,7 @@
  * Recorded paths are rebuilt exactly from their events (each stretch is a
  * parabola or a uniformly accelerated motion). */
 #include "trajectory/traj_internal.h"
+#include "trajectory/block_traj.h"
 #include "core/json.h"
 
 #include <errno.h>
@@ -25,7 +26,7 @@ void traj_json_percentiles(FILE *f, const rf_traj_percentiles *p)
     fputc('}', f);
 }
 
-static void json_impacts(FILE *f, const rf_traj_result *r)
+static void json_impacts(FILE *f, const rf_traj_result *r, int block)
 {
     fputs("\"impacts\": [", f);
     for (size_t i = 0; i < r->n_impacts && r->impacts; i++) {
@@ -38,6 +39,8 @@ static void json_impacts(FILE *f, const rf_traj_result *r)
         fputs(", \"vx_out\": ", f), rf_json_number(f, m->vx_out);
         fputs(", \"vy_out\": ", f), rf_json_number(f, m->vy_out);
         fputs(", \"omega_out\": ", f), rf_json_number(f, m->omega_out);
+        if (block) /* a rigid block: orientation, rotational energy per body axis (block_traj_output.c) */
+            traj_block_json_impact(f, m->q, m->rot_energy);
         fputc('}', f);
     }
     fputs("]", f);
@@ -63,7 +66,9 @@ static void json_crossing(FILE *f, const rf_traj_crossing *c)
 static void json_trajectory(FILE *f, const rf_traj_spec *s, const rf_traj_result *r)
 {
     fprintf(f, "{\"state\": \"%s\", \"n_impacts\": %zu, ", rf_traj_state_name(r->state), r->n_impacts);
-    json_impacts(f, r);
+    json_impacts(f, r, s->block_kind != RF_TRAJ_BLOCK_NONE);
+    if (s->block_kind != RF_TRAJ_BLOCK_NONE)
+        traj_block_json_orientation(f, r);
     if (r->state == RF_TRAJ_STOPPED) {
         fputs(", \"rest\": {\"t\": ", f), rf_json_number(f, r->t_end);
         fputs(", \"x\": ", f), rf_json_number(f, r->x_end);

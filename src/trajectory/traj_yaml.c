@@ -52,6 +52,9 @@ static rf_status parse_materials(ty_ctx *c, struct fy_node *n)
     }
 }
 
+/* block: {shape: point | sphere | ellipsoid | box | polyhedron | eota_cube |
+ * eota_wheel, ...}: the rows here (ty_fields), a rigid block's own keys in
+ * block_traj_yaml.c. */
 static rf_status parse_block(ty_ctx *c, struct fy_node *n)
 {
     rf_status st = yr_mapping(&c->sp, n, "block");
@@ -66,11 +69,18 @@ static rf_status parse_block(ty_ctx *c, struct fy_node *n)
             return st;
         if (len == 6 && !strncmp(str, "sphere", 6))
             s->sphere = 1;
-        else if (!(len == 5 && !strncmp(str, "point", 5)))
-            return yr_fail(&c->sp, shape, "block.shape", "expected point or sphere");
+        else if ((s->block_kind = traj_block_kind_of(str, len)) != RF_TRAJ_BLOCK_NONE) {
+            s->block_q0[0] = 1, s->block_q0[1] = s->block_q0[2] = s->block_q0[3] = 0;
+            ty_remember(c, "block.shape", shape);
+        } else if (!(len == 5 && !strncmp(str, "point", 5)))
+            return yr_fail(&c->sp, shape, "block.shape",
+                           "expected point, sphere, ellipsoid, box, polyhedron, eota_cube or eota_wheel");
     }
-    if ((st = ty_fields(c, n, "block", "shape")) != RF_OK)
+    const char *extra = s->block_kind ? "shape axes edges points points_file axis_ratios orientation spin" : "shape";
+    if ((st = ty_fields(c, n, "block", extra)) != RF_OK)
         return st;
+    if (s->block_kind)
+        return ty_parse_block_shape(c, n);
     if (!s->sphere && isnan(s->mass))
         return yr_fail(&c->sp, n, "block", "a point block needs mass [kg]");
     if (s->sphere && (isnan(s->radius) || isnan(s->density)))
@@ -134,13 +144,15 @@ static rf_status parse_outputs(ty_ctx *c, struct fy_node *n)
         } else if (!strcmp(key, "runout_bins")) {
             if ((st = yr_integer(&c->sp, v, "outputs.runout_bins", 1, RF_TRAJ_MAX_BINS, &bins)) == RF_OK)
                 o->runout_bins = (size_t)bins;
+        } else if (!strcmp(key, "vtk")) { /* a rigid block's hull along its recorded paths (block_traj_vtk.c) */
+            st = yr_bool(&c->sp, v, "outputs.vtk", &o->vtk);
         } else if (!strcmp(key, "max_paths") && c->spec->terrain) {
             if ((st = yr_integer(&c->sp, v, "outputs.max_paths", 0, 1000000, &bins)) == RF_OK)
                 c->spec->terrain->max_paths = (size_t)bins;
         } else {
             char p[300];
             yr_pathf(p, sizeof p, "outputs.%s", key);
-            st = yr_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins%s",
+            st = yr_fail(&c->sp, k, p, "unknown key; outputs takes percentiles, runout_thresholds, runout_bins, vtk%s",
                          c->spec->terrain ? ", max_paths" : "");
         }
     }

@@ -84,6 +84,12 @@ rf_status ty_barrier_line(ty_ctx *c, struct fy_node *n, const char *path);
 rf_status ty_parse_rasters(ty_ctx *c, struct fy_node *n);
 rf_status ty_terrain_end(ty_ctx *c, struct fy_node *root);
 
+/* block_traj_yaml.c: the kind of a rigid block's shape name (0: none of
+ * them); its own keys (axes, edges, points, points_file, axis_ratios,
+ * orientation, spin) from the block mapping n, after its rows are read. */
+int traj_block_kind_of(const char *str, size_t len);
+rf_status ty_parse_block_shape(ty_ctx *c, struct fy_node *n);
+
 /* Validate the finished spec (and the ranges of the random inputs); the
  * message gets the file and line of the field it names. */
 rf_status ty_validate(ty_ctx *c);

@@ -18,7 +18,7 @@ void traj_event(traj_run *r, rf_traj_event_kind kind, int flying, double ax, dou
         r->nomem = 1, r->phase = TRAJ_DONE; /* rf_traj_simulate reports it */
         return;
     }
-    res->events[res->n_events++] = (rf_traj_event){kind, flying, r->t, r->x, r->y, r->vx, r->vy, r->omega, ax, ay};
+    res->events[res->n_events++] = (rf_traj_event){kind, flying, r->t, r->x, r->y, r->vx, r->vy, r->omega, ax, ay, {0}};
 }
 
 void traj_finish(traj_run *r, rf_traj_state state, rf_traj_event_kind kind)
@@ -73,7 +73,8 @@ static void record_impact(traj_run *r, size_t k, double vx_in, double vy_in)
     if (res->impacts && !rf_grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts))
         r->nomem = 1, r->phase = TRAJ_DONE; /* rf_traj_simulate reports it */
     else if (res->impacts)
-        res->impacts[res->n_impacts] = (rf_traj_impact){r->t, r->x, r->y, k, vx_in, vy_in, r->vx, r->vy, r->omega};
+        res->impacts[res->n_impacts] = (rf_traj_impact){r->t, r->x, r->y, k, vx_in, vy_in, r->vx, r->vy, r->omega,
+                                                        {0}, {0}};
     res->n_impacts++;
 }
 
