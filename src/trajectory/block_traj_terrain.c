@@ -6,7 +6,8 @@
  * the centre's velocity, so barrier crossings and raster heights are those
  * of the lowest point; a crossing's centre height is the lowest point's plus
  * the centre's height above it.  Records as the sphere engine: impacts,
- * events, rest, exit, the time limit; points are the lowest point,
+ * events, rest, exit, the time limit; points are the lowest point (the
+ * runout: the centre's horizontal travel),
  * velocities the centre's, omega the space angular velocity. */
 #include "trajectory/block_traj.h"
 #include "trajectory/terrain_internal.h"
@@ -19,6 +20,7 @@ typedef struct {
     block_run b;
     terrain_run r;        /* what terrain_emit and terrain_event use: p the lowest point, v the centre's */
     double next_event;
+    double c0[2];         /* the centre's horizontal position after placement [m]: the runout's origin */
     int done;
 } ter_run;
 
@@ -165,6 +167,7 @@ static rf_status start(ter_run *q, const double start[3], rf_error *err)
         q->b.st.v[2] = -s->speed0 * sin(s->dip0);
     }
     memcpy(q->r.res->start, p, sizeof p);
+    q->c0[0] = q->b.st.x[0], q->c0[1] = q->b.st.x[1];
     event(q, RF_EV_RELEASE, 1);
     return RF_OK;
 }
@@ -197,7 +200,10 @@ rf_status terrain_block_simulate(const rf_terrain_world *w, const rf_traj_spec *
         return st;
     memcpy(res->end, r->p, sizeof res->end);
     res->t_end = q.b.t;
-    res->runout = hypot(res->end[0] - res->start[0], res->end[1] - res->start[1]);
+    /* The runout is the centre's horizontal travel: a block at rest on a face has no single lowest point
+     * (its vertices tie, and round-off picks any of them), so the lowest point's travel of a box that never
+     * moved can be an edge's length. */
+    res->runout = hypot(q.b.st.x[0] - q.c0[0], q.b.st.x[1] - q.c0[1]);
     res->reach_angle = res->runout > 0 ? atan((res->start[2] - res->end[2]) / res->runout) : NAN;
     if (hazard)
         terrain_hazard_end(hazard, res->state == RF_TRAJ_STOPPED, res->end);
