@@ -62,7 +62,7 @@ printf 'outputs: {vtk: true}\nrecord: 2\n' >> "$tmp/box.yaml"
 "$bin" trajectory "$tmp/box.yaml" --out "$tmp/vout" --quiet || fail "--out with outputs.vtk"
 python3 - "$tmp/vout" <<'PY' || fail "the ParaView files"
 import glob, math, sys, xml.etree.ElementTree as ET
-d = sys.argv[1]
+d = sys.argv[1] + "/vtk"
 for k in (0, 1):
     frames = ET.parse(f"{d}/block_{k}.pvd").getroot().findall(".//DataSet")
     assert len(frames) > 2, len(frames)

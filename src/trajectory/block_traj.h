@@ -23,6 +23,9 @@
 uint64_t traj_block_hash(uint64_t h, const rf_traj_spec *s);
 /* The block's shape name ("box") for messages and outputs. */
 const char *traj_block_kind_name(int kind);
+/* The block in words for the reports: "point, mass ...", "sphere, radius ...",
+ * "rigid box, volume ..., density ..., mass ..." (block_traj_output.c). */
+void traj_block_describe(const rf_traj_spec *s, char *buf, size_t size);
 
 /* The shape with the spec's values (volume, axis ratios, density). */
 rf_status traj_block_shape(const rf_traj_spec *s, rf_block_shape *shape, rf_error *err);

@@ -37,3 +37,24 @@ void terrain_block_json_orientation(FILE *f, const rf_terrain_result *r)
         orientation(f, r->events, r->n_events, sizeof *r->events, offsetof(rf_terrain_event, t),
                     offsetof(rf_terrain_event, q));
 }
+
+void traj_block_describe(const rf_traj_spec *s, char *buf, size_t size)
+{
+    if (!s->block_kind) {
+        if (s->sphere)
+            snprintf(buf, size, "sphere, radius %g m, density %g kg/m^3, mass %.4g kg", s->radius, s->density,
+                     4.0 / 3.0 * 3.14159265358979323846 * s->radius * s->radius * s->radius * s->density);
+        else
+            snprintf(buf, size, "point, mass %.4g kg", s->mass);
+        return;
+    }
+    rf_block_shape shape;
+    rf_error err;
+    if (traj_block_shape(s, &shape, &err) != RF_OK) {
+        snprintf(buf, size, "%s", traj_block_kind_name(s->block_kind));
+        return;
+    }
+    snprintf(buf, size, "rigid %s, volume %.4g m^3, density %g kg/m^3, mass %.4g kg (at the file's values)",
+             traj_block_kind_name(s->block_kind), shape.volume, shape.density, shape.mass);
+    rf_block_shape_free(&shape);
+}

@@ -1,14 +1,16 @@
 /* block_traj_vtk.c - ParaView output of recorded rigid-block trajectories
  * (`outputs: {vtk: true}`; docs/block-shape.md "Wiring"): per trajectory k
- * (the first `record`) DIR/block_k.pvd and DIR/block_k_NNNN.vtp, a time
+ * (the first `record`) DIR/vtk/block_k.pvd and DIR/vtk/block_k_NNNN.vtp, a time
  * series of the block's surface at its events, written by
  * rf_block_write_vtk (block_vtk.c). */
 #include "trajectory/block_traj.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* The centre from an event's lowest point p and orientation q. */
 static void state_of(const rf_block_shape *s, const double p[3], const double q[4], rf_block_state *st)
@@ -66,6 +68,11 @@ rf_status traj_block_write_vtk_runs(const char *dir, const rf_traj_spec *s, cons
 {
     if (!s->block_kind || !s->outputs.vtk)
         return RF_OK;
+    char sub[4096]; /* the frames in DIR/vtk: thousands of files beside the engineer's tables would bury them */
+    if ((size_t)snprintf(sub, sizeof sub, "%s/vtk", dir) >= sizeof sub)
+        return rf_fail(err, RF_EINVAL, "output folder name too long: %s", dir);
+    if (mkdir(sub, 0777) != 0 && errno != EEXIST)
+        return rf_fail(err, RF_EIO, "cannot create %s: %s", sub, strerror(errno));
     rf_block_shape shape; /* at the file's values (a random volume is not followed here) */
     rf_status rc = traj_block_shape(s, &shape, err);
     size_t nrec = e->terrain ? e->terrain->n_recorded : e->n_recorded;
@@ -75,7 +82,7 @@ rf_status traj_block_write_vtk_runs(const char *dir, const rf_traj_spec *s, cons
         if (gather(e, k, &n, &pts, &qs, &ts) != RF_OK)
             rc = rf_fail(err, RF_ENOMEM, "out of memory");
         else
-            rc = write_one(dir, &shape, k, n, pts, qs, ts, err);
+            rc = write_one(sub, &shape, k, n, pts, qs, ts, err);
         free(pts), free(qs), free(ts);
     }
     rf_block_shape_free(&shape); /* zeroed when it could not be built */

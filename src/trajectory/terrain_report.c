@@ -4,6 +4,7 @@
  * maps, the per-barrier table, the runout / reach-angle statistics and the
  * inputs.  The maps are inlined as data: URIs (the page stands alone, like
  * the 2D and study reports). */
+#include "trajectory/block_traj.h"
 #include "trajectory/terrain_internal.h"
 #include "core/html.h"
 
@@ -313,11 +314,11 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
         rf_html_text(f, td->classes);
     }
     fputs("</td></tr>\n", f);
-    if (s->sphere)
-        fprintf(f, "<tr><th>block</th><td class=l>sphere, radius %g m, density %g kg/m&sup3;, mass %.4g kg</td></tr>\n",
-                s->radius, s->density, s->mass);
-    else
-        fprintf(f, "<tr><th>block</th><td class=l>point, mass %.4g kg</td></tr>\n", s->mass);
+    char block[256];
+    traj_block_describe(s, block, sizeof block);
+    fputs("<tr><th>block</th><td class=l>", f);
+    rf_html_text(f, block);
+    fputs("</td></tr>\n", f);
     if (td) {
         static const char *const kinds[3] = {"point", "line", "polygon"};
         const rf_terrain_release *r = &td->release;
@@ -326,7 +327,8 @@ static void inputs_table(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble 
         rf_html_text(f, r->file);
         fprintf(f, "; %g m above the ground</td></tr>\n", s->height0);
     }
-    fprintf(f, "<tr><th>bounce law</th><td class=l>%s</td></tr>\n", rf_traj_bounce_law_names[s->law]);
+    fprintf(f, "<tr><th>bounce law</th><td class=l>%s</td></tr>\n",
+            s->block_kind ? "(a rigid block: its own contact dynamics)" : rf_traj_bounce_law_names[s->law]);
     fprintf(f, "<tr><th>Monte Carlo</th><td class=l>%zu samples, %s sampling, seed %llu, %.3g s</td></tr>\n",
             e->samples, s->lhs ? "Latin hypercube" : "random", (unsigned long long)s->seed, e->wall_seconds);
     for (size_t k = 0; k < s->n_random; k++) {

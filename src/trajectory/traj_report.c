@@ -2,6 +2,7 @@
  * settings, states, statistics per collector, and the figures of
  * traj_plot.c embedded as data: URIs (the file stands alone, like the study
  * report). */
+#include "trajectory/block_traj.h"
 #include "trajectory/traj_internal.h"
 #include "core/html.h"
 
@@ -36,10 +37,14 @@ rf_status traj_write_report_html(const char *dir, const rf_traj_spec *s, const r
     fputs("</title><style>body{font-family:sans-serif;max-width:960px;margin:auto}td,th{padding:2px 8px;"
           "text-align:right}img{max-width:100%}</style></head><body><h1>Trajectories: ", f);
     rf_html_text(f, s->name);
-    fprintf(f, "</h1><p>%zu trajector%s, %s sampling, seed %llu, bounce law %s, %s block; stopped %zu, exited "
-               "%zu, step_limit %zu; %.3g s.</p>\n", e->samples, e->samples == 1 ? "y" : "ies",
-            s->lhs ? "Latin hypercube" : "random", (unsigned long long)s->seed, rf_traj_bounce_law_names[s->law],
-            s->sphere ? "sphere" : "point", st->stopped, st->exited, st->step_limit, e->wall_seconds);
+    char block[256];
+    traj_block_describe(s, block, sizeof block);
+    fprintf(f, "</h1><p>%zu trajector%s, %s sampling, seed %llu, bounce law %s; block: ", e->samples,
+            e->samples == 1 ? "y" : "ies", s->lhs ? "Latin hypercube" : "random", (unsigned long long)s->seed,
+            s->block_kind ? "(a rigid block: its own contact dynamics)" : rf_traj_bounce_law_names[s->law]);
+    rf_html_text(f, block);
+    fprintf(f, "; stopped %zu, exited %zu, step_limit %zu; %.3g s.</p>\n", st->stopped, st->exited, st->step_limit,
+            e->wall_seconds);
     fputs("<h2>Statistics</h2><table><tr><th>quantity</th><th>unit</th><th>p50</th><th>p95</th><th>p99</th>"
           "<th>max</th></tr>\n", f);
     row(f, "runout x", "m", &st->runout_x, 1);
