@@ -18,6 +18,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 
+
+# The runs of docs/soil-impacts.md by what they hold fixed (the file names are the doc's A and B).
+LABELS = {"soil_gerber_A": "A: strength and cap of the S5 colluvium",
+          "soil_gerber_B": "B: cap hardening tied to M_E"}
+
 def read(path):
     rows = [r for r in csv.DictReader(open(path)) if r["d_model_m"] not in ("failed", "")]
     return rows
@@ -60,7 +65,8 @@ def main():
         d = np.array([float(r["d_model_m"]) for r in rows])
         me = np.array([float(r["ME_Pa"]) / 1e6 for r in rows])
         sc = ax.scatter(g, d, c=np.log10(me), cmap="viridis", marker=marks[k % 4], s=36,
-                        label=path.split("/")[-1].replace(".csv", ""), edgecolors="k", linewidths=0.4)
+                        label=LABELS.get(path.split("/")[-1].replace(".csv", ""), path.split("/")[-1]),
+                        edgecolors="k", linewidths=0.4)
         lo, hi = min(lo, g.min(), d.min()), max(hi, g.max(), d.max())
     x = np.array([lo * 0.8, hi * 1.25])
     ax.plot(x, x, "k-", lw=0.8, label="model = law")
