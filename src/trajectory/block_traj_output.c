@@ -43,7 +43,7 @@ void traj_block_describe(const rf_traj_spec *s, char *buf, size_t size)
     if (!s->block_kind) {
         if (s->sphere)
             snprintf(buf, size, "sphere, radius %g m, density %g kg/m^3, mass %.4g kg", s->radius, s->density,
-                     4.0 / 3.0 * 3.14159265358979323846 * s->radius * s->radius * s->radius * s->density);
+                     traj_spec_mass(s));
         else
             snprintf(buf, size, "point, mass %.4g kg", s->mass);
         return;

@@ -194,7 +194,7 @@ void traj_env_add(traj_env_acc *a, const rf_traj_spec *s, const rf_traj_result *
     traj_run r;
     memset(&r, 0, sizeof r);
     r.w = a->w, r.s = s, r.g = s->gravity;
-    r.mass = s->sphere ? 4.0 / 3.0 * RF_PI * s->radius * s->radius * s->radius * s->density : s->mass;
+    r.mass = traj_spec_mass(s);
     r.radius = s->sphere ? s->radius : 0;
     r.inertia = s->sphere ? 0.4 * r.mass * s->radius * s->radius : 0;
     memset(a->seen, 0, a->n);

@@ -134,7 +134,7 @@ rf_status rf_traj_simulate(const rf_traj_world *w, const rf_traj_spec *s, uint64
     memset(&r, 0, sizeof r);
     r.w = w, r.s = s, r.res = res, r.seed = seed, r.sample = sample;
     r.g = s->gravity;
-    r.mass = s->sphere ? 4.0 / 3.0 * RF_PI * s->radius * s->radius * s->radius * s->density : s->mass;
+    r.mass = traj_spec_mass(s);
     r.radius = s->sphere ? s->radius : 0;
     r.inertia = s->sphere ? 0.4 * r.mass * s->radius * s->radius : 0;
     res->state = RF_TRAJ_STOPPED;

@@ -10,6 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+double traj_spec_mass(const rf_traj_spec *s)
+{
+    return s->sphere ? 4.0 / 3.0 * RF_PI * s->radius * s->radius * s->radius * s->density : s->mass;
+}
+
 void rf_traj_spec_free(rf_traj_spec *s)
 {
     if (!s)

@@ -213,7 +213,7 @@ static void run_init(terrain_run *r, const rf_terrain_world *w, const rf_traj_sp
     r->w = w, r->dem = w->dem, r->s = s, r->res = res, r->hazard = hazard;
     r->seed = seed, r->sample = sample;
     r->g = s->gravity;
-    r->mass = s->sphere ? 4.0 / 3.0 * RF_PI * s->radius * s->radius * s->radius * s->density : s->mass;
+    r->mass = traj_spec_mass(s);
     r->radius = s->sphere ? s->radius : 0;
     r->inertia = s->sphere ? 0.4 * r->mass * s->radius * s->radius : 0;
     res->state = RF_TRAJ_STOPPED;

@@ -38,6 +38,9 @@ struct rf_traj_world {
     traj_release_set *release;  /* release line or zone: the pieces a point is drawn on (release.c) */
 };
 
+/* spec.c: the mass of a point block (spec->mass) or of a homogeneous sphere
+ * (4/3 pi r^3 rho) [kg]; a rigid block's comes from its shape (block_traj_setup.c). */
+double traj_spec_mass(const rf_traj_spec *s);
 /* release.c: the release velocity (vx, vy, or speed and angle); the pieces
  * of a release line or zone (w->release, NULL for a point; an empty zone is
  * an error); the point at u in (0, 1), uniform by length over the pieces. */
