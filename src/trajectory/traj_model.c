@@ -262,7 +262,8 @@ static rf_status surrogate_ready(const traj_model_ctx *c, FILE *log, rf_error *e
     traj_impact_store store;
     if (c->side)
         traj_impact_store_from_side(c->side, &store);
-    traj_table_watch w = {c->stop, NULL, NULL, c->side ? &store : NULL, NULL};
+    table_progress p = {log, rf_monotonic_seconds(), rf_monotonic_seconds()}; /* each table's progress */
+    traj_table_watch w = {c->stop, table_say, &p, c->side ? &store : NULL, NULL};
     return traj_impact_surrogate_build(c->sur, &w, log, err);
 }
 
