@@ -299,6 +299,30 @@ static void test_model_binds_impact_input(void **state)
     }
     for (int p = 0; p < 2; p++)
         assert_true(y[p][k] != y[p + 1][k] || y[p][r] != y[p + 1][r]);
+    /* the point's run is the Monte Carlo on the surrogate's table there: a second
+     * surrogate over the same box (the same nodes) and traj_run_with give the same bits */
+    traj_impact_surrogate *sur;
+    char *const p1[1] = {(char *)bind[0]};
+    assert_int_equal(traj_impact_surrogate_for_model(&s, 1, p1, &a, &b, TRAJ_SURROGATE_CHECKS, &sur, &err), RF_OK);
+    assert_int_equal(traj_impact_surrogate_build(sur, NULL, NULL, &err), RF_OK);
+    rf_traj_spec at;
+    assert_int_equal(rf_traj_spec_copy(&s, &at, &err), RF_OK);
+    assert_true(rf_traj_spec_set(&at, bind[0], x[1]));
+    at.record = 0;
+    traj_impact_table *t;
+    assert_int_equal(traj_impact_surrogate_table(sur, &at, &t, &err), RF_OK);
+    rf_traj_ensemble e;
+    rf_traj_stats st;
+    double again[256];
+    assert_int_equal(traj_run_with(&at, 1, t, 0, &e, &err), RF_OK);
+    assert_int_equal(rf_traj_stats_compute_spec(&at, &e, &st, &err), RF_OK);
+    traj_model_outputs(&m, &at, &st, again);
+    assert_memory_equal(again, y[1], m.n_outputs * sizeof(double));
+    rf_traj_stats_free(&st);
+    rf_traj_ensemble_free(&e);
+    traj_impact_table_free(t);
+    traj_impact_surrogate_free(sur);
+    rf_traj_spec_free(&at);
     char w[1024];
     assert_true(m.warnings(m.ctx, w, sizeof w) == 1);
     assert_non_null(strstr(w, "impact surrogate error R_n"));
