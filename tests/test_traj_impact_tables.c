@@ -452,7 +452,12 @@ static void test_store_resume_and_reuse(void **state)
     traj_impact_setup setup;
     assert_int_equal(traj_impact_setup_material(&setup, &s, 1, &err), RF_OK);
     double bad[6] = {40, 0.1, 0.5, 5, 0.5, 0};
-    assert_int_equal(ts.put(ts.user, &setup, bad, &err), RF_OK);
+    assert_int_equal(ts.put(ts.user, &setup, bad, &err), RF_EMODEL); /* never stored through the table's put */
+    assert_non_null(strstr(err.msg, "R_n must lie in [0, 1]"));
+    char id[300], key[400];
+    traj_impact_setup_key(&setup, id, sizeof id);
+    snprintf(key, sizeof key, "impact_model %s", id);
+    assert_int_equal(side.put(side.user, key, bad, 6, &err), RF_OK); /* a damaged store */
     build_counts(&s, &w2, RF_EIO, &e, &c, &err);
     if (!strstr(err.msg, "R_n must lie in [0, 1]") || !strstr(err.msg, "damaged"))
         fail_msg("%s", err.msg);

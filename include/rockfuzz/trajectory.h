@@ -597,6 +597,13 @@ int rf_traj_state_at(const rf_traj_result *res, double t, double *x, double *y, 
  * common random numbers across the TM's points. */
 rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const char *const *param_names,
                                const char *const *bind_paths, rf_model *model, rf_error *err);
+/* The ranges [lo[i], hi[i]] (as given: angles in degrees) the bound inputs of
+ * a trajectory model take (a study: its parameters' supports).  With them,
+ * bound inputs of a material's impact model (materials.NAME.impact.X) are
+ * evaluated on a surrogate of the impact model over that box, built once in
+ * the run (docs/soil-surrogate.md); without them each evaluation builds its
+ * own impact table. */
+rf_status rf_traj_model_set_ranges(rf_model *m, const double *lo, const double *hi, rf_error *err);
 
 /* The Monte Carlo of a trajectory model (rf_traj_model_create) at the point x
  * of its parameters, written to the existing folder dir as `rockfuzz

@@ -156,6 +156,16 @@ static rf_status make_model(yr_ctx *c, struct fy_node *n, rf_traj_spec *spec, rf
         return rf_fail(c->err, RF_ENOMEM, "out of memory");
     rf_status st = rf_traj_model_create(spec, bind->n, names, names, &s->model, c->err);
     free(names);
+    double lo[SB_MAX_TARGETS], hi[SB_MAX_TARGETS]; /* each input's range over the parameters' supports */
+    for (size_t j = 0; j < bind->n && st == RF_OK; j++) {
+        const sb_target *t = &bind->t[j];
+        double a, b;
+        rf_fuzzy_cut(&s->inputs[t->param], 0.0, &a, &b);
+        a = a * t->scale + t->offset, b = b * t->scale + t->offset;
+        lo[j] = fmin(a, b), hi[j] = fmax(a, b);
+    }
+    if (st == RF_OK) /* bound impact-model inputs: the impact surrogate over that box */
+        st = rf_traj_model_set_ranges(&s->model, lo, hi, c->err);
     if (st != RF_OK)
         return yr_prefix(c, n, "model.trajectory");
     return sb_wrap(bind, s->n_params, &s->model, c->err);

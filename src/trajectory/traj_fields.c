@@ -22,7 +22,7 @@
     {#field, offsetof(rf_traj_material, field), deg, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 1, 1, help}
 /* A number of materials.NAME.impact: stored as given (angles in degrees: the impact model converts them). */
 #define IMP(k, name, unit, def, probe, check, help) \
-    {"impact." #name, offsetof(rf_traj_material, impact.v[k]), 0, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 0, 0, help}
+    {"impact." #name, offsetof(rf_traj_material, impact.v[k]), 0, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 0, 1, help}
 #define COL(field, unit, def, probe, check, help) \
     {#field, offsetof(rf_traj_collector, field), 0, unit, def, probe, check, RF_TRAJ_WHEN_ALWAYS, 0, 1, help}
 

@@ -68,4 +68,11 @@ rf_status traj_impact_cache_load(const char *path, const traj_impact_setup *s, d
                                  size_t *cap, rf_error *err);
 void traj_impact_cache_append(const char *path, const traj_impact_setup *s, const double *rows, size_t count);
 
+/* traj_impact_table.c: a table that is the weighted sum of n others (not
+ * copied: they must outlive it; w[k] >= 0 summing to 1), looked up as one
+ * (the impact surrogate's table at a point of the material parameters). */
+struct traj_impact_table;
+rf_status traj_impact_table_blend(const struct traj_impact_table *const *parts, const double *w, size_t n,
+                                  struct traj_impact_table **out, rf_error *err);
+
 #endif

@@ -35,14 +35,16 @@ static rf_status add(void *u, const double *r)
     const char *why = traj_impact_row_invalid(r);
     if (why)
         return rf_fail(c->err, RF_EIO, "result store: impact table row (v_n %g, theta %g, radius %g, R_n %g, R_t %g, "
-                       "spin %g) of %s: %s; the store is damaged: rerun with --fresh", r[0], r[1], r[2], r[3], r[4],
+                       "spin %g) of %s: %s; the store is damaged: remove the study folder's store.sqlite (--fresh "
+                       "keeps the impacts)", r[0], r[1], r[2], r[3], r[4],
                        r[5], c->key, why);
     for (size_t k = c->first; k < *c->n; k++) {
         const double *m = *c->memo + 6 * k;
         if (m[0] == r[0] && m[1] == r[1] && m[2] == r[2])
             return memcmp(m, r, 6 * sizeof *r) == 0 ? RF_OK
                    : rf_fail(c->err, RF_EIO, "result store: the impact v_n %g m/s, theta %g rad, radius %g m of %s "
-                             "has two different results; the store is damaged: rerun with --fresh", r[0], r[1], r[2],
+                             "has two different results; the store is damaged: remove the study folder's store.sqlite "
+                             "(--fresh keeps the impacts)", r[0], r[1], r[2],
                              c->key);
     }
     if (*c->n == *c->cap) {
@@ -70,6 +72,10 @@ static rf_status put(void *user, const traj_impact_setup *s, const double row[6]
     const rf_model_side_store *side = user;
     char key[400];
     store_key(s, key, sizeof key);
+    const char *why = traj_impact_row_invalid(row); /* never store what the next read would refuse */
+    if (why)
+        return rf_fail(err, RF_EMODEL, "impact model at v_n %g m/s, incidence %g rad, radius %g m: R_n %g, R_t %g, "
+                       "spin %g: %s", row[0], row[1], row[2], row[3], row[4], row[5], why);
     return side->put(side->user, key, row, 6, err);
 }
 

@@ -39,6 +39,10 @@ struct traj_impact_table {
     size_t n_grids, n_materials;
     grid *grids;
     size_t *of;                /* n_materials: the grid of material k */
+    /* a blend (traj_impact_table_blend): sum of w[k] * parts[k] (not owned), no grids */
+    size_t n_parts;
+    const traj_impact_table **parts;
+    double *w;
 };
 
 typedef struct {
@@ -173,19 +177,53 @@ static void clamp_out(const double *c, double *R_n, double *R_t, double *spin_ra
     *R_n = fmin(fmax(c[0], 0), 1), *R_t = fmin(fmax(c[1], 0), 1), *spin_ratio = fmax(c[2], 0);
 }
 
+/* The interpolated (R_n, R_t, spin) before clamping; a blend: its parts' weighted sum. */
+static void raw_lookup(const traj_impact_table *t, size_t material, const double p[3], double *c)
+{
+    if (t->n_parts) {
+        c[0] = c[1] = c[2] = 0;
+        for (size_t k = 0; k < t->n_parts; k++) {
+            double d[3];
+            raw_lookup(t->parts[k], material, p, d);
+            for (int q = 0; q < 3; q++)
+                c[q] += t->w[k] * d[q];
+        }
+        return;
+    }
+    interp(&t->grids[t->of[material < t->n_materials ? material : 0]], p, c);
+}
+
 void traj_impact_table_lookup(const traj_impact_table *t, size_t material, double radius, double vn, double theta,
                               double *R_n, double *R_t, double *spin_ratio)
 {
-    const grid *g = &t->grids[t->of[material < t->n_materials ? material : 0]];
     double p[3] = {vn, theta, radius}, c[3];
-    interp(g, p, c);
+    raw_lookup(t, material, p, c);
     clamp_out(c, R_n, R_t, spin_ratio);
+}
+
+rf_status traj_impact_table_blend(const traj_impact_table *const *parts, const double *w, size_t n,
+                                  traj_impact_table **out, rf_error *err)
+{
+    traj_impact_table *t = calloc(1, sizeof *t);
+    if (t && n && (t->parts = malloc(n * sizeof *t->parts)) && (t->w = malloc(n * sizeof *t->w))) {
+        memcpy(t->parts, parts, n * sizeof *parts);
+        memcpy(t->w, w, n * sizeof *w);
+        t->n_parts = n;
+        *out = t;
+        return RF_OK;
+    }
+    traj_impact_table_free(t);
+    *out = NULL;
+    return rf_fail(err, RF_ENOMEM, "out of memory");
 }
 
 void traj_impact_table_eval(const traj_impact_table *t, double vn, double theta, double *R_n, double *R_t,
                             double *spin_ratio)
 {
-    traj_impact_table_lookup(t, 0, t->grids[t->of[0]].x[2][0], vn, theta, R_n, R_t, spin_ratio);
+    const traj_impact_table *g = t;
+    while (g->n_parts) /* a blend: the smallest radius of its first part */
+        g = g->parts[0];
+    traj_impact_table_lookup(t, 0, g->grids[g->of[0]].x[2][0], vn, theta, R_n, R_t, spin_ratio);
 }
 
 /* Evaluate every node (known ones come from the memo). */
@@ -407,6 +445,8 @@ void traj_impact_table_free(traj_impact_table *t)
         return;
     for (size_t k = 0; t->grids && k < t->n_grids; k++)
         free(t->grids[k].c);
+    free(t->parts);
+    free(t->w);
     free(t->grids);
     free(t->of);
     free(t);
@@ -417,6 +457,14 @@ void traj_impact_table_info(const traj_impact_table *t, size_t *nv, size_t *nt, 
 {
     *nv = *nt = *evaluations = *from_cache = 0;
     *error_estimate = t ? 0 : NAN;
+    for (size_t k = 0; t && k < t->n_parts; k++) { /* a blend: the largest of its parts */
+        size_t a, b, e, c;
+        double est;
+        traj_impact_table_info(t->parts[k], &a, &b, &e, &c, &est);
+        *nv = a > *nv ? a : *nv, *nt = b > *nt ? b : *nt;
+        *evaluations += e, *from_cache += c;
+        *error_estimate = fmax(*error_estimate, est);
+    }
     for (size_t k = 0; t && k < t->n_grids; k++) {
         const grid *g = &t->grids[k];
         *nv = g->n[0] > *nv ? g->n[0] : *nv, *nt = g->n[1] > *nt ? g->n[1] : *nt;

@@ -25,6 +25,7 @@
 #include "trajectory/terrain_internal.h"
 #include "core/hash.h"
 #include "trajectory/traj_impact.h"
+#include "trajectory/traj_impact_surrogate.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -44,6 +45,7 @@ typedef struct {
     const rf_model_side_store *side; /* a study run's store: the impact table's impacts kept there, or NULL */
     rf_terrain_world *world; /* a terrain file: its world, prepared once */
     size_t n_outputs;
+    traj_impact_surrogate *sur; /* bound impact-model inputs with their ranges (rf_traj_model_set_ranges), or NULL */
     traj_raster_sink sink;   /* a study's fuzzy hazard rasters (traj_model_raster_sink_set), or NULL */
     void *sink_ctx;
 } traj_model_ctx;
@@ -254,10 +256,29 @@ static rf_status shared_table(traj_model_ctx *c, FILE *log, traj_impact_table **
     return st;
 }
 
-/* The table an evaluation of spec s uses: the shared one, or its own (*own, freed by the caller). */
+/* The impact surrogate, built once (by prepare, else by the first evaluation; traj_impact_surrogate.c). */
+static rf_status surrogate_ready(const traj_model_ctx *c, FILE *log, rf_error *err)
+{
+    traj_impact_store store;
+    if (c->side)
+        traj_impact_store_from_side(c->side, &store);
+    table_progress p = {log, rf_monotonic_seconds(), rf_monotonic_seconds()}; /* each table's progress */
+    traj_table_watch w = {c->stop, table_say, &p, c->side ? &store : NULL, NULL};
+    return traj_impact_surrogate_build(c->sur, &w, log, err);
+}
+
+/* The table an evaluation of spec s uses: the shared one, the surrogate's at
+ * its point, or its own (*own, freed by the caller). */
 static rf_status table_at(traj_model_ctx *c, const rf_traj_spec *s, traj_impact_table **t, traj_impact_table **own,
                           rf_error *err)
 {
+    if (c->sur) {
+        rf_status st = surrogate_ready(c, NULL, err);
+        if (st == RF_OK)
+            st = traj_impact_surrogate_table(c->sur, s, own, err);
+        *t = *own;
+        return st;
+    }
     if (c->shared_table)
         return shared_table(c, NULL, t, err);
     rf_status st = table_build(c, s, NULL, own, err);
@@ -269,7 +290,23 @@ static rf_status traj_model_prepare(void *vctx, FILE *log, rf_error *err)
 {
     traj_model_ctx *c = vctx;
     traj_impact_table *t;
+    if (c->sur)
+        return surrogate_ready(c, log, err);
     return c->shared_table ? shared_table(c, log, &t, err) : RF_OK;
+}
+
+/* The impact surrogate's error, reported with every result (as the model's warnings). */
+static size_t traj_model_warnings(void *vctx, char *buf, size_t size)
+{
+    const traj_model_ctx *c = vctx;
+    buf[0] = '\0';
+    traj_impact_surrogate_info info = {0};
+    if (c->sur)
+        traj_impact_surrogate_get(c->sur, &info);
+    if (!info.check_runs)
+        return 0;
+    traj_impact_surrogate_describe(c->sur, buf, size);
+    return 1;
 }
 
 static void traj_model_set_interrupt(void *vctx, const atomic_int *flag)
@@ -338,6 +375,7 @@ static void traj_model_destroy(void *vctx)
     if (c->world && c->world->impact_table == c->table)
         c->world->impact_table = NULL; /* the model's, lent to the world */
     traj_impact_table_free(c->table);
+    traj_impact_surrogate_free(c->sur);
     pthread_mutex_destroy(&c->table_lock);
     rf_terrain_world_free(c->world);
     rf_traj_spec_free(&c->spec);
@@ -350,9 +388,15 @@ static void traj_model_destroy(void *vctx)
  * terrain world has one table, of the nominal block, built in the run. */
 static rf_status share_table(traj_model_ctx *c, rf_error *err)
 {
+    for (size_t i = 0; i < c->n_params; i++) {
+        const char *why = traj_impact_surrogate_unused(&c->spec, c->paths[i]);
+        if (why)
+            return rf_fail(err, RF_EINVAL, "'%s': %s", c->paths[i], why);
+    }
     c->shared_table = c->spec.law == RF_BOUNCE_IMPACT_MODEL;
     for (size_t i = 0; i < c->n_params && c->shared_table && !c->spec.terrain; i++) /* a terrain world: one table */
-        if (!strncmp(c->paths[i], "block.", 6) || strstr(c->paths[i], ".friction_angle"))
+        if (!strncmp(c->paths[i], "block.", 6) || strstr(c->paths[i], ".friction_angle") ||
+            traj_impact_surrogate_path(c->paths[i])) /* a material's impact model: the surrogate, else per point */
             c->shared_table = 0;
     traj_impact_setup setup; /* its settings checked now, when the study is loaded; the FE impacts come later */
     return c->spec.law == RF_BOUNCE_IMPACT_MODEL ? traj_impact_setup_init(&setup, &c->spec, err) : RF_OK;
@@ -435,6 +479,7 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
     model->prepare = traj_model_prepare;
     model->set_interrupt = traj_model_set_interrupt;
     model->set_side_store = traj_model_set_side_store;
+    model->warnings = traj_model_warnings;
     if (st == RF_OK && c->spec.terrain) /* checked as a run checks it, the DEM read once */
         if ((st = rf_traj_spec_validate(&c->spec, err)) == RF_OK)
             st = terrain_world_create_deferred(&c->spec, &c->world, err); /* its impact table: in the run */
@@ -456,14 +501,36 @@ rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *s
         return rf_fail(err, RF_EINVAL, "not a trajectory model");
     traj_model_ctx *c = m->ctx;
     traj_impact_table *t = NULL;
+    const traj_impact_table *lent = NULL;
     *table = NULL;
     rf_status st = c->shared_table ? shared_table(c, NULL, &t, err) : RF_OK;
     if (st == RF_OK)
         st = rf_traj_spec_copy(&c->spec, spec, err);
     for (size_t i = 0; i < c->n_params && st == RF_OK; i++)
         rf_traj_spec_set(spec, c->paths[i], x[i]);
-    *table = t;
+    if (st == RF_OK && c->sur && (st = surrogate_ready(c, NULL, err)) == RF_OK) /* the surrogate's, kept by it */
+        st = traj_impact_surrogate_table_lent(c->sur, spec, &lent, err);
+    *table = lent ? (void *)lent : t;
     return st;
+}
+
+rf_status rf_traj_model_set_ranges(rf_model *m, const double *lo, const double *hi, rf_error *err)
+{
+    if (m->eval != traj_model_eval)
+        return rf_fail(err, RF_EINVAL, "not a trajectory model");
+    traj_model_ctx *c = m->ctx;
+    traj_impact_surrogate_free(c->sur);
+    c->sur = NULL;
+    rf_status st = traj_impact_surrogate_for_model(&c->spec, c->n_params, c->paths, lo, hi, TRAJ_SURROGATE_CHECKS,
+                                                   &c->sur, err);
+    if (st != RF_OK || !c->sur)
+        return st;
+    char buf[4096]; /* the results at a point depend on the surrogate's box: in the identity */
+    int len = snprintf(buf, sizeof buf, "%s impact_surrogate=%d:", m->identity ? m->identity : "", TRAJ_SURROGATE_CHECKS);
+    for (size_t i = 0; i < c->n_params && len > 0 && (size_t)len < sizeof buf; i++)
+        if (traj_impact_surrogate_path(c->paths[i]))
+            len += snprintf(buf + len, sizeof buf - (size_t)len, "[%.17g,%.17g]", lo[i], hi[i]);
+    return rf_model_set_identity(m, buf, err);
 }
 
 void traj_model_outputs(const rf_model *m, const rf_traj_spec *s, const rf_traj_stats *t, double *y)
