@@ -1,9 +1,9 @@
 #!/bin/bash
 # cli_presets.sh - `rockfuzz presets` and the presets in a trajectory file
 # (docs/presets.md): the list, one preset's values with units, fuzzy ranges
-# and sources, a study's parameters and bindings (which the study parser
-# takes), an unknown name refused (exit 2, the names listed); a trajectory file
-# whose material is a preset with overrides bounces with the preset's R_n: the
+# and sources (and docs/presets.md's tables the same), a study's parameters
+# and bindings (which the study parser takes), an unknown name refused (exit
+# 2, the names listed); a trajectory file whose material is a preset with overrides bounces with the preset's R_n: the
 # sliding block of cli_traj_ground.sh rebounds from the wall with R_n = 0.53
 # (bedrock) and stops at 10 - (R_n v_w)^2 / (2 g tan 5 deg) = 7.31339 m, v_w^2 =
 # 25 - 10 g tan 5 deg; an unknown preset in a file is refused with file:line.
@@ -25,6 +25,15 @@ rc=$?
 [ $rc -eq 2 ] || fail "presets granite: exit $rc, expected 2"
 grep -q "unknown preset 'granite'; the presets are bedrock, talus, colluvium, loose_soil" "$tmp/err" ||
     fail "presets granite: $(cat "$tmp/err")"
+
+# docs/presets.md's tables are the program's output (every value, unit and support).
+for p in bedrock talus colluvium loose_soil; do
+    "$bin" presets $p | tail -n +4 | while read -r key value unit lo hi source; do
+        grep -qF "| \`$key\` | $value | $unit | [$lo, $hi] | $source |" "$src/docs/presets.md" ||
+            echo "docs/presets.md lacks $p: $key $value $unit [$lo, $hi] $source"
+    done
+done > "$tmp/docs"
+[ -s "$tmp/docs" ] && fail "$(cat "$tmp/docs")"
 
 # The study printed by --study runs (its parameters bound to the file's material).
 cp "$src/examples/presets/slope.yaml" "$tmp/slope.yaml"
