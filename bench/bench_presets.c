@@ -4,7 +4,9 @@
  * built exactly as a trajectory's impact_model law builds it (the preset's
  * rows stored into the impact input by name, its words parsed), in the
  * axisymmetric FE model (threads 1).  Options:
- *   bench_presets [preset=NAME] [v=v1,v2,..] [r=m] [ref=a/h] [soil=1]
+ *   bench_presets [preset=NAME] [v=v1,v2,..] [r=m] [ref=a/h] [soil=1] [set=FIELD:VALUE,..]
+ * set: impact inputs (rockfuzz impact names and units, e.g. layer_cap_pressure:50e3)
+ * set after the preset's, e.g. a corner of the preset's fuzzy support.
  * ref: FE refinement (0 = the solver's default); soil=1: the table preset of
  * docs/soil-impacts.md section 4 (tuning soil_contact_mesh, with ref=6).
  * One CSV row per impact on stdout:
@@ -44,6 +46,29 @@ static int parse_list(const char *s, double *x, int cap)
 
 /* The preset's ground into the impact input, by the impact input's names
  * (the rows impact.<name>), as traj_impact_adapter.c's ground_apply does. */
+static const char *overrides; /* set=FIELD:VALUE,... */
+
+/* The overrides into the impact input (by name); 0 on an unknown name. */
+static int apply_overrides(rf_impact_input *in)
+{
+    const char *s = overrides;
+    while (s && *s) {
+        char name[64];
+        size_t n = strcspn(s, ":");
+        if (n >= sizeof name || !s[n])
+            return 0;
+        memcpy(name, s, n), name[n] = '\0';
+        char *end;
+        double v = strtod(s + n + 1, &end);
+        const rf_impact_field *f = rf_impact_field_find(name);
+        if (!f || end == s + n + 1)
+            return 0;
+        rf_impact_field_store(in, f, v);
+        s = *end == ',' ? end + 1 : NULL;
+    }
+    return 1;
+}
+
 static int preset_input(const rf_traj_preset *p, rf_impact_input *in, rf_error *e)
 {
     rf_impact_input_default(in);
@@ -62,6 +87,10 @@ static int preset_input(const rf_traj_preset *p, rf_impact_input *in, rf_error *
         return 0;
     if (p->layer_material[0] && rf_material_model_parse(p->layer_material, &in->layer_material, e))
         return 0;
+    if (!apply_overrides(in)) {
+        snprintf(e->msg, sizeof e->msg, "set=%s: expected FIELD:VALUE,... with impact input names", overrides);
+        return 0;
+    }
     return 1;
 }
 
@@ -118,6 +147,8 @@ int main(int argc, char **argv)
             r = atof(argv[i] + 2);
         else if (!strncmp(argv[i], "ref=", 4))
             ref = atof(argv[i] + 4);
+        else if (!strncmp(argv[i], "set=", 4))
+            overrides = argv[i] + 4;
         else if (!strncmp(argv[i], "soil=", 5))
             soil = atoi(argv[i] + 5);
         else {
