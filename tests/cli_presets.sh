@@ -3,8 +3,8 @@
 # (docs/presets.md): the list, one preset's values with units, fuzzy ranges
 # and sources (and docs/presets.md's tables the same), a study's parameters
 # and bindings (which the study parser takes), an unknown name refused (exit
-# 2, the names listed); a trajectory file whose material is a preset with overrides bounces with the preset's R_n: the
-# sliding block of cli_traj_ground.sh rebounds from the wall with R_n = 0.53
+# 2, the names listed); a trajectory file whose material is a preset with
+# overrides bounces with the preset's R_n: the sliding block of cli_traj_ground.sh rebounds from the wall with R_n = 0.53
 # (bedrock) and stops at 10 - (R_n v_w)^2 / (2 g tan 5 deg) = 7.31339 m, v_w^2 =
 # 25 - 10 g tan 5 deg; an unknown preset in a file is refused with file:line.
 # Usage: bash cli_presets.sh ROCKFUZZ_BINARY SOURCE_DIR
