@@ -40,6 +40,7 @@ LAYERS = {
 PUBLIC = {
     "status": "core", "fuzzy": "fuzzy", "material": "material", "impact": "impact", "mdr": "impact",
     "fem": "fem", "fem3d": "fem", "model": "model", "impact_model": "model", "trajectory": "trajectory", "terrain": "trajectory", "block": "trajectory",
+    "presets": "trajectory",
     "tm": "tm", "analysis": "tm", "study": "study", "study_run": "study", "runner": "study",
     "store": "study", "mpi": "study", "report": "study",
 }

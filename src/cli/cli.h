@@ -28,6 +28,7 @@ int rf_cli_status(int argc, char **argv);  /* cmd_status.c: progress of a study 
 int rf_cli_report(int argc, char **argv);  /* cmd_report.c: report.html from a finished run */
 int rf_cli_material(int argc, char **argv); /* cmd_material.c: material-point driver */
 int rf_cli_trajectory(int argc, char **argv); /* cmd_trajectory.c: rockfall trajectories of a trajectory file */
+int rf_cli_presets(int argc, char **argv);  /* cmd_presets.c: the named materials of trajectory files */
 /* cmd_trajectory.c: `rockfuzz report DIR` of a `rockfuzz trajectory --out DIR` result (DIR holds
  * RF_CLI_INVOCATION, else *handled = 0): the trajectories run again from the recorded file and
  * overrides, and only if they reproduce DIR/result.json, the plots and report.html are written. */

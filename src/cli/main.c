@@ -25,6 +25,8 @@ static void usage(FILE *f)
         "                             `rockfuzz trajectory --out DIR` run\n"
         "  material [OPTIONS]         drive one material point along a strain path; see\n"
         "                             `rockfuzz material --help`\n"
+        "  presets [NAME]             named materials for trajectory files, with their\n"
+        "                             fuzzy ranges; see `rockfuzz presets --help`\n"
         "\n"
         "Options:\n"
         "  -h, --help                 show this help\n"
@@ -112,6 +114,8 @@ static int dispatch(int argc, char **argv)
         return rf_cli_report(argc - 1, argv + 1);
     if (!strcmp(cmd, "material"))
         return rf_cli_material(argc - 1, argv + 1);
+    if (!strcmp(cmd, "presets"))
+        return rf_cli_presets(argc - 1, argv + 1);
     fprintf(stderr, "rockfuzz: unknown command '%s' (try `rockfuzz --help`)\n", cmd);
     return 2;
 }

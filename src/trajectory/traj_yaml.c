@@ -45,10 +45,15 @@ static rf_status parse_materials(ty_ctx *c, struct fy_node *n)
         ty_row_defaults(RF_TRAJ_OWNER_MATERIAL, m);
         char p[300];
         yr_pathf(p, sizeof p, "materials.%s", key);
-        if ((st = ty_fields(c, v, p, "impact")) != RF_OK || (st = traj_impact_yaml(c, v, p, m)) != RF_OK)
+        int whole; /* NAME: PRESET (else a mapping, maybe with preset: and overrides) */
+        if ((st = ty_material_preset(c, v, p, m, &whole)) != RF_OK)
+            return st;
+        if (whole)
+            continue;
+        if ((st = ty_fields(c, v, p, "impact preset")) != RF_OK || (st = traj_impact_yaml(c, v, p, m)) != RF_OK)
             return st;
         if (isnan(m->R_n) || isnan(m->R_t))
-            return yr_fail(&c->sp, v, p, "R_n and R_t are required");
+            return yr_fail(&c->sp, v, p, "R_n and R_t are required (or a preset: rockfuzz presets)");
     }
 }
 

@@ -49,6 +49,10 @@ rf_status ty_setting(ty_ctx *c, struct fy_node *v, const rf_traj_setting *g);
  * `extra` keys (read by the caller). */
 rf_status ty_fields(ty_ctx *c, struct fy_node *n, const char *prefix, const char *extra);
 
+/* materials.NAME: PRESET, or materials.NAME.preset of a mapping, applied to m
+ * (traj_presets_yaml.c); *whole: the material is the preset as it is (no mapping). */
+rf_status ty_material_preset(ty_ctx *c, struct fy_node *v, const char *path, rf_traj_material *m, int *whole);
+
 /* materials.NAME.impact of the material mapping `mat` (traj_impact_yaml.c), if given. */
 rf_status traj_impact_yaml(ty_ctx *c, struct fy_node *mat, const char *path, rf_traj_material *m);
 

@@ -1,0 +1,166 @@
+/* bench_presets.c - R_n of each material preset (presets.h, docs/presets.md)
+ * from its own impact model, set against the practitioners' R_n: a granite
+ * sphere (radius r, 2600 kg/m^3) falls normally at v on the preset's ground,
+ * built exactly as a trajectory's impact_model law builds it (the preset's
+ * rows stored into the impact input by name, its words parsed), in the
+ * axisymmetric FE model (threads 1).  Options:
+ *   bench_presets [preset=NAME] [v=v1,v2,..] [r=m] [ref=a/h] [soil=1] [set=FIELD:VALUE,..]
+ * set: impact inputs (rockfuzz impact names and units, e.g. layer_cap_pressure:50e3)
+ * set after the preset's, e.g. a corner of the preset's fuzzy support.
+ * ref: FE refinement (0 = the solver's default); soil=1: the table preset of
+ * docs/soil-impacts.md section 4 (tuning soil_contact_mesh, with ref=6).
+ * One CSV row per impact on stdout:
+ *   preset,v_m_s,r_m,ref,soil,R_n,Rn_lo,Rn_peak,Rn_hi,inside,penetration_m,W_p_KE0,energy_error,cpu_s
+ * (Rn_lo..Rn_hi: the preset's fuzzy support of R_n, from the practitioners'
+ * tables; inside: the model's R_n lies in it).  A failed run prints "failed"
+ * and the message. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+
+#include "fem/fem_tuning.h"
+#include "rockfuzz/fem.h"
+#include "rockfuzz/impact.h"
+#include "rockfuzz/material.h"
+#include "rockfuzz/presets.h"
+
+static double cpu_now(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
+static int parse_list(const char *s, double *x, int cap)
+{
+    int n = 0;
+    while (s && *s && n < cap) {
+        char *end;
+        x[n++] = strtod(s, &end);
+        s = *end == ',' ? end + 1 : NULL;
+    }
+    return n;
+}
+
+/* The preset's ground into the impact input, by the impact input's names
+ * (the rows impact.<name>), as traj_impact_adapter.c's ground_apply does. */
+static const char *overrides; /* set=FIELD:VALUE,... */
+
+/* The overrides into the impact input (by name); 0 on an unknown name. */
+static int apply_overrides(rf_impact_input *in)
+{
+    const char *s = overrides;
+    while (s && *s) {
+        char name[64];
+        size_t n = strcspn(s, ":");
+        if (n >= sizeof name || !s[n])
+            return 0;
+        memcpy(name, s, n), name[n] = '\0';
+        char *end;
+        double v = strtod(s + n + 1, &end);
+        const rf_impact_field *f = rf_impact_field_find(name);
+        if (!f || end == s + n + 1)
+            return 0;
+        rf_impact_field_store(in, f, v);
+        s = *end == ',' ? end + 1 : NULL;
+    }
+    return 1;
+}
+
+static int preset_input(const rf_traj_preset *p, rf_impact_input *in, rf_error *e)
+{
+    rf_impact_input_default(in);
+    for (size_t i = 0; i < p->n_values; i++) {
+        const char *key = p->values[i].key;
+        if (strncmp(key, "impact.", 7))
+            continue;
+        const rf_impact_field *f = rf_impact_field_find(key + 7);
+        if (!f)
+            return 0;
+        rf_impact_field_store(in, f, p->values[i].value);
+    }
+    if (p->boulder_material[0] && rf_impact_boulder_material_parse(p->boulder_material, &in->boulder_material, e))
+        return 0;
+    if (p->slope_material[0] && rf_material_model_parse(p->slope_material, &in->slope_material, e))
+        return 0;
+    if (p->layer_material[0] && rf_material_model_parse(p->layer_material, &in->layer_material, e))
+        return 0;
+    if (!apply_overrides(in)) {
+        snprintf(e->msg, sizeof e->msg, "set=%s: expected FIELD:VALUE,... with impact input names", overrides);
+        return 0;
+    }
+    return 1;
+}
+
+static double rn_support(const rf_traj_preset *p, int which)
+{
+    for (size_t i = 0; i < p->n_values; i++)
+        if (!strcmp(p->values[i].key, "R_n"))
+            return which < 0 ? p->values[i].lo : which > 0 ? p->values[i].hi : p->values[i].value;
+    return NAN;
+}
+
+static void run(const rf_traj_preset *p, double v, double r, double ref, int soil)
+{
+    rf_impact_input in;
+    rf_error e = {0};
+    if (!preset_input(p, &in, &e)) {
+        printf("%s,%g,%g,%g,%d,failed,\"%s\"\n", p->name, v, r, ref, soil, e.msg);
+        return;
+    }
+    in.radius = r, in.boulder_density = 2600, in.velocity = v;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    rf_fem_tuning t;
+    fem_tune(&o, &t)->soil_contact_mesh = soil;
+    o.threads = 1, o.refinement = ref;
+    rf_impact_output out;
+    rf_fem_history H = {0};
+    const double c0 = cpu_now();
+    const rf_status st = rf_fem_impact(&in, &o, &out, &H, &e);
+    const double cpu = cpu_now() - c0, lo = rn_support(p, -1), hi = rn_support(p, 1);
+    printf("%s,%g,%g,%g,%d,", p->name, v, r, ref, soil);
+    if (st != RF_OK)
+        printf("failed,%g,%g,%g,,,,,%.2f,\"%s\"\n", lo, rn_support(p, 0), hi, cpu, e.msg);
+    else
+        printf("%.4f,%g,%g,%g,%s,%.4f,%.4f,%.2e,%.2f\n", out.R_n, lo, rn_support(p, 0), hi,
+               out.R_n >= lo && out.R_n <= hi ? "yes" : "no", out.penetration_max, out.plastic_work,
+               H.closure[H.n - 1] / H.ke0, cpu);
+    fflush(stdout);
+    if (st == RF_OK)
+        rf_fem_history_free(&H);
+}
+
+int main(int argc, char **argv)
+{
+    double v[16] = {1, 5, 10}, r = 0.5, ref = 0;
+    int nv = 3, soil = 0;
+    const char *only = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (!strncmp(argv[i], "v=", 2))
+            nv = parse_list(argv[i] + 2, v, 16);
+        else if (!strncmp(argv[i], "preset=", 7))
+            only = argv[i] + 7;
+        else if (!strncmp(argv[i], "r=", 2))
+            r = atof(argv[i] + 2);
+        else if (!strncmp(argv[i], "ref=", 4))
+            ref = atof(argv[i] + 4);
+        else if (!strncmp(argv[i], "set=", 4))
+            overrides = argv[i] + 4;
+        else if (!strncmp(argv[i], "soil=", 5))
+            soil = atoi(argv[i] + 5);
+        else {
+            fprintf(stderr, "bench_presets: unknown argument '%s'\n", argv[i]);
+            return 2;
+        }
+    }
+    printf("preset,v_m_s,r_m,ref,soil,R_n,Rn_lo,Rn_peak,Rn_hi,inside,penetration_m,W_p_KE0,energy_error,cpu_s\n");
+    const rf_traj_preset *p;
+    for (size_t k = 0; (p = rf_traj_preset_at(k)); k++)
+        if (!only || !strcmp(only, p->name))
+            for (int j = 0; j < nv; j++)
+                run(p, v[j], r, ref, soil);
+    return 0;
+}
