@@ -8,7 +8,7 @@
  * One CSV row per radius: layer, radius [m], mass [kg], FE speed [m/s],
  * depth reached [m], fit A [N/m^m], fit m, fit rms (log), rut depth z0 [m],
  * resistance F_r [N], mu_r, the mean pressure q = F(z0)/(2 pi R z0) [Pa] and the
- * ideally plastic closed form's mu_r at that q, wall s. */
+ * ideally plastic closed form's mu_r at that q, CPU s of the calibration. */
 #include "trajectory/traj_rolling.h"
 
 #include "rockfuzz/impact.h"
@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 /* The ground of material `layer`: S5 (examples/s5_v5.yaml) or a von Mises layer of yield Y. */
 static void ground(traj_impact_setup *s, const char *layer, double Y)
@@ -36,6 +37,13 @@ static void ground(traj_impact_setup *s, const char *layer, double Y)
     } else {
         snprintf(g->layer_material, sizeof g->layer_material, "drucker_prager");
     }
+}
+
+static double cpu_seconds(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
 
 int main(int argc, char **argv)
@@ -58,7 +66,7 @@ int main(int argc, char **argv)
         }
     }
     printf("layer,radius_m,mass_kg,fe_speed_m_s,depth_max_m,fit_A,fit_m,fit_rms,rut_depth_m,force_N,mu_r,"
-           "mean_pressure_Pa,mu_r_plastic_same_pressure,wall_s\n");
+           "mean_pressure_Pa,mu_r_plastic_same_pressure,cpu_s\n");
     for (char *tok = strtok(radii, ","); tok; tok = strtok(NULL, ",")) {
         traj_impact_setup s;
         ground(&s, layer, Y);
@@ -66,6 +74,7 @@ int main(int argc, char **argv)
         s.refinement = ref;
         traj_rolling_calibration cal;
         rf_error err;
+        double c0 = cpu_seconds();
         if (traj_rolling_calibrate(&s, 9.81, &cal, &err) != RF_OK) {
             fprintf(stderr, "radius %s: %s\n", tok, err.msg);
             return 1;
@@ -74,7 +83,7 @@ int main(int argc, char **argv)
         double mu_plastic = traj_rolling_power_mu(2 * RF_PI * s.radius * q, 1, s.radius, cal.r.weight, NULL);
         printf("%s,%g,%.6g,%g,%.6g,%.6g,%.4f,%.3g,%.6g,%.6g,%.5f,%.6g,%.5f,%.1f\n", layer, s.radius,
                cal.r.weight / 9.81, cal.speed, cal.depth_max, cal.fit_A, cal.fit_m, cal.fit_rms, cal.r.sinkage,
-               cal.r.force, cal.r.mu_r, q, mu_plastic, cal.cpu);
+               cal.r.force, cal.r.mu_r, q, mu_plastic, cpu_seconds() - c0);
         fflush(stdout);
     }
     return 0;

@@ -18,6 +18,12 @@
  * build answers the interrupt flag (set_interrupt) between two impacts.  In a
  * study run the impacts are kept in the study's store (set_side_store:
  * traj_impact_store.c), else in bounce.impact.cache if given.
+ * The rolling resistances derived from the materials' impact models
+ * (rf_traj_rolling_resolve: a material with a soil layer whose file gives no
+ * rolling_resistance) are resolved once on the model's spec, by prepare or
+ * the first evaluation, and kept in memory for the model's life (not in the
+ * store); per evaluation when a block parameter is bound; a bound
+ * rolling_resistance is never derived.
  * A terrain file (spec->terrain) evaluates by the terrain Monte Carlo
  * (terrain_run_world on a world prepared once: the DEM is read once per
  * model; no rasters) and gives runout_pXX and reach_angle_pXX [deg] where a

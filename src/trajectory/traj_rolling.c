@@ -76,9 +76,9 @@ static rf_status derive(rf_traj_spec *s, size_t k, const traj_impact_setup *setu
     if (log)
         fprintf(log, "Rolling resistance of %s: %.4g (derived from impact model: rut depth %.4g m under the "
                      "%g m sphere, weight %.4g N, resistance %.4g N; FE indentation at %g m/s to %.4g m, "
-                     "F = %.4g N d^%.3g (rms %.2g in log), %.1f s)\n",
+                     "F = %.4g N d^%.3g (rms %.2g in log), %.1f s wall)\n",
                 m->name, cal.r.mu_r, cal.r.sinkage, setup->radius, cal.r.weight, cal.r.force, cal.speed,
-                cal.depth_max, cal.fit_A, cal.fit_m, cal.fit_rms, cal.cpu);
+                cal.depth_max, cal.fit_A, cal.fit_m, cal.fit_rms, cal.wall);
     return RF_OK;
 }
 

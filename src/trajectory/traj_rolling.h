@@ -62,7 +62,7 @@ typedef struct {
     double fit_A, fit_m, fit_rms;  /* F = A d^m over the upper 80 % of the loading branch */
     double speed;                  /* impact speed of the FE run used [m/s] */
     double depth_max;              /* deepest point of its loading branch [m] */
-    double cpu;                    /* wall time of the calibration [s] */
+    double wall;                   /* wall time of the calibration [s] */
 } traj_rolling_calibration;
 
 rf_status traj_rolling_calibrate(const traj_impact_setup *s, double gravity, traj_rolling_calibration *cal,

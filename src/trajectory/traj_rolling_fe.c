@@ -134,6 +134,6 @@ rf_status traj_rolling_calibrate(const traj_impact_setup *s, double gravity, tra
         cal->fit_rms = traj_rolling_power_fit(&c, 0.2, &cal->fit_A, &cal->fit_m);
     }
     curve_free(&c);
-    cal->cpu = rf_monotonic_seconds() - t0;
+    cal->wall = rf_monotonic_seconds() - t0;
     return st;
 }
