@@ -140,12 +140,41 @@ static void test_rock_only(void **state)
     rf_traj_spec_free(&s);
 }
 
+/* The calibration against an ideally plastic layer (von Mises, no hardening, Y = 200 kPa): its
+ * indentation pressure does not grow with depth, so the FE curve is linear (m = 1, within the
+ * elastic-plastic start of the branch) and its mean pressure at the rut depth is at least
+ * Tabor's fully plastic 2.8 Y (pile-up can only add area). */
+static void test_plastic_layer_second_method(void **state)
+{
+    (void)state;
+    traj_impact_setup s;
+    memset(&s, 0, sizeof s);
+    s.solver = 0; /* fem */
+    s.radius = 0.5, s.density = 2600, s.refinement = 3, s.has_ground = 1;
+    const double v[RF_TRAJ_IMPACT_N] = {68.2e9, 0.25, 2600, 0, 0, 1.0, 100e6, 0.3, 1900, 200e3, 0, 0, 0, 0, 0, 0};
+    memcpy(s.ground.v, v, sizeof v);
+    snprintf(s.ground.layer_material, sizeof s.ground.layer_material, "von_mises");
+    traj_rolling_calibration cal;
+    rf_error err;
+    if (traj_rolling_calibrate(&s, G, &cal, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    double W = cal.r.weight, z0 = cal.r.sinkage, q = 2 * W / (2 * PI * 0.5 * z0);
+    assert_close(W, 4.0 / 3.0 * PI * 0.125 * 2600 * G, 1e-12);
+    assert_true(fabs(cal.fit_m - 1) < 0.15);
+    assert_true(q > 2.8 * 200e3);
+    /* a curve that is convex from F(0) = 0 (elastic start, then linear) lies below its chord: F(l z0) <= l F(z0),
+     * so mu_r is at most the linear law's closed form at the same z0 (0.075 against 0.086 when measured) */
+    assert_true(cal.r.mu_r <= 4 / (3 * PI) * sqrt(2 * z0 / 0.5) * (1 + 1e-9));
+    assert_true(cal.r.mu_r > 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_given_wins),
         cmocka_unit_test(test_rock_only),
         cmocka_unit_test(test_derived_and_used),
+        cmocka_unit_test(test_plastic_layer_second_method),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
