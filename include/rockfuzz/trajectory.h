@@ -52,6 +52,11 @@ typedef struct {
     char slope_material[16];    /* "" = elastic; elastic | von_mises | drucker_prager */
     char layer_material[16];    /* "" = elastic */
     double v[RF_TRAJ_IMPACT_N]; /* the rows impact.slope_E ... impact.layer_cap_hardening (traj_fields.c) */
+    /* The material's rolling_resistance against this impact model (rf_traj_rolling_resolve; not part of
+       the impact model's identity): */
+    int rolling_given;          /* given in the file or bound by a study: it wins over a derived value */
+    int rolling_source;         /* 0 file, 1 default, 2 derived from the impact model, 3 rock (no layer) */
+    double rolling_sinkage;     /* [m] derived: the rut depth under the rolling block (0 otherwise) */
 } rf_traj_impact_ground;
 
 typedef struct {
@@ -346,6 +351,16 @@ int rf_traj_name_valid(const char *name);
 /* Check the spec (profile sorted and not self-intersecting, materials,
  * release above the ground, ...); the message names the field and value. */
 rf_status rf_traj_spec_validate(const rf_traj_spec *spec, rf_error *err);
+
+/* The impact_model law: each material whose impact model has a soil layer
+ * (solver fem, layer_thickness > 0) and whose rolling_resistance the file
+ * does not give gets the rolling resistance derived from the layer's
+ * mechanics for the sphere's nominal radius and density (src/trajectory/
+ * traj_rolling*.c, docs/soil-impacts.md "Rolling resistance from the
+ * layer": an FE indentation per material, a few seconds); a value given in
+ * the file (or bound by a study) wins.  Says each material's value and its
+ * source on log (may be NULL).  Other laws and specs: nothing changes. */
+rf_status rf_traj_rolling_resolve(rf_traj_spec *spec, FILE *log, rf_error *err);
 
 /* ---- one trajectory ---- */
 

@@ -182,7 +182,7 @@ static rf_status load_file(const traj_args *a, rf_traj_spec *spec, rf_error *err
         spec->samples = (size_t)a->samples, spec->record = spec->record > spec->samples ? spec->samples : spec->record;
     if (a->seed >= 0)
         spec->seed = (uint64_t)a->seed;
-    return RF_OK;
+    return rf_traj_rolling_resolve(spec, a->quiet || a->json ? NULL : stderr, err);
 }
 
 /* Load a.file, apply the command line's overrides, run and compute the

@@ -4,6 +4,7 @@
  * kJ); the run folder is terrain_files.c's.  The JSON pieces shared with
  * the profile document come from traj_output.c. */
 #include "trajectory/terrain_internal.h"
+#include "trajectory/traj_rolling.h"
 #include "trajectory/block_traj.h"
 #include "core/json.h"
 
@@ -147,6 +148,8 @@ void rf_terrain_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensembl
     }
     fputs("],\n \"statistics\": ", f);
     json_statistics(f, s, e, st);
+    if (s->law == RF_BOUNCE_IMPACT_MODEL)
+        traj_rolling_json(f, s);
     fprintf(f, ",\n \"wall_seconds\": %.6g}\n", e->wall_seconds);
 }
 
@@ -200,6 +203,8 @@ void rf_terrain_write_summary(FILE *f, const rf_traj_spec *s, const rf_traj_ense
     fprintf(f, "  runout (horizontal, release to end) [m]: p50 %.4g, p95 %.4g, max %.4g\n", st->runout_x.p50,
             st->runout_x.p95, st->runout_x.max);
     summary_reach(f, e);
+    if (s->law == RF_BOUNCE_IMPACT_MODEL)
+        traj_rolling_summary(f, s);
     for (size_t c = 0; c < s->n_collectors; c++)
         summary_barrier(f, s, e, st, c);
     fprintf(f, "  units: energy kJ, lengths and heights m; barrier statistics over the blocks that reach it, "

@@ -18,6 +18,12 @@
  * build answers the interrupt flag (set_interrupt) between two impacts.  In a
  * study run the impacts are kept in the study's store (set_side_store:
  * traj_impact_store.c), else in bounce.impact.cache if given.
+ * The rolling resistances derived from the materials' impact models
+ * (rf_traj_rolling_resolve: a material with a soil layer whose file gives no
+ * rolling_resistance) are resolved once on the model's spec, by prepare or
+ * the first evaluation, and kept in memory for the model's life (not in the
+ * store); per evaluation when a block parameter is bound; a bound
+ * rolling_resistance is never derived.
  * A terrain file (spec->terrain) evaluates by the terrain Monte Carlo
  * (terrain_run_world on a world prepared once: the DEM is read once per
  * model; no rasters) and gives runout_pXX and reach_angle_pXX [deg] where a
@@ -26,6 +32,7 @@
 #include "core/hash.h"
 #include "trajectory/traj_impact.h"
 #include "trajectory/traj_impact_surrogate.h"
+#include "trajectory/traj_rolling.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -43,6 +50,8 @@ typedef struct {
     pthread_mutex_t table_lock; /* the shared table's build (prepare or the first evaluation) */
     const atomic_int *stop;  /* the run's interrupt flag (set_interrupt), or NULL */
     const rf_model_side_store *side; /* a study run's store: the impact table's impacts kept there, or NULL */
+    int rolling_shared;      /* no block parameter bound: the derived rolling resistances resolved once ... */
+    int rolling_done;        /* ... on spec (rf_traj_rolling_resolve, under table_lock), else per evaluation */
     rf_terrain_world *world; /* a terrain file: its world, prepared once */
     size_t n_outputs;
     traj_impact_surrogate *sur; /* bound impact-model inputs with their ranges (rf_traj_model_set_ranges), or NULL */
@@ -267,6 +276,18 @@ static rf_status surrogate_ready(const traj_model_ctx *c, FILE *log, rf_error *e
     return traj_impact_surrogate_build(c->sur, &w, log, err);
 }
 
+/* The rolling resistances derived from the materials' impact models
+ * (rf_traj_rolling_resolve), once on the model's spec, said on log. */
+static rf_status shared_rolling(traj_model_ctx *c, FILE *log, rf_error *err)
+{
+    pthread_mutex_lock(&c->table_lock);
+    rf_status st = RF_OK;
+    if (c->rolling_shared && !c->rolling_done && (st = rf_traj_rolling_resolve(&c->spec, log, err)) == RF_OK)
+        c->rolling_done = 1;
+    pthread_mutex_unlock(&c->table_lock);
+    return st;
+}
+
 /* The table an evaluation of spec s uses: the shared one, the surrogate's at
  * its point, or its own (*own, freed by the caller). */
 static rf_status table_at(traj_model_ctx *c, const rf_traj_spec *s, traj_impact_table **t, traj_impact_table **own,
@@ -290,6 +311,9 @@ static rf_status traj_model_prepare(void *vctx, FILE *log, rf_error *err)
 {
     traj_model_ctx *c = vctx;
     traj_impact_table *t;
+    rf_status st = shared_rolling(c, log, err);
+    if (st != RF_OK)
+        return st;
     if (c->sur)
         return surrogate_ready(c, log, err);
     return c->shared_table ? shared_table(c, log, &t, err) : RF_OK;
@@ -323,11 +347,15 @@ static rf_status traj_model_eval(void *vctx, const double *x, double *y, rf_erro
 {
     traj_model_ctx *c = vctx;
     rf_traj_spec s;
-    rf_status st = rf_traj_spec_copy(&c->spec, &s, err);
-    if (st != RF_OK)
+    rf_status st = shared_rolling(c, NULL, err);
+    if (st != RF_OK || (st = rf_traj_spec_copy(&c->spec, &s, err)) != RF_OK)
         return st;
     for (size_t i = 0; i < c->n_params; i++)
         rf_traj_spec_set(&s, c->paths[i], x[i]); /* as given: an angle in degrees */
+    if (!c->rolling_shared && (st = rf_traj_rolling_resolve(&s, NULL, err)) != RF_OK) {
+        rf_traj_spec_free(&s);
+        return st;
+    }
     s.record = 0;
     rf_traj_ensemble e;
     rf_traj_stats t;
@@ -382,6 +410,27 @@ static void traj_model_destroy(void *vctx)
     free(c);
 }
 
+/* A material whose rolling_resistance a parameter binds keeps it (never
+ * derived); a bound block parameter makes the derivation per evaluation
+ * (the terrain world's block is the nominal one: resolved once), and so
+ * does a bound impact-model input (the layer the derivation indents). */
+static void rolling_bound(traj_model_ctx *c)
+{
+    c->rolling_shared = 1;
+    for (size_t i = 0; i < c->n_params; i++) {
+        const char *p = c->paths[i];
+        if ((!strncmp(p, "block.", 6) && !c->spec.terrain) || strstr(p, ".impact."))
+            c->rolling_shared = 0; /* the block, or the layer the derivation indents */
+        const char *r = strstr(p, ".rolling_resistance");
+        if (strncmp(p, "materials.", 10) || !r)
+            continue;
+        for (size_t k = 0; k < c->spec.n_materials; k++)
+            if (strlen(c->spec.materials[k].name) == (size_t)(r - p - 10) &&
+                !strncmp(p + 10, c->spec.materials[k].name, (size_t)(r - p - 10)))
+                c->spec.materials[k].impact.rolling_given = 1;
+    }
+}
+
 /* The impact table depends on the block's radius and density, the impact
  * friction and the solver settings: shared by all evaluations unless a
  * parameter is bound to one of them (then built at every evaluation); a
@@ -398,6 +447,7 @@ static rf_status share_table(traj_model_ctx *c, rf_error *err)
         if (!strncmp(c->paths[i], "block.", 6) || strstr(c->paths[i], ".friction_angle") ||
             traj_impact_surrogate_path(c->paths[i])) /* a material's impact model: the surrogate, else per point */
             c->shared_table = 0;
+    rolling_bound(c);
     traj_impact_setup setup; /* its settings checked now, when the study is loaded; the FE impacts come later */
     return c->spec.law == RF_BOUNCE_IMPACT_MODEL ? traj_impact_setup_init(&setup, &c->spec, err) : RF_OK;
 }
@@ -503,7 +553,9 @@ rf_status traj_model_spec_at(const rf_model *m, const double *x, rf_traj_spec *s
     traj_impact_table *t = NULL;
     const traj_impact_table *lent = NULL;
     *table = NULL;
-    rf_status st = c->shared_table ? shared_table(c, NULL, &t, err) : RF_OK;
+    rf_status st = shared_rolling(c, NULL, err);
+    if (st == RF_OK && c->shared_table)
+        st = shared_table(c, NULL, &t, err);
     if (st == RF_OK)
         st = rf_traj_spec_copy(&c->spec, spec, err);
     for (size_t i = 0; i < c->n_params && st == RF_OK; i++)

@@ -4,6 +4,7 @@
  * Recorded paths are rebuilt exactly from their events (each stretch is a
  * parabola or a uniformly accelerated motion). */
 #include "trajectory/traj_internal.h"
+#include "trajectory/traj_rolling.h"
 #include "trajectory/block_traj.h"
 #include "core/json.h"
 
@@ -169,6 +170,7 @@ void rf_traj_write_json(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *
                 e->impact_from_cache, s->impact_tolerance);
         rf_json_number(f, e->impact_error_estimate);
         fputs("}", f);
+        traj_rolling_json(f, s);
     }
     fprintf(f, ",\n \"wall_seconds\": %.6g}\n", e->wall_seconds);
 }
@@ -225,6 +227,8 @@ void rf_traj_write_summary(FILE *f, const rf_traj_spec *s, const rf_traj_ensembl
                    "the cache; estimated interpolation error of R_n, R_t %.3g (tolerance %g)\n", s->impact_solver,
                 e->impact_nodes_vn, e->impact_nodes_theta, e->impact_evaluations, e->impact_from_cache,
                 e->impact_error_estimate, s->impact_tolerance);
+    if (s->law == RF_BOUNCE_IMPACT_MODEL)
+        traj_rolling_summary(f, s);
     if (e->samples == 1 && e->n_recorded) {
         const rf_traj_result *r = &e->recorded[0];
         fprintf(f, "  %s at t = %.6g s, x = %.6g m, y = %.6g m after %zu impact%s\n", rf_traj_state_name(r->state),

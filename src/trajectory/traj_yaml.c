@@ -52,6 +52,7 @@ static rf_status parse_materials(ty_ctx *c, struct fy_node *n)
             continue;
         if ((st = ty_fields(c, v, p, "impact preset")) != RF_OK || (st = traj_impact_yaml(c, v, p, m)) != RF_OK)
             return st;
+        m->impact.rolling_given = fy_node_mapping_lookup_by_string(v, "rolling_resistance", FY_NT) != NULL;
         if (isnan(m->R_n) || isnan(m->R_t))
             return yr_fail(&c->sp, v, p, "R_n and R_t are required (or a preset: rockfuzz presets)");
     }
