@@ -52,6 +52,14 @@ static void show(const rf_traj_preset *p)
     }
 }
 
+/* A value the printed study binds: bindable, with a support, and not an
+ * impact-model input (those are bound only under bounce.law impact_model,
+ * through the impact surrogate: docs/soil-surrogate.md). */
+static int study_binds(const rf_traj_preset_value *v, const rf_traj_field *f)
+{
+    return f && f->bindable && v->hi > v->lo && strncmp(v->key, "impact.", 7) != 0;
+}
+
 /* The study parameters: {tfn: [peak, left, right]} and bind: lines. */
 static void study(const rf_traj_preset *p, const char *mat)
 {
@@ -59,19 +67,20 @@ static void study(const rf_traj_preset *p, const char *mat)
     for (size_t i = 0; i < p->n_values; i++) {
         const rf_traj_preset_value *v = &p->values[i];
         const rf_traj_field *f = rf_traj_preset_row(v);
-        if (f && f->bindable && v->hi > v->lo)
+        if (study_binds(v, f))
             printf("  %s_%s: {tfn: [%g, %g, %g], unit: \"%s\"}\n", mat, v->key, v->value, v->value - v->lo,
                    v->hi - v->value, f->unit);
+        else if (f && f->bindable && v->hi > v->lo)
+            printf("  # %s: [%g, %g, %g] %s (bindable with bounce.law impact_model: docs/soil-surrogate.md)\n",
+                   v->key, v->lo, v->value, v->hi, f->unit);
         else
-            printf("  # %s: [%g, %g, %g] %s (not bindable in a study yet)\n", v->key, v->lo, v->value, v->hi,
+            printf("  # %s: [%g, %g, %g] %s (not bindable in a study)\n", v->key, v->lo, v->value, v->hi,
                    f ? f->unit : "");
     }
     printf("# under model.trajectory:\n    bind:\n");
-    for (size_t i = 0; i < p->n_values; i++) {
-        const rf_traj_field *f = rf_traj_preset_row(&p->values[i]);
-        if (f && f->bindable && p->values[i].hi > p->values[i].lo)
+    for (size_t i = 0; i < p->n_values; i++)
+        if (study_binds(&p->values[i], rf_traj_preset_row(&p->values[i])))
             printf("      %s_%s: materials.%s.%s\n", mat, p->values[i].key, mat, p->values[i].key);
-    }
 }
 
 int rf_cli_presets(int argc, char **argv)
