@@ -9,6 +9,7 @@
  *   terrain_bounce.c    the bounce laws in the local frame of the normal (3D)
  *   terrain_contact*.c  sliding and rolling on the surface (terrain_contact_internal.h)
  *   terrain_barrier.c   barrier crossings of a piece (first crossing, capacity rule)
+ *   terrain_fly.c       the flight phase: first impact, the flight's piece, the impact
  *   terrain_simulate.c  one trajectory: the state machine over those
  *   terrain_hazard.c    hazard raster accumulators (counts, log histograms), merge, percentiles
  *   terrain_release.c   release features: the point at given uniforms
@@ -96,6 +97,8 @@ typedef struct {
     size_t n;                   /* vertices */
     const double *x, *y;        /* spec->terrain->barrier_* (the spec outlives the world's use) */
     double *cum;                /* n: distance along the line to vertex k [m] */
+    int has_box;                /* the box below is set (terrain_barrier_box; a world filled by hand may not) */
+    double xmin, xmax, ymin, ymax; /* its bounding box widened by round-off [m] (the crossing test's quick reject) */
 } terrain_barrier_geo;
 
 struct rf_terrain_world {
@@ -219,6 +222,18 @@ int terrain_bounce(terrain_run *r, size_t ci, size_t cj, double v[3], double ome
 /* terrain_bounce.c: the exact unit upward normal of cell (ci, cj)'s patch at
  * (x, y) (clamped to the cell). */
 void terrain_surface_normal(const rf_terrain *t, size_t ci, size_t cj, double x, double y, double n[3]);
+
+/* terrain_barrier.c: set g's bounding box (from its n vertices x, y). */
+void terrain_barrier_box(terrain_barrier_geo *g);
+
+/* terrain_fly.c: one flight from the current state to its first impact (or
+ * the DEM's border, or a barrier's cut), the piece emitted, and the impact:
+ * r->phase after it is TERRAIN_CONTACT (a soft landing or a slow rebound),
+ * TERRAIN_FLY (a rebound, or a barrier broken through) or TERRAIN_DONE.
+ * (*ci, *cj): the cell of the impact (set only when there is one). */
+void terrain_fly(terrain_run *r, size_t *ci, size_t *cj);
+/* terrain_fly.c: continue in contact: the velocity along the surface of normal n. */
+void terrain_to_contact(terrain_run *r, const double n[3]);
 
 /* terrain_contact.c: move the block in contact with the surface (sliding or
  * rolling under gravity, friction and rolling resistance, the normal force
