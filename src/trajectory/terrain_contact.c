@@ -249,7 +249,7 @@ static int take_step(terrain_run *r, cc_cell *c, const cc_step *s, const cc_geom
 {
     cc_step st = *s;
     double tau = st.tau, scale;
-    terrain_piece_outcome o = tc_emit(r, &tau, st.a, &scale);
+    terrain_piece_outcome o = tc_emit(r, &tau, st.a, &scale, c); /* (a step never leaves its cell) */
     int cut = tau < st.tau;
     double p0[3];
     memcpy(p0, r->p, sizeof p0);

@@ -167,6 +167,8 @@ typedef struct {
     terrain_phase phase;
     int from_impact;                    /* the current flight starts at an impact (rebound height) */
     int nomem;
+    int piece_in_cell;                  /* the piece being emitted lies in the DEM cell (piece_ci, piece_cj), */
+    size_t piece_ci, piece_cj;          /* its closed square (set by the contact phase; 0: not known) */
 } terrain_run;
 
 /* Barrier outcome of a piece (terrain_barrier.c). */
@@ -258,6 +260,10 @@ typedef struct rf_terrain_hazard rf_terrain_hazard;
 rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain *dem);
 void terrain_hazard_begin(rf_terrain_hazard *h);
 void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc);
+/* The same for a piece whose path lies in the closed square of DEM cell (ci, cj): when the grid is the
+ * DEM's, that cell alone, without the walk (slivers of round-off past its edges are not touched). */
+void terrain_hazard_piece_in(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc,
+                             size_t ci, size_t cj);
 void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3]);
 void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from);
 void terrain_hazard_free(rf_terrain_hazard *h);
