@@ -40,7 +40,9 @@
  * in ever shorter steps).
  *
  * Edges.  Crossing a cell edge changes the normal: the velocity pointing
- * above the next patch's tangent plane (convex) launches the block; else
+ * above the next patch's tangent plane (convex) launches the block (the
+ * flight, terrain_fly, is flown from here: a soft landing goes on in this
+ * phase without a new one; hop); else
  * (concave) it loses its part along the new normal (the plastic kink of
  * 2D).  When then the new patch pulls back to the edge and the speed away
  * from it is below v_stop or none (a notch: a valley whose sides meet at 90

@@ -241,7 +241,9 @@ void terrain_to_contact(terrain_run *r, const double n[3]);
  * rolling under gravity, friction and rolling resistance, the normal force
  * including the surface's curvature) until it stops, leaves the surface
  * (launch), exits the DEM, a barrier holds it, or max_steps; emits its
- * pieces with terrain_emit.  Sets r->phase (TERRAIN_FLY after a launch,
+ * pieces with terrain_emit.  A launch at a convex cell edge is flown inside
+ * the phase (terrain_fly) and a landing in contact goes on in it.  Sets
+ * r->phase (TERRAIN_FLY after a launch from inside a cell or a rebound,
  * TERRAIN_DONE with res->state otherwise). */
 void terrain_contact_run(terrain_run *r);
 
