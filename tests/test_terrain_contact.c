@@ -53,6 +53,9 @@ typedef struct {
     terrain_run r;
 } tc_run;
 
+/* run_contact records the events when set. */
+static int record_events = 0;
+
 /* Contact from p with velocity v (put into the tangent plane), spin w (NULL: none for a point, rolling for a sphere). */
 static void run_contact(tc_run *c, const rf_traj_spec *s, const rf_terrain *dem, const double p[3], const double v[3],
                         const double *w, size_t max_steps)
@@ -76,6 +79,10 @@ static void run_contact(tc_run *c, const rf_traj_spec *s, const rf_terrain *dem,
         r->omega[0] = (n[1] * v[2] - n[2] * v[1]) / r->radius;
         r->omega[1] = (n[2] * v[0] - n[0] * v[2]) / r->radius;
         r->omega[2] = (n[0] * v[1] - n[1] * v[0]) / r->radius;
+    }
+    if (record_events) {
+        c->res.events_cap = 64;
+        assert_non_null(c->res.events = malloc(c->res.events_cap * sizeof *c->res.events));
     }
     r->phase = TERRAIN_CONTACT;
     terrain_contact_run(r);
@@ -570,7 +577,10 @@ static void test_energy_random_terrain(void **state)
 }
 
 /* A convex edge (10 deg onto 40 deg) launches the block at any speed with
- * its velocity along the old slope (the 2D rule). */
+ * its velocity along the old slope (the 2D rule); the launch is flown inside
+ * the contact phase (terrain_contact.c hop) and lands on the 40 deg face
+ * where the parabola meets its plane: from (40, z40) with velocity (U, W),
+ * z40 + W t - g t^2 / 2 = z40 - tan(40 deg) U t, t = 2 (W + U tan 40) / g. */
 static void test_convex_edge_launch(void **state)
 {
     (void)state;
@@ -580,12 +590,28 @@ static void test_convex_edge_launch(void **state)
     rf_terrain *dem = profile_dem(px, pz, 3, 5, 21, 5, 0);
     double U = 0.5, p[3] = {30, 10, 60 - 30 * tan(10 * DEG)}, v[3] = {U * cos(10 * DEG), 0, -U * sin(10 * DEG)};
     tc_run c;
+    record_events = 1;
     run_contact(&c, &s, dem, p, v, NULL, 1000);
-    assert_int_equal(c.r.phase, TERRAIN_FLY);
-    assert_close(c.r.p[0], 40, 1e-12);
-    assert_close(-c.r.v[2] / c.r.v[0], tan(10 * DEG), 1e-9);
+    record_events = 0;
+    const rf_terrain_event *e = c.res.events, *end = e + c.res.n_events;
+    while (e < end && e->kind != RF_EV_LAUNCH)
+        e++;
+    assert_true(e < end && e->flying);
+    assert_close(e->p[0], 40, 1e-12);
+    assert_close(-e->v[2] / e->v[0], tan(10 * DEG), 1e-9);
     double a = G * (sin(10 * DEG) - tan(5 * DEG) * cos(10 * DEG));
-    assert_close(speed_of(&c.r), sqrt(U * U + 2 * a * 10 / cos(10 * DEG)), 1e-9);
+    double V = sqrt(e->v[0] * e->v[0] + e->v[2] * e->v[2]);
+    assert_close(V, sqrt(U * U + 2 * a * 10 / cos(10 * DEG)), 1e-9);
+    /* the landing: the next event, at the parabola's meeting with the 40 deg plane */
+    assert_true(e + 1 < end);
+    double tf = 2 * (e->v[2] + tan(40 * DEG) * e->v[0]) / G;
+    assert_true(tf > 0);
+    assert_close(e[1].t - e->t, tf, 1e-9);
+    assert_close(e[1].p[0], 40 + e->v[0] * tf, 1e-9);
+    assert_close(e[1].p[2], pz[1] - tan(40 * DEG) * e->v[0] * tf, 1e-9);
+    assert_close(e[1].p[1], 10, 1e-12);
+    assert_true(c.res.n_steps >= 2); /* the flight and the landing are counted as the state machine counts phases */
+    free(c.res.events);
     rf_terrain_free(dem);
     rf_traj_spec_free(&s);
 }

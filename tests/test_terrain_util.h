@@ -115,6 +115,7 @@ static inline void tt_world_barrier(tt_world *tw, tt_spec *ts, size_t n, const d
         tw->bx[c][k] = x[k], tw->by[c][k] = y[k];
         tw->cum[c][k] = k ? tw->cum[c][k - 1] + hypot(x[k] - x[k - 1], y[k] - y[k - 1]) : 0;
     }
+    terrain_barrier_box(g);
     rf_traj_collector *col = &ts->col[c];
     memset(col, 0, sizeof *col);
     col->name = "fence", col->capacity = capacity, col->height = height;

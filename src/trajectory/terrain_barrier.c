@@ -52,10 +52,33 @@ static int path_line_crossing(const terrain_barrier_geo *b, double px, double py
     return 1;
 }
 
+/* The map segment from (x0, y0) to (x1, y1) lies wholly on one side of the
+ * barrier's bounding box (widened by round-off): it cannot cross it. */
+static int outside_box(const terrain_barrier_geo *b, double x0, double y0, double x1, double y1)
+{
+    return b->has_box && ((x0 < b->xmin && x1 < b->xmin) || (x0 > b->xmax && x1 > b->xmax) || (y0 < b->ymin && y1 < b->ymin) ||
+           (y0 > b->ymax && y1 > b->ymax));
+}
+
+void terrain_barrier_box(terrain_barrier_geo *g)
+{
+    g->xmin = g->xmax = g->x[0], g->ymin = g->ymax = g->y[0];
+    for (size_t k = 1; k < g->n; k++) {
+        g->xmin = fmin(g->xmin, g->x[k]), g->xmax = fmax(g->xmax, g->x[k]);
+        g->ymin = fmin(g->ymin, g->y[k]), g->ymax = fmax(g->ymax, g->y[k]);
+    }
+    double m = 1e-9 * (fabs(g->xmin) + fabs(g->xmax) + fabs(g->ymin) + fabs(g->ymax) + 1);
+    g->xmin -= m, g->xmax += m, g->ymin -= m, g->ymax += m;
+    g->has_box = 1;
+}
+
 /* Time of the first crossing of barrier c by the piece (INFINITY if none). */
 static double piece_crossing(const terrain_barrier_geo *b, const terrain_piece *pc, double *along)
 {
     double s;
+    if (outside_box(b, pc->p[0], pc->p[1], pc->p[0] + pc->v[0] * pc->T + 0.5 * pc->a[0] * pc->T * pc->T,
+                    pc->p[1] + pc->v[1] * pc->T + 0.5 * pc->a[1] * pc->T * pc->T))
+        return INFINITY; /* (the map path of a piece, a line or a chord, lies between its ends) */
     if (pc->a[0] == 0 && pc->a[1] == 0) /* straight at constant speed: s is the time */
         return path_line_crossing(b, pc->p[0], pc->p[1], pc->v[0], pc->v[1], pc->T, &s, along) ? s : INFINITY;
     double T = pc->T;

@@ -40,7 +40,9 @@
  * in ever shorter steps).
  *
  * Edges.  Crossing a cell edge changes the normal: the velocity pointing
- * above the next patch's tangent plane (convex) launches the block; else
+ * above the next patch's tangent plane (convex) launches the block (the
+ * flight, terrain_fly, is flown from here: a soft landing goes on in this
+ * phase without a new one; hop); else
  * (concave) it loses its part along the new normal (the plastic kink of
  * 2D).  When then the new patch pulls back to the edge and the speed away
  * from it is below v_stop or none (a notch: a valley whose sides meet at 90
@@ -129,8 +131,62 @@ static int rest_at(terrain_run *r, cc_cell *c)
     return 0;
 }
 
-/* At the edge (ex, ey) of c after a step: the next cell, launch, kink,
- * valley line or exit.  1 to go on in *c, 0 if the phase ended. */
+/* The state machine's count of events (terrain_simulate.c counts one per
+ * phase it starts); 0 at the limit (ended: step_limit). */
+static int count_phase(terrain_run *r)
+{
+    if (r->res->n_steps++ >= r->s->max_steps) {
+        tc_finish(r, RF_TRAJ_STEP_LIMIT, RF_EV_STEP_LIMIT);
+        return 0;
+    }
+    return 1;
+}
+
+/* Into *c, the cell of the contact that starts at the current point after
+ * a landing in cell (ci, cj): tc_pick_cell's cell (the one the horizontal
+ * velocity leads into), taken without the search when the point lies inside
+ * (ci, cj) away from its edges (the same cell, the same bits).  0: none. */
+static int landing_cell(terrain_run *r, size_t ci, size_t cj, cc_cell *c)
+{
+    const rf_terrain *t = r->dem;
+    double fx = (r->p[0] - t->x0) / t->dx - (double)ci, fy = (r->p[1] - t->y0) / t->dy - (double)cj;
+    const double m = 1e-6;
+    cc_cell hint = *c;
+    if (fx > m && fx < 1 - m && fy > m && fy < 1 - m && tc_cell_load_near(r, (long)ci, (long)cj, c, &hint))
+        return 1;
+    return tc_pick_cell(r, r->p[0], r->p[1], r->v[0], r->v[1], c);
+}
+
+/* A launch at a convex edge (the velocity points above the next patch):
+ * the flight (terrain_fly: the same exact first impact, piece and landing
+ * rule as any flight) and, when it ends in contact, the contact phase goes
+ * on from the landing without returning to the state machine: the same
+ * events and counts as a new phase (terrain_contact_run's start), without
+ * its search for the cell.  3: in contact again in *c; 0: the phase ended
+ * (a rebound into a flight, a stop, an exit, a barrier's cut). */
+static int hop(terrain_run *r, cc_cell *c)
+{
+    tc_launch(r);
+    if (!count_phase(r))
+        return 0;
+    size_t ci, cj;
+    terrain_fly(r, &ci, &cj);
+    if (r->phase != TERRAIN_CONTACT || r->nomem || !count_phase(r))
+        return 0;
+    if (!landing_cell(r, ci, cj, c)) {
+        tc_finish(r, RF_TRAJ_EXITED, RF_EV_EXIT);
+        return 0;
+    }
+    cc_geom G;
+    tc_onto_surface(r, c, &G);
+    geom_keep(c, r->p, &G); /* the first step starts here */
+    terrain_event(r, RF_EV_CONTACT, 0);
+    return 3;
+}
+
+/* At the edge (ex, ey) of c after a step: the next cell, launch (and its
+ * landing: hop), kink, valley line or exit.  1 to go on in *c, 3 after a
+ * hop (in contact again in *c), 0 if the phase ended. */
 static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey, const cc_geom *GAp)
 {
     cc_cell b;
@@ -147,10 +203,8 @@ static int cross_edge(terrain_run *r, cc_cell *c, int ex, int ey, const cc_geom 
     geom_at(r, &b, r->p, &GB);
     GB.N = GB.an = 0; /* (not set by geom_at) */
     double sp = norm3(r->v), vn = dot3(r->v, GB.n);
-    if (vn > 1e-9 * sp) { /* the velocity points above the new patch: convex */
-        tc_launch(r);
-        return 0;
-    }
+    if (vn > 1e-9 * sp) /* the velocity points above the new patch: convex */
+        return hop(r, c);
     for (int k = 0; k < 3; k++)
         r->v[k] -= vn * GB.n[k]; /* concave: the part into the new patch is lost */
     double m[2] = {(double)ex, (double)ey}, mm = ex && ey ? sqrt(2.0) : 1.0;
@@ -197,7 +251,7 @@ static int take_step(terrain_run *r, cc_cell *c, const cc_step *s, const cc_geom
 {
     cc_step st = *s;
     double tau = st.tau, scale;
-    terrain_piece_outcome o = tc_emit(r, &tau, st.a, &scale);
+    terrain_piece_outcome o = tc_emit(r, &tau, st.a, &scale, c); /* (a step never leaves its cell) */
     int cut = tau < st.tau;
     double p0[3];
     memcpy(p0, r->p, sizeof p0);
@@ -290,11 +344,17 @@ void terrain_contact_run(terrain_run *r)
     }
     cc_geom G;
     tc_onto_surface(r, &c, &G);
+    geom_keep(&c, r->p, &G); /* the first step starts here */
     terrain_event(r, RF_EV_CONTACT, 0);
     double last[3] = {NAN, NAN, NAN};
     for (int idle = 0; r->phase == TERRAIN_CONTACT && !r->nomem;) {
-        if (!step_once(r, &c))
+        int k = step_once(r, &c);
+        if (!k)
             break;
+        if (k == 3) { /* a new contact after a hop: as a phase started afresh */
+            idle = 0, last[0] = last[1] = last[2] = NAN;
+            continue;
+        }
         /* at rest on the same point step after step: every way out leads
          * back (a node or edge where the cells' fall lines meet) */
         int still = r->v[0] == 0 && r->v[1] == 0 && r->v[2] == 0 && !memcmp(last, r->p, sizeof last);

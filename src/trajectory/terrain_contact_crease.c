@@ -91,7 +91,7 @@ int tc_crease_run(terrain_run *r, cc_crease k, cc_cell *c)
         }
         for (int q = 0; q < 3; q++)
             r->v[q] = U * dir * e[q], a[q] = A * dir * e[q];
-        terrain_piece_outcome o = tc_emit(r, &tau, a, &scale);
+        terrain_piece_outcome o = tc_emit(r, &tau, a, &scale, NULL);
         tc_advance(r, tau, a, zero);
         r->p[k.axis ? 0 : 1] = k.axis ? k.A.x1 : k.A.y1; /* exactly on the edge */
         if (o == TERRAIN_PIECE_STOPPED) {

@@ -132,8 +132,9 @@ void tc_finish(terrain_run *r, rf_traj_state state, rf_traj_event_kind kind);
 void tc_stop_here(terrain_run *r);   /* at rest: v = omega = 0, stopped */
 void tc_launch(terrain_run *r);      /* leaves the surface: the flight phase */
 double tc_energy(const terrain_run *r); /* mechanical energy per unit mass [J/kg] */
-/* Emit the piece over *tau (shortened to a barrier's cut); its outcome. */
-terrain_piece_outcome tc_emit(terrain_run *r, double *tau, const double a[3], double *scale);
+/* Emit the piece over *tau (shortened to a barrier's cut); its outcome.  cell: the cell
+ * whose closed square holds the piece's path (NULL: not known). */
+terrain_piece_outcome tc_emit(terrain_run *r, double *tau, const double a[3], double *scale, const cc_cell *cell);
 void tc_advance(terrain_run *r, double tau, const double a[3], const double dw[3]);
 /* Roll: omega = n x v / r (after the impulse that ends a slip when `impulse`). */
 void tc_set_rolling(terrain_run *r, const cc_geom *G, int impulse);

@@ -38,8 +38,29 @@ double tc_energy(const terrain_run *r)
     return kin + r->g * r->p[2];
 }
 
+/* The piece's map path, in the closed square of its cell, is that cell's alone
+ * for the rasters (terrain_hazard_piece_in): not a point, and its chord (what
+ * the rasters' walk follows) does not start on one of the cell's lines going
+ * along it or out of the cell (the walk gives such a start to the cell beyond
+ * the line, or a segment on the line to the cell north / east of it: a path
+ * can dip into its cell by micrometres between two points of its edge). */
+static int in_cell_alone(const cc_cell *c, const terrain_piece *pc)
+{
+    if (!(pc->T > 0))
+        return 0;
+    double T = pc->T, x0 = pc->p[0], y0 = pc->p[1];
+    double xe = x0 + pc->v[0] * T + 0.5 * pc->a[0] * T * T, ye = y0 + pc->v[1] * T + 0.5 * pc->a[1] * T * T;
+    if (x0 == xe && y0 == ye)
+        return 0;
+    if ((x0 == c->P.xi && xe <= x0) || (x0 == c->x1 && xe >= x0))
+        return 0;
+    if ((y0 == c->P.yj && ye <= y0) || (y0 == c->y1 && ye >= y0))
+        return 0;
+    return 1;
+}
+
 /* Emit the piece over *tau (shortened to a barrier's cut); its outcome. */
-terrain_piece_outcome tc_emit(terrain_run *r, double *tau, const double a[3], double *scale)
+terrain_piece_outcome tc_emit(terrain_run *r, double *tau, const double a[3], double *scale, const cc_cell *cell)
 {
     terrain_piece pc;
     memset(&pc, 0, sizeof pc);
@@ -48,9 +69,12 @@ terrain_piece_outcome tc_emit(terrain_run *r, double *tau, const double a[3], do
     memcpy(pc.v, r->v, sizeof pc.v);
     memcpy(pc.a, a, sizeof pc.a);
     pc.e_rot = 0.5 * r->inertia * dot3(r->omega, r->omega);
+    if (cell && in_cell_alone(cell, &pc))
+        r->piece_in_cell = 1, r->piece_ci = (size_t)cell->i, r->piece_cj = (size_t)cell->j;
     double cut = INFINITY;
     *scale = 1;
     terrain_piece_outcome o = terrain_emit(r, &pc, &cut, scale);
+    r->piece_in_cell = 0;
     if (o != TERRAIN_PIECE_FREE && cut < *tau)
         *tau = cut > 0 ? cut : 0;
     return o;

@@ -40,7 +40,9 @@ terrain_piece_outcome terrain_emit(terrain_run *r, const terrain_piece *pc, doub
     terrain_piece cut = *pc;
     if (o != TERRAIN_PIECE_FREE && *tau_cut < cut.T)
         cut.T = *tau_cut;
-    if (r->hazard)
+    if (r->hazard && r->piece_in_cell) /* a contact step's piece: its cell is known */
+        terrain_hazard_piece_in(r->hazard, r->dem, r->mass, &cut, r->piece_ci, r->piece_cj);
+    else if (r->hazard)
         terrain_hazard_piece(r->hazard, r->dem, r->mass, &cut);
     int flight = !pc->on_ground && pc->a[0] == 0 && pc->a[1] == 0 && pc->a[2] == -r->g;
     if (flight && r->from_impact) {

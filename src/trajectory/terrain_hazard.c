@@ -90,6 +90,8 @@ struct rf_terrain_hazard {
     size_t nx, ny;
     double x0, y0, cell;
     unsigned stats;
+    int dem_grid;               /* the grid has the DEM's cells (size and count; the origin is checked
+                                 * per piece): a piece known to lie in one DEM cell is that cell's alone */
     uint32_t *slot;             /* nx * ny: 0 untouched, else 1 + record */
     hz_rec *rec;
     size_t n_rec, cap_rec;
@@ -497,6 +499,7 @@ rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain
         return NULL;
     }
     h->nx = nx, h->ny = ny, h->x0 = xmin, h->y0 = ymin, h->cell = cell;
+    h->dem_grid = cell == dx && cell == dy && nx == dem->nx - 1 && ny == dem->ny - 1;
     h->stats = d ? d->statistics
                  : RF_TERRAIN_PASSAGES | RF_TERRAIN_REACH_PROBABILITY | RF_TERRAIN_DEPOSITS | RF_TERRAIN_ENERGY |
                        RF_TERRAIN_HEIGHT;
@@ -509,19 +512,39 @@ void terrain_hazard_begin(rf_terrain_hazard *h)
         h->n_touch = 0;
 }
 
-void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc)
+/* The walk's state for piece pc. */
+static hz_piece piece_of(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc)
 {
-    if (!h)
-        return;
     hz_piece q = {h, dem, pc, mass, pc->T > 0 ? pc->T : 0, pc->p[0], pc->p[1], 0, 0, -1, NAN, NAN};
     for (int k = 0; k < 2; k++) {
         double end = pc->p[k] + pc->v[k] * q.T + 0.5 * pc->a[k] * q.T * q.T;
         *(k ? &q.mdy : &q.mdx) = end - pc->p[k];
     }
+    return q;
+}
+
+void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc)
+{
+    if (!h)
+        return;
+    hz_piece q = piece_of(h, dem, mass, pc);
     double fx0 = (q.mx0 - h->x0) / h->cell, fy0 = (q.my0 - h->y0) / h->cell;
     double gdx = q.mdx / h->cell, gdy = q.mdy / h->cell;
     if (isfinite(fx0) && isfinite(fy0) && isfinite(gdx) && isfinite(gdy))
         walk(&q, fx0, fy0, gdx, gdy);
+}
+
+void terrain_hazard_piece_in(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc,
+                             size_t ci, size_t cj)
+{
+    if (!h)
+        return;
+    if (!h->dem_grid || h->x0 != dem->x0 || h->y0 != dem->y0 || h->cell != dem->dx || ci >= h->nx || cj >= h->ny) {
+        terrain_hazard_piece(h, dem, mass, pc);
+        return;
+    }
+    hz_piece q = piece_of(h, dem, mass, pc);
+    piece_cell(&q, ci, cj, 0, 1);
 }
 
 void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3])

@@ -9,6 +9,7 @@
  *   terrain_bounce.c    the bounce laws in the local frame of the normal (3D)
  *   terrain_contact*.c  sliding and rolling on the surface (terrain_contact_internal.h)
  *   terrain_barrier.c   barrier crossings of a piece (first crossing, capacity rule)
+ *   terrain_fly.c       the flight phase: first impact, the flight's piece, the impact
  *   terrain_simulate.c  one trajectory: the state machine over those
  *   terrain_hazard.c    hazard raster accumulators (counts, log histograms), merge, percentiles
  *   terrain_release.c   release features: the point at given uniforms
@@ -96,6 +97,8 @@ typedef struct {
     size_t n;                   /* vertices */
     const double *x, *y;        /* spec->terrain->barrier_* (the spec outlives the world's use) */
     double *cum;                /* n: distance along the line to vertex k [m] */
+    int has_box;                /* the box below is set (terrain_barrier_box; a world filled by hand may not) */
+    double xmin, xmax, ymin, ymax; /* its bounding box widened by round-off [m] (the crossing test's quick reject) */
 } terrain_barrier_geo;
 
 struct rf_terrain_world {
@@ -164,6 +167,8 @@ typedef struct {
     terrain_phase phase;
     int from_impact;                    /* the current flight starts at an impact (rebound height) */
     int nomem;
+    int piece_in_cell;                  /* the piece being emitted lies in the DEM cell (piece_ci, piece_cj), */
+    size_t piece_ci, piece_cj;          /* its closed square (set by the contact phase; 0: not known) */
 } terrain_run;
 
 /* Barrier outcome of a piece (terrain_barrier.c). */
@@ -220,11 +225,25 @@ int terrain_bounce(terrain_run *r, size_t ci, size_t cj, double v[3], double ome
  * (x, y) (clamped to the cell). */
 void terrain_surface_normal(const rf_terrain *t, size_t ci, size_t cj, double x, double y, double n[3]);
 
+/* terrain_barrier.c: set g's bounding box (from its n vertices x, y). */
+void terrain_barrier_box(terrain_barrier_geo *g);
+
+/* terrain_fly.c: one flight from the current state to its first impact (or
+ * the DEM's border, or a barrier's cut), the piece emitted, and the impact:
+ * r->phase after it is TERRAIN_CONTACT (a soft landing or a slow rebound),
+ * TERRAIN_FLY (a rebound, or a barrier broken through) or TERRAIN_DONE.
+ * (*ci, *cj): the cell of the impact (set only when there is one). */
+void terrain_fly(terrain_run *r, size_t *ci, size_t *cj);
+/* terrain_fly.c: continue in contact: the velocity along the surface of normal n. */
+void terrain_to_contact(terrain_run *r, const double n[3]);
+
 /* terrain_contact.c: move the block in contact with the surface (sliding or
  * rolling under gravity, friction and rolling resistance, the normal force
  * including the surface's curvature) until it stops, leaves the surface
  * (launch), exits the DEM, a barrier holds it, or max_steps; emits its
- * pieces with terrain_emit.  Sets r->phase (TERRAIN_FLY after a launch,
+ * pieces with terrain_emit.  A launch at a convex cell edge is flown inside
+ * the phase (terrain_fly) and a landing in contact goes on in it.  Sets
+ * r->phase (TERRAIN_FLY after a launch from inside a cell or a rebound,
  * TERRAIN_DONE with res->state otherwise). */
 void terrain_contact_run(terrain_run *r);
 
@@ -243,6 +262,10 @@ typedef struct rf_terrain_hazard rf_terrain_hazard;
 rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain *dem);
 void terrain_hazard_begin(rf_terrain_hazard *h);
 void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc);
+/* The same for a piece whose path lies in the closed square of DEM cell (ci, cj): when the grid is the
+ * DEM's, that cell alone, without the walk (slivers of round-off past its edges are not touched). */
+void terrain_hazard_piece_in(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc,
+                             size_t ci, size_t cj);
 void terrain_hazard_end(rf_terrain_hazard *h, int stopped, const double end[3]);
 void terrain_hazard_merge(rf_terrain_hazard *into, const rf_terrain_hazard *from);
 void terrain_hazard_free(rf_terrain_hazard *h);

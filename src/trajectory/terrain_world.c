@@ -62,6 +62,7 @@ static rf_status barrier_geometry(rf_terrain_world *w, const rf_traj_spec *s, rf
         g->cum[0] = 0;
         for (size_t k = 1; k < g->n; k++)
             g->cum[k] = g->cum[k - 1] + hypot(g->x[k] - g->x[k - 1], g->y[k] - g->y[k - 1]);
+        terrain_barrier_box(g);
     }
     return RF_OK;
 }
