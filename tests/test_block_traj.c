@@ -390,6 +390,76 @@ static void test_sphere_as_ellipsoid_terrain(void **state)
     rf_terrain_free(da), rf_terrain_free(db);
 }
 
+/* ---- the ground adapters' bounds (block_traj_ground.c) against brute force ---- */
+
+static double bumpy_z(void *ctx, double x, double y)
+{
+    (void)ctx;
+    return 0.6 * x - 0.2 * y + 1.5 * sin(x / 3.0) * cos(y / 4.0) + 0.3 * sin(1.7 * x + 0.9 * y);
+}
+
+/* The largest ground - plane over an n x n sampling of the rectangle
+ * (edges included) through the ground callback; -inf if no ground. */
+static double sampled_max(rf_block_ground_fn ground, void *ctx, const double r[4], const double p[3], int n)
+{
+    double m = -INFINITY, z, nn[3];
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) {
+            double x = r[0] + (r[2] - r[0]) * i / n, y = r[1] + (r[3] - r[1]) * j / n;
+            if (ground(ctx, x, y, &z, nn))
+                m = fmax(m, z - p[0] - p[1] * x - p[2] * y);
+        }
+    return m;
+}
+
+/* Random rectangles (some reaching past the edges) and planes: the bound is
+ * never below a sample of the ground (it is a bound) and exceeds the largest
+ * of 400^2 samples by less than the ground's slope times the samples'
+ * spacing (it is tight); a rectangle off the ground has no bound. */
+static void check_bound(rf_block_ground_fn ground, rf_block_ground_bound_fn bound, void *ctx, const double ext[4],
+                        double slope, int planar)
+{
+    uint64_t seed = 11;
+    double worst = 0;
+    for (int k = 0; k < 200; k++) {
+        double cx = tt_uniform(&seed, ext[0] - 2, ext[2] + 2), cy = tt_uniform(&seed, ext[1] - 2, ext[3] + 2);
+        double wx = tt_uniform(&seed, 0.01, 6), wy = tt_uniform(&seed, 0.01, 6), dz;
+        double r[4] = {cx - wx, cy - wy, cx + wx, cy + wy};
+        double p[3] = {tt_uniform(&seed, -5, 5), tt_uniform(&seed, -1, 1), planar ? 0 : tt_uniform(&seed, -1, 1)};
+        double m = sampled_max(ground, ctx, r, p, 400);
+        if (!bound(ctx, r[0], r[1], r[2], r[3], p, &dz)) {
+            assert_true(m == -INFINITY);
+            continue;
+        }
+        assert_true(m > -INFINITY);
+        assert_true(dz >= m - 1e-12);
+        double spacing = hypot(r[2] - r[0], r[3] - r[1]) / 400;
+        assert_true(dz - m <= (slope + 1.5) * spacing); /* plane slopes <= 1.5 */
+        worst = fmax(worst, (dz - m) / spacing);
+    }
+    print_message("bound - largest sample: at most %.3f sample spacings\n", worst);
+}
+
+static void test_terrain_bound(void **state)
+{
+    (void)state;
+    rf_terrain *dem = tt_dem(31, 21, -10, 5, 1.5, 2.0, bumpy_z, NULL);
+    const double ext[4] = {-10, 5, 35, 45};
+    check_bound(traj_block_terrain_ground, traj_block_terrain_bound, dem, ext, 3.5, 0);
+    rf_terrain_free(dem);
+}
+
+static void test_profile_bound(void **state)
+{
+    (void)state;
+    double x[40], z[40];
+    for (int i = 0; i < 40; i++)
+        x[i] = -10 + 1.3 * i + 0.4 * sin(i), z[i] = bumpy_z(NULL, x[i], 0);
+    rf_block_profile prof = {40, x, z};
+    const double ext[4] = {x[0], -30, x[39], 30};
+    check_bound(rf_block_ground_profile, traj_block_profile_bound, &prof, ext, 3.5, 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -400,6 +470,8 @@ int main(void)
         cmocka_unit_test(test_extruded_dem_is_the_profile),
         cmocka_unit_test(test_sphere_as_ellipsoid_profile),
         cmocka_unit_test(test_sphere_as_ellipsoid_terrain),
+        cmocka_unit_test(test_terrain_bound),
+        cmocka_unit_test(test_profile_bound),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -104,9 +104,9 @@ rf_status block_run_init(block_run *b, const rf_traj_spec *s, uint64_t seed, uin
  * BLOCK_TRAJ_FLIGHT_MAX when the ground's bound proves it clear, else a
  * contact step of h): returns BLOCK_STEP_* flags. */
 int block_run_step(block_run *b, const rf_traj_material *m);
-/* The one stepper of both engines: until b->done, the exit check (locate),
- * a step, the engine's after_step, impact, launch and regular events, rest
- * and the time limit. */
+/* The one stepper of both engines: until b->done, a step with the material
+ * under the lowest point, the engine's after_step, the exit check (locate),
+ * impact, launch and regular events, rest and the time limit. */
 void block_run_loop(block_run *b, const block_engine *e, void *eng);
 /* The state at the fraction f of the last step: in flight the exact
  * parabola and the rotor from the state before it; in contact (one step of
@@ -126,9 +126,9 @@ double block_run_energy(const block_run *b, const rf_block_state *st, double rot
 int traj_block_profile_bound(void *profile, double x0, double y0, double x1, double y1, const double plane[3],
                              double *dz);
 /* The terrain (rf_terrain, ctx) as the block's ground: rf_terrain_height,
- * and its bound above a plane over a rectangle: the largest height above
- * the plane of the nodes of the valid cells the rectangle touches (bilinear
- * minus linear is bilinear in a cell: its largest value lies at a corner). */
+ * and its bound above a plane over a rectangle, exact: the ground minus the
+ * plane is bilinear in each cell, so its largest value over the part of a
+ * valid cell inside the rectangle lies at one of that part's corners. */
 int traj_block_terrain_ground(void *dem, double x, double y, double *z, double n[3]);
 int traj_block_terrain_bound(void *dem, double x0, double y0, double x1, double y1, const double plane[3],
                              double *dz);

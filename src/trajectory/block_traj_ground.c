@@ -80,10 +80,12 @@ int traj_block_terrain_bound(void *dem, double x0, double y0, double x1, double 
         for (size_t i = i0; i <= i1; i++) {
             if (!t->valid[j * (t->nx - 1) + i])
                 continue;
-            for (size_t c = 0; c < 4; c++) {
-                size_t ii = i + (c & 1), jj = j + (c >> 1);
-                double x = t->x0 + (double)ii * t->dx, y = t->y0 + (double)jj * t->dy;
-                double d = t->z[jj * t->nx + ii] - p[0] - p[1] * x - p[2] * y;
+            terrain_patch pa = terrain_patch_of(t, i, j); /* the rectangle clipped to the cell, in its metres */
+            double X[2] = {fmax(x0 - pa.xi, 0), fmin(x1 - pa.xi, t->dx)};
+            double Y[2] = {fmax(y0 - pa.yj, 0), fmin(y1 - pa.yj, t->dy)};
+            for (int c = 0; c < 4; c++) {
+                double u = X[c & 1], v = Y[c >> 1];
+                double d = pa.a + pa.b * u + pa.c * v + pa.d * u * v - p[0] - p[1] * (pa.xi + u) - p[2] * (pa.yj + v);
                 m = d > m ? d : m;
             }
         }

@@ -47,8 +47,7 @@ int block_run_step(block_run *b, const rf_traj_material *m)
 {
     traj_block_material(m, &b->bw.e_n, &b->bw.e_t, &b->bw.mu);
     b->prev = b->st;
-    rf_block_step(&b->shape, &b->bw, &b->st, &b->info);
-    b->dt = b->bw.h;
+    b->dt = rf_block_advance(&b->shape, &b->bw, &b->st, BLOCK_TRAJ_FLIGHT_MAX, &b->info);
     if (b->planar) { /* the projection never gains energy: its round-off neither (scaled back) */
         double k0 = rf_block_kinetic_energy(&b->shape, &b->st, NULL);
         traj_block_planar(&b->shape, b->q0, &b->st);
@@ -83,24 +82,33 @@ int block_run_step(block_run *b, const rf_traj_material *m)
     return flags;
 }
 
+/* The ground under the block's lowest point (e->locate); NULL: the run exits there. */
+static const rf_traj_material *ground_under(block_run *b, const block_engine *e, void *eng, size_t *where)
+{
+    double lp[3];
+    block_run_lowest(b, &b->st, lp);
+    const rf_traj_material *m = e->locate(eng, lp, where);
+    if (!m)
+        e->finish(eng, RF_TRAJ_EXITED, RF_EV_EXIT);
+    return m;
+}
+
+/* The exit is checked right after each step (the step's material is the
+ * ground's under the lowest point at its start), before that step's events:
+ * an exit is the one event at its time. */
 void block_run_loop(block_run *b, const block_engine *e, void *eng)
 {
-    while (!b->done) {
-        double lp[3];
-        size_t where;
-        block_run_lowest(b, &b->st, lp);
-        const rf_traj_material *m = e->locate(eng, lp, &where);
-        if (!m) {
-            e->finish(eng, RF_TRAJ_EXITED, RF_EV_EXIT);
-            return;
-        }
+    size_t where, at;
+    const rf_traj_material *m = ground_under(b, e, eng, &where);
+    while (m && !b->done) {
         int fl = block_run_step(b, m);
         ++*b->n_steps;
         e->after_step(eng);
-        if (b->done)
+        at = where;
+        if (b->done || !(m = ground_under(b, e, eng, &where)))
             return;
         if (fl & BLOCK_STEP_IMPACT) {
-            e->impact(eng, where);
+            e->impact(eng, at);
             e->event(eng, RF_EV_IMPACT, 0);
         } else if (fl & BLOCK_STEP_LAUNCH)
             e->event(eng, RF_EV_LAUNCH, 1);
