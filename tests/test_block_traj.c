@@ -460,6 +460,34 @@ static void test_profile_bound(void **state)
     check_bound(rf_block_ground_profile, traj_block_profile_bound, &prof, ext, 3.5, 1);
 }
 
+/* A block flying over a collector (the flight taken in steps of up to 64 ms):
+ * the crossing is the exact parabola's, t = dx / v_x, centre height
+ * z_0 - g t^2 / 2, speed sqrt(v_x^2 + (g t)^2), whatever the spin
+ * (block_run_state_at; interpolating a 64 ms step linearly would miss the
+ * height by g tau^2 / 8, 5 mm). */
+static void test_flight_crossing_exact(void **state)
+{
+    (void)state;
+    pcase c;
+    pcase_load(&c, "name: f\n"
+                   "profile: {points: [[0, 0], [100, 0]], material: m}\n"
+                   "materials: {m: {R_n: 0.4, R_t: 0.8, friction_angle: 35}}\n"
+                   "block: {shape: ellipsoid, axes: [0.5, 0.4, 0.3], density: 2600, spin: [0, 3, 0], max_time: 2.5}\n"
+                   "release: {x: 2, y: 40, vx: 5}\n"
+                   "collectors: [{name: c, x: 12}]\n");
+    pcase_run(&c, NULL, NULL);
+    const rf_traj_crossing *cr = &c.res.crossings[0];
+    double g = c.spec.gravity, t = 10.0 / 5.0, z = 40.3 - 0.5 * g * t * t;
+    print_message("flight crossing: t %.15g (%.15g), centre %.15g m (%.15g), speed %.15g m/s\n", cr->t, t,
+                  cr->height_centre, z, cr->speed);
+    assert_true(cr->reached);
+    assert_true(c.res.n_steps < 100); /* long flight steps (2.5 s in the air) */
+    assert_near(cr->t, t, 1e-12);
+    assert_near(cr->height_centre, z, 1e-9);
+    assert_near(cr->speed, hypot(5, g * t), 1e-9);
+    pcase_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -472,6 +500,7 @@ int main(void)
         cmocka_unit_test(test_sphere_as_ellipsoid_terrain),
         cmocka_unit_test(test_terrain_bound),
         cmocka_unit_test(test_profile_bound),
+        cmocka_unit_test(test_flight_crossing_exact),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
