@@ -20,17 +20,28 @@
  *    with h_max 64 ms.  One thread, CPU seconds; prints trajectories per
  *    second, steps per trajectory, time per step, contacts per step, the
  *    energy the contact step's cap removed per trajectory, runout.
+ * 3. "engine": the same DEM and shapes end to end through the terrain
+ *    engine (rf_terrain_run on one thread: block_traj_terrain.c with its
+ *    ground and ground bound, events, barriers off), from a trajectory file
+ *    written to a temporary folder: e_n 0.3 (R_n), e_t 0 (R_t 0.9),
+ *    friction angle atan 0.6, v_stop 0.05 m/s (rest: the kinetic energy
+ *    below m v_stop^2 / 2 for 0.5 s), 60 s, random orientation, spin
+ *    (0.5, -0.5, 0.5) rad/s, released 1 m above (450 | 500 | 550, 850).
  * Usage: bench_block [adaptive trajectories per shape (default 1000)]
  *                    [fixed-step trajectories per shape (default 20)] [h (default 0.001 s)]
- *                    [folder: one trajectory per shape for ParaView, every 20 ms] */
+ *                    [folder: one trajectory per shape for ParaView, every 20 ms; "-": none]
+ *                    [engine trajectories per shape (default 0)] */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <math.h>
 
 #include "rockfuzz/block.h"
+#include "rockfuzz/terrain.h"
+#include "rockfuzz/trajectory.h"
 
 #define G 9.81
 #define PI 3.14159265358979323846
@@ -247,11 +258,77 @@ static int rock20(rf_block_shape *s, rf_error *err)
     return rf_block_scale_to_volume(s, 1.0, err) != RF_OK;
 }
 
+/* The DEM as an ESRI ASCII grid (north first) and the trajectory file of the engine run. */
+static int write_engine_files(const char *dir, const char *block)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/dem.asc", dir);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return 1;
+    fprintf(f, "ncols %d\nnrows %d\nxllcenter 0\nyllcenter 0\ncellsize %g\nNODATA_value -9999\n", NODES, NODES, CELL);
+    for (int j = NODES - 1; j >= 0; j--)
+        for (int i = 0; i < NODES; i++)
+            fprintf(f, "%.17g%c", dem[j * NODES + i], i == NODES - 1 ? '\n' : ' ');
+    if (fclose(f))
+        return 1;
+    snprintf(path, sizeof path, "%s/block.yaml", dir);
+    if (!(f = fopen(path, "w")))
+        return 1;
+    fprintf(f, "name: bench_block\nterrain: {dem: %s/dem.asc}\n"
+               "materials:\n  rock: {R_n: 0.3, R_t: 0.9, friction_angle: 30.963756532073521}\n"
+               "block: %s\n"
+               "release: {points: [[450, 850], [500, 850], [550, 850]], height: 1.0, velocity: [0, 0, 0]}\n"
+               "stop: {v_stop: 0.05}\nsamples: 10\nseed: 7\n", dir, block);
+    return fclose(f) != 0;
+}
+
+/* n trajectories of a shape through the terrain engine (one thread, CPU seconds). */
+static int engine(const char *name, const char *block, size_t n)
+{
+    char dir[] = "/tmp/bench_block_XXXXXX", path[512];
+    if (!mkdtemp(dir))
+        return 1;
+    rf_traj_spec s;
+    rf_traj_ensemble e;
+    rf_error err;
+    int rc = 1;
+    snprintf(path, sizeof path, "%s/block.yaml", dir);
+    if (write_engine_files(dir, block) || rf_traj_load(path, &s, &err) != RF_OK) {
+        fprintf(stderr, "bench_block: engine files: %s\n", err.msg);
+    } else {
+        s.samples = n, s.record = n < 10 ? n : 10; /* the steps per trajectory from these */
+        double c0 = cpu_seconds();
+        if (rf_terrain_run(&s, 1, NULL, NULL, &e, &err) != RF_OK) {
+            fprintf(stderr, "bench_block: %s\n", err.msg);
+        } else {
+            double cpu = cpu_seconds() - c0, runout = 0, steps = 0, stopped = 0, t = 0;
+            for (size_t i = 0; i < e.samples; i++)
+                runout += e.runout_x[i], stopped += e.state[i] == RF_TRAJ_STOPPED;
+            for (size_t i = 0; i < e.terrain->n_recorded; i++)
+                steps += (double)e.terrain->recorded[i].n_steps, t += e.terrain->recorded[i].t_end;
+            size_t nr = e.terrain->n_recorded;
+            printf("%-6s engine      %5zu: %8.1f traj/s  %8.0f steps/traj  %5.1f s/traj (%zu recorded)  runout %5.1f m  "
+                   "stopped %3.0f %%\n", name, n, (double)n / cpu, steps / (double)nr, t / (double)nr, nr,
+                   runout / (double)n, 100 * stopped / (double)n);
+            rf_traj_ensemble_free(&e);
+            rc = 0;
+        }
+        rf_traj_spec_free(&s);
+    }
+    const char *files[2] = {"dem.asc", "block.yaml"};
+    for (int k = 0; k < 2; k++)
+        snprintf(path, sizeof path, "%s/%s", dir, files[k]), unlink(path);
+    rmdir(dir);
+    return rc;
+}
+
 int main(int argc, char **argv)
 {
     int n_adapt = argc > 1 ? atoi(argv[1]) : 1000, n_fixed = argc > 2 ? atoi(argv[2]) : 20;
     double h = argc > 3 ? atof(argv[3]) : 1e-3;
-    const char *vtk_dir = argc > 4 ? argv[4] : NULL;
+    const char *vtk_dir = argc > 4 && strcmp(argv[4], "-") ? argv[4] : NULL;
+    size_t n_engine = argc > 5 ? (size_t)strtoull(argv[5], NULL, 10) : 0;
     rf_block_shape shape[3];
     const char *names[3] = {"cube", "wheel", "rock20"};
     rf_error err;
@@ -273,11 +350,26 @@ int main(int argc, char **argv)
             run(names[k], &shape[k], w, FIXED, n_fixed);
             run(names[k], &shape[k], w, FIXED_BOUND, n_fixed);
         }
-        run(names[k], &shape[k], w, ADAPTIVE, n_adapt);
+        if (n_adapt > 0)
+            run(names[k], &shape[k], w, ADAPTIVE, n_adapt);
         if (vtk_dir && write_vtk(vtk_dir, names[k], &shape[k], &w))
             return 1;
     }
     for (int k = 0; k < 3; k++)
         rf_block_shape_free(&shape[k]);
+    char rock[1024];
+    int len = snprintf(rock, sizeof rock, "{shape: polyhedron, volume: 1, density: 2650, points: [");
+    for (int k = 0; k < 20; k++) { /* rock20's points */
+        double z = 1 - (2 * k + 1) / 20.0, r = sqrt(1 - z * z), a = k * PI * (3 - sqrt(5.0));
+        len += snprintf(rock + len, sizeof rock - (size_t)len, "%s[%.6f, %.6f, %.6f]", k ? ", " : "",
+                        0.8 * r * cos(a), 0.62 * r * sin(a), 0.48 * z);
+    }
+    snprintf(rock + len, sizeof rock - (size_t)len, "], orientation: random, spin: [0.5, -0.5, 0.5], max_time: 60}");
+    const char *blocks[3] = {"{shape: eota_cube, volume: 1, density: 2650, orientation: random, spin: [0.5, -0.5, 0.5], max_time: 60}",
+                             "{shape: eota_wheel, volume: 1, density: 2650, orientation: random, spin: [0.5, -0.5, 0.5], max_time: 60}",
+                             rock};
+    for (int k = 0; k < 3 && n_engine > 0; k++)
+        if (engine(names[k], blocks[k], n_engine))
+            return 1;
     return 0;
 }

@@ -2,8 +2,9 @@
  * and their exact mass properties (block_shape.c, block_hull.c,
  * block_mass.c), the rigid body's state and its free flight (block_body.c),
  * and non-smooth contact dynamics against planes and a ground height
- * callback (block_contact.c).  Not wired into the profile/terrain engines or
- * the trajectory files yet (docs/block-shape.md).
+ * callback (block_contact.c).  The profile and terrain engines and the
+ * trajectory files use it through src/trajectory/block_traj*.c
+ * (docs/block-shape.md, "Wiring").
  *
  * Frames.  Space: x, y horizontal, z up, gravity (0, 0, -g).  Body: origin
  * at the centre of mass, axes along the principal axes of inertia, ordered
@@ -181,7 +182,8 @@ typedef struct {
     int iterations;      /* prox Gauss-Seidel sweeps */
     int converged;       /* 1 if the sweeps met tol */
     double impulse_n;    /* sum of normal impulses [N s] */
-    double energy_cap;   /* kinetic energy removed so that a contact step gains none [J] (block_contact.c) */
+    double energy_cap;   /* energy (kinetic + m g z) removed so that a contact step gains none [J]:
+                          * the step's end velocities and displacement scaled alike (block_contact.c) */
 } rf_block_step_info;
 
 /* One Moreau midpoint step: half a free step, the contacts active at the

@@ -95,11 +95,11 @@ static void rotor_axis(const double inertia[3], double q[4], double L[3], int i,
 {
     double theta = tau * L[i] / inertia[i], c, s;
     sin_cos(theta / 2, &s, &c);
-    double r[4] = {c, 0, 0, 0}, out[4];
-    r[1 + i] = s;
-    bk_quat_mul(q, r, out);
-    memcpy(q, out, sizeof out);
     int j = (i + 1) % 3, k = (i + 2) % 3;
+    /* q <- q (c, s e_i): the quaternion product with its zero terms left out (the same bits) */
+    double q0 = q[0], qi = q[1 + i], qj = q[1 + j], qk = q[1 + k];
+    q[0] = q0 * c - qi * s, q[1 + i] = q0 * s + qi * c;
+    q[1 + j] = qj * c + qk * s, q[1 + k] = qk * c - qj * s;
     double ct = 1 - 2 * s * s, st = 2 * s * c; /* cos, sin of theta from the half angle */
     double lj = L[j], lk = L[k];
     L[j] = ct * lj + st * lk; /* rot(e_i, -theta) */

@@ -35,9 +35,10 @@
  * Lambda_N > 0: Moreau's scheme then gains O(h^2) per step, O(h) per unit
  * time (measured: a box tipping over its edge gains 0.88 J of its 1.3 kJ at
  * h = 1 ms, 0.44 J at 0.5 ms).  A step with contacts therefore caps the
- * kinetic energy at the start's total energy minus the end's potential
- * energy, scaling v and w alike (which keeps the contact velocities' signs);
- * the energy removed is reported (rf_block_step_info.energy_cap).  Flight
+ * energy at the start's: it scales the step's end velocities (v and w alike,
+ * which keeps the contact velocities' signs) and the centre's displacement
+ * by one factor (cap_energy); the energy removed is reported
+ * (rf_block_step_info.energy_cap).  Flight
  * steps are not capped (the rotor's bounded O(h^2) oscillation would be
  * ratcheted down).
  *
@@ -326,16 +327,32 @@ static void solve(contact_set *cs, const rf_block_world *wd, double v[3], double
     }
 }
 
-/* The kinetic energy capped at e_max - m g z (see the header). */
-static double cap_energy(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, double e_max)
+/* The energy cap of a contact step from A (x_A, total energy e_A) to E (see
+ * the header): when E holds more energy than A, the step's motion is scaled
+ * by the largest f in [0, 1] that gains none, the end velocities u_E and the
+ * centre's displacement x_E - x_A alike: f^2 K_E + m g (z_A + f dz) = e_A,
+ * whose root in [0, 1] exists because f = 0 (A's position, no velocity) holds
+ * e_A - K_A <= e_A.  Scaling the velocities alone (as before) left the
+ * position moved by the uncapped ones: a block coming to rest was lifted by
+ * up to h dz_E / 2 with its kinetic energy set to 0.  The orientation is not
+ * scaled (it holds no energy).  Returns the energy removed [J]. */
+static double cap_energy(const rf_block_shape *s, const rf_block_world *w, rf_block_state *st, const double xa[3],
+                         double e_a)
 {
-    double ke = rf_block_kinetic_energy(s, st, NULL), allowed = e_max - s->mass * w->g * st->x[2];
-    if (ke <= allowed)
+    double mg = s->mass * w->g, ke = rf_block_kinetic_energy(s, st, NULL), e_e = ke + mg * st->x[2];
+    if (e_e <= e_a)
         return 0;
-    double f = allowed > 0 ? sqrt(allowed / ke) : 0;
+    double b = mg * (st->x[2] - xa[2]), c = bk_max(e_a - mg * xa[2], 0), f; /* c: A's kinetic energy */
+    if (!(ke > 0) || (b >= 0 && !(c > 0)))
+        f = 0;
+    else if (b >= 0) /* the root's stable forms */
+        f = 2 * c / (b + sqrt(b * b + 4 * ke * c));
+    else
+        f = (-b + sqrt(b * b + 4 * ke * c)) / (2 * ke);
+    f = f < 1 ? f : 1;
     for (int i = 0; i < 3; i++)
-        st->v[i] *= f, st->w[i] *= f;
-    return ke - rf_block_kinetic_energy(s, st, NULL);
+        st->x[i] = xa[i] + f * (st->x[i] - xa[i]), st->v[i] *= f, st->w[i] *= f;
+    return e_e - rf_block_energy(s, st, w->g);
 }
 
 /* The ground's bound over [lo, hi] (x, y): the plane through the ground
@@ -410,7 +427,7 @@ static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_bl
     static _Thread_local contact_set cs;
     static _Thread_local warm_cache wc;
     int warm = wc.s == s && wc.w == w && !memcmp(&wc.end, st, sizeof *st);
-    double h = w->h, e_start = rf_block_energy(s, st, w->g);
+    double h = w->h, e_start = rf_block_energy(s, st, w->g), xa[3] = {st->x[0], st->x[1], st->x[2]};
     for (int i = 0; i < 3; i++)
         st->x[i] += 0.5 * h * st->v[i];
     rf_block_rotor_step(s->inertia, st->q, st->w, 0.5 * h);
@@ -435,7 +452,7 @@ static void contact_step(const rf_block_shape *s, const rf_block_world *w, rf_bl
     for (int i = 0; i < 3; i++)
         st->x[i] += 0.5 * h * st->v[i];
     rf_block_rotor_step(s->inertia, st->q, st->w, 0.5 * h);
-    info->energy_cap = cs.n ? cap_energy(s, w, st, e_start) : 0;
+    info->energy_cap = cs.n ? cap_energy(s, w, st, xa, e_start) : 0;
     warm_store(&wc, &cs, w, st);
 }
 

@@ -58,33 +58,80 @@ typedef void (*traj_block_observer)(void *ctx, double t, const rf_block_shape *s
 
 enum { BLOCK_STEP_IMPACT = 1, BLOCK_STEP_LAUNCH = 2, BLOCK_STEP_REST = 4 };
 
+/* The longest flight step [s] (rf_block_advance's h_max): a flight is the
+ * exact parabola and the rotor in sub-steps of at most 0.05 rad, so this
+ * bounds only how often the engines record and test the ground's bound. */
+#define BLOCK_TRAJ_FLIGHT_MAX 0.064
+
 typedef struct {
     rf_block_shape shape;
     rf_block_state st, prev;      /* after and before the last step */
-    rf_block_world bw;            /* contact law, ground; material set per step */
+    rf_block_world bw;            /* contact law, ground and its bound; material set per step */
     rf_block_step_info info;
     double q0[4];                 /* planar: the initial orientation (the turns are about y from it) */
     int planar;
-    double t, air;                /* time [s]; time since the last contact [s] */
+    double t, dt, air;            /* time [s]; the last step's length [s]; time since the last contact [s] */
     double calm;                  /* time the kinetic energy has stayed below e_rest [s] */
     double e_rest;                /* m v_stop^2 / 2 [J] */
-    double rest_time;             /* [s] */
+    double rest_time, max_time;   /* [s] */
     double rise_z;                /* centre height at the last impact [m] (rebound height) */
     int after_impact;             /* in the flight after an impact */
+    double next_event;            /* the next regular event [s] (the engines set it at each event) */
+    int done;                     /* the run has ended (set by the engines) */
+    size_t *n_steps;              /* the result's step count */
+    double *rebound_height;       /* the result's rebound height [m] */
     traj_block_observer obs;
     void *obs_ctx;
 } block_run;
+
+/* What an engine does around the shared loop (block_run_loop): its ground
+ * lookup and its records. */
+typedef struct {
+    /* The material under the lowest point p and where it is (the segment, or
+     * the material index) for the impact record; NULL: no ground (exit). */
+    const rf_traj_material *(*locate)(void *eng, const double p[3], size_t *where);
+    void (*after_step)(void *eng);                      /* crossings, barriers, rasters of the last step */
+    void (*impact)(void *eng, size_t where);            /* the impact record of the last step */
+    void (*event)(void *eng, rf_traj_event_kind kind, int flying);
+    void (*finish)(void *eng, rf_traj_state state, rf_traj_event_kind kind);
+} block_engine;
 
 /* Shape, orientation, spin (space vector w_space), contact settings; the
  * ground is set by the caller.  Frees nothing on failure. */
 rf_status block_run_init(block_run *b, const rf_traj_spec *s, uint64_t seed, uint64_t sample, int planar,
                          const double w_space[3], rf_error *err);
-/* One step with the material m: returns BLOCK_STEP_* flags. */
-int block_run_step(block_run *b, const rf_traj_material *m, double *rebound_height);
+/* One step with the material m (rf_block_advance: a flight of up to
+ * BLOCK_TRAJ_FLIGHT_MAX when the ground's bound proves it clear, else a
+ * contact step of h): returns BLOCK_STEP_* flags. */
+int block_run_step(block_run *b, const rf_traj_material *m);
+/* The one stepper of both engines: until b->done, a step with the material
+ * under the lowest point, the engine's after_step, the exit check (locate),
+ * impact, launch and regular events, rest and the time limit. */
+void block_run_loop(block_run *b, const block_engine *e, void *eng);
+/* The state at the fraction f of the last step: in flight the exact
+ * parabola and the rotor from the state before it; in contact (one step of
+ * h) the centre and its velocity interpolated linearly, the end's
+ * orientation and spin. */
+void block_run_state_at(const block_run *b, double f, rf_block_state *out);
 /* The lowest point of the state (p) and its height (returned). */
 double block_run_lowest(const block_run *b, const rf_block_state *st, double p[3]);
 /* Rotational energy about each body axis [J] and the total kinetic energy [J]. */
 double block_run_energy(const block_run *b, const rf_block_state *st, double rot[3]);
+
+/* ---- the ground adapters (block_traj_ground.c) ---- */
+
+/* The profile's (rf_block_profile, ctx) bound above a plane over a
+ * rectangle (rf_block_ground_bound_fn): exact, from the rectangle's ends in
+ * x and the profile's nodes between. */
+int traj_block_profile_bound(void *profile, double x0, double y0, double x1, double y1, const double plane[3],
+                             double *dz);
+/* The terrain (rf_terrain, ctx) as the block's ground: rf_terrain_height,
+ * and its bound above a plane over a rectangle, exact: the ground minus the
+ * plane is bilinear in each cell, so its largest value over the part of a
+ * valid cell inside the rectangle lies at one of that part's corners. */
+int traj_block_terrain_ground(void *dem, double x, double y, double *z, double n[3]);
+int traj_block_terrain_bound(void *dem, double x0, double y0, double x1, double y1, const double plane[3],
+                             double *dz);
 
 /* The 2D engine: a profile extruded along y (block_traj_profile.c). */
 rf_status traj_block_simulate(const rf_traj_world *w, const rf_traj_spec *s, uint64_t seed, uint64_t sample,

@@ -19,8 +19,7 @@ typedef struct {
     const rf_traj_spec *s;
     rf_traj_result *res;
     rf_block_profile prof;
-    double next_event;
-    int done, nomem;
+    int nomem;
 } prof_run;
 
 static double omega_y(const rf_block_state *st)
@@ -30,14 +29,15 @@ static double omega_y(const rf_block_state *st)
     return w[1];
 }
 
-static void event(prof_run *r, rf_traj_event_kind kind, int flying)
+static void event(void *eng, rf_traj_event_kind kind, int flying)
 {
+    prof_run *r = eng;
     rf_traj_result *res = r->res;
-    r->next_event = r->b.t + BLOCK_TRAJ_EVENT_EVERY;
+    r->b.next_event = r->b.t + BLOCK_TRAJ_EVENT_EVERY;
     if (!res->events)
         return;
     if (!rf_grow((void **)&res->events, res->n_events, &res->events_cap, sizeof *res->events)) {
-        r->nomem = r->done = 1;
+        r->nomem = r->b.done = 1;
         return;
     }
     const rf_block_state *st = &r->b.st;
@@ -48,21 +48,23 @@ static void event(prof_run *r, rf_traj_event_kind kind, int flying)
                          flying ? -r->s->gravity : 0, {st->q[0], st->q[1], st->q[2], st->q[3]}};
 }
 
-static void finish(prof_run *r, rf_traj_state state, rf_traj_event_kind kind)
+static void finish(void *eng, rf_traj_state state, rf_traj_event_kind kind)
 {
+    prof_run *r = eng;
     double lp[3];
     block_run_lowest(&r->b, &r->b.st, lp);
     r->res->state = state;
     r->res->t_end = r->b.t, r->res->x_end = lp[0], r->res->y_end = lp[2], r->res->runout_x = lp[0];
     event(r, kind, 0);
-    r->done = 1;
+    r->b.done = 1;
 }
 
-static void record_impact(prof_run *r, size_t seg)
+static void record_impact(void *eng, size_t seg)
 {
+    prof_run *r = eng;
     rf_traj_result *res = r->res;
     if (res->impacts && !rf_grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts)) {
-        r->nomem = r->done = 1;
+        r->nomem = r->b.done = 1;
         return;
     }
     if (res->impacts) {
@@ -80,10 +82,8 @@ static void record_impact(prof_run *r, size_t seg)
 /* Collector c crossed by the centre during the last step, at the fraction f of it. */
 static void crossing(prof_run *r, size_t c, double f)
 {
-    const rf_block_state *a = &r->b.prev, *e = &r->b.st;
-    rf_block_state m = *e;
-    for (int k = 0; k < 3; k++)
-        m.x[k] = a->x[k] + f * (e->x[k] - a->x[k]), m.v[k] = a->v[k] + f * (e->v[k] - a->v[k]);
+    rf_block_state m;
+    block_run_state_at(&r->b, f, &m);
     const traj_collector_geo *geo = &r->w->col[c];
     const rf_traj_collector *col = &r->s->collectors[c];
     rf_traj_crossing *cr = &r->res->crossings[c];
@@ -93,7 +93,7 @@ static void crossing(prof_run *r, size_t c, double f)
     double gl = traj_ground_y(r->w, lp[0], &k);
     int contact = r->b.info.n_contacts > 0;
     cr->reached = 1;
-    cr->t = r->b.t - (1 - f) * r->b.bw.h;
+    cr->t = r->b.t - (1 - f) * r->b.dt;
     cr->height_lowest = contact || !(lp[2] > gl) ? 0 : lp[2] - gl;
     cr->height_centre = m.x[2] - geo->ground_y;
     const traj_segment *g = k != TRAJ_NONE ? &r->w->seg[k] : &r->w->seg[geo->segment];
@@ -113,43 +113,28 @@ static void crossing(prof_run *r, size_t c, double f)
     }
 }
 
-static void crossings(prof_run *r)
+/* After a step: the collectors the centre crossed (in flight x is linear in
+ * time, so the fraction of x is the fraction of the step). */
+static void crossings(void *eng)
 {
+    prof_run *r = eng;
     double x0 = r->b.prev.x[0], x1 = r->b.st.x[0];
-    for (size_t c = 0; c < r->w->ncol && !r->done; c++) {
+    for (size_t c = 0; c < r->w->ncol && !r->b.done; c++) {
         double xc = r->w->col[c].x;
         if (!r->res->crossings[c].reached && x0 != x1 && (xc - x0) * (xc - x1) <= 0 && xc != x0)
             crossing(r, c, (xc - x0) / (x1 - x0));
     }
 }
 
-static void step(prof_run *r)
+/* The ground adapter: the segment under the lowest point and its material. */
+static const rf_traj_material *locate(void *eng, const double p[3], size_t *seg)
 {
-    double lp[3];
-    block_run_lowest(&r->b, &r->b.st, lp);
-    size_t k;
-    traj_ground_y(r->w, lp[0], &k);
-    if (k == TRAJ_NONE) {
-        finish(r, RF_TRAJ_EXITED, RF_EV_EXIT);
-        return;
-    }
-    int fl = block_run_step(&r->b, &r->s->materials[r->w->seg[k].material], &r->res->rebound_height);
-    r->res->n_steps++;
-    crossings(r);
-    if (r->done)
-        return;
-    if (fl & BLOCK_STEP_IMPACT) {
-        record_impact(r, k);
-        event(r, RF_EV_IMPACT, 0);
-    } else if (fl & BLOCK_STEP_LAUNCH)
-        event(r, RF_EV_LAUNCH, 1);
-    else if (r->b.t >= r->next_event)
-        event(r, RF_EV_CONTACT, r->b.info.n_contacts == 0);
-    if (fl & BLOCK_STEP_REST)
-        finish(r, RF_TRAJ_STOPPED, RF_EV_REST);
-    else if (r->b.t >= r->s->block_max_time)
-        finish(r, RF_TRAJ_STEP_LIMIT, RF_EV_STEP_LIMIT);
+    prof_run *r = eng;
+    traj_ground_y(r->w, p[0], seg);
+    return *seg == TRAJ_NONE ? NULL : &r->s->materials[r->w->seg[*seg].material];
 }
+
+static const block_engine profile_engine = {locate, crossings, record_impact, event, finish};
 
 static rf_status start(prof_run *r, uint64_t seed, uint64_t sample, rf_error *err)
 {
@@ -162,6 +147,8 @@ static rf_status start(prof_run *r, uint64_t seed, uint64_t sample, rf_error *er
         return st;
     r->prof = (rf_block_profile){s->n_points, s->px, s->py};
     r->b.bw.ground = rf_block_ground_profile, r->b.bw.ground_ctx = &r->prof;
+    r->b.bw.ground_bound = traj_block_profile_bound;
+    r->b.n_steps = &r->res->n_steps, r->b.rebound_height = &r->res->rebound_height;
     traj_release_velocity(s, &vx, &vy);
     const double p[3] = {s->x0, 0, s->y0};
     if (!traj_block_place(&r->b.shape, rf_block_ground_profile, &r->prof, p, &r->b.st))
@@ -186,8 +173,8 @@ rf_status traj_block_simulate_observed(const rf_traj_world *w, const rf_traj_spe
         memset(res->crossings, 0, w->ncol * sizeof *res->crossings);
     rf_status st = start(&r, seed, sample, err);
     r.b.obs = obs, r.b.obs_ctx = ctx;
-    while (st == RF_OK && !r.done)
-        step(&r);
+    if (st == RF_OK)
+        block_run_loop(&r.b, &profile_engine, &r);
     rf_block_shape_free(&r.b.shape);
     if (st == RF_OK && r.nomem)
         return rf_fail(err, RF_ENOMEM, "out of memory recording trajectory %llu (%zu events, %zu impacts)",

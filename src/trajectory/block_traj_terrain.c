@@ -19,12 +19,8 @@
 typedef struct {
     block_run b;
     terrain_run r;        /* what terrain_emit and terrain_event use: p the lowest point, v the centre's */
-    double next_event;
     double c0[2];         /* the centre's horizontal position after placement [m]: the runout's origin */
-    int done;
 } ter_run;
-
-static int ground(void *dem, double x, double y, double *z, double n[3]) { return rf_terrain_height(dem, x, y, z, n); }
 
 /* Mirror the block into the terrain run's state (lowest point, centre velocity, space spin). */
 static void sync(ter_run *q)
@@ -35,30 +31,33 @@ static void sync(ter_run *q)
     q->r.t = q->b.t;
 }
 
-static void event(ter_run *q, rf_traj_event_kind kind, int flying)
+static void event(void *eng, rf_traj_event_kind kind, int flying)
 {
+    ter_run *q = eng;
     sync(q);
-    q->next_event = q->b.t + BLOCK_TRAJ_EVENT_EVERY;
+    q->b.next_event = q->b.t + BLOCK_TRAJ_EVENT_EVERY;
     size_t n = q->r.res->n_events;
     terrain_event(&q->r, kind, flying);
     if (q->r.res->events && q->r.res->n_events > n)
         memcpy(q->r.res->events[n].q, q->b.st.q, sizeof q->b.st.q);
     if (q->r.nomem)
-        q->done = 1;
+        q->b.done = 1;
 }
 
-static void finish(ter_run *q, rf_traj_state state, rf_traj_event_kind kind)
+static void finish(void *eng, rf_traj_state state, rf_traj_event_kind kind)
 {
+    ter_run *q = eng;
     q->r.res->state = state;
     event(q, kind, 0);
-    q->done = 1;
+    q->b.done = 1;
 }
 
-static void record_impact(ter_run *q, size_t material)
+static void record_impact(void *eng, size_t material)
 {
+    ter_run *q = eng;
     rf_terrain_result *res = q->r.res;
     if (res->impacts && !rf_grow((void **)&res->impacts, res->n_impacts, &res->impacts_cap, sizeof *res->impacts)) {
-        q->r.nomem = q->done = 1;
+        q->r.nomem = q->b.done = 1;
         return;
     }
     if (res->impacts) {
@@ -75,10 +74,11 @@ static void record_impact(ter_run *q, size_t material)
 }
 
 /* The last step as a piece of the lowest point (from the state before it). */
-static void emit(ter_run *q)
+static void emit(void *eng)
 {
+    ter_run *q = eng;
     const rf_block_state *a = &q->b.prev, *e = &q->b.st;
-    double h = q->b.bw.h, lp[3], rot[3];
+    double h = q->b.dt, lp[3], rot[3];
     terrain_piece pc = {q->b.t - h, h, {0}, {a->v[0], a->v[1], a->v[2]}, {0}, 0, q->b.info.n_contacts > 0};
     block_run_lowest(&q->b, a, lp);
     memcpy(pc.p, lp, sizeof lp);
@@ -94,11 +94,11 @@ static void emit(ter_run *q)
     terrain_piece_outcome o = terrain_emit(&q->r, &pc, &cut, &scale);
     for (size_t c = 0; c < nc; c++) /* the centre's height above the ground under it, at the crossing */
         if (!before[c] && q->r.res->crossings[c].reached) {
-            double f = (q->r.res->crossings[c].t - pc.t) / h, xc[3], zg;
-            for (int k = 0; k < 3; k++)
-                xc[k] = a->x[k] + f * (e->x[k] - a->x[k]);
-            if (rf_terrain_height(q->r.dem, xc[0], xc[1], &zg, NULL))
-                q->r.res->crossings[c].height_centre = xc[2] - zg;
+            double zg;
+            rf_block_state m;
+            block_run_state_at(&q->b, (q->r.res->crossings[c].t - pc.t) / h, &m);
+            if (rf_terrain_height(q->r.dem, m.x[0], m.x[1], &zg, NULL))
+                q->r.res->crossings[c].height_centre = m.x[2] - zg;
         }
     if (o == TERRAIN_PIECE_STOPPED) {
         q->b.t = q->b.t - h + cut;
@@ -111,37 +111,19 @@ static void emit(ter_run *q)
     }
 }
 
-static void step(ter_run *q)
+/* The ground adapter: the DEM cell under the lowest point and its material. */
+static const rf_traj_material *locate(void *eng, const double p[3], size_t *mat)
 {
-    double lp[3], z;
+    ter_run *q = eng;
+    double z, u, v;
     size_t ci, cj;
-    double u, v;
-    block_run_lowest(&q->b, &q->b.st, lp);
-    if (!rf_terrain_height(q->r.dem, lp[0], lp[1], &z, NULL) ||
-        !terrain_cell_of(q->r.dem, lp[0], lp[1], &ci, &cj, &u, &v)) {
-        finish(q, RF_TRAJ_EXITED, RF_EV_EXIT);
-        return;
-    }
-    size_t mat = terrain_material_of(q->r.dem, ci, cj);
-    int fl = block_run_step(&q->b, &q->r.s->materials[mat], &q->r.res->rebound_height);
-    q->r.res->n_steps++;
-    emit(q);
-    if (q->done)
-        return;
-    if (fl & BLOCK_STEP_IMPACT) {
-        record_impact(q, mat);
-        event(q, RF_EV_IMPACT, 0);
-    } else if (fl & BLOCK_STEP_LAUNCH)
-        event(q, RF_EV_LAUNCH, 1);
-    else if (q->b.t >= q->next_event)
-        event(q, RF_EV_CONTACT, q->b.info.n_contacts == 0);
-    if (q->done)
-        return;
-    if (fl & BLOCK_STEP_REST)
-        finish(q, RF_TRAJ_STOPPED, RF_EV_REST);
-    else if (q->b.t >= q->r.s->block_max_time)
-        finish(q, RF_TRAJ_STEP_LIMIT, RF_EV_STEP_LIMIT);
+    if (!rf_terrain_height(q->r.dem, p[0], p[1], &z, NULL) || !terrain_cell_of(q->r.dem, p[0], p[1], &ci, &cj, &u, &v))
+        return NULL;
+    *mat = terrain_material_of(q->r.dem, ci, cj);
+    return &q->r.s->materials[*mat];
 }
+
+static const block_engine terrain_engine = {locate, emit, record_impact, event, finish};
 
 static rf_status start(ter_run *q, const double start[3], rf_error *err)
 {
@@ -151,12 +133,14 @@ static rf_status start(ter_run *q, const double start[3], rf_error *err)
     rf_status st = block_run_init(&q->b, s, q->r.seed, q->r.sample, 0, w, err);
     if (st != RF_OK)
         return st;
-    q->b.bw.ground = ground, q->b.bw.ground_ctx = (void *)q->r.dem;
+    q->b.bw.ground = traj_block_terrain_ground, q->b.bw.ground_ctx = (void *)q->r.dem;
+    q->b.bw.ground_bound = traj_block_terrain_bound;
+    q->b.n_steps = &q->r.res->n_steps, q->b.rebound_height = &q->r.res->rebound_height;
     if (!rf_terrain_height(q->r.dem, start[0], start[1], &zg, n))
         return rf_fail(err, RF_EINVAL, "sample %llu: the release point (%g, %g) m lies outside the DEM or on a "
                        "no-data cell", (unsigned long long)q->r.sample, start[0], start[1]);
     double p[3] = {start[0], start[1], isnan(start[2]) ? zg + s->height0 : fmax(start[2], zg)};
-    if (!traj_block_place(&q->b.shape, ground, (void *)q->r.dem, p, &q->b.st))
+    if (!traj_block_place(&q->b.shape, traj_block_terrain_ground, (void *)q->r.dem, p, &q->b.st))
         return rf_fail(err, RF_EINVAL, "sample %llu: no ground under the release point",
                        (unsigned long long)q->r.sample);
     if (!s->release_by_speed)
@@ -191,8 +175,8 @@ rf_status terrain_block_simulate(const rf_terrain_world *w, const rf_traj_spec *
     q.b.obs = obs, q.b.obs_ctx = ctx;
     if (st == RF_OK && hazard)
         terrain_hazard_begin(hazard);
-    while (st == RF_OK && !q.done)
-        step(&q);
+    if (st == RF_OK)
+        block_run_loop(&q.b, &terrain_engine, &q);
     if (st == RF_OK)
         sync(&q);
     rf_block_shape_free(&q.b.shape);
