@@ -167,7 +167,10 @@ static void test_box_slides_above_friction_angle(void **state)
     const rf_traj_crossing *c = &r.res.crossings[0];
     assert_true(c->reached);
     assert_true(c->stopped_by_barrier);
-    double d = (60 - x0) / cos(beta); /* along the slope */
+    /* The barrier records the centre's crossing (block_traj_terrain.c): the centre starts half the 1 m
+     * length uphill of the lowest (downhill bottom) corner at x0 and 0.2 m off the plane. */
+    double xc0 = x0 - 0.5 * cos(beta) + 0.2 * sin(beta);
+    double d = (60 - xc0) / cos(beta); /* along the slope */
     assert_near(c->speed / c->t / a, 1, 1e-6);           /* v = a t */
     assert_near(2 * d / (c->t * c->t) / a, 1, 1e-6);     /* d = a t^2 / 2 */
     assert_near(c->height_lowest, 0, 1e-12);             /* sliding: on the ground */

@@ -15,6 +15,7 @@
  * on the thread count.  About 3.4 MB per accumulator (161 edges); counts are
  * 32-bit, enough: a run has at most 1e8 samples (traj_yaml.c). */
 #include "trajectory/traj_internal.h"
+#include "trajectory/block_traj.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -157,8 +158,10 @@ static void record(traj_env_acc *a, size_t k, double h, double e)
 }
 
 /* The passages of the edges not yet reached during the stretch [0, T] from ev
- * (x_next: where the next event starts, closing rounding gaps). */
-static void stretch(traj_env_acc *a, const traj_run *r, const rf_traj_event *ev, double T, double x_next)
+ * (x_next: where the next event starts, closing rounding gaps); e_rot: a rigid
+ * block's rotational energy over the stretch [J] (NAN: a sphere's spin model). */
+static void stretch(traj_env_acc *a, const traj_run *r, const rf_traj_event *ev, double T, double x_next,
+                    double e_rot)
 {
     double xe = ev->x + ev->vx * T + 0.5 * ev->ax * T * T;
     double lo = fmin(ev->x, fmin(xe, x_next)), hi = fmax(ev->x, fmax(xe, x_next));
@@ -182,11 +185,26 @@ static void stretch(traj_env_acc *a, const traj_run *r, const rf_traj_event *ev,
             d = fabs(ev->x - a->x[k]) <= fabs(xe - a->x[k]) ? 0 : T;
         double vx = ev->vx + ev->ax * d, vy = ev->vy + ev->ay * d;
         double y = ev->y + ev->vy * d + 0.5 * ev->ay * d * d, v2 = vx * vx + vy * vy;
+        if (isfinite(e_rot)) {
+            record(a, k, y - a->ground[k], 0.5 * r->mass * v2 + e_rot);
+            continue;
+        }
         if (!have_spin)
             m = stretch_spin(r, ev), have_spin = 1;
         double w2 = m.rolling ? v2 / (r->radius * r->radius) : (m.w0 + m.rate * d) * (m.w0 + m.rate * d);
         record(a, k, y - a->ground[k], 0.5 * r->mass * v2 + 0.5 * r->inertia * w2);
     }
+}
+
+/* A rigid block's rotational energy at event ev [J]: on a profile its spin is omega about y in space
+ * (constant in flight; between the events of a contact stretch, 0.01 s apart, it is taken as at the
+ * event), with the inertia of the block's actual shape at orientation q. */
+static double block_rot_energy(const rf_block_shape *b, const rf_traj_event *ev)
+{
+    rf_block_state st = {{0, 0, 0}, {ev->q[0], ev->q[1], ev->q[2], ev->q[3]}, {0, 0, 0}, {0, 0, 0}};
+    const double w[3] = {0, ev->omega, 0};
+    rf_block_to_body(st.q, w, st.w);
+    return rf_block_kinetic_energy(b, &st, NULL);
 }
 
 void traj_env_add(traj_env_acc *a, const rf_traj_spec *s, const rf_traj_result *res)
@@ -197,12 +215,18 @@ void traj_env_add(traj_env_acc *a, const rf_traj_spec *s, const rf_traj_result *
     r.mass = traj_spec_mass(s);
     r.radius = s->sphere ? s->radius : 0;
     r.inertia = s->sphere ? 0.4 * r.mass * s->radius * s->radius : 0;
+    rf_block_shape b = {0};
+    rf_error err;
+    int block = s->block_kind && traj_block_shape(s, &b, &err) == RF_OK; /* this sample's shape and mass */
+    if (block)
+        r.mass = b.mass;
     memset(a->seen, 0, a->n);
     for (size_t q = 0; res->events && q < res->n_events; q++) {
         const rf_traj_event *ev = &res->events[q], *next = q + 1 < res->n_events ? ev + 1 : ev;
         double T = next->t - ev->t;
-        stretch(a, &r, ev, T > 0 ? T : 0, next->x);
+        stretch(a, &r, ev, T > 0 ? T : 0, next->x, block ? block_rot_energy(&b, ev) : NAN);
     }
+    rf_block_shape_free(&b);
 }
 
 void traj_env_merge(traj_env_acc *into, const traj_env_acc *from)

@@ -16,10 +16,11 @@
 #define PATH_CHORD_M 0.01 /* [m] trajectories.csv: largest distance of the drawn path from the exact one */
 
 /* One row of trajectories.csv: "i,t,x,y,vx,vy,kind" with the numbers as "%.9g" (rf_fmt_g: the same bytes,
- * without printf's cost, which was most of the outputs' time). */
-static void path_row(FILE *f, size_t i, const double *v, const char *kind)
+ * without printf's cost, which was most of the outputs' time); a rigid block (q != NULL) adds its
+ * orientation ",qw,qx,qy,qz" after the kind. */
+static void path_row(FILE *f, size_t i, const double *v, const char *kind, const double *q)
 {
-    char row[24 + 5 * RF_FMT_G_MAX + 16];
+    char row[24 + 9 * RF_FMT_G_MAX + 16];
     size_t n = (size_t)snprintf(row, 24, "%zu", i);
     for (int k = 0; k < 5; k++) {
         row[n++] = ',';
@@ -28,19 +29,37 @@ static void path_row(FILE *f, size_t i, const double *v, const char *kind)
     row[n++] = ',';
     fwrite(row, 1, n, f);
     fputs(kind, f);
-    fputc('\n', f);
+    n = 0;
+    for (int k = 0; q && k < 4; k++) {
+        row[n++] = ',';
+        n += rf_fmt_g(row + n, q[k], 9);
+    }
+    row[n++] = '\n';
+    fwrite(row, 1, n, f);
 }
 
-static rf_status write_paths(FILE *f, const rf_traj_ensemble *e)
+/* A block's orientation d after event ev: on a profile the spin is about y in space and constant in
+ * flight, so q(d) = rot_y(omega d) q (a contact stretch has no points inside). */
+static void turned(const rf_traj_event *ev, double d, double q[4])
 {
-    fputs("sample,t_s,x_m,y_m,vx_m_s,vy_m_s,event\n", f);
+    double c = cos(0.5 * ev->omega * d), s = sin(0.5 * ev->omega * d);
+    const double *p = ev->q; /* (c, 0, s, 0) * p */
+    q[0] = c * p[0] - s * p[2], q[1] = c * p[1] + s * p[3], q[2] = c * p[2] + s * p[0], q[3] = c * p[3] - s * p[1];
+}
+
+static rf_status write_paths(FILE *f, const rf_traj_spec *s, const rf_traj_ensemble *e)
+{
+    int block = s->block_kind != 0;
+    fputs(block ? "sample,t_s,x_m,y_m,vx_m_s,vy_m_s,event,q_w,q_x,q_y,q_z\n" : "sample,t_s,x_m,y_m,vx_m_s,vy_m_s,event\n",
+          f);
     static const char *const kinds[] = {"release", "impact", "launch", "contact", "vertex", "rest", "exit",
                                         "step_limit"};
     for (size_t i = 0; i < e->n_recorded; i++) {
         const rf_traj_result *r = &e->recorded[i];
         for (size_t k = 0; k < r->n_events; k++) {
             const rf_traj_event *ev = &r->events[k];
-            path_row(f, i, (const double[]){ev->t, ev->x, ev->y, ev->vx, ev->vy}, kinds[ev->kind]);
+            path_row(f, i, (const double[]){ev->t, ev->x, ev->y, ev->vx, ev->vy}, kinds[ev->kind],
+                     block ? ev->q : NULL);
             double t1 = k + 1 < r->n_events ? r->events[k + 1].t : ev->t;
             /* Points inside a flight, so that the polyline is within PATH_CHORD_M of the parabola (its
              * chord error over a time h is |a_y| h^2 / 8), at most 15; a contact stretch runs straight
@@ -48,10 +67,12 @@ static rf_status write_paths(FILE *f, const rf_traj_ensemble *e)
             double T = t1 - ev->t, parts = ev->flying ? ceil(T * sqrt(fabs(ev->ay) / (8 * PATH_CHORD_M))) : 1;
             int n = parts < 16 ? (int)parts : 16;
             for (int j = 1; j < n && T > 0; j++) {
-                double d = T * j / n;
+                double d = T * j / n, q[4];
+                if (block)
+                    turned(ev, d, q);
                 path_row(f, i, (const double[]){ev->t + d, ev->x + ev->vx * d + 0.5 * ev->ax * d * d,
                                                 ev->y + ev->vy * d + 0.5 * ev->ay * d * d, ev->vx + ev->ax * d,
-                                                ev->vy + ev->ay * d}, "");
+                                                ev->vy + ev->ay * d}, "", block ? q : NULL);
             }
         }
     }
@@ -168,7 +189,7 @@ rf_status rf_traj_write_csv(const char *dir, const rf_traj_spec *s, const rf_tra
         FILE *f = fopen(path, "w");
         if (!f)
             return rf_fail(err, RF_EIO, "cannot write %s: %s", path, strerror(errno));
-        rf_status rc = k == 0 ? write_paths(f, e) : k == 1 ? write_samples(f, e) : k == 2 ? write_crossings(f, s, e)
+        rf_status rc = k == 0 ? write_paths(f, s, e) : k == 1 ? write_samples(f, e) : k == 2 ? write_crossings(f, s, e)
                      : k == 3 ? write_stats(f, s, st) : k == 4 ? write_exceedance(f, s, st) : write_histogram(f, st);
         if (fclose(f) != 0 || rc != RF_OK)
             return rf_fail(err, RF_EIO, "cannot write %s", path);

@@ -297,6 +297,20 @@ static rf_status file_kind(ty_ctx *c, struct fy_node *root)
     return terrain ? ty_terrain_begin(c) : RF_OK;
 }
 
+/* outputs.vtk draws a rigid block's hull (block_traj_vtk.c): a point or a sphere of the sphere engines
+ * (no orientation) is refused, instead of writing nothing. */
+static rf_status vtk_needs_block(ty_ctx *c, struct fy_node *root)
+{
+    struct fy_node *o = fy_node_mapping_lookup_by_string(root, "outputs", FY_NT);
+    struct fy_node *v = o && fy_node_is_mapping(o) ? fy_node_mapping_lookup_by_string(o, "vtk", FY_NT) : NULL;
+    if (!v || !c->spec->outputs.vtk || c->spec->block_kind)
+        return RF_OK;
+    return yr_fail(&c->sp, v, "outputs.vtk", "ParaView frames draw a rigid block's hull; a %s has none (the "
+                   "sphere engine carries no orientation): set block.shape to box, ellipsoid (a rigid sphere: "
+                   "three equal semi-axes), polyhedron, eota_cube or eota_wheel, or drop outputs.vtk",
+                   c->spec->sphere ? "sphere" : "point block");
+}
+
 static rf_status parse_document(ty_ctx *c, struct fy_node *root)
 {
     rf_status st = yr_mapping(&c->sp, root, "");
@@ -321,6 +335,8 @@ static rf_status parse_document(ty_ctx *c, struct fy_node *root)
     for (int i = 0; i < 3; i++)
         if (!fy_node_mapping_lookup_by_string(root, need[i], FY_NT))
             return rf_fail(c->sp.err, RF_EINVAL, "%s:1: %s: missing", c->sp.file, need[i]);
+    if ((st = vtk_needs_block(c, root)) != RF_OK)
+        return st;
     if (c->spec->terrain) {
         if ((st = ty_parse_terrain(c, c->terrain)) != RF_OK)
             return st;
