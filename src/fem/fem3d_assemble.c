@@ -507,6 +507,21 @@ static void solid_initial_state(solid_run *R)
 /* Assembly: arrays, topology, elements, masses and time step, material
  * kernels (one block per body), dashpots, contact, the initial state, the
  * rigid boulder and gravity's load. */
+/* rock_mass_scale K (fem.h): a layer's bedrock with its inertia times K, its
+ * stiffness kept: its masses and the step its elements set (by sqrt K), its
+ * wave speeds c / sqrt K for the dashpots' impedance rho c sqrt K and the
+ * edge bound.  Its weight is the input's (fem3d_gravity.c); the mesh and the
+ * domain were sized from the true rock before this. */
+static void solid_rock_mass_scale(solid_run *R)
+{
+    const double k = R->set.o.rock_mass_scale;
+    if (!R->body.layer || !(k > 1))
+        return;
+    R->body.mat[1].rho *= k;
+    rf_wave_speeds *w = &R->body.w[1];
+    w->p /= sqrt(k), w->s /= sqrt(k), w->rayleigh /= sqrt(k);
+}
+
 rf_status f3_run_assemble(solid_run *R, rf_error *err)
 {
     solid_grid *G = &R->grid;
@@ -518,6 +533,7 @@ rf_status f3_run_assemble(solid_run *R, rf_error *err)
     if (st != RF_OK)
         return st;
     solid_topology(R);
+    solid_rock_mass_scale(R);
     if ((st = solid_materials(R, err)) != RF_OK || (st = solid_elements(R, err)) != RF_OK)
         return st;
     solid_masses(R);

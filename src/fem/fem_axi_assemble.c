@@ -302,7 +302,7 @@ static rf_status axi_gravity(axi_run *S, rf_error *err)
     const fem_geostatic geo = {S->grav.g,
                                S->set.layer ? S->set.in->layer_thickness : 0,
                                S->body.mat[2].rho,
-                               S->body.mat[1].rho,
+                               S->set.in->slope_density, /* the rock's weight, not its scaled inertia */
                                {fem_geostatic_k0(&p[0]), fem_geostatic_k0(&p[1])},
                                {S->body.plastic[1] ? &S->body.matl[1] : NULL,
                                 S->body.plastic[2] ? &S->body.matl[2] : NULL},
@@ -320,6 +320,22 @@ static rf_status axi_gravity(axi_run *S, rf_error *err)
     return RF_OK;
 }
 
+/* rock_mass_scale K (fem.h): under a layer the rock's inertia times K, its
+ * stiffness kept: the masses and the step bound its elements set (their
+ * eigenvalues scale by 1/K: the step by sqrt K), and its waves, c / sqrt K
+ * with the impedance rho c sqrt K for its dashpots.  Its weight is not
+ * scaled (axi_gravity takes the input's density).  After the mesh, which the
+ * rock's true wave speeds sized; the domain was resolved from them too. */
+static void axi_rock_mass_scale(axi_run *S)
+{
+    const double k = S->set.o.rock_mass_scale;
+    if (!S->set.layer || !(k > 1))
+        return;
+    S->body.mat[1].rho *= k;
+    rf_wave_speeds *w = &S->body.w[1];
+    w->p /= sqrt(k), w->s /= sqrt(k), w->rayleigh /= sqrt(k);
+}
+
 /* Assembly: arrays, incidence, element matrices, masses and time step,
  * material kernels (linear elastic, one block per body), dashpots, contact
  * pairs, and the initial state (boulder translating down at V). */
@@ -331,6 +347,7 @@ rf_status axi_assemble(axi_run *S, rf_error *err)
     if (st != RF_OK)
         return st;
     axi_incidence(S);
+    axi_rock_mass_scale(S);
     double *elm = fem_pool_get(S->pool, P_ELM, (size_t)S->sys.ne * 4 * sizeof(double), 0);
     unsigned char *fixed = fem_pool_get(S->pool, P_FIXED, (size_t)S->sys.ndof, 1);
     if (!elm || !fixed)
