@@ -4,13 +4,17 @@
  *   - the mechanism: while the rock's elements set the explicit step, the
  *     element eigenvalue bound is sqrt(K) times the unscaled one (lumped
  *     masses times K, stiffness kept: every rock eigenvalue over K); once
- *     the layer's elements set it, a larger K changes nothing (the same bound
- *     for K = 1e3 and 1e4, below sqrt(1e3) times the unscaled one);
+ *     the layer's elements set it (its contact face, redistributed as in the
+ *     full model, at kappa = 0.1 of the unscaled largest eigenvalue), a
+ *     larger K changes nothing (the same bound for K = 1e3 and 1e4, between
+ *     2 and sqrt(1e3) times the unscaled one);
  *   - without a layer the option is ignored: the same result to the bit;
  *   - the physics: on the S5 layer at 5 m/s (mesh sizing soil, a/h 6) R_n
  *     with K = 100 is within 0.002 of the full model's and the largest
- *     penetration within 0.5 % (measured: 1e-4 and 0.03 %), and the scaled
- *     run's energy account closes below 0.5 % of KE0 (issue 29's bound). */
+ *     penetration within 0.5 % (measured: 5e-5 and 0.01 %), and the scaled
+ *     run's energy account closes below 5e-4 of KE0 (measured 2.0e-4, the
+ *     full model's; scaling the rock before the face's mass redistribution,
+ *     which then lost its reference, gave 2.0e-3). */
 #include <math.h>
 #include <stdio.h>
 
@@ -94,7 +98,7 @@ static void test_against_full_model(void **state)
                   scaled.R_n, full.R_n, scaled.pen, full.pen, scaled.closure, scaled.dt_bound, full.dt_bound);
     assert_true(fabs(scaled.R_n - full.R_n) < 0.002);
     assert_true(fabs(scaled.pen - full.pen) < 0.005 * full.pen);
-    assert_true(fabs(scaled.closure) < 5e-3);
+    assert_true(fabs(scaled.closure) < 5e-4);
     assert_true(scaled.dt_bound > 3 * full.dt_bound); /* the lever took: the rock no longer sets the step */
 }
 
