@@ -140,7 +140,8 @@ typedef struct {
     double rock_mass_scale;              /* a layer's bedrock: its inertia (mass density in the mass matrix and the
                                             dashpots, not its weight) times this, >= 1; 1 (default) = the rock
                                             itself.  > 1 lengthens the explicit step the rock sets under a soft
-                                            layer (docs/soil-impacts.md section 3) */
+                                            layer, up to the bound of the layer's contact face
+                                            (docs/soil-impacts.md section 3) */
     int threads;                         /* OpenMP threads for one impact (0 = 1); results do not depend on it */
     /* --- not model settings (neither in the table nor in a model's identity) --- */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (an existing dir:

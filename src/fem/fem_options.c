@@ -64,8 +64,8 @@ const rf_fem_option_field rf_fem_option_fields[] = {
     ROW(rock_mass_scale, REAL, "", "K", 1, 1, 1e4, 1, 1e4, 0, NULL,
         "a layer over rock: the rock's inertia (its density in the masses and the dashpots, not "
         "its weight) times K.  Under a soft layer the stiff rock sets the explicit time step; K > 1 lengthens "
-        "it by sqrt(K) up to the layer's own (docs/soil-impacts.md section 3: where it holds).  1 = the rock "
-        "itself; ignored without a layer"),
+        "it by sqrt(K) up to the bound of the layer's contact face (about 3-4x: docs/soil-impacts.md section "
+        "3, where it holds).  1 = the rock itself; ignored without a layer"),
     ROW(threads, RF_FEM_OPTION_COUNT, "", "N", 1, 0, 1024, 0, 1024, 0, NULL,
         "threads of one impact, 0..1024 (0 = 1; rockfuzz impact without it, or with 0: all cores for the "
         "3D model, 1 for the axisymmetric one); the results are the same bit for bit"),
