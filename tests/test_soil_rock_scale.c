@@ -8,6 +8,7 @@
  *     full model, at kappa = 0.1 of the unscaled largest eigenvalue), a
  *     larger K changes nothing (the same bound for K = 1e3 and 1e4, between
  *     2 and sqrt(1e3) times the unscaled one);
+ *   - the same in the 3D model (S5 on a 30 deg incline, a/h 2): x2 at K = 4;
  *   - without a layer the option is ignored: the same result to the bit;
  *   - the physics: on the S5 layer at 5 m/s (mesh sizing soil, a/h 6) R_n
  *     with K = 100 is within 0.002 of the full model's and the largest
@@ -26,6 +27,7 @@
 
 #include "core/util.h"
 #include "rockfuzz/fem.h"
+#include "rockfuzz/fem3d.h"
 
 /* The S5 nominal layer (examples/s5_v5.yaml) at 5 m/s, rigid boulder. */
 static void s5_layer(rf_impact_input *in)
@@ -71,6 +73,32 @@ static void test_step_bound(void **state)
     assert_true(b1e3 < sqrt(1e3) * b1 * (1 - 1e-6) && b1e3 > 2 * b1);
 }
 
+static double bound_3d(const rf_impact_input *in, double K)
+{
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 2, o.rock_mass_scale = K, o.end_time = 1e-6;
+    rf_impact_output out;
+    rf_fem_history H = {0};
+    rf_error err = {0};
+    if (rf_fem3d_impact(in, &o, &out, &H, &err) != RF_OK)
+        fail_msg("3D, K = %g: %s", K, err.msg);
+    const double b = H.dt_bound;
+    rf_fem_history_free(&H);
+    return b;
+}
+
+static void test_step_bound_3d(void **state)
+{
+    (void)state;
+    rf_impact_input in;
+    s5_layer(&in);
+    in.velocity = 10, in.slope_angle = 30 * RF_PI / 180, in.friction = 0.5;
+    const double b1 = bound_3d(&in, 1), b4 = bound_3d(&in, 4);
+    if (fabs(b4 / b1 - 2) > 1e-9)
+        fail_msg("3D K = 4: bound %g s against %g s unscaled (ratio %.12g, want 2)", b4, b1, b4 / b1);
+}
+
 static void test_ignored_without_layer(void **state)
 {
     (void)state;
@@ -106,6 +134,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_step_bound),
+        cmocka_unit_test(test_step_bound_3d),
         cmocka_unit_test(test_ignored_without_layer),
         cmocka_unit_test(test_against_full_model),
     };
