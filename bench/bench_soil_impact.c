@@ -10,11 +10,12 @@
  * (closure / KE0), the penetration and its difference from the reference, and
  * the ladder ends with the cheapest rung within 0.01 of the reference in R_n
  * and R_t ("time to accuracy 0.01").
- *   bench_soil_impact [case=n1|n5|n15|incline|all] [quick=1] [ref3d=1] [key=value ...]
+ *   bench_soil_impact [case=n1|n5|n15|incline|all] [quick=1] [ref3d=1|2] [only=TEXT[,TEXT...]] [key=value ...]
  * n1, n5, n15: axisymmetric normal impacts at 1, 5, 15 m/s; incline: the 3D
  * model, 30 deg slope, 10 m/s vertical (v_n 8.66, v_t 5 m/s), friction 0.5.
  * quick=1 skips the reference's finest rungs (for a smoke run: the reference
- * is then the next rung).  Other keys: the inputs of bench_fem3d_probe.h
+ * is then the next rung); only=TEXT[,TEXT...] runs the reference and the
+ * rungs whose name contains one of the TEXTs (e.g. only=rock).  Other keys: the inputs of bench_fem3d_probe.h
  * (v=, E=, X0=, t=, f=, angle=, g=...) set the case's base before its ladder.
  * A failed rung prints its message and the ladder goes on. */
 #include <math.h>
@@ -32,7 +33,8 @@ typedef struct {
     const char *name;
     double refinement, domain, ratio, core, grading, dt;
     int ale;  /* 0 base (auto = off), 1 on */
-    int soil; /* axisymmetric: 1 sizes the mesh from the layer's contact (tuning soil_contact_mesh) */
+    int soil;    /* axisymmetric: 1 sizes the mesh from the layer's contact (mesh_sizing soil) */
+    double rock; /* rock_mass_scale (0: the base's, 1) */
 } rung;
 
 static double cpu_now(void)
@@ -90,7 +92,9 @@ static result run_rung(const probe *base, const rung *r)
         p.t.dt_safety = r->dt;
     if (r->ale)
         p.o.ale = RF_FEM_ALE_ON;
-    p.t.soil_contact_mesh = r->soil;
+    p.o.mesh_sizing = r->soil ? RF_FEM_SIZING_SOIL : RF_FEM_SIZING_HERTZ;
+    if (r->rock > 0)
+        p.o.rock_mass_scale = r->rock;
     rf_impact_output out;
     rf_fem_history H = {0};
     rf_fem3d_report rep = {0};
@@ -112,6 +116,20 @@ static result run_rung(const probe *base, const rung *r)
     return res;
 }
 
+static const char *only; /* key only=TEXT[,TEXT...]: the reference and the rungs whose name contains a TEXT */
+
+static int matches(const char *name, const char *list)
+{
+    for (const char *p = list; *p;) {
+        const size_t n = strcspn(p, ",");
+        for (const char *q = name; n > 0 && *q; q++)
+            if (!strncmp(q, p, n))
+                return 1;
+        p += n + (p[n] == ',');
+    }
+    return 0;
+}
+
 /* Run a ladder (rungs[0] the reference), print it and its time to accuracy. */
 static void ladder(const char *label, const probe *base, const rung *rungs, int n, int quick)
 {
@@ -125,6 +143,8 @@ static void ladder(const char *label, const probe *base, const rung *rungs, int 
     int best = -1;
     double best_cpu = INFINITY;
     for (int i = quick ? 1 : 0; i < n; i++) {
+        if (only && i > (quick ? 1 : 0) && !matches(rungs[i].name, only))
+            continue;
         const result r = run_rung(base, &rungs[i]);
         if (!r.ok) {
             printf("%-26s %9.2f failed: %s\n", rungs[i].name, r.cpu, r.msg);
@@ -153,35 +173,54 @@ static void ladder(const char *label, const probe *base, const rung *rungs, int 
    zone over it): a/h 16 (the reference, the finest rung), 12, 8, 6, 4, 3, 2, and
    the other levers at a/h 4 (domain, boulder mesh, grading, ALE). */
 static const rung AXI[] = {
-    {"ref soil a/h16", 16, 0, 0, 0, 0, 0, 0, 1},
-    {"soil a/h12", 12, 0, 0, 0, 0, 0, 0, 1},
-    {"soil a/h8", 8, 0, 0, 0, 0, 0, 0, 1},
-    {"soil a/h6", 6, 0, 0, 0, 0, 0, 0, 1},
-    {"soil a/h4", 4, 0, 0, 0, 0, 0, 0, 1},
-    {"soil a/h3", 3, 0, 0, 0, 0, 0, 0, 1},
-    {"soil a/h2", 2, 0, 0, 0, 0, 0, 0, 1},
-    {"soil a/h4 domain5", 4, 5, 0, 0, 0, 0, 0, 1},
-    {"soil a/h4 ratio1.25", 4, 0, 1.25, 0, 0, 0, 0, 1},
-    {"soil a/h4 grading1.3", 4, 0, 0, 0, 1.3, 0, 0, 1},
-    {"soil a/h4 ale", 4, 0, 0, 0, 0, 0, 1, 1},
-    {"default a/h10", 10, 0, 0, 0, 0, 0, 0, 0},
-    {"hertz a/h6", 6, 0, 0, 0, 0, 0, 0, 0},
-    {"hertz a/h4", 4, 0, 0, 0, 0, 0, 0, 0},
-    {"hertz a/h3", 3, 0, 0, 0, 0, 0, 0, 0},
-    {"hertz a/h2", 2, 0, 0, 0, 0, 0, 0, 0},
+    {"ref soil a/h16", 16, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"soil a/h12", 12, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"soil a/h8", 8, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"soil a/h6", 6, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"soil a/h4", 4, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"soil a/h3", 3, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"soil a/h2", 2, 0, 0, 0, 0, 0, 0, 1, 0},
+    {"soil a/h16 rock100", 16, 0, 0, 0, 0, 0, 0, 1, 100},
+    {"soil a/h12 rock100", 12, 0, 0, 0, 0, 0, 0, 1, 100},
+    {"soil a/h8 rock100", 8, 0, 0, 0, 0, 0, 0, 1, 100},
+    {"soil a/h6 rock100", 6, 0, 0, 0, 0, 0, 0, 1, 100},
+    {"soil a/h6 rock16", 6, 0, 0, 0, 0, 0, 0, 1, 16},
+    {"soil a/h6 rock1000", 6, 0, 0, 0, 0, 0, 0, 1, 1000},
+    {"soil a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 1, 100},
+    {"soil a/h12 rock100 dt0.3", 12, 0, 0, 0, 0, 0.3, 0, 1, 100},
+    {"soil a/h8 rock100 dt0.3", 8, 0, 0, 0, 0, 0.3, 0, 1, 100},
+    {"soil a/h16 dt0.3", 16, 0, 0, 0, 0, 0.3, 0, 1, 0},
+    {"soil a/h4 domain5", 4, 5, 0, 0, 0, 0, 0, 1, 0},
+    {"soil a/h4 ratio1.25", 4, 0, 1.25, 0, 0, 0, 0, 1, 0},
+    {"soil a/h4 grading1.3", 4, 0, 0, 0, 1.3, 0, 0, 1, 0},
+    {"soil a/h4 ale", 4, 0, 0, 0, 0, 0, 1, 1, 0},
+    {"default a/h10", 10, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"hertz a/h6", 6, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"hertz a/h4", 4, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"hertz a/h3", 3, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"hertz a/h2", 2, 0, 0, 0, 0, 0, 0, 0, 0},
 };
 
 /* 3D ladder: the reference a/h 2.5 (a/h 3, the default, and 4 take minutes of CPU: too long
    for the shared machine these were measured on), then a/h 2 and 1.5 and the other levers at
-   a/h 2; key ref3d=1 puts the default a/h 3 first as the reference. */
+   a/h 2; key ref3d=1 puts the default a/h 3 first as the reference, ref3d=2 a/h 4 with the
+   rock's inertia x100 (rock_mass_scale; docs/soil-impacts.md section 3). */
 static const rung F3D[] = {
-    {"ref a/h3 (default)", 3, 0, 0, 0, 0, 0, 0, 0},
-    {"ref a/h2.5", 2.5, 0, 0, 0, 0, 0, 0, 0},
-    {"a/h2", 2, 0, 0, 0, 0, 0, 0, 0},
-    {"a/h1.5", 1.5, 0, 0, 0, 0, 0, 0, 0},
-    {"a/h2 domain4", 2, 4, 0, 0, 0, 0, 0, 0},
-    {"a/h2 ratio2", 2, 0, 2, 0, 0, 0, 0, 0},
-    {"a/h2 core1.1", 2, 0, 0, 1.1, 0, 0, 0, 0},
+    {"ref a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 0, 100},
+    {"ref a/h3 (default)", 3, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"ref a/h2.5", 2.5, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h2", 2, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h1.5", 1.5, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h2 domain4", 2, 4, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h2 ratio2", 2, 0, 2, 0, 0, 0, 0, 0, 0},
+    {"a/h2 core1.1", 2, 0, 0, 1.1, 0, 0, 0, 0, 0},
+    {"a/h2 rock100", 2, 0, 0, 0, 0, 0, 0, 0, 100},
+    {"a/h2 rock4", 2, 0, 0, 0, 0, 0, 0, 0, 4},
+    {"a/h2 rock16", 2, 0, 0, 0, 0, 0, 0, 0, 16},
+    {"a/h2 rock100 dt0.3", 2, 0, 0, 0, 0, 0.3, 0, 0, 100},
+    {"a/h2.5 rock100", 2.5, 0, 0, 0, 0, 0, 0, 0, 100},
+    {"a/h3 rock100", 3, 0, 0, 0, 0, 0, 0, 0, 100},
+    {"a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 0, 100},
 };
 
 int main(int argc, char **argv)
@@ -199,6 +238,8 @@ int main(int argc, char **argv)
             ref3d = atoi(argv[i] + 6);
         else if (!strncmp(argv[i], "quick=", 6))
             quick = atoi(argv[i] + 6);
+        else if (!strncmp(argv[i], "only=", 5))
+            only = argv[i] + 5;
         else if (nover < 32 && probe_set(&over, argv[i], "bench_soil_impact"))
             overs[nover++] = argv[i];
     }
@@ -215,8 +256,10 @@ int main(int argc, char **argv)
         for (int k = 0; k < nover; k++)
             probe_set(&p, overs[k], "bench_soil_impact");
         if (cases[c].three_d)
-            ladder(cases[c].name, &p, F3D + (ref3d ? 0 : 1), (int)(sizeof F3D / sizeof *F3D) - (ref3d ? 0 : 1),
-                   quick);
+        {
+            const int first = ref3d == 2 ? 0 : ref3d == 1 ? 1 : 2;
+            ladder(cases[c].name, &p, F3D + first, (int)(sizeof F3D / sizeof *F3D) - first, quick);
+        }
         else
             ladder(cases[c].name, &p, AXI, (int)(sizeof AXI / sizeof *AXI), quick);
     }

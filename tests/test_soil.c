@@ -1,12 +1,12 @@
 /* test_soil.c - soil impacts (docs/soil-impacts.md): the soil moduli and
  * Gerber's penetration law of src/fem/fem_soil.c, and the axisymmetric mesh
- * sized from a thick layer's own contact (tuning soil_contact_mesh):
+ * sized from a thick layer's own contact (option mesh_sizing soil):
  *   - the oedometric modulus against the constrained modulus lambda + 2 mu
  *     computed from the Lame constants (a second formula), nu = 0 gives
  *     E_oed = E, the inverse round-trips;
  *   - Gerber's law against a hand-computed point and its exponents (M^(1/3),
  *     M_E^(-0.4), V^0.8), with M_E given in Pa and the law's kN/m^2;
- *   - with soil_contact_mesh on, the S5 layer's mesh is the one
+ *   - with mesh_sizing soil, the S5 layer's mesh is the one
  *     fem_impact_mesh_spec describes (element count of a solver run), its
  *     element size is the layer contact's estimated radius / refinement and its
  *     uniform zone covers that radius; a thin layer and the option off keep
@@ -101,7 +101,7 @@ static void test_soil_mesh(void **state)
     double h_def, h_soil;
     spec_and_solver(&in, &o, &n_def, &n_def_solver, &h_def);
     assert_int_equal(n_def, n_def_solver);
-    TUNE(o).soil_contact_mesh = 1;
+    o.mesh_sizing = RF_FEM_SIZING_SOIL;
     spec_and_solver(&in, &o, &n_soil, &n_soil_solver, &h_soil);
     assert_int_equal(n_soil, n_soil_solver);
     f3_layer_contact lc;
@@ -131,7 +131,7 @@ static void test_soil_mesh(void **state)
     long n_thin, n_thin_solver, n_thin_off, n_off_solver;
     double h_thin, h_off;
     spec_and_solver(&in, &o, &n_thin, &n_thin_solver, &h_thin);
-    TUNE(o).soil_contact_mesh = 0;
+    o.mesh_sizing = RF_FEM_SIZING_HERTZ;
     spec_and_solver(&in, &o, &n_thin_off, &n_off_solver, &h_off);
     assert_int_equal(n_thin, n_thin_off);
     assert_int_equal(n_thin_solver, n_off_solver);

@@ -82,6 +82,18 @@ typedef enum {
 const char *rf_fem_ale_name(rf_fem_ale a);
 rf_status rf_fem_ale_parse(const char *name, rf_fem_ale *a, rf_error *err);
 
+/* How the axisymmetric model sizes the mesh of a thick soil layer (docs/soil-impacts.md
+ * sections 2 and 4).  hertz (default): from the finer of the rock's and the layer's elastic
+ * Hertz contact radii, as every other impact; soil: from the layer's own contact estimate
+ * (the 3D model's f3_layer_contact_estimate: a/h across the soil contact, the uniform zone
+ * over it), the sizing an impact table of a soil layer takes.  Only a thick layer (the
+ * estimated depth <= t/2, contact radius <= t) is sized by it; the 3D model always sizes a
+ * thick layer from its contact estimate. */
+typedef enum {
+    RF_FEM_SIZING_HERTZ = 0,
+    RF_FEM_SIZING_SOIL
+} rf_fem_sizing;
+
 /* "auto" | "off" | "on" <-> enum. */
 const char *rf_fem_kinematics_name(rf_fem_kinematics k);
 rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_error *err);
@@ -124,6 +136,12 @@ typedef struct {
                                             moves away; past 3 durations up to a bound scaled by the
                                             contact's progress (with gravity: 100 durations; the block
                                             may come to rest, R_n = 0), where the run fails (RF_EMODEL) */
+    rf_fem_sizing mesh_sizing;           /* axisymmetric, a thick layer: hertz (default) or soil (see above) */
+    double rock_mass_scale;              /* a layer's bedrock: its inertia (mass density in the mass matrix and the
+                                            dashpots, not its weight) times this, >= 1; 1 (default) = the rock
+                                            itself.  > 1 lengthens the explicit step the rock sets under a soft
+                                            layer, up to the bound of the layer's contact face
+                                            (docs/soil-impacts.md section 3) */
     int threads;                         /* OpenMP threads for one impact (0 = 1); results do not depend on it */
     /* --- not model settings (neither in the table nor in a model's identity) --- */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (an existing dir:

@@ -207,6 +207,30 @@ static double solid_edge_time(const solid_run *R)
     return dt_edge;
 }
 
+/* rock_mass_scale K: the rock's element masses times K *after* the contact
+ * face's mass redistribution, which therefore is the full model's (its
+ * reference is the unscaled rock's largest eigenvalue: the face keeps the
+ * energy-conserving treatment of docs/validation-plastic.md 9e, whose
+ * redistributed elements then bound the step at kappa lambda_max of the
+ * unscaled mesh); the nodal masses, the Gershgorin bounds and the largest
+ * eigenvalue again.  Returns that eigenvalue. */
+static double solid_scale_rock_masses(solid_run *R, double *lam_upper)
+{
+    solid_system *Y = &R->sys;
+    for (long e = R->grid.mesh.boulder_elems; e < R->grid.ne; e++)
+        if (R->grid.emat[e] == 1)
+            for (int a = 0; a < 8; a++)
+                Y->elm[8 * e + a] *= R->set.o.rock_mass_scale;
+    for (long n = R->grid.nbn; n < R->grid.nn; n++) {
+        const double m = node_mass(R, n);
+        for (int q = 0; q < 3; q++) {
+            Y->mass[3 * n + q] = m;
+            Y->invm[3 * n + q] = Y->fixed[3 * n + q] ? 0 : 1 / m;
+        }
+    }
+    return solid_lambda_max(R, lam_upper);
+}
+
 /* Nodal masses (the boulder's density scaled so that the rigid-body mass is
  * exact: its mesh is a polyhedron inside the spheroid), the largest element
  * eigenvalue and the time step. */
@@ -232,9 +256,10 @@ static void solid_masses(solid_run *R)
     const rf_fem_tuning *t = &R->set.t;
     if (lam_upper && t->surface_mass_kappa > 0 && t->surface_mass_3d && (R->body.layer || R->body.plastic[1])) /* 9e */
         surface_mass_shift(R, lam_upper, lam_max);
+    const double lam_step = R->body.layer && R->set.o.rock_mass_scale > 1 ? solid_scale_rock_masses(R, lam_upper) : lam_max;
     R->step.lamu = R->body.large ? lam_upper : NULL;
     R->step.dt_edge = solid_edge_time(R);
-    R->step.dt = fem_time_step(lam_max, t->dt_safety, &R->step.dt_bound);
+    R->step.dt = fem_time_step(lam_step, t->dt_safety, &R->step.dt_bound);
 }
 
 /* The largest dt C / m of the explicit dashpots (stable below 2): C = the
@@ -507,6 +532,21 @@ static void solid_initial_state(solid_run *R)
 /* Assembly: arrays, topology, elements, masses and time step, material
  * kernels (one block per body), dashpots, contact, the initial state, the
  * rigid boulder and gravity's load. */
+/* rock_mass_scale K (fem.h): a layer's bedrock with its inertia times K, its
+ * stiffness kept.  Its wave speeds c / sqrt K for the dashpots' impedance
+ * rho c sqrt K and the edge bound (here, after the masses); its masses:
+ * solid_masses.  Its weight is the input's (fem3d_gravity.c); the mesh and
+ * the domain were sized from the true rock. */
+static void solid_rock_mass_scale(solid_run *R)
+{
+    const double k = R->set.o.rock_mass_scale;
+    if (!R->body.layer || !(k > 1))
+        return;
+    R->body.mat[1].rho *= k;
+    rf_wave_speeds *w = &R->body.w[1];
+    w->p /= sqrt(k), w->s /= sqrt(k), w->rayleigh /= sqrt(k);
+}
+
 rf_status f3_run_assemble(solid_run *R, rf_error *err)
 {
     solid_grid *G = &R->grid;
@@ -521,6 +561,7 @@ rf_status f3_run_assemble(solid_run *R, rf_error *err)
     if ((st = solid_materials(R, err)) != RF_OK || (st = solid_elements(R, err)) != RF_OK)
         return st;
     solid_masses(R);
+    solid_rock_mass_scale(R);
     if (!R->sys.mass_moments_ok)
         return rf_fail(err, RF_EINTERNAL, "fem3d: no positive boulder mass weighting with the spheroid's moments");
     if ((st = solid_kernels(R, err)) != RF_OK)

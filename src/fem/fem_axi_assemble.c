@@ -161,6 +161,32 @@ static void axi_nodal_masses(axi_run *S, const double *elm, const unsigned char 
         S->sys.invm[d] = fixed[d] ? 0 : 1 / S->sys.mass[d];
 }
 
+/* rock_mass_scale K: the rock's element masses times K *after* the contact
+ * face's mass redistribution, which therefore is the full model's (its
+ * reference is the unscaled rock's largest eigenvalue: the face keeps the
+ * energy-conserving treatment of docs/validation-plastic.md 9e, whose
+ * redistributed elements then bound the step at kappa lambda_max of the
+ * unscaled mesh, a gain of at most 1/sqrt(kappa)); the nodal masses and the
+ * largest eigenvalue again.  Returns that eigenvalue. */
+static double axi_scale_rock_masses(axi_run *S, double *elm, const unsigned char *fixed)
+{
+    for (long e = S->mesh.boulder_elems; e < S->sys.ne; e++)
+        if (S->body.emat[e] == 1)
+            for (int a = 0; a < 4; a++)
+                elm[4 * e + a] *= S->set.o.rock_mass_scale;
+    axi_nodal_masses(S, elm, fixed);
+    double lam_max = 0;
+    for (long e = 0; e < S->sys.ne; e++) {
+        if (S->set.rigid && e < S->mesh.boulder_elems)
+            continue;
+        const double lm = axi_element_lambda(S, elm, fixed, e);
+        if (S->ts.dte)
+            S->ts.dte[e] = 2 / sqrt(lm) / fem_ale_element_size(&S->mesh, e, NULL);
+        lam_max = fmax(lam_max, lm);
+    }
+    return lam_max;
+}
+
 /* Constraints (u_r = 0 on the axis; the outer surface if fixed), nodal
  * masses, the largest element eigenvalue, the time step. */
 static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
@@ -192,6 +218,8 @@ static void axi_masses(axi_run *S, double *elm, unsigned char *fixed)
         for (long i = 0; i < S->sys.nn; i++)
             S->sys.mshift[i] += S->sys.mass[2 * i];
     }
+    if (S->set.layer && S->set.o.rock_mass_scale > 1)
+        lam_max = axi_scale_rock_masses(S, elm, fixed);
     S->ts.dt = fem_time_step(lam_max, S->set.t.dt_safety, &S->ts.dt_bound);
 }
 
@@ -302,7 +330,7 @@ static rf_status axi_gravity(axi_run *S, rf_error *err)
     const fem_geostatic geo = {S->grav.g,
                                S->set.layer ? S->set.in->layer_thickness : 0,
                                S->body.mat[2].rho,
-                               S->body.mat[1].rho,
+                               S->set.in->slope_density, /* the rock's weight, not its scaled inertia */
                                {fem_geostatic_k0(&p[0]), fem_geostatic_k0(&p[1])},
                                {S->body.plastic[1] ? &S->body.matl[1] : NULL,
                                 S->body.plastic[2] ? &S->body.matl[2] : NULL},
@@ -318,6 +346,21 @@ static rf_status axi_gravity(axi_run *S, rf_error *err)
     for (long i = 0; i < S->mesh.boulder_nodes; i++)
         S->grav.fgrav[2 * i] = 0, S->grav.fgrav[2 * i + 1] = -S->sys.mass[2 * i + 1] * S->grav.g;
     return RF_OK;
+}
+
+/* rock_mass_scale K (fem.h): under a layer the rock's inertia times K, its
+ * stiffness kept.  Its waves: c / sqrt K, the impedance rho c sqrt K of its
+ * dashpots (here, after the masses); its masses: axi_masses.  Its weight is
+ * not scaled (axi_gravity takes the input's density).  The mesh and the
+ * domain were sized from the true rock. */
+static void axi_rock_mass_scale(axi_run *S)
+{
+    const double k = S->set.o.rock_mass_scale;
+    if (!S->set.layer || !(k > 1))
+        return;
+    S->body.mat[1].rho *= k;
+    rf_wave_speeds *w = &S->body.w[1];
+    w->p /= sqrt(k), w->s /= sqrt(k), w->rayleigh /= sqrt(k);
 }
 
 /* Assembly: arrays, incidence, element matrices, masses and time step,
@@ -355,6 +398,7 @@ rf_status axi_assemble(axi_run *S, rf_error *err)
     if (S->set.large && !(S->ts.dte = fem_pool_get(S->pool, P_DTE, (size_t)S->sys.ne * sizeof(double), 1)))
         return rf_fail(err, RF_ENOMEM, "fem: out of memory");
     axi_masses(S, elm, fixed);
+    axi_rock_mass_scale(S);
     if ((st = axi_kernels(S, err)) != RF_OK)
         return st;
     axi_dashpots(S);

@@ -36,8 +36,8 @@ rf_status axi_mesh(axi_run *S, rf_error *err)
 {
     const rf_fem_options *o = &S->set.o;
     const rf_hertz_reference *H = &S->set.H;
-    double a_soil = 0, zone = 0; /* tuning soil_contact_mesh: a thick layer's own contact (fem_spec.h) */
-    const int soil = fem_soil_contact_zone(S->set.in, &S->set.t, &a_soil, &zone);
+    double a_soil = 0, zone = 0; /* mesh_sizing soil: a thick layer's own contact (fem_spec.h) */
+    const int soil = fem_soil_contact_zone(S->set.in, o, &a_soil, &zone);
     const double a = soil ? a_soil : H->contact_radius;
     S->sys.h = a / o->refinement, S->sys.hb = S->sys.h * S->set.t.boulder_mesh_ratio;
     const double h = S->sys.h, hb = S->sys.hb;

@@ -16,13 +16,14 @@
 #include "core/util.h"
 
 _Static_assert(sizeof(rf_fem_boundary) == sizeof(int) && sizeof(rf_fem_kinematics) == sizeof(int) &&
-                   sizeof(rf_fem_ale) == sizeof(int),
+                   sizeof(rf_fem_ale) == sizeof(int) && sizeof(rf_fem_sizing) == sizeof(int),
                "a CHOICE row is stored as an int");
 
 /* Names indexed by the enum values. */
 static const char *const boundary_names[] = {"fixed", "absorbing", "auto", NULL};
 static const char *const kinematics_names[] = {"auto", "off", "on", NULL};
 static const char *const ale_names[] = {"off", "on", NULL};
+static const char *const sizing_names[] = {"hertz", "soil", NULL};
 
 #define ROW(field, kind, unit, vname, def, lo, hi, lo3, hi3, zero_auto, choices, help) \
     {#field, offsetof(rf_fem_options, field), kind, unit, vname, def, lo, hi, lo3, hi3, zero_auto, choices, help}
@@ -55,6 +56,16 @@ const rf_fem_option_field rf_fem_option_fields[] = {
         "Hertz durations; past 3 durations up to a bound scaled by the contact's progress, then the run "
         "fails rather than report an unfinished rebound.  A given end time stops there (a warning if the "
         "impact has not ended)"),
+    ROW(mesh_sizing, CHOICE, "", "KIND", RF_FEM_SIZING_HERTZ, 0, 0, 0, 0, 0, sizing_names,
+        "axisymmetric, a thick soil layer: what a/h counts elements across.  hertz: the finer of the rock's and "
+        "the layer's elastic Hertz contact radii (as every impact); soil: the layer's own contact, estimated "
+        "from its crush pressure and hardening, with the uniform zone over it (the impact tables' sizing, "
+        "with refinement 6: docs/soil-impacts.md section 4).  A thin layer and the 3D model ignore it"),
+    ROW(rock_mass_scale, REAL, "", "K", 1, 1, 1e4, 1, 1e4, 0, NULL,
+        "a layer over rock: the rock's inertia (its density in the masses and the dashpots, not "
+        "its weight) times K.  Under a soft layer the stiff rock sets the explicit time step; K > 1 lengthens "
+        "it by sqrt(K) up to the bound of the layer's contact face (about 3-4x: docs/soil-impacts.md section "
+        "3, where it holds).  1 = the rock itself; ignored without a layer"),
     ROW(threads, RF_FEM_OPTION_COUNT, "", "N", 1, 0, 1024, 0, 1024, 0, NULL,
         "threads of one impact, 0..1024 (0 = 1; rockfuzz impact without it, or with 0: all cores for the "
         "3D model, 1 for the axisymmetric one); the results are the same bit for bit"),

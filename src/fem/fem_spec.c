@@ -2,7 +2,7 @@
  * The arithmetic is the solver's own (fem_axi_setup.c, "mesh sizing from the
  * Hertz contact radius"); until the solver calls this function the two must
  * be kept equal, and test_quad4_kernel checks the element count against a
- * solver run (test_soil_mesh for a thick layer with soil_contact_mesh on).
+ * solver run (test_soil_mesh for a thick layer with mesh_sizing soil).
  * Also the contact that sizes a thick soil layer's mesh (fem_soil_contact_zone),
  * which the solver calls. */
 #include "fem_spec.h"
@@ -13,9 +13,9 @@
 
 #include "core/util.h"
 
-int fem_soil_contact_zone(const rf_impact_input *in, const rf_fem_tuning *t, double *a, double *zone)
+int fem_soil_contact_zone(const rf_impact_input *in, const rf_fem_options *o, double *a, double *zone)
 {
-    if (!t->soil_contact_mesh || !(in->layer_thickness > 0))
+    if (o->mesh_sizing != RF_FEM_SIZING_SOIL || !(in->layer_thickness > 0))
         return 0;
     f3_layer_contact lc;
     f3_layer_contact_estimate(in, &lc);
@@ -47,7 +47,7 @@ rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *
         a = fmin(a, HL.contact_radius), duration = fmax(duration, HL.duration), cr = fmin(cr, w.rayleigh);
     }
     const rf_fem_tuning *t = fem_tuning_of(o);
-    const int soil = fem_soil_contact_zone(in, t, &a, &zone);
+    const int soil = fem_soil_contact_zone(in, o, &a, &zone);
     const double L = rf_fem_domain_factor(o, in) * in->radius;
     const double refinement = rf_fem_refinement(o, 0); /* automatic settings resolved as the solver does */
     const double h = a / refinement, hb = h * t->boulder_mesh_ratio;

@@ -14,11 +14,11 @@ rf_status fem_impact_mesh_spec(const rf_impact_input *in, const rf_fem_options *
                                fem_body_spec *slope, rf_error *err);
 
 /* The contact that sizes the axisymmetric mesh of a thick layer when
- * t->soil_contact_mesh is on: 1 with *a = the layer contact's radius sqrt(R d)
+ * o->mesh_sizing is RF_FEM_SIZING_SOIL: 1 with *a = the layer contact's radius sqrt(R d)
  * and *zone = the radius its uniform zone must cover (f3_layer_contact_estimate,
  * fem3d_spec.h), 0 (a, zone untouched) without a layer, with the option off,
  * or when the layer is thin (the boulder reaches the rock's influence).
  * docs/soil-impacts.md. */
-int fem_soil_contact_zone(const rf_impact_input *in, const rf_fem_tuning *t, double *a, double *zone);
+int fem_soil_contact_zone(const rf_impact_input *in, const rf_fem_options *o, double *a, double *zone);
 
 #endif

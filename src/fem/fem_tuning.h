@@ -47,11 +47,6 @@ struct rf_fem_tuning {
     double ale_trigger;        /* ALE: rezone when a slope element's size falls below this share of its
                                   reference size, default 0.5, in (0, 1) */
     int ale_sweeps;            /* ALE: smoothing sweeps per rezone, default 10 (0: no node moves) */
-    int soil_contact_mesh;     /* axisymmetric, a thick layer (fem_soil_contact_zone in fem_spec.h): 1 sizes
-                                  the mesh from the layer's own contact estimate (f3_layer_contact_estimate,
-                                  as the 3D model does), a/h across that contact and the uniform zone over
-                                  it; 0 (default): from the finer of the rock's and the layer's Hertz
-                                  contacts (docs/soil-impacts.md) */
 };
 
 /* The 3D model's own settings (rf_fem3d_impact_ex's o3). */
