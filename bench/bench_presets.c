@@ -20,7 +20,6 @@
 #include <string.h>
 #include <sys/resource.h>
 
-#include "fem/fem_tuning.h"
 #include "rockfuzz/fem.h"
 #include "rockfuzz/impact.h"
 #include "rockfuzz/material.h"
@@ -113,8 +112,7 @@ static void run(const rf_traj_preset *p, double v, double r, double ref, int soi
     in.radius = r, in.boulder_density = 2600, in.velocity = v;
     rf_fem_options o;
     rf_fem_options_default(&o);
-    rf_fem_tuning t;
-    fem_tune(&o, &t)->soil_contact_mesh = soil;
+    o.mesh_sizing = soil ? RF_FEM_SIZING_SOIL : RF_FEM_SIZING_HERTZ;
     o.threads = 1, o.refinement = ref;
     rf_impact_output out;
     rf_fem_history H = {0};

@@ -31,6 +31,7 @@
 #include "rockfuzz/trajectory.h"
 #include "test_traj_util.h"
 #include "trajectory/traj_impact.h"
+#include "rockfuzz/impact_model.h"
 #include "trajectory/traj_internal.h"
 #include "trajectory/terrain_internal.h"
 #include "terrain_fixture.h"
@@ -550,6 +551,34 @@ static void test_rows_name_impact_inputs(void **state)
     assert_int_equal(found, RF_TRAJ_IMPACT_N);
 }
 
+/* The soil layer's table preset (rock_mass_scale 100 under the 3D model's
+ * default mesh) applies to an FE setup on a layer with refinement 0 only,
+ * and enters the setup's key, so rows computed without it are not reused. */
+static void test_layer_preset_in_key(void **state)
+{
+    (void)state;
+    traj_impact_setup s = {0};
+    s.solver = RF_IMPACT_FEM, s.radius = 0.5, s.density = 2600, s.friction = 0.5, s.has_ground = 1;
+    size_t k = 0;
+    while (traj_impact_ground_field(k) && strcmp(traj_impact_ground_field(k), "layer_thickness"))
+        k++;
+    assert_non_null(traj_impact_ground_field(k));
+    char key[300];
+    assert_false(traj_impact_layer_preset(&s)); /* no layer */
+    traj_impact_setup_key(&s, key, sizeof key);
+    assert_null(strstr(key, "rock_mass_scale"));
+    s.ground.v[k] = 1.0;
+    assert_true(traj_impact_layer_preset(&s));
+    traj_impact_setup_key(&s, key, sizeof key);
+    assert_non_null(strstr(key, ",rock_mass_scale=100"));
+    s.refinement = 3; /* a mesh of the user's own: the plain model */
+    assert_false(traj_impact_layer_preset(&s));
+    traj_impact_setup_key(&s, key, sizeof key);
+    assert_null(strstr(key, "rock_mass_scale"));
+    s.refinement = 0, s.solver = RF_IMPACT_MDR;
+    assert_false(traj_impact_layer_preset(&s));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -564,6 +593,7 @@ int main(void)
         cmocka_unit_test(test_rows_name_impact_inputs),
         cmocka_unit_test(test_store_resume_and_reuse),
         cmocka_unit_test(test_terrain_table_in_run),
+        cmocka_unit_test(test_layer_preset_in_key),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -172,7 +172,8 @@ const rf_traj_setting rf_traj_settings[] = {
      .help = "impact_model: Coulomb coefficient inside the impact model (default: of the first material)"},
     {.key = "bounce.impact.refinement", .kind = RF_TRAJ_SETTING_NUMBER, MEMBER(impact_refinement), .unit = "",
      .lo = 0, .hi = INFINITY, .def = 0, .note = "0: the FE solver's default", .probe = "3",
-     .help = "impact_model, solver fem: elements across the contact radius a/h (0: the FE solver's default)"},
+     .help = "impact_model, solver fem: elements across the contact radius a/h (0: the FE solver's default; on a "
+             "soil layer with it the rock's inertia x100, docs/soil-impacts.md)"},
     {.key = "bounce.impact.speeds", .kind = RF_TRAJ_SETTING_PAIR, .offset = offsetof(rf_traj_spec, impact_speed_min),
      .size = 2 * sizeof(double), .unit = "m/s", .lo = 0, .def = 0.25, .def2 = 40, .note = "normal speeds",
      .probe = "[1, 15]", .help = "impact_model: the range of normal speeds tabulated [lo, hi]"},

@@ -89,6 +89,8 @@ static const char *const ground_fields[RF_TRAJ_IMPACT_N] = {
 
 const char *traj_impact_ground_field(size_t k) { return k < RF_TRAJ_IMPACT_N ? ground_fields[k] : NULL; }
 
+enum { TRAJ_GROUND_LAYER_THICKNESS = 5 }; /* ground_fields[5] (test_trajectory_impact checks the pairing) */
+
 /* The ground g into the impact input: every number by its impact input's name, then the words. */
 static rf_status ground_apply(const rf_traj_impact_ground *g, rf_impact_input *in, rf_error *err)
 {
@@ -124,6 +126,12 @@ rf_status traj_impact_ground_check(const rf_traj_impact_ground *g, const char *r
     return st;
 }
 
+int traj_impact_layer_preset(const traj_impact_setup *s)
+{
+    return s->solver == RF_IMPACT_FEM && s->has_ground && s->ground.v[TRAJ_GROUND_LAYER_THICKNESS] > 0 &&
+           s->refinement == 0;
+}
+
 rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double theta, double *R_n, double *R_t,
                                    double *spin, rf_error *err)
 {
@@ -132,6 +140,8 @@ rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double
     spec.solver = (rf_impact_solver)s->solver;
     spec.fem.refinement = s->refinement;
     spec.fem.interrupt = s->stop;
+    if (traj_impact_layer_preset(s))
+        spec.fem.rock_mass_scale = 100;
     rf_impact_input in;
     rf_impact_input_default(&in);
     in.radius = s->radius;

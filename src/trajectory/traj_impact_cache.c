@@ -22,7 +22,8 @@
 #include <string.h>
 #include <unistd.h>
 
-/* The setup's inputs after the radius: "rho=..,mu=..,ref=..[,ground=HASH]". */
+/* The setup's inputs after the radius: "rho=..,mu=..,ref=..[,ground=HASH[,rock_mass_scale=100]]"
+ * (the layer preset: traj_impact_layer_preset). */
 static void key_rest(const traj_impact_setup *s, char *key, size_t size)
 {
     int n = snprintf(key, size, "rho=%.17g,mu=%.17g,ref=%.17g", s->density, s->friction, s->refinement);
@@ -34,7 +35,8 @@ static void key_rest(const traj_impact_setup *s, char *key, size_t size)
     h = rf_fnv1a(h, g->slope_material, sizeof g->slope_material);
     h = rf_fnv1a(h, g->layer_material, sizeof g->layer_material);
     h = rf_fnv1a(h, g->v, sizeof g->v);
-    snprintf(key + n, size - (size_t)n, ",ground=%016llx", (unsigned long long)h);
+    snprintf(key + n, size - (size_t)n, ",ground=%016llx%s", (unsigned long long)h,
+             traj_impact_layer_preset(s) ? ",rock_mass_scale=100" : "");
 }
 
 void traj_impact_setup_key(const traj_impact_setup *s, char *key, size_t size)
