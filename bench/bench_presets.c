@@ -24,24 +24,7 @@
 #include "rockfuzz/impact.h"
 #include "rockfuzz/material.h"
 #include "rockfuzz/presets.h"
-
-static double cpu_now(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
-
-static int parse_list(const char *s, double *x, int cap)
-{
-    int n = 0;
-    while (s && *s && n < cap) {
-        char *end;
-        x[n++] = strtod(s, &end);
-        s = *end == ',' ? end + 1 : NULL;
-    }
-    return n;
-}
+#include "bench_util.h"
 
 /* The preset's ground into the impact input, by the impact input's names
  * (the rows impact.<name>), as traj_impact_adapter.c's ground_apply does. */

@@ -22,25 +22,7 @@
 #include "fem/fem_soil.h"
 #include "rockfuzz/fem.h"
 #include "rockfuzz/material.h"
-
-static double cpu_now(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
-
-/* Comma list -> x[] (at most cap), returns the count. */
-static int parse_list(const char *s, double *x, int cap)
-{
-    int n = 0;
-    while (s && *s && n < cap) {
-        char *end;
-        x[n++] = strtod(s, &end);
-        s = *end == ',' ? end + 1 : NULL;
-    }
-    return n;
-}
+#include "bench_util.h"
 
 static double layer_t = 3.0;
 static int cap_from_ME = 0; /* cap=oedometer */

@@ -27,6 +27,7 @@
 #include "bench_fem3d_probe.h"
 #include "core/util.h"
 #include "rockfuzz/fem3d.h"
+#include "bench_util.h"
 
 /* One rung: the settings it changes from the case's base (0 = the base's). */
 typedef struct {
@@ -36,13 +37,6 @@ typedef struct {
     int soil;    /* axisymmetric: 1 sizes the mesh from the layer's contact (mesh_sizing soil) */
     double rock; /* rock_mass_scale (0: the base's, 1) */
 } rung;
-
-static double cpu_now(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
 
 /* The S5 nominal layer with the settings a table's FE call gets. */
 static void s5_base(probe *p, double v, int three_d)
