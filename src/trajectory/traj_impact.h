@@ -50,6 +50,8 @@ void traj_impact_setup_key(const traj_impact_setup *s, char *key, size_t size);
 const char *traj_impact_row_invalid(const double r[6]);
 /* The block radii of a run [m]: lo = hi = the sphere's radius unless block.radius is random. */
 void traj_impact_radius_range(const rf_traj_spec *s, double *lo, double *hi);
+/* The ground's soil layer thickness [m] (the row impact.layer_thickness; 0: rock only). */
+double traj_impact_layer_thickness(const rf_traj_impact_ground *g);
 /* The table preset of a soil layer (docs/soil-impacts.md sections 3-4): an FE
  * setup on a layer (layer_thickness > 0) whose refinement is left at 0 (the
  * 3D model's default a/h 3: every tabulated impact is oblique, at least

@@ -89,7 +89,13 @@ static const char *const ground_fields[RF_TRAJ_IMPACT_N] = {
 
 const char *traj_impact_ground_field(size_t k) { return k < RF_TRAJ_IMPACT_N ? ground_fields[k] : NULL; }
 
-enum { TRAJ_GROUND_LAYER_THICKNESS = 5 }; /* ground_fields[5] (test_trajectory_impact checks the pairing) */
+double traj_impact_layer_thickness(const rf_traj_impact_ground *g)
+{
+    for (size_t k = 0; k < RF_TRAJ_IMPACT_N; k++)
+        if (!strcmp(ground_fields[k], "layer_thickness"))
+            return g->v[k];
+    return 0;
+}
 
 /* The ground g into the impact input: every number by its impact input's name, then the words. */
 static rf_status ground_apply(const rf_traj_impact_ground *g, rf_impact_input *in, rf_error *err)
@@ -128,7 +134,7 @@ rf_status traj_impact_ground_check(const rf_traj_impact_ground *g, const char *r
 
 int traj_impact_layer_preset(const traj_impact_setup *s)
 {
-    return s->solver == RF_IMPACT_FEM && s->has_ground && s->ground.v[TRAJ_GROUND_LAYER_THICKNESS] > 0 &&
+    return s->solver == RF_IMPACT_FEM && s->has_ground && traj_impact_layer_thickness(&s->ground) > 0 &&
            s->refinement == 0;
 }
 

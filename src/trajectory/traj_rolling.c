@@ -23,21 +23,12 @@ const char *traj_rolling_source_name(int source)
     return source >= 0 && source < 4 ? names[source] : "?";
 }
 
-/* The ground's layer thickness [m] (the row impact.layer_thickness). */
-static double layer_thickness(const rf_traj_impact_ground *g)
-{
-    for (size_t k = 0; traj_impact_ground_field(k); k++)
-        if (!strcmp(traj_impact_ground_field(k), "layer_thickness"))
-            return g->v[k];
-    return 0;
-}
-
 /* Why material k's value cannot be derived (NULL: it can), into why[size]. */
 static const char *not_derivable(const rf_traj_spec *s, const traj_impact_setup *setup, char *why, size_t size)
 {
     if (setup->solver != (int)RF_IMPACT_FEM)
         snprintf(why, size, "solver %s has no soil layer", traj_impact_solver_name((size_t)setup->solver));
-    else if (!(layer_thickness(&setup->ground) > 0))
+    else if (!(traj_impact_layer_thickness(&setup->ground) > 0))
         snprintf(why, size, "layer_thickness 0: rock only, which a rigid block does not plough");
     else if (!s->sphere || s->block_kind != RF_TRAJ_BLOCK_NONE)
         snprintf(why, size, "the block is not a sphere (the model needs its radius)");
