@@ -11,6 +11,9 @@
 #  - trajectories.csv of a block carries q (unit, equal to the JSON's);
 #  - the envelopes weigh a random volume's own mass and add the rotation:
 #    their energy max at a collector's x is the crossings' total energy max;
+#  - ParaView frames follow each sample's own shape: with a random volume,
+#    the hull volume of every recorded trajectory's frames times rho equals
+#    that sample's mass from its crossings (2 E_trans / v^2);
 #  - on terrain a tumbling box crosses every line it passes (each block that
 #    ends beyond a line across the whole DEM has crossed it);
 #  - outputs.vtk with a sphere or a point is refused with file:line.
@@ -106,7 +109,9 @@ PY
 # envelope edge (161 edges over the 280 m profile: x = 1.75 k), so both record the same passages; the
 # envelope takes the state of the event before (events 0.01 s apart), hence 1 % and not round-off.
 sed -e 's/volume: 0.5236/volume: {uniform: [0.2, 1.0]}/' -e 's/^samples: .*/samples: 12/' \
-    -e 's/- {name: barrier, x: 95}/- {name: barrier, x: 94.5}/' "$tmp/profile.yaml" > "$tmp/env.yaml"
+    -e 's/- {name: barrier, x: 95}/- {name: barrier, x: 94.5}/' -e 's/^record: .*/record: 12/' \
+    "$tmp/profile.yaml" > "$tmp/env.yaml"
+echo "outputs: {vtk: true}" >> "$tmp/env.yaml"
 "$bin" trajectory "$tmp/env.yaml" --out "$tmp/env" --quiet --no-plots || fail "random volume did not run"
 python3 - "$tmp/env" <<'PY' || fail "the envelopes' energy of a block"
 import csv, sys
@@ -122,6 +127,33 @@ e = float(env[0]["energy_max_J"])
 assert int(env[0]["reached"]) == len(cr), (env[0]["reached"], len(cr))
 assert abs(e / emax - 1) < 0.01, (e, emax, tmax)   # with the rotation (tmax alone is lower)
 assert emax / tmax > 1.02, "no rotational energy to tell the two apart"
+PY
+python3 - "$tmp/env" <<'PY' || fail "the ParaView frames of a random volume"
+import csv, sys, xml.etree.ElementTree as ET
+d = sys.argv[1]
+def volume(path):  # the closed hull's volume by the divergence theorem
+    r = ET.parse(path).getroot()
+    p = [float(v) for v in r.find(".//Points/DataArray").text.split()]
+    c = [int(v) for v in r.find(".//Polys/DataArray[@Name='connectivity']").text.split()]
+    P = [p[i:i + 3] for i in range(0, len(p), 3)]
+    v = 0
+    for i in range(0, len(c), 3):
+        a, b, e = P[c[i]], P[c[i + 1]], P[c[i + 2]]
+        v += (a[0] * (b[1] * e[2] - b[2] * e[1]) - a[1] * (b[0] * e[2] - b[2] * e[0]) + a[2] * (b[0] * e[1] - b[1] * e[0])) / 6
+    return v
+checked, vols = 0, set()
+for r in csv.DictReader(open(d + "/crossings.csv")):
+    if r["collector"] != "barrier" or r["reached"] != "1":
+        continue
+    k = int(r["sample"])
+    mass = 2 * float(r["translational_energy_J"]) / float(r["speed_m_s"]) ** 2
+    frames = ET.parse(f"{d}/vtk/block_{k}.pvd").getroot().findall(".//DataSet")
+    for fr in (frames[0], frames[-1]):
+        v = volume(f"{d}/vtk/{fr.get('file')}")
+        assert abs(2600 * v / mass - 1) < 1e-6, (k, 2600 * v, mass)
+    vols.add(round(v, 6))
+    checked += 1
+assert checked >= 3 and len(vols) == checked, (checked, vols)
 PY
 
 # Terrain: each block that ends beyond a line across the whole DEM has crossed it.

@@ -4,7 +4,10 @@
 # made here) and an ellipsoid on a profile run and write their run folders;
 # the --json carries per impact the orientation q (a unit quaternion) and the
 # rotational energy about each body axis (never negative), and per recorded
-# trajectory the orientation at its events (times increasing); bad block
+# trajectory the orientation at its events (times increasing); the terrain
+# run's trajectories.csv has every event of each recorded trajectory, its
+# orientation the JSON's and its lowest point never below the plane DEM
+# (to h x 10 m/s; on it, from above, at rest); bad block
 # values are refused with file:line, field and value.
 # Usage: bash cli_block_traj.sh ROCKFUZZ SOURCE_DIR
 set -u
@@ -52,6 +55,29 @@ for t in d["trajectories"]:
     assert "fence" in t["barriers"]
 PY
 "$bin" trajectory "$tmp/box.yaml" --out "$tmp/out" --quiet || fail "--out"
+python3 - "$tmp/out/trajectories.csv" "$tmp/t.json" <<'PY' || fail "trajectories.csv of a block on terrain"
+import csv, json, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+traj = json.load(open(sys.argv[2]))["trajectories"]
+assert len(traj) == 6 and {r["sample"] for r in rows} == {str(k) for k in range(6)}
+rest = 0
+for k, t in enumerate(traj):
+    ev = [r for r in rows if r["sample"] == str(k)]
+    assert len(ev) == len(t["orientation"]) and ev[0]["event"] == "release", (k, len(ev))
+    for r, o in zip(ev, t["orientation"]):
+        q = [float(r[c]) for c in ("q_w", "q_x", "q_y", "q_z")]
+        assert abs(float(r["t_s"]) - o[0]) < 1e-12 and max(abs(a - b) for a, b in zip(q, o[1:])) < 1e-12, (r, o)
+        assert abs(math.sqrt(sum(c * c for c in q)) - 1) < 1e-9, q
+        ground = 60 - 0.6 * float(r["x_m"])   # the plane DEM
+        z = float(r["z_m"])
+        # the lowest point never below the ground by more than Moreau's step allows (h x the approach
+        # speed: 1 ms x 10 m/s; the velocity-level scheme does not push a point back out)
+        assert z >= ground - 0.01, (k, r)
+        if r["event"] == "rest" and float(r["x_m"]) < 49:   # (a block held by the fence at x = 50 rests on it)
+            rest += 1
+            assert z - ground < 1e-6, (k, r)
+assert rest >= 1, "no block came to rest on the plane"
+PY
 for f in result.json samples.csv crossings.csv statistics.csv; do
   [ -s "$tmp/out/$f" ] || fail "missing $f"
 done

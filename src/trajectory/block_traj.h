@@ -154,10 +154,17 @@ void traj_block_json_impact(FILE *f, const double q[4], const double rot_energy[
 void traj_block_json_orientation(FILE *f, const rf_traj_result *r);
 void terrain_block_json_orientation(FILE *f, const rf_terrain_result *r);
 
-/* block_traj_vtk.c: with outputs.vtk of a rigid block, DIR/block_K.pvd (+
- * .vtp frames) of the hull along each recorded trajectory K (a stub of
- * rf_block_write_vtk until block_vtk.c is on main). */
+/* block_traj_vtk.c: with outputs.vtk of a rigid block, DIR/vtk/block_K.pvd (+
+ * .vtp frames) of the hull along each recorded trajectory K, at sample K's
+ * shape; on terrain (outputs.vtk or not) also DIR/trajectories.csv
+ * (traj_block_write_terrain_paths). */
 rf_status traj_block_write_vtk_runs(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
                                     rf_error *err);
+
+/* block_traj_paths.c: a terrain run of a rigid block: DIR/trajectories.csv,
+ * every event of each recorded trajectory (lowest point [m], centre's
+ * velocity [m/s], space angular velocity [rad/s], event, q). */
+rf_status traj_block_write_terrain_paths(const char *dir, const rf_traj_spec *s, const rf_traj_ensemble *e,
+                                         rf_error *err);
 
 #endif
