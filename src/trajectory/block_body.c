@@ -90,10 +90,10 @@ static void sin_cos(double x, double *s, double *c)
     }
 }
 
-/* The exact flow of L_i^2/2I_i over tau. */
-static void rotor_axis(const double inertia[3], double q[4], double L[3], int i, double tau)
+/* The exact flow of L_i^2/2I_i over tau (iI: the inverse principal moments). */
+static void rotor_axis(const double iI[3], double q[4], double L[3], int i, double tau)
 {
-    double theta = tau * L[i] / inertia[i], c, s;
+    double theta = tau * L[i] * iI[i], c, s;
     sin_cos(theta / 2, &s, &c);
     int j = (i + 1) % 3, k = (i + 2) % 3;
     /* q <- q (c, s e_i): the quaternion product with its zero terms left out (the same bits) */
@@ -108,14 +108,17 @@ static void rotor_axis(const double inertia[3], double q[4], double L[3], int i,
 
 void rf_block_rotor_step(const double inertia[3], double q[4], double w[3], double h)
 {
+    /* the reciprocals once: the five turns are a chain, and a division in it costs ten products */
     double L[3] = {inertia[0] * w[0], inertia[1] * w[1], inertia[2] * w[2]};
-    rotor_axis(inertia, q, L, 0, h / 2);
-    rotor_axis(inertia, q, L, 1, h / 2);
-    rotor_axis(inertia, q, L, 2, h);
-    rotor_axis(inertia, q, L, 1, h / 2);
-    rotor_axis(inertia, q, L, 0, h / 2);
-    bk_quat_normalize(q);
-    for (int i = 0; i < 3; i++)
+    const double iI[3] = {1 / inertia[0], 1 / inertia[1], 1 / inertia[2]};
+    rotor_axis(iI, q, L, 0, h / 2);
+    rotor_axis(iI, q, L, 1, h / 2);
+    rotor_axis(iI, q, L, 2, h);
+    rotor_axis(iI, q, L, 1, h / 2);
+    rotor_axis(iI, q, L, 0, h / 2);
+    double n = 1 / sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    q[0] *= n, q[1] *= n, q[2] *= n, q[3] *= n;
+    for (int i = 0; i < 3; i++) /* a division here: (L / I) I returns L where L (1/I) I drifts by a bias per step */
         w[i] = L[i] / inertia[i];
 }
 

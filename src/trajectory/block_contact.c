@@ -129,8 +129,8 @@ static void tangents(const double n[3], double t1[3], double t2[3])
     int k = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
     e[k] = 1;
     bk_cross(n, e, t1);
-    double l = bk_norm(t1);
-    t1[0] /= l, t1[1] /= l, t1[2] /= l;
+    double il = 1 / bk_norm(t1);
+    t1[0] *= il, t1[1] *= il, t1[2] *= il;
     bk_cross(n, t1, t2);
 }
 
@@ -140,9 +140,9 @@ static void invert3(const double a[9], double b[9])
     b[0] = a[4] * a[8] - a[5] * a[7], b[1] = a[2] * a[7] - a[1] * a[8], b[2] = a[1] * a[5] - a[2] * a[4];
     b[3] = a[5] * a[6] - a[3] * a[8], b[4] = a[0] * a[8] - a[2] * a[6], b[5] = a[2] * a[3] - a[0] * a[5];
     b[6] = a[3] * a[7] - a[4] * a[6], b[7] = a[1] * a[6] - a[0] * a[7], b[8] = a[0] * a[4] - a[1] * a[3];
-    double det = a[0] * b[0] + a[1] * b[3] + a[2] * b[6];
+    double id = 1 / (a[0] * b[0] + a[1] * b[3] + a[2] * b[6]); /* one division, not nine */
     for (int i = 0; i < 9; i++)
-        b[i] /= det;
+        b[i] *= id;
 }
 
 /* The contact of body point rb (body frame) with normal n; u = (v, w). */
@@ -156,7 +156,8 @@ static void add_contact(contact_set *cs, const double rb[3], const double n[3], 
     memcpy(c->rb, rb, sizeof c->rb);
     memcpy(c->d[0], n, sizeof c->d[0]);
     tangents(n, c->d[1], c->d[2]);
-    const double *I = cs->s->inertia;
+    /* M^-1 once per contact: the products below by reciprocals (a division costs as much as ten products) */
+    const double *I = cs->s->inertia, iI[3] = {1 / I[0], 1 / I[1], 1 / I[2]}, im = 1 / cs->s->mass;
     for (int k = 0; k < 3; k++) {
         double db[3];
         bk_mat_tvec(cs->r, c->d[k], db);
@@ -166,13 +167,13 @@ static void add_contact(contact_set *cs, const double rb[3], const double n[3], 
     }
     for (int j = 0; j < 3; j++)
         for (int k = 0; k < 3; k++)
-            c->G[3 * j + k] = (j == k) / cs->s->mass + c->a[j][0] * c->a[k][0] / I[0] +
-                              c->a[j][1] * c->a[k][1] / I[1] + c->a[j][2] * c->a[k][2] / I[2];
+            c->G[3 * j + k] = (j == k) * im + c->a[j][0] * c->a[k][0] * iI[0] + c->a[j][1] * c->a[k][1] * iI[1] +
+                              c->a[j][2] * c->a[k][2] * iI[2];
     c->rn = 1 / c->G[0], c->rt = 1 / bk_max(c->G[4], c->G[8]);
     invert3(c->G, c->Gi);
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < 3; i++)
-            c->md[k][i] = c->d[k][i] / cs->s->mass, c->ma[k][i] = c->a[k][i] / I[i];
+            c->md[k][i] = c->d[k][i] * im, c->ma[k][i] = c->a[k][i] * iI[i];
 }
 
 /* Vertex i against the planes and the ground. */
