@@ -91,7 +91,7 @@ static void sin_cos(double x, double *s, double *c)
 }
 
 /* The exact flow of L_i^2/2I_i over tau (iI: the inverse principal moments). */
-static void rotor_axis(const double iI[3], double q[4], double L[3], int i, double tau)
+static inline void rotor_axis(const double iI[3], double q[4], double L[3], int i, double tau)
 {
     double theta = tau * L[i] * iI[i], c, s;
     sin_cos(theta / 2, &s, &c);
