@@ -224,6 +224,11 @@ int terrain_bounce(terrain_run *r, size_t ci, size_t cj, double v[3], double ome
 /* terrain_bounce.c: the exact unit upward normal of cell (ci, cj)'s patch at
  * (x, y) (clamped to the cell). */
 void terrain_surface_normal(const rf_terrain *t, size_t ci, size_t cj, double x, double y, double n[3]);
+/* The same from the cell's patch p (terrain_patch_of) when the caller has it;
+ * and terrain_bounce with that normal n (the caller's, of the same point: no
+ * second evaluation). */
+void terrain_patch_normal(const rf_terrain *t, const terrain_patch *p, double x, double y, double n[3]);
+int terrain_bounce_n(terrain_run *r, size_t ci, size_t cj, const double n[3], double v[3], double omega[3]);
 
 /* terrain_barrier.c: set g's bounding box (from its n vertices x, y). */
 void terrain_barrier_box(terrain_barrier_geo *g);
