@@ -1,5 +1,7 @@
 /* test_terrain_hazard_cell.c - the rasters' shortcut for a contact step's
- * piece (terrain_hazard_piece_in, used by terrain_contact_state.c tc_emit):
+ * piece (terrain_hazard_piece_in, used by terrain_contact_state.c tc_emit,
+ * and by terrain_fly.c for a flight whose straight map chord lies in its
+ * landing cell under the same rule, e.g. every launch at a convex edge):
  * a piece whose map path lies in one DEM cell, on a raster grid that is the
  * DEM's, goes to that cell without the walk over the grid.  Reference: the
  * walk itself (terrain_hazard_piece) fed the same pieces; the packed
