@@ -239,6 +239,12 @@ rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain
     return h;
 }
 
+void terrain_hazard_walk_only(rf_terrain_hazard *h)
+{
+    if (h)
+        h->dem_grid = 0;
+}
+
 void terrain_hazard_begin(rf_terrain_hazard *h)
 {
     if (h)

@@ -265,6 +265,9 @@ typedef struct rf_terrain_hazard rf_terrain_hazard;
 #define TERRAIN_HAZARD_REL_ERROR (1.0 / 64) /* bound of a percentile's relative error (plus at most FLOOR
                                                absolute; proof in terrain_hazard.c) */
 rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain *dem);
+/* Every piece walked over the grid, no shortcut for a piece known to lie in
+ * one DEM cell (terrain_hazard_piece_in): the tests' reference. */
+void terrain_hazard_walk_only(rf_terrain_hazard *h);
 void terrain_hazard_begin(rf_terrain_hazard *h);
 void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc);
 /* The same for a piece whose path lies in the closed square of DEM cell (ci, cj): when the grid is the
