@@ -30,12 +30,26 @@ static void cross3(const double a[3], const double b[3], double c[3])
     c[0] = x, c[1] = y, c[2] = z;
 }
 
+/* x - lo clamped to [0, w] (fmin(fmax(x - lo, 0), w) inlined: the same
+ * value for finite x, a library call less). */
+static inline double clamp_local(double x, double lo, double w)
+{
+    double X = x - lo;
+    X = X > 0 ? X : 0;
+    return X < w ? X : w;
+}
+
+void terrain_patch_normal(const rf_terrain *t, const terrain_patch *p, double x, double y, double n[3])
+{
+    double X = clamp_local(x, p->xi, t->dx), Y = clamp_local(y, p->yj, t->dy);
+    double zx = p->b + p->d * Y, zy = p->c + p->d * X, s = 1 / sqrt(1 + zx * zx + zy * zy);
+    n[0] = -zx * s, n[1] = -zy * s, n[2] = s;
+}
+
 void terrain_surface_normal(const rf_terrain *t, size_t ci, size_t cj, double x, double y, double n[3])
 {
     terrain_patch p = terrain_patch_of(t, ci, cj);
-    double X = fmin(fmax(x - p.xi, 0), t->dx), Y = fmin(fmax(y - p.yj, 0), t->dy);
-    double zx = p.b + p.d * Y, zy = p.c + p.d * X, s = 1 / sqrt(1 + zx * zx + zy * zy);
-    n[0] = -zx * s, n[1] = -zy * s, n[2] = s;
+    terrain_patch_normal(t, &p, x, y, n);
 }
 
 /* Kinetic energy per unit mass times 2 of (v, omega) with I/m = i_m. */
@@ -145,6 +159,11 @@ int terrain_bounce(terrain_run *r, size_t ci, size_t cj, double v[3], double ome
 {
     double n[3];
     terrain_surface_normal(r->dem, ci, cj, r->p[0], r->p[1], n);
+    return terrain_bounce_n(r, ci, cj, n, v, omega);
+}
+
+int terrain_bounce_n(terrain_run *r, size_t ci, size_t cj, const double n[3], double v[3], double omega[3])
+{
     const rf_traj_material *m = &r->s->materials[terrain_material_of(r->dem, ci, cj)];
     double vn0 = dot3(v, n);
     if (-vn0 < r->s->contact_speed) { /* soft landing: keep the part along the surface */

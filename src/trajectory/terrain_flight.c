@@ -144,7 +144,8 @@ int terrain_first_impact(const rf_terrain *t, const double p[3], const double v[
             return 0;
         }
         double tx = line_time(p[0], v[0], t->x0, t->dx, i), ty = line_time(p[1], v[1], t->y0, t->dy, j);
-        double t_out = fmin(fmin(tx, ty), tmax);
+        double t_out = tx < ty ? tx : ty; /* (fmin inlined: no NaN here, the same value) */
+        t_out = t_out < tmax ? t_out : tmax;
         double A, B, C;
         cell_gap(t, i, j, p, v, g, t_in, &A, &B, &C);
         double s = first && fabs(C) <= on_surface_tol(p[2]) ? start_root(A, B, t_out - t_in, speed)

@@ -33,12 +33,14 @@ static void advance(terrain_run *r, double tau)
     r->v[2] -= r->g * tau;
 }
 
-/* Height of cell (ci, cj)'s patch at (x, y), clamped to the cell. */
-static double patch_height(const rf_terrain *t, size_t ci, size_t cj, double x, double y)
+/* Height of patch p at (x, y), clamped to the cell (fmin / fmax inlined:
+ * the same values for finite x, y). */
+static double patch_height(const rf_terrain *t, const terrain_patch *p, double x, double y)
 {
-    terrain_patch p = terrain_patch_of(t, ci, cj);
-    double X = fmin(fmax(x - p.xi, 0), t->dx), Y = fmin(fmax(y - p.yj, 0), t->dy);
-    return p.a + p.b * X + p.c * Y + p.d * X * Y;
+    double X = x - p->xi, Y = y - p->yj;
+    X = X > 0 ? X : 0, Y = Y > 0 ? Y : 0;
+    X = X < t->dx ? X : t->dx, Y = Y < t->dy ? Y : t->dy;
+    return p->a + p->b * X + p->c * Y + p->d * X * Y;
 }
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -71,12 +73,13 @@ static void record_impact(terrain_run *r, size_t ci, size_t cj, const double v_i
     res->n_impacts++;
 }
 
-/* The block at the current point (on cell (ci, cj)'s patch) hits the surface. */
-static void impact(terrain_run *r, size_t ci, size_t cj)
+/* The block at the current point (on cell (ci, cj)'s patch p) hits the
+ * surface: its normal there, once for the bounce and the contact. */
+static void impact(terrain_run *r, size_t ci, size_t cj, const terrain_patch *p)
 {
     double v_in[3] = {r->v[0], r->v[1], r->v[2]}, n[3];
-    terrain_surface_normal(r->dem, ci, cj, r->p[0], r->p[1], n);
-    if (terrain_bounce(r, ci, cj, r->v, r->omega)) { /* soft landing */
+    terrain_patch_normal(r->dem, p, r->p[0], r->p[1], n);
+    if (terrain_bounce_n(r, ci, cj, n, r->v, r->omega)) { /* soft landing */
         terrain_to_contact(r, n);
         terrain_event(r, RF_EV_CONTACT, 0);
         return;
@@ -117,6 +120,26 @@ static void barrier_cut(terrain_run *r, terrain_piece_outcome o, double tau, dou
     terrain_event(r, RF_EV_BARRIER, 1);
 }
 
+/* The flight's map chord lies in the closed square of its landing cell
+ * (ci, cj) and does not start on one of the cell's lines going along it or
+ * out of the cell (the rule of a contact step's piece, terrain_contact_state.c):
+ * it is that cell's alone for the rasters (terrain_hazard_piece_in), no walk
+ * over the grid.  A launch at a convex cell edge lands in the next cell: its
+ * flight starts on the line between the two and goes into the landing cell. */
+static int in_landing_cell(const terrain_run *r, const terrain_piece *pc, size_t ci, size_t cj)
+{
+    const rf_terrain *t = r->dem;
+    double xi = t->x0 + (double)ci * t->dx, yj = t->y0 + (double)cj * t->dy, x1 = xi + t->dx, y1 = yj + t->dy;
+    double x0 = pc->p[0], y0 = pc->p[1], xe = x0 + pc->v[0] * pc->T, ye = y0 + pc->v[1] * pc->T;
+    if (!(pc->T > 0) || (x0 == xe && y0 == ye))
+        return 0;
+    if (!(x0 >= xi && x0 <= x1 && xe >= xi && xe <= x1 && y0 >= yj && y0 <= y1 && ye >= yj && ye <= y1))
+        return 0;
+    if ((x0 == xi && xe <= x0) || (x0 == x1 && xe >= x0) || (y0 == yj && ye <= y0) || (y0 == y1 && ye >= y0))
+        return 0;
+    return 1;
+}
+
 void terrain_fly(terrain_run *r, size_t *cell_i, size_t *cell_j)
 {
     double tau;
@@ -126,7 +149,10 @@ void terrain_fly(terrain_run *r, size_t *cell_i, size_t *cell_j)
     terrain_piece pc = {r->t, T, {r->p[0], r->p[1], r->p[2]}, {r->v[0], r->v[1], r->v[2]}, {0, 0, -r->g},
                         rot_energy(r), 0};
     double cut, scale;
+    if (hit && r->hazard && in_landing_cell(r, &pc, ci, cj))
+        r->piece_in_cell = 1, r->piece_ci = ci, r->piece_cj = cj;
     terrain_piece_outcome o = terrain_emit(r, &pc, &cut, &scale);
+    r->piece_in_cell = 0;
     if (o != TERRAIN_PIECE_FREE) {
         barrier_cut(r, o, cut, scale);
         return;
@@ -136,7 +162,8 @@ void terrain_fly(terrain_run *r, size_t *cell_i, size_t *cell_j)
         finish(r, RF_TRAJ_EXITED, RF_EV_EXIT);
         return;
     }
-    r->p[2] = patch_height(r->dem, ci, cj, r->p[0], r->p[1]); /* exactly on the surface */
+    terrain_patch p = terrain_patch_of(r->dem, ci, cj);
+    r->p[2] = patch_height(r->dem, &p, r->p[0], r->p[1]); /* exactly on the surface */
     *cell_i = ci, *cell_j = cj;
-    impact(r, ci, cj);
+    impact(r, ci, cj, &p);
 }

@@ -224,6 +224,11 @@ int terrain_bounce(terrain_run *r, size_t ci, size_t cj, double v[3], double ome
 /* terrain_bounce.c: the exact unit upward normal of cell (ci, cj)'s patch at
  * (x, y) (clamped to the cell). */
 void terrain_surface_normal(const rf_terrain *t, size_t ci, size_t cj, double x, double y, double n[3]);
+/* The same from the cell's patch p (terrain_patch_of) when the caller has it;
+ * and terrain_bounce with that normal n (the caller's, of the same point: no
+ * second evaluation). */
+void terrain_patch_normal(const rf_terrain *t, const terrain_patch *p, double x, double y, double n[3]);
+int terrain_bounce_n(terrain_run *r, size_t ci, size_t cj, const double n[3], double v[3], double omega[3]);
 
 /* terrain_barrier.c: set g's bounding box (from its n vertices x, y). */
 void terrain_barrier_box(terrain_barrier_geo *g);
@@ -260,6 +265,9 @@ typedef struct rf_terrain_hazard rf_terrain_hazard;
 #define TERRAIN_HAZARD_REL_ERROR (1.0 / 64) /* bound of a percentile's relative error (plus at most FLOOR
                                                absolute; proof in terrain_hazard.c) */
 rf_terrain_hazard *terrain_hazard_create(const rf_traj_spec *s, const rf_terrain *dem);
+/* Every piece walked over the grid, no shortcut for a piece known to lie in
+ * one DEM cell (terrain_hazard_piece_in): the tests' reference. */
+void terrain_hazard_walk_only(rf_terrain_hazard *h);
 void terrain_hazard_begin(rf_terrain_hazard *h);
 void terrain_hazard_piece(rf_terrain_hazard *h, const rf_terrain *dem, double mass, const terrain_piece *pc);
 /* The same for a piece whose path lies in the closed square of DEM cell (ci, cj): when the grid is the
