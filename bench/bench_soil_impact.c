@@ -10,12 +10,18 @@
  * (closure / KE0), the penetration and its difference from the reference, and
  * the ladder ends with the cheapest rung within 0.01 of the reference in R_n
  * and R_t ("time to accuracy 0.01").
- *   bench_soil_impact [case=n1|n5|n15|incline|all] [quick=1] [ref3d=1|2] [only=TEXT[,TEXT...]] [key=value ...]
+ *   bench_soil_impact [case=n1|n5|n15|incline|all] [quick=1] [ref3d=1|2] [only=TEXT[,TEXT...]] [noref=1] [timeline=1] [early=1]
+ *                     [key=value ...]
  * n1, n5, n15: axisymmetric normal impacts at 1, 5, 15 m/s; incline: the 3D
  * model, 30 deg slope, 10 m/s vertical (v_n 8.66, v_t 5 m/s), friction 0.5.
  * quick=1 skips the reference's finest rungs (for a smoke run: the reference
  * is then the next rung); only=TEXT[,TEXT...] runs the reference and the
- * rungs whose name contains one of the TEXTs (e.g. only=rock).  Other keys: the inputs of bench_fem3d_probe.h
+ * rungs whose name contains one of the TEXTs (e.g. only=rock); timeline=1
+ * prints under each rung where its simulated time went (print_timeline);
+ * noref=1 with only= skips the reference too (the first rung run is then the
+ * reference of the max|dR| column); early=1 runs every rung with the tuning's
+ * end_at_separation (the run may end before 1.3 Hertz durations once the
+ * boulder has left).  Other keys: the inputs of bench_fem3d_probe.h
  * (v=, E=, X0=, t=, f=, angle=, g=...) set the case's base before its ladder.
  * A failed rung prints its message and the ladder goes on. */
 #include <math.h>
@@ -36,6 +42,7 @@ typedef struct {
     int ale;  /* 0 base (auto = off), 1 on */
     int soil;    /* axisymmetric: 1 sizes the mesh from the layer's contact (mesh_sizing soil) */
     double rock; /* rock_mass_scale (0: the base's, 1) */
+    int preset;  /* 1: the table preset rf_fem_soil_table_preset (sizing, a/h, rock scale), then the rung's others */
 } rung;
 
 /* The S5 nominal layer with the settings a table's FE call gets. */
@@ -64,10 +71,47 @@ typedef struct {
     char msg[160];
 } result;
 
+static int early;    /* key early=1: every rung with the tuning's end_at_separation */
+static int timeline; /* key timeline=1: where a run's simulated time goes (print_timeline) */
+
+/* The run's phases from its history, in Hertz durations t_h and as shares of
+   the simulated time: the first contact, the peak force, the last sample
+   with contact force, the time from which the boulder's velocity stays within
+   0.005 V of the velocity the run reports (v_out: at separation, or 0 at
+   rest) until that last contact (R_n settled to 0.005), and the end. */
+static void print_timeline(const rf_fem_history *H, double V, double v_out)
+{
+    if (H->n < 2)
+        return;
+    const size_t n = H->n;
+    const double t_end = H->t[n - 1], th = H->hertz_duration;
+    double t_peak = 0, f_peak = 0, t_settled = 0;
+    size_t last = 0;
+    for (size_t k = 0; k < n; k++) {
+        const double f = H->contact_force[k];
+        if (f > 0)
+            last = k;
+        if (f > f_peak)
+            f_peak = f, t_peak = H->t[k];
+    }
+    for (size_t k = last + 1; k-- > 0;)
+        if (fabs(H->boulder_velocity[k] - v_out) > 0.005 * V) {
+            t_settled = H->t[k];
+            break;
+        }
+    const double t_last = H->t[last];
+    printf("   timeline [s, /t_h, share of run]: t_h %.4g; peak force %.4g (%.2f, %.0f %%); v within 0.005 V of "
+           "v_out %.4g (%.2f, %.0f %%); last contact %.4g (%.2f, %.0f %%); end %.4g (%.2f)\n",
+           th, t_peak, t_peak / th, 100 * t_peak / t_end, t_settled, t_settled / th, 100 * t_settled / t_end,
+           t_last, t_last / th, 100 * t_last / t_end, t_end, t_end / th);
+}
+
 static result run_rung(const probe *base, const rung *r)
 {
     probe p = *base;
     p.o.tuning = &p.t; /* the copy's own numerics */
+    if (r->preset) /* the preset first, the rung's own settings over it */
+        rf_fem_soil_table_preset(&p.o);
     if (r->refinement > 0)
         p.o.refinement = r->refinement;
     if (r->domain > 0)
@@ -86,7 +130,9 @@ static result run_rung(const probe *base, const rung *r)
         p.t.dt_safety = r->dt;
     if (r->ale)
         p.o.ale = RF_FEM_ALE_ON;
-    p.o.mesh_sizing = r->soil ? RF_FEM_SIZING_SOIL : RF_FEM_SIZING_HERTZ;
+    p.t.end_at_separation = early;
+    if (!r->preset)
+        p.o.mesh_sizing = r->soil ? RF_FEM_SIZING_SOIL : RF_FEM_SIZING_HERTZ;
     if (r->rock > 0)
         p.o.rock_mass_scale = r->rock;
     rf_impact_output out;
@@ -103,6 +149,8 @@ static result run_rung(const probe *base, const rung *r)
         return res;
     }
     const double k0 = H.ke0;
+    if (timeline)
+        print_timeline(&H, p.in.velocity, out.v_n_after);
     res = (result){1, res.cpu, out.R_n, out.R_t, out.plastic_work, H.closure[H.n - 1] / k0, out.penetration_max,
                    out.elements, out.steps, ""};
     rf_fem_history_free(&H);
@@ -111,6 +159,7 @@ static result run_rung(const probe *base, const rung *r)
 }
 
 static const char *only; /* key only=TEXT[,TEXT...]: the reference and the rungs whose name contains a TEXT */
+static int noref;        /* key noref=1: with only=, not even the reference (the first rung run is then the reference) */
 
 static int matches(const char *name, const char *list)
 {
@@ -134,10 +183,10 @@ static void ladder(const char *label, const probe *base, const rung *rungs, int 
            "W_p/KE0", "energy", "pen_m", "max|dR|");
     fflush(stdout);
     result ref = {0};
-    int best = -1;
+    int best = -1, ref_i = -1;
     double best_cpu = INFINITY;
     for (int i = quick ? 1 : 0; i < n; i++) {
-        if (only && i > (quick ? 1 : 0) && !matches(rungs[i].name, only))
+        if (only && (i > (quick ? 1 : 0) || noref) && !matches(rungs[i].name, only))
             continue;
         const result r = run_rung(base, &rungs[i]);
         if (!r.ok) {
@@ -146,12 +195,12 @@ static void ladder(const char *label, const probe *base, const rung *rungs, int 
             continue;
         }
         if (!ref.ok)
-            ref = r;
+            ref = r, ref_i = i;
         const double dt = fabs(r.R_t - ref.R_t), d = fmax(fabs(r.R_n - ref.R_n), isnan(dt) ? 0 : dt); /* axi: no R_t */
         printf("%-26s %9.2f %8.0f %8.0f %8.4f %8.4f %9.4f %8.1e %8.4f %8.4f\n", rungs[i].name, r.cpu, r.elements,
                r.steps, r.R_n, r.R_t, r.W_p, r.err, r.pen, d);
         fflush(stdout);
-        if (d <= 0.01 && r.cpu < best_cpu && &rungs[i] != &rungs[quick ? 1 : 0])
+        if (d <= 0.01 && r.cpu < best_cpu && i != ref_i)
             best = i, best_cpu = r.cpu;
     }
     if (best >= 0)
@@ -167,32 +216,35 @@ static void ladder(const char *label, const probe *base, const rung *rungs, int 
    zone over it): a/h 16 (the reference, the finest rung), 12, 8, 6, 4, 3, 2, and
    the other levers at a/h 4 (domain, boulder mesh, grading, ALE). */
 static const rung AXI[] = {
-    {"ref soil a/h16", 16, 0, 0, 0, 0, 0, 0, 1, 0},
-    {"soil a/h12", 12, 0, 0, 0, 0, 0, 0, 1, 0},
-    {"soil a/h8", 8, 0, 0, 0, 0, 0, 0, 1, 0},
-    {"soil a/h6", 6, 0, 0, 0, 0, 0, 0, 1, 0},
-    {"soil a/h4", 4, 0, 0, 0, 0, 0, 0, 1, 0},
-    {"soil a/h3", 3, 0, 0, 0, 0, 0, 0, 1, 0},
-    {"soil a/h2", 2, 0, 0, 0, 0, 0, 0, 1, 0},
-    {"soil a/h16 rock100", 16, 0, 0, 0, 0, 0, 0, 1, 100},
-    {"soil a/h12 rock100", 12, 0, 0, 0, 0, 0, 0, 1, 100},
-    {"soil a/h8 rock100", 8, 0, 0, 0, 0, 0, 0, 1, 100},
-    {"soil a/h6 rock100", 6, 0, 0, 0, 0, 0, 0, 1, 100},
-    {"soil a/h6 rock16", 6, 0, 0, 0, 0, 0, 0, 1, 16},
-    {"soil a/h6 rock1000", 6, 0, 0, 0, 0, 0, 0, 1, 1000},
-    {"soil a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 1, 100},
-    {"soil a/h12 rock100 dt0.3", 12, 0, 0, 0, 0, 0.3, 0, 1, 100},
-    {"soil a/h8 rock100 dt0.3", 8, 0, 0, 0, 0, 0.3, 0, 1, 100},
-    {"soil a/h16 dt0.3", 16, 0, 0, 0, 0, 0.3, 0, 1, 0},
-    {"soil a/h4 domain5", 4, 5, 0, 0, 0, 0, 0, 1, 0},
-    {"soil a/h4 ratio1.25", 4, 0, 1.25, 0, 0, 0, 0, 1, 0},
-    {"soil a/h4 grading1.3", 4, 0, 0, 0, 1.3, 0, 0, 1, 0},
-    {"soil a/h4 ale", 4, 0, 0, 0, 0, 0, 1, 1, 0},
-    {"default a/h10", 10, 0, 0, 0, 0, 0, 0, 0, 0},
-    {"hertz a/h6", 6, 0, 0, 0, 0, 0, 0, 0, 0},
-    {"hertz a/h4", 4, 0, 0, 0, 0, 0, 0, 0, 0},
-    {"hertz a/h3", 3, 0, 0, 0, 0, 0, 0, 0, 0},
-    {"hertz a/h2", 2, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"ref soil a/h16", 16, 0, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h12", 12, 0, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h8", 8, 0, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h6", 6, 0, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h4", 4, 0, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h3", 3, 0, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h2", 2, 0, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h16 rock100", 16, 0, 0, 0, 0, 0, 0, 1, 100, 0},
+    {"soil a/h12 rock100", 12, 0, 0, 0, 0, 0, 0, 1, 100, 0},
+    {"soil a/h8 rock100", 8, 0, 0, 0, 0, 0, 0, 1, 100, 0},
+    {"preset (rf_fem_soil_table_preset)", 0, 0, 0, 0, 0, 0, 0, 1, 0, 1},
+    {"soil a/h6 rock100", 6, 0, 0, 0, 0, 0, 0, 1, 100, 0},
+    {"soil a/h5 rock100", 5, 0, 0, 0, 0, 0, 0, 1, 100, 0},
+    {"soil a/h5", 5, 0, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h6 rock16", 6, 0, 0, 0, 0, 0, 0, 1, 16, 0},
+    {"soil a/h6 rock1000", 6, 0, 0, 0, 0, 0, 0, 1, 1000, 0},
+    {"soil a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 1, 100, 0},
+    {"soil a/h12 rock100 dt0.3", 12, 0, 0, 0, 0, 0.3, 0, 1, 100, 0},
+    {"soil a/h8 rock100 dt0.3", 8, 0, 0, 0, 0, 0.3, 0, 1, 100, 0},
+    {"soil a/h16 dt0.3", 16, 0, 0, 0, 0, 0.3, 0, 1, 0, 0},
+    {"soil a/h4 domain5", 4, 5, 0, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h4 ratio1.25", 4, 0, 1.25, 0, 0, 0, 0, 1, 0, 0},
+    {"soil a/h4 grading1.3", 4, 0, 0, 0, 1.3, 0, 0, 1, 0, 0},
+    {"soil a/h4 ale", 4, 0, 0, 0, 0, 0, 1, 1, 0, 0},
+    {"default a/h10", 10, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"hertz a/h6", 6, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"hertz a/h4", 4, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"hertz a/h3", 3, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"hertz a/h2", 2, 0, 0, 0, 0, 0, 0, 0, 0, 0},
 };
 
 /* 3D ladder: the reference a/h 2.5 (a/h 3, the default, and 4 take minutes of CPU: too long
@@ -200,21 +252,26 @@ static const rung AXI[] = {
    a/h 2; key ref3d=1 puts the default a/h 3 first as the reference, ref3d=2 a/h 4 with the
    rock's inertia x100 (rock_mass_scale; docs/soil-impacts.md section 3). */
 static const rung F3D[] = {
-    {"ref a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 0, 100},
-    {"ref a/h3 (default)", 3, 0, 0, 0, 0, 0, 0, 0, 0},
-    {"ref a/h2.5", 2.5, 0, 0, 0, 0, 0, 0, 0, 0},
-    {"a/h2", 2, 0, 0, 0, 0, 0, 0, 0, 0},
-    {"a/h1.5", 1.5, 0, 0, 0, 0, 0, 0, 0, 0},
-    {"a/h2 domain4", 2, 4, 0, 0, 0, 0, 0, 0, 0},
-    {"a/h2 ratio2", 2, 0, 2, 0, 0, 0, 0, 0, 0},
-    {"a/h2 core1.1", 2, 0, 0, 1.1, 0, 0, 0, 0, 0},
-    {"a/h2 rock100", 2, 0, 0, 0, 0, 0, 0, 0, 100},
-    {"a/h2 rock4", 2, 0, 0, 0, 0, 0, 0, 0, 4},
-    {"a/h2 rock16", 2, 0, 0, 0, 0, 0, 0, 0, 16},
-    {"a/h2 rock100 dt0.3", 2, 0, 0, 0, 0, 0.3, 0, 0, 100},
-    {"a/h2.5 rock100", 2.5, 0, 0, 0, 0, 0, 0, 0, 100},
-    {"a/h3 rock100", 3, 0, 0, 0, 0, 0, 0, 0, 100},
-    {"a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 0, 100},
+    {"ref a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 0, 100, 0},
+    {"ref a/h3 (default)", 3, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"ref a/h2.5", 2.5, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h2", 2, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h1.5", 1.5, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h2 domain4", 2, 4, 0, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h2 ratio2", 2, 0, 2, 0, 0, 0, 0, 0, 0, 0},
+    {"a/h2 core1.1", 2, 0, 0, 1.1, 0, 0, 0, 0, 0, 0},
+    {"a/h2 rock100", 2, 0, 0, 0, 0, 0, 0, 0, 100, 0},
+    {"a/h2 rock4", 2, 0, 0, 0, 0, 0, 0, 0, 4, 0},
+    {"a/h2 rock16", 2, 0, 0, 0, 0, 0, 0, 0, 16, 0},
+    {"a/h2 rock100 dt0.3", 2, 0, 0, 0, 0, 0.3, 0, 0, 100, 0},
+    {"a/h2.5 rock100", 2.5, 0, 0, 0, 0, 0, 0, 0, 100, 0},
+    {"a/h3 rock100", 3, 0, 0, 0, 0, 0, 0, 0, 100, 0},
+    {"a/h4 rock100", 4, 0, 0, 0, 0, 0, 0, 0, 100, 0},
+    {"a/h5 rock100 ratio2", 5, 0, 2, 0, 0, 0, 0, 0, 100, 0},
+    {"a/h4 rock100 ratio2", 4, 0, 2, 0, 0, 0, 0, 0, 100, 0},
+    {"a/h3 rock100 ratio2", 3, 0, 2, 0, 0, 0, 0, 0, 100, 0},
+    {"a/h2 rock100 ratio2", 2, 0, 2, 0, 0, 0, 0, 0, 100, 0},
+    {"a/h3 rock100 core2", 3, 0, 0, 2, 0, 0, 0, 0, 100, 0},
 };
 
 int main(int argc, char **argv)
@@ -232,6 +289,12 @@ int main(int argc, char **argv)
             ref3d = atoi(argv[i] + 6);
         else if (!strncmp(argv[i], "quick=", 6))
             quick = atoi(argv[i] + 6);
+        else if (!strncmp(argv[i], "early=", 6))
+            early = atoi(argv[i] + 6);
+        else if (!strncmp(argv[i], "noref=", 6))
+            noref = atoi(argv[i] + 6);
+        else if (!strncmp(argv[i], "timeline=", 9))
+            timeline = atoi(argv[i] + 9);
         else if (!strncmp(argv[i], "only=", 5))
             only = argv[i] + 5;
         else if (nover < 32 && probe_set(&over, argv[i], "bench_soil_impact"))

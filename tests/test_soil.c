@@ -12,7 +12,14 @@
  *     uniform zone covers that radius; a thin layer and the option off keep
  *     the default sizing (the same element count as without the option); a
  *     soil contact wider than the boulder's fine zone (15 m/s) is meshed with
- *     that zone capped, not refused.
+ *     that zone capped, not refused;
+ *   - the table preset (rf_fem_soil_table_preset) sets its three options and
+ *     nothing else, validates in both models, and sizes the S5 mesh at the
+ *     estimated layer contact radius / the preset's a/h;
+ *   - the tuning's end_at_separation: with gravity a run whose contact ends
+ *     before the least time ends 0.1 Hertz durations after the separation,
+ *     with the plain run's R_n and contact duration to the bit; without
+ *     gravity it changes nothing.
  * No check of the FE model against the law: the law's scatter band is not
  * published in a source read here (the comparison is in the docs only). */
 #include <math.h>
@@ -138,12 +145,97 @@ static void test_soil_mesh(void **state)
     assert_true(h_thin == h_off);
 }
 
+/* The table preset (rf_fem_soil_table_preset): the three settings of
+   docs/soil-impacts.md section 4 and nothing else; valid for both models; on
+   S5 the mesh it gives has the element size of the layer contact's estimated
+   radius over the preset's a/h (the estimate of fem3d_spec.c, a second
+   route to h). */
+static void test_table_preset(void **state)
+{
+    (void)state;
+    rf_fem_options o, before;
+    rf_fem_options_default(&o);
+    o.domain_factor = 7, o.threads = 3, o.end_time = 0.5, o.large_deformation = RF_FEM_LARGE_DEFORMATION;
+    before = o;
+    rf_fem_soil_table_preset(&o);
+    assert_int_equal(o.mesh_sizing, RF_FEM_SIZING_SOIL);
+    assert_true(o.refinement == RF_FEM_SOIL_PRESET_REFINEMENT && o.refinement >= 2);
+    assert_true(o.rock_mass_scale == RF_FEM_SOIL_PRESET_ROCK_SCALE && o.rock_mass_scale > 1);
+    assert_true(o.domain_factor == before.domain_factor && o.threads == before.threads);
+    assert_true(o.end_time == before.end_time && o.large_deformation == before.large_deformation);
+    rf_error err = {0};
+    assert_int_equal(rf_fem_options_validate(&o, 0, &err), RF_OK);
+    assert_int_equal(rf_fem_options_validate(&o, 1, &err), RF_OK);
+    rf_impact_input in;
+    s5_layer(&in);
+    rf_fem_options_default(&o);
+    rf_fem_soil_table_preset(&o);
+    long n, n_solver;
+    double h;
+    spec_and_solver(&in, &o, &n, &n_solver, &h);
+    assert_int_equal(n, n_solver);
+    f3_layer_contact lc;
+    f3_layer_contact_estimate(&in, &lc);
+    assert_true(fabs(h - lc.radius / RF_FEM_SOIL_PRESET_REFINEMENT) < 1e-12);
+}
+
+/* One impact with the tuning's end_at_separation set or not: its output and
+   time step, and the Hertz duration the run used. */
+static void run_end(const rf_impact_input *in, int early, rf_impact_output *out, double *dt, double *t_h)
+{
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    o.refinement = 4;
+    rf_fem_tuning t;
+    fem_tune(&o, &t)->end_at_separation = early;
+    rf_fem_history H = {0};
+    rf_error err = {0};
+    if (rf_fem_impact(in, &o, out, &H, &err) != RF_OK)
+        fail_msg("end_at_separation %d: %s", early, err.msg);
+    *dt = H.dt, *t_h = H.hertz_duration;
+    rf_fem_history_free(&H);
+}
+
+/* The tuning's end_at_separation (docs/soil-impacts.md section 3, "Where the
+   time goes"): an elastic layer of S5's modulus, with gravity, whose contact
+   (the layer's Hertz duration, about t_h) ends before the least time 1.3 t_h.
+   With it the run ends 0.1 t_h after the separation, before 1.3 t_h, with
+   R_n, R_t and the contact duration of the plain run to the bit (they are the
+   state at separation); the plain run lasts at least 1.3 t_h.  Without
+   gravity the rule is off: the same steps. */
+static void test_end_at_separation(void **state)
+{
+    (void)state;
+    rf_impact_input in;
+    s5_layer(&in);
+    in.layer_material = RF_MATERIAL_ELASTIC, in.gravity = 9.81;
+    rf_impact_output plain, early;
+    double dt, t_h, dt2, t_h2;
+    run_end(&in, 0, &plain, &dt, &t_h);
+    run_end(&in, 1, &early, &dt2, &t_h2);
+    assert_true(dt == dt2 && t_h == t_h2);
+    assert_true(plain.steps * dt >= 1.3 * t_h - dt);
+    assert_true(plain.contact_duration < 1.2 * t_h); /* the case: the contact ends before the least time */
+    assert_true(early.steps < plain.steps);
+    const double t_end = early.steps * dt, t_sep = early.contact_duration;
+    assert_true(t_end >= t_sep + 0.1 * t_h - 2 * dt && t_end <= t_sep + 0.1 * t_h + 0.05 * t_h);
+    assert_true(early.R_n == plain.R_n && early.R_n > 0.5);
+    assert_true(early.contact_duration == plain.contact_duration);
+    assert_true(early.penetration_max == plain.penetration_max);
+    in.gravity = 0;
+    run_end(&in, 0, &plain, &dt, &t_h);
+    run_end(&in, 1, &early, &dt2, &t_h2);
+    assert_true(early.steps == plain.steps && early.R_n == plain.R_n);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_oedometric_modulus),
         cmocka_unit_test(test_gerber_law),
         cmocka_unit_test(test_soil_mesh),
+        cmocka_unit_test(test_table_preset),
+        cmocka_unit_test(test_end_at_separation),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

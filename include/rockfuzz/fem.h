@@ -206,6 +206,15 @@ void rf_fem_option_choices(const rf_fem_option_field *f, char *buf, size_t size)
 
 void rf_fem_options_default(rf_fem_options *opt);
 
+/* The axisymmetric preset of a thick soil layer's impact for a table
+ * (docs/soil-impacts.md section 4): mesh_sizing soil, refinement
+ * RF_FEM_SOIL_PRESET_REFINEMENT, rock_mass_scale RF_FEM_SOIL_PRESET_ROCK_SCALE;
+ * the other options are left as they are.  The one place these numbers are
+ * written (the rolling calibration and bench_soil_impact use it). */
+#define RF_FEM_SOIL_PRESET_REFINEMENT 6.0
+#define RF_FEM_SOIL_PRESET_ROCK_SCALE 100.0
+void rf_fem_soil_table_preset(rf_fem_options *opt);
+
 /* 1 if the FE models run in large deformation for this impact:
  * opt->large_deformation on, or auto with an elasto-plastic body (the boulder,
  * the slope or a layer); the one rule the solver and the model identity use. */

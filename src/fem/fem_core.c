@@ -77,6 +77,7 @@ rf_status fem_run_begin(fem_run *r, const char *who, const rf_fem_options *o, do
     r->steps_estimate = (long)ceil(r->t_min / dt);
     r->stride = fem_tuning_of(o)->history_stride > 0 ? fem_tuning_of(o)->history_stride : (int)(r->steps_estimate / 5000 + 1);
     r->record = record;
+    r->early_end = fem_tuning_of(o)->end_at_separation;
     r->progress = o->progress, r->progress_ctx = o->progress_ctx;
     r->series.ncol = ncol;
     r->force_cap = r->steps_estimate + 16;
@@ -234,7 +235,8 @@ int fem_run_stop(const fem_run *r, long n)
         return 1;
     if (tn >= r->t_max && run_ended(r) && r->t_bound == 0) /* ended by t_max: the old fixed end */
         return 1;
-    return tn >= r->t_min && run_ended(r) && tn - r->t_last_contact > 0.1 * r->t_h;
+    const int least = tn >= r->t_min || (r->early_end && r->gravity > 0); /* the tuning's end_at_separation */
+    return least && run_ended(r) && tn - r->t_last_contact > 0.1 * r->t_h;
 }
 
 void fem_contact_window(const double *force, long nsteps, double dt, double threshold, double *t_first,

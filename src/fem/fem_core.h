@@ -87,6 +87,7 @@ typedef struct {
        of the current slow spell in contact (-1: none) and the rest flag */
     double gravity, v_sep, rest_since;
     int at_rest;
+    int early_end; /* the tuning's end_at_separation */
     fem_series series;
     void (*progress)(void *ctx, double t, double t_end); /* the options' progress callback, or NULL */
     void *progress_ctx;

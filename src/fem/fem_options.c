@@ -102,6 +102,13 @@ void rf_fem_options_default(rf_fem_options *opt)
     }
 }
 
+void rf_fem_soil_table_preset(rf_fem_options *opt)
+{
+    opt->mesh_sizing = RF_FEM_SIZING_SOIL;
+    opt->refinement = RF_FEM_SOIL_PRESET_REFINEMENT;
+    opt->rock_mass_scale = RF_FEM_SOIL_PRESET_ROCK_SCALE;
+}
+
 const rf_fem_option_field *rf_fem_option_find(const char *name)
 {
     for (size_t k = 0; name && k < rf_fem_n_option_fields; k++)
@@ -348,7 +355,8 @@ rf_status fem_tuning_validate(const rf_fem_tuning *t, int three_d, rf_error *err
     rf_status st;
     if ((st = switch_check("surface_mass_3d", t->surface_mass_3d, err)) != RF_OK ||
         (st = switch_check("sphere_contact_3d", t->sphere_contact_3d, err)) != RF_OK ||
-        (st = switch_check("contact_single_pivot", t->contact_single_pivot, err)) != RF_OK)
+        (st = switch_check("contact_single_pivot", t->contact_single_pivot, err)) != RF_OK ||
+        (st = switch_check("end_at_separation", t->end_at_separation, err)) != RF_OK)
         return st;
     if (!(t->ale_trigger > 0 && t->ale_trigger < 1))
         return rf_fail(err, RF_EINVAL, "fem: ale_trigger = %g must lie in (0, 1) (share of the reference element size)",

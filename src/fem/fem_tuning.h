@@ -47,6 +47,11 @@ struct rf_fem_tuning {
     double ale_trigger;        /* ALE: rezone when a slope element's size falls below this share of its
                                   reference size, default 0.5, in (0, 1) */
     int ale_sweeps;            /* ALE: smoothing sweeps per rezone, default 10 (0: no node moves) */
+    int end_at_separation;     /* 1: with gravity and the automatic end, a run may end before its least time
+                                  (1.3 Hertz durations) once the contact has opened with the boulder moving
+                                  away and 0.1 of a duration has passed (R_n, R_t are the state at
+                                  separation, so unchanged; the end-state energies differ); default 0
+                                  (docs/soil-impacts.md section 3, "Where the time goes") */
 };
 
 /* The 3D model's own settings (rf_fem3d_impact_ex's o3). */

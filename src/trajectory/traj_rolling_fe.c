@@ -86,11 +86,8 @@ static rf_status run_at(const traj_impact_setup *s, double v, double gravity, tr
     opt.threads = 1;
     opt.refinement = s->refinement;
     opt.interrupt = s->stop;
-    if (s->refinement == 0) { /* the axisymmetric preset of a thick layer (docs/soil-impacts.md section 4) */
-        opt.refinement = 6;
-        opt.mesh_sizing = RF_FEM_SIZING_SOIL;
-        opt.rock_mass_scale = 100;
-    }
+    if (s->refinement == 0) /* the axisymmetric preset of a thick layer (docs/soil-impacts.md section 4) */
+        rf_fem_soil_table_preset(&opt);
     rf_impact_output out;
     rf_fem_history h;
     memset(&h, 0, sizeof h);
