@@ -5,7 +5,10 @@
  * value), an unknown name is refused with its line and the list of names,
  * every preset's ground passes the impact model's check at its nominal values
  * and at both ends of every fuzzy support, and every value lies in its fuzzy
- * support, itself inside the row's rule. */
+ * support, itself inside the row's rule; the steepest slope a layer preset
+ * stands on (rf_traj_preset_steepest_slope) is where the 3D FE's own
+ * stability check (f3_gravity_stability) flips from accepting to refusing
+ * the preset's ground, and equals the closed form solved by hand. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -19,6 +22,8 @@
 #include "rockfuzz/trajectory.h"
 #include "trajectory/traj_internal.h"
 #include "trajectory/traj_impact.h"
+#include "rockfuzz/impact.h"
+#include "fem/fem3d_gravity.h"
 
 #define DEG (3.14159265358979323846 / 180)
 
@@ -240,13 +245,55 @@ static void test_practitioner_order(void **state)
     }
 }
 
+/* The preset's ground as the impact input (its impact.* values by name, its words). */
+static void preset_ground(const rf_traj_preset *p, rf_impact_input *in)
+{
+    rf_error e;
+    rf_impact_input_default(in);
+    for (size_t i = 0; i < p->n_values; i++)
+        if (!strncmp(p->values[i].key, "impact.", 7)) {
+            const rf_impact_field *f = rf_impact_field_find(p->values[i].key + 7);
+            assert_non_null(f);
+            rf_impact_field_store(in, f, p->values[i].value);
+        }
+    if (p->layer_material[0])
+        assert_int_equal(rf_material_model_parse(p->layer_material, &in->layer_material, &e), RF_OK);
+}
+
+/* Where the FE's check flips, and the hand solutions of c / (rho g d sin t) +
+ * tan phi / tan t = 1 (talus 44.715, loose soil 33.086, colluvium 64.267 deg). */
+static void test_steepest_slope(void **state)
+{
+    (void)state;
+    const char *names[] = {"talus", "loose_soil", "colluvium", "bedrock"};
+    const double hand[] = {44.715, 33.086, 64.267, 90};
+    for (int k = 0; k < 4; k++) {
+        const rf_traj_preset *p = rf_traj_preset_named(names[k]);
+        const double t = rf_traj_preset_steepest_slope(p, 9.81);
+        assert_true(fabs(t - hand[k]) < 0.002);
+        assert_true(rf_traj_preset_steepest_slope(p, 0) == 90);
+        if (k == 3)
+            continue; /* no layer */
+        rf_impact_input in;
+        preset_ground(p, &in);
+        double fs;
+        rf_error e;
+        in.slope_angle = (t - 0.05) * DEG;
+        assert_int_equal(f3_gravity_stability(&in, 9.81, 0, &fs, &e), RF_OK);
+        assert_true(fs >= 1 && fs < 1.01);
+        in.slope_angle = (t + 0.05) * DEG;
+        assert_int_equal(f3_gravity_stability(&in, 9.81, 0, &fs, &e), RF_EINVAL);
+        assert_true(fs < 1 && fs > 0.99);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shorthand),        cmocka_unit_test(test_override),
         cmocka_unit_test(test_override_checked), cmocka_unit_test(test_unknown_name),
         cmocka_unit_test(test_ground_check),     cmocka_unit_test(test_values_in_support),
-        cmocka_unit_test(test_practitioner_order),
+        cmocka_unit_test(test_practitioner_order), cmocka_unit_test(test_steepest_slope),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

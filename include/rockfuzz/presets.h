@@ -42,5 +42,11 @@ const rf_traj_field *rf_traj_preset_row(const rf_traj_preset_value *v);
 /* Material m (its name already set) takes the preset's values, stored as the
  * material table stores them, and its impact model (m->impact.given = 1). */
 void rf_traj_preset_apply(const rf_traj_preset *p, rf_traj_material *m);
+/* The steepest slope [deg] on which the preset's layer stands under gravity g
+ * [m/s^2] (infinite slope, Mohr-Coulomb at the layer's base, as the 3D FE
+ * checks it); 90 without a layer or without gravity.  The impact model takes
+ * an incidence theta as a slope of theta, so with gravity a table of the
+ * preset's impact model holds incidences below it (docs/presets.md 4b). */
+double rf_traj_preset_steepest_slope(const rf_traj_preset *p, double g);
 
 #endif
