@@ -270,7 +270,9 @@ static size_t output_index(const rf_model *m, const char *name)
 
 /* Through the trajectory model: the bound modulus changes the outputs at every
  * point, each point's run is the run on the surrogate's table there, the error
- * is reported as the model's warning; a binding that changes nothing is refused. */
+ * is reported in its own channel (rf_model.surrogate_error, with the figures of
+ * a surrogate built alone over the same box), not as a warning; a binding that
+ * changes nothing is refused. */
 static void test_model_binds_impact_input(void **state)
 {
     (void)state;
@@ -321,11 +323,18 @@ static void test_model_binds_impact_input(void **state)
     rf_traj_stats_free(&st);
     rf_traj_ensemble_free(&e);
     traj_impact_table_free(t);
+    traj_impact_surrogate_info si; /* the same box, nodes and checks: the model's figures */
+    traj_impact_surrogate_get(sur, &si);
     traj_impact_surrogate_free(sur);
     rf_traj_spec_free(&at);
     char w[1024];
-    assert_true(m.warnings(m.ctx, w, sizeof w) == 1);
+    assert_non_null(m.surrogate_error); /* its own channel, not the warnings */
+    assert_true(m.surrogate_error(m.ctx, w, sizeof w) == 1);
     assert_non_null(strstr(w, "impact surrogate error R_n"));
+    char expect[64];
+    snprintf(expect, sizeof expect, "R_n %.3g, R_t %.3g", si.err_rn, si.err_rt);
+    assert_non_null(strstr(w, expect));
+    assert_true(!m.warnings || m.warnings(m.ctx, w, sizeof w) == 0);
     double z = 6e9; /* outside the box: refused */
     assert_int_not_equal(rf_model_eval(&m, &z, y[0], &err), RF_OK);
     assert_non_null(strstr(err.msg, "outside the range"));
