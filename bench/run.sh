@@ -29,6 +29,8 @@ for t in 1 2; do OMP_WAIT_POLICY=passive "$build"/bench_tta 3d "$t" 3 4 6; done 
 echo "(whole studies: bench/bench_study.sh; it takes minutes)"
 echo "== trajectories: 30-segment profile, constant law (bench_trajectory; goal >= 200 000 /s/core) =="
 "$build"/bench_trajectory 200000 1
+echo "== the impact_model law against constant on the same profile (bench_impact_law; issue 29: within 2x) =="
+"$build"/bench_impact_law 100000
 echo "== trajectories on terrain: 1 km^2 DEM at 2 m, spheres, constant law, rasters on (bench_terrain; goal >= 50 000 /s/core) =="
 "$build"/bench_terrain 100000
 echo "(hybrid trajectory study: bench/trajectory_study.sh)"

@@ -270,7 +270,9 @@ static size_t output_index(const rf_model *m, const char *name)
 
 /* Through the trajectory model: the bound modulus changes the outputs at every
  * point, each point's run is the run on the surrogate's table there, the error
- * is reported as the model's warning; a binding that changes nothing is refused. */
+ * is reported in its own channel (rf_model.surrogate_error, with the figures of
+ * a surrogate built alone over the same box), not as a warning; a binding that
+ * changes nothing is refused. */
 static void test_model_binds_impact_input(void **state)
 {
     (void)state;
@@ -321,11 +323,18 @@ static void test_model_binds_impact_input(void **state)
     rf_traj_stats_free(&st);
     rf_traj_ensemble_free(&e);
     traj_impact_table_free(t);
+    traj_impact_surrogate_info si; /* the same box, nodes and checks: the model's figures */
+    traj_impact_surrogate_get(sur, &si);
     traj_impact_surrogate_free(sur);
     rf_traj_spec_free(&at);
     char w[1024];
-    assert_true(m.warnings(m.ctx, w, sizeof w) == 1);
+    assert_non_null(m.surrogate_error); /* its own channel, not the warnings */
+    assert_true(m.surrogate_error(m.ctx, w, sizeof w) == 1);
     assert_non_null(strstr(w, "impact surrogate error R_n"));
+    char expect[64];
+    snprintf(expect, sizeof expect, "R_n %.3g, R_t %.3g", si.err_rn, si.err_rt);
+    assert_non_null(strstr(w, expect));
+    assert_true(!m.warnings || m.warnings(m.ctx, w, sizeof w) == 0);
     double z = 6e9; /* outside the box: refused */
     assert_int_not_equal(rf_model_eval(&m, &z, y[0], &err), RF_OK);
     assert_non_null(strstr(err.msg, "outside the range"));
@@ -333,6 +342,56 @@ static void test_model_binds_impact_input(void **state)
     const char *rock[1] = {"materials.rock.impact.slope_E"};
     assert_int_not_equal(rf_traj_model_create(&s, 1, rock, rock, &m, &err), RF_OK);
     assert_non_null(strstr(err.msg, "names no impact model of its own"));
+    rf_traj_spec_free(&s);
+}
+
+/* bounce.impact.start_nodes and bounce.impact.surrogate_nodes: the first grids.
+ * At a tolerance no midpoint misses by (0.5), a table keeps its 3 x 3 first
+ * grid (v_n geometric, incidence uniform: its middle node is exact) and the
+ * surrogate its 2 x 2 corners, with 4 tested midpoints (8 tables); at a
+ * corner and a table node the surrogate is the model itself. */
+static void test_first_grids(void **state)
+{
+    (void)state;
+    char y[2048];
+    rf_error err;
+    rf_traj_spec s;
+    snprintf(y, sizeof y, file_text, 0.5);
+    char *b = strstr(y, "speeds: [0.5, 30]");
+    assert_non_null(b);
+    memcpy(b, "speeds: [0.5, 32]", 17); /* 0.5 .. 32: the middle node is 4 m/s */
+    char *e = strstr(y, "}}\nsamples");
+    assert_non_null(e);
+    char tail[256];
+    snprintf(tail, sizeof tail, "%s", e);
+    snprintf(e, sizeof y - (size_t)(e - y), ", start_nodes: 3, surrogate_nodes: 2%s", tail);
+    if (rf_traj_load_buffer("t.yaml", y, strlen(y), &s, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    assert_int_equal(s.impact_start_nodes, 3);
+    assert_int_equal(s.impact_surrogate_nodes, 2);
+    traj_impact_surrogate_info i;
+    traj_impact_surrogate *sur = build(&s, NULL, &i);
+    assert_int_equal(i.nodes[0], 2);
+    assert_int_equal(i.nodes[1], 2);
+    assert_int_equal(i.tables, 8);
+    double x[2] = {lo[0], hi[1]}, q[3], c[3];
+    assert_int_equal(traj_impact_surrogate_lookup_at(sur, x, 1, 0.4, 4, s.impact_max_incidence / 2, q, &err), RF_OK);
+    known(x[0], x[1], 4, s.impact_max_incidence / 2, c);
+    assert_true(fabs(q[0] - c[0]) < 1e-12 && fabs(q[1] - c[1]) < 1e-12);
+    /* off the nodes (v_n 2 m/s, between 0.5 and 4): interpolated, not the model */
+    assert_int_equal(traj_impact_surrogate_lookup_at(sur, x, 1, 0.4, 2, s.impact_max_incidence / 2, q, &err), RF_OK);
+    known(x[0], x[1], 2, s.impact_max_incidence / 2, c);
+    assert_true(fabs(q[0] - c[0]) > 1e-6);
+    traj_impact_surrogate_free(sur);
+    traj_impact_table *t;
+    traj_table_watch w = {NULL, NULL, NULL, NULL, model};
+    assert_int_equal(traj_impact_table_build_watched(&s, &w, &t, &err), RF_OK);
+    size_t nv, nt, evals, cached;
+    double est;
+    traj_impact_table_info(t, &nv, &nt, &evals, &cached, &est);
+    assert_int_equal(nv, 3);
+    assert_int_equal(nt, 3);
+    traj_impact_table_free(t);
     rf_traj_spec_free(&s);
 }
 
@@ -344,6 +403,7 @@ int main(void)
         cmocka_unit_test(test_store_reuse),
         cmocka_unit_test(test_hunter_surrogate_against_closed_form),
         cmocka_unit_test(test_model_binds_impact_input),
+        cmocka_unit_test(test_first_grids),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

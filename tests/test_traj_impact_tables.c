@@ -551,9 +551,9 @@ static void test_rows_name_impact_inputs(void **state)
     assert_int_equal(found, RF_TRAJ_IMPACT_N);
 }
 
-/* The soil layer's table preset (rock_mass_scale 100 under the 3D model's
- * default mesh) applies to an FE setup on a layer with refinement 0 only,
- * and enters the setup's key, so rows computed without it are not reused. */
+/* The soil layer's table preset (rock_mass_scale 100) applies to an FE setup
+ * on a layer at any refinement, and enters the setup's key (with the
+ * refinement), so rows computed without it are not reused. */
 static void test_layer_preset_in_key(void **state)
 {
     (void)state;
@@ -571,10 +571,14 @@ static void test_layer_preset_in_key(void **state)
     assert_true(traj_impact_layer_preset(&s));
     traj_impact_setup_key(&s, key, sizeof key);
     assert_non_null(strstr(key, ",rock_mass_scale=100"));
-    s.refinement = 3; /* a mesh of the user's own: the plain model */
-    assert_false(traj_impact_layer_preset(&s));
+    char key0[300];
+    memcpy(key0, key, sizeof key);
+    s.refinement = 2; /* a mesh of the user's own: the rock scaled too, the key says both */
+    assert_true(traj_impact_layer_preset(&s));
     traj_impact_setup_key(&s, key, sizeof key);
-    assert_null(strstr(key, "rock_mass_scale"));
+    assert_non_null(strstr(key, ",rock_mass_scale=100"));
+    assert_non_null(strstr(key, "ref=2,"));
+    assert_string_not_equal(key, key0);
     s.refinement = 0, s.solver = RF_IMPACT_MDR;
     assert_false(traj_impact_layer_preset(&s));
 }

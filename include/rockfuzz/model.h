@@ -66,6 +66,11 @@ typedef struct rf_model {
     /* Optional (may be NULL): where the model keeps its side rows (a study
      * run's store), handed before prepare; the store outlives the evaluations. */
     void (*set_side_store)(void *ctx, const rf_model_side_store *store);
+    /* Optional (may be NULL): the error of a surrogate the model evaluates on
+     * (a trajectory model's impact surrogate: "impact surrogate error R_n ..,
+     * R_t .. (...)"), known after prepare, into buf; returns 1 when it has one
+     * (0: buf is "").  A result carries it in a field of its own. */
+    size_t (*surrogate_error)(void *ctx, char *buf, size_t size);
 } rf_model;
 
 /* Evaluate (convenience wrapper checking for NULL and non-finite outputs). */

@@ -33,6 +33,8 @@ typedef struct {
     size_t remote;         /* of the evaluated, how many ran on MPI worker ranks */
     double eval_seconds;   /* time spent in the model in this run [s] */
     const char *model_warnings; /* what the model reported while evaluating (rf_model.warnings), NULL = none */
+    const char *surrogate_error; /* the error of the surrogate the model ran on (rf_model.surrogate_error: result.json
+                                  * "impact_surrogate_error", report.html, summary), NULL or "" = none */
     /* Non-zero *interrupt stops the writing between two files (RF_EINTERRUPTED,
      * no result.json: the folder is then an incomplete run); NULL = never. */
     const atomic_int *interrupt;

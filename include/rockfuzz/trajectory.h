@@ -179,6 +179,8 @@ typedef struct {
     double impact_speed_min, impact_speed_max; /* normal speeds tabulated [m/s], default 0.25 .. 40 */
     double impact_max_incidence;  /* largest incidence tabulated [rad] from the normal (given in deg), default 80 deg */
     char *impact_cache;         /* file of impacts already computed (read, then appended), or NULL */
+    size_t impact_start_nodes;  /* nodes per axis (v_n, incidence) of a table's first grid, default 5 */
+    size_t impact_surrogate_nodes; /* nodes per bound impact input of the surrogate's first grid, default 3 */
     /* A rigid convex block (block.shape ellipsoid, box, polyhedron, eota_cube,
      * eota_wheel; block.h, docs/block-shape.md "Wiring"): run by the rigid-body
      * dynamics (block_traj*.c) instead of the point/sphere engines. */

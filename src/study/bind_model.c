@@ -35,6 +35,12 @@ static size_t bind_warnings(void *ctx, char *buf, size_t size)
     return c->inner.warnings(c->inner.ctx, buf, size);
 }
 
+static size_t bind_surrogate_error(void *ctx, char *buf, size_t size)
+{
+    bind_ctx *c = ctx;
+    return c->inner.surrogate_error(c->inner.ctx, buf, size);
+}
+
 static void bind_interrupt(void *ctx, const atomic_int *flag)
 {
     bind_ctx *c = ctx;
@@ -96,6 +102,7 @@ static rf_status fill(rf_model *m, bind_ctx *c, size_t n_params, rf_error *err)
     m->destroy = bind_destroy;
     m->threads_per_eval = c->inner.threads_per_eval;
     m->warnings = c->inner.warnings ? bind_warnings : NULL;
+    m->surrogate_error = c->inner.surrogate_error ? bind_surrogate_error : NULL;
     m->set_interrupt = c->inner.set_interrupt ? bind_interrupt : NULL;
     m->set_side_store = c->inner.set_side_store ? bind_side_store : NULL;
     rf_status st = rf_model_init_outputs(m, c->inner.n_outputs, (const char *const *)c->inner.output_names,

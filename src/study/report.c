@@ -429,6 +429,11 @@ static void json_tail(FILE *f, const rf_study *s, const rf_tm_result *res, const
     fprintf(f, "},\n  \"mpi_ranks\": %d,\n  \"warnings\": [", opt && opt->mpi_ranks > 0 ? opt->mpi_ranks : 1);
     write_warnings(f, s, res, opt);
     fputs("],\n", f);
+    if (opt && opt->surrogate_error && opt->surrogate_error[0]) {
+        fputs("  \"impact_surrogate_error\": ", f);
+        rf_json_string(f, opt->surrogate_error);
+        fputs(",\n", f);
+    }
     fputs("  \"wall_seconds\": ", f);
     rf_json_number(f, opt ? opt->wall_seconds : NAN);
     fprintf(f, ",\n  \"jobs\": %d,\n  \"measures\": \"rho, kappa: the influence measures of Hanss "

@@ -323,6 +323,18 @@ static void write_warnings(FILE *f, struct fy_node *root)
     fputs("</ul></div>\n", f);
 }
 
+/* The error of the surrogate the model ran on (result.json "impact_surrogate_error"), when there is one. */
+static void write_surrogate_error(FILE *f, struct fy_node *root)
+{
+    char a[2048];
+    struct fy_node *e = get(root, "impact_surrogate_error");
+    if (!e)
+        return;
+    fputs("<p class=note><b>Impact surrogate.</b> ", f);
+    rf_html_text(f, text(e, a, sizeof a));
+    fputs("</p>\n", f);
+}
+
 /* The model's settings: those differing from its defaults (impact model), else all. */
 static void write_settings(FILE *f, struct fy_node *root)
 {
@@ -684,6 +696,7 @@ static rf_status write_page(FILE *f, const char *dir, struct fy_node *root)
     fputs("</h1>\n", f);
     write_summary(f, dir, root); /* the answer first */
     write_warnings(f, root); /* then what changes how it must be read */
+    write_surrogate_error(f, root);
     write_run_table(f, root);
     write_inputs(f, dir, root);
     write_outputs(f, dir, root);

@@ -290,11 +290,25 @@ static void model_warnings(run_state *r, char *buf, size_t size)
     }
 }
 
+/* The error of the surrogate the model ran on: this run's, else the one a run
+ * before it stored (a resumed run whose model built nothing). */
+static void model_surrogate_error(run_state *r, char *buf, size_t size)
+{
+    buf[0] = '\0';
+    const rf_model *m = &r->study.model;
+    rf_error ignored;
+    if (m->surrogate_error && m->surrogate_error(m->ctx, buf, size) > 0)
+        rf_store_note_set(r->store, "surrogate_error", buf, &ignored);
+    else if (m->surrogate_error && rf_store_note_get(r->store, "surrogate_error", buf, size, &ignored) != RF_OK)
+        buf[0] = '\0';
+}
+
 static rf_status write_outputs(run_state *r, rf_error *err)
 {
     const rf_study_run_options *o = r->opt;
-    char warnings[RF_ERROR_MAX];
+    char warnings[RF_ERROR_MAX], surrogate[RF_ERROR_MAX];
     model_warnings(r, warnings, sizeof warnings);
+    model_surrogate_error(r, surrogate, sizeof surrogate);
     rf_report_options ropt;
     rf_report_options_default(&ropt);
     ropt.plots = o->plots;
@@ -308,6 +322,7 @@ static rf_status write_outputs(run_state *r, rf_error *err)
     ropt.remote = r->runner.remote;
     ropt.eval_seconds = r->runner.eval_seconds;
     ropt.model_warnings = warnings;
+    ropt.surrogate_error = surrogate;
     ropt.interrupt = o->interrupt;
     /* From here on the files are rewritten: the old result.json goes first, so
      * that its presence keeps meaning "every file belongs to one complete run". */

@@ -172,8 +172,8 @@ const rf_traj_setting rf_traj_settings[] = {
      .help = "impact_model: Coulomb coefficient inside the impact model (default: of the first material)"},
     {.key = "bounce.impact.refinement", .kind = RF_TRAJ_SETTING_NUMBER, MEMBER(impact_refinement), .unit = "",
      .lo = 0, .hi = INFINITY, .def = 0, .note = "0: the FE solver's default", .probe = "3",
-     .help = "impact_model, solver fem: elements across the contact radius a/h (0: the FE solver's default; on a "
-             "soil layer with it the rock's inertia x100, docs/soil-impacts.md)"},
+     .help = "impact_model, solver fem: elements across the contact radius a/h (0: the FE solver's default); on a "
+             "soil layer the rock's inertia x100 at any a/h (docs/soil-impacts.md)"},
     {.key = "bounce.impact.speeds", .kind = RF_TRAJ_SETTING_PAIR, .offset = offsetof(rf_traj_spec, impact_speed_min),
      .size = 2 * sizeof(double), .unit = "m/s", .lo = 0, .def = 0.25, .def2 = 40, .note = "normal speeds",
      .probe = "[1, 15]", .help = "impact_model: the range of normal speeds tabulated [lo, hi]"},
@@ -183,6 +183,11 @@ const rf_traj_setting rf_traj_settings[] = {
     {.key = "bounce.impact.cache", .kind = RF_TRAJ_SETTING_PATH, MEMBER(impact_cache), .unit = "",
      .def_text = "none", .probe = "impacts.txt",
      .help = "impact_model: file of impacts already computed (read, then appended), relative to the trajectory file"},
+    COUNT("bounce.impact.start_nodes", impact_start_nodes, 2, 17, 5, "3",
+          "impact_model: nodes per axis (normal speed, incidence) of a table's first grid, before its refinement"),
+    COUNT("bounce.impact.surrogate_nodes", impact_surrogate_nodes, 2, 17, 3, "2",
+          "impact_model, fuzzy impact inputs: nodes per bound input of the surrogate's first grid "
+          "(docs/soil-surrogate.md)"),
 };
 const size_t rf_traj_n_settings = sizeof rf_traj_settings / sizeof rf_traj_settings[0];
 _Static_assert(offsetof(rf_traj_spec, impact_speed_max) == offsetof(rf_traj_spec, impact_speed_min) + sizeof(double),

@@ -53,9 +53,10 @@ void traj_impact_radius_range(const rf_traj_spec *s, double *lo, double *hi);
 /* The ground's soil layer thickness [m] (the row impact.layer_thickness; 0: rock only). */
 double traj_impact_layer_thickness(const rf_traj_impact_ground *g);
 /* The table preset of a soil layer (docs/soil-impacts.md sections 3-4): an FE
- * setup on a layer (layer_thickness > 0) whose refinement is left at 0 (the
- * 3D model's default a/h 3: every tabulated impact is oblique, at least
- * 1 deg) carries the rock under the layer at 100 times its inertia
+ * setup on a layer (layer_thickness > 0), at any refinement (0: the 3D
+ * model's default a/h 3; every tabulated impact is oblique, at least 1 deg,
+ * so 3D; docs/soil-surrogate.md sec. 4 runs a/h 2 with it), carries the rock
+ * under the layer at 100 times its inertia
  * (rock_mass_scale): the rock, not the layer, sets the explicit step; on the
  * S5 layer on a 30 deg incline the same mesh moves R_n, R_t by 3e-4 for 4.6x
  * less CPU.  1 when it applies (the setup's key then says so: rows computed

@@ -134,8 +134,7 @@ rf_status traj_impact_ground_check(const rf_traj_impact_ground *g, const char *r
 
 int traj_impact_layer_preset(const traj_impact_setup *s)
 {
-    return s->solver == RF_IMPACT_FEM && s->has_ground && traj_impact_layer_thickness(&s->ground) > 0 &&
-           s->refinement == 0;
+    return s->solver == RF_IMPACT_FEM && s->has_ground && traj_impact_layer_thickness(&s->ground) > 0;
 }
 
 rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double theta, double *R_n, double *R_t,

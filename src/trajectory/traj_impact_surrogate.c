@@ -102,9 +102,11 @@ rf_status traj_impact_surrogate_create(const rf_traj_spec *spec, size_t d, const
         if (!(s->paths[a] = rf_strdup(paths[a])))
             st = rf_fail(err, RF_ENOMEM, "out of memory");
         s->lo[a] = lo[a], s->hi[a] = hi[a];
-        s->n[a] = hi[a] > lo[a] ? 3 : 1; /* a crisp input: one node */
+        size_t n0 = spec->impact_surrogate_nodes >= 2 && spec->impact_surrogate_nodes <= SUR_MAX_NODES
+                        ? spec->impact_surrogate_nodes : 3; /* bounce.impact.surrogate_nodes */
+        s->n[a] = hi[a] > lo[a] ? n0 : 1; /* a crisp input: one node */
         for (size_t k = 0; k < s->n[a]; k++)
-            s->x[a][k] = s->n[a] == 1 ? lo[a] : lo[a] + (hi[a] - lo[a]) * (double)k / 2;
+            s->x[a][k] = s->n[a] == 1 ? lo[a] : lo[a] + (hi[a] - lo[a]) * (double)k / (double)(n0 - 1);
     }
     if (st != RF_OK) {
         traj_impact_surrogate_free(s);

@@ -341,15 +341,18 @@ void traj_impact_radius_range(const rf_traj_spec *s, double *lo, double *hi)
     }
 }
 
-/* The first nodes: v_n geometric, theta uniform, 5 each; radius geometric, 3 (1 when fixed). */
+/* The first nodes: v_n geometric, theta uniform, bounce.impact.start_nodes each (5; a spec
+ * not from the reader, 0: 5); radius geometric, 3 (1 when fixed). */
 static void first_nodes(grid *g, const rf_traj_spec *spec)
 {
     double rlo, rhi;
     traj_impact_radius_range(spec, &rlo, &rhi);
-    g->n[0] = g->n[1] = 5;
-    for (size_t i = 0; i < 5; i++) {
-        g->x[0][i] = spec->impact_speed_min * pow(spec->impact_speed_max / spec->impact_speed_min, (double)i / 4);
-        g->x[1][i] = spec->impact_max_incidence * (double)i / 4;
+    size_t n = spec->impact_start_nodes >= 2 && spec->impact_start_nodes <= 17 ? spec->impact_start_nodes : 5;
+    g->n[0] = g->n[1] = n;
+    for (size_t i = 0; i < n; i++) {
+        double f = (double)i / (double)(n - 1);
+        g->x[0][i] = spec->impact_speed_min * pow(spec->impact_speed_max / spec->impact_speed_min, f);
+        g->x[1][i] = spec->impact_max_incidence * f;
     }
     g->n[2] = rhi > rlo ? 3 : 1;
     g->x[2][0] = rlo;

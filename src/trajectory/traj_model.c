@@ -319,8 +319,8 @@ static rf_status traj_model_prepare(void *vctx, FILE *log, rf_error *err)
     return c->shared_table ? shared_table(c, log, &t, err) : RF_OK;
 }
 
-/* The impact surrogate's error, reported with every result (as the model's warnings). */
-static size_t traj_model_warnings(void *vctx, char *buf, size_t size)
+/* The impact surrogate's error, reported with every result (a field of its own: rf_model.surrogate_error). */
+static size_t traj_model_surrogate_error(void *vctx, char *buf, size_t size)
 {
     const traj_model_ctx *c = vctx;
     buf[0] = '\0';
@@ -529,7 +529,7 @@ rf_status rf_traj_model_create(const rf_traj_spec *spec, size_t n_params, const 
     model->prepare = traj_model_prepare;
     model->set_interrupt = traj_model_set_interrupt;
     model->set_side_store = traj_model_set_side_store;
-    model->warnings = traj_model_warnings;
+    model->surrogate_error = traj_model_surrogate_error;
     if (st == RF_OK && c->spec.terrain) /* checked as a run checks it, the DEM read once */
         if ((st = rf_traj_spec_validate(&c->spec, err)) == RF_OK)
             st = terrain_world_create_deferred(&c->spec, &c->world, err); /* its impact table: in the run */
