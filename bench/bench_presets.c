@@ -5,7 +5,7 @@
  * rows stored into the impact input by name, its words parsed), in the
  * axisymmetric FE model (threads 1).  Options:
  *   bench_presets [preset=NAME] [v=v1,v2,..] [r=m] [ref=a/h] [soil=1] [set=FIELD:VALUE,..]
- *                 [theta=deg1,deg2,..] [rock=K] [g=m/s^2] [vn=1]
+ *                 [theta=deg1,deg2,..] [rock=K] [g=m/s^2] [vn=1] [ground=stable|incidence]
  * set: impact inputs (rockfuzz impact names and units, e.g. layer_cap_pressure:50e3)
  * set after the preset's, e.g. a corner of the preset's fuzzy support.
  * ref: FE refinement (0 = the solver's default); soil=1: the table preset of
@@ -25,7 +25,9 @@
  * on a rock; g = gravity, by default auto = 9.81 m/s^2: a layer that cannot
  * stand on a slope of theta is refused by the FE, g=0 runs it gravity-free;
  * vn=1: the v list is the normal speed v_n, incidences below 1 deg are run
- * at 1 deg, both as the tables' nodes are).  One CSV row per impact:
+ * at 1 deg, both as the tables' nodes are; ground = the FE option, stable
+ * by default as the tables set it: the ground no steeper than the layer
+ * stands with FS 1.25, docs/soil-impacts.md section 4b).  One CSV row per impact:
  *   preset,v_m_s,theta_deg,v_n_m_s,ref,rock,g_m_s2,R_n,R_t,spin,Rn_lo,Rn_hi,Rt_lo,Rt_hi,
  *   penetration_m,W_p_KE0,W_f_KE0,energy_error,three_d,cpu_s
  * (spin: omega r / v_t' after the impact, 1 = rolling without slip). */
@@ -50,6 +52,7 @@
 static const char *overrides; /* set=FIELD:VALUE,... */
 static double gravity = RF_GRAVITY_AUTO; /* g= */
 static int normal_speeds;                 /* vn=1 */
+static rf_fem_ground ground = RF_FEM_GROUND_STABLE; /* ground= */
 
 /* The overrides into the impact input (by name); 0 on an unknown name. */
 static int apply_overrides(rf_impact_input *in)
@@ -159,7 +162,7 @@ static void run_oblique(const rf_traj_preset *p, double v, double theta_deg, dou
         rock = in.layer_thickness > 0 ? 100 : 1;
     rf_fem_options o;
     rf_fem_options_default(&o);
-    o.threads = 1, o.refinement = ref, o.rock_mass_scale = rock;
+    o.threads = 1, o.refinement = ref, o.rock_mass_scale = rock, o.ground = ground;
     rf_impact_output out;
     rf_fem_history H = {0};
     double wf = 0;
@@ -202,6 +205,8 @@ int main(int argc, char **argv)
             normal_speeds = atoi(argv[i] + 3);
         else if (!strncmp(argv[i], "g=", 2))
             gravity = atof(argv[i] + 2);
+        else if (!strncmp(argv[i], "ground=", 7))
+            ground = strcmp(argv[i] + 7, "incidence") ? RF_FEM_GROUND_STABLE : RF_FEM_GROUND_INCIDENCE;
         else if (!strncmp(argv[i], "rock=", 5))
             rock = atof(argv[i] + 5);
         else if (!strncmp(argv[i], "soil=", 5))

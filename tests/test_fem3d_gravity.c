@@ -171,6 +171,51 @@ static void test_unstable_layer(void **state)
     assert_int_equal(fem3d_gravity_free_run(&in, &o, NULL, 1, &c, &err), RF_OK);
 }
 
+/* (b2) ground: stable (rf_fem_ground): the ground under an incidence steeper than the layer stands is
+   inclined at the angle where the infinite-slope factor of safety is RF_FEM_GROUND_SAFETY, from the
+   closed forms FS = tan phi / tan beta (cohesionless) and c / (rho g t sin beta) + tan phi / tan beta;
+   below it, and without gravity, the incidence itself (the same bits); the FE then runs the layer that
+   the incidence's slope refuses, at rest under gravity at that angle. */
+static void test_ground_stable(void **state)
+{
+    (void)state;
+    rf_impact_input in = soil(45);
+    in.layer_cohesion = 0, in.layer_friction_angle = 30 * DEG;
+    const double S = RF_FEM_GROUND_SAFETY, beta0 = atan(tan(30 * DEG) / S);
+    assert_true(fabs(f3_ground_angle(&in, RF_FEM_GROUND_STABLE, 9.81, 1.5) - beta0) < 1e-12);
+    assert_true(f3_ground_angle(&in, RF_FEM_GROUND_INCIDENCE, 9.81, 1.5) == in.slope_angle);
+    assert_true(f3_ground_angle(&in, RF_FEM_GROUND_STABLE, 0, 1.5) == in.slope_angle);
+    in.slope_angle = 0.9 * beta0; /* stands at the incidence: unchanged */
+    assert_true(f3_ground_angle(&in, RF_FEM_GROUND_STABLE, 9.81, 1.5) == in.slope_angle);
+    in = soil(60);
+    in.layer_cohesion = 1e3, in.layer_friction_angle = 44 * DEG;
+    const double b = f3_ground_angle(&in, RF_FEM_GROUND_STABLE, 9.81, 1.5);
+    const double fs = 1e3 / (1900 * 9.81 * 0.3 * sin(b)) + tan(44 * DEG) / tan(b);
+    printf("ground: cohesionless phi 30: %.6f deg (atan(tan phi / %.2f)); c 1 kPa, phi 44: %.6f deg, FS %.12f\n",
+           beta0 / DEG, S, b / DEG, fs);
+    assert_true(b < 60 * DEG && fabs(fs - S) < 1e-9);
+    in = soil(45); /* the FE: refused at the incidence's slope, at rest on the stable ground */
+    in.layer_cohesion = 0, in.layer_friction_angle = 30 * DEG;
+    rf_fem_options o = coarse(2, RF_FEM_BOUNDARY_FIXED);
+    rf_error err = {0};
+    f3_gravity_check c = {0};
+    rf_fem3d_options o3;
+    rf_fem3d_options_default(&o3);
+    o3.fine_box_factor = 1, o3.layer_aspect = 3;
+    assert_int_equal(fem3d_gravity_free_run(&in, &o, &o3, 30, &c, &err), RF_EINVAL);
+    o.ground = RF_FEM_GROUND_STABLE;
+    c = (f3_gravity_check){0};
+    if (fem3d_gravity_free_run(&in, &o, &o3, 30, &c, &err) != RF_OK)
+        fail_msg("%s", err.msg);
+    const double gt = in.gravity * 30 * c.dt;
+    printf("ground stable: %.6f deg, max |v| %.2e m/s (g t %.2e), load %.2e over %ld nodes, outside %ld\n",
+           c.ground_angle / DEG, c.slope_v_max, gt, c.load_err, c.box_nodes, c.outside);
+    assert_true(fabs(c.ground_angle - beta0) < 1e-12);
+    assert_true(c.slope_v_max <= 1e-12 * gt);
+    assert_true(c.box_nodes > 20 && c.load_err < 1e-9);
+    assert_int_equal(c.outside, 0);
+}
+
 /* The S6 colluvium (examples/s6_slope60.yaml): 1 m of Drucker-Prager soil, c 10 kPa, phi 40 deg, cap
    X0 200 kPa, over granite. */
 static rf_impact_input s6_colluvium(double theta_deg)
@@ -467,6 +512,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_slope_at_rest),
         cmocka_unit_test(test_unstable_layer),
+        cmocka_unit_test(test_ground_stable),
         cmocka_unit_test(test_steep_layer_admissible),
         cmocka_unit_test(test_level_layer_k0),
         cmocka_unit_test(test_free_flight),

@@ -571,6 +571,7 @@ static void test_layer_preset_in_key(void **state)
     assert_true(traj_impact_layer_preset(&s));
     traj_impact_setup_key(&s, key, sizeof key);
     assert_non_null(strstr(key, ",rock_mass_scale=100"));
+    assert_non_null(strstr(key, ",fem_ground=stable")); /* the FE's ground, docs/soil-impacts.md 4b */
     char key0[300];
     memcpy(key0, key, sizeof key);
     s.refinement = 2; /* a mesh of the user's own: the rock scaled too, the key says both */
@@ -581,6 +582,9 @@ static void test_layer_preset_in_key(void **state)
     assert_string_not_equal(key, key0);
     s.refinement = 0, s.solver = RF_IMPACT_MDR;
     assert_false(traj_impact_layer_preset(&s));
+    traj_impact_setup_key(&s, key, sizeof key); /* no FE: neither FE setting */
+    assert_null(strstr(key, "rock_mass_scale"));
+    assert_null(strstr(key, "fem_ground"));
 }
 
 int main(void)

@@ -94,6 +94,22 @@ typedef enum {
     RF_FEM_SIZING_SOIL
 } rf_fem_sizing;
 
+/* 3D model with gravity: how the ground is inclined under an impact at slope angle
+ * theta (the incidence from the normal).  incidence: at theta (the boulder falls
+ * vertically onto a slope of theta).  stable: at theta, but at most the steepest
+ * angle at which every elasto-plastic body (a layer at its base, the slope at the
+ * model's depth) stands with an infinite-slope factor of safety of
+ * RF_FEM_GROUND_SAFETY; steeper, the ground stays at that angle and the boulder
+ * comes at theta from its normal (gravity then not vertical in the impact's plane).
+ * The impact tables' setting for a soil layer: a layer that cannot stand at a
+ * grazing incidence still has an impact there (docs/soil-impacts.md section 4b). */
+typedef enum {
+    RF_FEM_GROUND_INCIDENCE = 0,
+    RF_FEM_GROUND_STABLE
+} rf_fem_ground;
+
+#define RF_FEM_GROUND_SAFETY 1.25
+
 /* "auto" | "off" | "on" <-> enum. */
 const char *rf_fem_kinematics_name(rf_fem_kinematics k);
 rf_status rf_fem_kinematics_parse(const char *name, rf_fem_kinematics *k, rf_error *err);
@@ -142,6 +158,7 @@ typedef struct {
                                             itself.  > 1 lengthens the explicit step the rock sets under a soft
                                             layer, up to the bound of the layer's contact face
                                             (docs/soil-impacts.md section 3) */
+    rf_fem_ground ground;                /* 3D, gravity: the ground's inclination, incidence (default) or stable */
     int threads;                         /* OpenMP threads for one impact (0 = 1); results do not depend on it */
     /* --- not model settings (neither in the table nor in a model's identity) --- */
     const char *vtk_dir;       /* NULL = none; else write fem.pvd + fem_NNNN.vtu (an existing dir:

@@ -581,5 +581,5 @@ rf_status f3_run_assemble(solid_run *R, rf_error *err)
     double *fgrav = fem_pool_get(R->pool, Q_FGRAV, (size_t)G->ndof * sizeof(double), 1);
     if (!fgrav)
         return rf_fail(err, RF_ENOMEM, "fem3d: out of memory");
-    return f3_gravity_setup(&R->grav, S, R->set.in, R->body.matl, R->body.plastic, R->sys.u, fgrav, err);
+    return f3_gravity_setup(&R->grav, S, &R->set.ground, R->body.matl, R->body.plastic, R->sys.u, fgrav, err);
 }

@@ -61,22 +61,54 @@ static rf_status unstable(const char *who, const rf_material_params *p, double t
                    p->friction_angle * 180 / RF_PI, fs, depth, who);
 }
 
-rf_status f3_gravity_stability(const rf_impact_input *in, double g, double depth_max, double *fs, rf_error *err)
+/* The smallest infinite-slope factor of safety at inclination th: the layer at
+ * its base (*which 2) and the slope at depth max(depth_max, t) (*which 1). */
+static double ground_fs(const rf_impact_input *in, double g, double depth_max, double th, int *which)
 {
-    const double th = in->slope_angle, t = in->layer_thickness > 0 ? in->layer_thickness : 0;
+    const double t = in->layer_thickness > 0 ? in->layer_thickness : 0;
     rf_material_params ps, pl;
     rf_impact_material_params(in, 1, &ps);
-    *fs = INFINITY;
+    double fs = INFINITY;
+    *which = 1;
     if (t > 0) { /* the layer at its base, where its cohesion counts least */
         rf_impact_material_params(in, 2, &pl);
-        const double f = slope_fs(&pl, g, th, in->layer_density * t);
-        *fs = fmin(*fs, f);
-        if (f < 1)
-            return unstable("layer", &pl, th, t, f, err);
+        fs = slope_fs(&pl, g, th, in->layer_density * t);
+        *which = 2;
     }
     const double d = fmax(depth_max, t), f = slope_fs(&ps, g, th, in->layer_density * t + in->slope_density * (d - t));
-    *fs = fmin(*fs, f);
-    return f < 1 ? unstable("slope", &ps, th, d, f, err) : RF_OK;
+    if (f < fs)
+        fs = f, *which = 1;
+    return fs;
+}
+
+rf_status f3_gravity_stability(const rf_impact_input *in, double g, double depth_max, double *fs, rf_error *err)
+{
+    int which;
+    *fs = ground_fs(in, g, depth_max, in->slope_angle, &which);
+    if (!(*fs < 1))
+        return RF_OK;
+    const double t = in->layer_thickness > 0 ? in->layer_thickness : 0;
+    rf_material_params p;
+    rf_impact_material_params(in, which, &p);
+    return unstable(which == 2 ? "layer" : "slope", &p, in->slope_angle, which == 2 ? t : fmax(depth_max, t), *fs,
+                    err);
+}
+
+double f3_ground_angle(const rf_impact_input *in, rf_fem_ground mode, double g, double depth_max)
+{
+    const double th = in->slope_angle, S = RF_FEM_GROUND_SAFETY;
+    int which;
+    if (mode != RF_FEM_GROUND_STABLE || !(g > 0) || !(ground_fs(in, g, depth_max, th, &which) < S))
+        return th;
+    double lo = 0, hi = th; /* FS falls with the angle: FS(lo) >= S (level ground: infinite) > FS(hi) */
+    for (int it = 0; it < 64; it++) {
+        const double mid = 0.5 * (lo + hi);
+        if (ground_fs(in, g, depth_max, mid, &which) >= S)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
 }
 
 /* Depths -z of the 8 Gauss points of element e (in f3_hex_gradients' order). */

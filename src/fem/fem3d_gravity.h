@@ -31,6 +31,12 @@ void f3_gravity_direction(double theta, double dir[3]);
  * (INFINITY without a plastic body or on a level slope). */
 rf_status f3_gravity_stability(const rf_impact_input *in, double g, double depth_max, double *fs, rf_error *err);
 
+/* The ground's inclination [rad] under an impact at in->slope_angle (rf_fem_ground):
+ * the slope angle itself, or with RF_FEM_GROUND_STABLE and gravity g > 0 the
+ * steepest angle up to it at which the factor of safety above is at least
+ * RF_FEM_GROUND_SAFETY (bisection: it falls monotonically with the angle). */
+double f3_ground_angle(const rf_impact_input *in, rf_fem_ground mode, double g, double depth_max);
+
 /* The geostatic state and the body load, after assembly (u = 0): fgrav (ndof
  * values, zeroed by the caller) gets the slope's internal force of the
  * inclined geostatic stress set at its kernel's points (an integration-point
@@ -55,6 +61,7 @@ typedef struct {
     double cm_u[3], cm_v[3];   /* the boulder's CM displacement [m] and velocity [m/s] (v at t_n - dt/2) */
     double spread_u;           /* largest |u_a - u_CM| of a boulder node (elastic: its deformation) [m] */
     double dt, closure, gravity_work; /* [s]; energy closure and gravity's work [J] (model) */
+    double ground_angle;       /* the ground's inclination gravity and the geostatic state took [rad] */
     long outside, box_nodes;   /* geostatic points outside the yield surface; nodes in load_err */
     double load_err;           /* largest |fgrav - m_a g dir| / (m_a g) over the slope's nodes inside
                                   the fine box's rectangular elements (off the outer and symmetry

@@ -61,6 +61,7 @@ static void gravity_free_report(solid_run *R, f3_gravity_check *chk, double clos
         for (int q = 0; q < 3; q++)
             chk->spread_u = fmax(chk->spread_u, fabs(u[3 * i + q] - chk->cm_u[q]));
     chk->dt = R->step.dt, chk->closure = closure, chk->gravity_work = R->grav.W, chk->outside = R->grav.outside;
+    chk->ground_angle = R->set.ground.slope_angle;
     gravity_load_check(R, chk);
     const f3_mesh *mesh = &R->grid.mesh;
     for (long e = mesh->boulder_elems; chk->cell && e < R->grid.ne; e++) {

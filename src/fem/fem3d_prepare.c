@@ -155,8 +155,10 @@ rf_status f3_run_prepare(solid_run *R, const rf_impact_input *in, const rf_fem_o
     /* gravity: the energy from the internal work (the slope's geostatic pre-stress is not in 1/2 u' K u) */
     R->grav.g = rf_impact_gravity(in, 1);
     body->work_account |= R->grav.g > 0;
+    set->ground = *in; /* gravity's ground: inclined at the incidence, or less (rf_fem_ground) */
+    set->ground.slope_angle = f3_ground_angle(in, set->o.ground, R->grav.g, set->L);
     double fs;
-    return R->grav.g > 0 ? f3_gravity_stability(in, R->grav.g, set->L, &fs, err) : RF_OK;
+    return R->grav.g > 0 ? f3_gravity_stability(&set->ground, R->grav.g, set->L, &fs, err) : RF_OK;
 }
 
 /* The boulder's fine box in its half-space image.  An elastic boulder: at most

@@ -40,6 +40,7 @@ enum { Q_K, Q_FE, Q_FEL, Q_INC_PTR, Q_INC, Q_U, Q_V, Q_F, Q_FEXT, Q_MASS, Q_INVM
 /* What the run was asked, and what follows from it before the mesh. */
 typedef struct {
     const rf_impact_input *in;
+    rf_impact_input ground; /* *in with the ground's inclination (f3_ground_angle) as its slope angle: gravity's */
     rf_fem_options o;
     rf_fem_tuning t;      /* o.tuning's values, or the defaults */
     rf_fem3d_options o3;

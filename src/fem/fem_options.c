@@ -16,7 +16,8 @@
 #include "core/util.h"
 
 _Static_assert(sizeof(rf_fem_boundary) == sizeof(int) && sizeof(rf_fem_kinematics) == sizeof(int) &&
-                   sizeof(rf_fem_ale) == sizeof(int) && sizeof(rf_fem_sizing) == sizeof(int),
+                   sizeof(rf_fem_ale) == sizeof(int) && sizeof(rf_fem_sizing) == sizeof(int) &&
+                   sizeof(rf_fem_ground) == sizeof(int),
                "a CHOICE row is stored as an int");
 
 /* Names indexed by the enum values. */
@@ -24,6 +25,7 @@ static const char *const boundary_names[] = {"fixed", "absorbing", "auto", NULL}
 static const char *const kinematics_names[] = {"auto", "off", "on", NULL};
 static const char *const ale_names[] = {"off", "on", NULL};
 static const char *const sizing_names[] = {"hertz", "soil", NULL};
+static const char *const ground_names[] = {"incidence", "stable", NULL};
 
 #define ROW(field, kind, unit, vname, def, lo, hi, lo3, hi3, zero_auto, choices, help) \
     {#field, offsetof(rf_fem_options, field), kind, unit, vname, def, lo, hi, lo3, hi3, zero_auto, choices, help}
@@ -66,6 +68,12 @@ const rf_fem_option_field rf_fem_option_fields[] = {
         "its weight) times K.  Under a soft layer the stiff rock sets the explicit time step; K > 1 lengthens "
         "it by sqrt(K) up to the bound of the layer's contact face (about 3-4x: docs/soil-impacts.md section "
         "3, where it holds).  1 = the rock itself; ignored without a layer"),
+    ROW(ground, CHOICE, "", "KIND", RF_FEM_GROUND_INCIDENCE, 0, 0, 0, 0, 0, ground_names,
+        "3D model with gravity: the ground's inclination under an oblique impact.  incidence: the slope is "
+        "inclined at the incidence (the boulder falls vertically).  stable: at the incidence, but no steeper "
+        "than the layer (and an elasto-plastic slope) stands with an infinite-slope factor of safety of 1.25; "
+        "steeper incidences come at their angle onto that ground (the impact tables' setting on a soil layer: "
+        "docs/soil-impacts.md section 4b).  The axisymmetric model ignores it"),
     ROW(threads, RF_FEM_OPTION_COUNT, "", "N", 1, 0, 1024, 0, 1024, 0, NULL,
         "threads of one impact, 0..1024 (0 = 1; rockfuzz impact without it, or with 0: all cores for the "
         "3D model, 1 for the axisymmetric one); the results are the same bit for bit"),

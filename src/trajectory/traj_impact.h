@@ -62,6 +62,10 @@ double traj_impact_layer_thickness(const rf_traj_impact_ground *g);
  * less CPU.  1 when it applies (the setup's key then says so: rows computed
  * without it are not reused). */
 int traj_impact_layer_preset(const traj_impact_setup *s);
+
+/* 1 if the setup's impacts are the FE's (whose ground is then no steeper than
+ * a layer stands, rf_fem_options.ground stable: the setup's key says so). */
+int traj_impact_fem(const traj_impact_setup *s);
 /* One impact: normal speed vn [m/s] > 0, incidence theta [rad] from the normal. */
 rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double theta, double *R_n, double *R_t,
                                    double *spin, rf_error *err);

@@ -8,7 +8,8 @@
  * The impact API describes an impact as a vertical velocity V onto a slope
  * inclined at alpha (v_n = V cos alpha, v_t = V sin alpha).  An impact of
  * normal speed v_n at incidence theta (from the normal) is therefore
- * V = v_n / cos theta on a slope inclined at theta.  Returned: R_n, R_t and
+ * V = v_n / cos theta on a slope inclined at theta; the FE's gravity takes
+ * the ground no steeper than a layer stands (rf_fem_options.ground stable).  Returned: R_n, R_t and
  * the spin ratio omega r / v_t' after the impact (0 when not computed).  At
  * normal incidence R_t is undefined (v_t = 0): incidences below 1 degree are
  * evaluated at 1 degree (closer to normal, the FE's R_t becomes a ratio of
@@ -132,6 +133,11 @@ rf_status traj_impact_ground_check(const rf_traj_impact_ground *g, const char *r
     return st;
 }
 
+int traj_impact_fem(const traj_impact_setup *s)
+{
+    return s->solver == RF_IMPACT_FEM;
+}
+
 int traj_impact_layer_preset(const traj_impact_setup *s)
 {
     return s->solver == RF_IMPACT_FEM && s->has_ground && traj_impact_layer_thickness(&s->ground) > 0;
@@ -145,6 +151,9 @@ rf_status traj_impact_coefficients(const traj_impact_setup *s, double vn, double
     spec.solver = (rf_impact_solver)s->solver;
     spec.fem.refinement = s->refinement;
     spec.fem.interrupt = s->stop;
+    /* a layer that cannot stand at a grazing incidence still has an impact there: the ground no steeper
+       than it stands with FS 1.25 (docs/soil-impacts.md section 4b; unchanged where it stands) */
+    spec.fem.ground = RF_FEM_GROUND_STABLE;
     if (traj_impact_layer_preset(s))
         spec.fem.rock_mass_scale = 100;
     rf_impact_input in;

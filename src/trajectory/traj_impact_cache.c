@@ -22,8 +22,9 @@
 #include <string.h>
 #include <unistd.h>
 
-/* The setup's inputs after the radius: "rho=..,mu=..,ref=..[,ground=HASH[,rock_mass_scale=100]]"
- * (the layer preset: traj_impact_layer_preset). */
+/* The setup's inputs after the radius: "rho=..,mu=..,ref=..[,ground=HASH[,rock_mass_scale=100][,fem_ground=stable]]"
+ * (the layer preset: traj_impact_layer_preset; the FE's ground no steeper than the layer stands,
+ * traj_impact_adapter.c, which changes the values of a ground's FE impacts at steep incidences). */
 static void key_rest(const traj_impact_setup *s, char *key, size_t size)
 {
     int n = snprintf(key, size, "rho=%.17g,mu=%.17g,ref=%.17g", s->density, s->friction, s->refinement);
@@ -35,8 +36,9 @@ static void key_rest(const traj_impact_setup *s, char *key, size_t size)
     h = rf_fnv1a(h, g->slope_material, sizeof g->slope_material);
     h = rf_fnv1a(h, g->layer_material, sizeof g->layer_material);
     h = rf_fnv1a(h, g->v, sizeof g->v);
-    snprintf(key + n, size - (size_t)n, ",ground=%016llx%s", (unsigned long long)h,
-             traj_impact_layer_preset(s) ? ",rock_mass_scale=100" : "");
+    snprintf(key + n, size - (size_t)n, ",ground=%016llx%s%s", (unsigned long long)h,
+             traj_impact_layer_preset(s) ? ",rock_mass_scale=100" : "",
+             traj_impact_fem(s) ? ",fem_ground=stable" : "");
 }
 
 void traj_impact_setup_key(const traj_impact_setup *s, char *key, size_t size)
