@@ -188,6 +188,54 @@ static rf_status feed_rest(double g, double *t_end, int *at_rest, rf_error *err)
     return feed_motion(g, 1, 0, t_end, at_rest, &v_end, err);
 }
 
+/* The roll rule: a boulder at V = 1 m/s stopped in 2 t_h, then riding in contact with a normal speed
+ * of +-0.1 V (above the rest rule's 2 %, as a block rolling over its crater's rim) while its centre
+ * accelerates along the slope, x = a t^2 / 2, contact radius 0.1 m: with gravity the run ends, as at
+ * rest and rolled out, at the first step past t_max = 3 t_h where x > 0.2 m (closed form
+ * t = sqrt(0.4 / a)); with the centre held (x = 0.15 m) it fails at the bound as before; without
+ * gravity the rule does not apply. */
+static rf_status feed_roll(double g, double acc, double x_cap, double *t_end, int *rolled, rf_error *err)
+{
+    const double t_h = 1e-3, dt = 1e-6, V = 1;
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    fem_run R;
+    rf_status st = fem_run_begin(&R, "fem", &o, dt, t_h, 0, 12, err);
+    assert_int_equal(st, RF_OK);
+    R.gravity = g;
+    for (long n = 0;; n++) {
+        const double t = (double)n * dt;
+        double row[12] = {0};
+        row[11] = t < 2 * t_h ? -V * (1 - t / (2 * t_h)) : 0.1 * V * sin(2 * M_PI * t / t_h);
+        R.travel = fmin(0.5 * acc * t * t, x_cap);
+        *t_end = t;
+        if ((st = fem_run_account(&R, n, 1.0, 0.1, 0, 0, 1, row, err)) != RF_OK || fem_run_stop(&R, n))
+            break;
+    }
+    *rolled = R.rolled_out && R.at_rest;
+    fem_run_free(&R);
+    return st;
+}
+
+static void test_roll_rule(void **state)
+{
+    (void)state;
+    rf_error err = {0};
+    double t_end;
+    int rolled;
+    const double acc = 1e4; /* x = 0.2 m at t = sqrt(0.4 / a) = 6.32 t_h, past t_max */
+    assert_int_equal(feed_roll(9.81, acc, INFINITY, &t_end, &rolled, &err), RF_OK);
+    printf("roll rule: ended at %.6g s (closed form %.6g s), rolled out %d\n", t_end, sqrt(0.4 / acc), rolled);
+    assert_true(rolled);
+    assert_true(t_end >= sqrt(0.4 / acc) && t_end < sqrt(0.4 / acc) + 2e-6);
+    assert_int_equal(feed_roll(9.81, 1e6, INFINITY, &t_end, &rolled, &err), RF_OK); /* out early: at t_max */
+    assert_true(rolled && fabs(t_end - 3e-3) < 2e-6);
+    assert_int_equal(feed_roll(9.81, acc, 0.15, &t_end, &rolled, &err), RF_EMODEL); /* held in its crater */
+    assert_false(rolled);
+    assert_int_equal(feed_roll(0, acc, INFINITY, &t_end, &rolled, &err), RF_EMODEL); /* no gravity: old rules */
+    assert_false(rolled);
+}
+
 /* A slow boulder (V = 1 cm/s) that separates at 3 t_h with v_sep = 5 mm/s
  * (above the rest resolution 2 % V) is turned by its weight within 0.05 t_h:
  * the impact has ended (a later fall is a new impact): the run ends 0.1 t_h
@@ -309,7 +357,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_slope_at_rest),        cmocka_unit_test(test_cohesionless_strength),
         cmocka_unit_test(test_rest_rule),            cmocka_unit_test(test_bounce_then_fall),
-        cmocka_unit_test(test_slow_block_on_sand),
+        cmocka_unit_test(test_slow_block_on_sand),   cmocka_unit_test(test_roll_rule),
         cmocka_unit_test(test_gravity_zero_is_old_model), cmocka_unit_test(test_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -69,6 +69,7 @@ static rf_status solid_stage_step(void *run, double t, fem_step_row *r, rf_error
                        "step dt = %g s (dt_safety = %g) at t = %g s", T->unstable, T->dt, R->set.t.dt_safety, t);
     F3P_MARK(m);
     f3_run_energy(R, t, r->Fc, r->rad, r->row, &r->comp, &r->closure);
+    r->travel = R->body.rigid ? R->B.X[0] : 0; /* the roll rule: a rigid boulder's CM along the slope */
     F3P_LAP(F3P_ENERGY, m);
     return RF_OK;
 }

@@ -148,6 +148,13 @@ static void rest_check(fem_run *r, double t)
         r->at_rest = 1;
 }
 
+/* The roll rule (fem_core.h) at time t. */
+static void roll_check(fem_run *r, double t)
+{
+    if (t >= r->t_max && r->in_contact && r->a_max > 0 && fabs(r->travel) > 2 * r->a_max)
+        r->at_rest = 1, r->rolled_out = 1;
+}
+
 /* The expected end of the run at time t, for a progress line only: end_time
  * when given; else at least t_min, and by the state of the impact: while the
  * boulder approaches, at the mean rate so far the incoming momentum is
@@ -189,6 +196,8 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
         r->in_contact = 0;
     if (Fc > r->F_max)
         r->F_max = Fc, r->a_at_Fmax = rad;
+    if (Fc > 0 && rad > r->a_max)
+        r->a_max = rad;
     if (comp > r->comp_max)
         r->comp_max = comp;
     if (!isfinite(closure) || fabs(closure) > 10 * ke0)
@@ -200,7 +209,7 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
     if (r->record && n % r->stride == 0 && series_push(&r->series, row) != 0)
         return rf_fail(err, RF_ENOMEM, "%s: out of memory", r->who);
     if (r->gravity > 0 && r->end_time == 0)
-        rest_check(r, t);
+        rest_check(r, t), roll_check(r, t);
     if (r->progress)
         r->progress(r->progress_ctx, t, expected_end(r, t));
     const double tn = (double)(n + 1) * r->dt;
@@ -304,7 +313,12 @@ void fem_run_warnings(const fem_run *r, int fixed_outer, double L, double c_p, d
                                r->episodes);
     if (extra && extra[0] && wl < size)
         wl += (size_t)snprintf(buf + wl, size - wl, "%s", extra);
-    if (r->at_rest && wl < size)
+    if (r->rolled_out && wl < size)
+        wl += (size_t)snprintf(buf + wl, size - wl, "The boulder rolled or slid out of its crater in contact (its "
+                               "centre %.3g m along the slope, more than twice the contact radius %.3g m, at t = "
+                               "%.3g s, %.3g Hertz durations): the impact is over, R_n = 0. ", r->travel, r->a_max,
+                               r->t_last_contact, r->t_last_contact / r->t_h);
+    else if (r->at_rest && wl < size)
         wl += (size_t)snprintf(buf + wl, size - wl, "The boulder came to rest in contact (normal speed below %g %% of "
                                "the incoming one for %g Hertz durations): R_n = 0. ", 100 * FEM_REST_SPEED,
                                FEM_REST_WINDOW);

@@ -87,6 +87,11 @@ typedef struct {
        of the current slow spell in contact (-1: none) and the rest flag */
     double gravity, v_sep, rest_since;
     int at_rest;
+    /* the roll rule (below): the boulder's displacement along the slope [m] at this step (set by the
+       geometry before the account; 0 where it has none) and the largest contact radius so far [m];
+       rolled_out: the run ended by it (at_rest is then set too) */
+    double travel, a_max;
+    int rolled_out;
     int early_end; /* the tuning's end_at_separation */
     fem_series series;
     void (*progress)(void *ctx, double t, double t_end); /* the options' progress callback, or NULL */
@@ -118,6 +123,12 @@ int fem_run_stop(const fem_run *r, long n);
  * (closed within the last 0.1 t_h) with a normal speed below FEM_REST_SPEED
  * times the incoming one; the run then ends (R_n = 0), without failing. */
 #define FEM_REST_SPEED 0.02
+/* The roll rule (gravity > 0, automatic end): past t_max a boulder still in contact whose centre has
+ * moved along the slope by more than its crater's diameter (twice the largest contact radius) has
+ * rolled or slid out of its crater: the impact is over, the run ends as at rest (R_n = 0, the
+ * tangential velocity and spin of that moment), without failing.  Without it a block that neither
+ * rebounds nor rests (rolling down a slope steeper than its crater holds it) ran off the mesh and
+ * failed at the automatic end's bound (docs/soil-impacts.md section 6). */
 /* The mass redistribution at the contact face (docs/validation-plastic.md 9e) leaves every face
  * node at least this share of its element masses.  Any share keeps the step; the floor keeps the
  * face elements from being crushed: with a share of 0.006 (soft soil over granite) the boulder

@@ -206,10 +206,11 @@ static rf_status drive_loop(const fem_geometry *g, void *run, fem_run *R, const 
             break;
         if (f.dir && n % f.every == 0 && f.n < f.cap - 1 && (st = frame(g, run, &f, t, err)) != RF_OK)
             break;
-        fem_step_row r;
+        fem_step_row r = {.travel = 0};
         if ((st = g->step(run, t, &r, err)) != RF_OK)
             break;
         const int was_in_contact = R->in_contact;
+        R->travel = r.travel;
         if ((st = fem_run_account(R, n, r.Fc, r.rad, r.comp, r.closure, p->ke0, r.row, err)) != RF_OK)
             break;
         if (g->accounted)

@@ -35,6 +35,7 @@ typedef struct {
 /* A step's record for the account (fem_run_account). */
 typedef struct {
     double Fc, rad, comp, closure, row[13];
+    double travel; /* the boulder's displacement along the slope [m] (the roll rule; 0: none) */
 } fem_step_row;
 
 /* The stages of one geometry; run is its own run state (zeroed, its pool set, by the caller). */
