@@ -207,12 +207,12 @@ static rf_status feed_roll(double g, double acc, double x_cap, double *t_end, in
         const double t = (double)n * dt;
         double row[12] = {0};
         row[11] = t < 2 * t_h ? -V * (1 - t / (2 * t_h)) : 0.1 * V * sin(2 * M_PI * t / t_h);
-        R.travel = fmin(0.5 * acc * t * t, x_cap);
+        R.roll.travel = fmin(0.5 * acc * t * t, x_cap);
         *t_end = t;
         if ((st = fem_run_account(&R, n, 1.0, 0.1, 0, 0, 1, row, err)) != RF_OK || fem_run_stop(&R, n))
             break;
     }
-    *rolled = R.rolled_out && R.at_rest;
+    *rolled = R.roll.out && R.at_rest;
     fem_run_free(&R);
     return st;
 }

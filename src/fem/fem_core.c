@@ -151,8 +151,8 @@ static void rest_check(fem_run *r, double t)
 /* The roll rule (fem_core.h) at time t. */
 static void roll_check(fem_run *r, double t)
 {
-    if (t >= r->t_max && r->in_contact && r->a_max > 0 && fabs(r->travel) > 2 * r->a_max)
-        r->at_rest = 1, r->rolled_out = 1;
+    if (t >= r->t_max && r->in_contact && r->roll.a_max > 0 && fabs(r->roll.travel) > 2 * r->roll.a_max)
+        r->at_rest = 1, r->roll.out = 1;
 }
 
 /* The expected end of the run at time t, for a progress line only: end_time
@@ -196,8 +196,8 @@ rf_status fem_run_account(fem_run *r, long n, double Fc, double rad, double comp
         r->in_contact = 0;
     if (Fc > r->F_max)
         r->F_max = Fc, r->a_at_Fmax = rad;
-    if (Fc > 0 && rad > r->a_max)
-        r->a_max = rad;
+    if (Fc > 0 && rad > r->roll.a_max)
+        r->roll.a_max = rad;
     if (comp > r->comp_max)
         r->comp_max = comp;
     if (!isfinite(closure) || fabs(closure) > 10 * ke0)
@@ -313,10 +313,10 @@ void fem_run_warnings(const fem_run *r, int fixed_outer, double L, double c_p, d
                                r->episodes);
     if (extra && extra[0] && wl < size)
         wl += (size_t)snprintf(buf + wl, size - wl, "%s", extra);
-    if (r->rolled_out && wl < size)
+    if (r->roll.out && wl < size)
         wl += (size_t)snprintf(buf + wl, size - wl, "The boulder rolled or slid out of its crater in contact (its "
                                "centre %.3g m along the slope, more than twice the contact radius %.3g m, at t = "
-                               "%.3g s, %.3g Hertz durations): the impact is over, R_n = 0. ", r->travel, r->a_max,
+                               "%.3g s, %.3g Hertz durations): the impact is over, R_n = 0. ", r->roll.travel, r->roll.a_max,
                                r->t_last_contact, r->t_last_contact / r->t_h);
     else if (r->at_rest && wl < size)
         wl += (size_t)snprintf(buf + wl, size - wl, "The boulder came to rest in contact (normal speed below %g %% of "

@@ -89,9 +89,11 @@ typedef struct {
     int at_rest;
     /* the roll rule (below): the boulder's displacement along the slope [m] at this step (set by the
        geometry before the account; 0 where it has none) and the largest contact radius so far [m];
-       rolled_out: the run ended by it (at_rest is then set too) */
-    double travel, a_max;
-    int rolled_out;
+       out: the run ended by it (at_rest is then set too) */
+    struct {
+        double travel, a_max;
+        int out;
+    } roll;
     int early_end; /* the tuning's end_at_separation */
     fem_series series;
     void (*progress)(void *ctx, double t, double t_end); /* the options' progress callback, or NULL */

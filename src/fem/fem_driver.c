@@ -210,7 +210,7 @@ static rf_status drive_loop(const fem_geometry *g, void *run, fem_run *R, const 
         if ((st = g->step(run, t, &r, err)) != RF_OK)
             break;
         const int was_in_contact = R->in_contact;
-        R->travel = r.travel;
+        R->roll.travel = r.travel;
         if ((st = fem_run_account(R, n, r.Fc, r.rad, r.comp, r.closure, p->ke0, r.row, err)) != RF_OK)
             break;
         if (g->accounted)
