@@ -205,7 +205,7 @@ int main(int argc, char **argv)
             normal_speeds = atoi(argv[i] + 3);
         else if (!strncmp(argv[i], "g=", 2))
             gravity = atof(argv[i] + 2);
-        else if (!strncmp(argv[i], "ground=", 7))
+        else if (!strcmp(argv[i], "ground=stable") || !strcmp(argv[i], "ground=incidence"))
             ground = strcmp(argv[i] + 7, "incidence") ? RF_FEM_GROUND_STABLE : RF_FEM_GROUND_INCIDENCE;
         else if (!strncmp(argv[i], "rock=", 5))
             rock = atof(argv[i] + 5);

@@ -153,6 +153,17 @@ static void test_cohesionless_strength(void **state)
     assert_true(fabs(sqrt(j2) - eta * pm) <= 1e-9 * eta * pm);
 }
 
+/* A run account of the fed motions below: Hertz duration 1 ms, steps of 1 us, gravity g. */
+#define FEED_TH 1e-3
+#define FEED_DT 1e-6
+static void feed_begin(fem_run *R, double g, rf_error *err)
+{
+    rf_fem_options o;
+    rf_fem_options_default(&o);
+    assert_int_equal(fem_run_begin(R, "fem", &o, FEED_DT, FEED_TH, 0, 12, err), RF_OK);
+    R->gravity = g;
+}
+
 /* The rest rule of the run account on a closed-form motion: a boulder at
  * V = 1 m/s decelerated uniformly to rest in 3 t_h then held in contact
  * (no rebound): with gravity the run ends 2 t_h after its speed fell below
@@ -161,13 +172,10 @@ static void test_cohesionless_strength(void **state)
 static rf_status feed_motion(double g, double V, double v_sep, double *t_end, int *at_rest, double *v_end,
                              rf_error *err)
 {
-    const double t_h = 1e-3, dt = 1e-6;
-    rf_fem_options o;
-    rf_fem_options_default(&o);
+    const double t_h = FEED_TH, dt = FEED_DT;
     fem_run R;
-    rf_status st = fem_run_begin(&R, "fem", &o, dt, t_h, 0, 12, err);
-    assert_int_equal(st, RF_OK);
-    R.gravity = g;
+    feed_begin(&R, g, err);
+    rf_status st = RF_OK;
     for (long n = 0;; n++) {
         const double t = (double)n * dt;
         double row[12] = {0};
@@ -196,13 +204,10 @@ static rf_status feed_rest(double g, double *t_end, int *at_rest, rf_error *err)
  * gravity the rule does not apply. */
 static rf_status feed_roll(double g, double acc, double x_cap, double *t_end, int *rolled, rf_error *err)
 {
-    const double t_h = 1e-3, dt = 1e-6, V = 1;
-    rf_fem_options o;
-    rf_fem_options_default(&o);
+    const double t_h = FEED_TH, dt = FEED_DT, V = 1;
     fem_run R;
-    rf_status st = fem_run_begin(&R, "fem", &o, dt, t_h, 0, 12, err);
-    assert_int_equal(st, RF_OK);
-    R.gravity = g;
+    feed_begin(&R, g, err);
+    rf_status st = RF_OK;
     for (long n = 0;; n++) {
         const double t = (double)n * dt;
         double row[12] = {0};
